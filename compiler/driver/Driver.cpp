@@ -1,0 +1,240 @@
+#include "driver/Driver.h"
+
+#include <charconv>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "driver/Golden.h"
+#include "lower/Lower.h"
+#include "sema/Sema.h"
+
+#ifndef GBX_VERSION
+#define GBX_VERSION "0.0.0"
+#endif
+
+namespace gbx::driver {
+
+namespace {
+
+void analyseAndLower(Compilation& c) {
+  if (c.loaded.parseErrors || c.loaded.mainMissing) return;
+  c.program = lower::lower(sema::analyse(c.loaded, c.diags));
+  c.analysed = true;
+}
+
+} // namespace
+
+std::unique_ptr<Compilation> compile(const std::string& path) {
+  auto c = std::make_unique<Compilation>();
+  c->loaded = sema::load(path, c->sources, c->diags);  // pass 1: load and parse
+  analyseAndLower(*c);                                 // passes 2, 3: sema, lower
+  return c;
+}
+
+std::unique_ptr<Compilation> compileText(const std::string& displayPath, const std::string& text) {
+  auto c = std::make_unique<Compilation>();
+  c->loaded = sema::loadText(displayPath, text, c->sources, c->diags);
+  analyseAndLower(*c);
+  return c;
+}
+
+namespace {
+
+const char* kUsage = R"(usage: gbxc <command> [options]
+
+commands:
+  check FILE               check a spec: syntax, names, units (front end only)
+  dump ast FILE            print the syntax tree
+  dump ir FILE             print the checked, lowered program
+  solve FILE               solve every gearbox of the spec (or --gearbox NAME)
+  test PATH... [--update]  golden regression tests: each x.gbx against x.expected
+
+options:
+  --format FORMAT          text or json (solve also: md, html, csv)
+  --gearbox NAME           solve only this gearbox
+  -o DIR                   write plots and reports into DIR
+  --jobs N                 worker threads (results do not depend on N)
+  --quiet                  no progress output
+  --update                 (test) rewrite the expected files
+  --help                   this text
+  --version                the version
+
+exit status: 0 success, 1 the spec has errors, 2 usage, 3 runtime failure
+)";
+
+struct Options {
+  std::string command;
+  std::string sub;  // ast|ir for dump
+  std::vector<std::string> files;
+  std::string format = "text";
+  std::string gearbox;
+  std::string outDir;
+  int jobs = 1;
+  bool quiet = false;
+  bool update = false;
+};
+
+int usage(std::ostream& err, const std::string& msg) {
+  err << "gbxc: " << msg << "\n(run `gbxc --help` for usage)\n";
+  return 2;
+}
+
+// Prints diagnostics in the chosen form; returns the exit status of a front-end command.
+int report(const Compilation& c, const Options& o, std::ostream& out, std::ostream& err) {
+  if (o.format == "json") {
+    out << "{\"diagnostics\": " << c.diags.renderJson(c.sources) << "}\n";
+  } else if (!c.diags.all().empty()) {
+    err << c.diags.renderText(c.sources);
+  }
+  return c.ok() ? 0 : 1;
+}
+
+int check(const Options& o, std::ostream& out, std::ostream& err) {
+  auto c = compile(o.files[0]);
+  if (o.format == "json") {
+    out << fmt::format("{{\"file\": \"{}\", \"ok\": {}, \"gearboxes\": [", diag::jsonEscape(o.files[0]), c->ok() ? "true" : "false");
+    for (size_t i = 0; c->ok() && i < c->program.gearboxes.size(); ++i)
+      out << (i ? ", " : "") << "\"" << diag::jsonEscape(c->program.gearboxes[i].name) << "\"";
+    out << "], \"diagnostics\": " << c->diags.renderJson(c->sources) << "}\n";
+    return c->ok() ? 0 : 1;
+  }
+  int status = report(*c, o, out, err);
+  if (status == 0) {
+    std::vector<std::string> names;
+    for (const auto& g : c->program.gearboxes) names.push_back(g.name);
+    out << fmt::format("{}: ok, {} gearbox{}{}\n", o.files[0], names.size(), names.size() == 1 ? "" : "es",
+                       names.empty() ? "" : fmt::format(" ({})", fmt::join(names, ", ")));
+  }
+  return status;
+}
+
+int dump(const Options& o, std::ostream& out, std::ostream& err) {
+  auto c = compile(o.files[0]);
+  if (o.sub == "ast") {
+    // The syntax tree is printed even when sema finds errors: it is what was parsed.
+    if (!c->loaded.files.empty() && !c->loaded.parseErrors) out << ast::print(c->loaded.files[0]);
+    return report(*c, o, out, err);
+  }
+  int status = report(*c, o, out, err);
+  if (status == 0) out << ir::print(c->program);
+  return status;
+}
+
+int solve(const Options& o, std::ostream& out, std::ostream& err) {
+  auto c = compile(o.files[0]);
+  int status = report(*c, o, out, err);
+  if (status != 0) return status;
+  if (!o.gearbox.empty()) {
+    bool found = false;
+    for (const auto& g : c->program.gearboxes) found = found || g.name == o.gearbox;
+    if (!found) return usage(err, fmt::format("`{}` declares no gearbox `{}`", o.files[0], o.gearbox));
+  }
+  err << "gbxc: solving is not available in this build; `gbxc check` and `gbxc dump ir` show the checked spec\n";
+  return 3;
+}
+
+int test(const Options& o, std::ostream& out, std::ostream& err) {
+  std::vector<std::string> problems;
+  auto cases = discoverGolden(o.files, problems);
+  for (const auto& p : problems) err << "gbxc test: " << p << "\n";
+  int passed = 0, failed = 0;
+  for (const auto& c : cases) {
+    auto r = runGolden(c, o.update);
+    switch (r.status) {
+    case GoldenOutcome::Pass: ++passed; break;
+    case GoldenOutcome::Updated:
+      ++passed;
+      out << "updated " << c.expected << "\n";
+      break;
+    case GoldenOutcome::Missing:
+      ++failed;
+      out << "FAIL " << c.gbx << ": no " << c.expected << " (run `gbxc test --update` and review it)\n";
+      break;
+    case GoldenOutcome::Fail:
+      ++failed;
+      out << "FAIL " << c.gbx << "\n" << r.diff;
+      break;
+    }
+  }
+  out << fmt::format("{} passed, {} failed\n", passed, failed);
+  if (!problems.empty()) return 2;
+  return failed == 0 ? 0 : 1;
+}
+
+} // namespace
+
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  Options o;
+  std::vector<std::string> positional;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&](const char* opt) -> const std::string* {
+      if (i + 1 >= args.size()) return nullptr;
+      (void)opt;
+      return &args[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      out << kUsage;
+      return 0;
+    }
+    if (a == "--version") {
+      out << "gbxc " << GBX_VERSION << "\n";
+      return 0;
+    }
+    if (a == "--format") {
+      auto v = value("--format");
+      if (!v) return usage(err, "--format needs a value");
+      o.format = *v;
+    } else if (a == "--gearbox") {
+      auto v = value("--gearbox");
+      if (!v) return usage(err, "--gearbox needs a name");
+      o.gearbox = *v;
+    } else if (a == "-o") {
+      auto v = value("-o");
+      if (!v) return usage(err, "-o needs a directory");
+      o.outDir = *v;
+    } else if (a == "--jobs" || a == "-j") {
+      auto v = value("--jobs");
+      int n = 0;
+      if (!v || std::from_chars(v->data(), v->data() + v->size(), n).ec != std::errc{} || n < 1 || n > 256)
+        return usage(err, "--jobs needs a whole number from 1 to 256");
+      o.jobs = n;
+    } else if (a == "--quiet" || a == "-q") {
+      o.quiet = true;
+    } else if (a == "--update") {
+      o.update = true;
+    } else if (a.size() > 1 && a[0] == '-') {
+      return usage(err, fmt::format("unknown option `{}`", a));
+    } else {
+      positional.push_back(a);
+    }
+  }
+  if (positional.empty()) return usage(err, "no command given");
+  o.command = positional[0];
+  positional.erase(positional.begin());
+  if (o.command == "dump") {
+    if (positional.empty() || (positional[0] != "ast" && positional[0] != "ir"))
+      return usage(err, "`dump` takes `ast` or `ir`, then a file");
+    o.sub = positional[0];
+    positional.erase(positional.begin());
+  }
+  o.files = positional;
+  bool solveFormats = o.command == "solve";
+  if (o.format != "text" && o.format != "json" &&
+      !(solveFormats && (o.format == "md" || o.format == "html" || o.format == "csv")))
+    return usage(err, fmt::format("unknown format `{}` for `{}`", o.format, o.command));
+  if (o.command == "test") {
+    if (o.files.empty()) return usage(err, "`test` needs at least one file or folder");
+    return test(o, out, err);
+  }
+  if (o.command != "check" && o.command != "dump" && o.command != "solve")
+    return usage(err, fmt::format("unknown command `{}`", o.command));
+  if (o.files.size() != 1) return usage(err, fmt::format("`{}` takes exactly one file", o.command));
+  if (o.update) return usage(err, "--update goes with `test`");
+  if (o.command == "check") return check(o, out, err);
+  if (o.command == "dump") return dump(o, out, err);
+  return solve(o, out, err);
+}
+
+} // namespace gbx::driver

@@ -1,0 +1,178 @@
+#include "driver/Golden.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "driver/Driver.h"
+
+namespace gbx::driver {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string readAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> words(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::string> w;
+  std::string x;
+  while (in >> x) w.push_back(x);
+  return w;
+}
+
+std::vector<std::string> argsFor(const fs::path& gbx) {
+  std::string text = readAll(gbx);
+  std::string first = text.substr(0, text.find('\n'));
+  const std::string tag = "// ARGS:";
+  if (first.rfind(tag, 0) == 0) return words(first.substr(tag.size()));
+  fs::path folderArgs = gbx.parent_path() / "golden.args";
+  if (fs::exists(folderArgs)) return words(readAll(folderArgs));
+  return {"solve"};
+}
+
+void addCase(const fs::path& gbx, std::vector<GoldenCase>& out) {
+  GoldenCase c;
+  c.gbx = gbx.string();
+  fs::path exp = gbx;
+  exp.replace_extension(".expected");
+  c.expected = exp.string();
+  c.name = gbx.parent_path().filename().string() + "/" + gbx.stem().string();
+  c.args = argsFor(gbx);
+  out.push_back(std::move(c));
+}
+
+} // namespace
+
+std::vector<GoldenCase> discoverGolden(const std::vector<std::string>& paths, std::vector<std::string>& problems) {
+  std::vector<GoldenCase> out;
+  for (const auto& p : paths) {
+    std::error_code ec;
+    if (fs::is_directory(p, ec)) {
+      std::vector<fs::path> found;
+      for (auto it = fs::recursive_directory_iterator(p, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+        if (it->is_regular_file() && it->path().extension() == ".gbx") found.push_back(it->path());
+      std::sort(found.begin(), found.end());
+      for (const auto& f : found) addCase(f, out);
+    } else if (fs::is_regular_file(p, ec) && fs::path(p).extension() == ".gbx") {
+      addCase(p, out);
+    } else {
+      problems.push_back(fmt::format("`{}` is neither a .gbx file nor a folder", p));
+    }
+  }
+  return out;
+}
+
+std::string captureGolden(const GoldenCase& c) {
+  fs::path file(c.gbx);
+  fs::path dir = file.parent_path();
+  std::vector<std::string> args = c.args;
+  args.push_back(file.filename().string());
+  std::ostringstream out, err;
+  fs::path cwd = fs::current_path();
+  if (!dir.empty()) fs::current_path(dir);
+  int status = run(args, out, err);
+  fs::current_path(cwd);
+  std::string text = out.str() + err.str();
+  if (!text.empty() && text.back() != '\n') text += "\n";
+  return text + fmt::format("[exit {}]\n", status);
+}
+
+GoldenOutcome runGolden(const GoldenCase& c, bool update) {
+  std::string actual = captureGolden(c);
+  GoldenOutcome r;
+  std::error_code ec;
+  bool exists = fs::exists(c.expected, ec);
+  if (update) {
+    if (!exists || readAll(c.expected) != actual) {
+      std::ofstream(c.expected, std::ios::binary) << actual;
+      r.status = GoldenOutcome::Updated;
+    }
+    return r;
+  }
+  if (!exists) {
+    r.status = GoldenOutcome::Missing;
+    return r;
+  }
+  std::string expected = readAll(c.expected);
+  if (expected != actual) {
+    r.status = GoldenOutcome::Fail;
+    r.diff = unifiedDiff(expected, actual, c.expected, "actual");
+  }
+  return r;
+}
+
+namespace {
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> v;
+  std::istringstream in(s);
+  std::string l;
+  while (std::getline(in, l)) v.push_back(l);
+  return v;
+}
+} // namespace
+
+std::string unifiedDiff(const std::string& expected, const std::string& actual, const std::string& expectedName,
+                        const std::string& actualName) {
+  auto a = lines(expected), b = lines(actual);
+  size_t n = a.size(), m = b.size();
+  // LCS table; golden outputs are small enough for the quadratic form.
+  std::vector<std::vector<unsigned>> L(n + 1, std::vector<unsigned>(m + 1, 0));
+  for (size_t i = n; i-- > 0;)
+    for (size_t j = m; j-- > 0;) L[i][j] = a[i] == b[j] ? L[i + 1][j + 1] + 1 : std::max(L[i + 1][j], L[i][j + 1]);
+  struct Op {
+    char kind;
+    std::string text;
+  };
+  std::vector<Op> ops;
+  size_t i = 0, j = 0;
+  while (i < n || j < m) {
+    if (i < n && j < m && a[i] == b[j]) {
+      ops.push_back({' ', a[i]});
+      ++i;
+      ++j;
+    } else if (j < m && (i == n || L[i][j + 1] >= L[i + 1][j])) {
+      ops.push_back({'+', b[j++]});
+    } else {
+      ops.push_back({'-', a[i++]});
+    }
+  }
+  std::string out = fmt::format("--- {}\n+++ {}\n", expectedName, actualName);
+  const size_t ctx = 3;
+  size_t k = 0;
+  while (k < ops.size()) {
+    if (ops[k].kind == ' ') {
+      ++k;
+      continue;
+    }
+    size_t start = k >= ctx ? k - ctx : 0, end = k;
+    while (end < ops.size()) {
+      if (ops[end].kind != ' ') {
+        ++end;
+        continue;
+      }
+      size_t run = end;
+      while (run < ops.size() && ops[run].kind == ' ') ++run;
+      if (run - end > 2 * ctx || run == ops.size()) {
+        end = std::min(ops.size(), end + ctx);
+        break;
+      }
+      end = run;
+    }
+    out += "@@\n";
+    for (size_t x = start; x < end; ++x) out += std::string(1, ops[x].kind) + ops[x].text + "\n";
+    k = end;
+  }
+  return out;
+}
+
+} // namespace gbx::driver

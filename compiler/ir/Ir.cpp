@@ -1,0 +1,87 @@
+#include "ir/Ir.h"
+
+namespace gbx::ir {
+
+std::string Type::str() const {
+  switch (kind) {
+  case Number: return (integer ? std::string("integer") : std::string("real")) + (dim.dimensionless() ? "" : " " + dim.siUnit());
+  case Bool: return "bool";
+  case Interval: return "interval " + dim.siUnit();
+  case Set: return "set " + dim.siUnit();
+  case Stage: return "stage " + detail;
+  case Gear: return "gear " + detail;
+  case Collection: return "collection " + detail;
+  case Signal: return "signal";
+  case Symbol: return "symbol";
+  case Material: return "material";
+  case Scene: return "scene";
+  case Split: return "split";
+  case PerGear: return "per-gear " + dim.siUnit();
+  case Block: return "block " + detail;
+  case Error: return "error";
+  }
+  return "?";
+}
+
+ExprPtr Expr::clone() const {
+  auto e = std::make_unique<Expr>();
+  e->op = op;
+  e->type = type;
+  e->value = value;
+  e->name = name;
+  e->span = span;
+  for (const auto& a : args) e->args.push_back(a ? a->clone() : nullptr);
+  return e;
+}
+
+ExprPtr makeConst(Number v, Dim d, bool integer, Span span) {
+  auto e = std::make_unique<Expr>();
+  e->op = Op::Const;
+  e->value = v;
+  e->type = Type::number(d, integer);
+  e->span = span;
+  return e;
+}
+
+const char* stageKindName(StageKind k) {
+  switch (k) {
+  case StageKind::Spur: return "spur";
+  case StageKind::Helical: return "helical";
+  case StageKind::Bevel: return "bevel";
+  case StageKind::Planetary: return "planetary";
+  case StageKind::Idler: return "idler";
+  }
+  return "?";
+}
+
+const Attribute* Stage::find(const std::string& n) const {
+  for (const auto& a : attributes)
+    if (a.name == n) return &a;
+  return nullptr;
+}
+
+const Setting* findSetting(const std::vector<Setting>& s, const std::string& name) {
+  for (const auto& x : s)
+    if (x.name == name) return &x;
+  return nullptr;
+}
+
+bool Scene::hasEffect(const std::string& n) const {
+  for (const auto& e : effects)
+    if (e.name == n) return true;
+  return false;
+}
+
+const Stage* Gearbox::findStage(const std::string& n) const {
+  for (const auto& s : stages)
+    if (s.name == n) return &s;
+  return nullptr;
+}
+
+const Material* Program::findMaterial(const std::string& n) const {
+  for (const auto& m : materials)
+    if (m.name == n) return &m;
+  return nullptr;
+}
+
+} // namespace gbx::ir

@@ -1,0 +1,236 @@
+#pragma once
+// The checked, lowered program the runtime consumes: every name resolved to a
+// quantity path, every literal in SI and exact where it can be, every expression typed.
+// The runtime never sees the AST; this header is the whole contract between them.
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "source/Source.h"
+#include "units/Dim.h"
+#include "units/Number.h"
+
+namespace gbx::ir {
+
+using source::Span;
+using units::Dim;
+using units::Number;
+
+struct Type {
+  enum Kind { Number, Bool, Interval, Set, Stage, Gear, Collection, Signal, Symbol, Material, Scene, Split, PerGear, Block, Error };
+  Kind kind = Error;
+  Dim dim;
+  bool integer = false;
+  std::string detail;  // stage kind, gear role, collection name, block path
+
+  static Type number(Dim d, bool integer = false) { return {Number, d, integer, {}}; }
+  static Type boolean() { return {Bool, {}, false, {}}; }
+  static Type error() { return {Error, {}, false, {}}; }
+  bool isNumber() const { return kind == Number; }
+  bool isError() const { return kind == Error; }
+  std::string str() const;
+};
+
+enum class Op {
+  Const,        // value
+  Quantity,     // name: a path in the gearbox's quantities ("main.pinion.z", "ratio")
+  Let,          // name: a `let`
+  Symbol,       // name: an enumerator or effect-local word (`preloaded`, `rk8pd`, `stiffness`)
+  Neg, Add, Sub, Mul, Div, Pow,
+  Eq, Ne, Lt, Le, Gt, Ge,  // Eq/Ne against a Tol operand test membership of its interval
+  Within,       // args: x, lo, hi (inclusive)
+  InSet,        // args: x, members…
+  Tol,          // args: centre, tolerance; name "relative" when the tolerance is a fraction
+  Set,          // args: members
+  And, Or, Not,
+  Call,         // name: function; args
+  Forall,       // name: variable, detail in type: collection; args: one instance per element
+  SceneOutput,  // name: "scene.fn(signal)"
+  Relative,     // args[0] divided by its value in the baseline gearbox
+};
+
+struct Expr;
+using ExprPtr = std::unique_ptr<Expr>;
+
+struct Expr {
+  Op op = Op::Const;
+  Type type;
+  Number value;
+  std::string name;
+  std::vector<ExprPtr> args;
+  Span span;
+
+  ExprPtr clone() const;
+  bool isConst() const { return op == Op::Const; }
+};
+
+ExprPtr makeConst(Number v, Dim d, bool integer, Span span = {});
+
+enum class StageKind { Spur, Helical, Bevel, Planetary, Idler };
+const char* stageKindName(StageKind k);
+
+// A stage or gear attribute as the design fixes or frees it.
+struct Attribute {
+  enum Role { Fixed, Decision, Freedom, Default };
+  std::string name;  // "pinion.z", "spiral_angle"
+  Dim dim;
+  bool integer = false;
+  Role role = Fixed;
+  ExprPtr value;               // Fixed/Default: the expression (Const when it folds)
+  std::optional<Number> lo, hi;  // Decision/Freedom over a range
+  std::vector<Number> members;   // Decision over a set
+  std::string origin;          // where the binding came from: "stage", "preset klingelnberg", "like upper", "gearbox Name"
+  Span span;
+  std::string symbol;          // material or other named value
+};
+
+struct Rule {
+  ExprPtr expr;
+  std::string text;  // source text, for funnels and reports
+  std::string scope; // stage name when declared inside a stage
+  Span span;
+};
+
+struct Stage {
+  std::string name;
+  StageKind kind = StageKind::Spur;
+  std::vector<std::string> gears;  // roles: pinion/wheel, sun/planet/ring, driver/idler/driven
+  std::vector<Attribute> attributes;
+  std::vector<std::string> presets;
+  std::string likeOf;
+  Span span;
+  const Attribute* find(const std::string& name) const;
+};
+
+struct Let {
+  std::string name;
+  ExprPtr expr;
+  Span span;
+};
+
+struct Objective {
+  bool minimize = true;
+  ExprPtr expr;
+  std::string text;
+  Span span;
+};
+
+// A named setting of a scene, effect, split, study or accuracy block.
+struct Setting {
+  std::string name;   // "settle", "torsion_shaft.diameter"
+  Dim dim;
+  bool integer = false;
+  bool meshPeriods = false;  // value counts the scene's mesh periods
+  std::optional<Number> value;
+  std::string symbol;        // enumerated value: `preloaded`, `rk8pd`, a stage name
+  ExprPtr expr;              // when the value is an expression over other quantities
+  std::vector<Number> members;  // `rtol in {…}`
+  std::optional<Number> lo, hi;  // `harmonics in 1..8`
+  Span span;
+};
+
+const Setting* findSetting(const std::vector<Setting>& s, const std::string& name);
+
+struct Effect {
+  std::string name;
+  std::vector<Setting> params;
+  Span span;
+};
+
+struct SceneOutput {
+  std::string function;  // rms, peak, mean, min, max, spectrum, plot, or "" for a bare name (modes)
+  std::string signal;
+  std::string key() const { return function.empty() ? signal : function + "(" + signal + ")"; }
+  Span span;
+};
+
+struct Scene {
+  std::string name;
+  std::string target;  // stage name, or "" for the whole gearbox
+  std::vector<Effect> effects;
+  std::vector<Setting> settings;  // settle, record, samples, duration, ramp
+  std::vector<Setting> accuracy;  // method, rtol, atol, max_step, …
+  std::vector<SceneOutput> outputs;
+  Span span;
+  bool hasEffect(const std::string& n) const;
+};
+
+struct ModRule {
+  std::string target;  // "tip_relief", "pinion.lead_crowning"
+  ExprPtr value;
+  ExprPtr when;
+  std::string text;
+  Span span;
+};
+
+struct Modify {
+  std::string stage;
+  std::vector<ModRule> rules;
+  Span span;
+};
+
+struct Split {
+  std::string name;
+  std::vector<Setting> settings;  // between, branches, torsion_shaft.length, install, …
+  Span span;
+};
+
+struct Study {
+  enum Kind { Sweep, WorkPrecision };
+  std::string name;
+  Kind kind = Sweep;
+  std::string target;  // swept quantity path, or the scene of a work-precision study
+  std::optional<Dim> dim;
+  std::optional<Number> lo, hi, step;
+  std::vector<ExprPtr> outputs;
+  std::vector<std::string> outputTexts;
+  bool plot = false;
+  std::vector<Setting> settings;  // rtol in {…}, harmonics in a..b, methods in {…}
+  Span span;
+};
+
+struct Report {
+  std::optional<long long> top;
+  ExprPtr sortBy;
+  std::vector<ExprPtr> columns;
+  std::vector<std::string> columnTexts;
+  Span span;
+};
+
+struct Gearbox {
+  std::string name;
+  std::string baseline;  // the gearbox it extends, or ""
+  std::vector<Stage> stages;
+  std::vector<Let> lets;
+  std::vector<Rule> rules;
+  std::vector<std::vector<std::string>> interchangeable;
+  std::vector<Objective> objectives;
+  std::vector<Setting> operating;
+  std::vector<Scene> scenes;
+  std::vector<Modify> modifies;
+  std::vector<Split> splits;
+  std::vector<Study> studies;
+  std::optional<Report> report;
+  Span span;
+  const Stage* findStage(const std::string& name) const;
+};
+
+struct Material {
+  std::string name;
+  std::vector<Setting> properties;
+  Span span;
+};
+
+struct Program {
+  std::vector<Material> materials;
+  std::vector<Gearbox> gearboxes;
+  const Material* findMaterial(const std::string& name) const;
+};
+
+// `dump ir`: a stable text rendering of the whole program.
+std::string print(const Program& p);
+std::string print(const Expr& e);
+
+} // namespace gbx::ir

@@ -1,0 +1,780 @@
+#include "sema/ExprChecker.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "units/Unit.h"
+
+namespace gbx::sema {
+
+using ir::Op;
+using ir::Type;
+using units::Number;
+
+std::string describe(const Type& t, const std::string& written) {
+  switch (t.kind) {
+  case Type::Number: {
+    std::string d = t.dim.describe();
+    if (!written.empty()) d += " (" + written + ")";
+    return d;
+  }
+  case Type::Bool: return "a condition";
+  case Type::Interval: return "a tolerance interval";
+  case Type::Set: return "a set";
+  case Type::Stage: return "a stage";
+  case Type::Gear: return "a gear";
+  case Type::Collection: return "a collection";
+  case Type::Signal: return "a plot or spectrum";
+  case Type::Symbol: return "a word";
+  case Type::Material: return "a material";
+  case Type::Scene: return "a scene";
+  case Type::Split: return "a split";
+  case Type::PerGear: return "a per-gear quantity";
+  case Type::Block: return "a settings block";
+  case Type::Error: return "an erroneous expression";
+  }
+  return "?";
+}
+
+namespace {
+
+ir::ExprPtr make(Op op, Type t, source::Span span, std::string name = {}) {
+  auto e = std::make_unique<ir::Expr>();
+  e->op = op;
+  e->type = std::move(t);
+  e->span = span;
+  e->name = std::move(name);
+  return e;
+}
+
+std::string writtenUnit(const ast::Expr* e) {
+  if (e && e->kind == ast::ExprKind::Number && e->unit) return e->unit->text;
+  return "";
+}
+
+bool isPercentLiteral(const ast::Expr* e) {
+  return e && e->kind == ast::ExprKind::Number && e->unit && e->unit->factors.size() == 1 &&
+         e->unit->factors[0].atom == "%" && e->unit->factors[0].exponent == 1;
+}
+
+} // namespace
+
+ir::ExprPtr ExprChecker::error(const source::Span& span) { return make(Op::Const, Type::error(), span); }
+
+ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOverride) {
+  lastMesh_ = false;
+  auto r = units::Rational::parseDecimal(e.text);
+  Number v = r ? Number::exact(*r) : Number::approx(std::strtod(e.text.c_str(), nullptr));
+  const ast::UnitExpr* u = e.unit ? &*e.unit : unitOverride;
+  units::Unit unit;
+  bool ok = true;
+  if (u) {
+    for (const auto& f : u->factors) {
+      auto atom = units::lookupAtom(f.atom);
+      if (!atom) {
+        std::string hint = closest(f.atom, units::atomNames());
+        diags_.error("E0301", f.span.valid() ? f.span : u->span,
+                     fmt::format("unknown unit `{}`{}", f.atom, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+        ok = false;
+        continue;
+      }
+      unit = units::multiply(unit, units::powerOf(*atom, f.exponent));
+    }
+  }
+  if (!ok) return error(e.span);
+  lastMesh_ = unit.meshPeriods;
+  bool integer = !u && r && r->isInteger();
+  auto c = ir::makeConst(v.mul(unit.scale), unit.dim, integer, e.span);
+  if (unit.meshPeriods) c->name = "mesh_periods";
+  return c;
+}
+
+ir::ExprPtr ExprChecker::requireNumber(ir::ExprPtr x, const char* what) {
+  if (x->type.isError() || x->type.isNumber()) return x;
+  diags_.error("E0306", x->span, fmt::format("{} must be a number, but this is {}", what, describe(x->type)));
+  return error(x->span);
+}
+
+bool ExprChecker::requireBool(const ir::Expr& x, const char* what) {
+  if (x.type.isError() || x.type.kind == Type::Bool) return true;
+  diags_.error("E0305", x.span, fmt::format("{} must be a condition (a comparison, `coprime(…)`, `and`/`or`), but this is {}",
+                                            what, describe(x.type)));
+  return false;
+}
+
+ir::ExprPtr ExprChecker::check(const ast::Expr* e, const Scope& s) {
+  if (!e) return error({});
+  switch (e->kind) {
+  case ast::ExprKind::Number: {
+    auto c = literal(*e);
+    if (!c->type.isError() && c->name == "mesh_periods" && !s.meshPeriodsAllowed) {
+      diags_.error("E0301", e->unit ? e->unit->span : e->span,
+                   "`mesh_period` is a unit only in a scene's time settings (settle, record, ramp, steps)");
+      return error(e->span);
+    }
+    return c;
+  }
+  case ast::ExprKind::String:
+    diags_.error("E0306", e->span, "a string is only allowed as an import path");
+    return error(e->span);
+  case ast::ExprKind::Bool: {
+    auto b = make(Op::Const, Type::boolean(), e->span);
+    b->value = Number::exact(units::Rational(e->boolValue ? 1 : 0));
+    return b;
+  }
+  case ast::ExprKind::Name: return name(*e, s);
+  case ast::ExprKind::Member: return member(*e, s);
+  case ast::ExprKind::Call: return call(*e, s);
+  case ast::ExprKind::Neg: {
+    auto a = requireNumber(check(e->args[0].get(), s), "the operand of `-`");
+    if (a->type.isError()) return a;
+    if (a->isConst()) {
+      a->value = a->value.neg();
+      a->span = e->span;
+      return a;
+    }
+    auto n = make(Op::Neg, a->type, e->span);
+    n->args.push_back(std::move(a));
+    return n;
+  }
+  case ast::ExprKind::Not: {
+    auto a = check(e->args[0].get(), s);
+    if (a->type.isError() || !requireBool(*a, "the operand of `not`")) return error(e->span);
+    auto n = make(Op::Not, Type::boolean(), e->span);
+    n->args.push_back(std::move(a));
+    return n;
+  }
+  case ast::ExprKind::Binary: return binary(*e, s);
+  case ast::ExprKind::Compare: return compare(*e, s);
+  case ast::ExprKind::Tolerance: {
+    auto t = tolerance(*e, s);
+    if (!t->type.isError())
+      diags_.error("E0306", e->span, "a tolerance `a +- b` is only meaningful on the right of `==` or `!=`");
+    return error(e->span);
+  }
+  case ast::ExprKind::InRange: {
+    auto x = requireNumber(check(e->args[0].get(), s), "the value tested by `in`");
+    auto [lo, hi] = checkRange(e->args[1].get(), e->args[2].get(), s);
+    lo = requireNumber(std::move(lo), "a range bound");
+    hi = requireNumber(std::move(hi), "a range bound");
+    if (x->type.isError() || lo->type.isError() || hi->type.isError()) return error(e->span);
+    for (const auto* b : {lo.get(), hi.get()})
+      if (b->type.dim != x->type.dim) {
+        diags_.error("E0303", b->span,
+                     fmt::format("dimension mismatch: `in` tests {} against a range of {}", describe(x->type),
+                                 describe(b->type)));
+        return error(e->span);
+      }
+    if (lo->isConst() && hi->isConst() && lo->value.compare(hi->value) > 0) {
+      diags_.error("E0401", source::cover(lo->span, hi->span), "inverted range: the lower bound is above the upper bound");
+      return error(e->span);
+    }
+    auto n = make(Op::Within, Type::boolean(), e->span);
+    n->args.push_back(std::move(x));
+    n->args.push_back(std::move(lo));
+    n->args.push_back(std::move(hi));
+    return n;
+  }
+  case ast::ExprKind::InSet: {
+    auto x = requireNumber(check(e->args[0].get(), s), "the value tested by `in`");
+    auto n = make(Op::InSet, Type::boolean(), e->span);
+    bool bad = x->type.isError();
+    const ast::Expr* set = e->args[1].get();
+    n->args.push_back(std::move(x));
+    if (set)
+      for (const auto& m : set->args) {
+        auto v = requireNumber(check(m.get(), s), "a set member");
+        if (!v->type.isError() && !n->args[0]->type.isError() && v->type.dim != n->args[0]->type.dim) {
+          diags_.error("E0303", v->span,
+                       fmt::format("dimension mismatch: `in` tests {} against a member that is {}",
+                                   describe(n->args[0]->type), describe(v->type)));
+          bad = true;
+        }
+        bad = bad || v->type.isError();
+        n->args.push_back(std::move(v));
+      }
+    return bad ? error(e->span) : std::move(n);
+  }
+  case ast::ExprKind::Set: {
+    auto n = make(Op::Set, Type{Type::Set, {}, true, {}}, e->span);
+    bool bad = false;
+    for (size_t i = 0; i < e->args.size(); ++i) {
+      auto v = requireNumber(check(e->args[i].get(), s), "a set member");
+      if (v->type.isError()) {
+        bad = true;
+        continue;
+      }
+      if (i == 0) n->type.dim = v->type.dim;
+      else if (v->type.dim != n->type.dim) {
+        diags_.error("E0303", v->span,
+                     fmt::format("dimension mismatch: a set of {} cannot hold {}", n->type.dim.describe(), describe(v->type)));
+        bad = true;
+      }
+      n->type.integer = n->type.integer && v->type.integer;
+      n->args.push_back(std::move(v));
+    }
+    return bad ? error(e->span) : std::move(n);
+  }
+  case ast::ExprKind::Forall: return forall(*e, s);
+  }
+  return error(e->span);
+}
+
+std::pair<ir::ExprPtr, ir::ExprPtr> ExprChecker::checkRange(const ast::Expr* lo, const ast::Expr* hi, const Scope& s) {
+  auto h = check(hi, s);
+  ir::ExprPtr l;
+  if (lo && hi && lo->kind == ast::ExprKind::Number && !lo->unit && hi->kind == ast::ExprKind::Number && hi->unit)
+    l = literal(*lo, &*hi->unit);
+  else
+    l = check(lo, s);
+  return {std::move(l), std::move(h)};
+}
+
+ir::ExprPtr ExprChecker::quantity(const std::string& path, const AttrSpec& spec, const source::Span& span) {
+  if (spec.value == ValueKind::Material) return make(Op::Quantity, Type{Type::Material, {}, false, {}}, span, path);
+  if (spec.value == ValueKind::Symbol || spec.value == ValueKind::Stage)
+    return make(Op::Quantity, Type{Type::Symbol, {}, false, {}}, span, path);
+  return make(Op::Quantity, Type::number(spec.dim, spec.integer), span, path);
+}
+
+ir::ExprPtr ExprChecker::stageMember(const StageModel& st, const std::string& m, const source::Span& span) {
+  if (!st.kind) return error(span);
+  if (isGear(*st.kind, m)) return make(Op::Quantity, Type{Type::Gear, {}, false, st.name + "." + m}, span, st.name + "." + m);
+  if (m == "teeth") return make(Op::Quantity, Type{Type::Collection, {}, false, "teeth"}, span, st.name + ".teeth");
+  if (const auto* a = findAttr(*st.kind, m)) return quantity(st.name + "." + m, *a, span);
+  std::vector<std::string> names = st.kind->gears;
+  for (const auto& a : st.kind->stage) names.push_back(a.name);
+  std::string hint = closest(m, names);
+  diags_.error("E0219", span,
+               fmt::format("`{}` is not an attribute of {} stage `{}`{}", m, st.kind->name, st.name,
+                           hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+  return error(span);
+}
+
+std::vector<std::string> ExprChecker::visibleNames(const Scope& s) const {
+  std::vector<std::string> n;
+  for (const auto& b : bound_) n.push_back(b.name);
+  if (s.stage && s.stage->kind) {
+    for (const auto& g : s.stage->kind->gears) n.push_back(g);
+    for (const auto& a : s.stage->kind->stage) n.push_back(a.name);
+  }
+  if (s.context == Scope::Modify)
+    for (const auto& b : modifyBuiltins()) n.push_back(b.name);
+  if (s.gearbox) {
+    for (const auto& st : s.gearbox->stages) n.push_back(st.name);
+    for (const auto* l : s.gearbox->lets) n.push_back(l->name);
+    for (const auto* sc : s.gearbox->scenes) n.push_back(sc->name);
+    for (const auto* sp : s.gearbox->splits) n.push_back(sp->name);
+    for (const auto& q : gearboxQuantities()) n.push_back(q.name);
+  }
+  for (const auto& [c, _] : globals_.consts) n.push_back(c);
+  for (const auto& [m, _] : globals_.materials) n.push_back(m);
+  return n;
+}
+
+ir::ExprPtr ExprChecker::name(const ast::Expr& e, const Scope& s) {
+  const std::string& n = e.text;
+  for (auto it = bound_.rbegin(); it != bound_.rend(); ++it) {
+    if (it->name != n) continue;
+    if (it->stage)
+      return make(Op::Quantity, Type{Type::Stage, {}, false, it->stage->kind ? it->stage->kind->name : ""}, e.span,
+                  it->stage->name);
+    auto v = it->value->clone();
+    v->span = e.span;
+    return v;
+  }
+  if (s.context == Scope::EffectParam &&
+      std::find(s.effectLocals.begin(), s.effectLocals.end(), n) != s.effectLocals.end())
+    // ADAMS convention (DOMAIN.md §2): C = 0.01·K takes K's SI magnitude as a damping coefficient.
+    return make(Op::Symbol, Type::number(units::dims::dampingCoeff), e.span, n);
+  if (s.context == Scope::Modify && s.stage) {
+    for (const auto& b : modifyBuiltins()) {
+      if (b.name != n) continue;
+      if (b.perGear && !s.modifyGear.empty())
+        return make(Op::Quantity, Type::number(b.dim), e.span, s.stage->name + "." + s.modifyGear + "." + n);
+      if (b.perGear) return make(Op::Quantity, Type{Type::PerGear, b.dim, false, {}}, e.span, s.stage->name + "." + n);
+      return make(Op::Quantity, Type::number(b.dim), e.span, s.stage->name + "." + n);
+    }
+  }
+  // Inside a stage of unknown kind every name would be unknown: that was reported once.
+  if (s.stage && !s.stage->kind) return error(e.span);
+  if (s.stage) {
+    for (const auto* l : s.stage->lets)
+      if (l->name == n) {
+        Type t = letResolver_ ? letResolver_(n, s.stage) : Type::error();
+        return make(Op::Let, t, e.span, s.stage->name + "." + n);
+      }
+    if (s.stage->kind && (isGear(*s.stage->kind, n) || findAttr(*s.stage->kind, n) || n == "teeth"))
+      return stageMember(*s.stage, n, e.span);
+  }
+  if (s.gearbox) {
+    for (const auto* l : s.gearbox->lets)
+      if (l->name == n) {
+        Type t = letResolver_ ? letResolver_(n, nullptr) : Type::error();
+        return make(Op::Let, t, e.span, n);
+      }
+    for (const auto& q : gearboxQuantities())
+      if (q.name == n) return quantity(n, q, e.span);
+    if (n == "stages" || n == "teeth") return make(Op::Quantity, Type{Type::Collection, {}, false, n}, e.span, n);
+    if (const auto* st = s.gearbox->findStage(n))
+      return make(Op::Quantity, Type{Type::Stage, {}, false, st->kind ? st->kind->name : ""}, e.span, n);
+    if (s.gearbox->findScene(n)) return make(Op::Quantity, Type{Type::Scene, {}, false, {}}, e.span, n);
+    if (s.gearbox->findSplit(n)) return make(Op::Quantity, Type{Type::Split, {}, false, {}}, e.span, n);
+  }
+  if (auto it = globals_.constValues.find(n); it != globals_.constValues.end()) {
+    auto v = it->second->clone();
+    v->span = e.span;
+    return v;
+  }
+  if (globals_.consts.count(n)) return error(e.span);  // const with an error, already reported
+  if (globals_.materials.count(n)) return make(Op::Quantity, Type{Type::Material, {}, false, {}}, e.span, n);
+  if (isFunction(n) || isSignalFunction(n)) {
+    diags_.error("E0306", e.span, fmt::format("`{}` is a function: call it, as in `{}(…)`", n, n));
+    return error(e.span);
+  }
+  std::string hint = closest(n, visibleNames(s));
+  diags_.error("E0201", e.span,
+               fmt::format("unknown name `{}`{}", n, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+  return error(e.span);
+}
+
+ir::ExprPtr ExprChecker::member(const ast::Expr& e, const Scope& s) {
+  auto obj = check(e.args[0].get(), s);
+  const std::string& m = e.text;
+  switch (obj->type.kind) {
+  case Type::Error: return obj;
+  case Type::Stage: {
+    const StageModel* st = s.gearbox ? s.gearbox->findStage(obj->name) : nullptr;
+    if (!st) return error(e.span);
+    return stageMember(*st, m, e.span);
+  }
+  case Type::Gear: {
+    std::string stageName = obj->name.substr(0, obj->name.find('.'));
+    std::string gear = obj->name.substr(obj->name.find('.') + 1);
+    const StageModel* st = s.gearbox ? s.gearbox->findStage(stageName) : nullptr;
+    if (!st || !st->kind) return error(e.span);
+    if (const auto* a = findAttr(*st->kind, gear + "." + m)) return quantity(obj->name + "." + m, *a, e.span);
+    std::vector<std::string> names;
+    for (const auto& a : st->kind->gear) names.push_back(a.name);
+    std::string hint = closest(m, names);
+    diags_.error("E0219", e.span,
+                 fmt::format("`{}` is not an attribute of a gear{}", m,
+                             hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+    return error(e.span);
+  }
+  case Type::Split: {
+    for (const auto& o : splitOutputs())
+      if (o.name == m) return quantity(obj->name + "." + m, o, e.span);
+    for (const auto& st : splitSettings()) {
+      if (st.name == m) return quantity(obj->name + "." + m, st, e.span);
+      if (st.name.rfind(m + ".", 0) == 0)
+        return make(Op::Quantity, Type{Type::Block, {}, false, m}, e.span, obj->name + "." + m);
+    }
+    std::vector<std::string> names;
+    for (const auto& o : splitOutputs()) names.push_back(o.name);
+    std::string hint = closest(m, names);
+    diags_.error("E0219", e.span,
+                 fmt::format("split `{}` has no `{}` (it reports twist, displacement, imbalance, branch_torque){}",
+                             obj->name, m, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+    return error(e.span);
+  }
+  case Type::Block: {
+    std::string split = obj->name.substr(0, obj->name.find('.'));
+    std::string path = obj->type.detail + "." + m;
+    for (const auto& st : splitSettings())
+      if (st.name == path) return quantity(split + "." + path, st, e.span);
+    diags_.error("E0219", e.span, fmt::format("`{}` has no setting `{}`", obj->type.detail, m));
+    return error(e.span);
+  }
+  case Type::Material: {
+    for (const auto& p : materialProperties())
+      if (p.name == m) return quantity(obj->name + "." + m, p, e.span);
+    diags_.error("E0219", e.span, fmt::format("a material has no property `{}`", m));
+    return error(e.span);
+  }
+  case Type::Scene:
+    diags_.error("E0218", e.span,
+                 fmt::format("a scene's results are read by a function of a signal, as in `{}.rms(acceleration)`",
+                             obj->name));
+    return error(e.span);
+  default:
+    diags_.error("E0219", e.span, fmt::format("{} has no members; `.{}` cannot be read from it", describe(obj->type), m));
+    return error(e.span);
+  }
+}
+
+ir::ExprPtr ExprChecker::binary(const ast::Expr& e, const Scope& s) {
+  auto bop = e.binOp;
+  if (bop == ast::BinOp::And || bop == ast::BinOp::Or) {
+    auto a = check(e.args[0].get(), s);
+    auto b = check(e.args[1].get(), s);
+    bool ok = requireBool(*a, bop == ast::BinOp::And ? "an operand of `and`" : "an operand of `or`") &
+              requireBool(*b, bop == ast::BinOp::And ? "an operand of `and`" : "an operand of `or`");
+    if (!ok || a->type.isError() || b->type.isError()) return error(e.span);
+    auto n = make(bop == ast::BinOp::And ? Op::And : Op::Or, Type::boolean(), e.span);
+    n->args.push_back(std::move(a));
+    n->args.push_back(std::move(b));
+    return n;
+  }
+  const char* sym = ast::binOpText(bop);
+  auto a = check(e.args[0].get(), s);
+  auto b = check(e.args[1].get(), s);
+  if (a->type.isError() || b->type.isError()) return error(e.span);
+  if (a->type.kind == Type::PerGear || b->type.kind == Type::PerGear) {
+    // Per-gear quantities combine gear by gear; a reduction (mean/max/min) makes a number.
+    if ((a->type.kind == Type::PerGear || a->type.isNumber()) && (b->type.kind == Type::PerGear || b->type.isNumber()) &&
+        (bop == ast::BinOp::Add || bop == ast::BinOp::Sub) && a->type.dim == b->type.dim) {
+      auto n = make(bop == ast::BinOp::Add ? Op::Add : Op::Sub, Type{Type::PerGear, a->type.dim, false, {}}, e.span);
+      n->args.push_back(std::move(a));
+      n->args.push_back(std::move(b));
+      return n;
+    }
+  }
+  a = requireNumber(std::move(a), fmt::format("the left operand of `{}`", sym).c_str());
+  b = requireNumber(std::move(b), fmt::format("the right operand of `{}`", sym).c_str());
+  if (a->type.isError() || b->type.isError()) return error(e.span);
+  Type t;
+  Op op;
+  switch (bop) {
+  case ast::BinOp::Add:
+  case ast::BinOp::Sub:
+    if (a->type.dim != b->type.dim) {
+      diags_.error("E0303", e.span,
+                   fmt::format("dimension mismatch: cannot {} {} and {}", bop == ast::BinOp::Add ? "add" : "subtract",
+                               describe(a->type, writtenUnit(e.args[0].get())),
+                               describe(b->type, writtenUnit(e.args[1].get()))));
+      return error(e.span);
+    }
+    t = Type::number(a->type.dim, a->type.integer && b->type.integer);
+    op = bop == ast::BinOp::Add ? Op::Add : Op::Sub;
+    break;
+  case ast::BinOp::Mul:
+    t = Type::number(a->type.dim * b->type.dim, a->type.integer && b->type.integer);
+    op = Op::Mul;
+    break;
+  case ast::BinOp::Div:
+    if (b->isConst() && b->value.isZero()) {
+      diags_.error("E0306", b->span, "division by zero");
+      return error(e.span);
+    }
+    t = Type::number(a->type.dim / b->type.dim, false);
+    op = Op::Div;
+    break;
+  case ast::BinOp::Pow: {
+    op = Op::Pow;
+    if (!b->type.dim.dimensionless()) {
+      diags_.error("E0303", b->span, fmt::format("an exponent must be a plain number, not {}", describe(b->type)));
+      return error(e.span);
+    }
+    if (a->type.dim.dimensionless()) {
+      t = Type::number(a->type.dim, a->type.integer && b->type.integer && b->isConst() && b->value.sign() >= 0);
+      break;
+    }
+    if (!b->isConst() || !b->value.isRational() || !b->value.rational().isInteger() ||
+        b->value.rational().abs() > units::Rational(16)) {
+      diags_.error("E0304", b->span,
+                   fmt::format("{} can only be raised to a small whole constant power", describe(a->type)));
+      return error(e.span);
+    }
+    t = Type::number(a->type.dim.pow(static_cast<int>(b->value.rational().num())), false);
+    break;
+  }
+  default: return error(e.span);
+  }
+  if (a->isConst() && b->isConst()) {
+    Number v;
+    switch (op) {
+    case Op::Add: v = a->value.add(b->value); break;
+    case Op::Sub: v = a->value.sub(b->value); break;
+    case Op::Mul: v = a->value.mul(b->value); break;
+    case Op::Div: v = a->value.div(b->value); break;
+    default: {
+      bool intExp = b->value.isRational() && b->value.rational().isInteger() && b->value.rational().abs() <= units::Rational(64);
+      v = intExp ? a->value.pow(static_cast<int>(b->value.rational().num()))
+                 : Number::approx(std::pow(a->value.toDouble(), b->value.toDouble()));
+    }
+    }
+    auto c = ir::makeConst(v, t.dim, t.integer && v.isRational() && v.rational().isInteger(), e.span);
+    return c;
+  }
+  auto n = make(op, t, e.span);
+  n->args.push_back(std::move(a));
+  n->args.push_back(std::move(b));
+  return n;
+}
+
+ir::ExprPtr ExprChecker::tolerance(const ast::Expr& e, const Scope& s) {
+  auto centre = requireNumber(check(e.args[0].get(), s), "the target of a tolerance");
+  auto tol = requireNumber(check(e.args[1].get(), s), "a tolerance");
+  if (centre->type.isError() || tol->type.isError()) return error(e.span);
+  bool relative = isPercentLiteral(e.args[1].get());
+  if (!relative && tol->type.dim != centre->type.dim) {
+    diags_.error("E0302", tol->span,
+                 fmt::format("unit mismatch: the tolerance must be {} like its target, or a percentage; got {}",
+                             centre->type.dim.describe(), describe(tol->type, writtenUnit(e.args[1].get()))));
+    return error(e.span);
+  }
+  if (tol->isConst() && tol->value.sign() < 0) {
+    diags_.error("E0409", tol->span, "a tolerance cannot be negative");
+    return error(e.span);
+  }
+  auto n = make(Op::Tol, Type{Type::Interval, centre->type.dim, false, {}}, e.span, relative ? "relative" : "");
+  n->args.push_back(std::move(centre));
+  n->args.push_back(std::move(tol));
+  return n;
+}
+
+ir::ExprPtr ExprChecker::compare(const ast::Expr& e, const Scope& s) {
+  static const Op ops[] = {Op::Eq, Op::Ne, Op::Lt, Op::Le, Op::Gt, Op::Ge};
+  Op op = ops[static_cast<int>(e.cmpOp)];
+  auto a = requireNumber(check(e.args[0].get(), s), "the left side of a comparison");
+  const ast::Expr* rhs = e.args[1].get();
+  ir::ExprPtr b;
+  if (rhs && rhs->kind == ast::ExprKind::Tolerance) {
+    if (op != Op::Eq && op != Op::Ne) {
+      diags_.error("E0306", rhs->span, "a tolerance `a +- b` can only be compared with `==` or `!=`");
+      return error(e.span);
+    }
+    b = tolerance(*rhs, s);
+  } else {
+    b = requireNumber(check(rhs, s), "the right side of a comparison");
+  }
+  if (a->type.isError() || b->type.isError()) return error(e.span);
+  if (a->type.dim != b->type.dim) {
+    diags_.error("E0303", e.span,
+                 fmt::format("dimension mismatch: cannot compare {} with {}", describe(a->type, writtenUnit(e.args[0].get())),
+                             b->type.kind == Type::Interval ? b->type.dim.describe()
+                                                            : describe(b->type, writtenUnit(rhs))));
+    return error(e.span);
+  }
+  auto n = make(op, Type::boolean(), e.span);
+  n->args.push_back(std::move(a));
+  n->args.push_back(std::move(b));
+  return n;
+}
+
+ir::ExprPtr ExprChecker::forall(const ast::Expr& e, const Scope& s) {
+  auto coll = check(e.args[0].get(), s);
+  if (coll->type.isError()) return coll;
+  std::vector<Bound> elements;
+  std::string collName;
+  if (coll->type.kind == Type::Collection && s.gearbox) {
+    collName = coll->name;
+    bool stages = coll->type.detail == "stages";
+    std::string onlyStage = coll->name.find('.') != std::string::npos ? coll->name.substr(0, coll->name.find('.')) : "";
+    for (const auto& st : s.gearbox->stages) {
+      if (!onlyStage.empty() && st.name != onlyStage) continue;
+      if (stages) {
+        elements.push_back({e.text, nullptr, &st});
+        continue;
+      }
+      if (!st.kind) continue;
+      for (const auto& g : st.kind->gears)
+        elements.push_back({e.text, make(Op::Quantity, Type::number({}, true), e.span, st.name + "." + g + ".z"), nullptr});
+    }
+  } else if (coll->op == Op::Set) {
+    collName = "set";
+    for (auto& m : coll->args) elements.push_back({e.text, std::move(m), nullptr});
+  } else {
+    diags_.error("E0306", coll->span,
+                 fmt::format("`forall` ranges over `teeth`, `stages` or a set `{{…}}`, not over {}", describe(coll->type)));
+    return error(e.span);
+  }
+  auto n = make(Op::Forall, Type::boolean(), e.span, e.text);
+  n->type.detail = collName;
+  bool bad = false;
+  for (auto& el : elements) {
+    bound_.push_back(std::move(el));
+    auto body = check(e.args[1].get(), s);
+    bound_.pop_back();
+    if (body->type.isError() || !requireBool(*body, "the body of `forall`")) {
+      bad = true;
+      break;  // the same mistake would be reported once per element
+    }
+    n->args.push_back(std::move(body));
+  }
+  if (bad) return error(e.span);
+  return n;
+}
+
+ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
+  const ast::Expr* callee = e.args[0].get();
+  std::vector<const ast::Expr*> argAst;
+  for (size_t i = 1; i < e.args.size(); ++i) argAst.push_back(e.args[i].get());
+
+  // scene.fn(signal): a result of a scene.
+  if (callee && callee->kind == ast::ExprKind::Member) {
+    auto obj = check(callee->args[0].get(), s);
+    if (obj->type.isError()) return obj;
+    if (obj->type.kind != Type::Scene) {
+      diags_.error("E0220", callee->span, fmt::format("`{}` is not a function", ast::print(*callee)));
+      return error(e.span);
+    }
+    const std::string& fn = callee->text;
+    if (!isSignalFunction(fn)) {
+      diags_.error("E0220", callee->span,
+                   fmt::format("`{}` is not a scene result function (rms, peak, mean, min, max, spectrum, plot)", fn));
+      return error(e.span);
+    }
+    if (argAst.size() != 1 || !argAst[0] || argAst[0]->kind != ast::ExprKind::Name) {
+      diags_.error("E0221", e.span, fmt::format("`{}` takes one signal, as in `{}.{}(acceleration)`", fn, obj->name, fn));
+      return error(e.span);
+    }
+    const std::string& sig = argAst[0]->text;
+    const auto* spec = findSignal(sig);
+    if (!spec) {
+      diags_.error("E0218", argAst[0]->span, fmt::format("scenes have no signal `{}`", sig));
+      return error(e.span);
+    }
+    const ast::Stmt* scene = s.gearbox->findScene(obj->name);
+    std::string key = fn + "(" + sig + ")";
+    bool declared = false;
+    for (const auto& st : scene->body)
+      if (st.kind == ast::StmtKind::Output)
+        for (const auto& o : st.exprs)
+          if (o && ast::print(*o) == key) declared = true;
+    if (!declared) {
+      diags_.error("E0218", e.span,
+                   fmt::format("scene `{}` does not output `{}`; add it to the scene's `output` list", obj->name, key));
+      return error(e.span);
+    }
+    Type t = signalFunctionIsNumber(fn) ? Type::number(spec->dim) : Type{Type::Signal, spec->dim, false, {}};
+    return make(Op::SceneOutput, t, e.span, obj->name + "." + key);
+  }
+  if (!callee || callee->kind != ast::ExprKind::Name) {
+    diags_.error("E0220", callee ? callee->span : e.span, "only a named function can be called");
+    return error(e.span);
+  }
+  const std::string& fn = callee->text;
+  if (!isFunction(fn)) {
+    if (isSignalFunction(fn)) {
+      diags_.error("E0220", callee->span,
+                   fmt::format("`{}` reads a scene's signal: write it in a scene's `output` list, or as `SCENE.{}(…)`", fn, fn));
+      return error(e.span);
+    }
+    std::vector<std::string> fns = {"abs", "sqrt", "sin", "cos", "tan", "atan", "min", "max", "mean", "round", "coprime", "gcd", "relative"};
+    std::string hint = closest(fn, fns);
+    diags_.error("E0220", callee->span,
+                 fmt::format("unknown function `{}`{}", fn, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+    return error(e.span);
+  }
+  std::vector<ir::ExprPtr> args;
+  bool bad = false;
+  for (const auto* a : argAst) {
+    args.push_back(check(a, s));
+    bad = bad || args.back()->type.isError();
+  }
+  if (bad) return error(e.span);
+  auto arity = [&](size_t lo, size_t hi) {
+    if (args.size() >= lo && args.size() <= hi) return true;
+    diags_.error("E0221", e.span,
+                 lo == hi ? fmt::format("`{}` takes {} argument{}, got {}", fn, lo, lo == 1 ? "" : "s", args.size())
+                          : fmt::format("`{}` takes at least {} argument{}, got {}", fn, lo, lo == 1 ? "" : "s", args.size()));
+    return false;
+  };
+  auto result = [&](Type t) {
+    auto n = make(Op::Call, std::move(t), e.span, fn);
+    n->args = std::move(args);
+    return n;
+  };
+  auto numbers = [&]() {
+    for (auto& a : args)
+      if (!a->type.isNumber()) {
+        diags_.error("E0306", a->span, fmt::format("`{}` takes numbers, but this is {}", fn, describe(a->type)));
+        return false;
+      }
+    return true;
+  };
+  auto sameDim = [&]() {
+    for (size_t i = 1; i < args.size(); ++i)
+      if (args[i]->type.dim != args[0]->type.dim) {
+        diags_.error("E0303", args[i]->span,
+                     fmt::format("dimension mismatch: `{}` mixes {} and {}", fn, describe(args[0]->type), describe(args[i]->type)));
+        return false;
+      }
+    return true;
+  };
+  if (fn == "coprime" || fn == "gcd") {
+    if (!arity(2, 2) || !numbers()) return error(e.span);
+    for (auto& a : args)
+      if (!a->type.integer || !a->type.dim.dimensionless()) {
+        diags_.error("E0306", a->span, fmt::format("`{}` takes whole numbers such as tooth counts, but this is {}", fn, describe(a->type)));
+        return error(e.span);
+      }
+    return result(fn == "coprime" ? Type::boolean() : Type::number({}, true));
+  }
+  if (fn == "relative") {
+    if (!arity(1, 1) || !numbers()) return error(e.span);
+    if (!s.hasBaseline) {
+      diags_.error("E0227", e.span,
+                   "`relative(x)` divides by x of the baseline gearbox, but this gearbox extends none");
+      return error(e.span);
+    }
+    auto n = make(Op::Relative, Type::number({}), e.span);
+    n->args = std::move(args);
+    return n;
+  }
+  if (fn == "mean" || fn == "min" || fn == "max") {
+    if (!arity(1, 64)) return error(e.span);
+    if (args.size() == 1 && args[0]->type.kind == Type::PerGear) return result(Type::number(args[0]->type.dim));
+    for (auto& a : args)
+      if (a->type.kind == Type::PerGear) {
+        diags_.error("E0306", a->span,
+                     fmt::format("`{}` of a per-gear quantity stands alone, as in `{}(pitch_deviation)`", fn, fn));
+        return error(e.span);
+      }
+    if (args.size() < 2 && fn != "mean") {
+      diags_.error("E0221", e.span, fmt::format("`{}` takes two or more numbers, or one per-gear quantity", fn));
+      return error(e.span);
+    }
+    if (!numbers() || !sameDim()) return error(e.span);
+    return result(Type::number(args[0]->type.dim, fn != "mean" && std::all_of(args.begin(), args.end(), [](auto& a) { return a->type.integer; })));
+  }
+  if (!numbers()) return error(e.span);
+  if (fn == "abs") {
+    if (!arity(1, 1)) return error(e.span);
+    Type t = args[0]->type;
+    return result(t);
+  }
+  if (fn == "round") {
+    if (!arity(2, 2) || !sameDim()) return error(e.span);
+    return result(Type::number(args[0]->type.dim));
+  }
+  if (fn == "sqrt") {
+    if (!arity(1, 1)) return error(e.span);
+    units::Dim d;
+    if (!args[0]->type.dim.sqrt(d)) {
+      diags_.error("E0303", args[0]->span, fmt::format("the square root of {} has no unit", describe(args[0]->type)));
+      return error(e.span);
+    }
+    return result(Type::number(d));
+  }
+  if (fn == "sin" || fn == "cos" || fn == "tan") {
+    if (!arity(1, 1)) return error(e.span);
+    if (args[0]->type.dim != units::dims::angle && !args[0]->type.dim.dimensionless()) {
+      diags_.error("E0302", args[0]->span, fmt::format("unit mismatch: `{}` needs an angle, got {}", fn, describe(args[0]->type)));
+      return error(e.span);
+    }
+    return result(Type::number({}));
+  }
+  if (fn == "asin" || fn == "acos" || fn == "atan" || fn == "atan2") {
+    if (!arity(fn == "atan2" ? 2 : 1, fn == "atan2" ? 2 : 1)) return error(e.span);
+    if (fn == "atan2" && !sameDim()) return error(e.span);
+    if (fn != "atan2" && !args[0]->type.dim.dimensionless()) {
+      diags_.error("E0302", args[0]->span, fmt::format("unit mismatch: `{}` needs a plain number, got {}", fn, describe(args[0]->type)));
+      return error(e.span);
+    }
+    return result(Type::number(units::dims::angle));
+  }
+  // exp, log, floor, ceil
+  if (!arity(1, 1)) return error(e.span);
+  if (!args[0]->type.dim.dimensionless()) {
+    diags_.error("E0302", args[0]->span, fmt::format("unit mismatch: `{}` needs a plain number, got {}", fn, describe(args[0]->type)));
+    return error(e.span);
+  }
+  return result(Type::number({}, fn == "floor" || fn == "ceil"));
+}
+
+} // namespace gbx::sema

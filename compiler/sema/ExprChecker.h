@@ -1,0 +1,75 @@
+#pragma once
+// Checks an expression in a scope and turns it into a typed IR expression: names
+// resolved to quantity paths, units to SI, dimensions checked, constants folded.
+// Every failure is a diagnostic and an Error-typed node, never an exception.
+#include <functional>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "diag/Diagnostic.h"
+#include "ir/Ir.h"
+#include "sema/Model.h"
+
+namespace gbx::sema {
+
+struct Scope {
+  enum Context { General, Modify, EffectParam, ConstExpr };
+  const GearboxModel* gearbox = nullptr;
+  const StageModel* stage = nullptr;  // names resolve to this stage first
+  Context context = General;
+  std::string modifyGear;                  // "pinion" in a rule targeting one gear
+  std::vector<std::string> effectLocals;   // `stiffness` inside hertz_contact
+  bool hasBaseline = false;                // `relative(x)` allowed
+  bool meshPeriodsAllowed = false;
+};
+
+class ExprChecker {
+public:
+  ExprChecker(const Globals& g, diag::DiagnosticEngine& diags) : globals_(g), diags_(diags) {}
+
+  ir::ExprPtr check(const ast::Expr* e, const Scope& scope);
+  // A range `lo..hi`: a bare number on the left takes the unit written on the right.
+  std::pair<ir::ExprPtr, ir::ExprPtr> checkRange(const ast::Expr* lo, const ast::Expr* hi, const Scope& scope);
+  // Converts a literal with its unit to SI; reports unknown units.
+  ir::ExprPtr literal(const ast::Expr& e, const ast::UnitExpr* unitOverride = nullptr);
+  bool lastLiteralMeshPeriods() const { return lastMesh_; }
+
+  // Resolves a `let` lazily, so lets may refer to each other in any order.
+  void setLetResolver(std::function<ir::Type(const std::string& gearboxLet, const StageModel* stage)> f) {
+    letResolver_ = std::move(f);
+  }
+
+private:
+  struct Bound {
+    std::string name;
+    ir::ExprPtr value;         // a Quantity for `z in teeth`
+    const StageModel* stage = nullptr;  // for `s in stages`
+  };
+
+  ir::ExprPtr error(const source::Span& span);
+  ir::ExprPtr name(const ast::Expr& e, const Scope& s);
+  ir::ExprPtr member(const ast::Expr& e, const Scope& s);
+  ir::ExprPtr call(const ast::Expr& e, const Scope& s);
+  ir::ExprPtr binary(const ast::Expr& e, const Scope& s);
+  ir::ExprPtr compare(const ast::Expr& e, const Scope& s);
+  ir::ExprPtr tolerance(const ast::Expr& e, const Scope& s);
+  ir::ExprPtr forall(const ast::Expr& e, const Scope& s);
+  ir::ExprPtr stageMember(const StageModel& st, const std::string& m, const source::Span& span);
+  ir::ExprPtr quantity(const std::string& path, const AttrSpec& spec, const source::Span& span);
+  ir::ExprPtr requireNumber(ir::ExprPtr x, const char* what);
+  bool requireBool(const ir::Expr& x, const char* what);
+  std::vector<std::string> visibleNames(const Scope& s) const;
+
+  const Globals& globals_;
+  diag::DiagnosticEngine& diags_;
+  std::vector<Bound> bound_;
+  std::function<ir::Type(const std::string&, const StageModel*)> letResolver_;
+  bool lastMesh_ = false;
+};
+
+// "a length (mm)": the dimension's name and, when given, the unit as written.
+std::string describe(const ir::Type& t, const std::string& written = "");
+
+} // namespace gbx::sema

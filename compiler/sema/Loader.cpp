@@ -1,0 +1,142 @@
+#include "sema/Loader.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "parse/Parser.h"
+
+#ifndef GBX_STDLIB_DIR
+#define GBX_STDLIB_DIR "stdlib"
+#endif
+
+namespace gbx::sema {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> stdlibSearchPath() {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("GBX_STDLIB_PATH")) {
+    std::stringstream ss(env);
+    std::string d;
+    while (std::getline(ss, d, ':'))
+      if (!d.empty()) dirs.push_back(d);
+  }
+  dirs.push_back(GBX_STDLIB_DIR);
+  return dirs;
+}
+
+namespace {
+
+bool readFile(const fs::path& p, std::string& out) {
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec)) return false;
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  out = ss.str();
+  return true;
+}
+
+std::string canonicalPath(const fs::path& p) {
+  std::error_code ec;
+  auto c = fs::weakly_canonical(p, ec);
+  return ec ? p.lexically_normal().string() : c.string();
+}
+
+class Loader {
+public:
+  Loader(source::SourceManager& sm, diag::DiagnosticEngine& diags) : sm_(sm), diags_(diags) {}
+
+  void visit(int fileId) {
+    state_[fileId] = 1;  // on the import stack
+    auto file = parse::parseFile(sm_, fileId, diags_);
+    if (diags_.hasErrors()) result.parseErrors = true;
+    result.files.push_back(std::move(file));
+    // Resolve first, visit after: visiting grows `files`, so no reference into it is held.
+    std::vector<std::pair<int, source::Span>> targets;
+    for (const auto& d : result.files.back().decls)
+      if (d.kind == ast::StmtKind::Import)
+        if (int t = resolve(d, fileId); t >= 0) targets.emplace_back(t, d.span);
+    for (const auto& [target, span] : targets) {
+      auto st = state_.find(target);
+      if (st != state_.end() && st->second == 1) {
+        diags_.error("E0204", span,
+                     fmt::format("import cycle: `{}` imports `{}`, which is already being imported",
+                                 sm_.get(fileId).displayPath(), sm_.get(target).displayPath()));
+        continue;
+      }
+      if (st == state_.end()) visit(target);
+    }
+    state_[fileId] = 2;
+  }
+
+  int resolve(const ast::Stmt& d, int fromFile) {
+    if (d.importIsPath) {
+      fs::path base = fs::path(sm_.get(fromFile).absPath()).parent_path();
+      fs::path target = base / d.word;
+      std::string text;
+      std::string abs = canonicalPath(target);
+      if (int id = sm_.find(abs); id >= 0) return id;
+      if (!readFile(target, text)) {
+        diags_.error("E0203", d.wordSpan.valid() ? d.wordSpan : d.span,
+                     fmt::format("cannot import \"{}\": no such file (looked for {})", d.word, target.lexically_normal().string()));
+        return -1;
+      }
+      fs::path display = fs::path(sm_.get(fromFile).displayPath()).parent_path() / d.word;
+      return sm_.add(display.lexically_normal().string(), abs, std::move(text));
+    }
+    std::vector<std::string> looked;
+    for (const auto& dir : stdlibSearchPath()) {
+      fs::path target = fs::path(dir) / (d.word + ".gbx");
+      std::string abs = canonicalPath(target);
+      if (int id = sm_.find(abs); id >= 0) return id;
+      std::string text;
+      if (readFile(target, text)) return sm_.add("<stdlib>/" + d.word + ".gbx", abs, std::move(text));
+      looked.push_back(dir);
+    }
+    diags_.error("E0203", d.wordSpan.valid() ? d.wordSpan : d.span,
+                 fmt::format("cannot import `{}`: no stdlib module of that name (modules: gleason, klingelnberg, "
+                             "materials, modules)",
+                             d.word));
+    return -1;
+  }
+
+  LoadedProgram result;
+
+private:
+  source::SourceManager& sm_;
+  diag::DiagnosticEngine& diags_;
+  std::map<int, int> state_;
+};
+
+} // namespace
+
+LoadedProgram load(const std::string& mainPath, source::SourceManager& sm, diag::DiagnosticEngine& diags) {
+  std::string text;
+  if (!readFile(mainPath, text)) {
+    diags.error("E0001", {}, fmt::format("cannot read `{}`: no such file", mainPath));
+    LoadedProgram p;
+    p.mainMissing = true;
+    return p;
+  }
+  int id = sm.add(mainPath, canonicalPath(mainPath), std::move(text));
+  Loader l(sm, diags);
+  l.visit(id);
+  return std::move(l.result);
+}
+
+LoadedProgram loadText(const std::string& displayPath, const std::string& text, source::SourceManager& sm,
+                       diag::DiagnosticEngine& diags) {
+  int id = sm.add(displayPath, canonicalPath(displayPath), text);
+  Loader l(sm, diags);
+  l.visit(id);
+  return std::move(l.result);
+}
+
+} // namespace gbx::sema

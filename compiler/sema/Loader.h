@@ -1,0 +1,29 @@
+#pragma once
+// Reads a file and everything it imports, each once, into the source manager and
+// parses it. Imports name a stdlib module (`import materials;`) or a path relative to
+// the importing file (`import "local/presets.gbx";`).
+#include <string>
+#include <vector>
+
+#include "ast/Ast.h"
+#include "diag/Diagnostic.h"
+#include "source/Source.h"
+
+namespace gbx::sema {
+
+struct LoadedProgram {
+  std::vector<ast::File> files;  // the main file first, then imports in first-seen order
+  bool parseErrors = false;
+  bool mainMissing = false;
+};
+
+// Directories searched for stdlib modules: $GBX_STDLIB_PATH (colon-separated), then the
+// stdlib the compiler was built with.
+std::vector<std::string> stdlibSearchPath();
+
+LoadedProgram load(const std::string& mainPath, source::SourceManager& sm, diag::DiagnosticEngine& diags);
+// The same for text already in memory (tests).
+LoadedProgram loadText(const std::string& displayPath, const std::string& text, source::SourceManager& sm,
+                       diag::DiagnosticEngine& diags);
+
+} // namespace gbx::sema

@@ -1,0 +1,1334 @@
+#include "sema/Sema.h"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "sema/Catalogue.h"
+#include "sema/ExprChecker.h"
+#include "sema/Model.h"
+
+namespace gbx::sema {
+
+using ast::Stmt;
+using ast::StmtKind;
+using ir::Op;
+using ir::Type;
+using source::Span;
+using units::Number;
+
+namespace {
+
+Span nameOr(const Stmt& s) { return s.nameSpan.valid() ? s.nameSpan : s.span; }
+
+void walk(const ir::Expr& e, const std::function<void(const ir::Expr&)>& f) {
+  f(e);
+  for (const auto& a : e.args)
+    if (a) walk(*a, f);
+}
+
+std::string lastPart(const std::string& p) {
+  auto d = p.rfind('.');
+  return d == std::string::npos ? p : p.substr(d + 1);
+}
+
+// Quantities that exist only once the operating point is known.
+bool needsOperating(const std::string& path) {
+  static const std::set<std::string> q = {"input_speed",    "output_speed",  "input_torque",        "output_torque",
+                                          "power",          "mesh_frequency", "pitch_line_velocity", "tangential_force",
+                                          "load_deflection", "speed",         "torque",              "carrier_speed",
+                                          "branch_torque",  "twist",         "displacement",        "imbalance"};
+  return q.count(lastPart(path)) > 0;
+}
+
+class Analyser {
+public:
+  Analyser(diag::DiagnosticEngine& d) : diags_(d), checker_(globals_, d) {}
+
+  ir::Program run(const LoadedProgram& prog) {
+    collect(prog);
+    checkConsts();
+    ir::Program out;
+    for (const auto& [name, decl] : globals_.materials) out.materials.push_back(material(*decl));
+    for (const auto& [name, decl] : globals_.presets) checkPreset(*decl);
+    // Gearboxes in declaration order of the main file, then of imports.
+    for (const auto& f : prog.files)
+      for (const auto& d : f.decls)
+        if (d.kind == StmtKind::Gearbox && globals_.gearboxes[d.name] == &d) {
+          std::vector<std::string> stack;
+          const GearboxModel* m = build(d.name, stack);
+          if (m) out.gearboxes.push_back(lowerGearbox(*m));
+        }
+    return out;
+  }
+
+private:
+  // ---- declarations ------------------------------------------------------------------
+
+  void declare(std::map<std::string, const Stmt*>& table, const Stmt& d, const char* what) {
+    for (auto* t : {&globals_.consts, &globals_.materials, &globals_.presets, &globals_.gearboxes}) {
+      auto it = t->find(d.name);
+      if (it == t->end()) continue;
+      auto& diag = diags_.error("E0202", nameOr(d), fmt::format("duplicate declaration: `{}` is already declared", d.name));
+      diag.notes.push_back({nameOr(*it->second), "first declared here"});
+      return;
+    }
+    (void)what;
+    table[d.name] = &d;
+  }
+
+  void collect(const LoadedProgram& prog) {
+    for (const auto& f : prog.files)
+      for (const auto& d : f.decls) {
+        switch (d.kind) {
+        case StmtKind::Const: declare(globals_.consts, d, "const"); break;
+        case StmtKind::Named:
+          if (d.word == "material") declare(globals_.materials, d, "material");
+          break;
+        case StmtKind::Preset: declare(globals_.presets, d, "preset"); break;
+        case StmtKind::Gearbox: declare(globals_.gearboxes, d, "gearbox"); break;
+        default: break;
+        }
+      }
+  }
+
+  void checkConsts() {
+    std::set<std::string> busy;
+    std::function<void(const std::string&)> eval = [&](const std::string& n) {
+      if (globals_.constValues.count(n) || !globals_.consts.count(n)) return;
+      const Stmt* d = globals_.consts[n];
+      if (busy.count(n)) {
+        diags_.error("E0228", nameOr(*d), fmt::format("const `{}` is defined in terms of itself", n));
+        return;
+      }
+      busy.insert(n);
+      // Evaluate referenced consts first so the checker sees their values.
+      std::function<void(const ast::Expr*)> deps = [&](const ast::Expr* e) {
+        if (!e) return;
+        if (e->kind == ast::ExprKind::Name && globals_.consts.count(e->text)) eval(e->text);
+        for (const auto& a : e->args) deps(a.get());
+      };
+      deps(d->value.get());
+      busy.erase(n);
+      if (globals_.constValues.count(n)) return;  // set during a cycle report
+      Scope s;
+      s.context = Scope::ConstExpr;
+      auto v = checker_.check(d->value.get(), s);
+      if (v->type.isError()) return;
+      if (v->op != Op::Const && v->op != Op::Set) {
+        diags_.error("E0410", d->value->span, fmt::format("const `{}` must be a constant, not an expression over quantities", n));
+        return;
+      }
+      if (v->op == Op::Set)
+        for (const auto& m : v->args)
+          if (!m->isConst()) {
+            diags_.error("E0410", m->span, "a const set must hold constants");
+            return;
+          }
+      globals_.constValues[n] = std::move(v);
+    };
+    for (const auto& [n, _] : globals_.consts) eval(n);
+  }
+
+  // Flattens assignments of a settings block (nested blocks become `a.b` paths).
+  void flatten(const std::vector<Stmt>& body, const std::string& prefix, const std::string& owner,
+               std::vector<std::pair<std::string, Binding>>& out, const std::set<std::string>& blocks) {
+    for (const auto& st : body) {
+      if (st.kind == StmtKind::Assign) {
+        std::string p = prefix + st.path.str();
+        bool dup = false;
+        for (auto& [q, b] : out)
+          if (q == p) {
+            auto& d = diags_.error("E0202", st.path.span, fmt::format("duplicate declaration: `{}` is already set in {}", p, owner));
+            d.notes.push_back({b.stmt->path.span, "first set here"});
+            dup = true;
+          }
+        if (!dup) out.emplace_back(p, Binding{&st, owner});
+      } else if (st.kind == StmtKind::Block && blocks.count(prefix + st.name)) {
+        flatten(st.body, prefix + st.name + ".", owner, out, blocks);
+      } else if (st.kind == StmtKind::Block) {
+        diags_.error("E0224", nameOr(st), fmt::format("{} has no block `{}`", owner, st.name));
+      } else {
+        notAllowed(st, owner);
+      }
+    }
+  }
+
+  void notAllowed(const Stmt& st, const std::string& owner) {
+    std::string what = st.kind == StmtKind::Flag ? fmt::format("`{};`", st.name)
+                       : st.kind == StmtKind::Domain ? fmt::format("a domain `{} in …`", st.path.str())
+                                                     : fmt::format("`{}`", ast::stmtKindName(st.kind));
+    diags_.error("E0110", st.span, fmt::format("{} is not allowed in {}", what, owner));
+  }
+
+  // Checks one value against its spec; returns the setting (value unset on error).
+  ir::Setting setting(const std::string& name, const Binding& b, const AttrSpec& spec, const Scope& scope,
+                      const std::string& owner) {
+    ir::Setting out;
+    out.name = name;
+    out.dim = spec.dim;
+    out.integer = spec.integer;
+    const Stmt& st = *b.stmt;
+    out.span = st.span;
+    if (st.when) diags_.error("E0408", st.when->span, "`x when condition` is only allowed in a `modify` block");
+    if (st.kind == StmtKind::Domain) {
+      diags_.error("E0110", st.span, fmt::format("`{}` of {} takes one value (`=`), not a domain", name, owner));
+      return out;
+    }
+    const ast::Expr* v = st.value.get();
+    if (spec.value == ValueKind::Symbol || spec.value == ValueKind::Stage || spec.value == ValueKind::Material) {
+      if (!v || v->kind != ast::ExprKind::Name) {
+        diags_.error("E0406", v ? v->span : st.span,
+                     fmt::format("`{}` takes a name{}", name,
+                                 spec.symbols.empty() ? "" : fmt::format(" ({})", fmt::join(spec.symbols, ", "))));
+        return out;
+      }
+      if (spec.value == ValueKind::Symbol &&
+          std::find(spec.symbols.begin(), spec.symbols.end(), v->text) == spec.symbols.end()) {
+        diags_.error("E0406", v->span,
+                     fmt::format("`{}` is not a valid {}; use one of {}", v->text, name, fmt::join(spec.symbols, ", ")));
+        return out;
+      }
+      if (spec.value == ValueKind::Stage && (!scope.gearbox || !scope.gearbox->findStage(v->text))) {
+        diags_.error("E0232", v->span, fmt::format("`{}` is not a stage of this gearbox", v->text));
+        return out;
+      }
+      if (spec.value == ValueKind::Material && !globals_.materials.count(v->text)) {
+        std::vector<std::string> names;
+        for (const auto& [m, _] : globals_.materials) names.push_back(m);
+        std::string hint = closest(v->text, names);
+        diags_.error("E0216", v->span,
+                     fmt::format("unknown material `{}`{}{}", v->text,
+                                 hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint),
+                                 names.empty() ? " (did you forget `import materials;`?)" : ""));
+        return out;
+      }
+      out.symbol = v->text;
+      return out;
+    }
+    Scope s = scope;
+    s.meshPeriodsAllowed = spec.meshPeriods;
+    auto x = checker_.check(v, s);
+    if (x->type.isError()) return out;
+    if (!x->type.isNumber()) {
+      diags_.error("E0306", x->span, fmt::format("`{}` needs {}, but this is {}", name, spec.dim.describe(), describe(x->type)));
+      return out;
+    }
+    if (x->type.dim != spec.dim && !(spec.altDim && x->type.dim == *spec.altDim)) {
+      std::string written = v && v->kind == ast::ExprKind::Number && v->unit ? v->unit->text : "";
+      diags_.error("E0302", x->span,
+                   fmt::format("unit mismatch: `{}` needs {}{}, got {}", name, spec.dim.describe(),
+                               spec.altDim ? " or " + spec.altDim->describe() : "", describe(x->type, written)));
+      return out;
+    }
+    out.meshPeriods = x->name == "mesh_periods";
+    if (x->isConst()) {
+      if (spec.integer && !(x->value.isRational() && x->value.rational().isInteger())) {
+        diags_.error("E0403", x->span, fmt::format("`{}` must be a whole number, got {}", name, x->value.str()));
+        return out;
+      }
+      if (spec.positive && x->value.sign() <= 0) {
+        diags_.error(name == "z" || lastPart(name) == "z" ? "E0402" : "E0405", x->span,
+                     fmt::format("`{}` must be positive, got {}", name, x->value.str()));
+        return out;
+      }
+      out.value = x->value;
+    }
+    out.expr = std::move(x);
+    return out;
+  }
+
+  std::vector<ir::Setting> settings(const std::vector<std::pair<std::string, Binding>>& items,
+                                    const std::vector<AttrSpec>& specs, const Scope& scope, const std::string& owner,
+                                    Span ownerSpan, const char* missingCode) {
+    std::vector<ir::Setting> out;
+    for (const auto& [name, b] : items) {
+      const AttrSpec* spec = nullptr;
+      for (const auto& s : specs)
+        if (s.name == name) spec = &s;
+      if (!spec) {
+        std::vector<std::string> names;
+        for (const auto& s : specs) names.push_back(s.name);
+        std::string hint = closest(name, names);
+        diags_.error("E0214", b.stmt->path.span,
+                     fmt::format("`{}` is not a setting of {}{}", name, owner,
+                                 hint.empty() ? fmt::format(" (it takes {})", fmt::join(names, ", "))
+                                              : fmt::format("; did you mean `{}`?", hint)));
+        continue;
+      }
+      out.push_back(setting(name, b, *spec, scope, owner));
+    }
+    for (const auto& s : specs)
+      if (s.required && std::none_of(items.begin(), items.end(), [&](const auto& i) { return i.first == s.name; }))
+        diags_.error(missingCode, ownerSpan, fmt::format("{} needs `{}` ({})", owner, s.name, s.meaning));
+    for (const auto& s : specs)
+      if (s.dflt && std::none_of(items.begin(), items.end(), [&](const auto& i) { return i.first == s.name; })) {
+        ir::Setting d;
+        d.name = s.name;
+        d.dim = s.dim;
+        d.integer = s.integer;
+        d.value = s.dflt;
+        out.push_back(std::move(d));
+      }
+    return out;
+  }
+
+  ir::Material material(const Stmt& d) {
+    ir::Material m;
+    m.name = d.name;
+    m.span = d.span;
+    std::vector<std::pair<std::string, Binding>> items;
+    std::string owner = fmt::format("material `{}`", d.name);
+    flatten(d.body, "", owner, items, {});
+    m.properties = settings(items, materialProperties(), Scope{}, owner, nameOr(d), "E0225");
+    return m;
+  }
+
+  void checkPreset(const Stmt& d) {
+    const KindSpec* k = findKind(d.word);
+    if (!k) {
+      unknownKind(d.word, d.wordSpan);
+      return;
+    }
+    for (const auto& st : d.body) {
+      if (st.kind == StmtKind::Assign || st.kind == StmtKind::Domain || st.kind == StmtKind::Require) continue;
+      notAllowed(st, fmt::format("preset `{}`", d.name));
+    }
+  }
+
+  void unknownKind(const std::string& word, Span span) {
+    std::vector<std::string> names;
+    for (const auto& k : stageKinds()) names.push_back(k.name);
+    std::string hint = closest(word, names);
+    diags_.error("E0210", span,
+                 fmt::format("unknown stage kind `{}`{}", word,
+                             hint.empty() ? fmt::format(" (kinds: {})", fmt::join(names, ", "))
+                                          : fmt::format("; did you mean `{}`?", hint)));
+  }
+
+  // ---- gearbox models: extends, presets, like ------------------------------------------
+
+  StageModel makeStage(const Stmt& st) {
+    StageModel m;
+    m.name = st.name;
+    m.decl = &st;
+    m.kind = findKind(st.word);
+    if (!m.kind) unknownKind(st.word, st.wordSpan);
+    for (size_t i = 0; i < st.with.size(); ++i) {
+      const std::string& p = st.with[i];
+      auto it = globals_.presets.find(p);
+      if (it == globals_.presets.end()) {
+        std::vector<std::string> names;
+        for (const auto& [n, _] : globals_.presets) names.push_back(n);
+        std::string hint = closest(p, names);
+        diags_.error("E0208", st.withSpans[i],
+                     fmt::format("unknown preset `{}`{}", p,
+                                 hint.empty() ? (names.empty() ? fmt::format(" (did you forget `import {};`?)", p) : "")
+                                              : fmt::format("; did you mean `{}`?", hint)));
+        continue;
+      }
+      const Stmt& pre = *it->second;
+      if (m.kind && pre.word != m.kind->name) {
+        diags_.error("E0209", st.withSpans[i],
+                     fmt::format("preset `{}` is for {} stages, but `{}` is a {} stage", p, pre.word, st.name, m.kind->name));
+        continue;
+      }
+      m.presets.push_back(p);
+      for (const auto& b : pre.body) {
+        if (b.kind == StmtKind::Assign || b.kind == StmtKind::Domain) m.setAttr(b.path.str(), {&b, "preset " + p});
+        else if (b.kind == StmtKind::Require) m.rules.push_back({&b, st.name});
+      }
+    }
+    std::map<std::string, const Stmt*> seen;
+    for (const auto& b : st.body) {
+      switch (b.kind) {
+      case StmtKind::Assign:
+      case StmtKind::Domain: {
+        std::string p = b.path.str();
+        if (auto it = seen.find(p); it != seen.end()) {
+          auto& d = diags_.error("E0202", b.path.span, fmt::format("duplicate declaration: `{}` is already given in stage `{}`", p, st.name));
+          d.notes.push_back({it->second->path.span, "first given here"});
+          break;
+        }
+        seen[p] = &b;
+        m.setAttr(p, {&b, "stage"});
+        break;
+      }
+      case StmtKind::Require: m.rules.push_back({&b, st.name}); break;
+      case StmtKind::Let:
+        if (std::any_of(m.lets.begin(), m.lets.end(), [&](const Stmt* l) { return l->name == b.name; }))
+          diags_.error("E0202", nameOr(b), fmt::format("duplicate declaration: `let {}` is already in stage `{}`", b.name, st.name));
+        else
+          m.lets.push_back(&b);
+        break;
+      default: notAllowed(b, fmt::format("stage `{}`", st.name));
+      }
+    }
+    return m;
+  }
+
+  template <class T, class Key>
+  static void replaceOrAdd(std::vector<T>& v, T item, Key key) {
+    for (auto& x : v)
+      if (key(x) == key(item)) {
+        x = std::move(item);
+        return;
+      }
+    v.push_back(std::move(item));
+  }
+
+  void dupInBlock(std::map<std::string, const Stmt*>& seen, const Stmt& st, const char* what) {
+    auto key = std::string(what) + ":" + st.name;
+    if (auto it = seen.find(key); it != seen.end()) {
+      auto& d = diags_.error("E0202", nameOr(st), fmt::format("duplicate declaration: {} `{}` is already declared in this gearbox", what, st.name));
+      d.notes.push_back({nameOr(*it->second), "first declared here"});
+    }
+    seen[key] = &st;
+  }
+
+  const GearboxModel* build(const std::string& name, std::vector<std::string>& stack) {
+    if (auto it = models_.find(name); it != models_.end()) return it->second.get();
+    auto dit = globals_.gearboxes.find(name);
+    if (dit == globals_.gearboxes.end()) return nullptr;
+    const Stmt& decl = *dit->second;
+    if (std::find(stack.begin(), stack.end(), name) != stack.end()) {
+      diags_.error("E0205", decl.baseSpan.valid() ? decl.baseSpan : nameOr(decl),
+                   fmt::format("extends cycle: {} -> {}", fmt::join(stack, " -> "), name));
+      return nullptr;
+    }
+    auto model = std::make_unique<GearboxModel>();
+    if (!decl.base.empty()) {
+      if (!globals_.gearboxes.count(decl.base)) {
+        std::vector<std::string> names;
+        for (const auto& [n, _] : globals_.gearboxes) names.push_back(n);
+        std::string hint = closest(decl.base, names);
+        diags_.error("E0206", decl.baseSpan,
+                     fmt::format("`{}` extends unknown gearbox `{}`{}", name, decl.base,
+                                 hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+      } else {
+        stack.push_back(name);
+        const GearboxModel* base = build(decl.base, stack);
+        stack.pop_back();
+        if (!base) return nullptr;
+        *model = *base;
+        model->splitOverrides = base->splitOverrides;
+      }
+    }
+    model->name = name;
+    model->base = globals_.gearboxes.count(decl.base) ? decl.base : "";
+    model->decl = &decl;
+    std::string origin = "gearbox " + name;
+    std::map<std::string, const Stmt*> seen;
+
+    // Stages first (in place, so `like` and overrides find them), `like` copies after.
+    std::vector<const Stmt*> likes;
+    for (const auto& st : decl.body) {
+      if (st.kind == StmtKind::Stage) {
+        dupInBlock(seen, st, "stage");
+        replaceOrAdd(model->stages, makeStage(st), [](const StageModel& s) { return s.name; });
+      } else if (st.kind == StmtKind::Like) {
+        dupInBlock(seen, st, "stage");
+        StageModel placeholder;
+        placeholder.name = st.name;
+        placeholder.decl = &st;
+        placeholder.likeOf = "?";
+        replaceOrAdd(model->stages, std::move(placeholder), [](const StageModel& s) { return s.name; });
+        likes.push_back(&st);
+      }
+    }
+    std::set<std::string> resolving;
+    std::function<void(const Stmt&)> resolveLike = [&](const Stmt& st) {
+      StageModel* target = model->findStage(st.name);
+      if (!target || target->likeOf != "?") return;
+      std::string src = st.path.str();
+      StageModel* source = model->findStage(src);
+      if (!source || st.path.parts.size() != 1) {
+        std::vector<std::string> names;
+        for (const auto& s : model->stages) names.push_back(s.name);
+        std::string hint = closest(src, names);
+        diags_.error("E0207", st.path.span,
+                     fmt::format("stage `{}` is like `{}`, but gearbox `{}` has no stage `{}`{}", st.name, src, name, src,
+                                 hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+        target->likeOf = "";
+        return;
+      }
+      if (source->likeOf == "?") {
+        if (resolving.count(src)) {
+          diags_.error("E0223", st.path.span, fmt::format("`like` cycle: stage `{}` is, in the end, like itself", st.name));
+          target->likeOf = "";
+          return;
+        }
+        resolving.insert(st.name);
+        for (const auto* l : likes)
+          if (l->name == src) resolveLike(*l);
+        resolving.erase(st.name);
+        source = model->findStage(src);
+        target = model->findStage(st.name);
+      }
+      if (source->likeOf == "?" || (source->likeOf.empty() && !source->kind && source->decl && source->decl->kind == StmtKind::Like)) {
+        target->likeOf = "";
+        return;
+      }
+      StageModel copy = *source;
+      copy.name = st.name;
+      copy.decl = &st;
+      copy.likeOf = src;
+      for (auto& [p, b] : copy.attrs) b.origin = "like " + src;
+      for (auto& r : copy.rules) r.scope = st.name;
+      *target = std::move(copy);
+    };
+    for (const auto* l : likes) resolveLike(*l);
+
+    bool ownObjectives = false;
+    for (const auto& st : decl.body) {
+      switch (st.kind) {
+      case StmtKind::Stage:
+      case StmtKind::Like: break;
+      case StmtKind::Let:
+        dupInBlock(seen, st, "let");
+        replaceOrAdd(model->lets, &st, [](const Stmt* s) { return s->name; });
+        break;
+      case StmtKind::Require: model->rules.push_back({&st, ""}); break;
+      case StmtKind::Interchangeable: model->interchangeables.push_back(&st); break;
+      case StmtKind::Minimize:
+      case StmtKind::Maximize:
+        // A variant that states its own objectives replaces the baseline's.
+        if (!ownObjectives) model->objectives.clear();
+        ownObjectives = true;
+        model->objectives.push_back(&st);
+        break;
+      case StmtKind::Operating:
+        if (seen.count("operating")) {
+          diags_.error("E0202", st.span, "duplicate declaration: this gearbox already has an `operating` block");
+          break;
+        }
+        seen["operating"] = &st;
+        model->hasOperating = true;
+        for (const auto& a : st.body) {
+          if (a.kind != StmtKind::Assign) {
+            notAllowed(a, "`operating`");
+            continue;
+          }
+          replaceOrAdd(model->operating, std::make_pair(a.path.str(), Binding{&a, origin}),
+                       [](const auto& p) { return p.first; });
+        }
+        break;
+      case StmtKind::Scene:
+        dupInBlock(seen, st, "scene");
+        replaceOrAdd(model->scenes, &st, [](const Stmt* s) { return s->name; });
+        break;
+      case StmtKind::Split:
+        dupInBlock(seen, st, "split");
+        replaceOrAdd(model->splits, &st, [](const Stmt* s) { return s->name; });
+        model->splitOverrides.erase(st.name);
+        break;
+      case StmtKind::Study:
+        dupInBlock(seen, st, "study");
+        replaceOrAdd(model->studies, &st, [](const Stmt* s) { return s->name; });
+        break;
+      case StmtKind::Modify: model->modifies.push_back(&st); break;
+      case StmtKind::Report:
+        if (seen.count("report")) diags_.error("E0202", st.span, "duplicate declaration: this gearbox already has a `report` block");
+        seen["report"] = &st;
+        model->report = &st;
+        break;
+      case StmtKind::Assign:
+      case StmtKind::Domain: override(*model, st, origin); break;
+      default: notAllowed(st, fmt::format("gearbox `{}`", name));
+      }
+    }
+    auto* raw = model.get();
+    models_[name] = std::move(model);
+    return raw;
+  }
+
+  void override(GearboxModel& m, const Stmt& st, const std::string& origin) {
+    const auto& parts = st.path.parts;
+    if (parts.empty()) return;
+    if (StageModel* stage = m.findStage(parts[0])) {
+      if (parts.size() == 1) {
+        diags_.error("E0211", st.path.span, fmt::format("`{}` is a stage; set one of its attributes, as in `{}.face_width = …`", parts[0], parts[0]));
+        return;
+      }
+      std::string rest = st.path.str().substr(parts[0].size() + 1);
+      stage->setAttr(rest, {&st, origin});
+      return;
+    }
+    if (parts.size() > 1 && m.findSplit(parts[0])) {
+      std::string rest = st.path.str().substr(parts[0].size() + 1);
+      replaceOrAdd(m.splitOverrides[parts[0]], std::make_pair(rest, Binding{&st, origin}), [](const auto& p) { return p.first; });
+      return;
+    }
+    if (parts.size() == 1) {
+      diags_.error("E0211", st.path.span,
+                   fmt::format("gearbox `{}` has no attribute `{}` to set: attributes belong to stages (`stage.{}`); "
+                               "name a derived value with `let`",
+                               m.name, parts[0], parts[0]));
+      return;
+    }
+    std::vector<std::string> names;
+    for (const auto& s : m.stages) names.push_back(s.name);
+    for (const auto* s : m.splits) names.push_back(s->name);
+    std::string hint = closest(parts[0], names);
+    diags_.error("E0219", st.path.spans[0],
+                 fmt::format("`{}` is not a stage or split of gearbox `{}`{}", parts[0], m.name,
+                             hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+  }
+
+  // ---- from models to IR ---------------------------------------------------------------
+
+  ir::Attribute attribute(const StageModel& st, const std::string& path, const Binding& b, const Scope& scope) {
+    ir::Attribute a;
+    a.name = path;
+    a.origin = b.origin;
+    a.span = b.stmt->span;
+    const Stmt& s = *b.stmt;
+    const AttrSpec* spec = findAttr(*st.kind, path);
+    Span where = s.path.span;
+    if (!spec) {
+      std::vector<std::string> names;
+      for (const auto& x : st.kind->stage) names.push_back(x.name);
+      for (const auto& g : st.kind->gears)
+        for (const auto& x : st.kind->gear) names.push_back(g + "." + x.name);
+      std::string hint = closest(path, names);
+      std::string extra;
+      if (path == "module" && (st.kind->kind == ir::StageKind::Spur || st.kind->kind == ir::StageKind::Helical))
+        hint = "normal_module";
+      if (path == "helix_angle" && st.kind->kind == ir::StageKind::Spur) extra = " (a spur stage has no helix; use a helical stage)";
+      diags_.error("E0211", where,
+                   fmt::format("`{}` is not an attribute of a {} stage{}{}", path, st.kind->name, extra,
+                               hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+      a.role = ir::Attribute::Fixed;
+      return a;
+    }
+    a.dim = spec->dim;
+    a.integer = spec->integer;
+    if (spec->role == AttrRole::Derived) {
+      diags_.error("E0212", where, fmt::format("`{}` is derived ({}) and cannot be set; constrain it with `require`", path, spec->meaning));
+      return a;
+    }
+    bool tooth = lastPart(path) == "z";
+    if (s.kind == StmtKind::Assign) {
+      a.role = ir::Attribute::Fixed;
+      ir::Setting v = setting(path, b, *spec, scope, fmt::format("stage `{}`", st.name));
+      a.value = std::move(v.expr);
+      a.symbol = v.symbol;
+      return a;
+    }
+    // A domain: bounds are constants in the attribute's unit.
+    if (spec->value != ValueKind::Number) {
+      diags_.error("E0110", where, fmt::format("`{}` takes one value (`=`), not a domain", path));
+      return a;
+    }
+    a.role = spec->integer ? ir::Attribute::Decision : ir::Attribute::Freedom;
+    auto checkBound = [&](ir::ExprPtr x) -> std::optional<Number> {
+      if (x->type.isError()) return std::nullopt;
+      if (!x->type.isNumber()) {
+        diags_.error("E0306", x->span, fmt::format("a bound of `{}` must be a number, but this is {}", path, describe(x->type)));
+        return std::nullopt;
+      }
+      if (!x->isConst()) {
+        diags_.error("E0410", x->span, fmt::format("a bound of `{}` must be a constant", path));
+        return std::nullopt;
+      }
+      if (x->type.dim != spec->dim) {
+        diags_.error("E0302", x->span,
+                     fmt::format("unit mismatch: `{}` needs {}, got {}", path, spec->dim.describe(), describe(x->type)));
+        return std::nullopt;
+      }
+      if (spec->integer && !(x->value.isRational() && x->value.rational().isInteger())) {
+        diags_.error("E0403", x->span, fmt::format("`{}` takes whole numbers, got {}", path, x->value.str()));
+        return std::nullopt;
+      }
+      if (spec->positive && x->value.sign() <= 0) {
+        diags_.error(tooth ? "E0402" : "E0405", x->span,
+                     tooth ? fmt::format("a tooth count must be positive, got {}", x->value.str())
+                           : fmt::format("`{}` must be positive, got {}", path, x->value.str()));
+        return std::nullopt;
+      }
+      return x->value;
+    };
+    if (s.domain == ast::DomainKind::Range) {
+      auto [lo, hi] = checker_.checkRange(s.lo.get(), s.hi.get(), scope);
+      Span span = source::cover(lo->span, hi->span);
+      a.lo = checkBound(std::move(lo));
+      a.hi = checkBound(std::move(hi));
+      if (a.lo && a.hi && a.lo->compare(*a.hi) > 0)
+        diags_.error("E0401", span, fmt::format("empty range for `{}`: {} is above {}", path, a.lo->str(), a.hi->str()));
+      return a;
+    }
+    std::vector<ir::ExprPtr> members;
+    Span span = s.span;
+    if (s.domain == ast::DomainKind::Named) {
+      auto v = checker_.check(s.value.get(), scope);
+      if (v->type.isError()) return a;
+      if (v->op != Op::Set) {
+        diags_.error("E0306", v->span, fmt::format("`{}` must be a set `{{…}}` to serve as a domain", ast::print(*s.value)));
+        return a;
+      }
+      span = v->span;
+      members = std::move(v->args);
+    } else {
+      for (const auto& m : s.exprs) members.push_back(checker_.check(m.get(), scope));
+    }
+    if (members.empty()) diags_.error("E0404", span, fmt::format("empty set: `{}` has no value to take", path));
+    for (auto& m : members)
+      if (auto v = checkBound(std::move(m))) a.members.push_back(*v);
+    std::sort(a.members.begin(), a.members.end(), [](const Number& x, const Number& y) { return x.compare(y) < 0; });
+    return a;
+  }
+
+  ir::Stage stage(const StageModel& st, const Scope& gbScope) {
+    ir::Stage out;
+    out.name = st.name;
+    out.span = st.decl ? st.decl->span : Span{};
+    out.presets = st.presets;
+    out.likeOf = st.likeOf;
+    if (!st.kind) return out;
+    out.kind = st.kind->kind;
+    out.gears = st.kind->gears;
+    Scope s = gbScope;
+    s.stage = &st;
+    for (const auto& [path, b] : st.attrs) out.attributes.push_back(attribute(st, path, b, s));
+    Span where = st.decl ? nameOr(*st.decl) : Span{};
+    for (const auto& a : st.kind->stage)
+      if (a.required && !st.findAttr(a.name))
+        diags_.error("E0225", where, fmt::format("stage `{}` does not give `{}` ({})", st.name, a.name, a.meaning));
+    for (const auto& g : st.kind->gears)
+      for (const auto& a : st.kind->gear)
+        if (a.required && !st.findAttr(g + "." + a.name))
+          diags_.error("E0225", where, fmt::format("stage `{}` does not give `{}.{}` ({})", st.name, g, a.name, a.meaning));
+    return out;
+  }
+
+  ir::Rule rule(const Stmt& st, const Scope& s, const std::string& scopeName) {
+    ir::Rule r;
+    r.expr = checker_.check(st.value.get(), s);
+    if (!r.expr->type.isError() && r.expr->type.kind != Type::Bool) {
+      diags_.error("E0305", r.expr->span,
+                   fmt::format("a `require` needs a condition (a comparison, `coprime(…)`, `and`/`or`), but this is {}",
+                               describe(r.expr->type)));
+    }
+    r.text = st.value ? ast::print(*st.value) : "";
+    r.scope = scopeName;
+    r.span = st.span;
+    return r;
+  }
+
+  ir::Gearbox lowerGearbox(const GearboxModel& m) {
+    ir::Gearbox g;
+    g.name = m.name;
+    g.baseline = m.base;
+    g.span = m.decl->span;
+    Scope gs;
+    gs.gearbox = &m;
+    gs.hasBaseline = !m.base.empty();
+
+    std::map<std::string, Type> letTypes;
+    std::set<std::string> letBusy;
+    std::map<std::string, ir::ExprPtr> letExprs;
+    checker_.setLetResolver([&](const std::string& n, const StageModel* st) -> Type {
+      std::string key = st ? st->name + "." + n : n;
+      if (auto it = letTypes.find(key); it != letTypes.end()) return it->second;
+      const Stmt* decl = nullptr;
+      if (st) {
+        for (const auto* l : st->lets)
+          if (l->name == n) decl = l;
+      } else {
+        decl = m.findLet(n);
+      }
+      if (!decl) return Type::error();
+      if (letBusy.count(key)) {
+        diags_.error("E0228", nameOr(*decl), fmt::format("`let {}` is defined in terms of itself", n));
+        letTypes[key] = Type::error();
+        return Type::error();
+      }
+      letBusy.insert(key);
+      Scope s = gs;
+      s.stage = st;
+      auto e = checker_.check(decl->value.get(), s);
+      letBusy.erase(key);
+      Type t = e->type;
+      letTypes[key] = t;
+      letExprs[key] = std::move(e);
+      return t;
+    });
+
+    for (const auto& st : m.stages) g.stages.push_back(stage(st, gs));
+    for (const auto& st : m.stages) {
+      Scope s = gs;
+      s.stage = &st;
+      for (const auto& r : st.rules) g.rules.push_back(rule(*r.stmt, s, r.scope));
+    }
+    // Lets: resolve every one (also the unused), in declaration order.
+    auto resolveLets = [&](const StageModel* st, const std::vector<const Stmt*>& lets) {
+      for (const auto* l : lets) {
+        Scope s = gs;
+        s.stage = st;
+        ast::Expr probe;
+        probe.kind = ast::ExprKind::Name;
+        probe.text = l->name;
+        probe.span = l->nameSpan;
+        checker_.check(&probe, s);
+        std::string key = st ? st->name + "." + l->name : l->name;
+        ir::Let out;
+        out.name = key;
+        out.span = l->span;
+        if (auto it = letExprs.find(key); it != letExprs.end() && it->second) out.expr = it->second->clone();
+        else out.expr = ir::makeConst(Number::exact(0), {}, false);
+        g.lets.push_back(std::move(out));
+      }
+    };
+    for (const auto& st : m.stages) resolveLets(&st, st.lets);
+    resolveLets(nullptr, m.lets);
+    for (const auto& r : m.rules) g.rules.push_back(rule(*r.stmt, gs, ""));
+
+    for (const auto* st : m.interchangeables) g.interchangeable.push_back(interchangeable(*st, m));
+    for (const auto* st : m.objectives) {
+      ir::Objective o;
+      o.minimize = st->kind == StmtKind::Minimize;
+      o.expr = checker_.check(st->value.get(), gs);
+      if (!o.expr->type.isError() && !o.expr->type.isNumber())
+        diags_.error("E0306", o.expr->span,
+                     fmt::format("an objective must be a number to {}, but this is {}", o.minimize ? "minimize" : "maximize",
+                                 describe(o.expr->type)));
+      o.text = st->value ? ast::print(*st->value) : "";
+      o.span = st->span;
+      g.objectives.push_back(std::move(o));
+    }
+    if (m.hasOperating) {
+      const Stmt* opDecl = nullptr;
+      for (const auto& [n, b] : m.operating) opDecl = b.stmt;
+      g.operating = settings(m.operating, operatingSettings(), gs, "`operating`", m.decl ? nameOr(*m.decl) : Span{}, "E0226");
+      checkOperating(m, g.operating, opDecl);
+    }
+    for (const auto* sc : m.scenes) g.scenes.push_back(scene(*sc, m, gs));
+    for (const auto* md : m.modifies) g.modifies.push_back(modify(*md, m, gs));
+    for (const auto* sp : m.splits) g.splits.push_back(split(*sp, m, gs));
+    for (const auto* sd : m.studies) g.studies.push_back(study(*sd, m, gs, g));
+    if (m.report) g.report = report(*m.report, gs);
+
+    if (!m.hasOperating) requireOperating(g);
+    return g;
+  }
+
+  void requireOperating(const ir::Gearbox& g) {
+    std::set<std::pair<int, int>> reported;
+    auto visit = [&](const ir::Expr* e, const char* where) {
+      if (!e) return;
+      walk(*e, [&](const ir::Expr& x) {
+        if (x.op != Op::Quantity || !x.type.isNumber() || !needsOperating(x.name)) return;
+        if (!reported.insert({x.span.line, x.span.col}).second) return;
+        diags_.error("E0231", x.span,
+                     fmt::format("`{}` depends on the operating point, but gearbox `{}` has no `operating` block ({})",
+                                 x.name, g.name, where));
+      });
+    };
+    for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
+    for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
+    for (const auto& l : g.lets) visit(l.expr.get(), "used in a let");
+    if (g.report) {
+      for (const auto& c : g.report->columns) visit(c.get(), "reported");
+      visit(g.report->sortBy.get(), "used to sort");
+    }
+    for (const auto& md : g.modifies)
+      for (const auto& r : md.rules) visit(r.value.get(), "used in a modification rule");
+    for (const auto& st : g.studies)
+      for (const auto& o : st.outputs) visit(o.get(), "output of a study");
+  }
+
+  void checkOperating(const GearboxModel& m, const std::vector<ir::Setting>& op, const Stmt* decl) {
+    auto has = [&](const char* n) { return ir::findSetting(op, n) != nullptr; };
+    Span where = decl ? decl->span : nameOr(*m.decl);
+    if (!has("input_speed") && !has("output_speed"))
+      diags_.error("E0226", where, "`operating` needs a speed: `input_speed` or `output_speed`");
+    if (has("input_speed") && has("output_speed"))
+      diags_.error("E0226", where, "`operating` gives both `input_speed` and `output_speed`; the ratio fixes one from the other");
+    int loads = has("input_torque") + has("output_torque") + has("power");
+    if (loads > 1)
+      diags_.error("E0226", where, "`operating` gives more than one of `input_torque`, `output_torque` and `power`; give one");
+  }
+
+  std::vector<std::string> interchangeable(const Stmt& st, const GearboxModel& m) {
+    std::vector<std::string> out;
+    std::string kind;
+    for (const auto& p : st.paths) {
+      const StageModel* s = p.parts.empty() ? nullptr : m.findStage(p.parts[0]);
+      if (!s) {
+        diags_.error("E0219", p.span, fmt::format("`{}` is not a stage of gearbox `{}`", p.parts.empty() ? "" : p.parts[0], m.name));
+        continue;
+      }
+      std::string k;
+      if (p.parts.size() == 1) k = "stage " + std::string(s->kind ? s->kind->name : "?");
+      else if (p.parts.size() == 2 && s->kind && isGear(*s->kind, p.parts[1])) k = "gear " + p.parts[1];
+      else {
+        diags_.error("E0219", p.span, fmt::format("`{}` is neither a stage nor a gear of one", p.str()));
+        continue;
+      }
+      if (!kind.empty() && k != kind) {
+        diags_.error("E0306", p.span, fmt::format("interchangeable members must be alike: `{}` is a {}, the first a {}", p.str(), k, kind));
+        continue;
+      }
+      kind = k;
+      out.push_back(p.str());
+    }
+    return out;
+  }
+
+  ir::Scene scene(const Stmt& st, const GearboxModel& m, const Scope& gs) {
+    ir::Scene out;
+    out.name = st.name;
+    out.span = st.span;
+    std::string owner = fmt::format("scene `{}`", st.name);
+    std::string target = st.path.str();
+    const StageModel* stage = m.findStage(target);
+    if (stage) out.target = target;
+    else if (target != m.name)
+      diags_.error("E0232", st.path.span,
+                   fmt::format("a scene runs on a stage of gearbox `{}` or on the gearbox itself (`on {}`); `{}` is neither",
+                               m.name, m.name, target));
+    if (!m.hasOperating)
+      diags_.error("E0231", nameOr(st), fmt::format("{} needs an operating point, but gearbox `{}` has no `operating` block", owner, m.name));
+    std::vector<std::pair<std::string, Binding>> items, acc;
+    bool sawEffects = false;
+    for (const auto& b : st.body) {
+      switch (b.kind) {
+      case StmtKind::Effects:
+        if (sawEffects) diags_.error("E0202", b.span, fmt::format("duplicate declaration: {} already has an `effects` block", owner));
+        sawEffects = true;
+        effects(b, out, gs);
+        break;
+      case StmtKind::Assign: flattenOne(b, items, owner); break;
+      case StmtKind::Block:
+        if (b.name == "accuracy") flatten(b.body, "", owner + " accuracy", acc, {});
+        else diags_.error("E0224", nameOr(b), fmt::format("{} has no block `{}` (it takes `effects` and `accuracy`)", owner, b.name));
+        break;
+      case StmtKind::Output:
+        for (const auto& e : b.exprs) sceneOutput(e.get(), out, stage);
+        break;
+      default: notAllowed(b, owner);
+      }
+    }
+    out.settings = settings(items, sceneSettings(), gs, owner, nameOr(st), "E0225");
+    out.accuracy = settings(acc, accuracySettings(), gs, owner + " accuracy", nameOr(st), "E0225");
+    if (!ir::findSetting(out.settings, "duration") && !ir::findSetting(out.settings, "record"))
+      diags_.error("E0225", nameOr(st), fmt::format("{} needs `duration` (a run from rest) or `record` (a steady-state window)", owner));
+    if (out.hasEffect("transmission_error") && !out.hasEffect("varying_stiffness"))
+      diags_.warning("W0501", nameOr(st),
+                     fmt::format("{}: `transmission_error` acts through F = dk(t)·e(t) and does nothing without `varying_stiffness`", owner));
+    return out;
+  }
+
+  void flattenOne(const Stmt& b, std::vector<std::pair<std::string, Binding>>& items, const std::string& owner) {
+    std::string p = b.path.str();
+    for (const auto& [q, x] : items)
+      if (q == p) {
+        auto& d = diags_.error("E0202", b.path.span, fmt::format("duplicate declaration: `{}` is already set in {}", p, owner));
+        d.notes.push_back({x.stmt->path.span, "first set here"});
+        return;
+      }
+    items.emplace_back(p, Binding{&b, owner});
+  }
+
+  void effects(const Stmt& block, ir::Scene& out, const Scope& gs) {
+    for (const auto& e : block.body) {
+      if (e.kind != StmtKind::Block && e.kind != StmtKind::Flag) {
+        notAllowed(e, "`effects` (it lists effects, as in `damping { ratio = 0.07; }`)");
+        continue;
+      }
+      const EffectSpec* spec = findEffect(e.name);
+      if (!spec) {
+        std::vector<std::string> names;
+        for (const auto& x : sema::effects()) names.push_back(x.name);
+        std::string hint = closest(e.name, names);
+        diags_.error("E0213", nameOr(e),
+                     fmt::format("unknown effect `{}`{}", e.name,
+                                 hint.empty() ? fmt::format(" (effects: {})", fmt::join(names, ", "))
+                                              : fmt::format("; did you mean `{}`?", hint)));
+        continue;
+      }
+      if (out.hasEffect(e.name)) {
+        diags_.error("E0222", nameOr(e), fmt::format("effect `{}` is listed twice in scene `{}`", e.name, out.name));
+        continue;
+      }
+      ir::Effect fx;
+      fx.name = e.name;
+      fx.span = e.span;
+      std::vector<std::pair<std::string, Binding>> items;
+      std::string owner = fmt::format("effect `{}`", e.name);
+      flatten(e.body, "", owner, items, {});
+      Scope s = gs;
+      s.context = Scope::EffectParam;
+      if (e.name == "hertz_contact") s.effectLocals = {"stiffness"};
+      fx.params = settings(items, spec->params, s, owner, nameOr(e), "E0215");
+      if (e.name == "damping") {
+        bool r = ir::findSetting(fx.params, "ratio"), c = ir::findSetting(fx.params, "coefficient");
+        if (!r && !c) diags_.error("E0215", nameOr(e), "effect `damping` needs `ratio` (zeta) or `coefficient` (c)");
+        if (r && c) diags_.error("E0214", nameOr(e), "effect `damping` takes `ratio` or `coefficient`, not both");
+      }
+      out.effects.push_back(std::move(fx));
+    }
+  }
+
+  void sceneOutput(const ast::Expr* e, ir::Scene& out, const StageModel* stage) {
+    if (!e) return;
+    ir::SceneOutput o;
+    o.span = e->span;
+    if (e->kind == ast::ExprKind::Name) {
+      o.signal = e->text;
+    } else if (e->kind == ast::ExprKind::Call && e->args.size() == 2 && e->args[0] &&
+               e->args[0]->kind == ast::ExprKind::Name && e->args[1] && e->args[1]->kind == ast::ExprKind::Name) {
+      o.function = e->args[0]->text;
+      o.signal = e->args[1]->text;
+      if (!isSignalFunction(o.function)) {
+        diags_.error("E0220", e->args[0]->span,
+                     fmt::format("`{}` is not a scene result function (rms, peak, mean, min, max, spectrum, plot)", o.function));
+        return;
+      }
+    } else {
+      diags_.error("E0306", e->span, "a scene output is a function of a signal, as in `rms(acceleration)`, or `modes`");
+      return;
+    }
+    const SignalSpec* sig = findSignal(o.signal);
+    if (!sig) {
+      std::vector<std::string> names;
+      for (const auto& s : sceneSignals()) names.push_back(s.name);
+      std::string hint = closest(o.signal, names);
+      diags_.error("E0218", e->kind == ast::ExprKind::Name ? e->span : e->args[1]->span,
+                   fmt::format("scenes have no signal `{}`{}", o.signal,
+                               hint.empty() ? fmt::format(" (signals: {})", fmt::join(names, ", "))
+                                            : fmt::format("; did you mean `{}`?", hint)));
+      return;
+    }
+    if (sig->scalar != o.function.empty()) {
+      diags_.error("E0306", e->span,
+                   sig->scalar ? fmt::format("`{}` is a single result; write it bare, as `output {};`", o.signal, o.signal)
+                               : fmt::format("`{}` is a time signal; say what to take of it, as in `rms({})`", o.signal, o.signal));
+      return;
+    }
+    if (o.signal == "modes" && stage && stage->kind && stage->kind->kind != ir::StageKind::Planetary)
+      diags_.error("E0232", e->span, "`modes` needs a lumped model: a scene on a planetary stage or on the whole gearbox");
+    if (!sig->needsAnyEffect.empty() &&
+        std::none_of(sig->needsAnyEffect.begin(), sig->needsAnyEffect.end(), [&](const std::string& x) { return out.hasEffect(x); }))
+      diags_.error("E0218", e->span,
+                   fmt::format("`{}` exists only with the effect{} {}; scene `{}` does not list {}", o.signal,
+                               sig->needsAnyEffect.size() > 1 ? "s" : "", fmt::join(sig->needsAnyEffect, " or "), out.name,
+                               sig->needsAnyEffect.size() > 1 ? "either" : "it"));
+    for (const auto& x : out.outputs)
+      if (x.key() == o.key()) return;
+    out.outputs.push_back(o);
+  }
+
+  ir::Modify modify(const Stmt& st, const GearboxModel& m, const Scope& gs) {
+    ir::Modify out;
+    out.stage = st.path.str();
+    out.span = st.span;
+    const StageModel* stage = m.findStage(out.stage);
+    if (!stage) {
+      diags_.error("E0232", st.path.span, fmt::format("`modify {}`: gearbox `{}` has no stage `{}`", out.stage, m.name, out.stage));
+      return out;
+    }
+    if (stage->kind && stage->kind->kind != ir::StageKind::Spur && stage->kind->kind != ir::StageKind::Helical) {
+      diags_.error("E0232", st.path.span, fmt::format("tooth modification rules apply to spur and helical stages; `{}` is {}", out.stage, stage->kind->name));
+      return out;
+    }
+    std::set<std::string> seen;
+    for (const auto& b : st.body) {
+      if (b.kind != StmtKind::Assign) {
+        notAllowed(b, fmt::format("`modify {}`", out.stage));
+        continue;
+      }
+      ir::ModRule r;
+      r.target = b.path.str();
+      r.span = b.span;
+      r.text = b.value ? ast::print(*b.value) : "";
+      std::string gear, what = r.target;
+      if (b.path.parts.size() == 2) {
+        gear = b.path.parts[0];
+        what = b.path.parts[1];
+      }
+      const auto& targets = modificationTargets();
+      bool gearOk = gear.empty() || (stage->kind && isGear(*stage->kind, gear));
+      if (b.path.parts.size() > 2 || !gearOk || std::find(targets.begin(), targets.end(), what) == targets.end()) {
+        std::string hint = closest(what, targets);
+        diags_.error("E0211", b.path.span,
+                     fmt::format("`{}` is not a tooth modification{}", r.target,
+                                 hint.empty() ? fmt::format(" (modifications: {})", fmt::join(targets, ", "))
+                                              : fmt::format("; did you mean `{}`?", hint)));
+        continue;
+      }
+      if (!seen.insert(r.target).second) {
+        diags_.error("E0202", b.path.span, fmt::format("duplicate declaration: `{}` already has a rule", r.target));
+        continue;
+      }
+      Scope s = gs;
+      s.stage = stage;
+      s.context = Scope::Modify;
+      s.modifyGear = gear;
+      r.value = checker_.check(b.value.get(), s);
+      if (r.value->type.kind == Type::PerGear)
+        diags_.error("E0306", r.value->span,
+                     fmt::format("this value differs between the gears; reduce it with `mean(…)`, `max(…)`, or name the gear "
+                                 "(`pinion.…`), or set `pinion.{}` and `wheel.{}` separately",
+                                 what, what));
+      else if (!r.value->type.isError() && (!r.value->type.isNumber() || r.value->type.dim != units::dims::length))
+        diags_.error("E0302", r.value->span,
+                     fmt::format("unit mismatch: `{}` is a length (µm or mm), got {}", r.target, describe(r.value->type)));
+      if (b.when) {
+        r.when = checker_.check(b.when.get(), s);
+        if (!r.when->type.isError() && r.when->type.kind != Type::Bool)
+          diags_.error("E0305", r.when->span, fmt::format("`when` needs a condition, but this is {}", describe(r.when->type)));
+      }
+      out.rules.push_back(std::move(r));
+    }
+    return out;
+  }
+
+  ir::Split split(const Stmt& st, const GearboxModel& m, const Scope& gs) {
+    ir::Split out;
+    out.name = st.name;
+    out.span = st.span;
+    std::string owner = fmt::format("split `{}`", st.name);
+    std::vector<std::pair<std::string, Binding>> items;
+    flatten(st.body, "", owner, items, {"torsion_shaft"});
+    if (auto it = m.splitOverrides.find(st.name); it != m.splitOverrides.end())
+      for (const auto& [p, b] : it->second)
+        replaceOrAdd(items, std::make_pair(p, b), [](const auto& x) { return x.first; });
+    out.settings = settings(items, splitSettings(), gs, owner, nameOr(st), "E0225");
+    const ir::Setting* install = ir::findSetting(out.settings, "install");
+    if (install && install->symbol == "preloaded" && !ir::findSetting(out.settings, "preload_torque"))
+      diags_.error("E0225", nameOr(st), fmt::format("{} is installed `preloaded` but gives no `preload_torque`", owner));
+    if (!m.hasOperating)
+      diags_.error("E0231", nameOr(st), fmt::format("{} needs an operating point, but gearbox `{}` has no `operating` block", owner, m.name));
+    return out;
+  }
+
+  ir::Study study(const Stmt& st, const GearboxModel& m, const Scope& gs, const ir::Gearbox& g) {
+    ir::Study out;
+    out.name = st.name;
+    out.span = st.span;
+    std::string owner = fmt::format("study `{}`", st.name);
+    bool sweep = false, wp = false;
+    std::vector<std::pair<std::string, const Stmt*>> domains;
+    for (const auto& b : st.body) {
+      switch (b.kind) {
+      case StmtKind::Sweep: {
+        if (sweep || wp) {
+          diags_.error("E0202", b.span, fmt::format("{} already says what it varies; a study has one sweep", owner));
+          break;
+        }
+        sweep = true;
+        out.kind = ir::Study::Sweep;
+        out.target = b.path.str();
+        out.dim = sweepTarget(b.path, m, g);
+        auto [lo, hi] = checker_.checkRange(b.lo.get(), b.hi.get(), gs);
+        auto step = b.step && b.step->kind == ast::ExprKind::Number && !b.step->unit && b.hi && b.hi->unit
+                        ? checker_.literal(*b.step, &*b.hi->unit)
+                        : checker_.check(b.step.get(), gs);
+        auto bound = [&](ir::ExprPtr x, const char* what) -> std::optional<Number> {
+          if (x->type.isError()) return std::nullopt;
+          if (!x->isConst()) {
+            diags_.error("E0410", x->span, fmt::format("the sweep's {} must be a constant", what));
+            return std::nullopt;
+          }
+          if (out.dim && x->type.dim != *out.dim) {
+            diags_.error("E0302", x->span,
+                         fmt::format("unit mismatch: `{}` is {}, but the sweep's {} is {}", out.target, out.dim->describe(), what,
+                                     describe(x->type)));
+            return std::nullopt;
+          }
+          return x->value;
+        };
+        out.lo = bound(std::move(lo), "start");
+        out.hi = bound(std::move(hi), "end");
+        out.step = bound(std::move(step), "step");
+        if (out.lo && out.hi && out.lo->compare(*out.hi) >= 0)
+          diags_.error("E0401", b.span, fmt::format("empty sweep: the start {} is not below the end {}", out.lo->str(), out.hi->str()));
+        if (out.step && out.step->sign() <= 0) diags_.error("E0407", b.step->span, "the sweep's step must be positive");
+        break;
+      }
+      case StmtKind::Of: {
+        if (sweep || wp) {
+          diags_.error("E0202", b.span, fmt::format("{} already says what it varies", owner));
+          break;
+        }
+        if (b.name != "work_precision") {
+          diags_.error("E0224", nameOr(b), fmt::format("unknown study `{} of …`; a study is a `sweep` or `work_precision of SCENE`", b.name));
+          break;
+        }
+        wp = true;
+        out.kind = ir::Study::WorkPrecision;
+        out.target = b.path.str();
+        if (!m.findScene(out.target)) {
+          std::vector<std::string> names;
+          for (const auto* s : m.scenes) names.push_back(s->name);
+          std::string hint = closest(out.target, names);
+          diags_.error("E0217", b.path.span,
+                       fmt::format("unknown scene `{}`{}", out.target, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+        }
+        break;
+      }
+      case StmtKind::Domain: domains.emplace_back(b.path.str(), &b); break;
+      case StmtKind::Output:
+        for (const auto& e : b.exprs) {
+          auto x = checker_.check(e.get(), gs);
+          if (!x->type.isError() && !x->type.isNumber())
+            diags_.error("E0306", x->span, fmt::format("a study output must be a number, but this is {}", describe(x->type)));
+          out.outputTexts.push_back(e ? ast::print(*e) : "");
+          out.outputs.push_back(std::move(x));
+        }
+        break;
+      case StmtKind::Flag:
+        if (b.name == "plot") out.plot = true;
+        else diags_.error("E0224", nameOr(b), fmt::format("{} has no option `{}` (it takes `plot;`)", owner, b.name));
+        break;
+      default: notAllowed(b, owner);
+      }
+    }
+    if (!sweep && !wp) diags_.error("E0225", nameOr(st), fmt::format("{} needs `sweep X in a..b step s;` or `work_precision of SCENE;`", owner));
+    if (sweep && out.outputs.empty()) diags_.error("E0225", nameOr(st), fmt::format("{} sweeps but has no `output`", owner));
+    for (const auto& [name, b] : domains) {
+      if (!wp) {
+        diags_.error("E0110", b->span, fmt::format("`{} in …` belongs in a work-precision study", name));
+        continue;
+      }
+      const AttrSpec* spec = nullptr;
+      for (const auto& s : workPrecisionSettings())
+        if (s.name == name) spec = &s;
+      if (!spec) {
+        diags_.error("E0214", b->path.span, fmt::format("`{}` is not a setting of a work-precision study (rtol, harmonics, methods)", name));
+        continue;
+      }
+      out.settings.push_back(domainSetting(*b, *spec, gs));
+    }
+    return out;
+  }
+
+  ir::Setting domainSetting(const Stmt& b, const AttrSpec& spec, const Scope& gs) {
+    ir::Setting s;
+    s.name = spec.name;
+    s.dim = spec.dim;
+    s.integer = spec.integer;
+    s.span = b.span;
+    auto number = [&](ir::ExprPtr x) -> std::optional<Number> {
+      if (x->type.isError()) return std::nullopt;
+      if (!x->isConst() || !x->type.isNumber() || x->type.dim != spec.dim) {
+        diags_.error("E0302", x->span, fmt::format("`{}` takes constants that are {}", spec.name, spec.dim.describe()));
+        return std::nullopt;
+      }
+      if (spec.integer && !(x->value.isRational() && x->value.rational().isInteger())) {
+        diags_.error("E0403", x->span, fmt::format("`{}` takes whole numbers", spec.name));
+        return std::nullopt;
+      }
+      if (spec.positive && x->value.sign() <= 0) {
+        diags_.error("E0405", x->span, fmt::format("`{}` must be positive", spec.name));
+        return std::nullopt;
+      }
+      return x->value;
+    };
+    if (spec.value == ValueKind::Symbol) {
+      if (b.domain != ast::DomainKind::Set) {
+        diags_.error("E0406", b.span, fmt::format("`{}` takes a set of words, as in `{{rk8pd, rkf45}}`", spec.name));
+        return s;
+      }
+      for (const auto& e : b.exprs) {
+        if (!e || e->kind != ast::ExprKind::Name ||
+            std::find(spec.symbols.begin(), spec.symbols.end(), e->text) == spec.symbols.end()) {
+          diags_.error("E0406", e ? e->span : b.span, fmt::format("`{}` takes {}", spec.name, fmt::join(spec.symbols, ", ")));
+          continue;
+        }
+        s.symbol += (s.symbol.empty() ? "" : ",") + e->text;
+      }
+      return s;
+    }
+    if (b.domain == ast::DomainKind::Range) {
+      auto [lo, hi] = checker_.checkRange(b.lo.get(), b.hi.get(), gs);
+      s.lo = number(std::move(lo));
+      s.hi = number(std::move(hi));
+      if (s.lo && s.hi && s.lo->compare(*s.hi) > 0) diags_.error("E0401", b.span, fmt::format("empty range for `{}`", spec.name));
+      return s;
+    }
+    if (b.domain == ast::DomainKind::Set)
+      for (const auto& e : b.exprs)
+        if (auto v = number(checker_.check(e.get(), gs))) s.members.push_back(*v);
+    return s;
+  }
+
+  std::optional<units::Dim> sweepTarget(const ast::Path& p, const GearboxModel& m, const ir::Gearbox& g) {
+    (void)g;
+    const auto& parts = p.parts;
+    if (parts.size() == 1) {
+      for (const auto& o : operatingSettings())
+        if (o.name == parts[0]) {
+          if (!m.hasOperating)
+            diags_.error("E0231", p.span, fmt::format("sweeping `{}` needs an `operating` block to vary", parts[0]));
+          return o.dim;
+        }
+    } else if (const StageModel* st = m.findStage(parts[0]); st && st->kind) {
+      std::string rest = p.str().substr(parts[0].size() + 1);
+      if (const auto* a = findAttr(*st->kind, rest); a && a->role != AttrRole::Derived && a->value == ValueKind::Number) return a->dim;
+    } else if (m.findSplit(parts[0])) {
+      std::string rest = p.str().substr(parts[0].size() + 1);
+      for (const auto& s : splitSettings())
+        if (s.name == rest && s.value == ValueKind::Number) return s.dim;
+    }
+    diags_.error("E0219", p.span,
+                 fmt::format("cannot sweep `{}`: a sweep varies an operating value, a stage attribute or a split setting",
+                             p.str()));
+    return std::nullopt;
+  }
+
+  ir::Report report(const Stmt& st, const Scope& gs) {
+    ir::Report r;
+    r.span = st.span;
+    for (const auto& b : st.body) {
+      switch (b.kind) {
+      case StmtKind::Top: {
+        auto x = checker_.check(b.value.get(), gs);
+        if (x->type.isError()) break;
+        if (!x->isConst() || !x->type.dim.dimensionless() || !x->value.isRational() || !x->value.rational().isInteger() ||
+            x->value.sign() <= 0)
+          diags_.error("E0403", x->span, "`top` takes a positive whole number");
+        else
+          r.top = static_cast<long long>(x->value.rational().num());
+        break;
+      }
+      case StmtKind::Sort: {
+        auto x = checker_.check(b.value.get(), gs);
+        if (!x->type.isError() && !x->type.isNumber())
+          diags_.error("E0306", x->span, fmt::format("`sort by` needs a number, but this is {}", describe(x->type)));
+        r.sortBy = std::move(x);
+        break;
+      }
+      case StmtKind::Columns:
+        for (const auto& e : b.exprs) {
+          auto x = checker_.check(e.get(), gs);
+          if (!x->type.isError() && !x->type.isNumber() && x->type.kind != Type::Interval)
+            diags_.error("E0306", x->span, fmt::format("a report column must be a number, but this is {}", describe(x->type)));
+          r.columnTexts.push_back(e ? ast::print(*e) : "");
+          r.columns.push_back(std::move(x));
+        }
+        break;
+      default: notAllowed(b, "`report`");
+      }
+    }
+    return r;
+  }
+
+  diag::DiagnosticEngine& diags_;
+  Globals globals_;
+  ExprChecker checker_;
+  std::map<std::string, std::unique_ptr<GearboxModel>> models_;
+};
+
+} // namespace
+
+ir::Program analyse(const LoadedProgram& program, diag::DiagnosticEngine& diags) {
+  Analyser a(diags);
+  return a.run(program);
+}
+
+} // namespace gbx::sema

@@ -1,0 +1,36 @@
+#pragma once
+// Unit atoms (LANGUAGE.md §1) and unit expressions built from them.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "units/Dim.h"
+#include "units/Number.h"
+
+namespace gbx::units {
+
+struct Unit {
+  Number scale = Number::exact(Rational(1));  // SI value of one unit
+  Dim dim;
+  // `mesh_period(s)`: a time measured in the scene's own mesh period, resolved at run time.
+  bool meshPeriods = false;
+};
+
+// An atom by its spelling (`mm`, `µm`, `°`, `rpm`, `%`, `mesh_periods`); nullopt if unknown.
+std::optional<Unit> lookupAtom(const std::string& name);
+// Every atom's spelling, for "did you mean" hints.
+const std::vector<std::string>& atomNames();
+
+Unit multiply(const Unit& a, const Unit& b);
+Unit divide(const Unit& a, const Unit& b);
+Unit powerOf(const Unit& a, int e);
+
+// Preferred engineering unit in reports for a dimension ("mm", "rpm", "kN*m"), with its
+// SI scale; SI itself where there is no better one.
+struct DisplayUnit {
+  std::string name;
+  double scale;
+};
+DisplayUnit displayUnitFor(const Dim& d);
+
+} // namespace gbx::units
