@@ -122,6 +122,7 @@ BLOCK_COMMENT : '/*' .*? '*/' -> channel(HIDDEN) ;
 WS : [ \t\r\n]+ -> channel(HIDDEN) ;
 // Lexical errors become tokens off the parser's channel; the front end reports them
 // itself, so the lexer never prints and the parser sees only well-formed tokens.
-UNTERMINATED_COMMENT : '/*' .*? EOF -> channel(2) ;
+// Never contains `*/`, or it would outmatch a closed comment that text follows.
+UNTERMINATED_COMMENT : '/*' (~[*] | '*'+ ~[*/])* '*'* EOF -> channel(2) ;
 UNTERMINATED_STRING : '"' (~["\\\r\n] | '\\' .)* -> channel(2) ;
 BAD_CHAR : . -> channel(2) ;

@@ -614,8 +614,49 @@ bool tooDeep(const std::vector<antlr4::Token*>& tokens, int file, diag::Diagnost
 
 } // namespace
 
+// The runtime's UTF-8 decoder throws on malformed input: find the first bad byte first.
+bool validUtf8(const std::string& t, int file, diag::DiagnosticEngine& diags) {
+  int line = 1, col = 1;
+  for (size_t i = 0; i < t.size();) {
+    auto c = static_cast<unsigned char>(t[i]);
+    size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    bool ok = n > 0 && i + n <= t.size();
+    for (size_t k = 1; ok && k < n; ++k) ok = (static_cast<unsigned char>(t[i + k]) & 0xC0) == 0x80;
+    if (ok && n == 2) ok = c >= 0xC2;
+    if (ok && n == 3) {
+      unsigned cp = ((c & 0x0Fu) << 12) | ((static_cast<unsigned char>(t[i + 1]) & 0x3Fu) << 6) | (static_cast<unsigned char>(t[i + 2]) & 0x3Fu);
+      ok = cp >= 0x800 && (cp < 0xD800 || cp > 0xDFFF);
+    }
+    if (ok && n == 4) {
+      unsigned cp = ((c & 0x07u) << 18) | ((static_cast<unsigned char>(t[i + 1]) & 0x3Fu) << 12);
+      ok = cp >= 0x10000 && cp <= 0x10FFFF;
+    }
+    if (!ok) {
+      Span s;
+      s.file = file;
+      s.line = s.endLine = line;
+      s.col = s.endCol = col;
+      diags.error("E0104", s, fmt::format("the file is not valid UTF-8 (byte 0x{:02x})", c));
+      return false;
+    }
+    if (c == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+    i += n;
+  }
+  return true;
+}
+
 ast::File parseFile(const source::SourceManager& sm, int fileId, diag::DiagnosticEngine& diags) {
   const auto& src = sm.get(fileId);
+  if (!validUtf8(src.text(), fileId, diags)) {
+    ast::File f;
+    f.fileId = fileId;
+    return f;
+  }
   antlr4::ANTLRInputStream input(src.text());
   GbxLexer lexer(&input);
   lexer.removeErrorListeners();

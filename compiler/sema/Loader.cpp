@@ -55,13 +55,16 @@ public:
 
   void visit(int fileId) {
     state_[fileId] = 1;  // on the import stack
+    int before = diags_.errorCount();
     auto file = parse::parseFile(sm_, fileId, diags_);
-    if (diags_.hasErrors()) result.parseErrors = true;
+    bool broken = diags_.errorCount() > before;
+    if (broken) result.parseErrors = true;
     result.files.push_back(std::move(file));
     // Resolve first, visit after: visiting grows `files`, so no reference into it is held.
     std::vector<std::pair<int, source::Span>> targets;
+    // Imports recovered from a broken file are guesses: follow none of them.
     for (const auto& d : result.files.back().decls)
-      if (d.kind == ast::StmtKind::Import)
+      if (!broken && d.kind == ast::StmtKind::Import)
         if (int t = resolve(d, fileId); t >= 0) targets.emplace_back(t, d.span);
     for (const auto& [target, span] : targets) {
       auto st = state_.find(target);
@@ -80,15 +83,16 @@ public:
     if (d.importIsPath) {
       fs::path base = fs::path(sm_.get(fromFile).absPath()).parent_path();
       fs::path target = base / d.word;
+      fs::path display = fs::path(sm_.get(fromFile).displayPath()).parent_path() / d.word;
       std::string text;
       std::string abs = canonicalPath(target);
       if (int id = sm_.find(abs); id >= 0) return id;
       if (!readFile(target, text)) {
         diags_.error("E0203", d.wordSpan.valid() ? d.wordSpan : d.span,
-                     fmt::format("cannot import \"{}\": no such file (looked for {})", d.word, target.lexically_normal().string()));
+                     fmt::format("cannot import \"{}\": no such file (looked for {})", d.word,
+                                 display.lexically_normal().string()));
         return -1;
       }
-      fs::path display = fs::path(sm_.get(fromFile).displayPath()).parent_path() / d.word;
       return sm_.add(display.lexically_normal().string(), abs, std::move(text));
     }
     std::vector<std::string> looked;

@@ -10,6 +10,7 @@
 #include "sema/Catalogue.h"
 #include "sema/ExprChecker.h"
 #include "sema/Model.h"
+#include "units/Unit.h"
 
 namespace gbx::sema {
 
@@ -232,7 +233,7 @@ private:
       }
       if (spec.positive && x->value.sign() <= 0) {
         diags_.error(name == "z" || lastPart(name) == "z" ? "E0402" : "E0405", x->span,
-                     fmt::format("`{}` must be positive, got {}", name, x->value.str()));
+                     fmt::format("`{}` must be positive, got {}", name, units::showQuantity(x->value, x->type.dim)));
         return out;
       }
       out.value = x->value;
@@ -646,7 +647,7 @@ private:
       if (spec->positive && x->value.sign() <= 0) {
         diags_.error(tooth ? "E0402" : "E0405", x->span,
                      tooth ? fmt::format("a tooth count must be positive, got {}", x->value.str())
-                           : fmt::format("`{}` must be positive, got {}", path, x->value.str()));
+                           : fmt::format("`{}` must be positive, got {}", path, units::showQuantity(x->value, x->type.dim)));
         return std::nullopt;
       }
       return x->value;
@@ -657,7 +658,8 @@ private:
       a.lo = checkBound(std::move(lo));
       a.hi = checkBound(std::move(hi));
       if (a.lo && a.hi && a.lo->compare(*a.hi) > 0)
-        diags_.error("E0401", span, fmt::format("empty range for `{}`: {} is above {}", path, a.lo->str(), a.hi->str()));
+        diags_.error("E0401", span, fmt::format("empty range for `{}`: {} is above {}", path, units::showQuantity(*a.lo, a.dim),
+                                                units::showQuantity(*a.hi, a.dim)));
       return a;
     }
     std::vector<ir::ExprPtr> members;
@@ -1146,7 +1148,8 @@ private:
         out.hi = bound(std::move(hi), "end");
         out.step = bound(std::move(step), "step");
         if (out.lo && out.hi && out.lo->compare(*out.hi) >= 0)
-          diags_.error("E0401", b.span, fmt::format("empty sweep: the start {} is not below the end {}", out.lo->str(), out.hi->str()));
+          diags_.error("E0401", b.span, fmt::format("empty sweep: the start {} is not below the end {}", units::showQuantity(*out.lo, *out.dim),
+                                                  units::showQuantity(*out.hi, *out.dim)));
         if (out.step && out.step->sign() <= 0) diags_.error("E0407", b.step->span, "the sweep's step must be positive");
         break;
       }

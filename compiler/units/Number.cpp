@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <algorithm>
 
 namespace gbx::units {
 
@@ -79,9 +80,16 @@ int Number::compare(const Number& o) const {
 std::string formatDouble(double v) {
   if (v == 0.0) return "0";
   char buf[64];
-  for (int prec = 1; prec <= 17; ++prec) {
+  int prec = 1;
+  for (; prec <= 17; ++prec) {
     std::snprintf(buf, sizeof buf, "%.*g", prec, v);
     if (std::strtod(buf, nullptr) == v) break;
+  }
+  double a = std::fabs(v);
+  // Plain positional notation for engineering magnitudes: "3000", not "3e+03".
+  if (a >= 1e-5 && a < 1e15 && std::string(buf).find('e') != std::string::npos) {
+    int decimals = std::max(0, prec - 1 - static_cast<int>(std::floor(std::log10(a))));
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
   }
   return buf;
 }

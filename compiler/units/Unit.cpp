@@ -115,4 +115,10 @@ DisplayUnit displayUnitFor(const Dim& d) {
   return {d.siUnit(), 1.0};
 }
 
+std::string showQuantity(const Number& v, const Dim& d) {
+  if (d.dimensionless()) return v.str();
+  DisplayUnit u = displayUnitFor(d);
+  return formatDouble(v.toDouble() / u.scale) + " " + u.name;
+}
+
 } // namespace gbx::units

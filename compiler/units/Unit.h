@@ -32,5 +32,7 @@ struct DisplayUnit {
   double scale;
 };
 DisplayUnit displayUnitFor(const Dim& d);
+// A value in its display unit, for messages: "3000 kW", "-3 mm", "0.29".
+std::string showQuantity(const Number& v, const Dim& d);
 
 } // namespace gbx::units

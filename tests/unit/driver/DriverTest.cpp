@@ -1,0 +1,126 @@
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "driver/Driver.h"
+#include "driver/Golden.h"
+
+using namespace gbx;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int status;
+  std::string out, err;
+};
+
+Run gbxc(std::vector<std::string> args) {
+  std::ostringstream out, err;
+  int s = driver::run(args, out, err);
+  return {s, out.str(), err.str()};
+}
+
+fs::path tempDir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("gbxc-test-" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+} // namespace
+
+TEST(Cli, ExitStatuses) {
+  EXPECT_EQ(gbxc({"--help"}).status, 0);
+  EXPECT_EQ(gbxc({"--version"}).out, "gbxc 0.1.0\n");
+  EXPECT_EQ(gbxc({}).status, 2);
+  EXPECT_EQ(gbxc({"frobnicate", "x.gbx"}).status, 2);
+  EXPECT_EQ(gbxc({"check"}).status, 2);
+  EXPECT_EQ(gbxc({"dump", "tokens", "x.gbx"}).status, 2);
+  EXPECT_EQ(gbxc({"check", "x.gbx", "--format", "yaml"}).status, 2);
+  EXPECT_EQ(gbxc({"check", "x.gbx", "--bogus"}).status, 2);
+  EXPECT_EQ(gbxc({"solve", "x.gbx", "--jobs", "0"}).status, 2);
+  auto missing = gbxc({"check", "/no/such/file.gbx"});
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.err.find("E0001"), std::string::npos);
+}
+
+TEST(Cli, CheckAndDumpOfASpecExample) {
+  fs::path spec = fs::path(GBX_SOURCE_DIR) / "specs" / "thruster_one_stage.gbx";
+  auto r = gbxc({"check", spec.string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("ok, 3 gearboxes"), std::string::npos);
+  auto j = gbxc({"check", "--format", "json", spec.string()});
+  EXPECT_EQ(j.status, 0);
+  EXPECT_NE(j.out.find("\"ok\": true"), std::string::npos);
+  auto ir = gbxc({"dump", "ir", spec.string()});
+  EXPECT_EQ(ir.status, 0);
+  EXPECT_NE(ir.out.find("gearbox ThrusterOneStagePinned extends ThrusterOneStageWindow"), std::string::npos);
+}
+
+TEST(Golden, UnifiedDiffShowsChangedLines) {
+  std::string d = driver::unifiedDiff("a\nb\nc\n", "a\nB\nc\n", "exp", "act");
+  EXPECT_NE(d.find("-b\n"), std::string::npos);
+  EXPECT_NE(d.find("+B\n"), std::string::npos);
+  EXPECT_EQ(driver::unifiedDiff("x\n", "x\n", "e", "a").find("@@"), std::string::npos);
+}
+
+TEST(Golden, UpdateThenPassThenFailWithDiff) {
+  fs::path d = tempDir("golden");
+  write(d / "one.gbx", "// ARGS: check\ngearbox G { stage s: spur { pinion.z = 14; wheel.z = 31; } }\n");
+  auto first = gbxc({"test", d.string()});
+  EXPECT_EQ(first.status, 1) << "a missing expected file fails";
+  EXPECT_NE(first.out.find("no "), std::string::npos);
+  EXPECT_EQ(gbxc({"test", d.string(), "--update"}).status, 0);
+  std::ifstream in(d / "one.expected");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_EQ(ss.str(), "one.gbx: ok, 1 gearbox (G)\n[exit 0]\n");
+  EXPECT_EQ(gbxc({"test", d.string()}).status, 0);
+  write(d / "one.gbx", "// ARGS: check\ngearbox G { stage s: spur { pinion.z = 0; wheel.z = 31; } }\n");
+  auto fail = gbxc({"test", d.string()});
+  EXPECT_EQ(fail.status, 1);
+  EXPECT_NE(fail.out.find("-one.gbx: ok"), std::string::npos);
+  EXPECT_NE(fail.out.find("+[exit 1]"), std::string::npos);
+  EXPECT_NE(fail.out.find("0 passed, 1 failed"), std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST(Golden, FolderArgumentsApplyWithoutAnArgsLine) {
+  fs::path d = tempDir("golden-args");
+  write(d / "golden.args", "dump ir\n");
+  write(d / "g.gbx", "gearbox G { stage s: spur { pinion.z = 14; wheel.z = 31; } }\n");
+  std::vector<std::string> problems;
+  auto cases = driver::discoverGolden({d.string()}, problems);
+  ASSERT_EQ(cases.size(), 1u);
+  EXPECT_EQ(cases[0].args, (std::vector<std::string>{"dump", "ir"}));
+  EXPECT_NE(driver::captureGolden(cases[0]).find("stage s: spur"), std::string::npos);
+  fs::remove_all(d);
+}
+
+// specs/ holds the acceptance corpus unchanged: it must match shared/spec-examples.
+TEST(Specs, MatchTheSharedAcceptanceCorpus) {
+  fs::path shared(GBX_SHARED_EXAMPLES);
+  if (!fs::exists(shared)) GTEST_SKIP() << "no " << shared;
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(shared)) {
+    if (e.path().extension() != ".gbx") continue;
+    ++n;
+    auto read = [](const fs::path& p) {
+      std::ifstream in(p, std::ios::binary);
+      std::stringstream ss;
+      ss << in.rdbuf();
+      return ss.str();
+    };
+    fs::path mine = fs::path(GBX_SOURCE_DIR) / "specs" / e.path().filename();
+    ASSERT_TRUE(fs::exists(mine)) << mine;
+    EXPECT_EQ(read(mine), read(e.path())) << mine;
+    fs::path golden = fs::path(GBX_GOLDEN_DIR) / "ir" / e.path().filename();
+    EXPECT_EQ(read(golden), read(e.path())) << golden;
+  }
+  EXPECT_GE(n, 6);
+}
