@@ -88,6 +88,8 @@ ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOv
   bool integer = !u && r && r->isInteger();
   auto c = ir::makeConst(v.mul(unit.scale), unit.dim, integer, e.span);
   if (unit.meshPeriods) c->name = "mesh_periods";
+  // A percentage stays marked through consts, so `+- tolerance` with `const tolerance = 1%` is relative.
+  if (u && u->factors.size() == 1 && u->factors[0].atom == "%" && u->factors[0].exponent == 1) c->name = "percent";
   return c;
 }
 
@@ -497,6 +499,10 @@ ir::ExprPtr ExprChecker::binary(const ast::Expr& e, const Scope& s) {
     }
     }
     auto c = ir::makeConst(v, t.dim, t.integer && v.isRational() && v.rational().isInteger(), e.span);
+    // 2 * 1% is still a percentage; a sum of percentages is not obviously one and stays plain.
+    if ((op == Op::Mul || op == Op::Div) && (a->name == "percent") != (b->name == "percent") &&
+        a->type.dim.dimensionless() && b->type.dim.dimensionless() && (op == Op::Mul || a->name == "percent"))
+      c->name = "percent";
     return c;
   }
   auto n = make(op, t, e.span);
@@ -509,7 +515,7 @@ ir::ExprPtr ExprChecker::tolerance(const ast::Expr& e, const Scope& s) {
   auto centre = requireNumber(check(e.args[0].get(), s), "the target of a tolerance");
   auto tol = requireNumber(check(e.args[1].get(), s), "a tolerance");
   if (centre->type.isError() || tol->type.isError()) return error(e.span);
-  bool relative = isPercentLiteral(e.args[1].get());
+  bool relative = isPercentLiteral(e.args[1].get()) || (tol->isConst() && tol->name == "percent");
   if (!relative && tol->type.dim != centre->type.dim) {
     diags_.error("E0302", tol->span,
                  fmt::format("unit mismatch: the tolerance must be {} like its target, or a percentage; got {}",

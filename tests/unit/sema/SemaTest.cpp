@@ -203,3 +203,16 @@ gearbox G {
   for (const char* want : {"E0402", "E0403", "E0302", "E0211", "E0201"})
     EXPECT_NE(std::find(v.begin(), v.end(), want), v.end()) << want;
 }
+
+TEST(Sema, PercentagesStayRelativeThroughConsts) {
+  auto c = compile(R"(
+const tol = 1%;
+gearbox G { stage s: spur { pinion.z in 11..25; wheel.z in 17..46; }
+  require ratio == 3.952 +- tol; require ratio == 3.952 +- 2 * tol; require ratio == 3.952 +- 0.01; }
+)");
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  const auto& g = gearbox(*c, "G");
+  EXPECT_EQ(ir::print(*g.rules[0].expr), "(ratio == (3.952 +- 0.01 relative))");
+  EXPECT_EQ(ir::print(*g.rules[1].expr), "(ratio == (3.952 +- 0.02 relative))");
+  EXPECT_EQ(ir::print(*g.rules[2].expr), "(ratio == (3.952 +- 0.01))");
+}
