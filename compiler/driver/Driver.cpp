@@ -8,6 +8,7 @@
 #include "driver/Golden.h"
 #include "lower/Lower.h"
 #include "sema/Sema.h"
+#include "Solve.h"
 
 #ifndef GBX_VERSION
 #define GBX_VERSION "0.0.0"
@@ -130,8 +131,13 @@ int solve(const Options& o, std::ostream& out, std::ostream& err) {
     for (const auto& g : c->program.gearboxes) found = found || g.name == o.gearbox;
     if (!found) return usage(err, fmt::format("`{}` declares no gearbox `{}`", o.files[0], o.gearbox));
   }
-  err << "gbxc: solving is not available in this build; `gbxc check` and `gbxc dump ir` show the checked spec\n";
-  return 3;
+  rt::SolveOptions so;
+  so.gearbox = o.gearbox;
+  so.format = o.format;
+  so.outDir = o.outDir;
+  so.jobs = o.jobs;
+  so.quiet = o.quiet;
+  return rt::solve(c->program, so, out, err);
 }
 
 int test(const Options& o, std::ostream& out, std::ostream& err) {

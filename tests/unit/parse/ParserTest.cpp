@@ -20,7 +20,6 @@ std::unique_ptr<Parsed> parseText(const std::string& text) {
   return p;
 }
 
-const ast::Stmt& only(const Parsed& p) { return p.file.decls.at(0); }
 
 } // namespace
 

@@ -1,0 +1,21 @@
+#pragma once
+// `gbxc solve`: every gearbox of a checked program through the runtime, then reports.
+#include <iosfwd>
+#include <string>
+
+#include "ir/Ir.h"
+
+namespace gbx::rt {
+
+struct SolveOptions {
+  std::string gearbox;  // only this one, when set
+  std::string format = "text";
+  std::string outDir;
+  int jobs = 1;
+  bool quiet = false;
+};
+
+// Returns the exit status: 0 solved (an empty design list included), 3 a runtime failure.
+int solve(const ir::Program& program, const SolveOptions& options, std::ostream& out, std::ostream& err);
+
+} // namespace gbx::rt

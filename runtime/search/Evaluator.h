@@ -1,0 +1,57 @@
+#pragma once
+// Evaluates IR expressions at an assignment: exactly where the inputs are exact
+// (tooth counts, decimal literals), in doubles where a formula needs them, and as
+// outward-rounded enclosures where continuous freedoms span an interval.
+#include <string>
+
+#include "ir/Ir.h"
+#include "search/Model.h"
+#include "search/Value.h"
+
+namespace gbx::rt {
+
+class Evaluator {
+public:
+  explicit Evaluator(const Model& m) : m_(m) {}
+
+  Value eval(const ir::Expr& e, const Assignment& a) const;
+  Value quantity(const std::string& path, const Assignment& a) const;
+  // A stage attribute as the design has it: fixed, chosen, a freedom's interval, a default.
+  Value attribute(int stage, const std::string& name, const Assignment& a) const;
+  // A derived quantity of a stage (kinematics and geometry).
+  Value derived(int stage, const std::string& name, const Assignment& a) const;
+  // Gearbox-level quantity: ratio, input_speed, output_speed, input_torque, output_torque, power.
+  Value gearboxQuantity(const std::string& name, const Assignment& a) const;
+  // The product of the ratios of stages [from, to).
+  Value ratioProduct(int from, int to, const Assignment& a) const;
+
+  const Model& model() const { return m_; }
+
+private:
+  Value call(const ir::Expr& e, const Assignment& a) const;
+  Value materialProperty(int stage, const std::string& prop) const;
+  const Model& m_;
+  mutable int depth_ = 0;
+};
+
+// Interval and exact arithmetic used by the evaluator (exposed for tests).
+namespace arith {
+Value add(const Value& a, const Value& b);
+Value sub(const Value& a, const Value& b);
+Value mul(const Value& a, const Value& b);
+Value div(const Value& a, const Value& b);
+Value neg(const Value& a);
+Value powi(const Value& a, int k);
+Truth less(const Value& a, const Value& b, bool orEqual);
+Truth equal(const Value& a, const Value& b);
+Truth land(Truth a, Truth b);
+Truth lor(Truth a, Truth b);
+Truth lnot(Truth a);
+// f monotone in each argument over the box: exact image bounds from the corners.
+template <class F>
+Value corners(const std::vector<Value>& in, F f);
+} // namespace arith
+
+} // namespace gbx::rt
+
+#include "search/Corners.inl"

@@ -1,0 +1,48 @@
+#pragma once
+// Exhaustive tooth-count synthesis (LANGUAGE.md §5): every design that satisfies every
+// rule, none invented, ranked by the objectives. Per-stage candidate lists are filtered
+// by the rules that concern one stage; stages are joined by meet-in-the-middle over
+// their exact ratios; `interchangeable` designs are counted once per orbit.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "search/Evaluator.h"
+#include "search/Model.h"
+
+namespace gbx::rt {
+
+struct FunnelStep {
+  std::string rule;    // the rule's source text or a named implicit rule
+  std::string scope;   // stage name, or "" for the gearbox
+  double before = 0;   // candidates (or combinations) that reached this rule
+  double removed = 0;  // how many it removed
+};
+
+struct Design {
+  std::vector<int> choice;  // value index per slot
+  Rational ratio;
+  bool undecided = false;   // freedoms: neither a witness nor a refutation within the budget
+  std::vector<double> keys; // objective values, minimised (maximised ones negated)
+};
+
+struct SearchOptions {
+  int jobs = 1;
+  std::optional<long long> top;  // how many designs to keep, ranked; nullopt: all
+  bool progress = false;
+  const ir::Expr* sortBy = nullptr;  // `report { sort by … }`: ranks before the objectives
+};
+
+struct SearchResult {
+  unsigned long long count = 0;      // feasible designs (orbits under `interchangeable`)
+  unsigned long long undecided = 0;  // of which undecided
+  std::vector<Design> designs;       // ranked, at most `top`
+  std::vector<FunnelStep> funnel;
+  std::string window;                // the exact ratio window used, if any ("[579/100, 581/100]")
+  std::vector<std::string> errors;   // rules or objectives the search cannot evaluate
+};
+
+SearchResult search(const Model& m, const SearchOptions& options);
+
+} // namespace gbx::rt
