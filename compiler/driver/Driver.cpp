@@ -124,8 +124,9 @@ int dump(const Options& o, std::ostream& out, std::ostream& err) {
 
 int solve(const Options& o, std::ostream& out, std::ostream& err) {
   auto c = compile(o.files[0]);
-  int status = report(*c, o, out, err);
-  if (status != 0) return status;
+  // The report owns stdout: diagnostics go there only when they stop the solve.
+  if (!c->ok()) return report(*c, o, out, err);
+  if (!c->diags.all().empty()) err << c->diags.renderText(c->sources);
   if (!o.gearbox.empty()) {
     bool found = false;
     for (const auto& g : c->program.gearboxes) found = found || g.name == o.gearbox;

@@ -1,0 +1,366 @@
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "driver/Driver.h"
+#include "search/Search.h"
+
+using namespace gbx;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Solved {
+  std::unique_ptr<driver::Compilation> c;
+  std::unique_ptr<rt::Model> model;
+  rt::SearchResult result;
+};
+
+Solved solveText(const std::string& text, const std::string& gearbox, int jobs = 1) {
+  Solved s;
+  s.c = driver::compileText("t.gbx", text);
+  if (!s.c->ok()) throw std::runtime_error(s.c->diags.renderText(s.c->sources));
+  for (const auto& g : s.c->program.gearboxes)
+    if (g.name == gearbox) {
+      s.model = std::make_unique<rt::Model>(s.c->program, g);
+      rt::SearchOptions o;
+      o.jobs = jobs;
+      s.result = rt::search(*s.model, o);
+      return s;
+    }
+  throw std::runtime_error("no gearbox " + gearbox);
+}
+
+std::string spec(const std::string& name) {
+  std::ifstream in(fs::path(GBX_SOURCE_DIR) / "specs" / name, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::map<std::string, long long> values(const rt::Model& m, const rt::Design& d) {
+  std::map<std::string, long long> v;
+  for (size_t i = 0; i < m.slots.size(); ++i)
+    v[m.slots[i].path] = static_cast<long long>(m.slots[i].values[static_cast<size_t>(d.choice[i])].exact->num());
+  return v;
+}
+
+// A two-stage design as the paper writes it: {wheel/pinion, wheel/pinion}, order-free.
+using Pairing = std::set<std::pair<long long, long long>>;
+// All pairings of the two wheels with the two pinions: the orbit under the swaps.
+std::set<Pairing> orbitOf(long long p1, long long w1, long long p2, long long w2) {
+  return {Pairing{{w1, p1}, {w2, p2}}, Pairing{{w2, p1}, {w1, p2}}};
+}
+
+std::set<std::set<Pairing>> twoStageOrbits(const Solved& s) {
+  std::set<std::set<Pairing>> out;
+  for (const auto& d : s.result.designs) {
+    auto v = values(*s.model, d);
+    out.insert(orbitOf(v["upper.pinion.z"], v["upper.wheel.z"], v["lower.pinion.z"], v["lower.wheel.z"]));
+  }
+  return out;
+}
+
+} // namespace
+
+TEST(Search, ThrusterOneStageReproducesThePaper) {
+  auto s = solveText(spec("thruster_one_stage.gbx"), "ThrusterOneStage");
+  ASSERT_EQ(s.result.count, 3u);
+  std::map<std::string, std::pair<double, double>> want = {
+      {"31/14", {0.1219, 0.1501}}, {"42/19", {0.0899, 0.1108}}, {"46/21", {0.0820, 0.1010}}};
+  rt::Evaluator ev(*s.model);
+  for (const auto& d : s.result.designs) {
+    ASSERT_TRUE(want.count(d.ratio.str())) << d.ratio.str();
+    rt::Assignment a(*s.model);
+    a.choice = d.choice;
+    rt::Value mmnb = ev.quantity("main.mmn_b", a);
+    EXPECT_NEAR(mmnb.lo, want[d.ratio.str()].first, 5e-5);
+    EXPECT_NEAR(mmnb.hi, want[d.ratio.str()].second, 5e-5);
+  }
+  EXPECT_EQ(solveText(spec("thruster_one_stage.gbx"), "ThrusterOneStageWindow").result.count, 3u);
+  auto pinned = solveText(spec("thruster_one_stage.gbx"), "ThrusterOneStagePinned");
+  ASSERT_EQ(pinned.result.count, 1u);
+  EXPECT_EQ(pinned.result.designs[0].ratio.str(), "31/14");
+}
+
+TEST(Search, ThrusterTwoStageReproducesTheCorrectedCounts) {
+  auto base = solveText(spec("thruster_two_stage.gbx"), "ThrusterTwoStage");
+  EXPECT_EQ(base.result.count, 31u);
+  EXPECT_EQ(twoStageOrbits(base).size(), 31u) << "every design is a distinct orbit";
+
+  auto filtered = solveText(spec("thruster_two_stage.gbx"), "ThrusterTwoStageFiltered");
+  EXPECT_EQ(filtered.result.count, 12u);
+  auto orbits = twoStageOrbits(filtered);
+  // The paper's 7, written (z2, z1, z4, z3) as in its tuples.
+  for (auto [w1, p1, w2, p2] : std::vector<std::array<long long, 4>>{
+           {28, 11, 41, 18}, {31, 11, 37, 18}, {36, 11, 39, 22}, {32, 13, 33, 14}, {36, 13, 44, 21}, {41, 16, 43, 19}, {39, 17, 43, 17}})
+    EXPECT_TRUE(orbits.count(orbitOf(p1, w1, p2, w2))) << w1 << "/" << p1 << " " << w2 << "/" << p2;
+
+  auto pinned = solveText(spec("thruster_two_stage.gbx"), "ThrusterTwoStagePinned");
+  EXPECT_EQ(pinned.result.count, 4u);
+  auto p = twoStageOrbits(pinned);
+  for (auto [w1, p1, w2, p2] : std::vector<std::array<long long, 4>>{{31, 11, 37, 18}, {32, 13, 33, 14}, {37, 12, 32, 17}, {34, 13, 31, 14}})
+    EXPECT_TRUE(p.count(orbitOf(p1, w1, p2, w2))) << w1 << "/" << p1 << " " << w2 << "/" << p2;
+}
+
+TEST(Search, ElectricCylinder) {
+  auto s = solveText(spec("electric_cylinder.gbx"), "ElectricCylinder");
+  s.result.designs.clear();
+  rt::SearchOptions all;
+  all.top = std::nullopt;
+  auto r = rt::search(*s.model, all);
+  bool found = false;
+  for (const auto& d : r.designs) {
+    auto v = values(*s.model, d);
+    if (v["planet_stage.sun.z"] == 19 && v["planet_stage.planet.z"] == 23 && v["planet_stage.ring.z"] == 65 &&
+        v["transfer.driver.z"] == 29 && v["transfer.driven.z"] == 50) {
+      found = true;
+      EXPECT_EQ(d.ratio.str(), "4200/551");
+    }
+  }
+  EXPECT_TRUE(found);
+  EXPECT_EQ(r.designs.size(), r.count);
+
+  auto built = solveText(spec("electric_cylinder.gbx"), "ElectricCylinderBuilt");
+  ASSERT_EQ(built.result.count, 1u);
+  rt::Evaluator ev(*built.model);
+  rt::Assignment a(*built.model);
+  a.choice = built.result.designs[0].choice;
+  EXPECT_NEAR(ev.quantity("ratio", a).lo, 7.6225, 5e-5);
+  EXPECT_NEAR(ev.quantity("output_speed", a).lo * 180 / M_PI, 472.3, 0.05);
+  EXPECT_NEAR(ev.quantity("planet_stage.mesh_frequency", a).lo, 147.02, 0.005);
+  EXPECT_NEAR(ev.quantity("transfer.mesh_frequency", a).lo, 65.60, 0.005);
+  EXPECT_NEAR(ev.quantity("transfer.center_distance", a).lo, (29 / 2.0 + 30 + 50 / 2.0) * 0.6e-3, 1e-12);
+}
+
+TEST(Search, MarineBaselineGeometry) {
+  auto s = solveText(spec("marine_reducer.gbx"), "MarineReducer");
+  ASSERT_EQ(s.result.count, 1u);
+  rt::Evaluator ev(*s.model);
+  rt::Assignment a(*s.model);
+  a.choice = s.result.designs[0].choice;
+  EXPECT_NEAR(ev.quantity("main.center_distance", a).lo, 0.855, 0.0005);
+  EXPECT_NEAR(ev.quantity("main.mass", a).lo, 4602, 2);
+  EXPECT_NEAR(ev.quantity("main.sliding_balance", a).lo, 0.1389, 0.0005);
+}
+
+TEST(Search, SlidingBalanceOfThePapersOptimum) {
+  // 19/75, beta = 10.8 deg, x = 0.4849/0.4760: a = 780 mm and a balance of 0.0001 (DOMAIN.md §3).
+  auto s = solveText(R"(
+gearbox Opt { stage main: helical { pinion.z = 19; wheel.z = 75; normal_module = 16 mm; helix_angle = 10.8 deg;
+  pressure_angle = 20 deg; pinion.shift = 0.4849; wheel.shift = 0.4760; face_width = 400 mm; } }
+)", "Opt");
+  rt::Evaluator ev(*s.model);
+  rt::Assignment a(*s.model);
+  a.choice = s.result.designs[0].choice;
+  EXPECT_NEAR(ev.quantity("main.center_distance", a).lo, 0.780001, 0.0005);
+  EXPECT_NEAR(ev.quantity("main.sliding_balance", a).lo, 0.0001, 0.0002);
+}
+
+TEST(Search, RatioOnTheToleranceBoundaryIsKept) {
+  auto s = solveText("gearbox B { stage s: spur { pinion.z = 59; wheel.z = 177; } require ratio == 3.02 +- 0.02; }", "B");
+  EXPECT_EQ(s.result.count, 1u);
+  auto out = solveText("gearbox B { stage s: spur { pinion.z = 59; wheel.z = 177; } require ratio == 3.02 +- 0.0199; }", "B");
+  EXPECT_EQ(out.result.count, 0u);
+  bool named = false;
+  for (const auto& f : out.result.funnel) named = named || (f.rule.find("3.02") != std::string::npos && f.removed == 1);
+  EXPECT_TRUE(named) << "the funnel names the window that removed it";
+}
+
+TEST(Search, ResultsDoNotDependOnJobs) {
+  const char* text = R"(
+gearbox Three {
+  stage a: spur { pinion.z in 12..24; wheel.z in 20..50; require coprime(pinion.z, wheel.z); }
+  stage b like a;
+  stage c like a;
+  interchangeable a, b, c;
+  require ratio == 13.36838 +- 0.1%;
+  minimize abs(ratio - 13.36838);
+}
+)";
+  auto one = solveText(text, "Three", 1), four = solveText(text, "Three", 4);
+  ASSERT_EQ(one.result.count, four.result.count);
+  ASSERT_GT(one.result.count, 50u);
+  ASSERT_EQ(one.result.designs.size(), four.result.designs.size());
+  for (size_t i = 0; i < one.result.designs.size(); ++i) EXPECT_EQ(one.result.designs[i].choice, four.result.designs[i].choice);
+}
+
+// ---- a brute-force reference on randomised small specs ------------------------------------
+
+namespace {
+
+struct StageSpec {
+  int p0, p1, w0, w1;
+  bool coprime;
+};
+
+struct RandomSpec {
+  std::vector<StageSpec> stages;
+  bool teethCoprime3 = false, cross = false, swapStages = false, swapWheels = false;
+  units::Rational lo, hi;
+  std::string text;
+};
+
+RandomSpec makeSpec(std::mt19937& rng) {
+  RandomSpec s;
+  int k = 1 + static_cast<int>(rng() % 3);
+  int span = k == 3 ? 4 : 8;
+  bool like = rng() % 2 == 0;
+  for (int i = 0; i < k; ++i) {
+    if (i > 0 && like) {
+      s.stages.push_back(s.stages[0]);
+      continue;
+    }
+    StageSpec st;
+    st.p0 = 10 + static_cast<int>(rng() % 7);
+    st.p1 = st.p0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(span));
+    st.w0 = st.p0 + 2 + static_cast<int>(rng() % 12);
+    st.w1 = st.w0 + 2 + static_cast<int>(rng() % static_cast<unsigned>(span + 4));
+    st.coprime = rng() % 5 < 3;
+    s.stages.push_back(st);
+  }
+  s.teethCoprime3 = rng() % 10 < 3;
+  s.cross = k >= 2 && rng() % 10 < 3;
+  s.swapStages = k >= 2 && like && rng() % 2 == 0;
+  s.swapWheels = k == 2 && like && rng() % 10 < 3;
+  // A target near a random design's ratio, so that windows are seldom empty.
+  double target = 1;
+  for (const auto& st : s.stages) {
+    int p = st.p0 + static_cast<int>(rng() % static_cast<unsigned>(st.p1 - st.p0 + 1));
+    int w = st.w0 + static_cast<int>(rng() % static_cast<unsigned>(st.w1 - st.w0 + 1));
+    target *= static_cast<double>(w) / p;
+  }
+  long long t1000 = std::llround(target * 1000);
+  units::Rational t = units::Rational::make(t1000, 1000);
+  bool relative = rng() % 3 == 0;
+  std::string tol;
+  if (relative) {
+    int pct = 1 + static_cast<int>(rng() % 3);
+    tol = fmt::format("{}%", pct);
+    s.lo = *t.mul(units::Rational::make(100 - pct, 100));
+    s.hi = *t.mul(units::Rational::make(100 + pct, 100));
+  } else {
+    static const int tols[] = {5, 10, 20, 50};
+    int x = tols[rng() % 4];
+    tol = fmt::format("{}", x / 1000.0);
+    s.lo = *t.sub(units::Rational::make(x, 1000));
+    s.hi = *t.add(units::Rational::make(x, 1000));
+  }
+  std::string g = "gearbox R {\n";
+  for (int i = 0; i < k; ++i) {
+    const auto& st = s.stages[static_cast<size_t>(i)];
+    g += fmt::format("  stage s{}: spur {{ pinion.z in {}..{}; wheel.z in {}..{};{} }}\n", i, st.p0, st.p1, st.w0, st.w1,
+                     st.coprime ? " require coprime(pinion.z, wheel.z);" : "");
+  }
+  if (s.teethCoprime3) g += "  require forall z in teeth: coprime(z, 3);\n";
+  if (s.cross) g += "  require s0.pinion.z <= s1.pinion.z;\n";
+  if (s.swapStages) {
+    g += "  interchangeable s0";
+    for (int i = 1; i < k; ++i) g += fmt::format(", s{}", i);
+    g += ";\n";
+  }
+  if (s.swapWheels) g += "  interchangeable s0.wheel, s1.wheel;\n";
+  g += fmt::format("  require ratio == {} +- {};\n}}\n", t.decimal().value_or(t.str()), tol);
+  s.text = g;
+  return s;
+}
+
+using Tuple = std::vector<int>;  // p0, w0, p1, w1, …
+
+std::set<Tuple> orbit(const Tuple& t, const RandomSpec& s) {
+  std::set<Tuple> seen = {t};
+  std::vector<Tuple> todo = {t};
+  int k = static_cast<int>(s.stages.size());
+  while (!todo.empty()) {
+    Tuple x = todo.back();
+    todo.pop_back();
+    std::vector<Tuple> next;
+    if (s.swapStages)
+      for (int i = 0; i + 1 < k; ++i) {
+        Tuple y = x;
+        std::swap(y[static_cast<size_t>(2 * i)], y[static_cast<size_t>(2 * i + 2)]);
+        std::swap(y[static_cast<size_t>(2 * i + 1)], y[static_cast<size_t>(2 * i + 3)]);
+        next.push_back(y);
+      }
+    if (s.swapWheels) {
+      Tuple y = x;
+      std::swap(y[1], y[3]);
+      next.push_back(y);
+    }
+    for (auto& y : next)
+      if (seen.insert(y).second) todo.push_back(y);
+  }
+  return seen;
+}
+
+std::set<std::set<Tuple>> bruteForce(const RandomSpec& s) {
+  int k = static_cast<int>(s.stages.size());
+  std::set<std::set<Tuple>> orbits;
+  Tuple t(static_cast<size_t>(2 * k));
+  std::function<void(int)> rec = [&](int i) {
+    if (i == k) {
+      long long num = 1, den = 1;
+      for (int j = 0; j < k; ++j) {
+        num *= t[static_cast<size_t>(2 * j + 1)];
+        den *= t[static_cast<size_t>(2 * j)];
+      }
+      auto r = units::Rational::make(num, den);
+      if (r < s.lo || r > s.hi) return;
+      if (s.cross && t[0] > t[2]) return;
+      orbits.insert(orbit(t, s));
+      return;
+    }
+    const auto& st = s.stages[static_cast<size_t>(i)];
+    for (int p = st.p0; p <= st.p1; ++p)
+      for (int w = st.w0; w <= st.w1; ++w) {
+        if (w <= p) continue;
+        if (st.coprime && std::gcd(p, w) != 1) continue;
+        if (s.teethCoprime3 && (p % 3 == 0 || w % 3 == 0)) continue;
+        t[static_cast<size_t>(2 * i)] = p;
+        t[static_cast<size_t>(2 * i + 1)] = w;
+        rec(i + 1);
+      }
+  };
+  rec(0);
+  return orbits;
+}
+
+} // namespace
+
+TEST(Search, AgreesWithBruteForceOnRandomSpecs) {
+  std::mt19937 rng(424242);
+  int nonEmpty = 0;
+  for (int trial = 0; trial < 80; ++trial) {
+    RandomSpec s = makeSpec(rng);
+    auto want = bruteForce(s);
+    Solved got;
+    got.c = driver::compileText("r.gbx", s.text);
+    ASSERT_TRUE(got.c->ok()) << s.text << got.c->diags.renderText(got.c->sources);
+    got.model = std::make_unique<rt::Model>(got.c->program, got.c->program.gearboxes[0]);
+    rt::SearchOptions o;
+    o.top = std::nullopt;
+    o.jobs = 1 + trial % 3;
+    auto r = rt::search(*got.model, o);
+    ASSERT_EQ(r.count, want.size()) << s.text;
+    std::set<std::set<Tuple>> have;
+    for (const auto& d : r.designs) {
+      auto v = values(*got.model, d);
+      Tuple t;
+      for (size_t i = 0; i < s.stages.size(); ++i) {
+        t.push_back(static_cast<int>(v[fmt::format("s{}.pinion.z", i)]));
+        t.push_back(static_cast<int>(v[fmt::format("s{}.wheel.z", i)]));
+      }
+      EXPECT_TRUE(have.insert(orbit(t, s)).second) << "two designs of one orbit:\n" << s.text;
+    }
+    EXPECT_EQ(have, want) << s.text;
+    nonEmpty += !want.empty();
+  }
+  EXPECT_GT(nonEmpty, 40) << "the generator should mostly make solvable specs";
+}
