@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 namespace gbx::units {
 
@@ -35,7 +36,11 @@ Rational Rational::make(i128 num, i128 den) {
     num = -num;
     den = -den;
   }
-  i128 g = gcd128(num, den);
+  // 64-bit division is done in hardware; 128-bit division is a library call.
+  const i128 small = static_cast<i128>(1) << 62;
+  i128 g = (num < small && num > -small && den < small) ? static_cast<i128>(std::gcd(static_cast<std::int64_t>(num < 0 ? -num : num),
+                                                                                       static_cast<std::int64_t>(den)))
+                                                        : gcd128(num, den);
   if (g > 1) {
     num /= g;
     den /= g;
@@ -146,6 +151,9 @@ std::optional<Rational> Rational::add(const Rational& o) const {
 std::optional<Rational> Rational::sub(const Rational& o) const { return add(o.neg()); }
 
 std::optional<Rational> Rational::mul(const Rational& o) const {
+  const i128 small = static_cast<i128>(1) << 31;
+  if (num_ < small && num_ > -small && den_ < small && o.num_ < small && o.num_ > -small && o.den_ < small)
+    return make(num_ * o.num_, den_ * o.den_);
   i128 g1 = gcd128(num_, o.den_), g2 = gcd128(o.num_, den_);
   if (g1 == 0) g1 = 1;
   if (g2 == 0) g2 = 1;

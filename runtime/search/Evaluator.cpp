@@ -350,7 +350,11 @@ Value Evaluator::ratioProduct(int from, int to, const Assignment& a) const {
 
 Value Evaluator::gearboxQuantity(const std::string& name, const Assignment& a) const {
   int n = static_cast<int>(m_.stages.size());
-  if (name == "ratio") return a.ratio ? Value::rational(*a.ratio) : ratioProduct(0, n, a);
+  if (name == "ratio") {
+    if (a.ratio) return Value::rational(*a.ratio);
+    if (a.ratioApprox) return Value::number(*a.ratioApprox);
+    return ratioProduct(0, n, a);
+  }
   Value total = ratioProduct(0, n, a);
   auto op = [&](const char* k) -> std::optional<Value> {
     if (auto v = m_.operating(k)) return Value::number(*v);

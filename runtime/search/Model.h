@@ -55,6 +55,7 @@ struct Assignment {
   std::vector<int> choice;
   std::vector<std::pair<double, double>> box;
   std::optional<Rational> ratio;  // the gearbox ratio when already known exactly
+  std::optional<double> ratioApprox;  // or approximately, to screen designs cheaply
   explicit Assignment(const Model& m);
 };
 

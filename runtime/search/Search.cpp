@@ -1,6 +1,7 @@
 #include "search/Search.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -441,6 +442,110 @@ std::vector<Perm> closeGroup(const std::vector<Perm>& gens, size_t n) {
   return group;
 }
 
+// One half of the train: every tuple of candidates of stages [from, to), canonical
+// within interchangeable blocks, sorted by ratio product. Compact: a double and the
+// candidate indices per tuple; exact ratios are recomputed only where they decide.
+struct HalfList {
+  int from = 0, to = 0, width = 0;
+  std::vector<double> r;
+  std::vector<std::uint32_t> idx;
+};
+
+HalfList buildHalf(const std::vector<StageResult>& stages, const std::vector<std::pair<int, int>>& ordered, int from, int to) {
+  HalfList H;
+  H.from = from;
+  H.to = to;
+  H.width = to - from;
+  size_t w = static_cast<size_t>(H.width);
+  if (w == 0) {
+    H.r.push_back(1.0);
+    return H;
+  }
+  for (int s = from; s < to; ++s)
+    if (stages[static_cast<size_t>(s)].candidates.empty()) return H;
+  std::vector<std::uint64_t> key;
+  std::vector<std::uint32_t> idx;
+  auto push = [&](double r, const std::uint32_t* cur) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &r, sizeof bits);
+    key.push_back(bits);
+    idx.insert(idx.end(), cur, cur + w);
+  };
+  auto linked = [&](int a, int b) { return std::find(ordered.begin(), ordered.end(), std::make_pair(a, b)) != ordered.end(); };
+  if (w == 1) {
+    const auto& l0 = stages[static_cast<size_t>(from)].candidates;
+    key.reserve(l0.size());
+    for (std::uint32_t i = 0; i < l0.size(); ++i) push(l0[i].r, &i);
+  } else if (w == 2) {
+    const auto& l0 = stages[static_cast<size_t>(from)].candidates;
+    const auto& l1 = stages[static_cast<size_t>(from + 1)].candidates;
+    bool canon = linked(from, from + 1);
+    key.reserve(canon ? l0.size() * (l1.size() + 1) / 2 : l0.size() * l1.size());
+    idx.reserve(2 * key.capacity());
+    std::uint32_t cur[2];
+    for (cur[0] = 0; cur[0] < l0.size(); ++cur[0])
+      for (cur[1] = canon ? cur[0] : 0; cur[1] < l1.size(); ++cur[1]) push(l0[cur[0]].r * l1[cur[1]].r, cur);
+  } else {
+    std::vector<std::uint32_t> cur(w, 0);
+    auto start = [&](int s) {
+      std::uint32_t lo = 0;
+      for (const auto& [a, b] : ordered)
+        if (b == s && a >= from && a < s) lo = std::max(lo, cur[static_cast<size_t>(a - from)]);
+      return lo;
+    };
+    for (int s = from; s < to; ++s) cur[static_cast<size_t>(s - from)] = start(s);
+    for (;;) {
+      bool valid = true;
+      double prod = 1;
+      for (int s = from; s < to && valid; ++s) {
+        const auto& list = stages[static_cast<size_t>(s)].candidates;
+        std::uint32_t i = cur[static_cast<size_t>(s - from)];
+        if (i >= list.size()) valid = false;
+        else prod *= list[i].r;
+      }
+      if (valid) push(prod, cur.data());
+      // Odometer, last stage fastest; a stage restarts at its canonical lower bound.
+      int s = to - 1;
+      for (; s >= from; --s) {
+        auto& c = cur[static_cast<size_t>(s - from)];
+        ++c;
+        if (c < stages[static_cast<size_t>(s)].candidates.size()) break;
+      }
+      if (s < from) break;
+      for (int t = s + 1; t < to; ++t) cur[static_cast<size_t>(t - from)] = start(t);
+    }
+  }
+  // LSD radix sort on the bits of the (positive) ratios, whose order is the ratios'
+  // order. The lowest 16 bits are left unsorted: entries out of order by less than
+  // 2^-36 (1.5e-11) of their value lie well inside the sweep's margin of 1e-9, and every
+  // match near a bound is confirmed exactly.
+  size_t n = key.size();
+  std::vector<std::uint64_t> key2(n);
+  std::vector<std::uint32_t> pos(n), pos2(n);
+  for (size_t i = 0; i < n; ++i) pos[i] = static_cast<std::uint32_t>(i);
+  std::vector<size_t> countOf(65537);
+  for (int pass = 1; pass < 4; ++pass) {
+    int shift = pass * 16;
+    std::fill(countOf.begin(), countOf.end(), 0);
+    for (size_t i = 0; i < n; ++i) ++countOf[((key[i] >> shift) & 0xFFFF) + 1];
+    for (size_t b = 0; b < 65536; ++b) countOf[b + 1] += countOf[b];
+    for (size_t i = 0; i < n; ++i) {
+      size_t d = countOf[(key[i] >> shift) & 0xFFFF]++;
+      key2[d] = key[i];
+      pos2[d] = pos[i];
+    }
+    key.swap(key2);
+    pos.swap(pos2);
+  }
+  H.r.resize(n);
+  H.idx.resize(n * w);
+  for (size_t i = 0; i < n; ++i) {
+    std::memcpy(&H.r[i], &key[i], sizeof(double));
+    for (size_t j = 0; j < w; ++j) H.idx[i * w + j] = idx[static_cast<size_t>(pos[i]) * w + j];
+  }
+  return H;
+}
+
 } // namespace
 
 SearchResult search(const Model& m, const SearchOptions& opt) {
@@ -565,70 +670,77 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   }
   if (!fast) ordered.clear();
 
-  // Meet in the middle over sorted stage ratios: left stages [0, h), right [h, k).
-  int h = k / 2;
-  struct Half {
-    std::vector<std::uint32_t> idx;  // width entries per tuple
-    std::vector<Rational> ratio;
-    std::vector<double> r;
-    std::vector<std::uint32_t> order;
-    int width = 0;
-  };
-  auto build = [&](int from, int to) {
-    Half half;
-    half.width = to - from;
-    std::vector<std::uint32_t> cur(static_cast<size_t>(half.width));
-    std::function<void(int, Rational, double)> rec = [&](int s, Rational q, double d) {
-      if (s == to) {
-        half.idx.insert(half.idx.end(), cur.begin(), cur.end());
-        half.ratio.push_back(q);
-        half.r.push_back(d);
-        return;
-      }
-      const auto& list = stages[static_cast<size_t>(s)].candidates;
-      std::uint32_t start = 0;
-      for (const auto& [a, b] : ordered)
-        if (b == s && a >= from) start = std::max(start, cur[static_cast<size_t>(a - from)]);
-      for (std::uint32_t i = start; i < list.size(); ++i) {
-        cur[static_cast<size_t>(s - from)] = i;
-        auto nq = q.mul(list[i].ratio);
-        rec(s + 1, nq ? *nq : q, d * list[i].r);
-      }
-    };
-    rec(from, Rational(1), 1.0);
-    half.order.resize(half.r.size());
-    for (std::uint32_t i = 0; i < half.order.size(); ++i) half.order[i] = i;
-    std::sort(half.order.begin(), half.order.end(), [&](std::uint32_t x, std::uint32_t y) { return half.r[x] < half.r[y]; });
-    return half;
-  };
+  // Meet in the middle over sorted stage ratios: left stages [0, h), right [h, k). Each
+  // half is a compact list sorted by its ratio product; one two-pointer sweep joins them.
+  // Three stages: the first two are walked row by row (the second stage's index runs
+  // fastest, so the left ratio rises along a row) against the sorted third stage, and no
+  // list of pairs is built. Otherwise both halves are built and sorted; when the two
+  // halves are the same block of interchangeable stages, one list serves both.
+  bool rows = k == 3;
+  int h = rows ? 2 : k / 2;
   double combos = 1;
   for (const auto& st : stages) combos *= static_cast<double>(st.candidates.size());
-  Half left = build(0, h), right = build(h, k);
-
-  // Candidates' slot values laid into a full assignment.
-  auto fill = [&](Assignment& a, const Half& L, std::uint32_t li, const Half& R, std::uint32_t ri) {
+  // Blocks of interchangeable stages (union of the `ordered` links).
+  std::vector<int> block(static_cast<size_t>(k));
+  for (int s = 0; s < k; ++s) block[static_cast<size_t>(s)] = s;
+  std::function<int(int)> root = [&](int s) { return block[static_cast<size_t>(s)] == s ? s : root(block[static_cast<size_t>(s)]); };
+  for (const auto& [a, b] : ordered) block[static_cast<size_t>(root(b))] = root(a);
+  bool sameHalves = !rows && fast && h == k - h && h > 0;
+  for (int a = 0; sameHalves && a < h; ++a) sameHalves = root(a) == root(a + h) && sameList(a, a + h);
+  for (const auto& [a, b] : ordered) {
+    if (!sameHalves) break;
+    bool inLeft = b < h, inRight = a >= h;
+    auto has = [&](int x, int y) { return std::find(ordered.begin(), ordered.end(), std::make_pair(x, y)) != ordered.end(); };
+    if (inLeft && !has(a + h, b + h)) sameHalves = false;
+    if (inRight && !has(a - h, b - h)) sameHalves = false;
+  }
+  HalfList left;
+  if (!rows) left = buildHalf(stages, ordered, 0, h);
+  HalfList right = sameHalves ? left : buildHalf(stages, ordered, h, k);
+  right.from = h;
+  right.to = k;
+  left.from = 0;
+  left.to = h;
+  left.width = h;
+  // Rows: left entries are (i, j) packed as i * n1 + j.
+  const size_t n1 = rows ? stages[1].candidates.size() : 0;
+  auto leftIndex = [&](size_t le, int s) -> std::uint32_t {
+    if (rows) return static_cast<std::uint32_t>(s == 0 ? le / n1 : le % n1);
+    return left.idx[le * static_cast<size_t>(left.width) + static_cast<size_t>(s)];
+  };
+  auto rightIndex = [&](size_t re, int s) -> std::uint32_t {
+    return right.idx[re * static_cast<size_t>(right.width) + static_cast<size_t>(s - h)];
+  };
+  auto candidateOf = [&](size_t le, size_t re, int s) -> const Candidate& {
+    return stages[static_cast<size_t>(s)].candidates[s < h ? leftIndex(le, s) : rightIndex(re, s)];
+  };
+  auto exactRatio = [&](size_t le, size_t re) {
+    Rational q(1);
     for (int s = 0; s < k; ++s) {
-      const Half& H = s < h ? L : R;
-      std::uint32_t t = s < h ? li : ri;
-      int off = s < h ? s : s - h;
-      const Candidate& c = stages[static_cast<size_t>(s)].candidates[H.idx[static_cast<size_t>(t) * static_cast<size_t>(H.width) + static_cast<size_t>(off)]];
+      auto n = q.mul(candidateOf(le, re, s).ratio);
+      if (n) q = *n;
+    }
+    return q;
+  };
+  auto fill = [&](Assignment& a, size_t le, size_t re) {
+    for (int s = 0; s < k; ++s) {
+      const Candidate& c = candidateOf(le, re, s);
       const auto& slots = m.stages[static_cast<size_t>(s)].slots;
       for (size_t j = 0; j < slots.size(); ++j) a.choice[static_cast<size_t>(slots[j])] = c.idx[j];
     }
   };
-  auto undecidedOf = [&](const Half& L, std::uint32_t li, const Half& R, std::uint32_t ri) {
-    for (int s = 0; s < k; ++s) {
-      const Half& H = s < h ? L : R;
-      std::uint32_t t = s < h ? li : ri;
-      int off = s < h ? s : s - h;
-      if (stages[static_cast<size_t>(s)].candidates[H.idx[static_cast<size_t>(t) * static_cast<size_t>(H.width) + static_cast<size_t>(off)]].undecided)
-        return true;
-    }
-    return false;
+  // Objectives that read nothing but the gearbox ratio are evaluated from it alone.
+  bool ratioOnly = true;
+  std::function<void(const ir::Expr&)> scan = [&](const ir::Expr& e) {
+    if ((e.op == Op::Quantity && e.name != "ratio") || e.op == Op::Let || e.op == Op::SceneOutput || e.op == Op::Relative)
+      ratioOnly = false;
+    for (const auto& x : e.args)
+      if (x) scan(*x);
   };
+  for (const auto& o : m.gearbox.objectives)
+    if (o.expr) scan(*o.expr);
+  if (opt.sortBy) scan(*opt.sortBy);
 
-  // Objectives: minimised keys. Objectives over the ratio alone are evaluated from the
-  // exact ratio without touching the stages.
   auto keysOf = [&](const Assignment& a) {
     std::vector<double> keys;
     if (opt.sortBy) {
@@ -644,17 +756,12 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   };
 
   // Per-stage membership, for checking the images of a design under the group.
+  bool orbitCheck = !fast && group.size() > 1;
   std::vector<std::set<std::vector<int>>> members(static_cast<size_t>(k));
-  if (!fast && group.size() > 1)
+  if (orbitCheck)
     for (int s = 0; s < k; ++s)
       for (const auto& c : stages[static_cast<size_t>(s)].candidates) members[static_cast<size_t>(s)].insert(c.idx);
-
-  std::vector<double> crossRemoved(cross.size(), 0);
-  double inWindow = 0, duplicates = 0;
-  std::vector<Design> designs;
-  unsigned long long count = 0, undecided = 0;
-
-  auto valueOf = [&](int slot, int c) { return m.slots[static_cast<size_t>(slot)].values[static_cast<size_t>(c)]; };
+  auto valueOf = [&](int slot, int c) -> const Value& { return m.slots[static_cast<size_t>(slot)].values[static_cast<size_t>(c)]; };
   // Image of a design under a permutation: slot values moved; -1 where a value is outside
   // the target slot's domain.
   auto image = [&](const std::vector<int>& choice, const Perm& p) {
@@ -686,7 +793,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       if (truthOf(ev.eval(*c->expr, a)) == Truth::False) return false;
     return true;
   };
-  // Orders designs by the ratios of their stages, then by their values.
+  // Orders designs by the ratios of their stages, then by their values: the order of the
+  // sorted candidate lists. An orbit is shown by its least member.
   auto less = [&](const std::vector<int>& x, const std::vector<int>& y) {
     Assignment ax(m), ay(m);
     ax.choice = x;
@@ -702,51 +810,55 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     return false;
   };
 
-  const double eps = 1e-12;
-  size_t n = left.order.size();
-  int threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(n / 256) + 1));
+  struct Hit {
+    std::vector<double> keys;
+    std::vector<std::uint32_t> cand;  // candidate index per stage: the tie-break order
+    size_t le = 0;
+    std::uint32_t re = 0;
+    bool operator<(const Hit& o) const { return keys != o.keys ? keys < o.keys : cand < o.cand; }
+  };
+  const double eps = 1e-9;  // see buildHalf: larger than the sort's 2^-36
+  const double wlo = window.lo ? window.lo->toDouble() : -INFINITY, whi = window.hi ? window.hi->toDouble() : INFINITY;
+  size_t n = rows ? stages[0].candidates.size() : left.r.size(), rn = right.r.size();
+  int threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(n / 64) + 1));
+  size_t keep = opt.top ? static_cast<size_t>(*opt.top) : SIZE_MAX;
   struct Local {
-    std::vector<Design> designs;
+    std::vector<Hit> heap;  // max-heap of the best `keep`
     unsigned long long count = 0, undecided = 0;
     double inWindow = 0, duplicates = 0;
     std::vector<double> crossRemoved;
   };
   std::vector<Local> locals(static_cast<size_t>(threads));
-  size_t keep = opt.top ? static_cast<size_t>(*opt.top) : SIZE_MAX;
-  auto rankLess = [&](const Design& x, const Design& y) {
-    if (x.keys != y.keys) return x.keys < y.keys;
-    return less(x.choice, y.choice);
+  // Both bounds of the right window fall as the left ratio rises.
+  auto wantLo = [&](double x) { return wlo / x * (1 - eps); };
+  auto wantHi = [&](double x) { return whi / x * (1 + eps); };
+  // Lowest right entry the canonical order allows for this left entry (rows mode: the
+  // third stage's index, which is its position in the sorted list).
+  auto rightFloor = [&](size_t le) -> size_t {
+    size_t lo = 0;
+    if (rows)
+      for (const auto& [sa, sb] : ordered)
+        if (sa < h && sb == 2) lo = std::max<size_t>(lo, leftIndex(le, sa));
+    return lo;
   };
-  auto sweep = [&](int t) {
-    Local& lo = locals[static_cast<size_t>(t)];
-    lo.crossRemoved.assign(cross.size(), 0);
-    Assignment a(m);
-    size_t begin = n * static_cast<size_t>(t) / static_cast<size_t>(threads);
-    size_t end = n * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
-    size_t rn = right.order.size();
-    for (size_t li = begin; li < end; ++li) {
-      std::uint32_t L = left.order[li];
-      double x = left.r[L];
-      // Double bounds widened by eps; every match is then confirmed exactly.
-      double want_lo = window.lo ? window.lo->toDouble() / x * (1 - eps) : -INFINITY;
-      double want_hi = window.hi ? window.hi->toDouble() / x * (1 + eps) : INFINITY;
-      size_t from = static_cast<size_t>(std::lower_bound(right.order.begin(), right.order.end(), want_lo,
-                                                         [&](std::uint32_t i, double v) { return right.r[i] < v; }) -
-                                        right.order.begin());
-      for (size_t ri = from; ri < rn; ++ri) {
-        std::uint32_t R = right.order[ri];
-        if (right.r[R] > want_hi) break;
-        auto q = left.ratio[L].mul(right.ratio[R]);
-        if (!q || !window.contains(*q)) continue;
-        bool canonical = true;
+  auto visit = [&](Local& lo, Assignment& a, Hit& hit, size_t le, double x, size_t from, size_t to) {
+    for (size_t re = from; re < to && re < rn; ++re) {
+      bool canonical = true;
+      if (!rows)
         for (const auto& [sa, sb] : ordered)
-          if (sa < h && sb >= h &&
-              left.idx[static_cast<size_t>(L) * static_cast<size_t>(left.width) + static_cast<size_t>(sa)] >
-                  right.idx[static_cast<size_t>(R) * static_cast<size_t>(right.width) + static_cast<size_t>(sb - h)])
-            canonical = false;
-        if (!canonical) continue;
-        lo.inWindow += 1;
-        fill(a, left, L, right, R);
+          if (sa < h && sb >= h && leftIndex(le, sa) > rightIndex(re, sb)) canonical = false;
+      if (!canonical) continue;
+      double p = x * right.r[re];
+      std::optional<Rational> q;
+      if (p < wlo * (1 + 4 * eps) || p > whi * (1 - 4 * eps)) {
+        q = exactRatio(le, re);
+        if (!window.contains(*q)) continue;
+      }
+      lo.inWindow += 1;
+      bool filled = false;
+      if (!cross.empty() || orbitCheck) {
+        fill(a, le, re);
+        filled = true;
         bool ok = true;
         for (size_t c = 0; c < cross.size() && ok; ++c)
           if (truthOf(ev.eval(*cross[c]->expr, a)) == Truth::False) {
@@ -754,7 +866,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
             ok = false;
           }
         if (!ok) continue;
-        if (!fast && group.size() > 1) {
+        if (orbitCheck) {
           bool rep = true;
           for (size_t g = 1; g < group.size() && rep; ++g) {
             auto img = image(a.choice, group[g]);
@@ -765,39 +877,123 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
             continue;
           }
         }
-        Design d;
-        d.choice = a.choice;
-        d.ratio = *q;
-        d.undecided = undecidedOf(left, L, right, R);
-        lo.count += 1;
-        lo.undecided += d.undecided;
-        if (keep == 0) continue;
-        a.ratio = *q;
-        d.keys = keysOf(a);
-        a.ratio.reset();
-        lo.designs.push_back(std::move(d));
-        // Bounded memory: keep twice the designs asked for, trimmed to the best.
-        if (lo.designs.size() >= 2 * keep + 1024 && keep != SIZE_MAX) {
-          std::nth_element(lo.designs.begin(), lo.designs.begin() + static_cast<long>(keep), lo.designs.end(), rankLess);
-          lo.designs.resize(keep);
+      }
+      lo.count += 1;
+      bool undecided = false;
+      for (int s = 0; s < k; ++s) {
+        undecided = undecided || candidateOf(le, re, s).undecided;
+        hit.cand[static_cast<size_t>(s)] = s < h ? leftIndex(le, s) : rightIndex(re, s);
+      }
+      lo.undecided += undecided;
+      if (keep == 0) continue;
+      if (!ratioOnly && !filled) fill(a, le, re);
+      if (ratioOnly && lo.heap.size() >= keep) {
+        // Screen in doubles: only a design that may beat the worst kept one is ranked exactly.
+        a.ratioApprox = p;
+        auto approx = keysOf(a);
+        a.ratioApprox.reset();
+        const auto& worst = lo.heap.front().keys;
+        bool maybe = true;  // all keys too close to call in doubles: rank exactly
+        for (size_t i = 0; i < approx.size() && i < worst.size(); ++i) {
+          double slack = 1e-9 * (1 + std::fabs(worst[i]));
+          if (approx[i] < worst[i] - slack) break;
+          if (approx[i] > worst[i] + slack) {
+            maybe = false;
+            break;
+          }
+        }
+        if (!maybe) continue;
+      }
+      if (!q) q = exactRatio(le, re);
+      a.ratio = *q;
+      hit.keys = keysOf(a);
+      a.ratio.reset();
+      hit.le = le;
+      hit.re = static_cast<std::uint32_t>(re);
+      if (lo.heap.size() < keep) {
+        lo.heap.push_back(hit);
+        std::push_heap(lo.heap.begin(), lo.heap.end());
+      } else if (hit < lo.heap.front()) {
+        std::pop_heap(lo.heap.begin(), lo.heap.end());
+        lo.heap.back() = hit;
+        std::push_heap(lo.heap.begin(), lo.heap.end());
+      }
+    }
+  };
+  auto sweep = [&](int t) {
+    Local& lo = locals[static_cast<size_t>(t)];
+    lo.crossRemoved.assign(cross.size(), 0);
+    Assignment a(m);
+    Hit hit;
+    hit.cand.resize(static_cast<size_t>(k));
+    size_t begin = n * static_cast<size_t>(t) / static_cast<size_t>(threads);
+    size_t end = n * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
+    if (begin >= end) return;
+    auto lower = [&](double v) { return static_cast<size_t>(std::lower_bound(right.r.begin(), right.r.end(), v) - right.r.begin()); };
+    auto upper = [&](double v) { return static_cast<size_t>(std::upper_bound(right.r.begin(), right.r.end(), v) - right.r.begin()); };
+    if (rows) {
+      const auto& first = stages[0].candidates;
+      const auto& second = stages[1].candidates;
+      for (size_t i = begin; i < end; ++i) {
+        size_t j0 = 0;
+        for (const auto& [sa, sb] : ordered)
+          if (sa == 0 && sb == 1) j0 = i;
+        if (j0 >= second.size()) continue;
+        double x0 = first[i].r * second[j0].r;
+        size_t loP = lower(wantLo(x0)), hiP = upper(wantHi(x0));
+        for (size_t j = j0; j < second.size(); ++j) {
+          size_t le = i * n1 + j;
+          double x = first[i].r * second[j].r;
+          double wl = wantLo(x), wh = wantHi(x);
+          while (loP > 0 && right.r[loP - 1] >= wl) --loP;
+          while (hiP > 0 && right.r[hiP - 1] > wh) --hiP;
+          size_t floor = rightFloor(le);
+          // The window only falls and the floor only rises along a row.
+          if (hiP <= floor) break;
+          visit(lo, a, hit, le, x, std::max(loP, floor), hiP);
         }
       }
+      return;
+    }
+    size_t loP = lower(wantLo(left.r[begin])), hiP = upper(wantHi(left.r[begin]));
+    for (size_t le = begin; le < end; ++le) {
+      double x = left.r[le];
+      double wl = wantLo(x), wh = wantHi(x);
+      while (loP > 0 && right.r[loP - 1] >= wl) --loP;
+      while (hiP > 0 && right.r[hiP - 1] > wh) --hiP;
+      visit(lo, a, hit, le, x, loP, hiP);
     }
   };
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(sweep, t);
   sweep(0);
   for (auto& th : pool) th.join();
+  std::vector<double> crossRemoved(cross.size(), 0);
+  double inWindow = 0, duplicates = 0;
+  unsigned long long count = 0, undecided = 0;
+  std::vector<Hit> hits;
   for (auto& lo : locals) {
     count += lo.count;
     undecided += lo.undecided;
     inWindow += lo.inWindow;
     duplicates += lo.duplicates;
     for (size_t c = 0; c < cross.size(); ++c) crossRemoved[c] += lo.crossRemoved[c];
-    for (auto& d : lo.designs) designs.push_back(std::move(d));
+    for (auto& x : lo.heap) hits.push_back(std::move(x));
   }
-  std::sort(designs.begin(), designs.end(), rankLess);
-  if (designs.size() > keep) designs.resize(keep);
+  std::sort(hits.begin(), hits.end());
+  if (hits.size() > keep) hits.resize(keep);
+  std::vector<Design> designs;
+  for (const auto& x : hits) {
+    Design d;
+    Assignment a(m);
+    fill(a, x.le, x.re);
+    d.choice = a.choice;
+    d.ratio = exactRatio(x.le, x.re);
+    d.keys = x.keys;
+    for (int s = 0; s < k; ++s)
+      d.undecided = d.undecided || stages[static_cast<size_t>(s)].candidates[x.cand[static_cast<size_t>(s)]].undecided;
+    designs.push_back(std::move(d));
+  }
 
   std::string windowText = windowTexts.empty() ? "ratio (no window)" : fmt::format("{}", fmt::join(windowTexts, " and "));
   // With interchangeable stages enumerated canonically, what passes the window is
