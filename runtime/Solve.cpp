@@ -1,7 +1,10 @@
 #include "Solve.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <fstream>
 #include <ostream>
 
@@ -26,9 +29,23 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
   g.undecided = r.undecided;
   g.window = r.window;
   g.funnel = r.funnel;
+  // Rules `q in a..b` with constant bounds: the part of q's interval a design may use.
+  std::map<std::string, std::pair<double, double>> bounds;
+  std::function<void(const ir::Expr&)> collect = [&](const ir::Expr& e) {
+    if (e.op == ir::Op::And || e.op == ir::Op::Forall) {
+      for (const auto& x : e.args) collect(*x);
+      return;
+    }
+    if (e.op == ir::Op::Within && e.args[0]->op == ir::Op::Quantity && e.args[1]->isConst() && e.args[2]->isConst())
+      bounds[e.args[0]->name] = {e.args[1]->value.toDouble(), e.args[2]->value.toDouble()};
+  };
+  for (const auto& rule : m.gearbox.rules)
+    if (rule.expr) collect(*rule.expr);
   for (size_t i = 0; i < columnExprs.size(); ++i) {
     Column c;
     c.name = columnNames[i];
+    // A catalogue quantity is monotone in each freedom: its corners give its exact image.
+    c.exact = columnExprs[i]->op == ir::Op::Quantity || columnExprs[i]->isConst();
     auto u = units::displayUnitFor(columnExprs[i]->type.dim);
     c.unit = u.name;
     c.scale = u.scale;
@@ -68,6 +85,13 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
         c.hi = v.hi;
         double s = g.columns[i].scale;
         c.text = v.lo == v.hi ? formatNumber(v.lo / s) : "[" + formatNumber(v.lo / s) + ", " + formatNumber(v.hi / s) + "]";
+        auto b = columnExprs[i]->op == ir::Op::Quantity ? bounds.find(columnExprs[i]->name) : bounds.end();
+        if (b != bounds.end() && v.lo != v.hi) {
+          c.feasible = true;
+          c.flo = std::max(v.lo, b->second.first);
+          c.fhi = std::min(v.hi, b->second.second);
+          c.text += " feasible [" + formatNumber(c.flo / s) + ", " + formatNumber(c.fhi / s) + "]";
+        }
       } else {
         c.text = "n/a";
       }
@@ -100,6 +124,14 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     so.jobs = o.jobs;
     so.top = gb.report && gb.report->top ? *gb.report->top : kDefaultTop;
     if (gb.report && gb.report->sortBy) so.sortBy = gb.report->sortBy.get();
+    // A progress bar only for a person watching a terminal; reports stay clean.
+    if (!o.quiet && isatty(STDERR_FILENO))
+      so.progress = [&err, name = gb.name](double f) {
+        int filled = static_cast<int>(f * 30);
+        err << fmt::format("\r  {} [{}{}] {:3.0f}%", name, std::string(static_cast<size_t>(filled), '#'),
+                           std::string(static_cast<size_t>(30 - filled), '.'), f * 100)
+            << (f >= 1.0 ? "\r\033[K" : "") << std::flush;
+      };
     SearchResult r = search(m, so);
     if (!r.errors.empty()) {
       for (const auto& e : r.errors) err << fmt::format("gbxc: gearbox `{}`: {}\n", gb.name, e);

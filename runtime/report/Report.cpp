@@ -77,6 +77,8 @@ std::string renderText(const std::vector<GearboxReport>& reports) {
                          count(f.before));
       }
     }
+    for (const auto& c : g.columns)
+      if (!c.exact) o += "  note: intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images\n";
     for (const auto& n : g.notes) o += "  note: " + n + "\n";
     if (g.undecided) o += "  ? = feasibility undecided at the freedom resolution (kept, not proven)\n";
   }
@@ -112,13 +114,27 @@ std::string renderJson(const std::vector<GearboxReport>& reports) {
         std::string v = !c.valid ? "null" : c.lo == c.hi ? num(c.lo) : fmt::format("[{}, {}]", num(c.lo), num(c.hi));
         o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(g.columns[i].name), v);
       }
-      o += "}}";
+      o += "}";
+      bool anyFeasible = false;
+      for (const auto& c : r.cells) anyFeasible = anyFeasible || c.feasible;
+      if (anyFeasible) {
+        o += ", \"feasible\": {";
+        bool first = true;
+        for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
+          if (!r.cells[i].feasible) continue;
+          o += fmt::format("{}\"{}\": [{}, {}]", first ? "" : ", ", jsonEscape(g.columns[i].name), num(r.cells[i].flo), num(r.cells[i].fhi));
+          first = false;
+        }
+        o += "}";
+      }
+      o += "}";
     }
     o += g.rows.empty() ? "],\n" : "\n   ],\n";
-    o += "   \"units\": {";
+    o += "   \"columns\": [";
     for (size_t i = 0; i < g.columns.size(); ++i)
-      o += fmt::format("{}\"{}\": \"{}\"", i ? ", " : "", jsonEscape(g.columns[i].name), "SI");
-    o += "},\n   \"funnel\": [";
+      o += fmt::format("{}{{\"name\": \"{}\", \"unit\": \"SI\", \"intervals\": \"{}\"}}", i ? ", " : "",
+                       jsonEscape(g.columns[i].name), g.columns[i].exact ? "exact" : "enclosure");
+    o += "],\n   \"funnel\": [";
     for (size_t i = 0; i < g.funnel.size(); ++i) {
       const auto& f = g.funnel[i];
       if (f.rule == "domain")

@@ -10,7 +10,9 @@ namespace gbx::rt {
 
 struct Cell {
   bool valid = false;
-  double lo = 0, hi = 0;  // lo == hi for a number
+  double lo = 0, hi = 0;  // lo == hi for a number; over freedoms the attainable interval
+  bool feasible = false;  // a rule bounds this quantity: [flo, fhi] is the part it allows
+  double flo = 0, fhi = 0;
   std::string text;       // how the text report shows it
 };
 
@@ -18,6 +20,7 @@ struct Column {
   std::string name;
   std::string unit;  // display unit
   double scale = 1;  // SI per display unit
+  bool exact = true; // intervals are exact images (monotone catalogue quantities), else enclosures
 };
 
 struct DesignRow {

@@ -931,10 +931,12 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     if (begin >= end) return;
     auto lower = [&](double v) { return static_cast<size_t>(std::lower_bound(right.r.begin(), right.r.end(), v) - right.r.begin()); };
     auto upper = [&](double v) { return static_cast<size_t>(std::upper_bound(right.r.begin(), right.r.end(), v) - right.r.begin()); };
+    bool report = t == 0 && opt.progress && (rows ? n * n1 : n) > 1000000;
     if (rows) {
       const auto& first = stages[0].candidates;
       const auto& second = stages[1].candidates;
       for (size_t i = begin; i < end; ++i) {
+        if (report && (i - begin) % 64 == 0) opt.progress(static_cast<double>(i - begin) / static_cast<double>(end - begin));
         size_t j0 = 0;
         for (const auto& [sa, sb] : ordered)
           if (sa == 0 && sb == 1) j0 = i;
@@ -957,12 +959,14 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     }
     size_t loP = lower(wantLo(left.r[begin])), hiP = upper(wantHi(left.r[begin]));
     for (size_t le = begin; le < end; ++le) {
+      if (report && (le - begin) % 65536 == 0) opt.progress(static_cast<double>(le - begin) / static_cast<double>(end - begin));
       double x = left.r[le];
       double wl = wantLo(x), wh = wantHi(x);
       while (loP > 0 && right.r[loP - 1] >= wl) --loP;
       while (hiP > 0 && right.r[hiP - 1] > wh) --hiP;
       visit(lo, a, hit, le, x, loP, hiP);
     }
+    if (report) opt.progress(1.0);
   };
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(sweep, t);

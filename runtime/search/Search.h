@@ -4,6 +4,7 @@
 // by the rules that concern one stage; stages are joined by meet-in-the-middle over
 // their exact ratios; `interchangeable` designs are counted once per orbit.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,7 +31,9 @@ struct Design {
 struct SearchOptions {
   int jobs = 1;
   std::optional<long long> top;  // how many designs to keep, ranked; nullopt: all
-  bool progress = false;
+  // Called now and then with the fraction of the join done, from one thread, when the
+  // join is large (over a million left entries or rows × columns).
+  std::function<void(double)> progress;
   const ir::Expr* sortBy = nullptr;  // `report { sort by … }`: ranks before the objectives
 };
 
