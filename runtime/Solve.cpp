@@ -99,6 +99,12 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
     }
     g.rows.push_back(std::move(row));
   }
+  // Only a column that shows intervals can show enclosures.
+  for (size_t i = 0; i < g.columns.size(); ++i) {
+    bool interval = false;
+    for (const auto& row : g.rows) interval = interval || (row.cells[i].valid && row.cells[i].lo != row.cells[i].hi);
+    if (!interval) g.columns[i].exact = true;
+  }
   for (size_t i = 0; i < columnExprs.size(); ++i) {
     bool scene = false;
     std::function<void(const ir::Expr&)> walk = [&](const ir::Expr& e) {
