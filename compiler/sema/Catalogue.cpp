@@ -436,4 +436,6 @@ std::string closest(const std::string& name, const std::vector<std::string>& can
   return bestD <= 2 && name.size() > 1 ? best : "";
 }
 
+std::string suggestion(const std::string& hint) { return hint.empty() ? "" : "; did you mean `" + hint + "`?"; }
+
 } // namespace gbx::sema

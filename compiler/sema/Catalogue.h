@@ -96,5 +96,7 @@ bool isFunction(const std::string& name);
 
 // Closest known name within two edits, for "did you mean" hints; "" when none.
 std::string closest(const std::string& name, const std::vector<std::string>& candidates);
+// "; did you mean `x`?" for a hint from `closest`, "" for none.
+std::string suggestion(const std::string& hint);
 
 } // namespace gbx::sema

@@ -76,7 +76,7 @@ ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOv
       if (!atom) {
         std::string hint = closest(f.atom, units::atomNames());
         diags_.error("E0301", f.span.valid() ? f.span : u->span,
-                     fmt::format("unknown unit `{}`{}", f.atom, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                     fmt::format("unknown unit `{}`{}", f.atom, suggestion(hint)));
         ok = false;
         continue;
       }
@@ -251,7 +251,7 @@ ir::ExprPtr ExprChecker::stageMember(const StageModel& st, const std::string& m,
   std::string hint = closest(m, names);
   diags_.error("E0219", span,
                fmt::format("`{}` is not an attribute of {} stage `{}`{}", m, st.kind->name, st.name,
-                           hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                           suggestion(hint)));
   return error(span);
 }
 
@@ -338,7 +338,7 @@ ir::ExprPtr ExprChecker::name(const ast::Expr& e, const Scope& s) {
   }
   std::string hint = closest(n, visibleNames(s));
   diags_.error("E0201", e.span,
-               fmt::format("unknown name `{}`{}", n, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+               fmt::format("unknown name `{}`{}", n, suggestion(hint)));
   return error(e.span);
 }
 
@@ -363,7 +363,7 @@ ir::ExprPtr ExprChecker::member(const ast::Expr& e, const Scope& s) {
     std::string hint = closest(m, names);
     diags_.error("E0219", e.span,
                  fmt::format("`{}` is not an attribute of a gear{}", m,
-                             hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                             suggestion(hint)));
     return error(e.span);
   }
   case Type::Split: {
@@ -379,7 +379,7 @@ ir::ExprPtr ExprChecker::member(const ast::Expr& e, const Scope& s) {
     std::string hint = closest(m, names);
     diags_.error("E0219", e.span,
                  fmt::format("split `{}` has no `{}` (it reports twist, displacement, imbalance, branch_torque){}",
-                             obj->name, m, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                             obj->name, m, suggestion(hint)));
     return error(e.span);
   }
   case Type::Block: {
@@ -663,7 +663,7 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
     std::vector<std::string> fns = {"abs", "sqrt", "sin", "cos", "tan", "atan", "min", "max", "mean", "round", "coprime", "gcd", "relative"};
     std::string hint = closest(fn, fns);
     diags_.error("E0220", callee->span,
-                 fmt::format("unknown function `{}`{}", fn, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                 fmt::format("unknown function `{}`{}", fn, suggestion(hint)));
     return error(e.span);
   }
   std::vector<ir::ExprPtr> args;

@@ -203,7 +203,7 @@ private:
         std::string hint = closest(v->text, names);
         diags_.error("E0216", v->span,
                      fmt::format("unknown material `{}`{}{}", v->text,
-                                 hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint),
+                                 suggestion(hint),
                                  names.empty() ? " (did you forget `import materials;`?)" : ""));
         return out;
       }
@@ -408,7 +408,7 @@ private:
         std::string hint = closest(decl.base, names);
         diags_.error("E0206", decl.baseSpan,
                      fmt::format("`{}` extends unknown gearbox `{}`{}", name, decl.base,
-                                 hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                                 suggestion(hint)));
       } else {
         stack.push_back(name);
         const GearboxModel* base = build(decl.base, stack);
@@ -452,7 +452,7 @@ private:
         std::string hint = closest(src, names);
         diags_.error("E0207", st.path.span,
                      fmt::format("stage `{}` is like `{}`, but gearbox `{}` has no stage `{}`{}", st.name, src, name, src,
-                                 hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                                 suggestion(hint)));
         target->likeOf = "";
         return;
       }
@@ -576,7 +576,7 @@ private:
     std::string hint = closest(parts[0], names);
     diags_.error("E0219", st.path.spans[0],
                  fmt::format("`{}` is not a stage or split of gearbox `{}`{}", parts[0], m.name,
-                             hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                             suggestion(hint)));
   }
 
   // ---- from models to IR ---------------------------------------------------------------
@@ -601,7 +601,7 @@ private:
       if (path == "helix_angle" && st.kind->kind == ir::StageKind::Spur) extra = " (a spur stage has no helix; use a helical stage)";
       diags_.error("E0211", where,
                    fmt::format("`{}` is not an attribute of a {} stage{}{}", path, st.kind->name, extra,
-                               hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                               suggestion(hint)));
       a.role = ir::Attribute::Fixed;
       return a;
     }
@@ -1170,7 +1170,7 @@ private:
           for (const auto* s : m.scenes) names.push_back(s->name);
           std::string hint = closest(out.target, names);
           diags_.error("E0217", b.path.span,
-                       fmt::format("unknown scene `{}`{}", out.target, hint.empty() ? "" : fmt::format("; did you mean `{}`?", hint)));
+                       fmt::format("unknown scene `{}`{}", out.target, suggestion(hint)));
         }
         break;
       }

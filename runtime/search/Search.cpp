@@ -523,8 +523,14 @@ HalfList buildHalf(const std::vector<StageResult>& stages, const std::vector<std
   std::vector<std::uint64_t> key2(n);
   std::vector<std::uint32_t> pos(n), pos2(n);
   for (size_t i = 0; i < n; ++i) pos[i] = static_cast<std::uint32_t>(i);
-  std::vector<size_t> countOf(65537);
-  for (int pass = 1; pass < 4; ++pass) {
+  // Short lists: a comparison sort beats three passes over 65536 buckets.
+  if (n < 65536) {
+    std::stable_sort(pos.begin(), pos.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+    for (size_t i = 0; i < n; ++i) key2[i] = key[pos[i]];
+    key.swap(key2);
+  }
+  std::vector<size_t> countOf(n < 65536 ? 0 : 65537);
+  for (int pass = 1; pass < 4 && n >= 65536; ++pass) {
     int shift = pass * 16;
     std::fill(countOf.begin(), countOf.end(), 0);
     for (size_t i = 0; i < n; ++i) ++countOf[((key[i] >> shift) & 0xFFFF) + 1];
