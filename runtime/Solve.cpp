@@ -4,13 +4,17 @@
 
 #include <filesystem>
 #include <functional>
+#include <cctype>
 #include <map>
 #include <fstream>
 #include <ostream>
 
 #include <fmt/format.h>
 
+#include "dynamics/Scene.h"
 #include "report/Report.h"
+#include "report/Svg.h"
+#include "study/WorkPrecision.h"
 #include "search/Search.h"
 #include "units/Unit.h"
 
@@ -105,17 +109,76 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
     for (const auto& row : g.rows) interval = interval || (row.cells[i].valid && row.cells[i].lo != row.cells[i].hi);
     if (!interval) g.columns[i].exact = true;
   }
-  for (size_t i = 0; i < columnExprs.size(); ++i) {
-    bool scene = false;
-    std::function<void(const ir::Expr&)> walk = [&](const ir::Expr& e) {
-      if (e.op == ir::Op::SceneOutput) scene = true;
-      for (const auto& x : e.args)
-        if (x) walk(*x);
-    };
-    walk(*columnExprs[i]);
-    if (scene) g.notes.push_back(fmt::format("`{}` is a scene result; scenes are not simulated by this build", columnNames[i]));
-  }
   return g;
+}
+
+std::string fileSafe(const std::string& k) {
+  std::string o;
+  for (char c : k) o += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.') ? c : '_';
+  while (!o.empty() && o.back() == '_') o.pop_back();
+  return o;
+}
+
+SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene, const std::string& prefix, const std::string& outDir) {
+  SceneReport s;
+  s.name = r.name.empty() ? scene.name : r.name;
+  s.target = scene.target;
+  s.failure = r.failure;
+  if (!r.failure.empty()) return s;
+  s.method = r.method;
+  s.rtol = r.rtol;
+  s.atol = r.atol;
+  s.steps = r.stats.steps;
+  s.rejected = r.stats.rejected;
+  s.rhs = r.stats.rhsEvaluations;
+  s.jacobians = r.stats.jacobianEvaluations;
+  s.events = r.stats.events;
+  s.cpu = r.stats.cpuSeconds;
+  s.referenceCpu = r.referenceStats.cpuSeconds;
+  s.errorEstimate = r.errorEstimate;
+  s.errorMethod = r.errorMethod;
+  s.model = r.model;
+  for (const auto& n : r.numbers) {
+    auto u = units::displayUnitFor(n.dim);
+    s.outputs.push_back({n.key, u.name, n.value, n.value / u.scale});
+  }
+  for (const auto& ser : r.series) {
+    auto u = units::displayUnitFor(ser.dim);
+    if (ser.isSpectrum) {
+      SceneReport::SpectrumRow row{ser.key, u.name, u.scale, {}};
+      for (const auto& p : ser.spectrum.peaks) row.peaks.push_back({p.frequency, p.amplitude, p.harmonic});
+      s.spectra.push_back(row);
+    }
+    if (outDir.empty()) continue;
+    SvgChart chart;
+    chart.title = fmt::format("{} — scene {}: {}", prefix, scene.name, ser.key);
+    SvgSeries line;
+    if (ser.isSpectrum) {
+      chart.xLabel = "frequency [Hz]";
+      chart.yLabel = "amplitude" + (u.name.empty() ? std::string() : " [" + u.name + "]");
+      double fmax = r.meshFrequency > 0 ? 10.5 * r.meshFrequency : INFINITY;
+      for (size_t i = 0; i < ser.spectrum.frequency.size() && ser.spectrum.frequency[i] <= fmax; ++i) {
+        line.x.push_back(ser.spectrum.frequency[i]);
+        line.y.push_back(ser.spectrum.amplitude[i] / u.scale);
+      }
+    } else {
+      chart.xLabel = "time [s]";
+      chart.yLabel = ser.signal + (u.name.empty() ? std::string() : " [" + u.name + "]");
+      // At most 4000 points: every k-th sample, so the file stays small and faithful.
+      size_t step = std::max<size_t>(1, ser.t.size() / 4000);
+      for (size_t i = 0; i < ser.t.size(); i += step) {
+        line.x.push_back(ser.t[i]);
+        line.y.push_back(ser.v[i] / u.scale);
+      }
+    }
+    chart.series.push_back(line);
+    std::string file = fileSafe(prefix + "." + scene.name + "." + ser.key) + ".svg";
+    std::error_code ec;
+    std::filesystem::create_directories(outDir, ec);
+    std::ofstream(std::filesystem::path(outDir) / file) << renderSvg(chart);
+    s.files.push_back(file);
+  }
+  return s;
 }
 
 } // namespace
@@ -158,16 +221,57 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
         names.push_back(ob.text);
       }
     }
-    reports.push_back(reportOf(m, r, cols, names));
+    GearboxReport rep = reportOf(m, r, cols, names);
+    // Scenes and studies run on the best design.
+    if (!r.designs.empty() && (!gb.scenes.empty() || !gb.studies.empty())) {
+      Assignment best(m);
+      best.choice = r.designs[0].choice;
+      std::map<std::string, dyn::SceneResult> results;
+      for (const auto& sc : gb.scenes) {
+        auto res = dyn::runScene(m, best, sc);
+        if (!res.failure.empty()) {
+          err << fmt::format("gbxc: gearbox `{}`: {}\n", gb.name, res.failure);
+          status = 3;
+        }
+        rep.scenes.push_back(sceneReport(res, sc, gb.name, o.outDir));
+        results[sc.name] = std::move(res);
+      }
+      // Report columns that are scene results.
+      for (size_t i = 0; i < cols.size() && !rep.rows.empty(); ++i) {
+        if (cols[i]->op != ir::Op::SceneOutput) continue;
+        auto dot = cols[i]->name.find('.');
+        auto it = results.find(cols[i]->name.substr(0, dot));
+        if (it == results.end()) continue;
+        if (const auto* n = it->second.find(cols[i]->name.substr(dot + 1))) {
+          Cell& c = rep.rows[0].cells[i];
+          c.valid = true;
+          c.lo = c.hi = n->value;
+          c.text = formatNumber(n->value / rep.columns[i].scale);
+        }
+      }
+      for (const auto& st : gb.studies) {
+        if (st.kind != ir::Study::WorkPrecision) {
+          rep.notes.push_back(fmt::format("study `{}`: sweeps are not computed by this build", st.name));
+          continue;
+        }
+        const ir::Scene* scene = nullptr;
+        for (const auto& sc : gb.scenes)
+          if (sc.name == st.target) scene = &sc;
+        if (scene) rep.studies.push_back(workPrecision(m, best, st, *scene, o.outDir, fileSafe(gb.name), o.timings));
+      }
+    }
+    reports.push_back(std::move(rep));
   }
   std::string text;
   std::string ext = o.format;
-  if (o.format == "json") text = renderJson(reports);
+  RenderOptions ro;
+  ro.timings = o.timings;
+  if (o.format == "json") text = renderJson(reports, ro);
   else if (o.format == "csv") text = renderCsv(reports);
   else if (o.format == "md") text = renderMarkdown(reports, false);
   else if (o.format == "html") text = renderMarkdown(reports, true);
   else {
-    text = renderText(reports);
+    text = renderText(reports, ro);
     ext = "txt";
   }
   out << text;

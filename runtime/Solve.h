@@ -13,6 +13,7 @@ struct SolveOptions {
   std::string outDir;
   int jobs = 1;
   bool quiet = false;
+  bool timings = true;  // CPU times in reports (off for golden files)
 };
 
 // Returns the exit status: 0 solved (an empty design list included), 3 a runtime failure.

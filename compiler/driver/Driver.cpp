@@ -57,6 +57,7 @@ options:
   -o DIR                   write plots and reports into DIR
   --jobs N                 worker threads (results do not depend on N)
   --quiet                  no progress output
+  --no-timings             leave CPU times out of reports (for golden files)
   --update                 (test) rewrite the expected files
   --help                   this text
   --version                the version
@@ -74,6 +75,7 @@ struct Options {
   int jobs = 1;
   bool quiet = false;
   bool update = false;
+  bool timings = true;
 };
 
 int usage(std::ostream& err, const std::string& msg) {
@@ -138,6 +140,7 @@ int solve(const Options& o, std::ostream& out, std::ostream& err) {
   so.outDir = o.outDir;
   so.jobs = o.jobs;
   so.quiet = o.quiet;
+  so.timings = o.timings;
   return rt::solve(c->program, so, out, err);
 }
 
@@ -211,6 +214,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
       o.quiet = true;
     } else if (a == "--update") {
       o.update = true;
+    } else if (a == "--no-timings") {
+      o.timings = false;
     } else if (a.size() > 1 && a[0] == '-') {
       return usage(err, fmt::format("unknown option `{}`", a));
     } else {

@@ -45,7 +45,7 @@ std::vector<std::string> cells(const GearboxReport& g, const DesignRow& r) {
 
 } // namespace
 
-std::string renderText(const std::vector<GearboxReport>& reports) {
+std::string renderText(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
   std::string o;
   for (const auto& g : reports) {
     o += fmt::format("gearbox {}: {} design{}", g.name, g.count, g.count == 1 ? "" : "s");
@@ -81,11 +81,49 @@ std::string renderText(const std::vector<GearboxReport>& reports) {
       if (!c.exact) o += "  note: intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images\n";
     for (const auto& n : g.notes) o += "  note: " + n + "\n";
     if (g.undecided) o += "  ? = feasibility undecided at the freedom resolution (kept, not proven)\n";
+    for (const auto& sc : g.scenes) {
+      o += fmt::format("  scene {} on {} (design 1)\n", sc.name, sc.target.empty() ? g.name : sc.target);
+      if (!sc.failure.empty()) {
+        o += "    failed: " + sc.failure + "\n";
+        continue;
+      }
+      o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled)\n", sc.method, sc.rtol, sc.atol);
+      for (const auto& out : sc.outputs)
+        o += fmt::format("    {} = {}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit);
+      if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative ({})\n", sc.errorEstimate, sc.errorMethod);
+      o += fmt::format("    cost: {} steps, {} rejected, {} RHS evaluations, {} Jacobians, {} events located\n", sc.steps, sc.rejected,
+                       sc.rhs, sc.jacobians, sc.events);
+      for (const auto& sp : sc.spectra) {
+        o += fmt::format("    {} peaks:", sp.key);
+        for (const auto& p : sp.peaks)
+          o += fmt::format(" {:.2f} Hz{} {}{};", p.frequency, p.harmonic ? fmt::format(" ({}x mesh)", p.harmonic) : "",
+                           formatNumber(p.amplitude / sp.scale), sp.unit.empty() ? "" : " " + sp.unit);
+        o += "\n";
+      }
+      for (const auto& m : sc.model) o += "    model: " + m + "\n";
+      for (const auto& f : sc.files) o += "    wrote " + f + "\n";
+      if (ro.timings) o += fmt::format("    timing: {:.1f} ms CPU (error estimate run {:.1f} ms)\n", sc.cpu * 1e3, sc.referenceCpu * 1e3);
+    }
+    for (const auto& st : g.studies) {
+      o += fmt::format("  study {} ({})\n", st.name, st.kind);
+      std::vector<std::vector<std::string>> table = {st.header};
+      for (const auto& r : st.rows) table.push_back(r);
+      std::vector<size_t> w(st.header.size(), 0);
+      for (const auto& row : table)
+        for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
+      for (const auto& row : table) {
+        std::string line = "   ";
+        for (size_t i = 0; i < row.size() && i < w.size(); ++i) line += " " + fmt::format("{:>{}}", row[i], w[i]);
+        o += line + "\n";
+      }
+      for (const auto& n : st.notes) o += "    note: " + n + "\n";
+      for (const auto& f : st.files) o += "    wrote " + f + "\n";
+    }
   }
   return o;
 }
 
-std::string renderJson(const std::vector<GearboxReport>& reports) {
+std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
   using diag::jsonEscape;
   auto num = [](double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); };
   std::string o = "{\"gearboxes\": [";
@@ -145,7 +183,39 @@ std::string renderJson(const std::vector<GearboxReport>& reports) {
                          jsonEscape(f.scope), jsonEscape(f.rule), count(f.before), count(f.removed));
     }
     o += g.funnel.empty() ? "]," : "\n   ],";
-    o += "\n   \"scenes\": {}, \"modifications\": {}, \"studies\": {}}";
+    o += "\n   \"scenes\": {";
+    for (size_t si = 0; si < g.scenes.size(); ++si) {
+      const auto& sc = g.scenes[si];
+      o += fmt::format("{}\n    \"{}\": {{", si ? "," : "", jsonEscape(sc.name));
+      if (!sc.failure.empty()) {
+        o += fmt::format("\"failure\": \"{}\"}}", jsonEscape(sc.failure));
+        continue;
+      }
+      o += fmt::format("\"target\": \"{}\", \"method\": \"{}\", \"rtol\": {}, \"atol\": {}, \"steps\": {}, \"rejected\": {}, "
+                       "\"rhs_evaluations\": {}, \"jacobian_evaluations\": {}, \"events\": {}, ",
+                       jsonEscape(sc.target), sc.method, num(sc.rtol), num(sc.atol), sc.steps, sc.rejected, sc.rhs, sc.jacobians, sc.events);
+      if (ro.timings) o += fmt::format("\"cpu_seconds\": {}, ", num(sc.cpu));
+      o += fmt::format("\"error_estimate\": {}, \"error_method\": \"{}\", \"outputs\": {{", sc.errorEstimate >= 0 ? num(sc.errorEstimate) : "null",
+                       jsonEscape(sc.errorMethod));
+      for (size_t i = 0; i < sc.outputs.size(); ++i) o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(sc.outputs[i].key), num(sc.outputs[i].si));
+      o += "}, \"spectra\": {";
+      for (size_t i = 0; i < sc.spectra.size(); ++i) {
+        o += fmt::format("{}\"{}\": [", i ? ", " : "", jsonEscape(sc.spectra[i].key));
+        for (size_t k = 0; k < sc.spectra[i].peaks.size(); ++k) {
+          const auto& p = sc.spectra[i].peaks[k];
+          o += fmt::format("{}{{\"frequency\": {}, \"amplitude\": {}, \"harmonic\": {}}}", k ? ", " : "", num(p.frequency), num(p.amplitude), p.harmonic);
+        }
+        o += "]";
+      }
+      o += "}, \"model\": [";
+      for (size_t i = 0; i < sc.model.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", jsonEscape(sc.model[i]));
+      o += "]}";
+    }
+    o += g.scenes.empty() ? "}, " : "\n   }, ";
+    o += "\"modifications\": {}, \"studies\": {";
+    for (size_t si = 0; si < g.studies.size(); ++si)
+      o += fmt::format("{}\n    \"{}\": {}", si ? "," : "", jsonEscape(g.studies[si].name), g.studies[si].json);
+    o += g.studies.empty() ? "}}" : "\n   }}";
   }
   o += "\n]}\n";
   return o;

@@ -32,6 +32,41 @@ struct DesignRow {
   std::vector<Cell> cells;
 };
 
+struct ScenePeakRow {
+  double frequency = 0, amplitude = 0;
+  int harmonic = 0;
+};
+
+struct SceneReport {
+  std::string name, target, method;
+  double rtol = 0, atol = 0;
+  long steps = 0, rejected = 0, rhs = 0, jacobians = 0, events = 0;
+  double cpu = 0, referenceCpu = 0;
+  double errorEstimate = -1;
+  std::string errorMethod;
+  struct Output {
+    std::string key, unit;
+    double si = 0, shown = 0;
+  };
+  std::vector<Output> outputs;
+  struct SpectrumRow {
+    std::string key, unit;
+    double scale = 1;
+    std::vector<ScenePeakRow> peaks;
+  };
+  std::vector<SpectrumRow> spectra;
+  std::vector<std::string> model, files;
+  std::string failure;
+};
+
+struct StudyReport {
+  std::string name, kind;  // "sweep" or "work_precision"
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;  // text cells
+  std::string json;                            // the study as a JSON value
+  std::vector<std::string> notes, files;
+};
+
 struct GearboxReport {
   std::string name;
   unsigned long long count = 0;
@@ -41,11 +76,17 @@ struct GearboxReport {
   std::vector<DesignRow> rows;
   std::vector<FunnelStep> funnel;
   std::vector<std::string> notes;
+  std::vector<SceneReport> scenes;
+  std::vector<StudyReport> studies;
+};
+
+struct RenderOptions {
+  bool timings = true;  // CPU times: off for golden files
 };
 
 std::string formatNumber(double v);
-std::string renderText(const std::vector<GearboxReport>& r);
-std::string renderJson(const std::vector<GearboxReport>& r);
+std::string renderText(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
+std::string renderJson(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderCsv(const std::vector<GearboxReport>& r);
 std::string renderMarkdown(const std::vector<GearboxReport>& r, bool html);
 

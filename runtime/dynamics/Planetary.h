@@ -1,0 +1,32 @@
+#pragma once
+// An NGW planetary stage as a lumped torsional model (sun driven, ring fixed, carrier
+// out): the carrier and each planet's spin are degrees of freedom; every sun-planet and
+// ring-planet mesh is a contact along its line of action (DOMAIN.md §2).
+#include <map>
+#include <string>
+#include <vector>
+
+#include "dynamics/Ode.h"
+#include "dynamics/SceneSupport.h"
+#include "search/Evaluator.h"
+
+namespace gbx::rt::dyn {
+
+struct SceneOverrides;
+
+struct PlanetaryRun {
+  std::vector<std::string> provenance;
+  Stats stats;
+  double meshFrequency = 0;
+  TimePlan plan;
+  std::vector<double> t;
+  std::map<std::string, std::vector<double>> signals;
+  std::vector<double> modes;  // natural frequencies of the linearised model, Hz
+  std::string failure;
+};
+
+PlanetaryRun runPlanetary(const Model& m, const Evaluator& ev, const Assignment& a, int stage, const ir::Scene& scene,
+                          Accuracy acc, const SceneOverrides& ov, double upstream, double downstream, double speed, double E,
+                          double nu, double density, bool materialAssumed);
+
+} // namespace gbx::rt::dyn

@@ -1,0 +1,425 @@
+#include "dynamics/Scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "dynamics/MeshModel.h"
+#include "dynamics/Planetary.h"
+#include "dynamics/SceneSupport.h"
+#include "report/Report.h"
+
+namespace gbx::rt::dyn {
+
+const SceneNumber* SceneResult::find(const std::string& key) const {
+  for (const auto& n : numbers)
+    if (n.key == key) return &n;
+  return nullptr;
+}
+
+namespace {
+
+using units::Dim;
+namespace dims = units::dims;
+
+using Failure = SceneFailure;
+
+double num(const Value& v, const std::string& what) {
+  if (!v.isNumber() || !std::isfinite(v.lo)) throw Failure{fmt::format("the scene needs {}, which this design does not give", what)};
+  return v.mid();
+}
+
+const ir::Setting* param(const ir::Effect* e, const char* name) { return effectParam(e, name); }
+
+// Mass moment of inertia: given, or a solid cylinder of the pitch diameter and face width.
+double inertiaOf(const Evaluator& ev, int st, const Assignment& a, const std::string& gear, double density,
+                 std::vector<std::string>& prov) {
+  Value given = ev.attribute(st, gear + ".inertia", a);
+  if (given.isNumber()) {
+    prov.push_back(fmt::format("{} inertia {:.6g} kg*m^2 (given)", gear, given.lo));
+    return given.lo;
+  }
+  double d = num(ev.derived(st, gear + ".d", a), gear + " pitch diameter");
+  double b = num(ev.attribute(st, "face_width", a), "`face_width` (or the gears' `inertia`)");
+  double r = 0.5 * d;
+  double J = 0.5 * density * M_PI * b * r * r * r * r;
+  prov.push_back(fmt::format("{} inertia {:.6g} kg*m^2 (solid cylinder, d = {:.1f} mm, b = {:.1f} mm)", gear, J, d * 1e3, b * 1e3));
+  return J;
+}
+
+// ISO 6336-1 method B: theoretical single-pair stiffness of solid spur gears on the
+// standard basic rack, c' = c'th CM CR CB cos(beta), and the mesh stiffness
+// c_gamma_alpha = c' (0.75 eps_alpha + 0.25), both per unit face width.
+double isoMeshStiffness(double z1, double z2, double x1, double x2, double beta, double epsAlpha) {
+  double zn1 = z1 / std::pow(std::cos(beta), 3), zn2 = z2 / std::pow(std::cos(beta), 3);
+  double q = 0.04723 + 0.15551 / zn1 + 0.25791 / zn2 - 0.00635 * x1 - 0.11654 * x1 / zn1 - 0.00193 * x2 -
+             0.24188 * x2 / zn2 + 0.00529 * x1 * x1 + 0.00182 * x2 * x2;  // mm*um/N
+  double cth = 1.0 / q;                                                    // N/(mm*um)
+  double cprime = cth * 0.8 * 1.0 * 1.0 * std::cos(beta);
+  return cprime * (0.75 * epsAlpha + 0.25) * 1e9;  // N/m per m of face width
+}
+
+struct Elastic {
+  double E = 206e9, nu = 0.3, density = 7850;
+  bool assumed = true;
+};
+
+Elastic materialOf(const Model& m, int st) {
+  Elastic e;
+  const ir::Attribute* mat = m.attribute(st, "material");
+  if (!mat || mat->symbol.empty()) return e;
+  const ir::Material* x = m.program.findMaterial(mat->symbol);
+  if (!x) return e;
+  auto get = [&](const char* n, double& out) {
+    if (const auto* s = ir::findSetting(x->properties, n); s && s->value) out = s->value->toDouble();
+  };
+  get("youngs_modulus", e.E);
+  get("poisson", e.nu);
+  get("density", e.density);
+  e.assumed = false;
+  return e;
+}
+
+struct Samples {
+  std::vector<double> t;
+  std::map<std::string, std::vector<double>> signals;
+};
+
+double statistic(const std::string& fn, const std::vector<double>& v) {
+  if (v.empty()) return NAN;
+  if (fn == "rms") {
+    double s = 0;
+    for (double x : v) s += x * x;
+    return std::sqrt(s / static_cast<double>(v.size()));
+  }
+  if (fn == "mean") {
+    double s = 0;
+    for (double x : v) s += x;
+    return s / static_cast<double>(v.size());
+  }
+  if (fn == "peak") {
+    double s = 0;
+    for (double x : v) s = std::max(s, std::fabs(x));
+    return s;
+  }
+  if (fn == "min") return *std::min_element(v.begin(), v.end());
+  return *std::max_element(v.begin(), v.end());
+}
+
+Dim signalDim(const std::string& s) {
+  if (s == "displacement" || s == "transmission_error") return dims::length;
+  if (s == "velocity") return dims::velocity;
+  if (s == "acceleration") return dims::acceleration;
+  if (s == "mesh_force" || s == "contact_force") return dims::force;
+  if (s == "stiffness") return dims::stiffness;
+  if (s == "input_speed" || s == "output_speed") return dims::angularSpeed;
+  if (s == "modes") return dims::frequency;
+  return {};
+}
+
+SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
+  SceneResult r;
+  r.name = scene.name;
+  r.target = scene.target;
+  Evaluator ev(m);
+  int st = m.stageIndex(scene.target);
+  if (st < 0) throw Failure{"scenes on the whole gearbox need the lumped torsional model, which this build does not have"};
+  const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
+  // Accuracy.
+  Accuracy acc;
+  if (const auto* s = ir::findSetting(scene.accuracy, "method"); s && !s->symbol.empty()) acc.method = s->symbol;
+  if (const auto* s = ir::findSetting(scene.accuracy, "rtol"); s && s->value) acc.rtol = s->value->toDouble();
+  if (const auto* s = ir::findSetting(scene.accuracy, "atol"); s && s->value) acc.atol = s->value->toDouble();
+  if (const auto* s = ir::findSetting(scene.accuracy, "max_steps"); s && s->value) acc.maxSteps = static_cast<long>(s->value->toDouble());
+  if (ov.method) acc.method = *ov.method;
+  if (ov.rtol) acc.rtol = *ov.rtol;
+  r.method = acc.method;
+  r.rtol = acc.rtol;
+  r.atol = acc.atol > 0 ? acc.atol : acc.rtol;
+
+  double upstream = num(ev.ratioProduct(0, st, a), "the ratios upstream");
+  double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
+  double speed = num(ev.derived(st, "input_speed", a), "an input speed (`operating`)");
+  Elastic mat = materialOf(m, st);
+
+  Samples samples;
+  TimePlan tp;
+  auto record = [&](const std::string& k, double v) { samples.signals[k].push_back(v); };
+  std::string failure;
+  if (stage.kind == ir::StageKind::Spur || stage.kind == ir::StageKind::Helical) {
+    MeshParameters p;
+    auto& prov = r.model;
+    double rb1 = num(ev.derived(st, "pinion.base_radius", a), "the pinion base radius (`normal_module`)");
+    double rb2 = num(ev.derived(st, "wheel.base_radius", a), "the wheel base radius");
+    double b = num(ev.attribute(st, "face_width", a), "`face_width`");
+    double J1 = inertiaOf(ev, st, a, "pinion", mat.density, prov), J2 = inertiaOf(ev, st, a, "wheel", mat.density, prov);
+    if (mat.assumed) prov.push_back("density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)");
+    p.mass = J1 * J2 / (J2 * rb1 * rb1 + J1 * rb2 * rb2);
+    prov.push_back(fmt::format("equivalent mass {:.6g} kg = J1 J2 / (J2 rb1^2 + J1 rb2^2)", p.mass));
+    p.epsAlpha = num(ev.derived(st, "eps_alpha", a), "the transverse contact ratio");
+    p.epsBeta = stage.kind == ir::StageKind::Helical ? num(ev.derived(st, "eps_beta", a), "the overlap ratio") : 0.0;
+    Value cg = ev.attribute(st, "mesh_stiffness", a);
+    if (cg.isNumber()) {
+      p.meanStiffness = cg.lo * b;
+      prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (given)", p.meanStiffness, cg.lo * 1e-9));
+    } else {
+      double beta = stage.kind == ir::StageKind::Helical ? num(ev.attribute(st, "helix_angle", a), "the helix angle") : 0.0;
+      Value x1 = ev.attribute(st, "pinion.shift", a), x2 = ev.attribute(st, "wheel.shift", a);
+      double cgam = isoMeshStiffness(num(ev.attribute(st, "pinion.z", a), "pinion.z"), num(ev.attribute(st, "wheel.z", a), "wheel.z"),
+                                     x1.isNumber() ? x1.mid() : 0.0, x2.isNumber() ? x2.mid() : 0.0, beta, p.epsAlpha);
+      p.meanStiffness = cgam * b;
+      prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (ISO 6336-1 method B, eps_alpha {:.4f})",
+                                 p.meanStiffness, cgam * 1e-9, p.epsAlpha));
+    }
+    double torque = num(ev.derived(st, "input_torque", a), "an input torque (`operating`)");
+    p.staticLoad = torque / rb1;
+    prov.push_back(fmt::format("static load {:.6g} N = T1 / rb1; eps_alpha {:.4f}, eps_beta {:.4f}", p.staticLoad, p.epsAlpha, p.epsBeta));
+    p.teethDriver = num(ev.attribute(st, "pinion.z", a), "pinion.z");
+    p.outputRadius = rb2;
+    p.ratio = num(ev.derived(st, "ratio", a), "the stage ratio");
+    p.downstream = downstream;
+    double Tz = 2.0 * M_PI / (speed * p.teethDriver);
+    p.drive = sceneDrive(scene, speed, upstream, Tz);
+    // Hertz stiffness K = 4/3 sqrt(R) E* at the pitch point.
+    double alphaW = num(ev.derived(st, "working_pressure_angle", a), "the working pressure angle");
+    double rho1 = rb1 * std::tan(alphaW), rho2 = rb2 * std::tan(alphaW);
+    double R = 1.0 / (1.0 / rho1 + 1.0 / rho2);
+    double Estar = mat.E / (2.0 * (1.0 - mat.nu * mat.nu));
+    p.hertzStiffness = 4.0 / 3.0 * std::sqrt(R) * Estar;
+
+    MeshEffects fx;
+    for (const auto& e : scene.effects) {
+      const ir::Setting* ex = e.name == "hertz_contact" ? param(&e, "exponent") : nullptr;
+      std::map<std::string, double> locals = {{"stiffness", adamsStiffness(p.hertzStiffness, ex && ex->value ? ex->value->toDouble() : 1.5)}};
+      auto val = [&](const char* n, double dflt) {
+        const ir::Setting* s = param(&e, n);
+        return s ? settingValue(*s, locals) : dflt;
+      };
+      if (e.name == "varying_stiffness") {
+        fx.varyingStiffness = true;
+        fx.harmonics = ov.harmonics ? *ov.harmonics : static_cast<int>(val("harmonics", 5));
+        if (param(&e, "stiffness")) p.meanStiffness = val("stiffness", p.meanStiffness);
+      } else if (e.name == "damping") {
+        fx.damping = true;
+        fx.dampingRatio = val("ratio", 0);
+        fx.dampingCoefficient = param(&e, "coefficient") ? val("coefficient", 0) : -1;
+      } else if (e.name == "transmission_error") {
+        fx.transmissionError = true;
+        fx.teMean = val("mean", 0);
+        fx.teAmplitude = val("amplitude", 0);
+        fx.tePhase = val("phase", 0);
+      } else if (e.name == "backlash") {
+        fx.backlash = true;
+        fx.clearance = val("clearance", 0);
+      } else if (e.name == "hertz_contact") {
+        fx.hertz = true;
+        fx.hertzExponent = val("exponent", 1.5);
+        fx.penetrationRamp = val("penetration_ramp", 0);
+        fx.hertzDamping = val("damping", 0);
+        prov.push_back(fmt::format("Hertz stiffness {:.6g} N/m^{} = 4/3 sqrt(R) E*, R = {:.4g} mm", p.hertzStiffness, fx.hertzExponent, R * 1e3));
+      } else if (e.name == "torque_fluctuation") {
+        fx.torqueFluctuation = true;
+        fx.torqueMean = val("mean", 0);
+        fx.torqueAmplitude = val("amplitude", 0);
+        fx.torqueOmega = angularFrequency(*param(&e, "frequency"));
+      }
+    }
+    MeshModel model(p, fx);
+    if (fx.damping) prov.push_back(fmt::format("damping coefficient {:.6g} N*s/m", model.dampingCoefficient()));
+    r.meshFrequency = 1.0 / Tz;
+    prov.push_back(fmt::format("mesh frequency {:.4f} Hz, natural frequency {:.4f} Hz", 1.0 / Tz, 1.0 / model.naturalPeriod()));
+    tp = timePlan(scene, Tz);
+    // Steps: at most a quarter period of the highest stiffness harmonic; with contact
+    // (backlash, Hertz) also a twentieth of the natural period, the scale of a contact.
+    acc.maxStep = Tz / (4.0 * (fx.varyingStiffness ? std::max(1, fx.harmonics) : 1));
+    if (fx.backlash || fx.hertz) acc.maxStep = std::min(acc.maxStep, model.naturalPeriod() / 20.0);
+    if (const auto* s = ir::findSetting(scene.accuracy, "max_step"); s && s->value) acc.maxStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+    if (const auto* s = ir::findSetting(scene.accuracy, "min_step"); s && s->value) acc.minStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+    Integrator integ(model.system(), acc);
+    std::vector<double> y = model.initialState();
+    double t = 0;
+    bool ok = integ.advance(t, y, tp.end, tp.samples, [&](double ts, const double* ys) {
+      MeshSignals s = model.signals(ts, ys);
+      samples.t.push_back(ts);
+      record("displacement", s.displacement);
+      record("velocity", s.velocity);
+      record("acceleration", s.acceleration);
+      record("mesh_force", s.meshForce);
+      record("contact_force", s.contactForce);
+      record("stiffness", s.stiffness);
+      record("transmission_error", s.transmissionError);
+      record("input_speed", s.inputSpeed);
+      record("output_speed", s.outputSpeed);
+    });
+    r.stats = integ.stats();
+    if (!ok) failure = integ.error();
+    samples.signals["$static_load"] = {p.staticLoad};
+  } else if (stage.kind == ir::StageKind::Planetary) {
+    PlanetaryRun pr = runPlanetary(m, ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
+                                   mat.assumed);
+    r.model = pr.provenance;
+    r.stats = pr.stats;
+    r.meshFrequency = pr.meshFrequency;
+    tp = pr.plan;
+    samples.t = pr.t;
+    samples.signals = pr.signals;
+    failure = pr.failure;
+    if (!pr.modes.empty()) samples.signals["$modes"] = pr.modes;
+  } else {
+    throw Failure{fmt::format("scenes on {} stages are not modelled", ir::stageKindName(stage.kind))};
+  }
+  if (!failure.empty()) {
+    r.failure = fmt::format("scene `{}`: {}", scene.name, failure);
+    return r;
+  }
+  // Outputs over the statistics window.
+  size_t first = static_cast<size_t>(std::lower_bound(samples.t.begin(), samples.t.end(), tp.statsFrom - 1e-12) - samples.t.begin());
+  auto window = [&](const std::string& sig) {
+    const auto& v = samples.signals[sig];
+    return std::vector<double>(v.begin() + static_cast<long>(std::min(first, v.size())), v.end());
+  };
+  for (const auto& o : scene.outputs) {
+    if (o.signal == "modes") {
+      for (size_t i = 0; i < samples.signals["$modes"].size(); ++i)
+        r.numbers.push_back({fmt::format("mode {}", i + 1), samples.signals["$modes"][i], units::dims::frequency});
+      continue;
+    }
+    if (o.signal == "dynamic_factor") {
+      double peak = statistic("peak", window("mesh_force"));
+      double load = samples.signals["$static_load"].empty() ? NAN : samples.signals["$static_load"][0];
+      r.numbers.push_back({"dynamic_factor", peak / load, {}});
+      continue;
+    }
+    if (o.function == "spectrum" || o.function == "plot") {
+      if (!ov.keepSeries) continue;
+      SceneSeries s;
+      s.key = o.key();
+      s.signal = o.signal;
+      s.dim = signalDim(o.signal);
+      s.t.assign(samples.t.begin() + static_cast<long>(std::min(first, samples.t.size())), samples.t.end());
+      s.v = window(o.signal);
+      if (o.function == "spectrum") {
+        s.isSpectrum = true;
+        s.spectrum = spectrum(s.v, tp.dt, r.meshFrequency);
+      }
+      r.series.push_back(std::move(s));
+      continue;
+    }
+    r.numbers.push_back({o.key(), statistic(o.function, window(o.signal)), signalDim(o.signal)});
+  }
+  return r;
+}
+
+} // namespace
+
+
+// ---- shared by the scene models --------------------------------------------------------
+
+const ir::Setting* effectParam(const ir::Effect* e, const char* name) { return e ? ir::findSetting(e->params, name) : nullptr; }
+
+const ir::Effect* findEffect(const ir::Scene& scene, const char* name) {
+  for (const auto& e : scene.effects)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+double angularFrequency(const ir::Setting& s) {
+  return s.value->toDouble() * (s.dim == units::dims::frequency ? 2.0 * M_PI : 1.0);
+}
+
+// A setting's SI value; effect-local words (`stiffness`) are bound by the caller.
+double settingValue(const ir::Setting& s, const std::map<std::string, double>& locals) {
+  if (s.value) return s.value->toDouble();
+  if (!s.expr) return 0;
+  std::function<double(const ir::Expr&)> ev = [&](const ir::Expr& e) -> double {
+    switch (e.op) {
+    case ir::Op::Const: return e.value.toDouble();
+    case ir::Op::Symbol: {
+      auto it = locals.find(e.name);
+      if (it == locals.end()) throw SceneFailure{fmt::format("`{}` has no value here", e.name)};
+      return it->second;
+    }
+    case ir::Op::Neg: return -ev(*e.args[0]);
+    case ir::Op::Add: return ev(*e.args[0]) + ev(*e.args[1]);
+    case ir::Op::Sub: return ev(*e.args[0]) - ev(*e.args[1]);
+    case ir::Op::Mul: return ev(*e.args[0]) * ev(*e.args[1]);
+    case ir::Op::Div: return ev(*e.args[0]) / ev(*e.args[1]);
+    default: throw SceneFailure{"a setting's expression can use numbers and the effect's own words only"};
+    }
+  };
+  return ev(*s.expr);
+}
+
+TimePlan timePlan(const ir::Scene& scene, double Tz) {
+  auto get = [&](const char* n) -> std::optional<double> {
+    const ir::Setting* s = ir::findSetting(scene.settings, n);
+    if (!s || !s->value) return std::nullopt;
+    return s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+  };
+  const ir::Setting* ns = ir::findSetting(scene.settings, "samples");
+  int perPeriod = ns && ns->value ? static_cast<int>(ns->value->toDouble()) : 160;
+  TimePlan p;
+  p.dt = Tz / perPeriod;
+  double settle = get("settle").value_or(0), ramp = get("ramp").value_or(0);
+  if (auto rec = get("record")) {
+    long n = std::max<long>(1, std::lround(*rec / Tz * perPeriod));
+    for (long i = 0; i < n; ++i) p.samples.push_back(settle + static_cast<double>(i) * p.dt);
+    p.end = p.samples.back();
+    p.statsFrom = settle;
+  } else {
+    double duration = get("duration").value_or(0);
+    long n = static_cast<long>(std::floor(duration / p.dt));
+    for (long i = 1; i <= n; ++i) p.samples.push_back(static_cast<double>(i) * p.dt);
+    p.end = duration;
+    // Statistics of a run from rest leave out the start-up.
+    p.statsFrom = std::max(settle, ramp);
+  }
+  return p;
+}
+
+Drive sceneDrive(const ir::Scene& scene, double nominal, double upstream, double Tz) {
+  Drive d;
+  d.speed0 = nominal;
+  const ir::Setting* ramp = ir::findSetting(scene.settings, "ramp");
+  if (ramp && ramp->value) d.ramp = ramp->value->toDouble() * (ramp->meshPeriods ? Tz : 1.0);
+  for (const auto& e : scene.effects)
+    if (e.name == "speed_fluctuation") {
+      d.fluctuates = true;
+      std::map<std::string, double> none;
+      d.mean = settingValue(*effectParam(&e, "mean"), none) / upstream;
+      d.amplitude = settingValue(*effectParam(&e, "amplitude"), none) / upstream;
+      d.omega = angularFrequency(*effectParam(&e, "frequency"));
+    }
+  return d;
+}
+
+SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
+  SceneResult r;
+  try {
+    r = runOnce(m, a, scene, ov);
+    if (r.failure.empty() && ov.estimateError && !r.numbers.empty()) {
+      // The error estimate: the same scene at a hundredth of the tolerance.
+      SceneOverrides tight = ov;
+      tight.rtol = r.rtol / 100.0;
+      tight.keepSeries = false;
+      tight.estimateError = false;
+      SceneResult ref = runOnce(m, a, scene, tight);
+      if (ref.failure.empty()) {
+        double worst = 0;
+        for (const auto& n : r.numbers)
+          if (const auto* x = ref.find(n.key)) worst = std::max(worst, std::fabs(n.value - x->value) / std::max(std::fabs(x->value), 1e-300));
+        r.errorEstimate = worst;
+        r.errorMethod = fmt::format("against a rerun at rtol {:.0e}", tight.rtol.value());
+        r.referenceStats = ref.stats;
+      }
+    }
+  } catch (const Failure& f) {
+    r.name = scene.name;
+    r.failure = fmt::format("scene `{}`: {}", scene.name, f.what);
+  }
+  return r;
+}
+
+} // namespace gbx::rt::dyn

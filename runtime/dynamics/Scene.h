@@ -1,0 +1,57 @@
+#pragma once
+// Runs a `scene` of a solved design: builds the model from the stage and the listed
+// effects, integrates it to the scene's accuracy, and returns its outputs with their
+// cost and an error estimate.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dynamics/Ode.h"
+#include "dynamics/Spectrum.h"
+#include "ir/Ir.h"
+#include "search/Evaluator.h"
+#include "search/Model.h"
+
+namespace gbx::rt::dyn {
+
+struct SceneOverrides {
+  std::optional<int> harmonics;
+  std::optional<std::string> method;
+  std::optional<double> rtol;
+  bool estimateError = true;
+  bool keepSeries = true;
+};
+
+struct SceneNumber {
+  std::string key;  // "rms(acceleration)"
+  double value = 0; // SI
+  units::Dim dim;
+};
+
+struct SceneSeries {
+  std::string key;     // "plot(acceleration)" or "spectrum(mesh_force)"
+  std::string signal;
+  units::Dim dim;
+  std::vector<double> t, v;
+  bool isSpectrum = false;
+  Spectrum spectrum;
+};
+
+struct SceneResult {
+  std::string name, target, method;
+  double rtol = 0, atol = 0;
+  Stats stats;
+  double errorEstimate = -1;  // relative, over the numeric outputs; < 0 when not estimated
+  std::string errorMethod;
+  Stats referenceStats;
+  double meshFrequency = 0;
+  std::vector<SceneNumber> numbers;
+  std::vector<SceneSeries> series;
+  std::vector<std::string> model;  // how the model was built, parameter by parameter
+  std::string failure;             // set when the run failed (exit 3)
+  const SceneNumber* find(const std::string& key) const;
+};
+
+SceneResult runScene(const Model& m, const Assignment& design, const ir::Scene& scene, const SceneOverrides& ov = {});
+
+} // namespace gbx::rt::dyn

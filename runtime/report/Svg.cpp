@@ -1,0 +1,91 @@
+#include "report/Svg.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+namespace gbx::rt {
+
+namespace {
+
+const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#7f7f7f", "#bcbd22"};
+
+std::string esc(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '<') o += "&lt;";
+    else if (c == '>') o += "&gt;";
+    else if (c == '&') o += "&amp;";
+    else o += c;
+  }
+  return o;
+}
+
+std::string tick(double v) {
+  if (v == 0) return "0";
+  double a = std::fabs(v);
+  if (a >= 1e4 || a < 1e-3) return fmt::format("{:.1e}", v);
+  return fmt::format("{:.4g}", v);
+}
+
+} // namespace
+
+std::string renderSvg(const SvgChart& c) {
+  const double W = 720, H = 400, L = 80, R = 20, T = 40, B = 60;
+  auto tx = [&](double v) { return c.logX ? std::log10(v) : v; };
+  auto ty = [&](double v) { return c.logY ? std::log10(v) : v; };
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (const auto& s : c.series)
+    for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if ((c.logX && s.x[i] <= 0) || (c.logY && s.y[i] <= 0) || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      x0 = std::min(x0, tx(s.x[i]));
+      x1 = std::max(x1, tx(s.x[i]));
+      y0 = std::min(y0, ty(s.y[i]));
+      y1 = std::max(y1, ty(s.y[i]));
+    }
+  if (!std::isfinite(x0)) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  if (x1 == x0) x1 = x0 + 1;
+  if (y1 == y0) y0 -= 0.5, y1 += 0.5;
+  double pad = 0.05 * (y1 - y0);
+  y0 -= pad;
+  y1 += pad;
+  auto px = [&](double v) { return L + (tx(v) - x0) / (x1 - x0) * (W - L - R); };
+  auto py = [&](double v) { return H - B - (ty(v) - y0) / (y1 - y0) * (H - T - B); };
+  std::string o = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" font-family=\"sans-serif\" "
+      "font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
+      W, H, W, H);
+  o += fmt::format("<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n", W / 2, esc(c.title));
+  o += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n", L, T, W - L - R, H - T - B);
+  for (int i = 0; i <= 5; ++i) {
+    double fx = x0 + (x1 - x0) * i / 5.0, fy = y0 + (y1 - y0) * i / 5.0;
+    double vx = c.logX ? std::pow(10.0, fx) : fx, vy = c.logY ? std::pow(10.0, fy) : fy;
+    double X = L + (W - L - R) * i / 5.0, Y = H - B - (H - T - B) * i / 5.0;
+    o += fmt::format("<line x1=\"{:.1f}\" y1=\"{}\" x2=\"{:.1f}\" y2=\"{}\" stroke=\"#ddd\"/>\n", X, T, X, H - B);
+    o += fmt::format("<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>\n", L, Y, W - R, Y);
+    o += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", X, H - B + 16, tick(vx));
+    o += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n", L - 6, Y + 4, tick(vy));
+  }
+  o += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", (L + W - R) / 2, H - 18, esc(c.xLabel));
+  o += fmt::format("<text x=\"16\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 16 {})\">{}</text>\n", (T + H - B) / 2,
+                   (T + H - B) / 2, esc(c.yLabel));
+  for (size_t k = 0; k < c.series.size(); ++k) {
+    const auto& s = c.series[k];
+    const char* col = kColours[k % 10];
+    std::string pts;
+    for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if ((c.logX && s.x[i] <= 0) || (c.logY && s.y[i] <= 0) || !std::isfinite(s.y[i])) continue;
+      pts += fmt::format("{:.2f},{:.2f} ", px(s.x[i]), py(s.y[i]));
+      if (s.markers) o += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"2.5\" fill=\"{}\"/>\n", px(s.x[i]), py(s.y[i]), col);
+    }
+    o += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.2\" points=\"{}\"/>\n", col, pts);
+    if (!s.label.empty())
+      o += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", W - R - 170, T + 16 + 14 * static_cast<double>(k), col, esc(s.label));
+  }
+  o += "</svg>\n";
+  return o;
+}
+
+} // namespace gbx::rt

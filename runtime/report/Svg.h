@@ -1,0 +1,22 @@
+#pragma once
+// Small, dependency-free SVG charts: line plots with linear or logarithmic axes.
+#include <string>
+#include <vector>
+
+namespace gbx::rt {
+
+struct SvgSeries {
+  std::string label;
+  std::vector<double> x, y;
+  bool markers = false;
+};
+
+struct SvgChart {
+  std::string title, xLabel, yLabel;
+  bool logX = false, logY = false;
+  std::vector<SvgSeries> series;
+};
+
+std::string renderSvg(const SvgChart& chart);
+
+} // namespace gbx::rt
