@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>
@@ -22,8 +23,10 @@ struct Integrator::Impl {
   Stats* stats = nullptr;
   gsl_odeiv2_system gsys{};
   const gsl_odeiv2_step_type* type = nullptr;
-  gsl_odeiv2_step* step = nullptr;   // the integrator's own stepper
-  gsl_odeiv2_step* probe = nullptr;  // a second stepper for samples and events
+  // GSL drivers own a stepper, a control and an evolve, and link them (msbdf needs the link).
+  gsl_odeiv2_driver* main = nullptr;   // the integration
+  gsl_odeiv2_driver* probe = nullptr;  // single steps for samples and events
+  gsl_odeiv2_step* step = nullptr;
   gsl_odeiv2_control* control = nullptr;
   gsl_odeiv2_evolve* evolve = nullptr;
   double h = 0;
@@ -49,17 +52,16 @@ struct Integrator::Impl {
     out = y0;
     std::vector<double> err(sys->dim);
     if (h1 == 0) return true;
-    gsl_odeiv2_step_reset(probe);
+    gsl_odeiv2_driver_reset(probe);
     if (implicit) {
       // msbdf is a multistep method: a lone step needs its own small integration.
-      gsl_odeiv2_evolve* e = gsl_odeiv2_evolve_alloc(sys->dim);
       double t = t0, hh = h1;
       int status = GSL_SUCCESS;
-      while (t < t0 + h1 && status == GSL_SUCCESS) status = gsl_odeiv2_evolve_apply(e, control, probe, &gsys, &t, t0 + h1, &hh, out.data());
-      gsl_odeiv2_evolve_free(e);
+      while (t < t0 + h1 && status == GSL_SUCCESS)
+        status = gsl_odeiv2_evolve_apply(probe->e, probe->c, probe->s, &gsys, &t, t0 + h1, &hh, out.data());
       return status == GSL_SUCCESS;
     }
-    return gsl_odeiv2_step_apply(probe, t0, h1, out.data(), err.data(), nullptr, nullptr, &gsys) == GSL_SUCCESS;
+    return gsl_odeiv2_step_apply(probe->s, t0, h1, out.data(), err.data(), nullptr, nullptr, &gsys) == GSL_SUCCESS;
   }
 };
 
@@ -80,21 +82,20 @@ Integrator::Integrator(const System& sys, const Accuracy& acc) : impl_(new Impl)
   impl_->gsys = {&Impl::func, sys.jacobian ? &Impl::jac : nullptr, sys.dim, impl_};
   impl_->type = stepType(acc.method);
   impl_->implicit = acc.method == "msbdf";
-  impl_->step = gsl_odeiv2_step_alloc(impl_->type, sys.dim);
-  impl_->probe = gsl_odeiv2_step_alloc(impl_->type, sys.dim);
   std::vector<double> scale = sys.scale;
   scale.resize(sys.dim, 1.0);
   double atol = acc.atol > 0 ? acc.atol : acc.rtol;
-  impl_->control = gsl_odeiv2_control_scaled_new(atol, acc.rtol, 1.0, 0.0, scale.data(), sys.dim);
-  impl_->evolve = gsl_odeiv2_evolve_alloc(sys.dim);
+  impl_->main = gsl_odeiv2_driver_alloc_scaled_new(&impl_->gsys, impl_->type, 1e-6, atol, acc.rtol, 1.0, 0.0, scale.data());
+  impl_->probe = gsl_odeiv2_driver_alloc_scaled_new(&impl_->gsys, impl_->type, 1e-6, atol, acc.rtol, 1.0, 0.0, scale.data());
+  impl_->step = impl_->main->s;
+  impl_->control = impl_->main->c;
+  impl_->evolve = impl_->main->e;
   acc_ = acc;
 }
 
 Integrator::~Integrator() {
-  gsl_odeiv2_evolve_free(impl_->evolve);
-  gsl_odeiv2_control_free(impl_->control);
-  gsl_odeiv2_step_free(impl_->probe);
-  gsl_odeiv2_step_free(impl_->step);
+  gsl_odeiv2_driver_free(impl_->probe);
+  gsl_odeiv2_driver_free(impl_->main);
   delete impl_;
 }
 
@@ -104,7 +105,6 @@ bool Integrator::advance(double& t, std::vector<double>& y, double t1, const std
   auto& I = *impl_;
   const System& sys = *I.sys;
   double span = std::max(t1 - t, 1e-300);
-  double hmin = acc_.minStep > 0 ? acc_.minStep : 1e-14 * std::max(span, std::fabs(t1));
   if (I.h <= 0) I.h = acc_.maxStep > 0 ? std::min(acc_.maxStep, span / 100) : span / 100;
   size_t next = static_cast<size_t>(std::lower_bound(samples.begin(), samples.end(), t) - samples.begin());
   while (next < samples.size() && samples[next] <= t) ++next;
@@ -134,8 +134,11 @@ bool Integrator::advance(double& t, std::vector<double>& y, double t1, const std
       break;
     }
     ++stats_.steps;
-    if (t - t0 < hmin && t < t1) {
-      error_ = fmt::format("step size fell below {:.3g} s at t = {:.6g} s", hmin, t0);
+    // A step that no longer moves t in floating point, or is below the scene's
+    // `min_step`, is a failure, not a loop.
+    double hmin = std::max(acc_.minStep, 8.0 * std::numeric_limits<double>::epsilon() * std::fabs(t0));
+    if (t - t0 <= hmin && t < t1 && t < stop) {
+      error_ = fmt::format("step size fell to {:.3g} s at t = {:.6g} s", t - t0, t0);
       ok = false;
       break;
     }
