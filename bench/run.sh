@@ -5,14 +5,25 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [[ -x build/bench/search_bench ]] || ./scripts/setup.sh >/dev/null
-cmake --build build --target search_bench >/dev/null
+cmake --build build --target search_bench dynamics_bench >/dev/null
+py=/usr/bin/python3
+if ! $py -c 'import scipy' 2>/dev/null; then
+  sudo=""; [[ $(id -u) -ne 0 ]] && sudo=sudo
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q python3-scipy >/dev/null
+fi
 b=build/bench/search_bench
 out=$(mktemp)
 for c in paper2 spur3 spur4; do
   for j in 1 2; do $b $c $j >>"$out"; done
 done
 for c in spur3-50 spur3-60 spur3-70 spur4-30 spur4-35 spur4-40; do $b $c 1 >>"$out"; done
-/usr/bin/python3 - "$out" <<'PY'
+d=build/bench/dynamics_bench
+dyn=$(mktemp) params=$(mktemp)
+$d params "$params"
+$d wp | sed 's/^/gbxc /' >>"$dyn"
+$py bench/scipy_mesh.py "$params" | sed 's/^/scipy /' >>"$dyn"
+$d rhs >"$dyn.rhs"
+$py - "$out" "$dyn" "$dyn.rhs" <<'PY'
 import math, sys
 rows = [l.split() for l in open(sys.argv[1])]
 def pairs(n): return sum(1 for p in range(12, n + 1) for w in range(p + 1, n + 1) if math.gcd(p, w) == 1)
@@ -55,7 +66,49 @@ for k, pts in sorted(ref.items()):
 lines += ["", "Targets: two-stage paper case well under 1 ms; 3 stages < 50 ms; 4 stages < 0.5 s;",
           "memory < 200 MB. A research probe that only counted ordered ratio matches took",
           "0.23 s (3 stages) and 1.1 s (4 stages).", ""]
+# ---- dynamics -------------------------------------------------------------------
+dyn = [l.split() for l in open(sys.argv[2])]
+curves = {}
+for who, method, rtol, err, cpu, rhs in dyn:
+    curves.setdefault(f"{who} {method}", []).append((float(rtol), float(err), float(cpu), int(rhs)))
+def at_error(points, target):
+    # log-log interpolation of CPU time at a given error along a work-precision curve
+    pts = sorted((e, c) for _, e, c, _ in points if e > 0)
+    for (e1, c1), (e2, c2) in zip(pts, pts[1:]):
+        if e1 <= target <= e2:
+            f = (math.log(target) - math.log(e1)) / (math.log(e2) - math.log(e1))
+            return math.exp(math.log(c1) + f * (math.log(c2) - math.log(c1)))
+    return None
+lines += ["## Dynamics: the marine-reducer vibration scene", "",
+          "The scene of `specs/marine_reducer.gbx` (single mesh, 5 stiffness harmonics, damping,",
+          "transmission error; 200 mesh periods settled, one recorded at 160 samples) integrated",
+          "by gbxc and, with the same equations, parameters, sample times and scaled tolerances",
+          "(`bench/scipy_mesh.py`), by `scipy.integrate.solve_ivp` (Debian python3-scipy). The",
+          "error is that of rms(acceleration) against gbxc's rk8pd at rtol 1e-14; CPU time is the",
+          "median of five runs for gbxc, one run for scipy.", "",
+          "| solver | rtol | error | CPU time | RHS evaluations |", "| --- | ---: | ---: | ---: | ---: |"]
+for name, pts in curves.items():
+    for rtol, err, cpu, rhs in pts:
+        lines.append(f"| {name} | {rtol:.0e} | {err:.2e} | {cpu*1000:.2f} ms | {rhs} |")
+lines += ["", "At matched error (CPU time interpolated along each curve, log-log):", "",
+          "| error | gbxc rk8pd | scipy DOP853 | scipy RK45 | ratio to DOP853 | ratio to RK45 |",
+          "| ---: | ---: | ---: | ---: | ---: | ---: |"]
+for target in (1e-6, 1e-7, 1e-8):
+    g = at_error(curves.get("gbxc rk8pd", []), target)
+    d = at_error(curves.get("scipy DOP853", []), target)
+    r = at_error(curves.get("scipy RK45", []), target)
+    fmt = lambda x: f"{x*1000:.2f} ms" if x else "out of range"
+    ratio = lambda x: f"{x/g:.0f}x" if x and g else "-"
+    lines.append(f"| {target:.0e} | {fmt(g)} | {fmt(d)} | {fmt(r)} | {ratio(d)} | {ratio(r)} |")
+lines += ["", "Target: gbxc at least 50x faster than scipy at error 1e-8.", "",
+          "### Cost of one right-hand side, by effect", "",
+          "Each effect adds its own term; effects a scene does not list cost nothing.", "",
+          "| model | ns per RHS call |", "| --- | ---: |"]
+for l in open(sys.argv[3]):
+    name, ns, _ = l.rstrip("\n").split("|")
+    lines.append(f"| {name} | {float(ns):.1f} |")
+lines.append("")
 open("docs/performance.md", "w").write("\n".join(lines))
 print("\n".join(lines))
 PY
-rm -f "$out"
+rm -f "$out" "$dyn" "$dyn.rhs" "$params"

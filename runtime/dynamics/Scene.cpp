@@ -119,6 +119,116 @@ Dim signalDim(const std::string& s) {
   return {};
 }
 
+// The scene's `accuracy { … }` with a study's overrides.
+Accuracy sceneAccuracy(const ir::Scene& scene, const SceneOverrides& ov) {
+  Accuracy acc;
+  if (const auto* s = ir::findSetting(scene.accuracy, "method"); s && !s->symbol.empty()) acc.method = s->symbol;
+  if (const auto* s = ir::findSetting(scene.accuracy, "rtol"); s && s->value) acc.rtol = s->value->toDouble();
+  if (const auto* s = ir::findSetting(scene.accuracy, "atol"); s && s->value) acc.atol = s->value->toDouble();
+  if (const auto* s = ir::findSetting(scene.accuracy, "max_steps"); s && s->value) acc.maxSteps = static_cast<long>(s->value->toDouble());
+  if (ov.method) acc.method = *ov.method;
+  if (ov.rtol) acc.rtol = *ov.rtol;
+  return acc;
+}
+
+MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov, Accuracy acc,
+                      std::vector<std::string>& prov) {
+  Evaluator ev(m);
+  int st = m.stageIndex(scene.target);
+  const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
+  double upstream = num(ev.ratioProduct(0, st, a), "the ratios upstream");
+  double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
+  double speed = num(ev.derived(st, "input_speed", a), "an input speed (`operating`)");
+  Elastic mat = materialOf(m, st);
+    MeshParameters p;
+  double rb1 = num(ev.derived(st, "pinion.base_radius", a), "the pinion base radius (`normal_module`)");
+  double rb2 = num(ev.derived(st, "wheel.base_radius", a), "the wheel base radius");
+  double b = num(ev.attribute(st, "face_width", a), "`face_width`");
+  double J1 = inertiaOf(ev, st, a, "pinion", mat.density, prov), J2 = inertiaOf(ev, st, a, "wheel", mat.density, prov);
+  if (mat.assumed) prov.push_back("density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)");
+  p.mass = J1 * J2 / (J2 * rb1 * rb1 + J1 * rb2 * rb2);
+  prov.push_back(fmt::format("equivalent mass {:.6g} kg = J1 J2 / (J2 rb1^2 + J1 rb2^2)", p.mass));
+  p.epsAlpha = num(ev.derived(st, "eps_alpha", a), "the transverse contact ratio");
+  p.epsBeta = stage.kind == ir::StageKind::Helical ? num(ev.derived(st, "eps_beta", a), "the overlap ratio") : 0.0;
+  Value cg = ev.attribute(st, "mesh_stiffness", a);
+  if (cg.isNumber()) {
+    p.meanStiffness = cg.lo * b;
+    prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (given)", p.meanStiffness, cg.lo * 1e-9));
+  } else {
+    double beta = stage.kind == ir::StageKind::Helical ? num(ev.attribute(st, "helix_angle", a), "the helix angle") : 0.0;
+    Value x1 = ev.attribute(st, "pinion.shift", a), x2 = ev.attribute(st, "wheel.shift", a);
+    double cgam = isoMeshStiffness(num(ev.attribute(st, "pinion.z", a), "pinion.z"), num(ev.attribute(st, "wheel.z", a), "wheel.z"),
+                                   x1.isNumber() ? x1.mid() : 0.0, x2.isNumber() ? x2.mid() : 0.0, beta, p.epsAlpha);
+    p.meanStiffness = cgam * b;
+    prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (ISO 6336-1 method B, eps_alpha {:.4f})",
+                               p.meanStiffness, cgam * 1e-9, p.epsAlpha));
+  }
+  double torque = num(ev.derived(st, "input_torque", a), "an input torque (`operating`)");
+  p.staticLoad = torque / rb1;
+  prov.push_back(fmt::format("static load {:.6g} N = T1 / rb1; eps_alpha {:.4f}, eps_beta {:.4f}", p.staticLoad, p.epsAlpha, p.epsBeta));
+  p.teethDriver = num(ev.attribute(st, "pinion.z", a), "pinion.z");
+  p.outputRadius = rb2;
+  p.ratio = num(ev.derived(st, "ratio", a), "the stage ratio");
+  p.downstream = downstream;
+  double Tz = 2.0 * M_PI / (speed * p.teethDriver);
+  p.drive = sceneDrive(scene, speed, upstream, Tz);
+  // Hertz stiffness K = 4/3 sqrt(R) E* at the pitch point.
+  double alphaW = num(ev.derived(st, "working_pressure_angle", a), "the working pressure angle");
+  double rho1 = rb1 * std::tan(alphaW), rho2 = rb2 * std::tan(alphaW);
+  double R = 1.0 / (1.0 / rho1 + 1.0 / rho2);
+  double Estar = mat.E / (2.0 * (1.0 - mat.nu * mat.nu));
+  p.hertzStiffness = 4.0 / 3.0 * std::sqrt(R) * Estar;
+
+  MeshEffects fx;
+  for (const auto& e : scene.effects) {
+    const ir::Setting* ex = e.name == "hertz_contact" ? param(&e, "exponent") : nullptr;
+    std::map<std::string, double> locals = {{"stiffness", adamsStiffness(p.hertzStiffness, ex && ex->value ? ex->value->toDouble() : 1.5)}};
+    auto val = [&](const char* n, double dflt) {
+      const ir::Setting* s = param(&e, n);
+      return s ? settingValue(*s, locals) : dflt;
+    };
+    if (e.name == "varying_stiffness") {
+      fx.varyingStiffness = true;
+      fx.harmonics = ov.harmonics ? *ov.harmonics : static_cast<int>(val("harmonics", 5));
+      if (param(&e, "stiffness")) p.meanStiffness = val("stiffness", p.meanStiffness);
+    } else if (e.name == "damping") {
+      fx.damping = true;
+      fx.dampingRatio = val("ratio", 0);
+      fx.dampingCoefficient = param(&e, "coefficient") ? val("coefficient", 0) : -1;
+    } else if (e.name == "transmission_error") {
+      fx.transmissionError = true;
+      fx.teMean = val("mean", 0);
+      fx.teAmplitude = val("amplitude", 0);
+      fx.tePhase = val("phase", 0);
+    } else if (e.name == "backlash") {
+      fx.backlash = true;
+      fx.clearance = val("clearance", 0);
+    } else if (e.name == "hertz_contact") {
+      fx.hertz = true;
+      fx.hertzExponent = val("exponent", 1.5);
+      fx.penetrationRamp = val("penetration_ramp", 0);
+      fx.hertzDamping = val("damping", 0);
+      prov.push_back(fmt::format("Hertz stiffness {:.6g} N/m^{} = 4/3 sqrt(R) E*, R = {:.4g} mm", p.hertzStiffness, fx.hertzExponent, R * 1e3));
+    } else if (e.name == "torque_fluctuation") {
+      fx.torqueFluctuation = true;
+      fx.torqueMean = val("mean", 0);
+      fx.torqueAmplitude = val("amplitude", 0);
+      fx.torqueOmega = angularFrequency(*param(&e, "frequency"));
+    }
+  }
+  MeshModel model(p, fx);
+  if (fx.damping) prov.push_back(fmt::format("damping coefficient {:.6g} N*s/m", model.dampingCoefficient()));
+  prov.push_back(fmt::format("mesh frequency {:.4f} Hz, natural frequency {:.4f} Hz", 1.0 / Tz, 1.0 / model.naturalPeriod()));
+  // Steps: at most a quarter period of the highest stiffness harmonic; with contact
+  // (backlash, Hertz) also a twentieth of the natural period, the scale of a contact.
+  acc.maxStep = Tz / (4.0 * (fx.varyingStiffness ? std::max(1, fx.harmonics) : 1));
+  if (fx.backlash || fx.hertz) acc.maxStep = std::min(acc.maxStep, model.naturalPeriod() / 20.0);
+  if (const auto* s = ir::findSetting(scene.accuracy, "max_step"); s && s->value) acc.maxStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+  if (const auto* s = ir::findSetting(scene.accuracy, "min_step"); s && s->value) acc.minStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+  MeshScene out{p, fx, acc, timePlan(scene, Tz), 1.0 / Tz, prov};
+  return out;
+}
+
 SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
   SceneResult r;
   r.name = scene.name;
@@ -127,14 +237,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
   int st = m.stageIndex(scene.target);
   if (st < 0) throw Failure{"scenes on the whole gearbox need the lumped torsional model, which this build does not have"};
   const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
-  // Accuracy.
-  Accuracy acc;
-  if (const auto* s = ir::findSetting(scene.accuracy, "method"); s && !s->symbol.empty()) acc.method = s->symbol;
-  if (const auto* s = ir::findSetting(scene.accuracy, "rtol"); s && s->value) acc.rtol = s->value->toDouble();
-  if (const auto* s = ir::findSetting(scene.accuracy, "atol"); s && s->value) acc.atol = s->value->toDouble();
-  if (const auto* s = ir::findSetting(scene.accuracy, "max_steps"); s && s->value) acc.maxSteps = static_cast<long>(s->value->toDouble());
-  if (ov.method) acc.method = *ov.method;
-  if (ov.rtol) acc.rtol = *ov.rtol;
+  Accuracy acc = sceneAccuracy(scene, ov);
   r.method = acc.method;
   r.rtol = acc.rtol;
   r.atol = acc.atol > 0 ? acc.atol : acc.rtol;
@@ -143,100 +246,19 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
   double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
   double speed = num(ev.derived(st, "input_speed", a), "an input speed (`operating`)");
   Elastic mat = materialOf(m, st);
+  (void)upstream;
 
   Samples samples;
   TimePlan tp;
   auto record = [&](const std::string& k, double v) { samples.signals[k].push_back(v); };
   std::string failure;
   if (stage.kind == ir::StageKind::Spur || stage.kind == ir::StageKind::Helical) {
-    MeshParameters p;
-    auto& prov = r.model;
-    double rb1 = num(ev.derived(st, "pinion.base_radius", a), "the pinion base radius (`normal_module`)");
-    double rb2 = num(ev.derived(st, "wheel.base_radius", a), "the wheel base radius");
-    double b = num(ev.attribute(st, "face_width", a), "`face_width`");
-    double J1 = inertiaOf(ev, st, a, "pinion", mat.density, prov), J2 = inertiaOf(ev, st, a, "wheel", mat.density, prov);
-    if (mat.assumed) prov.push_back("density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)");
-    p.mass = J1 * J2 / (J2 * rb1 * rb1 + J1 * rb2 * rb2);
-    prov.push_back(fmt::format("equivalent mass {:.6g} kg = J1 J2 / (J2 rb1^2 + J1 rb2^2)", p.mass));
-    p.epsAlpha = num(ev.derived(st, "eps_alpha", a), "the transverse contact ratio");
-    p.epsBeta = stage.kind == ir::StageKind::Helical ? num(ev.derived(st, "eps_beta", a), "the overlap ratio") : 0.0;
-    Value cg = ev.attribute(st, "mesh_stiffness", a);
-    if (cg.isNumber()) {
-      p.meanStiffness = cg.lo * b;
-      prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (given)", p.meanStiffness, cg.lo * 1e-9));
-    } else {
-      double beta = stage.kind == ir::StageKind::Helical ? num(ev.attribute(st, "helix_angle", a), "the helix angle") : 0.0;
-      Value x1 = ev.attribute(st, "pinion.shift", a), x2 = ev.attribute(st, "wheel.shift", a);
-      double cgam = isoMeshStiffness(num(ev.attribute(st, "pinion.z", a), "pinion.z"), num(ev.attribute(st, "wheel.z", a), "wheel.z"),
-                                     x1.isNumber() ? x1.mid() : 0.0, x2.isNumber() ? x2.mid() : 0.0, beta, p.epsAlpha);
-      p.meanStiffness = cgam * b;
-      prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (ISO 6336-1 method B, eps_alpha {:.4f})",
-                                 p.meanStiffness, cgam * 1e-9, p.epsAlpha));
-    }
-    double torque = num(ev.derived(st, "input_torque", a), "an input torque (`operating`)");
-    p.staticLoad = torque / rb1;
-    prov.push_back(fmt::format("static load {:.6g} N = T1 / rb1; eps_alpha {:.4f}, eps_beta {:.4f}", p.staticLoad, p.epsAlpha, p.epsBeta));
-    p.teethDriver = num(ev.attribute(st, "pinion.z", a), "pinion.z");
-    p.outputRadius = rb2;
-    p.ratio = num(ev.derived(st, "ratio", a), "the stage ratio");
-    p.downstream = downstream;
-    double Tz = 2.0 * M_PI / (speed * p.teethDriver);
-    p.drive = sceneDrive(scene, speed, upstream, Tz);
-    // Hertz stiffness K = 4/3 sqrt(R) E* at the pitch point.
-    double alphaW = num(ev.derived(st, "working_pressure_angle", a), "the working pressure angle");
-    double rho1 = rb1 * std::tan(alphaW), rho2 = rb2 * std::tan(alphaW);
-    double R = 1.0 / (1.0 / rho1 + 1.0 / rho2);
-    double Estar = mat.E / (2.0 * (1.0 - mat.nu * mat.nu));
-    p.hertzStiffness = 4.0 / 3.0 * std::sqrt(R) * Estar;
-
-    MeshEffects fx;
-    for (const auto& e : scene.effects) {
-      const ir::Setting* ex = e.name == "hertz_contact" ? param(&e, "exponent") : nullptr;
-      std::map<std::string, double> locals = {{"stiffness", adamsStiffness(p.hertzStiffness, ex && ex->value ? ex->value->toDouble() : 1.5)}};
-      auto val = [&](const char* n, double dflt) {
-        const ir::Setting* s = param(&e, n);
-        return s ? settingValue(*s, locals) : dflt;
-      };
-      if (e.name == "varying_stiffness") {
-        fx.varyingStiffness = true;
-        fx.harmonics = ov.harmonics ? *ov.harmonics : static_cast<int>(val("harmonics", 5));
-        if (param(&e, "stiffness")) p.meanStiffness = val("stiffness", p.meanStiffness);
-      } else if (e.name == "damping") {
-        fx.damping = true;
-        fx.dampingRatio = val("ratio", 0);
-        fx.dampingCoefficient = param(&e, "coefficient") ? val("coefficient", 0) : -1;
-      } else if (e.name == "transmission_error") {
-        fx.transmissionError = true;
-        fx.teMean = val("mean", 0);
-        fx.teAmplitude = val("amplitude", 0);
-        fx.tePhase = val("phase", 0);
-      } else if (e.name == "backlash") {
-        fx.backlash = true;
-        fx.clearance = val("clearance", 0);
-      } else if (e.name == "hertz_contact") {
-        fx.hertz = true;
-        fx.hertzExponent = val("exponent", 1.5);
-        fx.penetrationRamp = val("penetration_ramp", 0);
-        fx.hertzDamping = val("damping", 0);
-        prov.push_back(fmt::format("Hertz stiffness {:.6g} N/m^{} = 4/3 sqrt(R) E*, R = {:.4g} mm", p.hertzStiffness, fx.hertzExponent, R * 1e3));
-      } else if (e.name == "torque_fluctuation") {
-        fx.torqueFluctuation = true;
-        fx.torqueMean = val("mean", 0);
-        fx.torqueAmplitude = val("amplitude", 0);
-        fx.torqueOmega = angularFrequency(*param(&e, "frequency"));
-      }
-    }
-    MeshModel model(p, fx);
-    if (fx.damping) prov.push_back(fmt::format("damping coefficient {:.6g} N*s/m", model.dampingCoefficient()));
-    r.meshFrequency = 1.0 / Tz;
-    prov.push_back(fmt::format("mesh frequency {:.4f} Hz, natural frequency {:.4f} Hz", 1.0 / Tz, 1.0 / model.naturalPeriod()));
-    tp = timePlan(scene, Tz);
-    // Steps: at most a quarter period of the highest stiffness harmonic; with contact
-    // (backlash, Hertz) also a twentieth of the natural period, the scale of a contact.
-    acc.maxStep = Tz / (4.0 * (fx.varyingStiffness ? std::max(1, fx.harmonics) : 1));
-    if (fx.backlash || fx.hertz) acc.maxStep = std::min(acc.maxStep, model.naturalPeriod() / 20.0);
-    if (const auto* s = ir::findSetting(scene.accuracy, "max_step"); s && s->value) acc.maxStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
-    if (const auto* s = ir::findSetting(scene.accuracy, "min_step"); s && s->value) acc.minStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+    MeshScene ms = meshSceneOf(m, a, scene, ov, acc, r.model);
+    MeshModel model(ms.params, ms.effects);
+    const MeshParameters& p = ms.params;
+    acc = ms.accuracy;
+    tp = ms.plan;
+    r.meshFrequency = ms.meshFrequency;
     Integrator integ(model.system(), acc);
     std::vector<double> y = model.initialState();
     double t = 0;
@@ -393,6 +415,11 @@ Drive sceneDrive(const ir::Scene& scene, double nominal, double upstream, double
       d.omega = angularFrequency(*effectParam(&e, "frequency"));
     }
   return d;
+}
+
+MeshScene meshScene(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
+  std::vector<std::string> prov;
+  return meshSceneOf(m, a, scene, ov, sceneAccuracy(scene, ov), prov);
 }
 
 SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {

@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/MeshModel.h"
 #include "dynamics/Ode.h"
+#include "dynamics/SceneSupport.h"
 #include "dynamics/Spectrum.h"
 #include "ir/Ir.h"
 #include "search/Evaluator.h"
@@ -51,6 +53,17 @@ struct SceneResult {
   std::string failure;             // set when the run failed (exit 3)
   const SceneNumber* find(const std::string& key) const;
 };
+
+// The single-mesh model of a scene on a spur or helical stage, as runScene builds it.
+struct MeshScene {
+  MeshParameters params;
+  MeshEffects effects;
+  Accuracy accuracy;
+  TimePlan plan;
+  double meshFrequency = 0;
+  std::vector<std::string> provenance;
+};
+MeshScene meshScene(const Model& m, const Assignment& design, const ir::Scene& scene, const SceneOverrides& ov = {});
 
 SceneResult runScene(const Model& m, const Assignment& design, const ir::Scene& scene, const SceneOverrides& ov = {});
 

@@ -1,0 +1,147 @@
+// Dynamics benchmark: the marine-reducer vibration scene (specs/marine_reducer.gbx).
+//   dynamics_bench params FILE   write the scene's equations' parameters (for scipy_mesh.py)
+//   dynamics_bench wp            work-precision of gbxc: "method rtol error cpu_s rhs" lines
+//   dynamics_bench rhs           cost of one right-hand side with and without each effect
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "driver/Driver.h"
+#include "dynamics/MeshModel.h"
+#include "dynamics/Ode.h"
+#include "dynamics/Scene.h"
+
+using namespace gbx;
+using namespace gbx::rt::dyn;
+
+namespace {
+
+struct Fixture {
+  std::unique_ptr<driver::Compilation> c;
+  std::unique_ptr<rt::Model> model;
+  std::unique_ptr<rt::Assignment> design;
+  const ir::Scene* scene = nullptr;
+};
+
+Fixture load() {
+  std::ifstream in(std::string(GBX_SOURCE_DIR) + "/specs/marine_reducer.gbx");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  Fixture f;
+  f.c = driver::compileText("marine_reducer.gbx", ss.str());
+  const ir::Gearbox& g = f.c->program.gearboxes[0];
+  f.model = std::make_unique<rt::Model>(f.c->program, g);
+  f.design = std::make_unique<rt::Assignment>(*f.model);
+  f.scene = &g.scenes[0];
+  return f;
+}
+
+// rms(acceleration) over the scene's recorded window, and the cost.
+double rmsAcceleration(const MeshScene& ms, const std::string& method, double rtol, Stats* stats) {
+  MeshModel model(ms.params, ms.effects);
+  Accuracy acc = ms.accuracy;
+  acc.method = method;
+  acc.rtol = rtol;
+  acc.atol = 0;
+  Integrator integ(model.system(), acc);
+  std::vector<double> y = model.initialState();
+  double t = 0, sum = 0;
+  long n = 0;
+  integ.advance(t, y, ms.plan.end, ms.plan.samples, [&](double ts, const double* ys) {
+    double a = model.signals(ts, ys).acceleration;
+    sum += a * a;
+    ++n;
+  });
+  if (stats) *stats = integ.stats();
+  return std::sqrt(sum / static_cast<double>(n));
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  std::string what = argc > 1 ? argv[1] : "wp";
+  Fixture f = load();
+  MeshScene ms = meshScene(*f.model, *f.design, *f.scene);
+  if (what == "params") {
+    const auto& p = ms.params;
+    MeshModel model(p, ms.effects);
+    std::string a, b;
+    for (size_t k = 0; k < model.series().a.size(); ++k) {
+      a += fmt::format("{}{:.17g}", k ? ", " : "", model.series().a[k]);
+      b += fmt::format("{}{:.17g}", k ? ", " : "", model.series().b[k]);
+    }
+    auto y0 = model.initialState();
+    double reference = rmsAcceleration(ms, "rk8pd", 1e-14, nullptr);
+    std::ofstream(argv[2]) << fmt::format(
+        "{{\"m\": {:.17g}, \"k\": {:.17g}, \"c\": {:.17g}, \"F0\": {:.17g}, \"z\": {:.17g}, \"omega\": {:.17g}, \"a\": [{}], \"b\": [{}], "
+        "\"te_mean\": {:.17g}, \"te_amp\": {:.17g}, \"te_phase\": {:.17g}, \"x0\": {:.17g}, \"t_end\": {:.17g}, \"samples\": [{:.17g}, {:.17g}, {}], "
+        "\"scale\": [{:.17g}, {:.17g}], \"max_step\": {:.17g}, \"reference\": {:.17g}}}\n",
+        p.mass, p.meanStiffness, model.dampingCoefficient(), p.staticLoad, p.teethDriver, p.drive.speed0, a, b, ms.effects.teMean,
+        ms.effects.teAmplitude, ms.effects.tePhase, y0[0], ms.plan.end, ms.plan.samples.front(), ms.plan.dt, ms.plan.samples.size(),
+        model.system().scale[0], model.system().scale[1], ms.accuracy.maxStep, reference);
+    return 0;
+  }
+  if (what == "wp") {
+    double reference = rmsAcceleration(ms, "rk8pd", 1e-14, nullptr);
+    for (const char* method : {"rk8pd", "rkf45"})
+      for (double rtol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12}) {
+        if (std::string(method) == "rkf45" && rtol < 1e-10) continue;
+        std::vector<double> cpu;
+        Stats st;
+        double v = 0;
+        for (int rep = 0; rep < 5; ++rep) {
+          double t0 = threadCpuSeconds();
+          v = rmsAcceleration(ms, method, rtol, &st);
+          cpu.push_back(threadCpuSeconds() - t0);
+        }
+        std::sort(cpu.begin(), cpu.end());
+        std::printf("%s %.0e %.6e %.6e %ld\n", method, rtol, std::fabs(v - reference) / reference, cpu[2], st.rhsEvaluations);
+      }
+    return 0;
+  }
+  if (what == "rhs") {
+    struct Case {
+      const char* name;
+      MeshEffects e;
+    };
+    MeshEffects base;
+    MeshEffects vs = base;
+    vs.varyingStiffness = true;
+    vs.harmonics = 5;
+    MeshEffects vsd = vs;
+    vsd.damping = true;
+    vsd.dampingRatio = 0.07;
+    MeshEffects all = vsd;
+    all.transmissionError = true;
+    all.teAmplitude = 11e-6;
+    MeshEffects bl = all;
+    bl.backlash = true;
+    bl.clearance = 200e-6;
+    std::vector<Case> cases = {{"base (mean stiffness, static load)", base},
+                               {"+ varying_stiffness (5 harmonics)", vs},
+                               {"+ damping", vsd},
+                               {"+ transmission_error (the scene)", all},
+                               {"+ backlash", bl}};
+    for (const auto& c : cases) {
+      MeshModel model(ms.params, c.e);
+      auto y = model.initialState();
+      std::vector<double> d(y.size());
+      const long n = 5000000;
+      double sink = 0;
+      auto t0 = std::chrono::steady_clock::now();
+      for (long i = 0; i < n; ++i) {
+        model.system().rhs(1e-6 * static_cast<double>(i % 1000), y.data(), d.data());
+        sink += d[1];
+      }
+      double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("%s|%.1f|%g\n", c.name, dt / n * 1e9, sink * 0);
+    }
+    return 0;
+  }
+  return 2;
+}
