@@ -15,6 +15,8 @@
 #include "report/Report.h"
 #include "report/Svg.h"
 #include "study/WorkPrecision.h"
+#include "study/Sweep.h"
+#include "modification/Modify.h"
 #include "search/Search.h"
 #include "units/Unit.h"
 
@@ -51,6 +53,9 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
     // A catalogue quantity is monotone in each freedom: its corners give its exact image.
     c.exact = columnExprs[i]->op == ir::Op::Quantity || columnExprs[i]->isConst();
     auto u = units::displayUnitFor(columnExprs[i]->type.dim);
+    // Imbalances read best in percent.
+    const std::string& q = columnExprs[i]->name;
+    if (columnExprs[i]->op == ir::Op::Quantity && q.size() > 10 && q.compare(q.size() - 10, 10, ".imbalance") == 0) u = {"%", 0.01};
     c.unit = u.name;
     c.scale = u.scale;
     g.columns.push_back(c);
@@ -223,7 +228,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     }
     GearboxReport rep = reportOf(m, r, cols, names);
     // Scenes and studies run on the best design.
-    if (!r.designs.empty() && (!gb.scenes.empty() || !gb.studies.empty())) {
+    if (!r.designs.empty() && (!gb.scenes.empty() || !gb.studies.empty() || !gb.modifies.empty())) {
       Assignment best(m);
       best.choice = r.designs[0].choice;
       std::map<std::string, dyn::SceneResult> results;
@@ -249,9 +254,39 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
           c.text = formatNumber(n->value / rep.columns[i].scale);
         }
       }
+      for (const auto& md : gb.modifies) {
+        ModifyReport mr;
+        mr.stage = md.stage;
+        for (const auto& out : evaluateModify(m, best, md)) {
+          ModRow row;
+          row.target = out.target;
+          row.text = out.text;
+          row.present = out.present;
+          row.error = out.error;
+          if (out.value) {
+            row.valid = true;
+            row.si = *out.value;
+            row.shown = formatLength(*out.value);
+          }
+          if (!out.condition.empty()) row.condition = out.condition;
+          for (const auto& in : out.inputs) {
+            auto u = units::displayUnitFor(in.dim);
+            std::string v = in.dim == units::dims::length ? formatLength(in.value)
+                                                          : formatNumber(in.value / u.scale) + (u.name.empty() ? "" : " " + u.name);
+            row.inputs.push_back(fmt::format("{} = {}{}", in.name, v, in.given ? " (given)" : ""));
+            row.inputsSI.emplace_back(in.name, in.value);
+          }
+          if (!row.error.empty()) {
+            err << fmt::format("gbxc: gearbox `{}`: modify {}: `{}`: {}\n", gb.name, md.stage, row.target, row.error);
+            status = 3;
+          }
+          mr.rows.push_back(std::move(row));
+        }
+        rep.modifications.push_back(std::move(mr));
+      }
       for (const auto& st : gb.studies) {
-        if (st.kind != ir::Study::WorkPrecision) {
-          rep.notes.push_back(fmt::format("study `{}`: sweeps are not computed by this build", st.name));
+        if (st.kind == ir::Study::Sweep) {
+          rep.studies.push_back(sweep(m, best, st, o.outDir, fileSafe(gb.name)));
           continue;
         }
         const ir::Scene* scene = nullptr;

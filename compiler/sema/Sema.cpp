@@ -1079,6 +1079,7 @@ private:
       else if (!r.value->type.isError() && (!r.value->type.isNumber() || r.value->type.dim != units::dims::length))
         diags_.error("E0302", r.value->span,
                      fmt::format("unit mismatch: `{}` is a length (µm or mm), got {}", r.target, describe(r.value->type)));
+      missingInputs(*stage, r, b);
       if (b.when) {
         r.when = checker_.check(b.when.get(), s);
         if (!r.when->type.isError() && r.when->type.kind != Type::Bool)
@@ -1087,6 +1088,37 @@ private:
       out.rules.push_back(std::move(r));
     }
     return out;
+  }
+
+  // A built-in quantity a rule reads must be given or computable from what the stage
+  // gives; say which inputs are missing at check time rather than fail at run time.
+  void missingInputs(const StageModel& stage, const ir::ModRule& r, const Stmt& b) {
+    if (!r.value || !stage.kind || !r.value->type.isNumber()) return;  // a rule already in error says enough
+    auto has = [&](const std::string& a) { return stage.findAttr(a) != nullptr; };
+    std::set<std::string> reported;
+    walk(*r.value, [&](const ir::Expr& e) {
+      if (e.op != Op::Quantity) return;
+      std::string rest = e.name.substr(e.name.find('.') + 1);
+      std::vector<std::string> names;
+      if (e.type.kind == Type::PerGear)
+        for (const auto& g : stage.kind->gears) names.push_back(g + "." + rest);
+      else
+        names.push_back(rest);
+      for (const auto& n : names) {
+        auto dot = n.find('.');
+        std::string gear = dot == std::string::npos ? "" : n.substr(0, dot), q = dot == std::string::npos ? n : n.substr(dot + 1);
+        std::string need;
+        if (q == "bending_deflection" && !has(n) && !(has(gear + ".bearing_span") && has(gear + ".shaft_diameter")))
+          need = fmt::format("give `{}`, or `{}.bearing_span` and `{}.shaft_diameter` for the beam model", n, gear, gear);
+        else if ((q == "pitch_deviation" || q == "profile_deviation") && !gear.empty() && !has(n) && !has("accuracy"))
+          need = fmt::format("give `{}`, or the stage's `accuracy` grade for the ISO 1328-1 tolerance", n);
+        else if ((q == "torsion_deflection" || q == "load_deflection") && !has(n) && !has("face_width"))
+          need = fmt::format("the stage gives no `face_width`");
+        if (need.empty() || !reported.insert(n).second) continue;
+        diags_.error("E0233", b.value ? b.value->span : b.span,
+                     fmt::format("`{}` needs `{}`, which cannot be computed: {}", r.target, n, need));
+      }
+    });
   }
 
   ir::Split split(const Stmt& st, const GearboxModel& m, const Scope& gs) {

@@ -9,6 +9,7 @@
 #include "dynamics/MeshModel.h"
 #include "dynamics/Planetary.h"
 #include "dynamics/SceneSupport.h"
+#include "kinematics/Standards.h"
 #include "report/Report.h"
 
 namespace gbx::rt::dyn {
@@ -47,18 +48,6 @@ double inertiaOf(const Evaluator& ev, int st, const Assignment& a, const std::st
   double J = 0.5 * density * M_PI * b * r * r * r * r;
   prov.push_back(fmt::format("{} inertia {:.6g} kg*m^2 (solid cylinder, d = {:.1f} mm, b = {:.1f} mm)", gear, J, d * 1e3, b * 1e3));
   return J;
-}
-
-// ISO 6336-1 method B: theoretical single-pair stiffness of solid spur gears on the
-// standard basic rack, c' = c'th CM CR CB cos(beta), and the mesh stiffness
-// c_gamma_alpha = c' (0.75 eps_alpha + 0.25), both per unit face width.
-double isoMeshStiffness(double z1, double z2, double x1, double x2, double beta, double epsAlpha) {
-  double zn1 = z1 / std::pow(std::cos(beta), 3), zn2 = z2 / std::pow(std::cos(beta), 3);
-  double q = 0.04723 + 0.15551 / zn1 + 0.25791 / zn2 - 0.00635 * x1 - 0.11654 * x1 / zn1 - 0.00193 * x2 -
-             0.24188 * x2 / zn2 + 0.00529 * x1 * x1 + 0.00182 * x2 * x2;  // mm*um/N
-  double cth = 1.0 / q;                                                    // N/(mm*um)
-  double cprime = cth * 0.8 * 1.0 * 1.0 * std::cos(beta);
-  return cprime * (0.75 * epsAlpha + 0.25) * 1e9;  // N/m per m of face width
 }
 
 struct Elastic {
@@ -157,7 +146,7 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
   } else {
     double beta = stage.kind == ir::StageKind::Helical ? num(ev.attribute(st, "helix_angle", a), "the helix angle") : 0.0;
     Value x1 = ev.attribute(st, "pinion.shift", a), x2 = ev.attribute(st, "wheel.shift", a);
-    double cgam = isoMeshStiffness(num(ev.attribute(st, "pinion.z", a), "pinion.z"), num(ev.attribute(st, "wheel.z", a), "wheel.z"),
+    double cgam = iso::meshStiffness(num(ev.attribute(st, "pinion.z", a), "pinion.z"), num(ev.attribute(st, "wheel.z", a), "wheel.z"),
                                    x1.isNumber() ? x1.mid() : 0.0, x2.isNumber() ? x2.mid() : 0.0, beta, p.epsAlpha);
     p.meanStiffness = cgam * b;
     prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (ISO 6336-1 method B, eps_alpha {:.4f})",

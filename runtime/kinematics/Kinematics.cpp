@@ -2,6 +2,7 @@
 // frequency, and the geometry of each stage kind (DOMAIN.md §1–§4).
 #include <cmath>
 
+#include "kinematics/Standards.h"
 #include "search/Evaluator.h"
 
 namespace gbx::rt {
@@ -120,6 +121,37 @@ Value Evaluator::derived(int stage, const std::string& name, const Assignment& a
                               return p ? c.ra1 : c.ra2;
                             });
     }
+    if (cyl && (q == "pitch_deviation" || q == "profile_deviation")) {
+      // Not given: the ISO 1328-1 tolerance of the stage's accuracy grade.
+      Value grade = at("accuracy");
+      if (!grade.exact || !grade.exact->isInteger()) return Value::invalid();
+      int g = static_cast<int>(grade.exact->num());
+      bool pitch = q == "pitch_deviation";
+      return arith::corners({mn(), derived(stage, gear + ".d", a)}, [g, pitch](const V& x) {
+        return pitch ? iso::singlePitch(g, x[0], x[1]) : iso::totalProfile(g, x[0], x[1]);
+      });
+    }
+    if (cyl && q == "torsion_deflection") {
+      // Wind-up across the face of a solid gear under its torque spread evenly along the
+      // face: delta_t = T b (d/2) / (2 G Jp) = 8 T b / (pi G d^3) (DOMAIN.md §4).
+      Value G = materialProperty(stage, "shear_modulus");
+      if (!G.isNumber()) G = Value::number(80e9);
+      return arith::corners({derived(stage, gear + ".torque", a), at("face_width"), G, derived(stage, gear + ".d", a)},
+                            [](const V& x) { return 8.0 * std::fabs(x[0]) * x[1] / (M_PI * x[2] * x[3] * x[3] * x[3]); });
+    }
+    if (cyl && q == "bending_deflection") {
+      // A shaft on two bearings loaded by the normal tooth force at mid-span: the bending
+      // mismatch across the face is y(L/2) - y(L/2 - b/2), y(x) = W x (3L^2 - 4x^2) / (48 E I).
+      Value L = at(gear + ".bearing_span"), ds = at(gear + ".shaft_diameter");
+      if (!L.isNumber() || !ds.isNumber()) return Value::invalid();
+      Value E = materialProperty(stage, "youngs_modulus");
+      if (!E.isNumber()) E = Value::number(206e9);
+      return arith::corners({derived(stage, "tangential_force", a), at("pressure_angle"), L, ds, at("face_width"), E}, [](const V& x) {
+        double W = x[0] / std::cos(x[1]), Lx = x[2], I = M_PI * std::pow(x[3], 4) / 64.0;
+        auto y = [&](double s) { return W * s * (3 * Lx * Lx - 4 * s * s) / (48.0 * x[5] * I); };
+        return y(0.5 * Lx) - y(0.5 * Lx - 0.5 * std::min(x[4], Lx));
+      });
+    }
     if (q == "cone_angle" && kind == ir::StageKind::Bevel) {
       bool p = gear == "pinion";
       return arith::corners({at("pinion.z"), at("wheel.z"), at("shaft_angle")}, [p](const V& x) {
@@ -161,6 +193,11 @@ Value Evaluator::derived(int stage, const std::string& name, const Assignment& a
     return arith::mul(derived(stage, "input_speed", a), arith::mul(derived(stage, "pinion.d", a), Value::rational(Rational::make(1, 2))));
   if (name == "tangential_force")
     return arith::div(derived(stage, "input_torque", a), arith::mul(derived(stage, "pinion.d", a), Value::rational(Rational::make(1, 2))));
+  if (name == "mesh_stiffness") {
+    // Not given: ISO 6336-1 method B.
+    return arith::corners({at("pinion.z"), at("wheel.z"), orZero("pinion.shift"), orZero("wheel.shift"), beta(), derived(stage, "eps_alpha", a)},
+                          [](const V& x) { return iso::meshStiffness(x[0], x[1], x[2], x[3], x[4], x[5]); });
+  }
   if (name == "load_deflection")
     return arith::div(arith::div(derived(stage, "tangential_force", a), at("face_width")), at("mesh_stiffness"));
   if (name == "eps_beta")

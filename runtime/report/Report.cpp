@@ -16,6 +16,12 @@ std::string formatNumber(double v) {
   return s == "-0.0000" ? "0.0000" : s;
 }
 
+std::string formatLength(double m) {
+  if (!std::isfinite(m)) return "n/a";
+  if (std::fabs(m) < 1e-3) return fmt::format("{:.2f} um", m * 1e6);
+  return fmt::format("{:.2f} mm", m * 1e3);
+}
+
 namespace {
 
 std::string ratioText(const Rational& r) { return formatNumber(r.toDouble()) + " (" + r.str() + ")"; }
@@ -81,6 +87,16 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
       if (!c.exact) o += "  note: intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images\n";
     for (const auto& n : g.notes) o += "  note: " + n + "\n";
     if (g.undecided) o += "  ? = feasibility undecided at the freedom resolution (kept, not proven)\n";
+    for (const auto& md : g.modifications) {
+      o += fmt::format("  modify {} (design 1)\n", md.stage);
+      for (const auto& r : md.rows) {
+        if (!r.error.empty()) o += fmt::format("    {}: not computed: {}\n", r.target, r.error);
+        else if (!r.present) o += fmt::format("    {}: absent (not {})\n", r.target, r.condition);
+        else o += fmt::format("    {} = {}{}\n", r.target, r.shown, r.condition.empty() ? "" : fmt::format(" (as {})", r.condition));
+        o += fmt::format("      rule: {}\n", r.text);
+        for (const auto& in : r.inputs) o += "      input: " + in + "\n";
+      }
+    }
     for (const auto& sc : g.scenes) {
       o += fmt::format("  scene {} on {} (design 1)\n", sc.name, sc.target.empty() ? g.name : sc.target);
       if (!sc.failure.empty()) {
@@ -212,7 +228,24 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
       o += "]}";
     }
     o += g.scenes.empty() ? "}, " : "\n   }, ";
-    o += "\"modifications\": {}, \"studies\": {";
+    o += "\"modifications\": {";
+    for (size_t mi = 0; mi < g.modifications.size(); ++mi) {
+      const auto& md = g.modifications[mi];
+      o += fmt::format("{}\n    \"{}\": [", mi ? "," : "", jsonEscape(md.stage));
+      for (size_t ri = 0; ri < md.rows.size(); ++ri) {
+        const auto& r = md.rows[ri];
+        o += fmt::format("{}\n      {{\"target\": \"{}\", \"present\": {}, \"value\": {}, \"rule\": \"{}\", \"inputs\": {{", ri ? "," : "",
+                         jsonEscape(r.target), r.present ? "true" : "false", r.present && r.valid ? num(r.si) : "null", jsonEscape(r.text));
+        for (size_t i = 0; i < r.inputsSI.size(); ++i)
+          o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(r.inputsSI[i].first), num(r.inputsSI[i].second));
+        o += "}";
+        if (!r.error.empty()) o += fmt::format(", \"error\": \"{}\"", jsonEscape(r.error));
+        o += "}";
+      }
+      o += "]";
+    }
+    o += g.modifications.empty() ? "}, " : "\n   }, ";
+    o += "\"studies\": {";
     for (size_t si = 0; si < g.studies.size(); ++si)
       o += fmt::format("{}\n    \"{}\": {}", si ? "," : "", jsonEscape(g.studies[si].name), g.studies[si].json);
     o += g.studies.empty() ? "}}" : "\n   }}";

@@ -67,6 +67,21 @@ struct StudyReport {
   std::vector<std::string> notes, files;
 };
 
+struct ModRow {
+  std::string target, text, condition;
+  bool present = true, valid = false;
+  double si = 0;
+  std::string shown;                   // value in its display unit
+  std::vector<std::string> inputs;     // "hs.load_deflection 19.04 um"
+  std::vector<std::pair<std::string, double>> inputsSI;
+  std::string error;
+};
+
+struct ModifyReport {
+  std::string stage;
+  std::vector<ModRow> rows;
+};
+
 struct GearboxReport {
   std::string name;
   unsigned long long count = 0;
@@ -78,6 +93,7 @@ struct GearboxReport {
   std::vector<std::string> notes;
   std::vector<SceneReport> scenes;
   std::vector<StudyReport> studies;
+  std::vector<ModifyReport> modifications;
 };
 
 struct RenderOptions {
@@ -85,6 +101,8 @@ struct RenderOptions {
 };
 
 std::string formatNumber(double v);
+// A length as a gear engineer reads it: um below a millimetre, mm above.
+std::string formatLength(double metres);
 std::string renderText(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderJson(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderCsv(const std::vector<GearboxReport>& r);

@@ -1,7 +1,10 @@
 #include "search/Evaluator.h"
 
+#include "loadshare/LoadShare.h"
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 namespace gbx::rt {
@@ -202,11 +205,13 @@ Value Evaluator::eval(const ir::Expr& e, const Assignment& a) const {
 }
 
 Value Evaluator::call(const ir::Expr& e, const Assignment& a) const {
+  const std::string& f = e.name;
+  if ((f == "mean" || f == "min" || f == "max") && e.args.size() == 1 && e.args[0]->type.kind == ir::Type::PerGear)
+    return perGearReduce(e, a, f);
   std::vector<Value> v;
   for (const auto& x : e.args) v.push_back(eval(*x, a));
   for (const auto& x : v)
     if (x.kind == Value::Invalid) return Value::invalid();
-  const std::string& f = e.name;
   auto integerOf = [](const Value& x, long long& out) {
     if (!x.exact || !x.exact->isInteger()) return false;
     out = static_cast<long long>(x.exact->num());
@@ -226,6 +231,7 @@ Value Evaluator::call(const ir::Expr& e, const Assignment& a) const {
     return Value::range(0, std::max(-x.lo, x.hi));
   }
   if (f == "min" || f == "max") {
+    if (v.size() == 1 && e.args[0]->type.kind == ir::Type::PerGear) return perGearReduce(e, a, f);
     if (v.size() == 1) return v[0];
     Value best = v[0];
     for (size_t i = 1; i < v.size(); ++i) {
@@ -242,6 +248,7 @@ Value Evaluator::call(const ir::Expr& e, const Assignment& a) const {
   }
   if (f == "mean") {
     Value s = v[0];
+    if (v.size() == 1 && e.args[0]->type.kind == ir::Type::PerGear) return perGearReduce(e, a, "mean");
     for (size_t i = 1; i < v.size(); ++i) s = arith::add(s, v[i]);
     return arith::div(s, Value::rational(Rational(static_cast<std::int64_t>(v.size()))));
   }
@@ -309,17 +316,41 @@ Value Evaluator::call(const ir::Expr& e, const Assignment& a) const {
   return Value::invalid();
 }
 
+const Value* Evaluator::overridden(const std::string& path) const {
+  auto it = overrides_.find(path);
+  return it == overrides_.end() ? nullptr : &it->second;
+}
+
 Value Evaluator::quantity(const std::string& path, const Assignment& a) const {
+  if (const Value* v = overridden(path)) return *v;
   auto dot = path.find('.');
   if (dot == std::string::npos) return gearboxQuantity(path, a);
   int st = m_.stageIndex(path.substr(0, dot));
-  if (st < 0) return Value::invalid();  // split outputs and materials: not search quantities
+  if (st < 0) {
+    // A split: its settings and its results.
+    std::string owner = path.substr(0, dot), rest = path.substr(dot + 1);
+    for (const auto& sp : m_.gearbox.splits) {
+      if (sp.name != owner) continue;
+      if (const ir::Setting* s = ir::findSetting(sp.settings, rest)) return s->value ? constant(*s->value) : Value::invalid();
+      if (rest == "install") return Value::invalid();
+      auto r = computeSplit(*this, sp, a);
+      if (!r) return Value::invalid();
+      if (rest == "twist") return Value::number(r->twist);
+      if (rest == "displacement") return Value::number(r->displacement);
+      if (rest == "imbalance") return Value::number(r->imbalance);
+      if (rest == "branch_torque") return Value::number(r->branchTorque);
+      if (rest == "preload_displacement") return Value::number(r->preloadDisplacement);
+    }
+    return Value::invalid();  // materials: not search quantities
+  }
   std::string rest = path.substr(dot + 1);
   if (m_.attribute(st, rest) || m_.slotOf(st, rest) >= 0) return attribute(st, rest, a);
   return derived(st, rest, a);
 }
 
 Value Evaluator::attribute(int stage, const std::string& name, const Assignment& a) const {
+  if (!overrides_.empty())
+    if (const Value* v = overridden(m_.stages[static_cast<size_t>(stage)].ir->name + "." + name)) return *v;
   int s = m_.slotOf(stage, name);
   if (s >= 0) {
     int c = a.choice[static_cast<size_t>(s)];
@@ -348,6 +379,47 @@ Value Evaluator::ratioProduct(int from, int to, const Assignment& a) const {
   return r;
 }
 
+// A per-gear expression (`pitch_deviation`, `bending_deflection + torsion_deflection`)
+// evaluated for one gear: its per-gear quantities name that gear.
+Value Evaluator::perGear(const ir::Expr& e, const std::string& gear, const Assignment& a) const {
+  if (e.op == ir::Op::Quantity && e.type.kind == ir::Type::PerGear) {
+    auto dot = e.name.find('.');
+    return quantity(e.name.substr(0, dot) + "." + gear + e.name.substr(dot), a);
+  }
+  if (e.type.kind != ir::Type::PerGear) return eval(e, a);
+  switch (e.op) {
+  case ir::Op::Add: return arith::add(perGear(*e.args[0], gear, a), perGear(*e.args[1], gear, a));
+  case ir::Op::Sub: return arith::sub(perGear(*e.args[0], gear, a), perGear(*e.args[1], gear, a));
+  default: return Value::invalid();
+  }
+}
+
+Value Evaluator::perGearReduce(const ir::Expr& call, const Assignment& a, const std::string& f) const {
+  // The stage of the quantity: the first part of any per-gear name inside.
+  std::string stage;
+  std::function<void(const ir::Expr&)> find = [&](const ir::Expr& x) {
+    if (x.op == ir::Op::Quantity && x.type.kind == ir::Type::PerGear && stage.empty()) stage = x.name.substr(0, x.name.find('.'));
+    for (const auto& c : x.args)
+      if (c) find(*c);
+  };
+  find(*call.args[0]);
+  int st = m_.stageIndex(stage);
+  if (st < 0) return Value::invalid();
+  std::vector<Value> vals;
+  for (const auto& g : m_.stages[static_cast<size_t>(st)].ir->gears) {
+    vals.push_back(perGear(*call.args[0], g, a));
+    if (!vals.back().isNumber()) return Value::invalid();
+  }
+  Value out = vals[0];
+  for (size_t i = 1; i < vals.size(); ++i) {
+    if (f == "mean") out = arith::add(out, vals[i]);
+    else if (f == "max") out = arith::less(out, vals[i], false) == Truth::True ? vals[i] : out;
+    else out = arith::less(vals[i], out, false) == Truth::True ? vals[i] : out;
+  }
+  if (f == "mean") out = arith::div(out, Value::rational(Rational(static_cast<std::int64_t>(vals.size()))));
+  return out;
+}
+
 Value Evaluator::gearboxQuantity(const std::string& name, const Assignment& a) const {
   int n = static_cast<int>(m_.stages.size());
   if (name == "ratio") {
@@ -356,7 +428,12 @@ Value Evaluator::gearboxQuantity(const std::string& name, const Assignment& a) c
     return ratioProduct(0, n, a);
   }
   Value total = ratioProduct(0, n, a);
+  // A swept load (power, input or output torque) replaces whichever load `operating` gives.
+  bool loadSwept = overridden("power") || overridden("input_torque") || overridden("output_torque");
   auto op = [&](const char* k) -> std::optional<Value> {
+    if (const Value* v = overridden(k)) return *v;
+    std::string key = k;
+    if (loadSwept && (key == "power" || key == "input_torque" || key == "output_torque")) return std::nullopt;
     if (auto v = m_.operating(k)) return Value::number(*v);
     return std::nullopt;
   };

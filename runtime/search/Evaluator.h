@@ -2,6 +2,7 @@
 // Evaluates IR expressions at an assignment: exactly where the inputs are exact
 // (tooth counts, decimal literals), in doubles where a formula needs them, and as
 // outward-rounded enclosures where continuous freedoms span an interval.
+#include <map>
 #include <string>
 
 #include "ir/Ir.h"
@@ -27,10 +28,18 @@ public:
 
   const Model& model() const { return m_; }
 
+  // A sweep's value for a fixed quantity: an operating value (`power`), a stage attribute
+  // (`main.face_width`) or a split setting (`sharing.torsion_shaft.diameter`).
+  void setOverride(const std::string& path, Value v) { overrides_[path] = v; }
+
 private:
+  const Value* overridden(const std::string& path) const;
+  Value perGear(const ir::Expr& e, const std::string& gear, const Assignment& a) const;
+  Value perGearReduce(const ir::Expr& call, const Assignment& a, const std::string& f) const;
   Value call(const ir::Expr& e, const Assignment& a) const;
   Value materialProperty(int stage, const std::string& prop) const;
   const Model& m_;
+  std::map<std::string, Value> overrides_;
   mutable int depth_ = 0;
 };
 

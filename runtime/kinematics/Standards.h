@@ -1,0 +1,19 @@
+#pragma once
+// Formulas of the gear standards gbxc uses, in SI in and out.
+namespace gbx::rt::iso {
+
+// ISO 1328-1:1995, tolerances for accuracy grade Q, normal module mn and reference
+// diameter d (and face width b for the helix): the grade-5 formula times sqrt(2)^(Q - 5).
+double singlePitch(int grade, double mn, double d);       // f_pt
+double totalProfile(int grade, double mn, double d);      // F_alpha
+double profileForm(int grade, double mn, double d);       // f_f_alpha
+double profileSlope(int grade, double mn, double d);      // f_H_alpha
+double totalHelix(int grade, double d, double b);         // F_beta
+double totalCumulativePitch(int grade, double mn, double d);  // F_p
+
+// ISO 6336-1 method B: mesh stiffness per unit face width c_gamma_alpha (N/m per m) of
+// solid gears on the standard basic rack: c'th from the q' polynomial,
+// c' = 0.8 c'th cos(beta), c_gamma_alpha = c' (0.75 eps_alpha + 0.25).
+double meshStiffness(double z1, double z2, double x1, double x2, double beta, double epsAlpha);
+
+} // namespace gbx::rt::iso
