@@ -169,7 +169,8 @@ gearbox G {
 TEST(Sema, ModifyRulesResolveBuiltinsPerGear) {
   auto c = compile(R"(
 gearbox T {
-  stage hs: helical { pinion.z = 33; wheel.z = 103; normal_module = 6.5 mm; helix_angle = 10.8 deg; face_width = 225 mm; }
+  stage hs: helical { pinion.z = 33; wheel.z = 103; normal_module = 6.5 mm; helix_angle = 10.8 deg; face_width = 225 mm;
+                      accuracy = 4; pinion.bending_deflection = 2 um; }
   operating { power = 7500 kW; input_speed = 9364 rpm; }
   modify hs {
     tip_relief = round(load_deflection + mean(pitch_deviation), 10 um);
