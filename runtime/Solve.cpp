@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <cctype>
@@ -17,6 +18,8 @@
 #include "study/WorkPrecision.h"
 #include "study/Sweep.h"
 #include "modification/Modify.h"
+#include "optimise/Optimise.h"
+#include "search/Evaluator.h"
 #include "search/Search.h"
 #include "units/Unit.h"
 
@@ -27,8 +30,14 @@ namespace {
 constexpr long long kDefaultTop = 50;
 
 GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<const ir::Expr*>& columnExprs,
-                       const std::vector<std::string>& columnNames) {
+                       const std::vector<std::string>& columnNames, const std::vector<std::vector<double>>& freedoms = {},
+                       const Model* baseline = nullptr, const Assignment* baseDesign = nullptr) {
   Evaluator ev(m);
+  if (!freedoms.empty()) {
+    // Optimised designs: scene results and relative values at the scenes' own accuracy.
+    const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, "rtol");
+    installHooks(ev, m, baseline, baseDesign, own && own->value ? own->value->toDouble() : 1e-9);
+  }
   GearboxReport g;
   g.name = m.gearbox.name;
   g.count = r.count;
@@ -68,6 +77,14 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
     row.undecided = d.undecided;
     Assignment a(m);
     a.choice = d.choice;
+    size_t ri = static_cast<size_t>(row.rank - 1);
+    if (ri < freedoms.size())
+      for (size_t f = 0; f < freedoms[ri].size(); ++f) {
+        a.box[f] = {freedoms[ri][f], freedoms[ri][f]};
+        const ir::Attribute* at = m.attribute(m.freedoms[f].stage, m.freedoms[f].attr);
+        auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
+        row.choices.emplace_back(m.freedoms[f].path, formatNumber(freedoms[ri][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
+      }
     for (size_t s = 0; s < m.stages.size(); ++s) {
       const ir::Stage& st = *m.stages[s].ir;
       for (const auto& gear : st.gears) {
@@ -206,6 +223,11 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
                            std::string(static_cast<size_t>(30 - filled), '.'), f * 100)
             << (f >= 1.0 ? "\r\033[K" : "") << std::flush;
       };
+    bool optimising = needsOptimiser(gb);
+    if (optimising) {
+      so.deferDynamics = true;
+      so.top = std::nullopt;
+    }
     SearchResult r = search(m, so);
     if (!r.errors.empty()) {
       for (const auto& e : r.errors) err << fmt::format("gbxc: gearbox `{}`: {}\n", gb.name, e);
@@ -226,11 +248,127 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
         names.push_back(ob.text);
       }
     }
-    GearboxReport rep = reportOf(m, r, cols, names);
+    // Objectives over scene results or a baseline: optimise every candidate's freedoms.
+    std::unique_ptr<Model> baseModel;
+    std::unique_ptr<Assignment> baseDesign;
+    std::vector<std::string> optLines, optTimings;
+    std::string optJson;
+    std::vector<std::vector<double>> optimumFreedoms;
+    if (optimising) {
+      for (const auto& other : program.gearboxes)
+        if (other.name == gb.baseline) {
+          baseModel = std::make_unique<Model>(program, other);
+          SearchOptions bo;
+          bo.top = 1;
+          bo.deferDynamics = true;
+          auto br = search(*baseModel, bo);
+          if (!br.designs.empty()) {
+            baseDesign = std::make_unique<Assignment>(*baseModel);
+            baseDesign->choice = br.designs[0].choice;
+          }
+        }
+      OptimiseOptions oo;
+      oo.jobs = o.jobs;
+      if (!o.quiet && isatty(STDERR_FILENO))
+        oo.progress = [&err, name = gb.name](double f) {
+          int filled = static_cast<int>(f * 30);
+          err << fmt::format("\r  {} optimising [{}{}] {:3.0f}%", name, std::string(static_cast<size_t>(filled), '#'),
+                             std::string(static_cast<size_t>(30 - filled), '.'), f * 100)
+              << (f >= 1.0 ? "\r\033[K" : "") << std::flush;
+        };
+      auto wall0 = std::chrono::steady_clock::now();
+      OptimiseResult opt = optimise(m, baseModel.get(), baseDesign.get(), r.designs, oo);
+      double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+      // The ranked optima become the design list.
+      size_t keep = gb.report && gb.report->top ? static_cast<size_t>(*gb.report->top) : 10;
+      r.count = opt.ranked.size();
+      r.designs.clear();
+      for (size_t i = 0; i < opt.ranked.size() && i < keep; ++i) {
+        Design d;
+        d.choice = opt.ranked[i].choice;
+        d.ratio = opt.ranked[i].ratio;
+        d.keys = {opt.ranked[i].objective};
+        r.designs.push_back(d);
+        optimumFreedoms.push_back(opt.ranked[i].freedoms);
+      }
+      optLines.push_back(fmt::format("optimisation: {} candidates, {} with no feasible freedoms; {} objective evaluations (scenes at rtol {:.0e})",
+                                     opt.ranked.size() + opt.infeasible, opt.infeasible, opt.evaluations, oo.sceneRtol));
+      optLines.push_back("  method: Nelder-Mead (GSL nmsimplex2) over the freedoms of each candidate; bounds by x = lo + (hi - lo) sin^2(u);");
+      optLines.push_back("          rules by an exterior penalty (a violated rule costs 1000 (1 + relative violation)); best optimum kept");
+      std::string json = fmt::format(R"({{"candidates": {}, "infeasible": {}, "evaluations": {}, "scene_rtol": {}, )", opt.ranked.size() + opt.infeasible,
+                                     opt.infeasible, opt.evaluations, oo.sceneRtol);
+      if (!opt.ranked.empty()) {
+        const auto& best = opt.ranked[0];
+        std::string vars;
+        for (size_t f = 0; f < m.freedoms.size() && f < best.freedoms.size(); ++f) {
+          const ir::Attribute* at = m.attribute(m.freedoms[f].stage, m.freedoms[f].attr);
+          auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
+          vars += fmt::format("{}{} = {}{}", vars.empty() ? "" : ", ", m.freedoms[f].path, formatNumber(best.freedoms[f] / u.scale),
+                              u.name.empty() ? "" : " " + u.name);
+        }
+        optLines.push_back(fmt::format("  optimum: ratio {}, {}; objective {}", best.ratio.str(), vars, formatNumber(best.objective)));
+        json += fmt::format(R"("objective": {}, "terms": {{)", best.objective);
+        for (size_t t = 0; t < opt.termNames.size() && t < best.terms.size(); ++t) {
+          double rel = best.terms[t] / opt.baselineTerms[t];
+          optLines.push_back(fmt::format("  {}: {} against the baseline's {}: {:+.1f} %", opt.termNames[t], formatNumber(best.terms[t]),
+                                         formatNumber(opt.baselineTerms[t]), (rel - 1) * 100));
+          json += fmt::format("{}\"{}\": {{\"value\": {}, \"baseline\": {}, \"relative\": {}}}", t ? ", " : "", opt.termNames[t], best.terms[t],
+                              opt.baselineTerms[t], rel);
+        }
+        json += "}, ";
+      }
+      if (!opt.rankCheck.empty()) optLines.push_back("  ranking: " + opt.rankCheck);
+      json += fmt::format(R"("rank_check": "{}", "pareto": [)", opt.rankCheck);
+      for (size_t i = 0; i < opt.pareto.size(); ++i) json += fmt::format("{}[{}, {}]", i ? ", " : "", opt.pareto[i].first, opt.pareto[i].second);
+      json += "]}";
+      optJson = json;
+      if (opt.termNames.size() == 2) {
+        optLines.push_back(fmt::format("  Pareto front of ({}, {}) relative to the baseline, {} points:", opt.termNames[0], opt.termNames[1], opt.pareto.size()));
+        size_t stepP = std::max<size_t>(1, opt.pareto.size() / 12);
+        for (size_t i = 0; i < opt.pareto.size(); i += stepP)
+          optLines.push_back(fmt::format("    {:.4f}  {:.4f}", opt.pareto[i].first, opt.pareto[i].second));
+        if (!o.outDir.empty()) {
+          SvgChart c;
+          c.title = fmt::format("{}: objectives relative to {}", gb.name, gb.baseline);
+          c.xLabel = "relative " + opt.termNames[0];
+          c.yLabel = "relative " + opt.termNames[1];
+          SvgSeries cloud{"feasible evaluations", {}, {}, true}, front{"Pareto front", {}, {}, true}, base{"baseline", {1.0}, {1.0}, true},
+              weighted{"weighted optimum", {}, {}, true};
+          for (const auto& p : opt.cloud) {
+            cloud.x.push_back(p.first);
+            cloud.y.push_back(p.second);
+          }
+          for (const auto& p : opt.pareto) {
+            front.x.push_back(p.first);
+            front.y.push_back(p.second);
+          }
+          if (!opt.ranked.empty() && opt.ranked[0].terms.size() == 2) {
+            weighted.x.push_back(opt.ranked[0].terms[0] / opt.baselineTerms[0]);
+            weighted.y.push_back(opt.ranked[0].terms[1] / opt.baselineTerms[1]);
+          }
+          c.series = {cloud, front, base, weighted};
+          std::string text = renderSvg(c);
+          // Points only for the cloud: drop its connecting line.
+          auto pos = text.find("<polyline fill=\"none\" stroke=\"#1f77b4\"");
+          if (pos != std::string::npos) text.erase(pos, text.find("/>", pos) + 3 - pos);
+          std::string file = fileSafe(gb.name) + ".pareto.svg";
+          std::filesystem::create_directories(o.outDir);
+          std::ofstream(std::filesystem::path(o.outDir) / file) << text;
+          optLines.push_back("  wrote " + file);
+        }
+      }
+      optTimings.push_back(fmt::format("timing: optimisation {:.2f} s wall with --jobs {}", wall, o.jobs));
+    }
+    GearboxReport rep = reportOf(m, r, cols, names, optimumFreedoms, baseModel.get(), baseDesign.get());
+    rep.optimisation = optLines;
+    rep.optimisationJson = optJson;
+    rep.optimisationTimings = optTimings;
     // Scenes and studies run on the best design.
     if (!r.designs.empty() && (!gb.scenes.empty() || !gb.studies.empty() || !gb.modifies.empty())) {
       Assignment best(m);
       best.choice = r.designs[0].choice;
+      if (!optimumFreedoms.empty())
+        for (size_t f = 0; f < optimumFreedoms[0].size(); ++f) best.box[f] = {optimumFreedoms[0][f], optimumFreedoms[0][f]};
       std::map<std::string, dyn::SceneResult> results;
       for (const auto& sc : gb.scenes) {
         auto res = dyn::runScene(m, best, sc);

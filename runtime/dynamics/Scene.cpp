@@ -139,7 +139,8 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
   prov.push_back(fmt::format("equivalent mass {:.6g} kg = J1 J2 / (J2 rb1^2 + J1 rb2^2)", p.mass));
   p.epsAlpha = num(ev.derived(st, "eps_alpha", a), "the transverse contact ratio");
   p.epsBeta = stage.kind == ir::StageKind::Helical ? num(ev.derived(st, "eps_beta", a), "the overlap ratio") : 0.0;
-  Value cg = ev.attribute(st, "mesh_stiffness", a);
+  // Given when the stage sets it; the evaluator would otherwise supply ISO 6336's value.
+  Value cg = m.attribute(st, "mesh_stiffness") ? ev.attribute(st, "mesh_stiffness", a) : Value::invalid();
   if (cg.isNumber()) {
     p.meanStiffness = cg.lo * b;
     prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (given)", p.meanStiffness, cg.lo * 1e-9));

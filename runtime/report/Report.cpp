@@ -87,6 +87,9 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
       if (!c.exact) o += "  note: intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images\n";
     for (const auto& n : g.notes) o += "  note: " + n + "\n";
     if (g.undecided) o += "  ? = feasibility undecided at the freedom resolution (kept, not proven)\n";
+    for (const auto& l : g.optimisation) o += "  " + l + "\n";
+    if (ro.timings)
+      for (const auto& l : g.optimisationTimings) o += "  " + l + "\n";
     for (const auto& md : g.modifications) {
       o += fmt::format("  modify {} (design 1)\n", md.stage);
       for (const auto& r : md.rows) {
@@ -199,6 +202,7 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
                          jsonEscape(f.scope), jsonEscape(f.rule), count(f.before), count(f.removed));
     }
     o += g.funnel.empty() ? "]," : "\n   ],";
+    if (!g.optimisationJson.empty()) o += "\n   \"optimisation\": " + g.optimisationJson + ",";
     o += "\n   \"scenes\": {";
     for (size_t si = 0; si < g.scenes.size(); ++si) {
       const auto& sc = g.scenes[si];

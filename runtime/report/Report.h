@@ -94,6 +94,9 @@ struct GearboxReport {
   std::vector<SceneReport> scenes;
   std::vector<StudyReport> studies;
   std::vector<ModifyReport> modifications;
+  std::vector<std::string> optimisation;  // text lines of the optimisation summary
+  std::string optimisationJson;           // its JSON value, "" when none
+  std::vector<std::string> optimisationTimings;  // not part of golden output
 };
 
 struct RenderOptions {

@@ -200,7 +200,13 @@ Value Evaluator::eval(const ir::Expr& e, const Assignment& a) const {
     return Value::boolean(x.kind == Value::Bool ? arith::lnot(x.truth) : Truth::Unknown);
   }
   case Op::Call: return call(e, a);
-  default: return Value::invalid();  // Tol and Set stand only inside comparisons; scene outputs need dynamics
+  case Op::SceneOutput: return sceneOutput ? sceneOutput(e, a) : Value::invalid();
+  case Op::Relative: {
+    if (!baseline) return Value::invalid();
+    Value base = baseline(*e.args[0]);
+    return arith::div(arg(0), base);
+  }
+  default: return Value::invalid();  // Tol and Set stand only inside comparisons
   }
 }
 

@@ -2,6 +2,7 @@
 // Evaluates IR expressions at an assignment: exactly where the inputs are exact
 // (tooth counts, decimal literals), in doubles where a formula needs them, and as
 // outward-rounded enclosures where continuous freedoms span an interval.
+#include <functional>
 #include <map>
 #include <string>
 
@@ -31,6 +32,11 @@ public:
   // A sweep's value for a fixed quantity: an operating value (`power`), a stage attribute
   // (`main.face_width`) or a split setting (`sharing.torsion_shaft.diameter`).
   void setOverride(const std::string& path, Value v) { overrides_[path] = v; }
+
+  // Scene results (`vibration.rms(acceleration)`) and `relative(x)` need the dynamics
+  // and the baseline gearbox: the optimiser provides them.
+  std::function<Value(const ir::Expr&, const Assignment&)> sceneOutput;
+  std::function<Value(const ir::Expr&)> baseline;
 
 private:
   const Value* overridden(const std::string& path) const;

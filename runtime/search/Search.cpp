@@ -554,6 +554,20 @@ HalfList buildHalf(const std::vector<StageResult>& stages, const std::vector<std
 
 } // namespace
 
+bool needsOptimiser(const ir::Gearbox& g) {
+  bool found = false;
+  std::function<void(const ir::Expr&)> walk = [&](const ir::Expr& e) {
+    if (e.op == Op::SceneOutput || e.op == Op::Relative) found = true;
+    for (const auto& x : e.args)
+      if (x) walk(*x);
+  };
+  for (const auto& r : g.rules)
+    if (r.expr) walk(*r.expr);
+  for (const auto& o : g.objectives)
+    if (o.expr) walk(*o.expr);
+  return found;
+}
+
 SearchResult search(const Model& m, const SearchOptions& opt) {
   SearchResult res;
   Evaluator ev(m);
@@ -580,7 +594,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   std::vector<const Conjunct*> cross, global;
   for (const auto& c : conjuncts) {
     if (c.unsupported) {
-      res.errors.push_back(fmt::format("rule `{}` needs results the search does not compute (scenes, splits, baselines)", c.text));
+      if (opt.deferDynamics) res.deferred.push_back(c.text);
+      else res.errors.push_back(fmt::format("rule `{}` needs results the search does not compute (scenes, splits, baselines)", c.text));
       continue;
     }
     if (asWindow(*c.expr, window)) {
@@ -594,7 +609,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   for (const auto& o : m.gearbox.objectives) {
     Conjunct c;
     if (o.expr) dependencies(m, *o.expr, c);
-    if (c.unsupported) res.errors.push_back(fmt::format("objective `{}` needs results the search does not compute (scenes, baselines)", o.text));
+    if (c.unsupported && !opt.deferDynamics)
+      res.errors.push_back(fmt::format("objective `{}` needs results the search does not compute (scenes, baselines)", o.text));
   }
   if (!res.errors.empty()) return res;
   if (window.lo || window.hi) res.window = window.str();
@@ -743,8 +759,9 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     for (const auto& x : e.args)
       if (x) scan(*x);
   };
-  for (const auto& o : m.gearbox.objectives)
-    if (o.expr) scan(*o.expr);
+  if (!opt.deferDynamics)
+    for (const auto& o : m.gearbox.objectives)
+      if (o.expr) scan(*o.expr);
   if (opt.sortBy) scan(*opt.sortBy);
 
   auto keysOf = [&](const Assignment& a) {
@@ -754,6 +771,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       keys.push_back(v.isNumber() ? v.lo : INFINITY);
     }
     for (const auto& o : m.gearbox.objectives) {
+      if (opt.deferDynamics) break;  // ranked by the optimiser
       Value v = o.expr ? ev.eval(*o.expr, a) : Value::invalid();
       // Over a freedom the best attainable value counts: the design may choose it.
       keys.push_back(v.isNumber() ? (o.minimize ? v.lo : -v.hi) : INFINITY);

@@ -35,6 +35,9 @@ struct SearchOptions {
   // join is large (over a million left entries or rows × columns).
   std::function<void(double)> progress;
   const ir::Expr* sortBy = nullptr;  // `report { sort by … }`: ranks before the objectives
+  // Rules and objectives that need scenes or a baseline are left to the optimiser: the
+  // search then lists every design that satisfies the others, unranked.
+  bool deferDynamics = false;
 };
 
 struct SearchResult {
@@ -44,7 +47,11 @@ struct SearchResult {
   std::vector<FunnelStep> funnel;
   std::string window;                // the exact ratio window used, if any ("[579/100, 581/100]")
   std::vector<std::string> errors;   // rules or objectives the search cannot evaluate
+  std::vector<std::string> deferred; // rules left to the optimiser (deferDynamics)
 };
+
+// True when a rule or objective of the gearbox needs a scene result or `relative(…)`.
+bool needsOptimiser(const ir::Gearbox& g);
 
 SearchResult search(const Model& m, const SearchOptions& options);
 

@@ -1,0 +1,280 @@
+#include "optimise/Optimise.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include <fmt/format.h>
+#include <gsl/gsl_multimin.h>
+
+#include "dynamics/Scene.h"
+#include "search/Evaluator.h"
+
+namespace gbx::rt {
+
+namespace {
+
+// How far a rule is from holding (0 when it holds), relative to its scale.
+double violation(const Evaluator& ev, const ir::Expr& e, const Assignment& a) {
+  auto rel = [](double over, double scale) { return over > 0 ? over / std::max(std::fabs(scale), 1e-12) : 0.0; };
+  auto num = [&](const ir::Expr& x) { return ev.eval(x, a); };
+  switch (e.op) {
+  case ir::Op::And:
+  case ir::Op::Forall: {
+    double s = 0;
+    for (const auto& x : e.args) s += violation(ev, *x, a);
+    return s;
+  }
+  case ir::Op::Or: {
+    double s = INFINITY;
+    for (const auto& x : e.args) s = std::min(s, violation(ev, *x, a));
+    return s;
+  }
+  case ir::Op::Le:
+  case ir::Op::Lt: {
+    Value x = num(*e.args[0]), y = num(*e.args[1]);
+    if (!x.isNumber() || !y.isNumber()) return 1.0;
+    return rel(x.mid() - y.mid(), std::max(std::fabs(y.mid()), std::fabs(x.mid())));
+  }
+  case ir::Op::Ge:
+  case ir::Op::Gt: {
+    Value x = num(*e.args[0]), y = num(*e.args[1]);
+    if (!x.isNumber() || !y.isNumber()) return 1.0;
+    return rel(y.mid() - x.mid(), std::max(std::fabs(y.mid()), std::fabs(x.mid())));
+  }
+  default: {
+    Value t = ev.eval(e, a);
+    return t.kind == Value::Bool && t.truth == Truth::True ? 0.0 : 1.0;
+  }
+  }
+}
+
+// The quantities under `relative(…)` in the objectives, in order.
+void termsOf(const ir::Expr& e, std::vector<const ir::Expr*>& out) {
+  if (e.op == ir::Op::Relative) {
+    out.push_back(e.args[0].get());
+    return;
+  }
+  for (const auto& x : e.args)
+    if (x) termsOf(*x, out);
+}
+
+struct Task {
+  const Model* m;
+  Evaluator* ev;
+  Assignment* a;
+  std::vector<double> lo, hi;
+  const std::vector<const ir::Expr*>* terms;
+  std::vector<std::pair<std::vector<double>, std::vector<double>>> points;  // feasible: freedoms, terms
+  long evaluations = 0;
+  double bestObjective = INFINITY;
+  std::vector<double> bestFreedoms, bestTerms;
+  bool feasible = false;
+};
+
+double objectiveAt(const gsl_vector* u, void* p) {
+  auto* t = static_cast<Task*>(p);
+  size_t n = t->lo.size();
+  std::vector<double> x(n);
+  for (size_t i = 0; i < n; ++i) {
+    double s = std::sin(gsl_vector_get(u, i));
+    x[i] = t->lo[i] + (t->hi[i] - t->lo[i]) * s * s;  // bounds by transform: never outside the domain
+    t->a->box[i] = {x[i], x[i]};
+  }
+  ++t->evaluations;
+  double v = 0;
+  for (const auto& r : t->m->gearbox.rules)
+    if (r.expr) v += violation(*t->ev, *r.expr, *t->a);
+  if (v > 0) return 1e3 * (1.0 + v);  // exterior penalty: any feasible design is better
+  double f = 0;
+  for (const auto& o : t->m->gearbox.objectives) {
+    Value val = o.expr ? t->ev->eval(*o.expr, *t->a) : Value::invalid();
+    if (!val.isNumber()) return 1e3 * 2;
+    f += o.minimize ? val.mid() : -val.mid();
+  }
+  std::vector<double> terms;
+  for (const auto* e : *t->terms) terms.push_back(t->ev->eval(*e, *t->a).mid());
+  t->points.emplace_back(x, terms);
+  if (f < t->bestObjective) {
+    t->bestObjective = f;
+    t->bestFreedoms = x;
+    t->bestTerms = terms;
+    t->feasible = true;
+  }
+  return f;
+}
+
+} // namespace
+
+void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const Assignment* baseDesign, double rtol) {
+  // One scene run per design point: outputs of one scene share it.
+  auto cache = std::make_shared<std::map<std::string, dyn::SceneResult>>();
+  auto key = std::make_shared<std::vector<double>>();
+  ev.sceneOutput = [&m, rtol, cache, key](const ir::Expr& e, const Assignment& a) -> Value {
+    std::vector<double> k;
+    for (int c : a.choice) k.push_back(c);
+    for (const auto& b : a.box) k.push_back(b.first);
+    if (k != *key) {
+      cache->clear();
+      *key = k;
+    }
+    auto dot = e.name.find('.');
+    std::string scene = e.name.substr(0, dot), out = e.name.substr(dot + 1);
+    auto it = cache->find(scene);
+    if (it == cache->end()) {
+      for (const auto& sc : m.gearbox.scenes)
+        if (sc.name == scene) {
+          dyn::SceneOverrides ov;
+          ov.rtol = rtol;
+          ov.estimateError = false;
+          ov.keepSeries = false;
+          it = cache->emplace(scene, dyn::runScene(m, a, sc, ov)).first;
+        }
+      if (it == cache->end()) return Value::invalid();
+    }
+    const auto* n = it->second.find(out);
+    return n ? Value::number(n->value) : Value::invalid();
+  };
+  if (baseline && baseDesign) {
+    auto baseEval = std::make_shared<Evaluator>(*baseline);
+    installHooks(*baseEval, *baseline, nullptr, nullptr, rtol);
+    auto values = std::make_shared<std::map<std::string, Value>>();
+    auto mutex = std::make_shared<std::mutex>();
+    ev.baseline = [baseEval, baseDesign, values, mutex](const ir::Expr& e) -> Value {
+      std::lock_guard<std::mutex> lock(*mutex);
+      std::string k = ir::print(e);
+      auto it = values->find(k);
+      if (it != values->end()) return it->second;
+      Value v = baseEval->eval(e, *baseDesign);
+      values->emplace(k, v);
+      return v;
+    };
+  }
+}
+
+OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment* baseDesign, const std::vector<Design>& candidates,
+                        const OptimiseOptions& opt) {
+  OptimiseResult res;
+  double cpu0 = dyn::threadCpuSeconds();
+  std::vector<const ir::Expr*> terms;
+  for (const auto& o : m.gearbox.objectives)
+    if (o.expr) termsOf(*o.expr, terms);
+  for (const auto* t : terms) res.termNames.push_back(ir::print(*t));
+  // The baseline's values, computed once and shared by every thread.
+  Evaluator probe(m);
+  installHooks(probe, m, baseline, baseDesign, opt.sceneRtol);
+  for (const auto* t : terms) res.baselineTerms.push_back(probe.baseline ? probe.baseline(*t).mid() : NAN);
+  auto sharedBaseline = probe.baseline;
+
+  std::vector<OptCandidate> out(candidates.size());
+  std::vector<std::vector<std::pair<std::vector<double>, std::vector<double>>>> clouds(candidates.size());
+  std::atomic<size_t> next{0}, done{0};
+  auto worker = [&](int t) {
+    Evaluator ev(m);
+    installHooks(ev, m, nullptr, nullptr, opt.sceneRtol);
+    ev.baseline = sharedBaseline;
+    for (size_t i = next++; i < candidates.size(); i = next++) {
+      Assignment a(m);
+      a.choice = candidates[i].choice;
+      Task task{&m, &ev, &a, {}, {}, &terms, {}, 0, INFINITY, {}, {}, false};
+      for (const auto& f : m.freedoms) {
+        task.lo.push_back(f.lo);
+        task.hi.push_back(f.hi);
+      }
+      size_t n = task.lo.size();
+      if (n == 0) {
+        gsl_vector* u = gsl_vector_alloc(1);
+        objectiveAt(u, &task);
+        gsl_vector_free(u);
+      } else {
+        const gsl_multimin_fminimizer_type* type = gsl_multimin_fminimizer_nmsimplex2;
+        gsl_multimin_fminimizer* s = gsl_multimin_fminimizer_alloc(type, n);
+        gsl_vector* u = gsl_vector_alloc(n);
+        gsl_vector* step = gsl_vector_alloc(n);
+        gsl_vector_set_all(u, M_PI / 4);  // the middle of every domain
+        gsl_vector_set_all(step, 0.35);
+        gsl_multimin_function fn{&objectiveAt, n, &task};
+        gsl_multimin_fminimizer_set(s, &fn, u, step);
+        for (int it = 0; it < opt.maxIterations; ++it) {
+          if (gsl_multimin_fminimizer_iterate(s) != GSL_SUCCESS) break;
+          if (gsl_multimin_test_size(gsl_multimin_fminimizer_size(s), 1e-4) == GSL_SUCCESS) break;
+        }
+        gsl_vector_free(step);
+        gsl_vector_free(u);
+        gsl_multimin_fminimizer_free(s);
+      }
+      OptCandidate& c = out[i];
+      c.choice = candidates[i].choice;
+      c.ratio = candidates[i].ratio;
+      c.feasible = task.feasible;
+      c.objective = task.bestObjective;
+      c.freedoms = task.bestFreedoms;
+      c.terms = task.bestTerms;
+      c.evaluations = task.evaluations;
+      clouds[i] = std::move(task.points);
+      size_t d = ++done;
+      if (t == 0 && opt.progress) opt.progress(static_cast<double>(d) / static_cast<double>(candidates.size()));
+    }
+  };
+  int threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(candidates.size())));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker, t);
+  worker(0);
+  for (auto& th : pool) th.join();
+  if (opt.progress) opt.progress(1.0);
+
+  for (size_t i = 0; i < out.size(); ++i) {
+    res.evaluations += out[i].evaluations;
+    if (!out[i].feasible) {
+      ++res.infeasible;
+      continue;
+    }
+    res.ranked.push_back(out[i]);
+    if (res.baselineTerms.size() == 2)
+      for (const auto& [x, t] : clouds[i]) res.cloud.emplace_back(t[0] / res.baselineTerms[0], t[1] / res.baselineTerms[1]);
+  }
+  // Ties (equal objectives) fall back on the candidates' order: deterministic for any --jobs.
+  std::stable_sort(res.ranked.begin(), res.ranked.end(), [](const OptCandidate& a, const OptCandidate& b) { return a.objective < b.objective; });
+  // Pareto front of the two relative terms over every feasible evaluation.
+  std::vector<std::pair<double, double>> pts = res.cloud;
+  std::sort(pts.begin(), pts.end());
+  double best = INFINITY;
+  for (const auto& p : pts)
+    if (p.second < best) {
+      res.pareto.push_back(p);
+      best = p.second;
+    }
+  // Rank check: the best few again with the scene at its own tolerance.
+  const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, "rtol");
+  double tight = own && own->value ? own->value->toDouble() : 1e-9;
+  size_t k = std::min(opt.rankCheck, res.ranked.size());
+  if (k >= 2 && tight < opt.sceneRtol) {
+    Evaluator ev(m);
+    installHooks(ev, m, baseline, baseDesign, tight);
+    std::vector<std::pair<double, size_t>> again;
+    double worst = 0;
+    for (size_t i = 0; i < k; ++i) {
+      Assignment a(m);
+      a.choice = res.ranked[i].choice;
+      for (size_t f = 0; f < res.ranked[i].freedoms.size(); ++f) a.box[f] = {res.ranked[i].freedoms[f], res.ranked[i].freedoms[f]};
+      double f = 0;
+      for (const auto& o : m.gearbox.objectives) f += (o.minimize ? 1 : -1) * ev.eval(*o.expr, a).mid();
+      again.emplace_back(f, i);
+      worst = std::max(worst, std::fabs(f - res.ranked[i].objective) / std::max(std::fabs(f), 1e-300));
+    }
+    std::stable_sort(again.begin(), again.end());
+    bool same = true;
+    for (size_t i = 0; i < k; ++i) same = same && again[i].second == i;
+    res.rankCheck = fmt::format("the best {} keep their ranks with the scene at rtol {:.0e} (objectives within {:.1e} relative of rtol {:.0e})",
+                                k, tight, worst, opt.sceneRtol);
+    if (!same) res.rankCheck = fmt::format("the ranking of the best {} changes at rtol {:.0e}: rank by a tighter tolerance", k, tight);
+  }
+  res.cpuSeconds = dyn::threadCpuSeconds() - cpu0;
+  return res;
+}
+
+} // namespace gbx::rt

@@ -1,0 +1,91 @@
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "driver/Driver.h"
+#include "optimise/Optimise.h"
+#include "search/Evaluator.h"
+
+using namespace gbx;
+
+namespace {
+
+struct Setup {
+  std::unique_ptr<driver::Compilation> c;
+  std::unique_ptr<rt::Model> model, base;
+  std::unique_ptr<rt::Assignment> baseDesign;
+  std::vector<rt::Design> candidates;
+};
+
+Setup setup() {
+  std::ifstream in(std::string(GBX_SOURCE_DIR) + "/specs/marine_reducer.gbx", std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  Setup s;
+  s.c = driver::compileText("marine_reducer.gbx", ss.str());
+  s.base = std::make_unique<rt::Model>(s.c->program, s.c->program.gearboxes[0]);
+  s.model = std::make_unique<rt::Model>(s.c->program, s.c->program.gearboxes[1]);
+  rt::SearchOptions bo;
+  bo.deferDynamics = true;
+  auto br = rt::search(*s.base, bo);
+  s.baseDesign = std::make_unique<rt::Assignment>(*s.base);
+  s.baseDesign->choice = br.designs.at(0).choice;
+  rt::SearchOptions so;
+  so.deferDynamics = true;
+  so.top = std::nullopt;
+  auto r = rt::search(*s.model, so);
+  EXPECT_TRUE(r.errors.empty());
+  s.candidates = r.designs;
+  return s;
+}
+
+} // namespace
+
+TEST(Optimise, MarineOptimumIsLighterAndQuieterThanTheBaseline) {
+  auto s = setup();
+  ASSERT_GE(s.candidates.size(), 5u) << "tooth counts in the ratio window with feasible freedoms";
+  rt::OptimiseOptions o;
+  o.jobs = 2;
+  auto r = rt::optimise(*s.model, s.base.get(), s.baseDesign.get(), s.candidates, o);
+  ASSERT_FALSE(r.ranked.empty());
+  ASSERT_EQ(r.termNames.size(), 2u);
+  const auto& best = r.ranked[0];
+  EXPECT_LT(best.terms[0] / r.baselineTerms[0], 1.0) << "quieter";
+  EXPECT_LT(best.terms[1] / r.baselineTerms[1], 1.0) << "lighter";
+  EXPECT_NEAR(r.baselineTerms[1], 4603.4, 0.5) << "the baseline's mass by the paper's formula";
+  // The optimum satisfies every rule at its freedoms.
+  rt::Evaluator ev(*s.model);
+  rt::Assignment a(*s.model);
+  a.choice = best.choice;
+  for (size_t f = 0; f < best.freedoms.size(); ++f) a.box[f] = {best.freedoms[f], best.freedoms[f]};
+  for (const auto& rule : s.model->gearbox.rules) {
+    auto v = ev.eval(*rule.expr, a);
+    EXPECT_EQ(v.truth, rt::Truth::True) << rule.text;
+  }
+  EXPECT_LE(ev.quantity("main.sliding_balance", a).lo, 0.001);
+  // The Pareto front is non-dominated.
+  for (size_t i = 1; i < r.pareto.size(); ++i) {
+    EXPECT_GE(r.pareto[i].first, r.pareto[i - 1].first);
+    EXPECT_LT(r.pareto[i].second, r.pareto[i - 1].second);
+  }
+  EXPECT_NE(r.rankCheck.find("keep their ranks"), std::string::npos) << r.rankCheck;
+}
+
+TEST(Optimise, ResultsDoNotDependOnJobs) {
+  auto s = setup();
+  s.candidates.resize(std::min<size_t>(s.candidates.size(), 4));
+  rt::OptimiseOptions one, two;
+  one.jobs = 1;
+  two.jobs = 2;
+  one.rankCheck = two.rankCheck = 0;
+  auto a = rt::optimise(*s.model, s.base.get(), s.baseDesign.get(), s.candidates, one);
+  auto b = rt::optimise(*s.model, s.base.get(), s.baseDesign.get(), s.candidates, two);
+  ASSERT_EQ(a.ranked.size(), b.ranked.size());
+  for (size_t i = 0; i < a.ranked.size(); ++i) {
+    EXPECT_EQ(a.ranked[i].choice, b.ranked[i].choice);
+    EXPECT_EQ(a.ranked[i].freedoms, b.ranked[i].freedoms);
+    EXPECT_EQ(a.ranked[i].objective, b.ranked[i].objective);
+  }
+}
