@@ -134,6 +134,16 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
   return g;
 }
 
+// A one-line progress bar on stderr, cleared when done.
+std::function<void(double)> progressBar(std::ostream& err, std::string label) {
+  return [&err, label](double f) {
+    int filled = static_cast<int>(f * 30);
+    err << fmt::format("\r  {} [{}{}] {:3.0f}%", label, std::string(static_cast<size_t>(filled), '#'),
+                       std::string(static_cast<size_t>(30 - filled), '.'), f * 100)
+        << (f >= 1.0 ? "\r\033[K" : "") << std::flush;
+  };
+}
+
 std::string fileSafe(const std::string& k) {
   std::string o;
   for (char c : k) o += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.') ? c : '_';
@@ -216,13 +226,8 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     so.top = gb.report && gb.report->top ? *gb.report->top : kDefaultTop;
     if (gb.report && gb.report->sortBy) so.sortBy = gb.report->sortBy.get();
     // A progress bar only for a person watching a terminal; reports stay clean.
-    if (!o.quiet && isatty(STDERR_FILENO))
-      so.progress = [&err, name = gb.name](double f) {
-        int filled = static_cast<int>(f * 30);
-        err << fmt::format("\r  {} [{}{}] {:3.0f}%", name, std::string(static_cast<size_t>(filled), '#'),
-                           std::string(static_cast<size_t>(30 - filled), '.'), f * 100)
-            << (f >= 1.0 ? "\r\033[K" : "") << std::flush;
-      };
+    bool tty = !o.quiet && isatty(STDERR_FILENO);
+    if (tty) so.progress = progressBar(err, gb.name);
     bool optimising = needsOptimiser(gb);
     if (optimising) {
       so.deferDynamics = true;
@@ -269,13 +274,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
         }
       OptimiseOptions oo;
       oo.jobs = o.jobs;
-      if (!o.quiet && isatty(STDERR_FILENO))
-        oo.progress = [&err, name = gb.name](double f) {
-          int filled = static_cast<int>(f * 30);
-          err << fmt::format("\r  {} optimising [{}{}] {:3.0f}%", name, std::string(static_cast<size_t>(filled), '#'),
-                             std::string(static_cast<size_t>(30 - filled), '.'), f * 100)
-              << (f >= 1.0 ? "\r\033[K" : "") << std::flush;
-        };
+      if (tty) oo.progress = progressBar(err, gb.name + " optimising");
       auto wall0 = std::chrono::steady_clock::now();
       OptimiseResult opt = optimise(m, baseModel.get(), baseDesign.get(), r.designs, oo);
       double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "Specs.h"
+
 #include "driver/Driver.h"
 #include "dynamics/MeshModel.h"
 #include "dynamics/Ode.h"
@@ -359,12 +361,7 @@ TEST(Dynamics, VanDerPolStiffRelaxationPeriod) {
 // ---- the spec examples' scenes --------------------------------------------------------------
 
 namespace {
-std::string spec(const std::string& name) {
-  std::ifstream in(std::string(GBX_SOURCE_DIR) + "/specs/" + name, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string spec(const std::string& name) { return readSpec(name); }
 
 struct SceneFixture {
   std::unique_ptr<driver::Compilation> c;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "Specs.h"
+
 #include "driver/Driver.h"
 #include "kinematics/Standards.h"
 #include "loadshare/LoadShare.h"
@@ -14,12 +16,7 @@ using namespace gbx;
 
 namespace {
 
-std::string spec(const std::string& name) {
-  std::ifstream in(std::string(GBX_SOURCE_DIR) + "/specs/" + name, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string spec(const std::string& name) { return readSpec(name); }
 
 struct Fixed {
   std::unique_ptr<driver::Compilation> c;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "Specs.h"
+
 #include "driver/Driver.h"
 #include "optimise/Optimise.h"
 #include "search/Evaluator.h"
@@ -20,11 +22,8 @@ struct Setup {
 };
 
 Setup setup() {
-  std::ifstream in(std::string(GBX_SOURCE_DIR) + "/specs/marine_reducer.gbx", std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
   Setup s;
-  s.c = driver::compileText("marine_reducer.gbx", ss.str());
+  s.c = driver::compileText("marine_reducer.gbx", readSpec("marine_reducer.gbx"));
   s.base = std::make_unique<rt::Model>(s.c->program, s.c->program.gearboxes[0]);
   s.model = std::make_unique<rt::Model>(s.c->program, s.c->program.gearboxes[1]);
   rt::SearchOptions bo;

@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "Specs.h"
+
 #include "driver/Driver.h"
 #include "search/Search.h"
 
@@ -38,12 +40,7 @@ Solved solveText(const std::string& text, const std::string& gearbox, int jobs =
   throw std::runtime_error("no gearbox " + gearbox);
 }
 
-std::string spec(const std::string& name) {
-  std::ifstream in(fs::path(GBX_SOURCE_DIR) / "specs" / name, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string spec(const std::string& name) { return readSpec(name); }
 
 std::map<std::string, long long> values(const rt::Model& m, const rt::Design& d) {
   std::map<std::string, long long> v;
