@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "dynamics/MeshModel.h"
+#include "dynamics/Lumped.h"
 #include "dynamics/Planetary.h"
 #include "dynamics/SceneSupport.h"
 #include "kinematics/Standards.h"
@@ -225,7 +226,20 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
   r.target = scene.target;
   Evaluator ev(m);
   int st = m.stageIndex(scene.target);
-  if (st < 0) throw Failure{"scenes on the whole gearbox need the lumped torsional model, which this build does not have"};
+  if (st < 0) {
+    // The whole gearbox: its lumped torsional model, for its modes.
+    for (const auto& o : scene.outputs)
+      if (o.signal != "modes")
+        throw Failure{fmt::format("`{}`: on the whole gearbox only `modes` are computed; run time-domain outputs on a stage", o.key())};
+    LumpedModes lm = gearboxModes(m, a);
+    r.model = lm.provenance;
+    for (size_t i = 0; i < lm.frequencies.size(); ++i) {
+      r.numbers.push_back({fmt::format("mode {}", i + 1), lm.frequencies[i], units::dims::frequency});
+      r.model.push_back(fmt::format("mode {}: {:.2f} Hz, moving {}", i + 1, lm.frequencies[i], lm.shapes[i]));
+    }
+    r.method = "eigen";
+    return r;
+  }
   const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
   Accuracy acc = sceneAccuracy(scene, ov);
   r.method = acc.method;
@@ -416,7 +430,7 @@ SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene
   SceneResult r;
   try {
     r = runOnce(m, a, scene, ov);
-    if (r.failure.empty() && ov.estimateError && !r.numbers.empty()) {
+    if (r.failure.empty() && ov.estimateError && !r.numbers.empty() && r.method != "eigen") {
       // The error estimate: the same scene at a hundredth of the tolerance.
       SceneOverrides tight = ov;
       tight.rtol = r.rtol / 100.0;

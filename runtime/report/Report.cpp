@@ -106,11 +106,13 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
         o += "    failed: " + sc.failure + "\n";
         continue;
       }
-      o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled)\n", sc.method, sc.rtol, sc.atol);
+      if (sc.method == "eigen") o += "    accuracy: generalised eigenproblem (Eigen), double precision\n";
+      else o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled)\n", sc.method, sc.rtol, sc.atol);
       for (const auto& out : sc.outputs)
         o += fmt::format("    {} = {}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit);
       if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative ({})\n", sc.errorEstimate, sc.errorMethod);
-      o += fmt::format("    cost: {} steps, {} rejected, {} RHS evaluations, {} Jacobians, {} events located\n", sc.steps, sc.rejected,
+      if (sc.method != "eigen")
+        o += fmt::format("    cost: {} steps, {} rejected, {} RHS evaluations, {} Jacobians, {} events located\n", sc.steps, sc.rejected,
                        sc.rhs, sc.jacobians, sc.events);
       for (const auto& sp : sc.spectra) {
         o += fmt::format("    {} peaks:", sp.key);

@@ -435,3 +435,25 @@ TEST(Scenes, ElectricCylinderFluctuationPeriods) {
   EXPECT_NEAR(slowPeak("plot(output_speed)"), 5.0, 1.0);
   EXPECT_NEAR(slowPeak("plot(contact_force)"), 10.0 / 3.0, 1.0);
 }
+
+TEST(Scenes, WholeGearboxModesOfOneMeshMatchTheTwoInertiaFormula) {
+  // One spur mesh between given inertias: the only elastic mode has
+  // w^2 = k (rb1^2 / J1 + rb2^2 / J2), k = c_gamma b.
+  auto c = driver::compileText("m.gbx", R"(
+gearbox One {
+  stage s: spur { pinion.z = 20; wheel.z = 60; normal_module = 5 mm; face_width = 50 mm; mesh_stiffness = 18 N/(mm*um);
+                  pinion.inertia = 0.05 kg*m^2; wheel.inertia = 3 kg*m^2; }
+  operating { input_speed = 1000 rpm; input_torque = 200 N*m; }
+  scene torsion on One { effects { } duration = 1 s; output modes; }
+}
+)");
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::Model m(c->program, c->program.gearboxes[0]);
+  rt::Assignment a(m);
+  auto r = runScene(m, a, m.gearbox.scenes[0]);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  ASSERT_EQ(r.numbers.size(), 1u);
+  double rb1 = 0.5 * 20 * 5e-3 * std::cos(20 * M_PI / 180), rb2 = 3 * rb1, k = 18e9 * 0.05;
+  double f = std::sqrt(k * (rb1 * rb1 / 0.05 + rb2 * rb2 / 3.0)) / (2 * M_PI);
+  EXPECT_NEAR(r.numbers[0].value / f, 1.0, 1e-10);
+}
