@@ -281,31 +281,91 @@ std::string renderCsv(const std::vector<GearboxReport>& reports) {
 }
 
 std::string renderMarkdown(const std::vector<GearboxReport>& reports, bool html) {
-  std::string o = html ? "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>gbxc report</title></head><body>\n" : "";
-  for (const auto& g : reports) {
-    auto h = header(g);
+  auto esc = [&](const std::string& x) {
+    if (!html) return x;
+    std::string o;
+    for (char c : x) o += c == '<' ? std::string("&lt;") : c == '>' ? std::string("&gt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
+    return o;
+  };
+  auto table = [&](const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
+    std::string o;
     if (html) {
-      o += fmt::format("<h2>{}</h2>\n<p>{} design{}</p>\n<table>\n<tr>", g.name, g.count, g.count == 1 ? "" : "s");
-      for (const auto& x : h) o += "<th>" + x + "</th>";
+      o += "<table>\n<tr>";
+      for (const auto& h : head) o += "<th>" + esc(h) + "</th>";
       o += "</tr>\n";
-      for (const auto& r : g.rows) {
+      for (const auto& r : rows) {
         o += "<tr>";
-        for (const auto& c : cells(g, r)) o += "<td>" + c + "</td>";
+        for (const auto& c : r) o += "<td>" + esc(c) + "</td>";
         o += "</tr>\n";
       }
-      o += "</table>\n";
-    } else {
-      o += fmt::format("## {}\n\n{} design{}\n\n|", g.name, g.count, g.count == 1 ? "" : "s");
-      for (const auto& x : h) o += " " + x + " |";
-      o += "\n|";
-      for (size_t i = 0; i < h.size(); ++i) o += " ---: |";
+      return o + "</table>\n";
+    }
+    o += "|";
+    for (const auto& h : head) o += " " + h + " |";
+    o += "\n|";
+    for (size_t i = 0; i < head.size(); ++i) o += " ---: |";
+    o += "\n";
+    for (const auto& r : rows) {
+      o += "|";
+      for (const auto& c : r) o += " " + c + " |";
       o += "\n";
-      for (const auto& r : g.rows) {
-        o += "|";
-        for (const auto& c : cells(g, r)) o += " " + c + " |";
-        o += "\n";
+    }
+    return o + "\n";
+  };
+  auto heading = [&](int level, const std::string& t) {
+    return html ? fmt::format("<h{}>{}</h{}>\n", level, esc(t), level) : std::string(static_cast<size_t>(level), '#') + " " + t + "\n\n";
+  };
+  auto para = [&](const std::string& t) { return html ? "<p>" + esc(t) + "</p>\n" : t + "\n\n"; };
+  auto image = [&](const std::string& f) { return html ? fmt::format("<p><img src=\"{}\" alt=\"{}\"></p>\n", f, f) : fmt::format("![{}]({})\n\n", f, f); };
+  auto list = [&](const std::vector<std::string>& items) {
+    std::string o = html ? "<ul>\n" : "";
+    for (const auto& i : items) o += html ? "<li>" + esc(i) + "</li>\n" : "- " + i + "\n";
+    return o + (html ? "</ul>\n" : "\n");
+  };
+  std::string o = html ? "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>gbxc report</title>"
+                         "<style>body{font-family:sans-serif}td,th{padding:2px 8px;text-align:right}</style></head><body>\n"
+                       : "";
+  for (const auto& g : reports) {
+    o += heading(2, g.name);
+    o += para(fmt::format("{} design{}{}", g.count, g.count == 1 ? "" : "s", g.window.empty() ? "" : ", ratio window " + g.window));
+    std::vector<std::vector<std::string>> rows;
+    for (const auto& r : g.rows) rows.push_back(cells(g, r));
+    if (!rows.empty()) o += table(header(g), rows);
+    if (g.count == 0) {
+      std::vector<std::string> f;
+      for (const auto& x : g.funnel)
+        f.push_back(x.rule == "domain" ? fmt::format("stage {}: {} candidates", x.scope, count(-x.removed))
+                                       : fmt::format("{}{}: {} of {} removed", x.scope.empty() ? "" : x.scope + ": ", x.rule, count(x.removed), count(x.before)));
+      o += heading(3, "Elimination funnel") + list(f);
+    }
+    if (!g.optimisation.empty()) o += heading(3, "Optimisation") + list(g.optimisation);
+    for (const auto& md : g.modifications) {
+      o += heading(3, "Modification of " + md.stage);
+      std::vector<std::vector<std::string>> mr;
+      for (const auto& r : md.rows)
+        mr.push_back({r.target, !r.error.empty() ? "not computed" : r.present ? r.shown : "absent", r.text});
+      o += table({"target", "value", "rule"}, mr);
+    }
+    for (const auto& sc : g.scenes) {
+      o += heading(3, "Scene " + sc.name);
+      if (!sc.failure.empty()) {
+        o += para("failed: " + sc.failure);
+        continue;
       }
-      o += "\n";
+      std::vector<std::string> items;
+      for (const auto& out : sc.outputs) items.push_back(fmt::format("{} = {}{}", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit));
+      if (sc.errorEstimate >= 0) items.push_back(fmt::format("error estimate {:.2e} ({})", sc.errorEstimate, sc.errorMethod));
+      if (sc.method != "eigen")
+        items.push_back(fmt::format("{} at rtol {:.0e}: {} steps, {} RHS evaluations", sc.method, sc.rtol, sc.steps, sc.rhs));
+      for (const auto& m : sc.model) items.push_back(m);
+      o += list(items);
+      for (const auto& f : sc.files) o += image(f);
+    }
+    for (const auto& st : g.studies) {
+      o += heading(3, "Study " + st.name);
+      o += table(st.header, st.rows);
+      if (!st.notes.empty()) o += list(st.notes);
+      for (const auto& f : st.files) o += image(f);
     }
   }
   if (html) o += "</body></html>\n";

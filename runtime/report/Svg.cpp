@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -59,18 +60,34 @@ std::string renderSvg(const SvgChart& c) {
       W, H, W, H);
   o += fmt::format("<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n", W / 2, esc(c.title));
   o += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n", L, T, W - L - R, H - T - B);
-  for (int i = 0; i <= 5; ++i) {
-    double fx = x0 + (x1 - x0) * i / 5.0, fy = y0 + (y1 - y0) * i / 5.0;
-    double vx = c.logX ? std::pow(10.0, fx) : fx, vy = c.logY ? std::pow(10.0, fy) : fy;
-    double X = L + (W - L - R) * i / 5.0, Y = H - B - (H - T - B) * i / 5.0;
+  // Ticks: six even ones on a linear axis, the decades on a logarithmic one.
+  auto ticks = [](double lo, double hi, bool log) {
+    std::vector<double> t;
+    if (log && hi - lo >= 1.0) {
+      for (double d = std::ceil(lo); d <= hi + 1e-9; d += std::max(1.0, std::floor((hi - lo) / 6.0))) t.push_back(d);
+    } else {
+      for (int i = 0; i <= 5; ++i) t.push_back(lo + (hi - lo) * i / 5.0);
+    }
+    return t;
+  };
+  for (double fx : ticks(x0, x1, c.logX)) {
+    double X = L + (fx - x0) / (x1 - x0) * (W - L - R);
     o += fmt::format("<line x1=\"{:.1f}\" y1=\"{}\" x2=\"{:.1f}\" y2=\"{}\" stroke=\"#ddd\"/>\n", X, T, X, H - B);
+    o += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", X, H - B + 16, tick(c.logX ? std::pow(10.0, fx) : fx));
+  }
+  for (double fy : ticks(y0, y1, c.logY)) {
+    double Y = H - B - (fy - y0) / (y1 - y0) * (H - T - B);
     o += fmt::format("<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>\n", L, Y, W - R, Y);
-    o += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", X, H - B + 16, tick(vx));
-    o += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n", L - 6, Y + 4, tick(vy));
+    o += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n", L - 6, Y + 4, tick(c.logY ? std::pow(10.0, fy) : fy));
   }
   o += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", (L + W - R) / 2, H - 18, esc(c.xLabel));
   o += fmt::format("<text x=\"16\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 16 {})\">{}</text>\n", (T + H - B) / 2,
                    (T + H - B) / 2, esc(c.yLabel));
+  bool labelled = false;
+  for (const auto& s : c.series) labelled = labelled || !s.label.empty();
+  if (labelled)
+    o += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"176\" height=\"{}\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#ccc\"/>\n", W - R - 178,
+                     T + 2, 6 + 14 * static_cast<double>(c.series.size()));
   for (size_t k = 0; k < c.series.size(); ++k) {
     const auto& s = c.series[k];
     const char* col = kColours[k % 10];
@@ -78,7 +95,11 @@ std::string renderSvg(const SvgChart& c) {
     for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
       if ((c.logX && s.x[i] <= 0) || (c.logY && s.y[i] <= 0) || !std::isfinite(s.y[i])) continue;
       pts += fmt::format("{:.2f},{:.2f} ", px(s.x[i]), py(s.y[i]));
-      if (s.markers) o += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"2.5\" fill=\"{}\"/>\n", px(s.x[i]), py(s.y[i]), col);
+      // A series of one or two points is a marked design: draw it large.
+      double radius = s.x.size() <= 2 ? 6.0 : 2.5;
+      if (s.markers)
+        o += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{}\" fill=\"{}\" stroke=\"{}\"/>\n", px(s.x[i]), py(s.y[i]), radius,
+                         col, radius > 3 ? "black" : col);
     }
     o += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.2\" points=\"{}\"/>\n", col, pts);
     if (!s.label.empty())
