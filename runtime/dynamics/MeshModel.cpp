@@ -18,7 +18,10 @@ MeshModel::MeshModel(const MeshParameters& p, const MeshEffects& e) : p_(p), e_(
     loads_.push_back([this](double, const double*) { return p_.staticLoad; });
   }
   // Transmission error acts through the stiffness variation: F = dk(t) e(t).
-  if (e.transmissionError && e.varyingStiffness)
+  // Transmission error: for a mesh always in contact the paper's force F = dk(t) e(t); with
+  // contact loss (backlash, Hertz) a displacement inside the contact law, so that the
+  // force stays continuous where contact begins and ends.
+  if (e.transmissionError && e.varyingStiffness && !e.backlash && !e.hertz)
     loads_.push_back([this](double t, const double* y) {
       double tau = phase(t, y);
       double dk = p_.meanStiffness * (relativeStiffness(fourier_, tau) - 1.0);
@@ -34,10 +37,10 @@ MeshModel::MeshModel(const MeshParameters& p, const MeshEffects& e) : p_(p), e_(
   // Contact onset and loss are events: no step may carry the solution across them.
   if (e.backlash) {
     double b = 0.5 * e.clearance;
-    sys_.events.push_back([b](double, const double* y) { return y[0] - b; });
-    sys_.events.push_back([b](double, const double* y) { return y[0] + b; });
+    sys_.events.push_back([this, b](double t, const double* y) { return y[0] - excitation(t, y) - b; });
+    sys_.events.push_back([this, b](double t, const double* y) { return y[0] - excitation(t, y) + b; });
   } else if (e.hertz) {
-    sys_.events.push_back([](double, const double* y) { return y[0]; });
+    sys_.events.push_back([this](double t, const double* y) { return y[0] - excitation(t, y); });
   }
 }
 
@@ -60,9 +63,14 @@ std::vector<double> MeshModel::initialState() const {
 }
 
 // Elastic mesh force and its slope in x.
+double MeshModel::excitation(double t, const double* y) const {
+  if (!e_.transmissionError || !(e_.backlash || e_.hertz)) return 0.0;
+  return e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * phase(t, y) + e_.tePhase);
+}
+
 double MeshModel::elastic(double t, const double* y, double* slope) const {
   double rel = e_.varyingStiffness ? relativeStiffness(fourier_, phase(t, y)) : 1.0;
-  double x = y[0];
+  double x = y[0] - excitation(t, y);
   if (e_.hertz) {
     if (x <= 0) {
       *slope = 0;

@@ -64,6 +64,7 @@ public:
 private:
   double phase(double t, const double* y) const;
   double elastic(double t, const double* y, double* slope) const;
+  double excitation(double t, const double* y) const;  // transmission error as a displacement
   void rhs(double t, const double* y, double* dydt) const;
   void jacobian(double t, const double* y, double* dfdy, double* dfdt) const;
 

@@ -24,7 +24,7 @@ struct Accuracy {
   double atol = 0;      // 0: the same as rtol, on the scaled components
   double maxStep = 0;   // 0: none
   double minStep = 0;   // 0: 1e-14 of the time span
-  long maxSteps = 50000000;
+  long maxSteps = 5000000;  // a runaway (chattering contact) fails in seconds
 };
 
 struct Stats {

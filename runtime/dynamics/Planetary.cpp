@@ -66,8 +66,9 @@ PlanetaryRun runPlanetary(const Model& m, const Evaluator& ev, const Assignment&
   const ir::Effect* varying = findEffect(scene, "varying_stiffness");
   const ir::Effect* damping = findEffect(scene, "damping");
   const ir::Effect* torqueFx = findEffect(scene, "torque_fluctuation");
-  if (findEffect(scene, "transmission_error") || findEffect(scene, "backlash"))
-    throw SceneFailure{"`transmission_error` and `backlash` are modelled on spur and helical meshes only"};
+  const ir::Effect* te = findEffect(scene, "transmission_error");
+  const ir::Effect* backlash = findEffect(scene, "backlash");
+  if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
   double e = 1.5, ramp = 0, hertzDampingSp = 0, hertzDampingRp = 0;
   std::map<std::string, double> none;
   if (hertz) {
@@ -127,6 +128,14 @@ PlanetaryRun runPlanetary(const Model& m, const Evaluator& ev, const Assignment&
     meshes.push_back({Ksp, std::fmod(zs * i / static_cast<double>(N), 1.0), false, i});
     meshes.push_back({Krp, std::fmod(zr * i / static_cast<double>(N), 1.0), true, i});
   }
+  double halfClearance = backlash ? 0.5 * settingValue(*effectParam(backlash, "clearance"), none) : 0.0;
+  double teMean = 0, teAmp = 0, tePhase = 0;
+  if (te) {
+    teMean = settingValue(*effectParam(te, "mean"), none);
+    teAmp = settingValue(*effectParam(te, "amplitude"), none);
+    tePhase = settingValue(*effectParam(te, "phase"), none);
+    prov.push_back("transmission error on every mesh, F = dk(t) e(t), phased with the mesh");
+  }
   double cSp = 0, cRp = 0;
   if (damping) {
     double mEq = Jp / (rbp * rbp);
@@ -163,6 +172,17 @@ PlanetaryRun runPlanetary(const Model& m, const Evaluator& ev, const Assignment&
     }
     double K = me.K * rel;
     double c = me.ring ? cRp : cSp;
+    // Transmission error: F = dk(t) e(t) on a mesh always in contact (DOMAIN.md §3); with
+    // contact loss a displacement inside the contact law, so the force stays continuous.
+    double tau = zr * carrierAngle(y) / (2.0 * M_PI) + me.phase0;
+    double err = te ? teMean + teAmp * std::sin(2.0 * M_PI * tau + tePhase) : 0.0;
+    double teForce = te && varying && !backlash && !hertz ? me.K * (rel - 1.0) * err : 0.0;
+    if (backlash || hertz) d -= err;
+    if (backlash) {
+      // Dead zone: both flanks, contact lost inside the clearance.
+      double e2 = d > halfClearance ? d - halfClearance : d < -halfClearance ? d + halfClearance : 0.0;
+      return e2 != 0 ? K * e2 + c * rate : 0.0;  // no contact, no force
+    }
     if (hertz) {
       if (d <= 0) return 0.0;
       double s = ramp > 0 ? std::min(1.0, d / ramp) : 1.0;
@@ -170,7 +190,7 @@ PlanetaryRun runPlanetary(const Model& m, const Evaluator& ev, const Assignment&
       double de = e == 1.5 ? d * std::sqrt(d) : std::pow(d, e);
       return std::max(0.0, K * de + (C + c) * rate);
     }
-    return K * d + c * rate;
+    return K * d + c * rate + teForce;
   };
   auto load = [&](double t) { return tMean + tAmp * std::sin(tOmega * t); };
   System sys;
@@ -188,12 +208,23 @@ PlanetaryRun runPlanetary(const Model& m, const Evaluator& ev, const Assignment&
     for (int i = 0; i < N; ++i) dy[nq + 1 + static_cast<size_t>(i)] = spin[static_cast<size_t>(i)] / Jp;
     if (drive.needsState()) dy[2 * nq] = drive.speed(t);
   };
+  auto error = [&](const Mesh& me, const double* y) {
+    double tau = zr * carrierAngle(y) / (2.0 * M_PI) + me.phase0;
+    return te ? teMean + teAmp * std::sin(2.0 * M_PI * tau + tePhase) : 0.0;
+  };
   if (hertz)
     for (const auto& me : meshes)
       sys.events.push_back([&, me](double t, const double* y) {
         double rate;
-        return deflection(me, t, y, rate);
+        return deflection(me, t, y, rate) - error(me, y);
       });
+  if (backlash)
+    for (const auto& me : meshes)
+      for (double side : {1.0, -1.0})
+        sys.events.push_back([&, me, side](double t, const double* y) {
+          double rate;
+          return deflection(me, t, y, rate) - error(me, y) - side * halfClearance;
+        });
   // Linearised model: stiffness K = sum k g g^T with g = d(deflection)/dq; modes from
   // the generalised eigenproblem K v = w^2 M v.
   Eigen::MatrixXd Km = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq)), M = Km;
@@ -226,7 +257,7 @@ PlanetaryRun runPlanetary(const Model& m, const Evaluator& ev, const Assignment&
   acc.maxStep = std::min(Tz, Tn) / 20.0;
   run.plan = timePlan(scene, Tz);
   // Initial state: the static deflection on every mesh, at the kinematic speeds.
-  double d0 = hertz ? std::pow(F0 / Ksp, 1.0 / e) : F0 / Ksp;
+  double d0 = hertz ? std::pow(F0 / Ksp, 1.0 / e) : F0 / Ksp + halfClearance;
   std::vector<double> y(dim, 0.0);
   y[0] = -2.0 * d0 / (rbs + rbr);
   for (int i = 0; i < N; ++i) y[1 + static_cast<size_t>(i)] = (d0 - rbs * (sunAngle(0, y.data()) - y[0])) / rbp;
