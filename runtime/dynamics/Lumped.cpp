@@ -13,10 +13,7 @@ namespace gbx::rt::dyn {
 
 namespace {
 
-double need(const Value& v, const std::string& what) {
-  if (!v.isNumber() || !std::isfinite(v.lo)) throw SceneFailure{fmt::format("the gearbox model needs {}", what)};
-  return v.mid();
-}
+double need(const Value& v, const std::string& what) { return needNumber(v, what); }
 
 struct Lumped {
   std::vector<std::string> names;

@@ -14,10 +14,7 @@ namespace gbx::rt::dyn {
 
 namespace {
 
-double need(const Value& v, const std::string& what) {
-  if (!v.isNumber() || !std::isfinite(v.lo)) throw SceneFailure{fmt::format("the scene needs {}, which this design does not give", what)};
-  return v.mid();
-}
+double need(const Value& v, const std::string& what) { return needNumber(v, what); }
 
 struct Mesh {
   double K = 0;        // Hertz stiffness, or linear stiffness without hertz_contact

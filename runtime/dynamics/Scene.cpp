@@ -28,10 +28,7 @@ namespace dims = units::dims;
 
 using Failure = SceneFailure;
 
-double num(const Value& v, const std::string& what) {
-  if (!v.isNumber() || !std::isfinite(v.lo)) throw Failure{fmt::format("the scene needs {}, which this design does not give", what)};
-  return v.mid();
-}
+double num(const Value& v, const std::string& what) { return needNumber(v, what); }
 
 const ir::Setting* param(const ir::Effect* e, const char* name) { return effectParam(e, name); }
 
@@ -246,12 +243,6 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
   r.rtol = acc.rtol;
   r.atol = acc.atol > 0 ? acc.atol : acc.rtol;
 
-  double upstream = num(ev.ratioProduct(0, st, a), "the ratios upstream");
-  double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
-  double speed = num(ev.derived(st, "input_speed", a), "an input speed (`operating`)");
-  Elastic mat = materialOf(m, st);
-  (void)upstream;
-
   Samples samples;
   TimePlan tp;
   auto record = [&](const std::string& k, double v) { samples.signals[k].push_back(v); };
@@ -283,6 +274,10 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     if (!ok) failure = integ.error();
     samples.signals["$static_load"] = {p.staticLoad};
   } else if (stage.kind == ir::StageKind::Planetary) {
+    double upstream = num(ev.ratioProduct(0, st, a), "the ratios upstream");
+    double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
+    double speed = num(ev.derived(st, "input_speed", a), "an input speed (`operating`)");
+    Elastic mat = materialOf(m, st);
     PlanetaryRun pr = runPlanetary(m, ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
                                    mat.assumed);
     r.model = pr.provenance;
@@ -342,6 +337,11 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
 
 
 // ---- shared by the scene models --------------------------------------------------------
+
+double needNumber(const Value& v, const std::string& what) {
+  if (!v.isNumber() || !std::isfinite(v.lo)) throw SceneFailure{fmt::format("the scene needs {}, which this design does not give", what)};
+  return v.mid();
+}
 
 const ir::Setting* effectParam(const ir::Effect* e, const char* name) { return e ? ir::findSetting(e->params, name) : nullptr; }
 

@@ -7,6 +7,7 @@
 
 #include "dynamics/Drive.h"
 #include "ir/Ir.h"
+#include "search/Value.h"
 
 namespace gbx::rt::dyn {
 
@@ -18,6 +19,9 @@ struct TimePlan {
   double end = 0, statsFrom = 0, dt = 0;
   std::vector<double> samples;  // exactly `samples` per mesh period
 };
+
+// A number the model needs: its value, or a SceneFailure naming what is missing.
+double needNumber(const Value& v, const std::string& what);
 
 TimePlan timePlan(const ir::Scene& scene, double meshPeriod);
 Drive sceneDrive(const ir::Scene& scene, double nominal, double upstream, double meshPeriod);
