@@ -179,11 +179,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   std::vector<std::string> positional;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&](const char* opt) -> const std::string* {
-      if (i + 1 >= args.size()) return nullptr;
-      (void)opt;
-      return &args[++i];
-    };
+    // The option's argument, consumed; nullptr when the line ends.
+    auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
     if (a == "--help" || a == "-h") {
       out << kUsage;
       return 0;
@@ -193,19 +190,19 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
       return 0;
     }
     if (a == "--format") {
-      auto v = value("--format");
+      auto v = value();
       if (!v) return usage(err, "--format needs a value");
       o.format = *v;
     } else if (a == "--gearbox") {
-      auto v = value("--gearbox");
+      auto v = value();
       if (!v) return usage(err, "--gearbox needs a name");
       o.gearbox = *v;
     } else if (a == "-o") {
-      auto v = value("-o");
+      auto v = value();
       if (!v) return usage(err, "-o needs a directory");
       o.outDir = *v;
     } else if (a == "--jobs" || a == "-j") {
-      auto v = value("--jobs");
+      auto v = value();
       int n = 0;
       if (!v || std::from_chars(v->data(), v->data() + v->size(), n).ec != std::errc{} || n < 1 || n > 256)
         return usage(err, "--jobs needs a whole number from 1 to 256");

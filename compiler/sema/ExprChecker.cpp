@@ -64,7 +64,6 @@ bool isPercentLiteral(const ast::Expr* e) {
 ir::ExprPtr ExprChecker::error(const source::Span& span) { return make(Op::Const, Type::error(), span); }
 
 ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOverride) {
-  lastMesh_ = false;
   auto r = units::Rational::parseDecimal(e.text);
   Number v = r ? Number::exact(*r) : Number::approx(std::strtod(e.text.c_str(), nullptr));
   const ast::UnitExpr* u = e.unit ? &*e.unit : unitOverride;
@@ -84,7 +83,6 @@ ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOv
     }
   }
   if (!ok) return error(e.span);
-  lastMesh_ = unit.meshPeriods;
   bool integer = !u && r && r->isInteger();
   auto c = ir::makeConst(v.mul(unit.scale), unit.dim, integer, e.span);
   if (unit.meshPeriods) c->name = "mesh_periods";

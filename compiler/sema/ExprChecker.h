@@ -34,7 +34,6 @@ public:
   std::pair<ir::ExprPtr, ir::ExprPtr> checkRange(const ast::Expr* lo, const ast::Expr* hi, const Scope& scope);
   // Converts a literal with its unit to SI; reports unknown units.
   ir::ExprPtr literal(const ast::Expr& e, const ast::UnitExpr* unitOverride = nullptr);
-  bool lastLiteralMeshPeriods() const { return lastMesh_; }
 
   // Resolves a `let` lazily, so lets may refer to each other in any order.
   void setLetResolver(std::function<ir::Type(const std::string& gearboxLet, const StageModel* stage)> f) {
@@ -66,7 +65,6 @@ private:
   diag::DiagnosticEngine& diags_;
   std::vector<Bound> bound_;
   std::function<ir::Type(const std::string&, const StageModel*)> letResolver_;
-  bool lastMesh_ = false;
 };
 
 // "a length (mm)": the dimension's name and, when given, the unit as written.

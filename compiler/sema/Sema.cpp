@@ -69,7 +69,7 @@ public:
 private:
   // ---- declarations ------------------------------------------------------------------
 
-  void declare(std::map<std::string, const Stmt*>& table, const Stmt& d, const char* what) {
+  void declare(std::map<std::string, const Stmt*>& table, const Stmt& d) {
     for (auto* t : {&globals_.consts, &globals_.materials, &globals_.presets, &globals_.gearboxes}) {
       auto it = t->find(d.name);
       if (it == t->end()) continue;
@@ -77,7 +77,6 @@ private:
       diag.notes.push_back({nameOr(*it->second), "first declared here"});
       return;
     }
-    (void)what;
     table[d.name] = &d;
   }
 
@@ -85,12 +84,12 @@ private:
     for (const auto& f : prog.files)
       for (const auto& d : f.decls) {
         switch (d.kind) {
-        case StmtKind::Const: declare(globals_.consts, d, "const"); break;
+        case StmtKind::Const: declare(globals_.consts, d); break;
         case StmtKind::Named:
-          if (d.word == "material") declare(globals_.materials, d, "material");
+          if (d.word == "material") declare(globals_.materials, d);
           break;
-        case StmtKind::Preset: declare(globals_.presets, d, "preset"); break;
-        case StmtKind::Gearbox: declare(globals_.gearboxes, d, "gearbox"); break;
+        case StmtKind::Preset: declare(globals_.presets, d); break;
+        case StmtKind::Gearbox: declare(globals_.gearboxes, d); break;
         default: break;
         }
       }
@@ -810,7 +809,7 @@ private:
     for (const auto* sc : m.scenes) g.scenes.push_back(scene(*sc, m, gs));
     for (const auto* md : m.modifies) g.modifies.push_back(modify(*md, m, gs));
     for (const auto* sp : m.splits) g.splits.push_back(split(*sp, m, gs));
-    for (const auto* sd : m.studies) g.studies.push_back(study(*sd, m, gs, g));
+    for (const auto* sd : m.studies) g.studies.push_back(study(*sd, m, gs));
     if (m.report) g.report = report(*m.report, gs);
 
     if (!m.hasOperating) requireOperating(g);
@@ -1140,7 +1139,7 @@ private:
     return out;
   }
 
-  ir::Study study(const Stmt& st, const GearboxModel& m, const Scope& gs, const ir::Gearbox& g) {
+  ir::Study study(const Stmt& st, const GearboxModel& m, const Scope& gs) {
     ir::Study out;
     out.name = st.name;
     out.span = st.span;
@@ -1157,7 +1156,7 @@ private:
         sweep = true;
         out.kind = ir::Study::Sweep;
         out.target = b.path.str();
-        out.dim = sweepTarget(b.path, m, g);
+        out.dim = sweepTarget(b.path, m);
         auto [lo, hi] = checker_.checkRange(b.lo.get(), b.hi.get(), gs);
         auto step = b.step && b.step->kind == ast::ExprKind::Number && !b.step->unit && b.hi && b.hi->unit
                         ? checker_.literal(*b.step, &*b.hi->unit)
@@ -1292,8 +1291,7 @@ private:
     return s;
   }
 
-  std::optional<units::Dim> sweepTarget(const ast::Path& p, const GearboxModel& m, const ir::Gearbox& g) {
-    (void)g;
+  std::optional<units::Dim> sweepTarget(const ast::Path& p, const GearboxModel& m) {
     const auto& parts = p.parts;
     if (parts.size() == 1) {
       for (const auto& o : operatingSettings())

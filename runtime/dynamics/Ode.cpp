@@ -148,7 +148,7 @@ bool Integrator::advance(double& t, std::vector<double>& y, double t1, const std
     for (size_t k = 0; k < sys.events.size(); ++k) {
       double g1 = sys.events[k](t, y.data());
       if ((ev0[k] < 0) == (g1 < 0) || ev0[k] == 0) continue;
-      double a = t0, b = t, ga = ev0[k], gb = g1;
+      double a = t0, b = t, ga = ev0[k];
       for (int it = 0; it < 60 && b - a > 1e-15 * std::max(1.0, std::fabs(b)); ++it) {
         double mid = 0.5 * (a + b);
         if (!I.stepTo(t0, y0, mid - t0, ys)) break;
@@ -158,10 +158,8 @@ bool Integrator::advance(double& t, std::vector<double>& y, double t1, const std
           ga = gm;
         } else {
           b = mid;
-          gb = gm;
         }
       }
-      (void)gb;
       if (b < tEvent) {
         tEvent = b;
         cut = true;

@@ -25,7 +25,7 @@ struct Mesh {
 
 } // namespace
 
-PlanetaryRun runPlanetary(const Model& m, const Evaluator& ev, const Assignment& a, int st, const ir::Scene& scene, Accuracy acc,
+PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, const ir::Scene& scene, Accuracy acc,
                           const SceneOverrides& ov, double upstream, double downstream, double speed, double E, double nu,
                           double density, bool materialAssumed) {
   PlanetaryRun run;

@@ -25,7 +25,7 @@ struct PlanetaryRun {
   std::string failure;
 };
 
-PlanetaryRun runPlanetary(const Model& m, const Evaluator& ev, const Assignment& a, int stage, const ir::Scene& scene,
+PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int stage, const ir::Scene& scene,
                           Accuracy acc, const SceneOverrides& ov, double upstream, double downstream, double speed, double E,
                           double nu, double density, bool materialAssumed);
 

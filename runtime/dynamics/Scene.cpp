@@ -278,7 +278,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
     double speed = num(ev.derived(st, "input_speed", a), "an input speed (`operating`)");
     Elastic mat = materialOf(m, st);
-    PlanetaryRun pr = runPlanetary(m, ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
+    PlanetaryRun pr = runPlanetary(ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
                                    mat.assumed);
     r.model = pr.provenance;
     r.stats = pr.stats;

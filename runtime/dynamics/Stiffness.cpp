@@ -39,14 +39,4 @@ double relativeStiffness(const Fourier& f, double tau) {
   return sum;
 }
 
-double relativeStiffnessSlope(const Fourier& f, double tau) {
-  double s = 0.0;
-  for (size_t k = 0; k < f.a.size(); ++k) {
-    double c = 2.0 * M_PI * static_cast<double>(k + 1);
-    double w = c * tau;
-    s += c * (-f.a[k] * std::sin(w) + f.b[k] * std::cos(w));
-  }
-  return s;
-}
-
 } // namespace gbx::rt::dyn

@@ -39,13 +39,12 @@ std::vector<std::string> header(const GearboxReport& g) {
   return h;
 }
 
-std::vector<std::string> cells(const GearboxReport& g, const DesignRow& r) {
+std::vector<std::string> cells(const DesignRow& r) {
   std::vector<std::string> v = {std::to_string(r.rank) + (r.undecided ? "?" : "")};
   for (const auto& [_, z] : r.teeth) v.push_back(std::to_string(z));
   for (const auto& [_, c] : r.choices) v.push_back(c);
   v.push_back(ratioText(r.ratio));
   for (const auto& c : r.cells) v.push_back(c.text);
-  (void)g;
   return v;
 }
 
@@ -62,7 +61,7 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
     if (!g.rows.empty()) {
       auto h = header(g);
       std::vector<std::vector<std::string>> table = {h};
-      for (const auto& r : g.rows) table.push_back(cells(g, r));
+      for (const auto& r : g.rows) table.push_back(cells(r));
       std::vector<size_t> w(h.size(), 0);
       for (const auto& row : table)
         for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
@@ -329,7 +328,7 @@ std::string renderMarkdown(const std::vector<GearboxReport>& reports, bool html)
     o += heading(2, g.name);
     o += para(fmt::format("{} design{}{}", g.count, g.count == 1 ? "" : "s", g.window.empty() ? "" : ", ratio window " + g.window));
     std::vector<std::vector<std::string>> rows;
-    for (const auto& r : g.rows) rows.push_back(cells(g, r));
+    for (const auto& r : g.rows) rows.push_back(cells(r));
     if (!rows.empty()) o += table(header(g), rows);
     if (g.count == 0) {
       std::vector<std::string> f;

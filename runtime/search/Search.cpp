@@ -43,7 +43,7 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth = 0)
     auto dot = e.name.find('.');
     if (dot == std::string::npos) {
       for (int s = 0; s < all; ++s) c.stages.insert(s);
-      for (const auto& f : m.freedoms) (void)f, c.freedom = c.freedom || e.name != "ratio";
+      if (!m.freedoms.empty() && e.name != "ratio") c.freedom = true;
       break;
     }
     int st = m.stageIndex(e.name.substr(0, dot));
