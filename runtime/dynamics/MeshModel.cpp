@@ -11,21 +11,19 @@ MeshModel::MeshModel(const MeshParameters& p, const MeshEffects& e) : p_(p), e_(
   // The static load, or the fluctuating load torque carried by the driven member.
   if (e.torqueFluctuation) {
     double r = p.outputRadius * p.downstream;
-    loads_.push_back([this, r](double t, const double*) {
+    loads_.push_back([this, r](double t, const Instant&) {
       return (e_.torqueMean + e_.torqueAmplitude * std::sin(e_.torqueOmega * t)) / r;
     });
   } else {
-    loads_.push_back([this](double, const double*) { return p_.staticLoad; });
+    loads_.push_back([this](double, const Instant&) { return p_.staticLoad; });
   }
-  // Transmission error acts through the stiffness variation: F = dk(t) e(t).
   // Transmission error: for a mesh always in contact the paper's force F = dk(t) e(t); with
   // contact loss (backlash, Hertz) a displacement inside the contact law, so that the
   // force stays continuous where contact begins and ends.
   if (e.transmissionError && e.varyingStiffness && !e.backlash && !e.hertz)
-    loads_.push_back([this](double t, const double* y) {
-      double tau = phase(t, y);
-      double dk = p_.meanStiffness * (relativeStiffness(fourier_, tau) - 1.0);
-      return dk * (e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * tau + e_.tePhase));
+    loads_.push_back([this](double, const Instant& at) {
+      double dk = p_.meanStiffness * (at.rel - 1.0);
+      return dk * (e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * at.tau + e_.tePhase));
     });
   sys_.dim = p.drive.needsState() ? 3 : 2;
   sys_.rhs = [this](double t, const double* y, double* dydt) { rhs(t, y, dydt); };
@@ -37,10 +35,10 @@ MeshModel::MeshModel(const MeshParameters& p, const MeshEffects& e) : p_(p), e_(
   // Contact onset and loss are events: no step may carry the solution across them.
   if (e.backlash) {
     double b = 0.5 * e.clearance;
-    sys_.events.push_back([this, b](double t, const double* y) { return y[0] - excitation(t, y) - b; });
-    sys_.events.push_back([this, b](double t, const double* y) { return y[0] - excitation(t, y) + b; });
+    sys_.events.push_back([this, b](double t, const double* y) { return y[0] - excitation(instant(t, y)) - b; });
+    sys_.events.push_back([this, b](double t, const double* y) { return y[0] - excitation(instant(t, y)) + b; });
   } else if (e.hertz) {
-    sys_.events.push_back([this](double t, const double* y) { return y[0] - excitation(t, y); });
+    sys_.events.push_back([this](double t, const double* y) { return y[0] - excitation(instant(t, y)); });
   }
 }
 
@@ -62,15 +60,20 @@ std::vector<double> MeshModel::initialState() const {
   return y;
 }
 
-// Elastic mesh force and its slope in x.
-double MeshModel::excitation(double t, const double* y) const {
-  if (!e_.transmissionError || !(e_.backlash || e_.hertz)) return 0.0;
-  return e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * phase(t, y) + e_.tePhase);
+MeshModel::Instant MeshModel::instant(double t, const double* y) const {
+  double tau = phase(t, y);
+  return {tau, e_.varyingStiffness ? relativeStiffness(fourier_, tau) : 1.0};
 }
 
-double MeshModel::elastic(double t, const double* y, double* slope) const {
-  double rel = e_.varyingStiffness ? relativeStiffness(fourier_, phase(t, y)) : 1.0;
-  double x = y[0] - excitation(t, y);
+double MeshModel::excitation(const Instant& at) const {
+  if (!e_.transmissionError || !(e_.backlash || e_.hertz)) return 0.0;
+  return e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * at.tau + e_.tePhase);
+}
+
+// Elastic mesh force and its slope in x.
+double MeshModel::elastic(const double* y, const Instant& at, double* slope) const {
+  double rel = at.rel;
+  double x = y[0] - excitation(at);
   if (e_.hertz) {
     if (x <= 0) {
       *slope = 0;
@@ -105,8 +108,9 @@ double MeshModel::elastic(double t, const double* y, double* slope) const {
 
 void MeshModel::rhs(double t, const double* y, double* dydt) const {
   double slope;
-  double f = -elastic(t, y, &slope) - c_ * y[1];
-  for (const auto& l : loads_) f += l(t, y);
+  Instant at = instant(t, y);
+  double f = -elastic(y, at, &slope) - c_ * y[1];
+  for (const auto& l : loads_) f += l(t, at);
   dydt[0] = y[1];
   dydt[1] = f / p_.mass;
   if (p_.drive.needsState()) dydt[2] = p_.drive.speed(t);
@@ -116,7 +120,7 @@ void MeshModel::jacobian(double t, const double* y, double* dfdy, double* dfdt) 
   size_t n = sys_.dim;
   for (size_t i = 0; i < n * n; ++i) dfdy[i] = 0;
   double slope;
-  elastic(t, y, &slope);
+  elastic(y, instant(t, y), &slope);
   dfdy[0 * n + 1] = 1.0;
   dfdy[1 * n + 0] = -slope / p_.mass;
   double dampingSlope = c_;
@@ -139,14 +143,15 @@ MeshSignals MeshModel::signals(double t, const double* y) const {
   double d[3];
   rhs(t, y, d);
   double slope;
-  double contact = elastic(t, y, &slope);
+  Instant at = instant(t, y);
+  double contact = elastic(y, at, &slope);
   s.displacement = y[0];
   s.velocity = y[1];
   s.acceleration = d[1];
   s.contactForce = contact;
   s.meshForce = contact + c_ * y[1];
-  s.stiffness = e_.varyingStiffness ? p_.meanStiffness * relativeStiffness(fourier_, phase(t, y)) : p_.meanStiffness;
-  s.transmissionError = e_.transmissionError ? e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * phase(t, y) + e_.tePhase) : 0.0;
+  s.stiffness = p_.meanStiffness * at.rel;
+  s.transmissionError = e_.transmissionError ? e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * at.tau + e_.tePhase) : 0.0;
   s.inputSpeed = p_.drive.speed(t);
   s.outputSpeed = (s.inputSpeed / p_.ratio + y[1] / p_.outputRadius) / p_.downstream;
   return s;

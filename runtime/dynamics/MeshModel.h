@@ -62,9 +62,15 @@ public:
   const Fourier& series() const { return fourier_; }
 
 private:
+  // What one instant needs from the drive: the mesh phase and the relative stiffness,
+  // computed once per right-hand side.
+  struct Instant {
+    double tau, rel;
+  };
+  Instant instant(double t, const double* y) const;
   double phase(double t, const double* y) const;
-  double elastic(double t, const double* y, double* slope) const;
-  double excitation(double t, const double* y) const;  // transmission error as a displacement
+  double elastic(const double* y, const Instant& at, double* slope) const;
+  double excitation(const Instant& at) const;  // transmission error as a displacement
   void rhs(double t, const double* y, double* dydt) const;
   void jacobian(double t, const double* y, double* dfdy, double* dfdt) const;
 
@@ -74,7 +80,7 @@ private:
   double c_ = 0;
   System sys_;
   // Terms composed from the listed effects.
-  std::vector<std::function<double(double t, const double* y)>> loads_;  // forces along the line of action
+  std::vector<std::function<double(double t, const Instant& at)>> loads_;  // forces along the line of action
 };
 
 } // namespace gbx::rt::dyn
