@@ -42,7 +42,7 @@ Fixture load() {
 }
 
 // rms(acceleration) over the scene's recorded window, and the cost.
-double rmsAcceleration(const MeshScene& ms, const std::string& method, double rtol, Stats* stats) {
+double rmsAcceleration(const MeshScene& ms, cat::Method method, double rtol, Stats* stats) {
   MeshModel model(ms.params, ms.effects);
   Accuracy acc = ms.accuracy;
   acc.method = method;
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
       b += fmt::format("{}{:.17g}", k ? ", " : "", model.series().b[k]);
     }
     auto y0 = model.initialState();
-    double reference = rmsAcceleration(ms, "rk8pd", 1e-14, nullptr);
+    double reference = rmsAcceleration(ms, cat::Method::Rk8pd, 1e-14, nullptr);
     std::ofstream(argv[2]) << fmt::format(
         "{{\"m\": {:.17g}, \"k\": {:.17g}, \"c\": {:.17g}, \"F0\": {:.17g}, \"z\": {:.17g}, \"omega\": {:.17g}, \"a\": [{}], \"b\": [{}], "
         "\"te_mean\": {:.17g}, \"te_amp\": {:.17g}, \"te_phase\": {:.17g}, \"x0\": {:.17g}, \"t_end\": {:.17g}, \"samples\": [{:.17g}, {:.17g}, {}], "
@@ -87,10 +87,10 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (what == "wp") {
-    double reference = rmsAcceleration(ms, "rk8pd", 1e-14, nullptr);
-    for (const char* method : {"rk8pd", "rkf45"})
+    double reference = rmsAcceleration(ms, cat::Method::Rk8pd, 1e-14, nullptr);
+    for (cat::Method method : {cat::Method::Rk8pd, cat::Method::Rkf45})
       for (double rtol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12}) {
-        if (std::string(method) == "rkf45" && rtol < 1e-10) continue;
+        if (method == cat::Method::Rkf45 && rtol < 1e-10) continue;
         std::vector<double> cpu;
         Stats st;
         double v = 0;
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
           cpu.push_back(threadCpuSeconds() - t0);
         }
         std::sort(cpu.begin(), cpu.end());
-        std::printf("%s %.0e %.6e %.6e %ld\n", method, rtol, std::fabs(v - reference) / reference, cpu[2], st.rhsEvaluations);
+        std::printf("%s %.0e %.6e %.6e %ld\n", std::string(cat::methodSpec(method).name).c_str(), rtol, std::fabs(v - reference) / reference, cpu[2], st.rhsEvaluations);
       }
     return 0;
   }

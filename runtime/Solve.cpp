@@ -19,7 +19,7 @@
 #include "study/Sweep.h"
 #include "modification/Modify.h"
 #include "optimise/Optimise.h"
-#include "search/Evaluator.h"
+#include "model/Evaluator.h"
 #include "search/Search.h"
 #include "units/Unit.h"
 
@@ -35,7 +35,7 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
   Evaluator ev(m);
   if (!freedoms.empty()) {
     // Optimised designs: scene results and relative values at the scenes' own accuracy.
-    const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, "rtol");
+    const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, Q::Rtol);
     installHooks(ev, m, baseline, baseDesign, own && own->value ? own->value->toDouble() : 1e-9);
   }
   GearboxReport g;
@@ -63,8 +63,7 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
     c.exact = columnExprs[i]->op == ir::Op::Quantity || columnExprs[i]->isConst();
     auto u = units::displayUnitFor(columnExprs[i]->type.dim);
     // Imbalances read best in percent.
-    const std::string& q = columnExprs[i]->name;
-    if (columnExprs[i]->op == ir::Op::Quantity && q.size() > 10 && q.compare(q.size() - 10, 10, ".imbalance") == 0) u = {"%", 0.01};
+    if (columnExprs[i]->op == ir::Op::Quantity && columnExprs[i]->ref.key == Q::Imbalance) u = {"%", 0.01};
     c.unit = u.name;
     c.scale = u.scale;
     g.columns.push_back(c);
@@ -81,19 +80,20 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
     if (ri < freedoms.size())
       for (size_t f = 0; f < freedoms[ri].size(); ++f) {
         a.box[f] = {freedoms[ri][f], freedoms[ri][f]};
-        const ir::Attribute* at = m.attribute(m.freedoms[f].stage, m.freedoms[f].attr);
+        const Freedom& fr = m.freedoms[f];
+        const ir::Attribute* at = m.attribute(fr.stage, fr.gear, fr.key);
         auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
         row.choices.emplace_back(m.freedoms[f].path, formatNumber(freedoms[ri][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
       }
     for (size_t s = 0; s < m.stages.size(); ++s) {
       const ir::Stage& st = *m.stages[s].ir;
-      for (const auto& gear : st.gears) {
-        Value z = ev.attribute(static_cast<int>(s), gear + ".z", a);
-        if (z.exact && z.exact->isInteger()) row.teeth.emplace_back(st.name + "." + gear + ".z", static_cast<long long>(z.exact->num()));
+      for (size_t g = 0; g < st.gears.size(); ++g) {
+        Value z = ev.attribute(static_cast<int>(s), static_cast<int>(g), Q::Z, a);
+        if (z.exact && z.exact->isInteger()) row.teeth.emplace_back(st.name + "." + st.gears[g] + ".z", static_cast<long long>(z.exact->num()));
       }
       for (int sl : m.stages[s].slots) {
         const Slot& slot = m.slots[static_cast<size_t>(sl)];
-        if (slot.attr.size() > 2 && slot.attr.compare(slot.attr.size() - 2, 2, ".z") == 0) continue;
+        if (slot.key == Q::Z && slot.gear >= 0) continue;
         const Value& v = slot.values[static_cast<size_t>(d.choice[static_cast<size_t>(sl)])];
         if (v.exact && v.exact->isInteger()) row.teeth.emplace_back(slot.path, static_cast<long long>(v.exact->num()));
         else {
@@ -243,7 +243,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     std::vector<std::string> names;
     if (gb.report && !gb.report->columns.empty()) {
       for (size_t i = 0; i < gb.report->columns.size(); ++i) {
-        if (gb.report->columnTexts[i] == "ratio") continue;  // always shown
+        if (gb.report->ratioColumn[i]) continue;  // always shown
         cols.push_back(gb.report->columns[i].get());
         names.push_back(gb.report->columnTexts[i]);
       }
@@ -300,7 +300,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
         const auto& best = opt.ranked[0];
         std::string vars;
         for (size_t f = 0; f < m.freedoms.size() && f < best.freedoms.size(); ++f) {
-          const ir::Attribute* at = m.attribute(m.freedoms[f].stage, m.freedoms[f].attr);
+          const ir::Attribute* at = m.attribute(m.freedoms[f].stage, m.freedoms[f].gear, m.freedoms[f].key);
           auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
           vars += fmt::format("{}{} = {}{}", vars.empty() ? "" : ", ", m.freedoms[f].path, formatNumber(best.freedoms[f] / u.scale),
                               u.name.empty() ? "" : " " + u.name);
@@ -368,7 +368,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       best.choice = r.designs[0].choice;
       if (!optimumFreedoms.empty())
         for (size_t f = 0; f < optimumFreedoms[0].size(); ++f) best.box[f] = {optimumFreedoms[0][f], optimumFreedoms[0][f]};
-      std::map<std::string, dyn::SceneResult> results;
+      std::map<int, dyn::SceneResult> results;
       for (const auto& sc : gb.scenes) {
         auto res = dyn::runScene(m, best, sc);
         if (!res.failure.empty()) {
@@ -376,15 +376,14 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
           status = 3;
         }
         rep.scenes.push_back(sceneReport(res, sc, gb.name, o.outDir));
-        results[sc.name] = std::move(res);
+        results[static_cast<int>(&sc - gb.scenes.data())] = std::move(res);
       }
       // Report columns that are scene results.
       for (size_t i = 0; i < cols.size() && !rep.rows.empty(); ++i) {
         if (cols[i]->op != ir::Op::SceneOutput) continue;
-        auto dot = cols[i]->name.find('.');
-        auto it = results.find(cols[i]->name.substr(0, dot));
+        auto it = results.find(cols[i]->output.scene);
         if (it == results.end()) continue;
-        if (const auto* n = it->second.find(cols[i]->name.substr(dot + 1))) {
+        if (const auto* n = it->second.find(cols[i]->output.fn, cols[i]->output.signal)) {
           Cell& c = rep.rows[0].cells[i];
           c.valid = true;
           c.lo = c.hi = n->value;
@@ -426,9 +425,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
           rep.studies.push_back(sweep(m, best, st, o.outDir, fileSafe(gb.name)));
           continue;
         }
-        const ir::Scene* scene = nullptr;
-        for (const auto& sc : gb.scenes)
-          if (sc.name == st.target) scene = &sc;
+        const ir::Scene* scene = st.scene >= 0 ? &gb.scenes[static_cast<size_t>(st.scene)] : nullptr;
         if (scene) rep.studies.push_back(workPrecision(m, best, st, *scene, o.outDir, fileSafe(gb.name), o.timings));
       }
     }

@@ -30,6 +30,12 @@ ExprPtr Expr::clone() const {
   e->value = value;
   e->name = name;
   e->span = span;
+  e->ref = ref;
+  e->let = let;
+  e->fn = fn;
+  e->marker = marker;
+  e->relative = relative;
+  e->output = output;
   for (const auto& a : args) e->args.push_back(a ? a->clone() : nullptr);
   return e;
 }
@@ -64,6 +70,41 @@ const Setting* findSetting(const std::vector<Setting>& s, const std::string& nam
   for (const auto& x : s)
     if (x.name == name) return &x;
   return nullptr;
+}
+
+const Setting* findSetting(const std::vector<Setting>& s, Q key) {
+  for (const auto& x : s)
+    if (x.key == key) return &x;
+  return nullptr;
+}
+
+const Effect* Scene::findEffect(cat::Effect kind) const {
+  for (const auto& e : effects)
+    if (e.kind == kind) return &e;
+  return nullptr;
+}
+
+cat::Method Scene::method() const {
+  const Setting* s = findSetting(accuracy, Q::Method);
+  return s && s->choice >= 0 ? cat::kMethods[static_cast<size_t>(s->choice)].id : cat::Method::Rk8pd;
+}
+
+int Gearbox::stageIndex(const std::string& n) const {
+  for (size_t i = 0; i < stages.size(); ++i)
+    if (stages[i].name == n) return static_cast<int>(i);
+  return -1;
+}
+
+int Gearbox::splitIndex(const std::string& n) const {
+  for (size_t i = 0; i < splits.size(); ++i)
+    if (splits[i].name == n) return static_cast<int>(i);
+  return -1;
+}
+
+int Program::materialIndex(const std::string& n) const {
+  for (size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == n) return static_cast<int>(i);
+  return -1;
 }
 
 bool Scene::hasEffect(const std::string& n) const {

@@ -8,6 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "catalogue/Effects.h"
+#include "catalogue/Functions.h"
+#include "catalogue/Keys.h"
+#include "catalogue/Methods.h"
+#include "catalogue/Signals.h"
 #include "source/Source.h"
 #include "units/Dim.h"
 #include "units/Number.h"
@@ -54,6 +59,30 @@ enum class Op {
 struct Expr;
 using ExprPtr = std::unique_ptr<Expr>;
 
+using cat::Q;
+
+// A quantity as lowering resolves it: who owns it, and which catalogue word it is.
+struct QuantityRef {
+  enum Owner : std::uint8_t { Unresolved, Gearbox, Stage, Split, Material, Collection };
+  Owner owner = Unresolved;
+  std::int16_t index = -1;  // the stage, split or material
+  std::int8_t gear = -1;    // the gear's position in its stage; -1 a stage quantity
+  bool perGear = false;     // `pitch_deviation` of every gear of the stage (modify rules)
+  Q key = Q::None;
+  bool operator==(const QuantityRef&) const = default;
+};
+
+// A literal's unit that must survive folding: a percentage stays a relative tolerance,
+// mesh periods scale with the scene's mesh period.
+enum class Marker : std::uint8_t { None, Percent, MeshPeriods };
+
+// `scene.fn(signal)`, resolved.
+struct SceneOutputRef {
+  int scene = -1;
+  cat::SignalFn fn = cat::SignalFn::Rms;
+  cat::Signal signal = cat::Signal::Displacement;
+};
+
 struct Expr {
   Op op = Op::Const;
   Type type;
@@ -61,6 +90,13 @@ struct Expr {
   std::string name;
   std::vector<ExprPtr> args;
   Span span;
+  // Resolved by lowering; the runtime reads these, `name` stays for reports.
+  QuantityRef ref;           // Quantity
+  int let = -1;              // Let: index in the gearbox's lets; Symbol: in its effect's own words
+  cat::Fn fn = cat::Fn::Abs; // Call
+  Marker marker = Marker::None;  // Const
+  bool relative = false;     // Tol: the tolerance is a fraction of the centre
+  SceneOutputRef output;     // SceneOutput
 
   ExprPtr clone() const;
   bool isConst() const { return op == Op::Const; }
@@ -75,6 +111,8 @@ const char* stageKindName(StageKind k);
 struct Attribute {
   enum Role { Fixed, Decision, Freedom, Default };
   std::string name;  // "pinion.z", "spiral_angle"
+  Q key = Q::None;   // resolved by lowering
+  int gear = -1;     // the gear's position, -1 for a stage attribute
   Dim dim;
   bool integer = false;
   Role role = Fixed;
@@ -120,6 +158,10 @@ struct Objective {
 // A named setting of a scene, effect, split, study or accuracy block.
 struct Setting {
   std::string name;   // "settle", "torsion_shaft.diameter"
+  Q key = Q::None;    // resolved by lowering
+  int choice = -1;    // an enumerated value: its position in the catalogue row's words
+  std::vector<int> choices;  // a list of enumerated values (`methods in {rk8pd, msbdf}`)
+  int stage = -1;     // a stage-valued setting (`between`): the stage's index
   Dim dim;
   bool integer = false;
   bool meshPeriods = false;  // value counts the scene's mesh periods
@@ -132,9 +174,11 @@ struct Setting {
 };
 
 const Setting* findSetting(const std::vector<Setting>& s, const std::string& name);
+const Setting* findSetting(const std::vector<Setting>& s, Q key);
 
 struct Effect {
   std::string name;
+  cat::Effect kind = cat::Effect::VaryingStiffness;  // resolved by lowering
   std::vector<Setting> params;
   Span span;
 };
@@ -142,6 +186,9 @@ struct Effect {
 struct SceneOutput {
   std::string function;  // rms, peak, mean, min, max, spectrum, plot, or "" for a bare name (modes)
   std::string signal;
+  bool bare = true;                       // resolved by lowering: no function
+  cat::SignalFn fn = cat::SignalFn::Rms;  // when not bare
+  cat::Signal id = cat::Signal::Displacement;
   std::string key() const { return function.empty() ? signal : function + "(" + signal + ")"; }
   Span span;
 };
@@ -149,12 +196,15 @@ struct SceneOutput {
 struct Scene {
   std::string name;
   std::string target;  // stage name, or "" for the whole gearbox
+  int stage = -1;      // resolved by lowering: the target's index, -1 the whole gearbox
   std::vector<Effect> effects;
   std::vector<Setting> settings;  // settle, record, samples, duration, ramp
   std::vector<Setting> accuracy;  // method, rtol, atol, max_step, …
   std::vector<SceneOutput> outputs;
   Span span;
   bool hasEffect(const std::string& n) const;
+  const Effect* findEffect(cat::Effect kind) const;
+  cat::Method method() const;  // the accuracy block's method, or the default
 };
 
 struct ModRule {
@@ -182,6 +232,8 @@ struct Study {
   std::string name;
   Kind kind = Sweep;
   std::string target;  // swept quantity path, or the scene of a work-precision study
+  QuantityRef swept;   // resolved by lowering: the swept quantity
+  int scene = -1;      // resolved by lowering: the scene of a work-precision study
   std::optional<Dim> dim;
   std::optional<Number> lo, hi, step;
   std::vector<ExprPtr> outputs;
@@ -196,6 +248,7 @@ struct Report {
   ExprPtr sortBy;
   std::vector<ExprPtr> columns;
   std::vector<std::string> columnTexts;
+  std::vector<bool> ratioColumn;  // resolved by lowering: the column is the gearbox ratio, always shown
   Span span;
 };
 
@@ -215,6 +268,8 @@ struct Gearbox {
   std::optional<Report> report;
   Span span;
   const Stage* findStage(const std::string& name) const;
+  int stageIndex(const std::string& name) const;
+  int splitIndex(const std::string& name) const;
 };
 
 struct Material {
@@ -227,6 +282,7 @@ struct Program {
   std::vector<Material> materials;
   std::vector<Gearbox> gearboxes;
   const Material* findMaterial(const std::string& name) const;
+  int materialIndex(const std::string& name) const;
 };
 
 // `dump ir`: a stable text rendering of the whole program.

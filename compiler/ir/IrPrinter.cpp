@@ -72,7 +72,7 @@ std::string print(const Expr& e) {
   case Op::Const:
     if (e.type.isError()) return "<error>";
     if (e.type.kind == Type::Bool) return e.value.isZero() ? "false" : "true";
-    return e.value.str() + (e.name == "mesh_periods" ? " mesh_periods" : unitSuffix(e.type.dim));
+    return e.value.str() + (e.marker == Marker::MeshPeriods ? " mesh_periods" : unitSuffix(e.type.dim));
   case Op::Quantity:
   case Op::Let:
   case Op::Symbol:
@@ -82,7 +82,7 @@ std::string print(const Expr& e) {
   case Op::Within: return "(" + a(0) + " in " + a(1) + ".." + a(2) + ")";
   case Op::InSet: return "(" + a(0) + " in {" + join(e.args, 1, ", ") + "})";
   case Op::Set: return "{" + join(e.args, 0, ", ") + "}";
-  case Op::Tol: return "(" + a(0) + " +- " + a(1) + (e.name == "relative" ? " relative" : "") + ")";
+  case Op::Tol: return "(" + a(0) + " +- " + a(1) + (e.relative ? " relative" : "") + ")";
   case Op::Call: return e.name + "(" + join(e.args, 0, ", ") + ")";
   case Op::Relative: return "relative(" + a(0) + ")";
   case Op::Forall: return "forall " + e.name + " in " + e.type.detail + " [" + join(e.args, 0, "; ") + "]";

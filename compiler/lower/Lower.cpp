@@ -1,14 +1,19 @@
 #include "lower/Lower.h"
 
 #include <algorithm>
+#include <functional>
 
-#include "sema/Catalogue.h"
+#include "catalogue/Settings.h"
+#include "catalogue/StageKinds.h"
 
 namespace gbx::lower {
 
 namespace {
 
-std::vector<std::string> catalogueOrder(const sema::KindSpec& k) {
+using ir::Q;
+using ir::QuantityRef;
+
+std::vector<std::string> catalogueOrder(const cat::KindSpec& k) {
   std::vector<std::string> order;
   for (const auto& g : k.gears)
     for (const auto& a : k.gear) order.push_back(g + "." + a.name);
@@ -17,9 +22,8 @@ std::vector<std::string> catalogueOrder(const sema::KindSpec& k) {
 }
 
 void lowerStage(ir::Stage& st) {
-  const sema::KindSpec* k = sema::findKind(ir::stageKindName(st.kind));
-  if (!k) return;
-  for (const auto& a : k->stage) {
+  const cat::KindSpec& k = cat::kindSpec(st.kind);
+  for (const auto& a : k.stage) {
     if (!a.dflt || st.find(a.name)) continue;
     ir::Attribute d;
     d.name = a.name;
@@ -30,20 +34,193 @@ void lowerStage(ir::Stage& st) {
     d.origin = "default";
     st.attributes.push_back(std::move(d));
   }
-  auto order = catalogueOrder(*k);
+  auto order = catalogueOrder(k);
   auto rank = [&](const ir::Attribute& a) {
     auto it = std::find(order.begin(), order.end(), a.name);
     return it - order.begin();
   };
   std::stable_sort(st.attributes.begin(), st.attributes.end(),
                    [&](const ir::Attribute& a, const ir::Attribute& b) { return rank(a) < rank(b); });
+  for (auto& a : st.attributes) {
+    auto dot = a.name.find('.');
+    if (dot != std::string::npos) a.gear = cat::gearIndex(k, a.name.substr(0, dot));
+    a.key = cat::keyOf(dot == std::string::npos ? a.name : a.name.substr(dot + 1)).value_or(Q::None);
+  }
 }
+
+// Resolves the names of one gearbox: quantity paths, lets, functions, settings, effects,
+// scene outputs and study targets.
+class Resolver {
+public:
+  Resolver(const ir::Program& p, ir::Gearbox& g) : p_(p), g_(g) {}
+
+  QuantityRef quantity(const std::string& path) const { return quantityRef(p_, g_, path); }
+
+  void expr(ir::Expr& e) const {
+    switch (e.op) {
+    case ir::Op::Quantity:
+      e.ref = quantity(e.name);
+      e.ref.perGear = e.type.kind == ir::Type::PerGear;
+      break;
+    case ir::Op::Let:
+      for (size_t i = 0; i < g_.lets.size(); ++i)
+        if (g_.lets[i].name == e.name) e.let = static_cast<int>(i);
+      break;
+    case ir::Op::Call:
+      if (const auto* f = cat::findFunction(e.name)) e.fn = f->id;
+      break;
+    case ir::Op::SceneOutput: {
+      // "scene.fn(signal)"
+      auto dot = e.name.find('.'), open = e.name.find('('), close = e.name.rfind(')');
+      if (dot == std::string::npos || open == std::string::npos || close == std::string::npos) break;
+      for (size_t i = 0; i < g_.scenes.size(); ++i)
+        if (g_.scenes[i].name == e.name.substr(0, dot)) e.output.scene = static_cast<int>(i);
+      if (const auto* f = cat::findSignalFn(e.name.substr(dot + 1, open - dot - 1))) e.output.fn = f->id;
+      if (const auto* s = cat::findSignal(e.name.substr(open + 1, close - open - 1))) e.output.signal = s->id;
+      break;
+    }
+    default: break;
+    }
+    for (auto& a : e.args)
+      if (a) expr(*a);
+  }
+
+  void expr(ir::ExprPtr& e) const {
+    if (e) expr(*e);
+  }
+
+  // Settings against their catalogue rows: the key, an enumerated word's position, a stage.
+  void settings(std::vector<ir::Setting>& list, const std::vector<cat::AttrSpec>& rows,
+                const std::vector<std::string>& locals = {}) const {
+    for (auto& s : list) {
+      for (const auto& row : rows)
+        if (row.name == s.name) {
+          s.key = row.key;
+          // One word, or a list of words joined by commas.
+          size_t from = 0;
+          while (!s.symbol.empty() && from <= s.symbol.size()) {
+            size_t to = std::min(s.symbol.find(',', from), s.symbol.size());
+            auto w = std::find(row.symbols.begin(), row.symbols.end(), s.symbol.substr(from, to - from));
+            if (w != row.symbols.end()) s.choices.push_back(static_cast<int>(w - row.symbols.begin()));
+            from = to + 1;
+          }
+          if (s.choices.size() == 1) s.choice = s.choices[0];
+          if (row.value == cat::ValueKind::Stage) s.stage = g_.stageIndex(s.symbol);
+        }
+      if (s.key == Q::None) s.key = cat::keyOf(s.name).value_or(Q::None);
+      expr(s.expr);
+      // An effect's own words (`stiffness` in hertz_contact): their position in its list.
+      std::function<void(ir::Expr&)> local = [&](ir::Expr& e) {
+        if (e.op == ir::Op::Symbol) {
+          auto w = std::find(locals.begin(), locals.end(), e.name);
+          if (w != locals.end()) e.let = static_cast<int>(w - locals.begin());
+        }
+        for (auto& a : e.args)
+          if (a) local(*a);
+      };
+      if (s.expr) local(*s.expr);
+    }
+  }
+
+  void gearbox() {
+    for (auto& st : g_.stages)
+      for (auto& a : st.attributes) expr(a.value);
+    for (auto& l : g_.lets) expr(l.expr);
+    for (auto& r : g_.rules) expr(r.expr);
+    for (auto& o : g_.objectives) expr(o.expr);
+    settings(g_.operating, cat::operatingSettings());
+    for (auto& sc : g_.scenes) {
+      sc.stage = g_.stageIndex(sc.target);
+      settings(sc.settings, cat::sceneSettings());
+      settings(sc.accuracy, cat::accuracySettings());
+      for (auto& fx : sc.effects)
+        if (const auto* spec = cat::findEffect(fx.name)) {
+          fx.kind = spec->id;
+          settings(fx.params, spec->params, spec->locals);
+        }
+      for (auto& o : sc.outputs) {
+        o.bare = o.function.empty();
+        if (const auto* f = cat::findSignalFn(o.function)) o.fn = f->id;
+        if (const auto* s = cat::findSignal(o.signal)) o.id = s->id;
+      }
+    }
+    for (auto& md : g_.modifies)
+      for (auto& r : md.rules) {
+        expr(r.value);
+        expr(r.when);
+      }
+    for (auto& sp : g_.splits) settings(sp.settings, cat::splitSettings());
+    for (auto& st : g_.studies) {
+      if (st.kind == ir::Study::Sweep) st.swept = quantity(st.target);
+      for (size_t i = 0; i < g_.scenes.size(); ++i)
+        if (g_.scenes[i].name == st.target) st.scene = static_cast<int>(i);
+      for (auto& o : st.outputs) expr(o);
+      settings(st.settings, cat::workPrecisionSettings());
+    }
+    if (g_.report) {
+      expr(g_.report->sortBy);
+      g_.report->ratioColumn.clear();
+      for (auto& c : g_.report->columns) {
+        expr(c);
+        g_.report->ratioColumn.push_back(c && c->op == ir::Op::Quantity && c->ref.owner == QuantityRef::Gearbox && c->ref.key == Q::Ratio);
+      }
+    }
+  }
+
+private:
+  const ir::Program& p_;
+  ir::Gearbox& g_;
+};
 
 } // namespace
 
+QuantityRef quantityRef(const ir::Program& p_, const ir::Gearbox& g_, const std::string& path) {
+  QuantityRef r;
+  auto dot = path.find('.');
+  if (dot == std::string::npos) {
+    auto k = cat::keyOf(path);
+    if (!k) return r;
+    r.key = *k;
+    r.owner = (*k == Q::Stages || *k == Q::Teeth) ? QuantityRef::Collection : QuantityRef::Gearbox;
+    return r;
+  }
+  std::string head = path.substr(0, dot), rest = path.substr(dot + 1);
+  if (int st = g_.stageIndex(head); st >= 0) {
+    r.owner = QuantityRef::Stage;
+    r.index = static_cast<std::int16_t>(st);
+    const cat::KindSpec& k = cat::kindSpec(g_.stages[static_cast<size_t>(st)].kind);
+    auto d2 = rest.find('.');
+    std::string first = d2 == std::string::npos ? rest : rest.substr(0, d2);
+    if (int gi = cat::gearIndex(k, first); gi >= 0) {
+      r.gear = static_cast<std::int8_t>(gi);
+      if (d2 == std::string::npos) return r;  // the gear itself
+      rest = rest.substr(d2 + 1);
+    }
+    r.key = cat::keyOf(rest).value_or(Q::None);
+    if (r.key == Q::Teeth) r.owner = QuantityRef::Collection;
+    return r;
+  }
+  if (int sp = g_.splitIndex(head); sp >= 0) {
+    r.owner = QuantityRef::Split;
+    r.index = static_cast<std::int16_t>(sp);
+    r.key = cat::keyOf(rest).value_or(Q::None);
+    return r;
+  }
+  if (int m = p_.materialIndex(head); m >= 0) {
+    r.owner = QuantityRef::Material;
+    r.index = static_cast<std::int16_t>(m);
+    r.key = cat::keyOf(rest).value_or(Q::None);
+  }
+  return r;
+}
+
 ir::Program lower(ir::Program p) {
-  for (auto& g : p.gearboxes)
+  for (auto& m : p.materials)
+    for (auto& s : m.properties) s.key = cat::keyOf(s.name).value_or(Q::None);
+  for (auto& g : p.gearboxes) {
     for (auto& st : g.stages) lowerStage(st);
+    Resolver(p, g).gearbox();
+  }
   return p;
 }
 

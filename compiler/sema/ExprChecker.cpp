@@ -54,10 +54,11 @@ std::string writtenUnit(const ast::Expr* e) {
   return "";
 }
 
-bool isPercentLiteral(const ast::Expr* e) {
-  return e && e->kind == ast::ExprKind::Number && e->unit && e->unit->factors.size() == 1 &&
-         e->unit->factors[0].atom == "%" && e->unit->factors[0].exponent == 1;
+bool isPercentUnit(const ast::UnitExpr& u) {
+  return u.factors.size() == 1 && u.factors[0].atom == "%" && u.factors[0].exponent == 1;
 }
+
+bool isPercentLiteral(const ast::Expr* e) { return e && e->kind == ast::ExprKind::Number && e->unit && isPercentUnit(*e->unit); }
 
 } // namespace
 
@@ -85,9 +86,9 @@ ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOv
   if (!ok) return error(e.span);
   bool integer = !u && r && r->isInteger();
   auto c = ir::makeConst(v.mul(unit.scale), unit.dim, integer, e.span);
-  if (unit.meshPeriods) c->name = "mesh_periods";
+  if (unit.meshPeriods) c->marker = ir::Marker::MeshPeriods;
   // A percentage stays marked through consts, so `+- tolerance` with `const tolerance = 1%` is relative.
-  if (u && u->factors.size() == 1 && u->factors[0].atom == "%" && u->factors[0].exponent == 1) c->name = "percent";
+  if (u && isPercentUnit(*u)) c->marker = ir::Marker::Percent;
   return c;
 }
 
@@ -109,7 +110,7 @@ ir::ExprPtr ExprChecker::check(const ast::Expr* e, const Scope& s) {
   switch (e->kind) {
   case ast::ExprKind::Number: {
     auto c = literal(*e);
-    if (!c->type.isError() && c->name == "mesh_periods" && !s.meshPeriodsAllowed) {
+    if (!c->type.isError() && c->marker == ir::Marker::MeshPeriods && !s.meshPeriodsAllowed) {
       diags_.error("E0301", e->unit ? e->unit->span : e->span,
                    "`mesh_period` is a unit only in a scene's time settings (settle, record, ramp, steps)");
       return error(e->span);
@@ -330,7 +331,7 @@ ir::ExprPtr ExprChecker::name(const ast::Expr& e, const Scope& s) {
   }
   if (globals_.consts.count(n)) return error(e.span);  // const with an error, already reported
   if (globals_.materials.count(n)) return make(Op::Quantity, Type{Type::Material, {}, false, {}}, e.span, n);
-  if (isFunction(n) || isSignalFunction(n)) {
+  if (findFunction(n) || findSignalFn(n)) {
     diags_.error("E0306", e.span, fmt::format("`{}` is a function: call it, as in `{}(…)`", n, n));
     return error(e.span);
   }
@@ -498,9 +499,10 @@ ir::ExprPtr ExprChecker::binary(const ast::Expr& e, const Scope& s) {
     }
     auto c = ir::makeConst(v, t.dim, t.integer && v.isRational() && v.rational().isInteger(), e.span);
     // 2 * 1% is still a percentage; a sum of percentages is not obviously one and stays plain.
-    if ((op == Op::Mul || op == Op::Div) && (a->name == "percent") != (b->name == "percent") &&
-        a->type.dim.dimensionless() && b->type.dim.dimensionless() && (op == Op::Mul || a->name == "percent"))
-      c->name = "percent";
+    bool pa = a->marker == ir::Marker::Percent, pb = b->marker == ir::Marker::Percent;
+    if ((op == Op::Mul || op == Op::Div) && pa != pb && a->type.dim.dimensionless() && b->type.dim.dimensionless() &&
+        (op == Op::Mul || pa))
+      c->marker = ir::Marker::Percent;
     return c;
   }
   auto n = make(op, t, e.span);
@@ -513,7 +515,7 @@ ir::ExprPtr ExprChecker::tolerance(const ast::Expr& e, const Scope& s) {
   auto centre = requireNumber(check(e.args[0].get(), s), "the target of a tolerance");
   auto tol = requireNumber(check(e.args[1].get(), s), "a tolerance");
   if (centre->type.isError() || tol->type.isError()) return error(e.span);
-  bool relative = isPercentLiteral(e.args[1].get()) || (tol->isConst() && tol->name == "percent");
+  bool relative = isPercentLiteral(e.args[1].get()) || (tol->isConst() && tol->marker == ir::Marker::Percent);
   if (!relative && tol->type.dim != centre->type.dim) {
     diags_.error("E0302", tol->span,
                  fmt::format("unit mismatch: the tolerance must be {} like its target, or a percentage; got {}",
@@ -524,7 +526,8 @@ ir::ExprPtr ExprChecker::tolerance(const ast::Expr& e, const Scope& s) {
     diags_.error("E0409", tol->span, "a tolerance cannot be negative");
     return error(e.span);
   }
-  auto n = make(Op::Tol, Type{Type::Interval, centre->type.dim, false, {}}, e.span, relative ? "relative" : "");
+  auto n = make(Op::Tol, Type{Type::Interval, centre->type.dim, false, {}}, e.span);
+  n->relative = relative;
   n->args.push_back(std::move(centre));
   n->args.push_back(std::move(tol));
   return n;
@@ -617,7 +620,8 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
       return error(e.span);
     }
     const std::string& fn = callee->text;
-    if (!isSignalFunction(fn)) {
+    const SignalFnSpec* fnSpec = findSignalFn(fn);
+    if (!fnSpec) {
       diags_.error("E0220", callee->span,
                    fmt::format("`{}` is not a scene result function (rms, peak, mean, min, max, spectrum, plot)", fn));
       return error(e.span);
@@ -644,7 +648,7 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
                    fmt::format("scene `{}` does not output `{}`; add it to the scene's `output` list", obj->name, key));
       return error(e.span);
     }
-    Type t = signalFunctionIsNumber(fn) ? Type::number(spec->dim) : Type{Type::Signal, spec->dim, false, {}};
+    Type t = fnSpec->number ? Type::number(spec->dim) : Type{Type::Signal, spec->dim, false, {}};
     return make(Op::SceneOutput, t, e.span, obj->name + "." + key);
   }
   if (!callee || callee->kind != ast::ExprKind::Name) {
@@ -652,14 +656,14 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
     return error(e.span);
   }
   const std::string& fn = callee->text;
-  if (!isFunction(fn)) {
-    if (isSignalFunction(fn)) {
+  const FunctionSpec* spec = findFunction(fn);
+  if (!spec) {
+    if (findSignalFn(fn)) {
       diags_.error("E0220", callee->span,
                    fmt::format("`{}` reads a scene's signal: write it in a scene's `output` list, or as `SCENE.{}(…)`", fn, fn));
       return error(e.span);
     }
-    std::vector<std::string> fns = {"abs", "sqrt", "sin", "cos", "tan", "atan", "min", "max", "mean", "round", "coprime", "gcd", "relative"};
-    std::string hint = closest(fn, fns);
+    std::string hint = closest(fn, functionNames());
     diags_.error("E0220", callee->span,
                  fmt::format("unknown function `{}`{}", fn, suggestion(hint)));
     return error(e.span);
@@ -671,17 +675,13 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
     bad = bad || args.back()->type.isError();
   }
   if (bad) return error(e.span);
-  auto arity = [&](size_t lo, size_t hi) {
+  auto arity = [&]() {
+    size_t lo = spec->minArgs, hi = spec->maxArgs;
     if (args.size() >= lo && args.size() <= hi) return true;
     diags_.error("E0221", e.span,
                  lo == hi ? fmt::format("`{}` takes {} argument{}, got {}", fn, lo, lo == 1 ? "" : "s", args.size())
                           : fmt::format("`{}` takes at least {} argument{}, got {}", fn, lo, lo == 1 ? "" : "s", args.size()));
     return false;
-  };
-  auto result = [&](Type t) {
-    auto n = make(Op::Call, std::move(t), e.span, fn);
-    n->args = std::move(args);
-    return n;
   };
   auto numbers = [&]() {
     for (auto& a : args)
@@ -700,17 +700,25 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
       }
     return true;
   };
-  if (fn == "coprime" || fn == "gcd") {
-    if (!arity(2, 2) || !numbers()) return error(e.span);
+  auto plain = [&](bool angleToo) {
+    const auto& d = args[0]->type.dim;
+    if (d.dimensionless() || (angleToo && d == units::dims::angle)) return true;
+    diags_.error("E0302", args[0]->span,
+                 fmt::format("unit mismatch: `{}` needs {}, got {}", fn, angleToo ? "an angle" : "a plain number", describe(args[0]->type)));
+    return false;
+  };
+  // The arguments against the row's rule.
+  switch (spec->args) {
+  case ArgRule::WholePlain:
+    if (!arity() || !numbers()) return error(e.span);
     for (auto& a : args)
       if (!a->type.integer || !a->type.dim.dimensionless()) {
         diags_.error("E0306", a->span, fmt::format("`{}` takes whole numbers such as tooth counts, but this is {}", fn, describe(a->type)));
         return error(e.span);
       }
-    return result(fn == "coprime" ? Type::boolean() : Type::number({}, true));
-  }
-  if (fn == "relative") {
-    if (!arity(1, 1) || !numbers()) return error(e.span);
+    break;
+  case ArgRule::Baseline: {
+    if (!arity() || !numbers()) return error(e.span);
     if (!s.hasBaseline) {
       diags_.error("E0227", e.span,
                    "`relative(x)` divides by x of the baseline gearbox, but this gearbox extends none");
@@ -720,65 +728,64 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
     n->args = std::move(args);
     return n;
   }
-  if (fn == "mean" || fn == "min" || fn == "max") {
-    if (!arity(1, 64)) return error(e.span);
-    if (args.size() == 1 && args[0]->type.kind == Type::PerGear) return result(Type::number(args[0]->type.dim));
+  case ArgRule::Reduction: {
+    if (!arity()) return error(e.span);
+    if (args.size() == 1 && args[0]->type.kind == Type::PerGear) {
+      auto n = make(Op::Call, Type::number(args[0]->type.dim), e.span, fn);
+      n->fn = spec->id;
+      n->args = std::move(args);
+      return n;
+    }
     for (auto& a : args)
       if (a->type.kind == Type::PerGear) {
         diags_.error("E0306", a->span,
                      fmt::format("`{}` of a per-gear quantity stands alone, as in `{}(pitch_deviation)`", fn, fn));
         return error(e.span);
       }
-    if (args.size() < 2 && fn != "mean") {
+    if (args.size() < 2 && spec->result == ResultRule::Extreme) {
       diags_.error("E0221", e.span, fmt::format("`{}` takes two or more numbers, or one per-gear quantity", fn));
       return error(e.span);
     }
     if (!numbers() || !sameDim()) return error(e.span);
-    return result(Type::number(args[0]->type.dim, fn != "mean" && std::all_of(args.begin(), args.end(), [](auto& a) { return a->type.integer; })));
+    break;
   }
-  if (!numbers()) return error(e.span);
-  if (fn == "abs") {
-    if (!arity(1, 1)) return error(e.span);
-    Type t = args[0]->type;
-    return result(t);
+  case ArgRule::Any:
+    if (!numbers() || !arity()) return error(e.span);
+    break;
+  case ArgRule::SameDim:
+    if (!numbers() || !arity() || !sameDim()) return error(e.span);
+    break;
+  case ArgRule::AngleOrPlain:
+  case ArgRule::Plain:
+    if (!numbers() || !arity() || !plain(spec->args == ArgRule::AngleOrPlain)) return error(e.span);
+    break;
   }
-  if (fn == "round") {
-    if (!arity(2, 2) || !sameDim()) return error(e.span);
-    return result(Type::number(args[0]->type.dim));
-  }
-  if (fn == "sqrt") {
-    if (!arity(1, 1)) return error(e.span);
+  // The result's type from the row's rule.
+  Type t;
+  switch (spec->result) {
+  case ResultRule::Plain: t = Type::number({}); break;
+  case ResultRule::Whole: t = Type::number({}, true); break;
+  case ResultRule::Angle: t = Type::number(units::dims::angle); break;
+  case ResultRule::Condition: t = Type::boolean(); break;
+  case ResultRule::Like: t = args[0]->type; break;
+  case ResultRule::Dim: t = Type::number(args[0]->type.dim); break;
+  case ResultRule::Root: {
     units::Dim d;
     if (!args[0]->type.dim.sqrt(d)) {
       diags_.error("E0303", args[0]->span, fmt::format("the square root of {} has no unit", describe(args[0]->type)));
       return error(e.span);
     }
-    return result(Type::number(d));
+    t = Type::number(d);
+    break;
   }
-  if (fn == "sin" || fn == "cos" || fn == "tan") {
-    if (!arity(1, 1)) return error(e.span);
-    if (args[0]->type.dim != units::dims::angle && !args[0]->type.dim.dimensionless()) {
-      diags_.error("E0302", args[0]->span, fmt::format("unit mismatch: `{}` needs an angle, got {}", fn, describe(args[0]->type)));
-      return error(e.span);
-    }
-    return result(Type::number({}));
+  case ResultRule::Extreme:
+    t = Type::number(args[0]->type.dim, std::all_of(args.begin(), args.end(), [](auto& a) { return a->type.integer; }));
+    break;
   }
-  if (fn == "asin" || fn == "acos" || fn == "atan" || fn == "atan2") {
-    if (!arity(fn == "atan2" ? 2 : 1, fn == "atan2" ? 2 : 1)) return error(e.span);
-    if (fn == "atan2" && !sameDim()) return error(e.span);
-    if (fn != "atan2" && !args[0]->type.dim.dimensionless()) {
-      diags_.error("E0302", args[0]->span, fmt::format("unit mismatch: `{}` needs a plain number, got {}", fn, describe(args[0]->type)));
-      return error(e.span);
-    }
-    return result(Type::number(units::dims::angle));
-  }
-  // exp, log, floor, ceil
-  if (!arity(1, 1)) return error(e.span);
-  if (!args[0]->type.dim.dimensionless()) {
-    diags_.error("E0302", args[0]->span, fmt::format("unit mismatch: `{}` needs a plain number, got {}", fn, describe(args[0]->type)));
-    return error(e.span);
-  }
-  return result(Type::number({}, fn == "floor" || fn == "ceil"));
+  auto n = make(Op::Call, std::move(t), e.span, fn);
+  n->fn = spec->id;
+  n->args = std::move(args);
+  return n;
 }
 
 } // namespace gbx::sema

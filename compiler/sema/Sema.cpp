@@ -36,13 +36,9 @@ std::string lastPart(const std::string& p) {
   return d == std::string::npos ? p : p.substr(d + 1);
 }
 
-// Quantities that exist only once the operating point is known.
 bool needsOperating(const std::string& path) {
-  static const std::set<std::string> q = {"input_speed",    "output_speed",  "input_torque",        "output_torque",
-                                          "power",          "mesh_frequency", "pitch_line_velocity", "tangential_force",
-                                          "load_deflection", "speed",         "torque",              "carrier_speed",
-                                          "branch_torque",  "twist",         "displacement",        "imbalance"};
-  return q.count(lastPart(path)) > 0;
+  auto key = keyOf(lastPart(path));
+  return key && dependsOnOperatingPoint(*key);
 }
 
 class Analyser {
@@ -224,7 +220,7 @@ private:
                                spec.altDim ? " or " + spec.altDim->describe() : "", describe(x->type, written)));
       return out;
     }
-    out.meshPeriods = x->name == "mesh_periods";
+    out.meshPeriods = x->marker == ir::Marker::MeshPeriods;
     if (x->isConst()) {
       if (spec.integer && !(x->value.isRational() && x->value.rational().isInteger())) {
         diags_.error("E0403", x->span, fmt::format("`{}` must be a whole number, got {}", name, x->value.str()));
@@ -957,15 +953,16 @@ private:
       }
       ir::Effect fx;
       fx.name = e.name;
+      fx.kind = spec->id;
       fx.span = e.span;
       std::vector<std::pair<std::string, Binding>> items;
       std::string owner = fmt::format("effect `{}`", e.name);
       flatten(e.body, "", owner, items, {});
       Scope s = gs;
       s.context = Scope::EffectParam;
-      if (e.name == "hertz_contact") s.effectLocals = {"stiffness"};
+      s.effectLocals = spec->locals;
       fx.params = settings(items, spec->params, s, owner, nameOr(e), "E0215");
-      if (e.name == "damping") {
+      if (spec->id == Effect::Damping) {
         bool r = ir::findSetting(fx.params, "ratio"), c = ir::findSetting(fx.params, "coefficient");
         if (!r && !c) diags_.error("E0215", nameOr(e), "effect `damping` needs `ratio` (zeta) or `coefficient` (c)");
         if (r && c) diags_.error("E0214", nameOr(e), "effect `damping` takes `ratio` or `coefficient`, not both");
@@ -984,7 +981,7 @@ private:
                e->args[0]->kind == ast::ExprKind::Name && e->args[1] && e->args[1]->kind == ast::ExprKind::Name) {
       o.function = e->args[0]->text;
       o.signal = e->args[1]->text;
-      if (!isSignalFunction(o.function)) {
+      if (!findSignalFn(o.function)) {
         diags_.error("E0220", e->args[0]->span,
                      fmt::format("`{}` is not a scene result function (rms, peak, mean, min, max, spectrum, plot)", o.function));
         return;
@@ -996,7 +993,7 @@ private:
     const SignalSpec* sig = findSignal(o.signal);
     if (!sig) {
       std::vector<std::string> names;
-      for (const auto& s : sceneSignals()) names.push_back(s.name);
+      for (const auto& s : sceneSignals()) names.emplace_back(s.name);
       std::string hint = closest(o.signal, names);
       diags_.error("E0218", e->kind == ast::ExprKind::Name ? e->span : e->args[1]->span,
                    fmt::format("scenes have no signal `{}`{}", o.signal,
@@ -1010,14 +1007,16 @@ private:
                                : fmt::format("`{}` is a time signal; say what to take of it, as in `rms({})`", o.signal, o.signal));
       return;
     }
-    if (o.signal == "modes" && stage && stage->kind && stage->kind->kind != ir::StageKind::Planetary)
+    if (sig->id == Signal::Modes && stage && stage->kind && stage->kind->kind != ir::StageKind::Planetary)
       diags_.error("E0232", e->span, "`modes` needs a lumped model: a scene on a planetary stage or on the whole gearbox");
     if (!sig->needsAnyEffect.empty() &&
-        std::none_of(sig->needsAnyEffect.begin(), sig->needsAnyEffect.end(), [&](const std::string& x) { return out.hasEffect(x); }))
+        std::none_of(sig->needsAnyEffect.begin(), sig->needsAnyEffect.end(), [&](Effect x) { return out.findEffect(x); })) {
+      std::vector<std::string> names;
+      for (Effect x : sig->needsAnyEffect) names.push_back(effectSpec(x).name);
       diags_.error("E0218", e->span,
                    fmt::format("`{}` exists only with the effect{} {}; scene `{}` does not list {}", o.signal,
-                               sig->needsAnyEffect.size() > 1 ? "s" : "", fmt::join(sig->needsAnyEffect, " or "), out.name,
-                               sig->needsAnyEffect.size() > 1 ? "either" : "it"));
+                               names.size() > 1 ? "s" : "", fmt::join(names, " or "), out.name, names.size() > 1 ? "either" : "it"));
+    }
     for (const auto& x : out.outputs)
       if (x.key() == o.key()) return;
     out.outputs.push_back(o);

@@ -6,8 +6,10 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "catalogue/StageKinds.h"
+
 #include "dynamics/SceneSupport.h"
-#include "kinematics/Standards.h"
+#include "model/Standards.h"
 
 namespace gbx::rt::dyn {
 
@@ -33,53 +35,52 @@ LumpedModes gearboxModes(const Model& m, const Assignment& a) {
   Evaluator ev(m);
   Lumped L;
   auto density = [&](int st) {
-    const ir::Attribute* mat = m.attribute(st, "material");
-    if (mat && !mat->symbol.empty())
-      if (const auto* x = m.program.findMaterial(mat->symbol))
-        if (const auto* s = ir::findSetting(x->properties, "density"); s && s->value) return s->value->toDouble();
+    if (const auto* x = m.material(st))
+      if (const auto* s = ir::findSetting(x->properties, Q::Density); s && s->value) return s->value->toDouble();
     return 7850.0;
   };
   auto faceWidth = [&](int st) {
-    Value b = ev.attribute(st, "face_width", a);
+    Value b = ev.attribute(st, Q::FaceWidth, a);
     if (b.isNumber()) return b.mid();
     throw SceneFailure{fmt::format("the gearbox model needs the `face_width` of stage `{}`", m.stages[static_cast<size_t>(st)].ir->name)};
   };
   // A gear's inertia: given, or a solid cylinder of its pitch diameter and face width.
-  auto gearInertia = [&](int st, const std::string& gear, double d) {
-    Value J = ev.attribute(st, gear + ".inertia", a);
+  auto gearInertia = [&](int st, int gear, double d) {
+    Value J = ev.attribute(st, gear, Q::Inertia, a);
     if (J.isNumber()) return J.mid();
     double r = 0.5 * d;
     return 0.5 * density(st) * M_PI * faceWidth(st) * r * r * r * r;
   };
   auto meshStiffness = [&](int st) {
-    Value cg = ev.quantity(m.stages[static_cast<size_t>(st)].ir->name + ".mesh_stiffness", a);
+    Value cg = ev.attribute(st, Q::MeshStiffness, a);
     double c = cg.isNumber() ? cg.mid() : 20e9;  // c_gamma 20 N/(mm*um) where no formula applies
     return c * faceWidth(st);
   };
   const ir::Split* split = m.gearbox.splits.empty() ? nullptr : &m.gearbox.splits[0];
   int splitStage = -1, branches = 1;
   if (split) {
-    const ir::Setting* b = ir::findSetting(split->settings, "between");
-    splitStage = b ? m.stageIndex(b->symbol) : -1;
-    const ir::Setting* n = ir::findSetting(split->settings, "branches");
+    const ir::Setting* b = ir::findSetting(split->settings, Q::Between);
+    splitStage = b ? b->stage : -1;
+    const ir::Setting* n = ir::findSetting(split->settings, Q::Branches);
     branches = n && n->value ? static_cast<int>(n->value->toDouble()) : 2;
   }
   std::vector<int> shaft = {L.add("input shaft")};
   for (int st = 0; st < static_cast<int>(m.stages.size()); ++st) {
     const ir::Stage& s = *m.stages[static_cast<size_t>(st)].ir;
     const std::string& n = s.name;
-    auto d = [&](const std::string& g) { return need(ev.derived(st, g + ".d", a), n + "." + g + " pitch diameter"); };
-    double alpha = need(ev.attribute(st, "pressure_angle", a), "a pressure angle");
+    auto d = [&](int g) { return need(ev.derived(st, g, Q::D, a), n + "." + s.gears[static_cast<size_t>(g)] + " pitch diameter"); };
+    double alpha = need(ev.attribute(st, Q::PressureAngle, a), "a pressure angle");
+    using namespace cat::gear;
     switch (s.kind) {
     case ir::StageKind::Planetary: {
-      double zs = need(ev.attribute(st, "sun.z", a), "sun.z"), zp = need(ev.attribute(st, "planet.z", a), "planet.z"),
-             zr = need(ev.attribute(st, "ring.z", a), "ring.z"), mod = need(ev.attribute(st, "module", a), "module");
-      int N = static_cast<int>(need(ev.attribute(st, "planets", a), "planets"));
+      double zs = need(ev.attribute(st, Sun, Q::Z, a), "sun.z"), zp = need(ev.attribute(st, Planet, Q::Z, a), "planet.z"),
+             zr = need(ev.attribute(st, Ring, Q::Z, a), "ring.z"), mod = need(ev.attribute(st, Q::Module, a), "module");
+      int N = static_cast<int>(need(ev.attribute(st, Q::Planets, a), "planets"));
       double rbs = 0.5 * zs * mod * std::cos(alpha), rbp = 0.5 * zp * mod * std::cos(alpha), rbr = 0.5 * zr * mod * std::cos(alpha);
       double rc = 0.5 * (zs + zp) * mod, rp = 0.5 * zp * mod, b = faceWidth(st), rho = density(st);
       double mp = rho * M_PI * rp * rp * b, k = meshStiffness(st);
       int sun = shaft[0], carrier = L.add(n + " carrier");
-      L.inertia[static_cast<size_t>(sun)] += gearInertia(st, "sun", d("sun"));
+      L.inertia[static_cast<size_t>(sun)] += gearInertia(st, Sun, d(Sun));
       L.inertia[static_cast<size_t>(carrier)] += 0.5 * rho * M_PI * (rc + rp) * (rc + rp) * b * (rc + rp) * (rc + rp) + N * mp * rc * rc;
       for (int i = 0; i < N; ++i) {
         int p = L.add(fmt::format("{} planet {}", n, i + 1));
@@ -93,11 +94,11 @@ LumpedModes gearboxModes(const Model& m, const Assignment& a) {
     }
     case ir::StageKind::Idler: {
       double k = meshStiffness(st);
-      double rb1 = 0.5 * d("driver") * std::cos(alpha), rb2 = 0.5 * d("idler") * std::cos(alpha), rb3 = 0.5 * d("driven") * std::cos(alpha);
+      double rb1 = 0.5 * d(Driver) * std::cos(alpha), rb2 = 0.5 * d(Idler) * std::cos(alpha), rb3 = 0.5 * d(Driven) * std::cos(alpha);
       int idler = L.add(n + " idler"), driven = L.add(n + " driven");
-      L.inertia[static_cast<size_t>(shaft[0])] += gearInertia(st, "driver", d("driver"));
-      L.inertia[static_cast<size_t>(idler)] += gearInertia(st, "idler", d("idler"));
-      L.inertia[static_cast<size_t>(driven)] += gearInertia(st, "driven", d("driven"));
+      L.inertia[static_cast<size_t>(shaft[0])] += gearInertia(st, Driver, d(Driver));
+      L.inertia[static_cast<size_t>(idler)] += gearInertia(st, Idler, d(Idler));
+      L.inertia[static_cast<size_t>(driven)] += gearInertia(st, Driven, d(Driven));
       L.springs.push_back({{{shaft[0], rb1}, {idler, rb2}}, k});
       L.springs.push_back({{{idler, -rb2}, {driven, -rb3}}, k});
       shaft = {driven};
@@ -105,7 +106,7 @@ LumpedModes gearboxModes(const Model& m, const Assignment& a) {
     }
     default: {
       double k = meshStiffness(st);
-      double dp = d("pinion"), dw = d("wheel");
+      double dp = d(Pinion), dw = d(Wheel);
       double rb1 = 0.5 * dp * std::cos(alpha), rb2 = 0.5 * dw * std::cos(alpha);
       bool branching = st == splitStage;
       bool merging = shaft.size() > 1;
@@ -113,18 +114,18 @@ LumpedModes gearboxModes(const Model& m, const Assignment& a) {
       if (merging) next = {L.add(n + " wheel")};
       for (size_t b = 0; b < (branching ? static_cast<size_t>(branches) : shaft.size()); ++b) {
         int from = shaft[std::min(b, shaft.size() - 1)];
-        L.inertia[static_cast<size_t>(from)] += (branching && b > 0) ? 0.0 : gearInertia(st, "pinion", dp);
+        L.inertia[static_cast<size_t>(from)] += (branching && b > 0) ? 0.0 : gearInertia(st, Pinion, dp);
         int to = merging ? next[0] : L.add(branching ? fmt::format("{} wheel, branch {}", n, b + 1) : n + " wheel");
         if (!merging) next.push_back(to);
-        L.inertia[static_cast<size_t>(to)] += (merging && b > 0) ? 0.0 : gearInertia(st, "wheel", dw);
+        L.inertia[static_cast<size_t>(to)] += (merging && b > 0) ? 0.0 : gearInertia(st, Wheel, dw);
         L.springs.push_back({{{from, rb1}, {to, rb2}}, k});
       }
       if (branching) {
         // Each branch carries on through its torsion shaft to its own next pinion.
-        auto setting = [&](const char* x) { return ev.quantity(split->name + "." + x, a); };
-        double len = need(setting("torsion_shaft.length"), "the torsion shaft's length");
-        double ds = need(setting("torsion_shaft.diameter"), "the torsion shaft's diameter");
-        double G = need(setting("torsion_shaft.shear_modulus"), "the torsion shaft's shear modulus");
+        auto setting = [&](Q key) { return ev.splitQuantity(0, key, a); };
+        double len = need(setting(Q::TorsionShaftLength), "the torsion shaft's length");
+        double ds = need(setting(Q::TorsionShaftDiameter), "the torsion shaft's diameter");
+        double G = need(setting(Q::TorsionShaftShearModulus), "the torsion shaft's shear modulus");
         double kt = G * M_PI * std::pow(ds, 4) / 32.0 / len;
         out.provenance.push_back(fmt::format("{} branches from stage `{}`, torsion shafts {:.4g} N*m/rad", branches, n, kt));
         std::vector<int> pinions;
@@ -172,7 +173,7 @@ LumpedModes gearboxModes(const Model& m, const Assignment& a) {
                                        n));
   // Mesh frequencies near a mode.
   for (int st = 0; st < static_cast<int>(m.stages.size()); ++st) {
-    Value fz = ev.derived(st, "mesh_frequency", a);
+    Value fz = ev.derived(st, Q::MeshFrequency, a);
     if (!fz.isNumber()) continue;
     for (double f : out.frequencies)
       for (int k = 1; k <= 5; ++k)

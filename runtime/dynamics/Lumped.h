@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "ir/Ir.h"
-#include "search/Evaluator.h"
+#include "model/Evaluator.h"
 
 namespace gbx::rt::dyn {
 

@@ -23,6 +23,7 @@ struct MeshParameters {
   double downstream = 1;       // product of the ratios after this stage
   double epsAlpha = 1.5, epsBeta = 0;
   double hertzStiffness = 0;   // K of F = K d^e, N/m^e
+  double hertzRadius = 0;      // equivalent radius of curvature at the pitch point, m
   Drive drive;
   std::vector<std::string> provenance;  // where each parameter came from, for the report
 };

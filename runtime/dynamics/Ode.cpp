@@ -66,14 +66,21 @@ struct Integrator::Impl {
 };
 
 namespace {
-const gsl_odeiv2_step_type* stepType(const std::string& m) {
-  if (m == "rkf45") return gsl_odeiv2_step_rkf45;
-  if (m == "rkck") return gsl_odeiv2_step_rkck;
-  if (m == "rk4") return gsl_odeiv2_step_rk4;
-  if (m == "msbdf") return gsl_odeiv2_step_msbdf;
-  return gsl_odeiv2_step_rk8pd;
-}
+// The runtime side of the method registry (compiler/catalogue/Methods.h): GSL's stepper.
+const std::vector<MethodRow> kMethodRows = {
+    {cat::Method::Rk8pd, gsl_odeiv2_step_rk8pd}, {cat::Method::Rkf45, gsl_odeiv2_step_rkf45},
+    {cat::Method::Rkck, gsl_odeiv2_step_rkck},   {cat::Method::Rk4, gsl_odeiv2_step_rk4},
+    {cat::Method::Msbdf, gsl_odeiv2_step_msbdf},
+};
 } // namespace
+
+const std::vector<MethodRow>& methodRows() { return kMethodRows; }
+
+const gsl_odeiv2_step_type* stepType(cat::Method m) {
+  for (const auto& r : kMethodRows)
+    if (r.id == m) return r.stepper;
+  return nullptr;
+}
 
 Integrator::Integrator(const System& sys, const Accuracy& acc) : impl_(new Impl) {
   gsl_set_error_handler_off();  // errors come back as statuses, never as an abort
@@ -81,7 +88,7 @@ Integrator::Integrator(const System& sys, const Accuracy& acc) : impl_(new Impl)
   impl_->stats = &stats_;
   impl_->gsys = {&Impl::func, sys.jacobian ? &Impl::jac : nullptr, sys.dim, impl_};
   impl_->type = stepType(acc.method);
-  impl_->implicit = acc.method == "msbdf";
+  impl_->implicit = cat::methodSpec(acc.method).implicit;
   std::vector<double> scale = sys.scale;
   scale.resize(sys.dim, 1.0);
   double atol = acc.atol > 0 ? acc.atol : acc.rtol;

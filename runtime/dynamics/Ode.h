@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+#include <gsl/gsl_odeiv2.h>
+
+#include "catalogue/Methods.h"
+
 namespace gbx::rt::dyn {
 
 struct System {
@@ -18,8 +22,16 @@ struct System {
   std::vector<double> scale;  // absolute tolerance per component = atol * scale[i]
 };
 
+// One row per integration method: its GSL stepper.
+struct MethodRow {
+  cat::Method id;
+  const gsl_odeiv2_step_type* stepper;
+};
+const std::vector<MethodRow>& methodRows();
+const gsl_odeiv2_step_type* stepType(cat::Method m);
+
 struct Accuracy {
-  std::string method = "rk8pd";  // rk8pd, rkf45, rkck, rk4, msbdf
+  cat::Method method = cat::Method::Rk8pd;
   double rtol = 1e-6;
   double atol = 0;      // 0: the same as rtol, on the scaled components
   double maxStep = 0;   // 0: none

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "catalogue/StageKinds.h"
 #include "dynamics/Scene.h"
 #include "dynamics/Stiffness.h"
 
@@ -30,22 +31,24 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
                           double density, bool materialAssumed) {
   PlanetaryRun run;
   auto& prov = run.provenance;
-  double zs = need(ev.attribute(st, "sun.z", a), "sun.z"), zp = need(ev.attribute(st, "planet.z", a), "planet.z"),
-         zr = need(ev.attribute(st, "ring.z", a), "ring.z");
-  int N = static_cast<int>(need(ev.attribute(st, "planets", a), "planets"));
+  using namespace cat::gear;
+  using cat::Effect;
+  double zs = need(ev.attribute(st, Sun, Q::Z, a), "sun.z"), zp = need(ev.attribute(st, Planet, Q::Z, a), "planet.z"),
+         zr = need(ev.attribute(st, Ring, Q::Z, a), "ring.z");
+  int N = static_cast<int>(need(ev.attribute(st, Q::Planets, a), "planets"));
   if (N < 1 || N > 32) throw SceneFailure{fmt::format("a planetary scene models 1 to 32 planets, not {}", N)};
-  double mod = need(ev.attribute(st, "module", a), "`module`");
-  double alpha = need(ev.attribute(st, "pressure_angle", a), "the pressure angle");
+  double mod = need(ev.attribute(st, Q::Module, a), "`module`");
+  double alpha = need(ev.attribute(st, Q::PressureAngle, a), "the pressure angle");
   double rbs = 0.5 * zs * mod * std::cos(alpha), rbp = 0.5 * zp * mod * std::cos(alpha), rbr = 0.5 * zr * mod * std::cos(alpha);
   double rc = 0.5 * (zs + zp) * mod, rp = 0.5 * zp * mod;
-  Value bw = ev.attribute(st, "face_width", a);
+  Value bw = ev.attribute(st, Q::FaceWidth, a);
   double b = bw.isNumber() ? bw.mid() : 10.0 * mod;
   if (!bw.isNumber()) prov.push_back(fmt::format("face width {:.2f} mm assumed (10 x module): not given", b * 1e3));
   if (materialAssumed) prov.push_back("density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)");
   double mp = density * M_PI * rp * rp * b;
-  Value jpGiven = ev.attribute(st, "planet.inertia", a);
+  Value jpGiven = ev.attribute(st, Planet, Q::Inertia, a);
   double Jp = jpGiven.isNumber() ? jpGiven.mid() : 0.5 * mp * rp * rp;
-  Value jcGiven = ev.attribute(st, "carrier_inertia", a);
+  Value jcGiven = ev.attribute(st, Q::CarrierInertia, a);
   double Rcar = rc + rp;
   double Jc = jcGiven.isNumber() ? jcGiven.mid() : 0.5 * density * M_PI * Rcar * Rcar * b * Rcar * Rcar;
   double JcEff = Jc + N * mp * rc * rc;
@@ -59,32 +62,31 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   double Rsp = 1.0 / (1.0 / rhoS + 1.0 / rhoP), Rrp = 1.0 / (1.0 / rhoP - 1.0 / rhoR);
   double Ksp = 4.0 / 3.0 * std::sqrt(Rsp) * Estar, Krp = 4.0 / 3.0 * std::sqrt(Rrp) * Estar;
 
-  const ir::Effect* hertz = findEffect(scene, "hertz_contact");
-  const ir::Effect* varying = findEffect(scene, "varying_stiffness");
-  const ir::Effect* damping = findEffect(scene, "damping");
-  const ir::Effect* torqueFx = findEffect(scene, "torque_fluctuation");
-  const ir::Effect* te = findEffect(scene, "transmission_error");
-  const ir::Effect* backlash = findEffect(scene, "backlash");
+  const ir::Effect* hertz = scene.findEffect(Effect::HertzContact);
+  const ir::Effect* varying = scene.findEffect(Effect::VaryingStiffness);
+  const ir::Effect* damping = scene.findEffect(Effect::Damping);
+  const ir::Effect* torqueFx = scene.findEffect(Effect::TorqueFluctuation);
+  const ir::Effect* te = scene.findEffect(Effect::TransmissionError);
+  const ir::Effect* backlash = scene.findEffect(Effect::Backlash);
   if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
   double e = 1.5, ramp = 0, hertzDampingSp = 0, hertzDampingRp = 0;
-  std::map<std::string, double> none;
   if (hertz) {
-    if (const auto* s = effectParam(hertz, "exponent")) e = settingValue(*s, none);
-    if (const auto* s = effectParam(hertz, "penetration_ramp")) ramp = settingValue(*s, none);
-    if (const auto* s = effectParam(hertz, "damping")) {
-      hertzDampingSp = settingValue(*s, {{"stiffness", adamsStiffness(Ksp, e)}});
-      hertzDampingRp = settingValue(*s, {{"stiffness", adamsStiffness(Krp, e)}});
+    if (const auto* s = effectParam(hertz, Q::Exponent)) e = settingValue(*s);
+    if (const auto* s = effectParam(hertz, Q::PenetrationRamp)) ramp = settingValue(*s);
+    if (const auto* s = effectParam(hertz, Q::Damping)) {
+      hertzDampingSp = settingValue(*s, {adamsStiffness(Ksp, e)});
+      hertzDampingRp = settingValue(*s, {adamsStiffness(Krp, e)});
     }
     prov.push_back(fmt::format("Hertz stiffness sun-planet {:.4g}, ring-planet {:.4g} N/m^{} (R = {:.3f} / {:.3f} mm, internal curvature subtracted)",
                                Ksp, Krp, e, Rsp * 1e3, Rrp * 1e3));
   }
   // Load on the carrier: the gearbox output torque brought back through the stages after it.
-  double outTorque = need(ev.gearboxQuantity("output_torque", a), "an output torque (`operating`)");
+  double outTorque = need(ev.gearboxQuantity(Q::OutputTorque, a), "an output torque (`operating`)");
   double tMean = outTorque / downstream, tAmp = 0, tOmega = 0;
   if (torqueFx) {
-    tMean = settingValue(*effectParam(torqueFx, "mean"), none) / downstream;
-    tAmp = settingValue(*effectParam(torqueFx, "amplitude"), none) / downstream;
-    tOmega = angularFrequency(*effectParam(torqueFx, "frequency"));
+    tMean = settingValue(*effectParam(torqueFx, Q::Mean)) / downstream;
+    tAmp = settingValue(*effectParam(torqueFx, Q::Amplitude)) / downstream;
+    tOmega = angularFrequency(*effectParam(torqueFx, Q::Frequency));
     prov.push_back("load torque mean + amplitude sin(frequency t) at the gearbox output, brought to the carrier");
   }
   double ratio = 1.0 + zr / zs;
@@ -97,7 +99,7 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   double kLinSp = linear(Ksp), kLinRp = linear(Krp);
   if (!hertz) {
     // Without a contact law the meshes are linear springs of the ISO mesh stiffness.
-    Value cg = ev.attribute(st, "mesh_stiffness", a);
+    Value cg = ev.attribute(st, Q::MeshStiffness, a);
     double k = (cg.isNumber() ? cg.mid() : 16e9) * b;
     Ksp = Krp = kLinSp = kLinRp = k;
     prov.push_back(fmt::format("linear mesh stiffness {:.4g} N/m ({})", k, cg.isNumber() ? "c_gamma given x b" : "c_gamma 16 N/(mm*um) x b assumed"));
@@ -105,7 +107,7 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   Fourier fourier;
   int harmonics = 0;
   if (varying) {
-    harmonics = ov.harmonics ? *ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, "harmonics"), none));
+    harmonics = ov.harmonics ? *ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)));
     // Spur meshes: contact ratio from the standard geometry of each pair.
     auto epsAlpha = [&](double z1, double z2, bool internal) {
       double ra1 = 0.5 * z1 * mod + mod, rb1 = 0.5 * z1 * mod * std::cos(alpha);
@@ -125,20 +127,20 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
     meshes.push_back({Ksp, std::fmod(zs * i / static_cast<double>(N), 1.0), false, i});
     meshes.push_back({Krp, std::fmod(zr * i / static_cast<double>(N), 1.0), true, i});
   }
-  double halfClearance = backlash ? 0.5 * settingValue(*effectParam(backlash, "clearance"), none) : 0.0;
+  double halfClearance = backlash ? 0.5 * settingValue(*effectParam(backlash, Q::Clearance)) : 0.0;
   double teMean = 0, teAmp = 0, tePhase = 0;
   if (te) {
-    teMean = settingValue(*effectParam(te, "mean"), none);
-    teAmp = settingValue(*effectParam(te, "amplitude"), none);
-    tePhase = settingValue(*effectParam(te, "phase"), none);
+    teMean = settingValue(*effectParam(te, Q::Mean));
+    teAmp = settingValue(*effectParam(te, Q::Amplitude));
+    tePhase = settingValue(*effectParam(te, Q::Phase));
     prov.push_back("transmission error on every mesh, F = dk(t) e(t), phased with the mesh");
   }
   double cSp = 0, cRp = 0;
   if (damping) {
     double mEq = Jp / (rbp * rbp);
-    if (const auto* s = effectParam(damping, "coefficient")) cSp = cRp = settingValue(*s, none);
+    if (const auto* s = effectParam(damping, Q::Coefficient)) cSp = cRp = settingValue(*s);
     else {
-      double z = settingValue(*effectParam(damping, "ratio"), none);
+      double z = settingValue(*effectParam(damping, Q::DampingRatio));
       cSp = 2 * z * std::sqrt(kLinSp * mEq);
       cRp = 2 * z * std::sqrt(kLinRp * mEq);
     }
@@ -275,19 +277,20 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
     double d = deflection(meshes[0], ts, ys, rate);
     double f = force(meshes[0], ts, ys);
     run.t.push_back(ts);
-    run.signals["displacement"].push_back(d);
-    run.signals["velocity"].push_back(rate);
-    run.signals["acceleration"].push_back(rbs * (drive.acceleration(ts) - dy[nq]) + rbp * dy[nq + 1]);
-    run.signals["mesh_force"].push_back(f);
-    run.signals["contact_force"].push_back(f);
-    run.signals["stiffness"].push_back(varying ? meshes[0].K * relativeStiffness(fourier, zr * ys[0] / (2.0 * M_PI)) : meshes[0].K);
-    run.signals["transmission_error"].push_back(0.0);
-    run.signals["input_speed"].push_back(drive.speed(ts) * upstream);
-    run.signals["output_speed"].push_back(ys[nq] / downstream);
+    using cat::Signal;
+    series(run.signals, Signal::Displacement).push_back(d);
+    series(run.signals, Signal::Velocity).push_back(rate);
+    series(run.signals, Signal::Acceleration).push_back(rbs * (drive.acceleration(ts) - dy[nq]) + rbp * dy[nq + 1]);
+    series(run.signals, Signal::MeshForce).push_back(f);
+    series(run.signals, Signal::ContactForce).push_back(f);
+    series(run.signals, Signal::Stiffness).push_back(varying ? meshes[0].K * relativeStiffness(fourier, zr * ys[0] / (2.0 * M_PI)) : meshes[0].K);
+    series(run.signals, Signal::TransmissionError).push_back(0.0);
+    series(run.signals, Signal::InputSpeed).push_back(drive.speed(ts) * upstream);
+    series(run.signals, Signal::OutputSpeed).push_back(ys[nq] / downstream);
   });
   run.stats = integ.stats();
   if (!ok) run.failure = integ.error();
-  run.signals["$static_load"] = {F0};
+  run.staticLoad = F0;
   return run;
 }
 

@@ -8,11 +8,9 @@
 
 #include "dynamics/Ode.h"
 #include "dynamics/SceneSupport.h"
-#include "search/Evaluator.h"
+#include "model/Evaluator.h"
 
 namespace gbx::rt::dyn {
-
-struct SceneOverrides;
 
 struct PlanetaryRun {
   std::vector<std::string> provenance;
@@ -20,7 +18,8 @@ struct PlanetaryRun {
   double meshFrequency = 0;
   TimePlan plan;
   std::vector<double> t;
-  std::map<std::string, std::vector<double>> signals;
+  SignalSeries signals;
+  double staticLoad = 0;      // the mean sun-planet mesh force, for the dynamic factor
   std::vector<double> modes;  // natural frequencies of the linearised model, Hz
   std::string failure;
 };

@@ -6,11 +6,15 @@
 
 #include <fmt/format.h>
 
+#include "catalogue/StageKinds.h"
+#include "dynamics/Effects.h"
 #include "dynamics/MeshModel.h"
 #include "dynamics/Lumped.h"
+#include "dynamics/Statistics.h"
+#include "model/StageKind.h"
 #include "dynamics/Planetary.h"
 #include "dynamics/SceneSupport.h"
-#include "kinematics/Standards.h"
+#include "model/Standards.h"
 #include "report/Report.h"
 
 namespace gbx::rt::dyn {
@@ -18,6 +22,12 @@ namespace gbx::rt::dyn {
 const SceneNumber* SceneResult::find(const std::string& key) const {
   for (const auto& n : numbers)
     if (n.key == key) return &n;
+  return nullptr;
+}
+
+const SceneNumber* SceneResult::find(cat::SignalFn fn, cat::Signal signal) const {
+  for (const auto& n : numbers)
+    if (n.fn == fn && n.signal == signal) return &n;
   return nullptr;
 }
 
@@ -30,18 +40,18 @@ using Failure = SceneFailure;
 
 double num(const Value& v, const std::string& what) { return needNumber(v, what); }
 
-const ir::Setting* param(const ir::Effect* e, const char* name) { return effectParam(e, name); }
+using cat::Signal;
 
 // Mass moment of inertia: given, or a solid cylinder of the pitch diameter and face width.
-double inertiaOf(const Evaluator& ev, int st, const Assignment& a, const std::string& gear, double density,
-                 std::vector<std::string>& prov) {
-  Value given = ev.attribute(st, gear + ".inertia", a);
+double inertiaOf(const Evaluator& ev, int st, const Assignment& a, int g, double density, std::vector<std::string>& prov) {
+  const std::string& gear = ev.model().info(st).ir->gears[static_cast<size_t>(g)];
+  Value given = ev.attribute(st, g, Q::Inertia, a);
   if (given.isNumber()) {
     prov.push_back(fmt::format("{} inertia {:.6g} kg*m^2 (given)", gear, given.lo));
     return given.lo;
   }
-  double d = num(ev.derived(st, gear + ".d", a), gear + " pitch diameter");
-  double b = num(ev.attribute(st, "face_width", a), "`face_width` (or the gears' `inertia`)");
+  double d = num(ev.derived(st, g, Q::D, a), gear + " pitch diameter");
+  double b = num(ev.attribute(st, Q::FaceWidth, a), "`face_width` (or the gears' `inertia`)");
   double r = 0.5 * d;
   double J = 0.5 * density * M_PI * b * r * r * r * r;
   prov.push_back(fmt::format("{} inertia {:.6g} kg*m^2 (solid cylinder, d = {:.1f} mm, b = {:.1f} mm)", gear, J, d * 1e3, b * 1e3));
@@ -55,64 +65,32 @@ struct Elastic {
 
 Elastic materialOf(const Model& m, int st) {
   Elastic e;
-  const ir::Attribute* mat = m.attribute(st, "material");
-  if (!mat || mat->symbol.empty()) return e;
-  const ir::Material* x = m.program.findMaterial(mat->symbol);
+  const ir::Material* x = m.material(st);
   if (!x) return e;
-  auto get = [&](const char* n, double& out) {
-    if (const auto* s = ir::findSetting(x->properties, n); s && s->value) out = s->value->toDouble();
+  auto get = [&](Q key, double& out) {
+    if (const auto* s = ir::findSetting(x->properties, key); s && s->value) out = s->value->toDouble();
   };
-  get("youngs_modulus", e.E);
-  get("poisson", e.nu);
-  get("density", e.density);
+  get(Q::YoungsModulus, e.E);
+  get(Q::Poisson, e.nu);
+  get(Q::Density, e.density);
   e.assumed = false;
   return e;
 }
 
 struct Samples {
   std::vector<double> t;
-  std::map<std::string, std::vector<double>> signals;
+  SignalSeries signals;
+  double staticLoad = NAN;    // the mean mesh force, for the dynamic factor
+  std::vector<double> modes;  // natural frequencies of a lumped model, Hz
 };
-
-double statistic(const std::string& fn, const std::vector<double>& v) {
-  if (v.empty()) return NAN;
-  if (fn == "rms") {
-    double s = 0;
-    for (double x : v) s += x * x;
-    return std::sqrt(s / static_cast<double>(v.size()));
-  }
-  if (fn == "mean") {
-    double s = 0;
-    for (double x : v) s += x;
-    return s / static_cast<double>(v.size());
-  }
-  if (fn == "peak") {
-    double s = 0;
-    for (double x : v) s = std::max(s, std::fabs(x));
-    return s;
-  }
-  if (fn == "min") return *std::min_element(v.begin(), v.end());
-  return *std::max_element(v.begin(), v.end());
-}
-
-Dim signalDim(const std::string& s) {
-  if (s == "displacement" || s == "transmission_error") return dims::length;
-  if (s == "velocity") return dims::velocity;
-  if (s == "acceleration") return dims::acceleration;
-  if (s == "mesh_force" || s == "contact_force") return dims::force;
-  if (s == "stiffness") return dims::stiffness;
-  if (s == "input_speed" || s == "output_speed") return dims::angularSpeed;
-  if (s == "modes") return dims::frequency;
-  return {};
-}
 
 // The scene's `accuracy { … }` with a study's overrides.
 Accuracy sceneAccuracy(const ir::Scene& scene, const SceneOverrides& ov) {
   Accuracy acc;
-  if (const auto* s = ir::findSetting(scene.accuracy, "method"); s && !s->symbol.empty()) acc.method = s->symbol;
-  if (const auto* s = ir::findSetting(scene.accuracy, "rtol"); s && s->value) acc.rtol = s->value->toDouble();
-  if (const auto* s = ir::findSetting(scene.accuracy, "atol"); s && s->value) acc.atol = s->value->toDouble();
-  if (const auto* s = ir::findSetting(scene.accuracy, "max_steps"); s && s->value) acc.maxSteps = static_cast<long>(s->value->toDouble());
+  acc.method = scene.method();
+  if (const auto* s = ir::findSetting(scene.accuracy, Q::Rtol); s && s->value) acc.rtol = s->value->toDouble();
+  if (const auto* s = ir::findSetting(scene.accuracy, Q::Atol); s && s->value) acc.atol = s->value->toDouble();
+  if (const auto* s = ir::findSetting(scene.accuracy, Q::MaxSteps); s && s->value) acc.maxSteps = static_cast<long>(s->value->toDouble());
   if (ov.method) acc.method = *ov.method;
   if (ov.rtol) acc.rtol = *ov.rtol;
   return acc;
@@ -121,89 +99,59 @@ Accuracy sceneAccuracy(const ir::Scene& scene, const SceneOverrides& ov) {
 MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov, Accuracy acc,
                       std::vector<std::string>& prov) {
   Evaluator ev(m);
-  int st = m.stageIndex(scene.target);
+  int st = scene.stage;
   const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
+  using cat::gear::Pinion;
+  using cat::gear::Wheel;
   double upstream = num(ev.ratioProduct(0, st, a), "the ratios upstream");
   double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
-  double speed = num(ev.derived(st, "input_speed", a), "an input speed (`operating`)");
+  double speed = num(ev.derived(st, Q::InputSpeed, a), "an input speed (`operating`)");
   Elastic mat = materialOf(m, st);
-    MeshParameters p;
-  double rb1 = num(ev.derived(st, "pinion.base_radius", a), "the pinion base radius (`normal_module`)");
-  double rb2 = num(ev.derived(st, "wheel.base_radius", a), "the wheel base radius");
-  double b = num(ev.attribute(st, "face_width", a), "`face_width`");
-  double J1 = inertiaOf(ev, st, a, "pinion", mat.density, prov), J2 = inertiaOf(ev, st, a, "wheel", mat.density, prov);
+  MeshParameters p;
+  double rb1 = num(ev.derived(st, Pinion, Q::BaseRadius, a), "the pinion base radius (`normal_module`)");
+  double rb2 = num(ev.derived(st, Wheel, Q::BaseRadius, a), "the wheel base radius");
+  double b = num(ev.attribute(st, Q::FaceWidth, a), "`face_width`");
+  double J1 = inertiaOf(ev, st, a, Pinion, mat.density, prov), J2 = inertiaOf(ev, st, a, Wheel, mat.density, prov);
   if (mat.assumed) prov.push_back("density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)");
   p.mass = J1 * J2 / (J2 * rb1 * rb1 + J1 * rb2 * rb2);
   prov.push_back(fmt::format("equivalent mass {:.6g} kg = J1 J2 / (J2 rb1^2 + J1 rb2^2)", p.mass));
-  p.epsAlpha = num(ev.derived(st, "eps_alpha", a), "the transverse contact ratio");
-  p.epsBeta = stage.kind == ir::StageKind::Helical ? num(ev.derived(st, "eps_beta", a), "the overlap ratio") : 0.0;
+  p.epsAlpha = num(ev.derived(st, Q::EpsAlpha, a), "the transverse contact ratio");
+  p.epsBeta = stage.kind == ir::StageKind::Helical ? num(ev.derived(st, Q::EpsBeta, a), "the overlap ratio") : 0.0;
   // Given when the stage sets it; the evaluator would otherwise supply ISO 6336's value.
-  Value cg = m.attribute(st, "mesh_stiffness") ? ev.attribute(st, "mesh_stiffness", a) : Value::invalid();
+  Value cg = m.attribute(st, Q::MeshStiffness) ? ev.attribute(st, Q::MeshStiffness, a) : Value::invalid();
   if (cg.isNumber()) {
     p.meanStiffness = cg.lo * b;
     prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (given)", p.meanStiffness, cg.lo * 1e-9));
   } else {
-    double beta = stage.kind == ir::StageKind::Helical ? num(ev.attribute(st, "helix_angle", a), "the helix angle") : 0.0;
-    Value x1 = ev.attribute(st, "pinion.shift", a), x2 = ev.attribute(st, "wheel.shift", a);
-    double cgam = iso::meshStiffness(num(ev.attribute(st, "pinion.z", a), "pinion.z"), num(ev.attribute(st, "wheel.z", a), "wheel.z"),
+    double beta = stage.kind == ir::StageKind::Helical ? num(ev.attribute(st, Q::HelixAngle, a), "the helix angle") : 0.0;
+    Value x1 = ev.attribute(st, Pinion, Q::Shift, a), x2 = ev.attribute(st, Wheel, Q::Shift, a);
+    double cgam = iso::meshStiffness(num(ev.attribute(st, Pinion, Q::Z, a), "pinion.z"), num(ev.attribute(st, Wheel, Q::Z, a), "wheel.z"),
                                    x1.isNumber() ? x1.mid() : 0.0, x2.isNumber() ? x2.mid() : 0.0, beta, p.epsAlpha);
     p.meanStiffness = cgam * b;
     prov.push_back(fmt::format("mean mesh stiffness {:.6g} N/m = c_gamma {:.4g} N/(mm*um) x b (ISO 6336-1 method B, eps_alpha {:.4f})",
                                p.meanStiffness, cgam * 1e-9, p.epsAlpha));
   }
-  double torque = num(ev.derived(st, "input_torque", a), "an input torque (`operating`)");
+  double torque = num(ev.derived(st, Q::InputTorque, a), "an input torque (`operating`)");
   p.staticLoad = torque / rb1;
   prov.push_back(fmt::format("static load {:.6g} N = T1 / rb1; eps_alpha {:.4f}, eps_beta {:.4f}", p.staticLoad, p.epsAlpha, p.epsBeta));
-  p.teethDriver = num(ev.attribute(st, "pinion.z", a), "pinion.z");
+  p.teethDriver = num(ev.attribute(st, Pinion, Q::Z, a), "pinion.z");
   p.outputRadius = rb2;
-  p.ratio = num(ev.derived(st, "ratio", a), "the stage ratio");
+  p.ratio = num(ev.derived(st, Q::Ratio, a), "the stage ratio");
   p.downstream = downstream;
   double Tz = 2.0 * M_PI / (speed * p.teethDriver);
   p.drive = sceneDrive(scene, speed, upstream, Tz);
   // Hertz stiffness K = 4/3 sqrt(R) E* at the pitch point.
-  double alphaW = num(ev.derived(st, "working_pressure_angle", a), "the working pressure angle");
+  double alphaW = num(ev.derived(st, Q::WorkingPressureAngle, a), "the working pressure angle");
   double rho1 = rb1 * std::tan(alphaW), rho2 = rb2 * std::tan(alphaW);
   double R = 1.0 / (1.0 / rho1 + 1.0 / rho2);
   double Estar = mat.E / (2.0 * (1.0 - mat.nu * mat.nu));
   p.hertzStiffness = 4.0 / 3.0 * std::sqrt(R) * Estar;
+  p.hertzRadius = R;
 
+  // Each listed effect adds its own terms; what the scene does not list is never built.
   MeshEffects fx;
-  for (const auto& e : scene.effects) {
-    const ir::Setting* ex = e.name == "hertz_contact" ? param(&e, "exponent") : nullptr;
-    std::map<std::string, double> locals = {{"stiffness", adamsStiffness(p.hertzStiffness, ex && ex->value ? ex->value->toDouble() : 1.5)}};
-    auto val = [&](const char* n, double dflt) {
-      const ir::Setting* s = param(&e, n);
-      return s ? settingValue(*s, locals) : dflt;
-    };
-    if (e.name == "varying_stiffness") {
-      fx.varyingStiffness = true;
-      fx.harmonics = ov.harmonics ? *ov.harmonics : static_cast<int>(val("harmonics", 5));
-      if (param(&e, "stiffness")) p.meanStiffness = val("stiffness", p.meanStiffness);
-    } else if (e.name == "damping") {
-      fx.damping = true;
-      fx.dampingRatio = val("ratio", 0);
-      fx.dampingCoefficient = param(&e, "coefficient") ? val("coefficient", 0) : -1;
-    } else if (e.name == "transmission_error") {
-      fx.transmissionError = true;
-      fx.teMean = val("mean", 0);
-      fx.teAmplitude = val("amplitude", 0);
-      fx.tePhase = val("phase", 0);
-    } else if (e.name == "backlash") {
-      fx.backlash = true;
-      fx.clearance = val("clearance", 0);
-    } else if (e.name == "hertz_contact") {
-      fx.hertz = true;
-      fx.hertzExponent = val("exponent", 1.5);
-      fx.penetrationRamp = val("penetration_ramp", 0);
-      fx.hertzDamping = val("damping", 0);
-      prov.push_back(fmt::format("Hertz stiffness {:.6g} N/m^{} = 4/3 sqrt(R) E*, R = {:.4g} mm", p.hertzStiffness, fx.hertzExponent, R * 1e3));
-    } else if (e.name == "torque_fluctuation") {
-      fx.torqueFluctuation = true;
-      fx.torqueMean = val("mean", 0);
-      fx.torqueAmplitude = val("amplitude", 0);
-      fx.torqueOmega = angularFrequency(*param(&e, "frequency"));
-    }
-  }
+  for (const auto& e : scene.effects)
+    if (const EffectRow* row = effectRow(e.kind); row && row->mesh) row->mesh(e, ov, p, fx, prov);
   MeshModel model(p, fx);
   if (fx.damping) prov.push_back(fmt::format("damping coefficient {:.6g} N*s/m", model.dampingCoefficient()));
   prov.push_back(fmt::format("mesh frequency {:.4f} Hz, natural frequency {:.4f} Hz", 1.0 / Tz, 1.0 / model.naturalPeriod()));
@@ -211,8 +159,8 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
   // (backlash, Hertz) also a twentieth of the natural period, the scale of a contact.
   acc.maxStep = Tz / (4.0 * (fx.varyingStiffness ? std::max(1, fx.harmonics) : 1));
   if (fx.backlash || fx.hertz) acc.maxStep = std::min(acc.maxStep, model.naturalPeriod() / 20.0);
-  if (const auto* s = ir::findSetting(scene.accuracy, "max_step"); s && s->value) acc.maxStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
-  if (const auto* s = ir::findSetting(scene.accuracy, "min_step"); s && s->value) acc.minStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+  if (const auto* s = ir::findSetting(scene.accuracy, Q::MaxStep); s && s->value) acc.maxStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+  if (const auto* s = ir::findSetting(scene.accuracy, Q::MinStep); s && s->value) acc.minStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
   MeshScene out{p, fx, acc, timePlan(scene, Tz), 1.0 / Tz, prov};
   return out;
 }
@@ -222,11 +170,11 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
   r.name = scene.name;
   r.target = scene.target;
   Evaluator ev(m);
-  int st = m.stageIndex(scene.target);
+  int st = scene.stage;
   if (st < 0) {
     // The whole gearbox: its lumped torsional model, for its modes.
     for (const auto& o : scene.outputs)
-      if (o.signal != "modes")
+      if (o.id != Signal::Modes)
         throw Failure{fmt::format("`{}`: on the whole gearbox only `modes` are computed; run time-domain outputs on a stage", o.key())};
     LumpedModes lm = gearboxModes(m, a);
     r.model = lm.provenance;
@@ -234,20 +182,22 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       r.numbers.push_back({fmt::format("mode {}", i + 1), lm.frequencies[i], units::dims::frequency});
       r.model.push_back(fmt::format("mode {}: {:.2f} Hz, moving {}", i + 1, lm.frequencies[i], lm.shapes[i]));
     }
+    r.eigen = true;
     r.method = "eigen";
     return r;
   }
   const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
   Accuracy acc = sceneAccuracy(scene, ov);
-  r.method = acc.method;
+  r.method = std::string(cat::methodSpec(acc.method).name);
   r.rtol = acc.rtol;
   r.atol = acc.atol > 0 ? acc.atol : acc.rtol;
 
   Samples samples;
   TimePlan tp;
-  auto record = [&](const std::string& k, double v) { samples.signals[k].push_back(v); };
+  auto record = [&](Signal k, double v) { series(samples.signals, k).push_back(v); };
   std::string failure;
-  if (stage.kind == ir::StageKind::Spur || stage.kind == ir::StageKind::Helical) {
+  switch (m.info(st).kind->scene) {
+  case SceneModel::SingleMesh: {
     MeshScene ms = meshSceneOf(m, a, scene, ov, acc, r.model);
     MeshModel model(ms.params, ms.effects);
     const MeshParameters& p = ms.params;
@@ -260,23 +210,25 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     bool ok = integ.advance(t, y, tp.end, tp.samples, [&](double ts, const double* ys) {
       MeshSignals s = model.signals(ts, ys);
       samples.t.push_back(ts);
-      record("displacement", s.displacement);
-      record("velocity", s.velocity);
-      record("acceleration", s.acceleration);
-      record("mesh_force", s.meshForce);
-      record("contact_force", s.contactForce);
-      record("stiffness", s.stiffness);
-      record("transmission_error", s.transmissionError);
-      record("input_speed", s.inputSpeed);
-      record("output_speed", s.outputSpeed);
+      record(Signal::Displacement, s.displacement);
+      record(Signal::Velocity, s.velocity);
+      record(Signal::Acceleration, s.acceleration);
+      record(Signal::MeshForce, s.meshForce);
+      record(Signal::ContactForce, s.contactForce);
+      record(Signal::Stiffness, s.stiffness);
+      record(Signal::TransmissionError, s.transmissionError);
+      record(Signal::InputSpeed, s.inputSpeed);
+      record(Signal::OutputSpeed, s.outputSpeed);
     });
     r.stats = integ.stats();
     if (!ok) failure = integ.error();
-    samples.signals["$static_load"] = {p.staticLoad};
-  } else if (stage.kind == ir::StageKind::Planetary) {
+    samples.staticLoad = p.staticLoad;
+    break;
+  }
+  case SceneModel::Planetary: {
     double upstream = num(ev.ratioProduct(0, st, a), "the ratios upstream");
     double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
-    double speed = num(ev.derived(st, "input_speed", a), "an input speed (`operating`)");
+    double speed = num(ev.derived(st, Q::InputSpeed, a), "an input speed (`operating`)");
     Elastic mat = materialOf(m, st);
     PlanetaryRun pr = runPlanetary(ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
                                    mat.assumed);
@@ -286,10 +238,12 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     tp = pr.plan;
     samples.t = pr.t;
     samples.signals = pr.signals;
+    samples.staticLoad = pr.staticLoad;
+    samples.modes = pr.modes;
     failure = pr.failure;
-    if (!pr.modes.empty()) samples.signals["$modes"] = pr.modes;
-  } else {
-    throw Failure{fmt::format("scenes on {} stages are not modelled", ir::stageKindName(stage.kind))};
+    break;
+  }
+  case SceneModel::None: throw Failure{fmt::format("scenes on {} stages are not modelled", ir::stageKindName(stage.kind))};
   }
   if (!failure.empty()) {
     r.failure = fmt::format("scene `{}`: {}", scene.name, failure);
@@ -297,38 +251,39 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
   }
   // Outputs over the statistics window.
   size_t first = static_cast<size_t>(std::lower_bound(samples.t.begin(), samples.t.end(), tp.statsFrom - 1e-12) - samples.t.begin());
-  auto window = [&](const std::string& sig) {
-    const auto& v = samples.signals[sig];
+  auto window = [&](Signal sig) {
+    const auto& v = series(samples.signals, sig);
     return std::vector<double>(v.begin() + static_cast<long>(std::min(first, v.size())), v.end());
   };
+  auto over = [](cat::SignalFn fn, const std::vector<double>& v) { return v.empty() ? NAN : statistic(fn)(v); };
   for (const auto& o : scene.outputs) {
-    if (o.signal == "modes") {
-      for (size_t i = 0; i < samples.signals["$modes"].size(); ++i)
-        r.numbers.push_back({fmt::format("mode {}", i + 1), samples.signals["$modes"][i], units::dims::frequency});
+    Dim dim = cat::signalSpec(o.id).dim;
+    if (o.id == Signal::Modes) {
+      for (size_t i = 0; i < samples.modes.size(); ++i)
+        r.numbers.push_back({fmt::format("mode {}", i + 1), samples.modes[i], units::dims::frequency});
       continue;
     }
-    if (o.signal == "dynamic_factor") {
-      double peak = statistic("peak", window("mesh_force"));
-      double load = samples.signals["$static_load"].empty() ? NAN : samples.signals["$static_load"][0];
-      r.numbers.push_back({"dynamic_factor", peak / load, {}});
+    if (o.id == Signal::DynamicFactor) {
+      double peak = over(cat::SignalFn::Peak, window(Signal::MeshForce));
+      r.numbers.push_back({"dynamic_factor", peak / samples.staticLoad, {}, cat::SignalFn::Peak, Signal::DynamicFactor});
       continue;
     }
-    if (o.function == "spectrum" || o.function == "plot") {
+    if (!cat::signalFnSpec(o.fn).number) {
       if (!ov.keepSeries) continue;
       SceneSeries s;
       s.key = o.key();
       s.signal = o.signal;
-      s.dim = signalDim(o.signal);
+      s.dim = dim;
       s.t.assign(samples.t.begin() + static_cast<long>(std::min(first, samples.t.size())), samples.t.end());
-      s.v = window(o.signal);
-      if (o.function == "spectrum") {
+      s.v = window(o.id);
+      if (o.fn == cat::SignalFn::Spectrum) {
         s.isSpectrum = true;
         s.spectrum = spectrum(s.v, tp.dt, r.meshFrequency);
       }
       r.series.push_back(std::move(s));
       continue;
     }
-    r.numbers.push_back({o.key(), statistic(o.function, window(o.signal)), signalDim(o.signal)});
+    r.numbers.push_back({o.key(), over(o.fn, window(o.id)), dim, o.fn, o.id});
   }
   return r;
 }
@@ -343,29 +298,22 @@ double needNumber(const Value& v, const std::string& what) {
   return v.mid();
 }
 
-const ir::Setting* effectParam(const ir::Effect* e, const char* name) { return e ? ir::findSetting(e->params, name) : nullptr; }
-
-const ir::Effect* findEffect(const ir::Scene& scene, const char* name) {
-  for (const auto& e : scene.effects)
-    if (e.name == name) return &e;
-  return nullptr;
-}
+const ir::Setting* effectParam(const ir::Effect* e, Q key) { return e ? ir::findSetting(e->params, key) : nullptr; }
 
 double angularFrequency(const ir::Setting& s) {
   return s.value->toDouble() * (s.dim == units::dims::frequency ? 2.0 * M_PI : 1.0);
 }
 
 // A setting's SI value; effect-local words (`stiffness`) are bound by the caller.
-double settingValue(const ir::Setting& s, const std::map<std::string, double>& locals) {
+double settingValue(const ir::Setting& s, const std::vector<double>& locals) {
   if (s.value) return s.value->toDouble();
   if (!s.expr) return 0;
   std::function<double(const ir::Expr&)> ev = [&](const ir::Expr& e) -> double {
     switch (e.op) {
     case ir::Op::Const: return e.value.toDouble();
     case ir::Op::Symbol: {
-      auto it = locals.find(e.name);
-      if (it == locals.end()) throw SceneFailure{fmt::format("`{}` has no value here", e.name)};
-      return it->second;
+      if (e.let < 0 || static_cast<size_t>(e.let) >= locals.size()) throw SceneFailure{fmt::format("`{}` has no value here", e.name)};
+      return locals[static_cast<size_t>(e.let)];
     }
     case ir::Op::Neg: return -ev(*e.args[0]);
     case ir::Op::Add: return ev(*e.args[0]) + ev(*e.args[1]);
@@ -379,23 +327,23 @@ double settingValue(const ir::Setting& s, const std::map<std::string, double>& l
 }
 
 TimePlan timePlan(const ir::Scene& scene, double Tz) {
-  auto get = [&](const char* n) -> std::optional<double> {
-    const ir::Setting* s = ir::findSetting(scene.settings, n);
+  auto get = [&](Q key) -> std::optional<double> {
+    const ir::Setting* s = ir::findSetting(scene.settings, key);
     if (!s || !s->value) return std::nullopt;
     return s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
   };
-  const ir::Setting* ns = ir::findSetting(scene.settings, "samples");
+  const ir::Setting* ns = ir::findSetting(scene.settings, Q::Samples);
   int perPeriod = ns && ns->value ? static_cast<int>(ns->value->toDouble()) : 160;
   TimePlan p;
   p.dt = Tz / perPeriod;
-  double settle = get("settle").value_or(0), ramp = get("ramp").value_or(0);
-  if (auto rec = get("record")) {
+  double settle = get(Q::Settle).value_or(0), ramp = get(Q::Ramp).value_or(0);
+  if (auto rec = get(Q::Record)) {
     long n = std::max<long>(1, std::lround(*rec / Tz * perPeriod));
     for (long i = 0; i < n; ++i) p.samples.push_back(settle + static_cast<double>(i) * p.dt);
     p.end = p.samples.back();
     p.statsFrom = settle;
   } else {
-    double duration = get("duration").value_or(0);
+    double duration = get(Q::Duration).value_or(0);
     long n = static_cast<long>(std::floor(duration / p.dt));
     for (long i = 1; i <= n; ++i) p.samples.push_back(static_cast<double>(i) * p.dt);
     p.end = duration;
@@ -408,15 +356,14 @@ TimePlan timePlan(const ir::Scene& scene, double Tz) {
 Drive sceneDrive(const ir::Scene& scene, double nominal, double upstream, double Tz) {
   Drive d;
   d.speed0 = nominal;
-  const ir::Setting* ramp = ir::findSetting(scene.settings, "ramp");
+  const ir::Setting* ramp = ir::findSetting(scene.settings, Q::Ramp);
   if (ramp && ramp->value) d.ramp = ramp->value->toDouble() * (ramp->meshPeriods ? Tz : 1.0);
   for (const auto& e : scene.effects)
-    if (e.name == "speed_fluctuation") {
+    if (const EffectRow* row = effectRow(e.kind); row && row->drive) {
       d.fluctuates = true;
-      std::map<std::string, double> none;
-      d.mean = settingValue(*effectParam(&e, "mean"), none) / upstream;
-      d.amplitude = settingValue(*effectParam(&e, "amplitude"), none) / upstream;
-      d.omega = angularFrequency(*effectParam(&e, "frequency"));
+      d.mean = settingValue(*effectParam(&e, Q::Mean)) / upstream;
+      d.amplitude = settingValue(*effectParam(&e, Q::Amplitude)) / upstream;
+      d.omega = angularFrequency(*effectParam(&e, Q::Frequency));
     }
   return d;
 }
@@ -430,7 +377,7 @@ SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene
   SceneResult r;
   try {
     r = runOnce(m, a, scene, ov);
-    if (r.failure.empty() && ov.estimateError && !r.numbers.empty() && r.method != "eigen") {
+    if (r.failure.empty() && ov.estimateError && !r.numbers.empty() && !r.eigen) {
       // The error estimate: the same scene at a hundredth of the tolerance.
       SceneOverrides tight = ov;
       tight.rtol = r.rtol / 100.0;
@@ -439,8 +386,11 @@ SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene
       SceneResult ref = runOnce(m, a, scene, tight);
       if (ref.failure.empty()) {
         double worst = 0;
-        for (const auto& n : r.numbers)
-          if (const auto* x = ref.find(n.key)) worst = std::max(worst, std::fabs(n.value - x->value) / std::max(std::fabs(x->value), 1e-300));
+        // The same scene with the same outputs: the numbers come in the same order.
+        for (size_t i = 0; i < r.numbers.size() && i < ref.numbers.size(); ++i) {
+          const auto &n = r.numbers[i], &x = ref.numbers[i];
+          worst = std::max(worst, std::fabs(n.value - x.value) / std::max(std::fabs(x.value), 1e-300));
+        }
         r.errorEstimate = worst;
         r.errorMethod = fmt::format("against a rerun at rtol {:.0e}", tight.rtol.value());
         r.referenceStats = ref.stats;

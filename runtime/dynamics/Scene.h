@@ -11,23 +11,17 @@
 #include "dynamics/SceneSupport.h"
 #include "dynamics/Spectrum.h"
 #include "ir/Ir.h"
-#include "search/Evaluator.h"
-#include "search/Model.h"
+#include "model/Evaluator.h"
+#include "model/Model.h"
 
 namespace gbx::rt::dyn {
-
-struct SceneOverrides {
-  std::optional<int> harmonics;
-  std::optional<std::string> method;
-  std::optional<double> rtol;
-  bool estimateError = true;
-  bool keepSeries = true;
-};
 
 struct SceneNumber {
   std::string key;  // "rms(acceleration)"
   double value = 0; // SI
   units::Dim dim;
+  cat::SignalFn fn = cat::SignalFn::Rms;  // what it is, for `scene.fn(signal)` in objectives
+  cat::Signal signal = cat::Signal::Modes;
 };
 
 struct SceneSeries {
@@ -40,7 +34,8 @@ struct SceneSeries {
 };
 
 struct SceneResult {
-  std::string name, target, method;
+  std::string name, target, method;  // method as reported: an integrator's name, or "eigen"
+  bool eigen = false;                // modes of a lumped model: no integration, no error estimate
   double rtol = 0, atol = 0;
   Stats stats;
   double errorEstimate = -1;  // relative, over the numeric outputs; < 0 when not estimated
@@ -51,7 +46,8 @@ struct SceneResult {
   std::vector<SceneSeries> series;
   std::vector<std::string> model;  // how the model was built, parameter by parameter
   std::string failure;             // set when the run failed (exit 3)
-  const SceneNumber* find(const std::string& key) const;
+  const SceneNumber* find(cat::SignalFn fn, cat::Signal signal) const;
+  const SceneNumber* find(const std::string& key) const;  // by the report's key, for tests
 };
 
 // The single-mesh model of a scene on a spur or helical stage, as runScene builds it.

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "search/Evaluator.h"
+#include "model/Evaluator.h"
 
 namespace gbx::rt {
 
@@ -21,19 +21,27 @@ std::vector<ModOutcome> evaluateModify(const Model& m, const Assignment& a, cons
     std::set<std::string> seen;
     std::function<void(const ir::Expr&)> collect = [&](const ir::Expr& e) {
       if (e.op == ir::Op::Quantity) {
-        std::vector<std::string> names;
-        if (e.type.kind == ir::Type::PerGear) {
-          auto dot = e.name.find('.');
-          for (const auto& g : m.stages[static_cast<size_t>(st)].ir->gears) names.push_back(e.name.substr(0, dot) + "." + g + e.name.substr(dot));
+        // A per-gear quantity is read for each gear of the stage.
+        std::vector<ir::QuantityRef> refs;
+        if (e.ref.perGear) {
+          for (size_t g = 0; g < m.stages[static_cast<size_t>(st)].ir->gears.size(); ++g) {
+            ir::QuantityRef r = e.ref;
+            r.gear = static_cast<std::int8_t>(g);
+            r.perGear = false;
+            refs.push_back(r);
+          }
         } else {
-          names.push_back(e.name);
+          refs.push_back(e.ref);
         }
-        for (const auto& n : names) {
+        for (const auto& r : refs) {
+          std::string n = e.name;
+          if (r.owner == ir::QuantityRef::Stage) {
+            const ir::Stage& stage = *m.stages[static_cast<size_t>(r.index)].ir;
+            n = stage.name + "." + (r.gear >= 0 ? stage.gears[static_cast<size_t>(r.gear)] + "." : "") + std::string(cat::keyName(r.key));
+          }
           if (!seen.insert(n).second) continue;
-          Value v = ev.quantity(n, a);
-          auto dot = n.find('.');
-          std::string attr = dot == std::string::npos ? n : n.substr(dot + 1);
-          const ir::Attribute* given = st >= 0 ? m.attribute(st, attr) : nullptr;
+          Value v = ev.quantity(r, a);
+          const ir::Attribute* given = r.owner == ir::QuantityRef::Stage ? m.attribute(r.index, r.gear, r.key) : nullptr;
           o.inputs.push_back({n, v.isNumber() ? v.mid() : NAN, e.type.dim, given && given->role == ir::Attribute::Fixed});
         }
       }

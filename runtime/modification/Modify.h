@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "ir/Ir.h"
-#include "search/Model.h"
+#include "model/Model.h"
 
 namespace gbx::rt {
 

@@ -12,7 +12,7 @@
 #include <gsl/gsl_multimin.h>
 
 #include "dynamics/Scene.h"
-#include "search/Evaluator.h"
+#include "model/Evaluator.h"
 
 namespace gbx::rt {
 
@@ -112,7 +112,7 @@ double objectiveAt(const gsl_vector* u, void* p) {
 
 void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const Assignment* baseDesign, double rtol) {
   // One scene run per design point: outputs of one scene share it.
-  auto cache = std::make_shared<std::map<std::string, dyn::SceneResult>>();
+  auto cache = std::make_shared<std::map<int, dyn::SceneResult>>();
   auto key = std::make_shared<std::vector<double>>();
   ev.sceneOutput = [&m, rtol, cache, key](const ir::Expr& e, const Assignment& a) -> Value {
     std::vector<double> k;
@@ -122,21 +122,17 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
       cache->clear();
       *key = k;
     }
-    auto dot = e.name.find('.');
-    std::string scene = e.name.substr(0, dot), out = e.name.substr(dot + 1);
+    int scene = e.output.scene;
+    if (scene < 0) return Value::invalid();
     auto it = cache->find(scene);
     if (it == cache->end()) {
-      for (const auto& sc : m.gearbox.scenes)
-        if (sc.name == scene) {
-          dyn::SceneOverrides ov;
-          ov.rtol = rtol;
-          ov.estimateError = false;
-          ov.keepSeries = false;
-          it = cache->emplace(scene, dyn::runScene(m, a, sc, ov)).first;
-        }
-      if (it == cache->end()) return Value::invalid();
+      dyn::SceneOverrides ov;
+      ov.rtol = rtol;
+      ov.estimateError = false;
+      ov.keepSeries = false;
+      it = cache->emplace(scene, dyn::runScene(m, a, m.gearbox.scenes[static_cast<size_t>(scene)], ov)).first;
     }
-    const auto* n = it->second.find(out);
+    const auto* n = it->second.find(e.output.fn, e.output.signal);
     return n ? Value::number(n->value) : Value::invalid();
   };
   if (baseline && baseDesign) {
@@ -249,7 +245,7 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
       best = p.second;
     }
   // Rank check: the best few again with the scene at its own tolerance.
-  const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, "rtol");
+  const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, Q::Rtol);
   double tight = own && own->value ? own->value->toDouble() : 1e-9;
   size_t k = std::min(opt.rankCheck, res.ranked.size());
   if (k >= 2 && tight < opt.sceneRtol) {

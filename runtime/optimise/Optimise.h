@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "search/Model.h"
+#include "model/Model.h"
 #include "search/Search.h"
 
 namespace gbx::rt {

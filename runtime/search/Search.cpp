@@ -11,6 +11,10 @@
 
 #include <fmt/format.h>
 
+#include "catalogue/Settings.h"
+#include "catalogue/StageKinds.h"
+#include "model/StageKind.h"
+
 namespace gbx::rt {
 
 namespace {
@@ -27,43 +31,36 @@ struct Conjunct {
   bool unsupported = false;  // needs dynamics, load sharing or a baseline: not a search rule
 };
 
-bool operatingDependent(const std::string& q) {
-  static const std::set<std::string> names = {"input_speed",  "output_speed",     "input_torque",        "output_torque",
-                                              "mesh_frequency", "carrier_speed",  "pitch_line_velocity", "tangential_force",
-                                              "load_deflection", "speed",         "torque"};
-  auto d = q.rfind('.');
-  return names.count(d == std::string::npos ? q : q.substr(d + 1)) > 0;
-}
+bool isGearboxRatio(const ir::QuantityRef& r) { return r.owner == ir::QuantityRef::Gearbox && r.key == Q::Ratio; }
 
 void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth = 0) {
   if (depth > 64) return;
   int all = static_cast<int>(m.stages.size());
   switch (e.op) {
   case Op::Quantity: {
-    auto dot = e.name.find('.');
-    if (dot == std::string::npos) {
+    const ir::QuantityRef& r = e.ref;
+    if (r.owner == ir::QuantityRef::Gearbox) {
       for (int s = 0; s < all; ++s) c.stages.insert(s);
-      if (!m.freedoms.empty() && e.name != "ratio") c.freedom = true;
+      if (!m.freedoms.empty() && r.key != Q::Ratio) c.freedom = true;
       break;
     }
-    int st = m.stageIndex(e.name.substr(0, dot));
-    if (st < 0) {
+    if (r.owner != ir::QuantityRef::Stage) {
       c.unsupported = true;
       break;
     }
-    std::string rest = e.name.substr(dot + 1);
-    if (operatingDependent(rest))
+    int st = r.index;
+    if (cat::dependsOnOperatingPoint(r.key))
       for (int s = 0; s <= st; ++s) c.stages.insert(s);
     c.stages.insert(st);
-    if (m.freedomOf(st, rest) >= 0) c.freedom = true;
-    const ir::Attribute* a = m.attribute(st, rest);
-    if (!a && !m.stages[static_cast<size_t>(st)].freedoms.empty() && rest != "ratio") c.freedom = true;
+    if (m.freedomOf(st, r.gear, r.key) >= 0) c.freedom = true;
+    const ir::Attribute* a = m.attribute(st, r.gear, r.key);
+    if (!a && !m.stages[static_cast<size_t>(st)].freedoms.empty() && r.key != Q::Ratio) c.freedom = true;
     if (a && a->value && a->role != ir::Attribute::Decision) dependencies(m, *a->value, c, depth + 1);
     break;
   }
   case Op::Let:
-    for (const auto& l : m.gearbox.lets)
-      if (l.name == e.name && l.expr) dependencies(m, *l.expr, c, depth + 1);
+    if (e.let >= 0 && m.gearbox.lets[static_cast<size_t>(e.let)].expr)
+      dependencies(m, *m.gearbox.lets[static_cast<size_t>(e.let)].expr, c, depth + 1);
     break;
   case Op::SceneOutput:
   case Op::Relative: c.unsupported = true; break;
@@ -122,7 +119,7 @@ std::optional<Rational> rationalConst(const ir::Expr& e) {
   return std::nullopt;
 }
 
-bool isRatio(const ir::Expr& e) { return e.op == Op::Quantity && e.name == "ratio"; }
+bool isRatio(const ir::Expr& e) { return e.op == Op::Quantity && isGearboxRatio(e.ref); }
 
 // Recognises `ratio == t +- tol`, `ratio in a..b` and one-sided bounds on the gearbox ratio.
 bool asWindow(const ir::Expr& e, Window& w) {
@@ -143,7 +140,7 @@ bool asWindow(const ir::Expr& e, Window& w) {
       auto c = rationalConst(*t.args[0]), d = rationalConst(*t.args[1]);
       if (!c || !d) return false;
       std::optional<Rational> lo, hi;
-      if (t.name == "relative") {
+      if (t.relative) {
         auto one = Rational(1);
         auto a = one.sub(*d), b = one.add(*d);
         if (!a || !b) return false;
@@ -288,39 +285,11 @@ struct StageRule {
   const Conjunct* conjunct = nullptr;
 };
 
-Truth implicit(bool b) { return b ? Truth::True : Truth::False; }
-
+// The rules the stage's kind implies, before the spec's own.
 std::vector<StageRule> implicitRules(const Model& m, int s) {
   std::vector<StageRule> rules;
-  const ir::Stage& st = *m.stages[static_cast<size_t>(s)].ir;
-  auto z = [s](const Evaluator& ev, const Assignment& a, const char* g) { return ev.attribute(s, std::string(g) + ".z", a); };
-  auto cmp = [](const Value& x, const Value& y) { return arith::less(y, x, false); };
-  switch (st.kind) {
-  case ir::StageKind::Planetary:
-    rules.push_back({"concentric: ring.z == sun.z + 2 * planet.z", [=](const Evaluator& ev, const Assignment& a) {
-                       Value want = arith::add(z(ev, a, "sun"), arith::mul(Value::rational(Rational(2)), z(ev, a, "planet")));
-                       return arith::equal(z(ev, a, "ring"), want);
-                     }});
-    rules.push_back({"assembly: (sun.z + ring.z) / planets is whole", [=](const Evaluator& ev, const Assignment& a) {
-                       Value q = arith::div(arith::add(z(ev, a, "sun"), z(ev, a, "ring")), ev.attribute(s, "planets", a));
-                       if (!q.exact) return Truth::Unknown;
-                       return implicit(q.exact->isInteger());
-                     }});
-    rules.push_back({"adjacency: (sun.z + planet.z) * sin(pi / planets) > planet.z + 2", [=](const Evaluator& ev, const Assignment& a) {
-                       Value n = ev.attribute(s, "planets", a);
-                       if (!n.isPoint()) return Truth::Unknown;
-                       double lhs = (z(ev, a, "sun").lo + z(ev, a, "planet").lo) * std::sin(M_PI / n.lo);
-                       return implicit(lhs > z(ev, a, "planet").lo + 2.0);
-                     }});
-    break;
-  case ir::StageKind::Idler:
-    rules.push_back({"reduction: driven.z > driver.z",
-                     [=](const Evaluator& ev, const Assignment& a) { return cmp(z(ev, a, "driven"), z(ev, a, "driver")); }});
-    break;
-  default:
-    rules.push_back({"reduction: wheel.z > pinion.z",
-                     [=](const Evaluator& ev, const Assignment& a) { return cmp(z(ev, a, "wheel"), z(ev, a, "pinion")); }});
-  }
+  for (const auto& r : m.info(s).kind->rules)
+    rules.push_back({r.text, [s, test = r.test](const Evaluator& ev, const Assignment& a) { return test(KindContext{ev, s, a}); }});
   return rules;
 }
 
@@ -387,7 +356,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
         }
         c.undecided = v == Verdict::Undecided;
       }
-      Value r = ev.derived(s, "ratio", a);
+      Value r = ev.derived(s, Q::Ratio, a);
       if (!r.exact) continue;
       c.ratio = *r.exact;
       c.r = r.lo;
@@ -640,16 +609,22 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       const std::string &x = group[i], &y = group[i + 1];
       auto sx = x.substr(0, x.find('.')), sy = y.substr(0, y.find('.'));
       int a = m.stageIndex(sx), b = m.stageIndex(sy);
-      std::string px = x.find('.') == std::string::npos ? "" : x.substr(x.find('.') + 1) + ".";
-      std::string py = y.find('.') == std::string::npos ? "" : y.substr(y.find('.') + 1) + ".";
-      if (!px.empty()) stageSwapsOnly = false;
+      // `upper.pinion, lower.pinion` pairs one gear's decisions; `upper, lower` whole stages.
+      auto gearOf = [&](const std::string& path, int st) {
+        auto dot = path.find('.');
+        return dot == std::string::npos ? -2 : cat::gearIndex(cat::kindSpec(m.info(st).ir->kind), path.substr(dot + 1));
+      };
+      int gx = gearOf(x, a), gy = gearOf(y, b);
+      if (gx != -2) stageSwapsOnly = false;
       for (int sa : m.stages[static_cast<size_t>(a)].slots) {
-        const std::string& attr = m.slots[static_cast<size_t>(sa)].attr;
-        if (attr.rfind(px, 0) != 0) continue;
-        int sb = m.slotOf(b, py + attr.substr(px.size()));
+        const Slot& slot = m.slots[static_cast<size_t>(sa)];
+        if (gx != -2 && slot.gear != gx) continue;
+        int sb = m.slotOf(b, gx == -2 ? slot.gear : gy, slot.key);
         if (sb < 0) {
+          std::string px = x.find('.') == std::string::npos ? "" : x.substr(x.find('.') + 1) + ".";
+          std::string py = y.find('.') == std::string::npos ? "" : y.substr(y.find('.') + 1) + ".";
           res.errors.push_back(fmt::format("`interchangeable {}, {}`: `{}` has no decision `{}` to match `{}.{}`", x, y, sy,
-                                           py + attr.substr(px.size()), sx, attr));
+                                           py + slot.attr.substr(px.size()), sx, slot.attr));
           continue;
         }
         p[static_cast<size_t>(sa)] = sb;
@@ -754,7 +729,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   // Objectives that read nothing but the gearbox ratio are evaluated from it alone.
   bool ratioOnly = true;
   std::function<void(const ir::Expr&)> scan = [&](const ir::Expr& e) {
-    if ((e.op == Op::Quantity && e.name != "ratio") || e.op == Op::Let || e.op == Op::SceneOutput || e.op == Op::Relative)
+    if ((e.op == Op::Quantity && !isGearboxRatio(e.ref)) || e.op == Op::Let || e.op == Op::SceneOutput || e.op == Op::Relative)
       ratioOnly = false;
     for (const auto& x : e.args)
       if (x) scan(*x);
@@ -811,7 +786,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       if (!members[static_cast<size_t>(s)].count(stageTuple(choice, s))) return false;
     Assignment a(m);
     a.choice = choice;
-    Value r = ev.gearboxQuantity("ratio", a);
+    Value r = ev.gearboxQuantity(Q::Ratio, a);
     if (!r.exact || !window.contains(*r.exact)) return false;
     for (const auto* c : cross)
       if (truthOf(ev.eval(*c->expr, a)) == Truth::False) return false;
@@ -824,7 +799,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     ax.choice = x;
     ay.choice = y;
     for (int s = 0; s < k; ++s) {
-      Value rx = ev.derived(s, "ratio", ax), ry = ev.derived(s, "ratio", ay);
+      Value rx = ev.derived(s, Q::Ratio, ax), ry = ev.derived(s, Q::Ratio, ay);
       if (rx.exact && ry.exact && *rx.exact != *ry.exact) return *rx.exact < *ry.exact;
       for (int sl : m.stages[static_cast<size_t>(s)].slots) {
         const Value &vx = valueOf(sl, x[static_cast<size_t>(sl)]), &vy = valueOf(sl, y[static_cast<size_t>(sl)]);

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "search/Evaluator.h"
-#include "search/Model.h"
+#include "model/Evaluator.h"
+#include "model/Model.h"
 
 namespace gbx::rt {
 

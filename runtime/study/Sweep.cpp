@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "report/Svg.h"
-#include "search/Evaluator.h"
+#include "model/Evaluator.h"
 #include "units/Unit.h"
 
 namespace gbx::rt {
@@ -15,7 +15,7 @@ namespace gbx::rt {
 namespace {
 // Imbalances and other fractions read best in percent.
 units::DisplayUnit unitFor(const ir::Expr& e) {
-  if (e.op == ir::Op::Quantity && e.name.size() > 10 && e.name.compare(e.name.size() - 10, 10, ".imbalance") == 0) return {"%", 0.01};
+  if (e.op == ir::Op::Quantity && e.ref.key == cat::Q::Imbalance) return {"%", 0.01};
   return units::displayUnitFor(e.type.dim);
 }
 } // namespace
@@ -39,7 +39,7 @@ StudyReport sweep(const Model& m, const Assignment& a, const ir::Study& st, cons
   for (long k = 0; k < n; ++k) {
     double x = lo + static_cast<double>(k) * step;
     Evaluator ev(m);
-    ev.setOverride(st.target, Value::number(x));
+    ev.setOverride(st.swept, Value::number(x));
     std::vector<std::string> row = {fmt::format("{:.6g}", x / xu.scale)};
     std::string outs;
     for (size_t i = 0; i < st.outputs.size(); ++i) {

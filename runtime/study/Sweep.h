@@ -5,7 +5,7 @@
 
 #include "ir/Ir.h"
 #include "report/Report.h"
-#include "search/Model.h"
+#include "model/Model.h"
 
 namespace gbx::rt {
 

@@ -19,28 +19,22 @@ StudyReport workPrecision(const Model& m, const Assignment& design, const ir::St
   r.kind = "work_precision";
   std::vector<double> rtols;
   std::vector<int> harmonics;
-  std::vector<std::string> methods;
+  std::vector<cat::Method> methods;
   for (const auto& s : study.settings) {
-    if (s.name == "rtol")
+    if (s.key == Q::Rtol)
       for (const auto& v : s.members) rtols.push_back(v.toDouble());
-    if (s.name == "harmonics" && s.lo && s.hi)
+    if (s.key == Q::Harmonics && s.lo && s.hi)
       for (long h = static_cast<long>(s.lo->toDouble()); h <= static_cast<long>(s.hi->toDouble()); ++h) harmonics.push_back(static_cast<int>(h));
-    if (s.name == "harmonics")
+    if (s.key == Q::Harmonics)
       for (const auto& v : s.members) harmonics.push_back(static_cast<int>(v.toDouble()));
-    if (s.name == "methods") {
-      std::stringstream ss(s.symbol);
-      std::string x;
-      while (std::getline(ss, x, ',')) methods.push_back(x);
-    }
+    if (s.key == Q::Methods)
+      for (int c : s.choices) methods.push_back(cat::kMethods[static_cast<size_t>(c)].id);
   }
   if (rtols.empty()) rtols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
   std::sort(rtols.begin(), rtols.end(), std::greater<>());
-  bool varying = scene.hasEffect("varying_stiffness");
+  bool varying = scene.findEffect(cat::Effect::VaryingStiffness);
   if (harmonics.empty() || !varying) harmonics = {0};
-  if (methods.empty()) {
-    const ir::Setting* s = ir::findSetting(scene.accuracy, "method");
-    methods = {s && !s->symbol.empty() ? s->symbol : "rk8pd"};
-  }
+  if (methods.empty()) methods = {scene.method()};
   r.header = {"harmonics", "method", "rtol", "error", "steps", "RHS evaluations"};
   if (timings) r.header.push_back("CPU ms");
   std::string json = "{\"scene\": \"" + scene.name + "\", ";
@@ -59,7 +53,7 @@ StudyReport workPrecision(const Model& m, const Assignment& design, const ir::St
     if (h > 0) base.harmonics = h;
     // The reference, and a still tighter run that says how far it can be trusted.
     auto refOv = base;
-    refOv.method = "rk8pd";
+    refOv.method = cat::Method::Rk8pd;
     refOv.rtol = tightest / 100;
     auto ref = dyn::runScene(m, design, scene, refOv);
     refOv.rtol = tightest / 1000;
@@ -75,13 +69,14 @@ StudyReport workPrecision(const Model& m, const Assignment& design, const ir::St
                         refs.empty() ? "" : ", ", h, tightest / 100, refValue, tightest / 1000, verified);
     r.notes.push_back(fmt::format("harmonics {}: reference {} = {:.10g} at rtol {:.0e} (rk8pd), within {:.1e} of a run at rtol {:.0e}",
                                   h == 0 ? std::string("-") : std::to_string(h), key, refValue, tightest / 100, verified, tightest / 1000));
-    for (const auto& method : methods) {
+    for (cat::Method id : methods) {
+      std::string method(cat::methodSpec(id).name);
       SvgSeries series;
       series.label = fmt::format("{}{}", method, h > 0 ? fmt::format(", {} harmonics", h) : "");
       series.markers = true;
       for (double rtol : rtols) {
         auto ov = base;
-        ov.method = method;
+        ov.method = id;
         ov.rtol = rtol;
         auto run = dyn::runScene(m, design, scene, ov);
         std::vector<std::string> row = {h == 0 ? "-" : std::to_string(h), method, fmt::format("{:.0e}", rtol)};

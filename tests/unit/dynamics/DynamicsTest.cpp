@@ -304,7 +304,7 @@ TEST(Dynamics, RobertsonWithMsbdfToTenToTheEleven) {
   sys.scale = {1.0, 1e-4, 1.0};
   for (double rtol : {1e-6, 1e-8}) {
     Accuracy acc;
-    acc.method = "msbdf";
+    acc.method = cat::Method::Msbdf;
     acc.rtol = rtol;
     acc.atol = 1e-14;  // y1 ends near 2e-8 and y2 near 8e-14: absolute errors must sit far below
     Stats st;
@@ -337,7 +337,7 @@ TEST(Dynamics, VanDerPolStiffRelaxationPeriod) {
   };
   sys.scale = {1.0, 1.0};
   Accuracy acc;
-  acc.method = "msbdf";
+  acc.method = cat::Method::Msbdf;
   acc.rtol = 1e-8;
   acc.atol = 1e-8;
   double t1 = 3.5 * mu;

@@ -7,10 +7,11 @@
 #include "Specs.h"
 
 #include "driver/Driver.h"
-#include "kinematics/Standards.h"
-#include "loadshare/LoadShare.h"
+#include "model/Standards.h"
+#include "model/Split.h"
 #include "modification/Modify.h"
-#include "search/Evaluator.h"
+#include "lower/Lower.h"
+#include "model/Evaluator.h"
 
 using namespace gbx;
 
@@ -88,8 +89,8 @@ TEST(LoadSharing, PowerSplitCheckValues) {
   auto pre = fixed(spec("power_split.gbx"), "PowerSplit");
   auto free = fixed(spec("power_split.gbx"), "PowerSplitFree");
   rt::Evaluator ep(*pre.model), ef(*free.model);
-  auto p = rt::computeSplit(ep, pre.model->gearbox.splits[0], *pre.design);
-  auto q = rt::computeSplit(ef, free.model->gearbox.splits[0], *free.design);
+  auto p = rt::computeSplit(ep, 0, *pre.design);
+  auto q = rt::computeSplit(ef, 0, *free.design);
   ASSERT_TRUE(p && q);
   EXPECT_NEAR(p->branchTorque, 29880, 5);
   EXPECT_NEAR(ep.quantity("first.wheel.d", *pre.design).lo / mm, 793.3, 0.05);
@@ -105,7 +106,7 @@ TEST(LoadSharing, TrendsHoldAtEverySweepPoint) {
   auto free = fixed(spec("power_split.gbx"), "PowerSplitFree");
   auto imbalance = [&](const Fixed& f, const std::string& what, double x) {
     rt::Evaluator ev(*f.model);
-    ev.setOverride(what, rt::Value::number(x));
+    ev.setOverride(lower::quantityRef(f.model->program, f.model->gearbox, what), rt::Value::number(x));
     return ev.quantity("sharing.imbalance", *f.design).lo;
   };
   double lastFree = 0, lastPre = 0;

@@ -8,7 +8,7 @@
 
 #include "driver/Driver.h"
 #include "optimise/Optimise.h"
-#include "search/Evaluator.h"
+#include "model/Evaluator.h"
 
 using namespace gbx;
 

@@ -1,14 +1,16 @@
 #pragma once
 // Evaluates IR expressions at an assignment: exactly where the inputs are exact
 // (tooth counts, decimal literals), in doubles where a formula needs them, and as
-// outward-rounded enclosures where continuous freedoms span an interval.
+// outward-rounded enclosures where continuous freedoms span an interval. Every name was
+// resolved by lowering: quantities arrive as (owner, gear, key), functions as ids.
 #include <functional>
-#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "ir/Ir.h"
-#include "search/Model.h"
-#include "search/Value.h"
+#include "model/Model.h"
+#include "model/Value.h"
 
 namespace gbx::rt {
 
@@ -17,21 +19,30 @@ public:
   explicit Evaluator(const Model& m) : m_(m) {}
 
   Value eval(const ir::Expr& e, const Assignment& a) const;
+  Value quantity(const ir::QuantityRef& r, const Assignment& a) const;
+  // A quantity path as the language writes it (`main.pinion.z`), resolved on the spot:
+  // for tests and tools, never for the search.
   Value quantity(const std::string& path, const Assignment& a) const;
   // A stage attribute as the design has it: fixed, chosen, a freedom's interval, a default.
-  Value attribute(int stage, const std::string& name, const Assignment& a) const;
-  // A derived quantity of a stage (kinematics and geometry).
-  Value derived(int stage, const std::string& name, const Assignment& a) const;
+  Value attribute(int stage, int gear, Q key, const Assignment& a) const;
+  Value attribute(int stage, Q key, const Assignment& a) const { return attribute(stage, -1, key, a); }
+  // A derived quantity of a stage or of one of its gears (kinematics and geometry).
+  Value derived(int stage, int gear, Q key, const Assignment& a) const;
+  Value derived(int stage, Q key, const Assignment& a) const { return derived(stage, -1, key, a); }
   // Gearbox-level quantity: ratio, input_speed, output_speed, input_torque, output_torque, power.
-  Value gearboxQuantity(const std::string& name, const Assignment& a) const;
+  Value gearboxQuantity(Q key, const Assignment& a) const;
+  // A split's setting or result (twist, displacement, imbalance, …).
+  Value splitQuantity(int split, Q key, const Assignment& a) const;
   // The product of the ratios of stages [from, to).
   Value ratioProduct(int from, int to, const Assignment& a) const;
+  // A property of the stage's material, when it names one.
+  Value materialProperty(int stage, Q property) const;
 
   const Model& model() const { return m_; }
 
   // A sweep's value for a fixed quantity: an operating value (`power`), a stage attribute
   // (`main.face_width`) or a split setting (`sharing.torsion_shaft.diameter`).
-  void setOverride(const std::string& path, Value v) { overrides_[path] = v; }
+  void setOverride(const ir::QuantityRef& r, Value v);
 
   // Scene results (`vibration.rms(acceleration)`) and `relative(x)` need the dynamics
   // and the baseline gearbox: the optimiser provides them.
@@ -39,13 +50,13 @@ public:
   std::function<Value(const ir::Expr&)> baseline;
 
 private:
-  const Value* overridden(const std::string& path) const;
-  Value perGear(const ir::Expr& e, const std::string& gear, const Assignment& a) const;
-  Value perGearReduce(const ir::Expr& call, const Assignment& a, const std::string& f) const;
+  const Value* overridden(const ir::QuantityRef& r) const;
+  const Value* overridden(Q gearboxKey) const;
+  Value perGear(const ir::Expr& e, int gear, const Assignment& a) const;
+  Value perGearReduce(const ir::Expr& call, const Assignment& a) const;
   Value call(const ir::Expr& e, const Assignment& a) const;
-  Value materialProperty(int stage, const std::string& prop) const;
   const Model& m_;
-  std::map<std::string, Value> overrides_;
+  std::vector<std::pair<ir::QuantityRef, Value>> overrides_;
   mutable int depth_ = 0;
 };
 
@@ -69,4 +80,4 @@ Value corners(const std::vector<Value>& in, F f);
 
 } // namespace gbx::rt
 
-#include "search/Corners.inl"
+#include "model/Corners.inl"

@@ -1,4 +1,4 @@
-#include "kinematics/Standards.h"
+#include "model/Standards.h"
 
 #include <cmath>
 

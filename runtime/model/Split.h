@@ -6,7 +6,7 @@
 #include <string>
 
 #include "ir/Ir.h"
-#include "search/Value.h"
+#include "model/Value.h"
 
 namespace gbx::rt {
 
@@ -22,6 +22,6 @@ struct SplitResult {
 };
 
 // nullopt (and `error`) when an input is missing.
-std::optional<SplitResult> computeSplit(const Evaluator& ev, const ir::Split& split, const Assignment& a, std::string* error = nullptr);
+std::optional<SplitResult> computeSplit(const Evaluator& ev, int split, const Assignment& a, std::string* error = nullptr);
 
 } // namespace gbx::rt

@@ -1,6 +1,8 @@
-#include "search/Model.h"
+#include "model/Model.h"
 
 #include <cmath>
+
+#include "model/StageKind.h"
 
 namespace gbx::rt {
 
@@ -17,14 +19,22 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
   for (const auto& st : g.stages) {
     StageInfo info;
     info.ir = &st;
+    info.kind = &stageKindImpl(st.kind);
+    info.entries.resize(static_cast<size_t>(st.gears.size() + 1) * cat::kKeyCount);
     int si = static_cast<int>(stages.size());
+    auto at = [&](const ir::Attribute& a) -> StageInfo::Entry& {
+      return info.entries[static_cast<size_t>(a.gear + 1) * cat::kKeyCount + static_cast<size_t>(a.key)];
+    };
     for (const auto& a : st.attributes) {
-      info.attrs[a.name] = &a;
+      if (a.key == Q::None) continue;
+      at(a).attr = &a;
       if (a.role == ir::Attribute::Decision || (a.role == ir::Attribute::Freedom && !a.members.empty())) {
         Slot s;
         s.path = st.name + "." + a.name;
         s.attr = a.name;
         s.stage = si;
+        s.gear = a.gear;
+        s.key = a.key;
         if (!a.members.empty()) {
           for (const auto& m : a.members) s.values.push_back(constant(m));
         } else if (a.lo && a.hi) {
@@ -32,6 +42,7 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
           auto lo = a.lo->rational().num(), hi = a.hi->rational().num();
           for (auto v = lo; v <= hi; ++v) s.values.push_back(Value::rational(Rational(static_cast<std::int64_t>(v))));
         }
+        at(a).slot = static_cast<int>(slots.size());
         info.slots.push_back(static_cast<int>(slots.size()));
         slots.push_back(std::move(s));
       } else if (a.role == ir::Attribute::Freedom && a.lo && a.hi) {
@@ -39,8 +50,11 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
         f.path = st.name + "." + a.name;
         f.attr = a.name;
         f.stage = si;
+        f.gear = a.gear;
+        f.key = a.key;
         f.lo = a.lo->toDouble();
         f.hi = a.hi->toDouble();
+        at(a).freedom = static_cast<int>(freedoms.size());
         info.freedoms.push_back(static_cast<int>(freedoms.size()));
         freedoms.push_back(f);
       }
@@ -49,33 +63,16 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
   }
 }
 
-int Model::stageIndex(const std::string& name) const {
-  for (size_t i = 0; i < stages.size(); ++i)
-    if (stages[i].ir->name == name) return static_cast<int>(i);
-  return -1;
-}
-
-const ir::Attribute* Model::attribute(int stage, const std::string& name) const {
-  auto it = stages[static_cast<size_t>(stage)].attrs.find(name);
-  return it == stages[static_cast<size_t>(stage)].attrs.end() ? nullptr : it->second;
-}
-
-int Model::slotOf(int stage, const std::string& attr) const {
-  for (int s : stages[static_cast<size_t>(stage)].slots)
-    if (slots[static_cast<size_t>(s)].attr == attr) return s;
-  return -1;
-}
-
-int Model::freedomOf(int stage, const std::string& attr) const {
-  for (int f : stages[static_cast<size_t>(stage)].freedoms)
-    if (freedoms[static_cast<size_t>(f)].attr == attr) return f;
-  return -1;
-}
-
-std::optional<double> Model::operating(const std::string& name) const {
-  const auto* s = ir::findSetting(gearbox.operating, name);
+std::optional<double> Model::operating(Q key) const {
+  const auto* s = ir::findSetting(gearbox.operating, key);
   if (!s || !s->value) return std::nullopt;
   return s->value->toDouble();
+}
+
+const ir::Material* Model::material(int stage) const {
+  const ir::Attribute* mat = attribute(stage, Q::Material);
+  if (!mat || mat->symbol.empty()) return nullptr;
+  return program.findMaterial(mat->symbol);
 }
 
 Assignment::Assignment(const Model& m) : choice(m.slots.size(), -1) {

@@ -1,0 +1,55 @@
+#pragma once
+// One catalogue row for a named number or word: a stage or gear attribute, a gearbox
+// quantity, a setting or an effect parameter. Sema checks against these rows; lowering
+// turns the names into their `Q` ids.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "catalogue/Keys.h"
+#include "units/Dim.h"
+#include "units/Number.h"
+
+namespace gbx::cat {
+
+using units::Dim;
+
+enum class AttrRole {
+  Input,    // fixed or made a decision by the spec
+  Derived,  // computed; cannot be set
+  Either,   // derived unless the spec fixes it (center_distance)
+};
+
+enum class ValueKind { Number, Material, Symbol, Stage };
+
+struct AttrSpec {
+  std::string name;
+  Q key = Q::None;
+  Dim dim;
+  bool integer = false;
+  AttrRole role = AttrRole::Input;
+  std::string meaning;
+  ValueKind value = ValueKind::Number;
+  std::optional<Dim> altDim;           // a second accepted dimension (Hz for deg/s)
+  std::optional<units::Number> dflt;   // default when absent (SI)
+  bool required = false;
+  bool positive = false;               // must be > 0
+  bool meshPeriods = false;            // may be given in mesh periods
+  std::vector<std::string> symbols;    // accepted words for ValueKind::Symbol
+};
+
+// Row builders shared by the catalogue files.
+namespace rows {
+AttrSpec in(std::string n, Dim d, std::string meaning);
+AttrSpec pos(std::string n, Dim d, std::string meaning);
+AttrSpec count(std::string n, std::string meaning);
+AttrSpec derived(std::string n, Dim d, std::string meaning, bool integer = false);
+AttrSpec withDefault(AttrSpec a, units::Number v);
+AttrSpec required(AttrSpec a);
+AttrSpec symbol(std::string n, std::vector<std::string> words, std::string meaning);
+AttrSpec keyed(AttrSpec a, Q key);
+units::Number deg(std::int64_t d);
+units::Number num(std::int64_t n, std::int64_t d = 1);
+} // namespace rows
+
+} // namespace gbx::cat

@@ -1,0 +1,45 @@
+#include "catalogue/Keys.h"
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+namespace gbx::cat {
+
+namespace {
+
+constexpr std::array<std::string_view, kKeyCount> kNames = {
+#define GBX_KEY_NAME(id, name) name,
+    GBX_KEYS(GBX_KEY_NAME)
+#undef GBX_KEY_NAME
+};
+
+// Sorted once for the look-ups lowering makes.
+const std::array<std::pair<std::string_view, Q>, kKeyCount>& sorted() {
+  static const auto s = [] {
+    std::array<std::pair<std::string_view, Q>, kKeyCount> a{};
+    for (int i = 0; i < kKeyCount; ++i) a[static_cast<size_t>(i)] = {kNames[static_cast<size_t>(i)], static_cast<Q>(i)};
+    std::sort(a.begin(), a.end());
+    return a;
+  }();
+  return s;
+}
+
+} // namespace
+
+std::string_view keyName(Q q) {
+  if (q == Q::None) return {};
+  std::string_view n = kNames[static_cast<size_t>(q)];
+  // A word the language spells like another carries its owner after '#'.
+  return n.substr(0, n.find('#'));
+}
+
+std::optional<Q> keyOf(std::string_view name) {
+  const auto& s = sorted();
+  auto it = std::lower_bound(s.begin(), s.end(), std::pair<std::string_view, Q>{name, Q{}},
+                             [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (it == s.end() || it->first != name) return std::nullopt;
+  return it->second;
+}
+
+} // namespace gbx::cat

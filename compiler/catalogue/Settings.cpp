@@ -1,0 +1,167 @@
+#include "catalogue/Settings.h"
+
+#include "catalogue/Methods.h"
+
+namespace gbx::cat {
+
+using namespace units::dims;
+using namespace rows;
+
+const std::vector<AttrSpec>& gearboxQuantities() {
+  static const std::vector<AttrSpec> q = {
+      derived("ratio", none, "overall reduction, the product of the stage ratios"),
+      derived("input_speed", angularSpeed, "input shaft speed"),
+      derived("output_speed", angularSpeed, "output shaft speed"),
+      derived("input_torque", torque, "input torque"),
+      derived("output_torque", torque, "output torque"),
+      derived("power", power, "transmitted power"),
+  };
+  return q;
+}
+
+const std::vector<AttrSpec>& operatingSettings() {
+  static const std::vector<AttrSpec> q = {
+      pos("input_speed", angularSpeed, "input shaft speed"),
+      pos("output_speed", angularSpeed, "output shaft speed"),
+      pos("input_torque", torque, "input torque"),
+      pos("output_torque", torque, "output torque"),
+      pos("power", power, "transmitted power"),
+  };
+  return q;
+}
+
+const std::vector<AttrSpec>& materialProperties() {
+  static const std::vector<AttrSpec> q = {
+      required(pos("youngs_modulus", pressure, "Young's modulus")),
+      required(pos("poisson", none, "Poisson's ratio")),
+      required(pos("density", density, "density")),
+      pos("shear_modulus", pressure, "shear modulus"),
+      pos("sigma_hlim", pressure, "ISO 6336-5 allowable contact stress number"),
+      pos("sigma_flim", pressure, "ISO 6336-5 nominal bending stress number"),
+      pos("hardness", none, "surface hardness (HRC or HV, as the material states)"),
+  };
+  return q;
+}
+
+const std::vector<AttrSpec>& sceneSettings() {
+  static const std::vector<AttrSpec> s = [] {
+    auto t = [](std::string n, std::string m) {
+      auto a = pos(std::move(n), time, std::move(m));
+      a.meshPeriods = true;
+      return a;
+    };
+    return std::vector<AttrSpec>{
+        t("settle", "transient discarded before recording"),
+        t("record", "recorded steady-state window"),
+        withDefault(count("samples", "samples per recorded mesh period"), num(160)),
+        t("duration", "simulated time from rest"),
+        t("ramp", "smooth start-up time of the drive speed"),
+    };
+  }();
+  return s;
+}
+
+const std::vector<AttrSpec>& accuracySettings() {
+  static const std::vector<AttrSpec> s = [] {
+    auto step = pos("max_step", time, "largest step");
+    step.meshPeriods = true;
+    auto hmin = pos("min_step", time, "smallest step");
+    hmin.meshPeriods = true;
+    return std::vector<AttrSpec>{
+        symbol("method", methodNames(), "integration method"),
+        withDefault(pos("rtol", none, "relative tolerance"), num(1, 1000000)),
+        pos("atol", none, "absolute tolerance (SI units of the state)"),
+        step,
+        hmin,
+        count("max_steps", "step limit"),
+    };
+  }();
+  return s;
+}
+
+const std::vector<AttrSpec>& splitSettings() {
+  static const std::vector<AttrSpec> s = [] {
+    auto between = in("between", none, "the stage whose wheel feeds the branches");
+    between.value = ValueKind::Stage;
+    between.required = true;
+    return std::vector<AttrSpec>{
+        between,
+        withDefault(count("branches", "number of branches"), num(2)),
+        required(pos("torsion_shaft.length", length, "torsion shaft length")),
+        required(pos("torsion_shaft.diameter", length, "torsion shaft diameter")),
+        withDefault(pos("torsion_shaft.shear_modulus", pressure, "shear modulus G"), num(80000000000)),
+        required(in("backlash_difference", length, "difference of circumferential backlash between branches")),
+        required(symbol("install", {"free", "preloaded"}, "installation method")),
+        in("preload_torque", torque, "installation torque M0 (preloaded installation)"),
+    };
+  }();
+  return s;
+}
+
+const std::vector<AttrSpec>& splitOutputs() {
+  static const std::vector<AttrSpec> s = {
+      derived("twist", angle, "torsion-shaft twist at full load"),
+      derived("displacement", length, "circumferential displacement at the stage-I wheel"),
+      derived("imbalance", none, "load imbalance between the branches"),
+      derived("branch_torque", torque, "torque in one branch"),
+      derived("preload_displacement", length, "backlash taken up by the preload"),
+  };
+  return s;
+}
+
+const std::vector<AttrSpec>& workPrecisionSettings() {
+  static const std::vector<AttrSpec> s = {
+      pos("rtol", none, "relative tolerances to run"),
+      count("harmonics", "harmonic counts to run"),
+      symbol("methods", methodNames(), "methods to compare"),
+  };
+  return s;
+}
+
+const std::vector<std::string>& modificationTargets() {
+  static const std::vector<std::string> t = {
+      "tip_relief",    "tip_relief_height",   "root_relief",  "root_relief_height", "profile_crowning",
+      "lead_crowning", "thermal_lead_relief", "end_relief",   "end_relief_width",   "helix_slope",
+  };
+  return t;
+}
+
+const std::vector<BuiltinSpec>& modifyBuiltins() {
+  static const std::vector<BuiltinSpec> b = {
+      {"load_deflection", length, false},
+      {"pitch_deviation", length, true},
+      {"profile_deviation", length, true},
+      {"whole_depth", length, false},
+      {"bending_deflection", length, true},
+      {"torsion_deflection", length, true},
+      {"pitch_line_velocity", velocity, false},
+      {"mesh_stiffness", pressure, false},
+      {"tangential_force", force, false},
+      {"face_width", length, false},
+  };
+  return b;
+}
+
+bool dependsOnOperatingPoint(Q key) {
+  switch (key) {
+  case Q::InputSpeed:
+  case Q::OutputSpeed:
+  case Q::InputTorque:
+  case Q::OutputTorque:
+  case Q::Power:
+  case Q::MeshFrequency:
+  case Q::PitchLineVelocity:
+  case Q::TangentialForce:
+  case Q::LoadDeflection:
+  case Q::Speed:
+  case Q::Torque:
+  case Q::CarrierSpeed:
+  case Q::BranchTorque:
+  case Q::Twist:
+  case Q::Displacement:
+  case Q::Imbalance: return true;
+  default: return false;
+  }
+}
+
+} // namespace gbx::cat

@@ -1,0 +1,85 @@
+#pragma once
+// The registries of scene signals and of the functions that read them
+// (`scene.rms(acceleration)`). Every number-valued function has one runtime row in
+// runtime/dynamics/Statistics.cpp; every signal is recorded by each scene model.
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "catalogue/Effects.h"
+#include "units/Dim.h"
+
+namespace gbx::cat {
+
+enum class Signal : std::uint8_t {
+  Displacement,
+  Velocity,
+  Acceleration,
+  MeshForce,
+  Stiffness,
+  ContactForce,
+  TransmissionError,
+  InputSpeed,
+  OutputSpeed,
+  DynamicFactor,
+  Modes,
+};
+
+struct SignalSpec {
+  Signal id;
+  std::string_view name;
+  units::Dim dim;
+  std::vector<Effect> needsAnyEffect;  // empty: always available
+  bool scalar = false;                 // a number, not a time series (modes, dynamic_factor)
+};
+
+inline const std::vector<SignalSpec>& sceneSignals() {
+  using namespace units::dims;
+  static const std::vector<SignalSpec> s = {
+      {Signal::Displacement, "displacement", length, {}, false},
+      {Signal::Velocity, "velocity", velocity, {}, false},
+      {Signal::Acceleration, "acceleration", acceleration, {}, false},
+      {Signal::MeshForce, "mesh_force", force, {}, false},
+      {Signal::Stiffness, "stiffness", stiffness, {}, false},
+      {Signal::ContactForce, "contact_force", force, {Effect::HertzContact, Effect::Backlash}, false},
+      {Signal::TransmissionError, "transmission_error", length, {Effect::TransmissionError}, false},
+      {Signal::InputSpeed, "input_speed", angularSpeed, {}, false},
+      {Signal::OutputSpeed, "output_speed", angularSpeed, {}, false},
+      {Signal::DynamicFactor, "dynamic_factor", none, {}, true},
+      {Signal::Modes, "modes", frequency, {}, true},
+  };
+  return s;
+}
+
+inline const SignalSpec* findSignal(std::string_view name) {
+  for (const auto& s : sceneSignals())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+inline const SignalSpec& signalSpec(Signal id) { return sceneSignals()[static_cast<size_t>(id)]; }
+
+// Functions of a signal: a number over the recorded window, or an artefact.
+enum class SignalFn : std::uint8_t { Rms, Peak, Mean, Min, Max, Spectrum, Plot };
+
+struct SignalFnSpec {
+  SignalFn id;
+  std::string_view name;
+  bool number;  // false: a spectrum or a plot
+};
+
+inline constexpr SignalFnSpec kSignalFns[] = {
+    {SignalFn::Rms, "rms", true},        {SignalFn::Peak, "peak", true}, {SignalFn::Mean, "mean", true},
+    {SignalFn::Min, "min", true},        {SignalFn::Max, "max", true},
+    {SignalFn::Spectrum, "spectrum", false}, {SignalFn::Plot, "plot", false},
+};
+
+inline const SignalFnSpec* findSignalFn(std::string_view name) {
+  for (const auto& f : kSignalFns)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+inline const SignalFnSpec& signalFnSpec(SignalFn id) { return kSignalFns[static_cast<size_t>(id)]; }
+
+} // namespace gbx::cat

@@ -1,0 +1,420 @@
+#include "model/Evaluator.h"
+
+#include "model/Builtins.h"
+#include "model/Split.h"
+#include "model/StageKind.h"
+#include "lower/Lower.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numeric>
+
+namespace gbx::rt {
+
+namespace arith {
+
+namespace {
+double down(double x) { return std::nextafter(x, -INFINITY); }
+double up(double x) { return std::nextafter(x, INFINITY); }
+Value widen(double lo, double hi) {
+  if (std::isnan(lo) || std::isnan(hi)) return Value::invalid();
+  return lo == hi ? Value::number(lo) : Value::range(down(lo), up(hi));
+}
+} // namespace
+
+Value add(const Value& a, const Value& b) {
+  if (!a.isNumber() || !b.isNumber()) return Value::invalid();
+  if (a.exact && b.exact)
+    if (auto r = a.exact->add(*b.exact)) return Value::rational(*r);
+  if (a.isPoint() && b.isPoint()) return Value::number(a.lo + b.lo);
+  return widen(a.lo + b.lo, a.hi + b.hi);
+}
+
+Value neg(const Value& a) {
+  if (!a.isNumber()) return Value::invalid();
+  if (a.exact) return Value::rational(a.exact->neg());
+  Value v = Value::range(-a.hi, -a.lo);
+  return v;
+}
+
+Value sub(const Value& a, const Value& b) { return add(a, neg(b)); }
+
+Value mul(const Value& a, const Value& b) {
+  if (!a.isNumber() || !b.isNumber()) return Value::invalid();
+  if (a.exact && b.exact)
+    if (auto r = a.exact->mul(*b.exact)) return Value::rational(*r);
+  if (a.isPoint() && b.isPoint()) return Value::number(a.lo * b.lo);
+  double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+  return widen(*std::min_element(p, p + 4), *std::max_element(p, p + 4));
+}
+
+Value div(const Value& a, const Value& b) {
+  if (!a.isNumber() || !b.isNumber()) return Value::invalid();
+  if (a.exact && b.exact && !b.exact->isZero())
+    if (auto r = a.exact->div(*b.exact)) return Value::rational(*r);
+  if (b.lo <= 0 && b.hi >= 0) return Value::invalid();
+  if (a.isPoint() && b.isPoint()) return Value::number(a.lo / b.lo);
+  double p[4] = {a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi};
+  return widen(*std::min_element(p, p + 4), *std::max_element(p, p + 4));
+}
+
+Value powi(const Value& a, int k) {
+  if (!a.isNumber()) return Value::invalid();
+  if (a.exact)
+    if (auto r = a.exact->pow(k)) return Value::rational(*r);
+  if (a.isPoint()) return Value::number(std::pow(a.lo, k));
+  double x = std::pow(a.lo, k), y = std::pow(a.hi, k);
+  double lo = std::min(x, y), hi = std::max(x, y);
+  if (k % 2 == 0 && k > 0 && a.lo < 0 && a.hi > 0) lo = 0;
+  return widen(lo, hi);
+}
+
+Truth less(const Value& a, const Value& b, bool orEqual) {
+  if (!a.isNumber() || !b.isNumber()) return Truth::Unknown;
+  if (a.exact && b.exact) {
+    int c = a.exact->compare(*b.exact);
+    return (orEqual ? c <= 0 : c < 0) ? Truth::True : Truth::False;
+  }
+  if (a.isPoint() && b.isPoint()) return (orEqual ? a.lo <= b.lo : a.lo < b.lo) ? Truth::True : Truth::False;
+  if (orEqual ? a.hi <= b.lo : a.hi < b.lo) return Truth::True;
+  if (orEqual ? a.lo > b.hi : a.lo >= b.hi) return Truth::False;
+  return Truth::Unknown;
+}
+
+Truth equal(const Value& a, const Value& b) {
+  if (!a.isNumber() || !b.isNumber()) return Truth::Unknown;
+  if (a.exact && b.exact) return *a.exact == *b.exact ? Truth::True : Truth::False;
+  if (a.isPoint() && b.isPoint()) return a.lo == b.lo ? Truth::True : Truth::False;
+  if (a.hi < b.lo || b.hi < a.lo) return Truth::False;
+  return Truth::Unknown;
+}
+
+Truth land(Truth a, Truth b) {
+  if (a == Truth::False || b == Truth::False) return Truth::False;
+  if (a == Truth::True && b == Truth::True) return Truth::True;
+  return Truth::Unknown;
+}
+Truth lor(Truth a, Truth b) {
+  if (a == Truth::True || b == Truth::True) return Truth::True;
+  if (a == Truth::False && b == Truth::False) return Truth::False;
+  return Truth::Unknown;
+}
+Truth lnot(Truth a) { return a == Truth::True ? Truth::False : a == Truth::False ? Truth::True : Truth::Unknown; }
+
+} // namespace arith
+
+namespace {
+
+Value constant(const units::Number& n) {
+  if (n.isRational()) return Value::rational(n.rational());
+  return Value::number(n.toDouble());
+}
+
+// The interval [c - t, c + t] of a tolerance, or [c(1 - t), c(1 + t)] when relative.
+std::pair<Value, Value> toleranceBounds(const Value& c, const Value& t, bool relative) {
+  if (relative) {
+    Value one = Value::rational(Rational(1));
+    return {arith::mul(c, arith::sub(one, t)), arith::mul(c, arith::add(one, t))};
+  }
+  return {arith::sub(c, t), arith::add(c, t)};
+}
+
+Truth within(const Value& x, const Value& lo, const Value& hi) {
+  return arith::land(arith::less(lo, x, true), arith::less(x, hi, true));
+}
+
+} // namespace
+
+Value Evaluator::eval(const ir::Expr& e, const Assignment& a) const {
+  using ir::Op;
+  auto arg = [&](size_t i) { return eval(*e.args[i], a); };
+  switch (e.op) {
+  case Op::Const:
+    if (e.type.kind == ir::Type::Bool) return Value::boolean(!e.value.isZero());
+    return constant(e.value);
+  case Op::Quantity: return quantity(e.ref, a);
+  case Op::Let: {
+    if (e.let < 0) return Value::invalid();
+    const auto& l = m_.gearbox.lets[static_cast<size_t>(e.let)];
+    if (!l.expr || ++depth_ > 64) {
+      if (l.expr) --depth_;
+      return Value::invalid();
+    }
+    Value v = eval(*l.expr, a);
+    --depth_;
+    return v;
+  }
+  case Op::Symbol: return Value::invalid();
+  case Op::Neg: return arith::neg(arg(0));
+  case Op::Add: return arith::add(arg(0), arg(1));
+  case Op::Sub: return arith::sub(arg(0), arg(1));
+  case Op::Mul: return arith::mul(arg(0), arg(1));
+  case Op::Div: return arith::div(arg(0), arg(1));
+  case Op::Pow: {
+    Value b = arg(0), x = arg(1);
+    if (x.exact && x.exact->isInteger()) return arith::powi(b, static_cast<int>(x.exact->num()));
+    if (!b.isNumber() || !x.isNumber() || b.lo <= 0) return Value::invalid();
+    return arith::corners({b, x}, [](const std::vector<double>& v) { return std::pow(v[0], v[1]); });
+  }
+  case Op::Eq:
+  case Op::Ne: {
+    Value x = arg(0);
+    Truth t;
+    if (e.args[1]->op == Op::Tol) {
+      const auto& tol = *e.args[1];
+      auto [lo, hi] = toleranceBounds(eval(*tol.args[0], a), eval(*tol.args[1], a), tol.relative);
+      t = within(x, lo, hi);
+    } else {
+      t = arith::equal(x, arg(1));
+    }
+    return Value::boolean(e.op == Op::Eq ? t : arith::lnot(t));
+  }
+  case Op::Lt: return Value::boolean(arith::less(arg(0), arg(1), false));
+  case Op::Le: return Value::boolean(arith::less(arg(0), arg(1), true));
+  case Op::Gt: return Value::boolean(arith::less(arg(1), arg(0), false));
+  case Op::Ge: return Value::boolean(arith::less(arg(1), arg(0), true));
+  case Op::Within: return Value::boolean(within(arg(0), arg(1), arg(2)));
+  case Op::InSet: {
+    Value x = arg(0);
+    Truth t = Truth::False;
+    for (size_t i = 1; i < e.args.size(); ++i) t = arith::lor(t, arith::equal(x, arg(i)));
+    return Value::boolean(t);
+  }
+  case Op::And:
+  case Op::Forall: {
+    Truth t = Truth::True;
+    for (size_t i = 0; i < e.args.size() && t != Truth::False; ++i) {
+      Value v = arg(i);
+      t = arith::land(t, v.kind == Value::Bool ? v.truth : Truth::Unknown);
+    }
+    return Value::boolean(t);
+  }
+  case Op::Or: {
+    Value x = arg(0);
+    if (x.kind == Value::Bool && x.truth == Truth::True) return x;
+    Value y = arg(1);
+    return Value::boolean(arith::lor(x.kind == Value::Bool ? x.truth : Truth::Unknown,
+                                     y.kind == Value::Bool ? y.truth : Truth::Unknown));
+  }
+  case Op::Not: {
+    Value x = arg(0);
+    return Value::boolean(x.kind == Value::Bool ? arith::lnot(x.truth) : Truth::Unknown);
+  }
+  case Op::Call: return call(e, a);
+  case Op::SceneOutput: return sceneOutput ? sceneOutput(e, a) : Value::invalid();
+  case Op::Relative: {
+    if (!baseline) return Value::invalid();
+    return builtin(cat::Fn::Relative)({arg(0), baseline(*e.args[0])});
+  }
+  default: return Value::invalid();  // Tol and Set stand only inside comparisons
+  }
+}
+
+Value Evaluator::call(const ir::Expr& e, const Assignment& a) const {
+  if (e.args.size() == 1 && e.args[0]->type.kind == ir::Type::PerGear) return perGearReduce(e, a);
+  std::vector<Value> v;
+  v.reserve(e.args.size());
+  for (const auto& x : e.args) {
+    v.push_back(eval(*x, a));
+    if (v.back().kind == Value::Invalid) return Value::invalid();
+  }
+  BuiltinFn fn = builtin(e.fn);
+  return fn ? fn(v) : Value::invalid();
+}
+
+void Evaluator::setOverride(const ir::QuantityRef& r, Value v) {
+  for (auto& [k, x] : overrides_)
+    if (k == r) {
+      x = v;
+      return;
+    }
+  overrides_.emplace_back(r, v);
+}
+
+const Value* Evaluator::overridden(const ir::QuantityRef& r) const {
+  for (const auto& [k, v] : overrides_)
+    if (k == r) return &v;
+  return nullptr;
+}
+
+const Value* Evaluator::overridden(Q gearboxKey) const {
+  for (const auto& [k, v] : overrides_)
+    if (k.owner == ir::QuantityRef::Gearbox && k.key == gearboxKey) return &v;
+  return nullptr;
+}
+
+Value Evaluator::quantity(const std::string& path, const Assignment& a) const {
+  return quantity(lower::quantityRef(m_.program, m_.gearbox, path), a);
+}
+
+Value Evaluator::quantity(const ir::QuantityRef& r, const Assignment& a) const {
+  if (!overrides_.empty())
+    if (const Value* v = overridden(r)) return *v;
+  switch (r.owner) {
+  case ir::QuantityRef::Gearbox: return gearboxQuantity(r.key, a);
+  case ir::QuantityRef::Split: return splitQuantity(r.index, r.key, a);
+  case ir::QuantityRef::Stage: {
+    const StageInfo::Entry& en = m_.info(r.index).entry(r.gear, r.key);
+    if (en.attr || en.slot >= 0) return attribute(r.index, r.gear, r.key, a);
+    return derived(r.index, r.gear, r.key, a);
+  }
+  default: return Value::invalid();  // materials and collections: not search quantities
+  }
+}
+
+Value Evaluator::splitQuantity(int split, Q key, const Assignment& a) const {
+  const ir::Split& sp = m_.gearbox.splits[static_cast<size_t>(split)];
+  if (const ir::Setting* s = ir::findSetting(sp.settings, key)) return s->value ? constant(*s->value) : Value::invalid();
+  if (key == Q::Install) return Value::invalid();
+  auto r = computeSplit(*this, split, a);
+  if (!r) return Value::invalid();
+  switch (key) {
+  case Q::Twist: return Value::number(r->twist);
+  case Q::Displacement: return Value::number(r->displacement);
+  case Q::Imbalance: return Value::number(r->imbalance);
+  case Q::BranchTorque: return Value::number(r->branchTorque);
+  case Q::PreloadDisplacement: return Value::number(r->preloadDisplacement);
+  default: return Value::invalid();
+  }
+}
+
+Value Evaluator::attribute(int stage, int gear, Q key, const Assignment& a) const {
+  if (!overrides_.empty()) {
+    ir::QuantityRef r;
+    r.owner = ir::QuantityRef::Stage;
+    r.index = static_cast<std::int16_t>(stage);
+    r.gear = static_cast<std::int8_t>(gear);
+    r.key = key;
+    if (const Value* v = overridden(r)) return *v;
+  }
+  const StageInfo::Entry& en = m_.info(stage).entry(gear, key);
+  if (en.slot >= 0) {
+    int c = a.choice[static_cast<size_t>(en.slot)];
+    if (c < 0) return Value::invalid();
+    return m_.slots[static_cast<size_t>(en.slot)].values[static_cast<size_t>(c)];
+  }
+  if (en.freedom >= 0) {
+    auto [lo, hi] = a.box[static_cast<size_t>(en.freedom)];
+    return lo == hi ? Value::number(lo) : Value::range(lo, hi);
+  }
+  if (!en.attr || !en.attr->value) return derived(stage, gear, key, a);
+  if (++depth_ > 64) {
+    --depth_;
+    return Value::invalid();
+  }
+  Value v = eval(*en.attr->value, a);
+  --depth_;
+  return v;
+}
+
+Value Evaluator::derived(int stage, int gear, Q key, const Assignment& a) const {
+  const StageKindImpl& k = *m_.info(stage).kind;
+  DerivedFn fn = gear < 0 ? k.stageFn(key) : k.gearFn(key);
+  if (!fn) return Value::invalid();
+  return fn(KindContext{*this, stage, a}, gear);
+}
+
+Value Evaluator::ratioProduct(int from, int to, const Assignment& a) const {
+  Value r = Value::rational(Rational(1));
+  for (int s = from; s < to; ++s) r = arith::mul(r, derived(s, Q::Ratio, a));
+  return r;
+}
+
+// A per-gear expression (`pitch_deviation`, `bending_deflection + torsion_deflection`)
+// evaluated for one gear: its per-gear quantities name that gear.
+Value Evaluator::perGear(const ir::Expr& e, int gear, const Assignment& a) const {
+  if (e.op == ir::Op::Quantity && e.type.kind == ir::Type::PerGear) {
+    ir::QuantityRef r = e.ref;
+    r.gear = static_cast<std::int8_t>(gear);
+    r.perGear = false;
+    return quantity(r, a);
+  }
+  if (e.type.kind != ir::Type::PerGear) return eval(e, a);
+  switch (e.op) {
+  case ir::Op::Add: return arith::add(perGear(*e.args[0], gear, a), perGear(*e.args[1], gear, a));
+  case ir::Op::Sub: return arith::sub(perGear(*e.args[0], gear, a), perGear(*e.args[1], gear, a));
+  default: return Value::invalid();
+  }
+}
+
+Value Evaluator::perGearReduce(const ir::Expr& call, const Assignment& a) const {
+  // The stage of the quantity: that of any per-gear name inside.
+  int st = -1;
+  std::function<void(const ir::Expr&)> find = [&](const ir::Expr& x) {
+    if (x.op == ir::Op::Quantity && x.type.kind == ir::Type::PerGear && st < 0) st = x.ref.index;
+    for (const auto& c : x.args)
+      if (c) find(*c);
+  };
+  find(*call.args[0]);
+  if (st < 0) return Value::invalid();
+  std::vector<Value> vals;
+  for (size_t g = 0; g < m_.info(st).ir->gears.size(); ++g) {
+    vals.push_back(perGear(*call.args[0], static_cast<int>(g), a));
+    if (!vals.back().isNumber()) return Value::invalid();
+  }
+  Value out = vals[0];
+  for (size_t i = 1; i < vals.size(); ++i) {
+    if (call.fn == cat::Fn::Mean) out = arith::add(out, vals[i]);
+    else if (call.fn == cat::Fn::Max) out = arith::less(out, vals[i], false) == Truth::True ? vals[i] : out;
+    else out = arith::less(vals[i], out, false) == Truth::True ? vals[i] : out;
+  }
+  if (call.fn == cat::Fn::Mean) out = arith::div(out, Value::rational(Rational(static_cast<std::int64_t>(vals.size()))));
+  return out;
+}
+
+Value Evaluator::gearboxQuantity(Q key, const Assignment& a) const {
+  int n = static_cast<int>(m_.stages.size());
+  if (key == Q::Ratio) {
+    if (a.ratio) return Value::rational(*a.ratio);
+    if (a.ratioApprox) return Value::number(*a.ratioApprox);
+    return ratioProduct(0, n, a);
+  }
+  Value total = ratioProduct(0, n, a);
+  // A swept load (power, input or output torque) replaces whichever load `operating` gives.
+  bool loadSwept = !overrides_.empty() && (overridden(Q::Power) || overridden(Q::InputTorque) || overridden(Q::OutputTorque));
+  auto op = [&](Q k) -> std::optional<Value> {
+    if (!overrides_.empty())
+      if (const Value* v = overridden(k)) return *v;
+    if (loadSwept && (k == Q::Power || k == Q::InputTorque || k == Q::OutputTorque)) return std::nullopt;
+    if (auto v = m_.operating(k)) return Value::number(*v);
+    return std::nullopt;
+  };
+  Value inSpeed = Value::invalid();
+  if (auto v = op(Q::InputSpeed)) inSpeed = *v;
+  else if (auto w = op(Q::OutputSpeed)) inSpeed = arith::mul(*w, total);
+  if (key == Q::InputSpeed) return inSpeed;
+  if (key == Q::OutputSpeed) return arith::div(inSpeed, total);
+  Value inTorque = Value::invalid();
+  if (auto t = op(Q::InputTorque)) inTorque = *t;
+  else if (auto p = op(Q::Power)) inTorque = arith::div(*p, inSpeed);
+  else if (auto t2 = op(Q::OutputTorque)) inTorque = arith::div(*t2, total);
+  if (key == Q::InputTorque) return inTorque;
+  if (key == Q::OutputTorque) return arith::mul(inTorque, total);
+  if (key == Q::Power) return arith::mul(inTorque, inSpeed);
+  return Value::invalid();
+}
+
+Value Evaluator::materialProperty(int stage, Q prop) const {
+  const ir::Material* m = m_.material(stage);
+  if (!m) return Value::invalid();
+  const ir::Setting* s = ir::findSetting(m->properties, prop);
+  if (!s || !s->value) return Value::invalid();
+  return Value::number(s->value->toDouble());
+}
+
+// ---- what a kind's formulas see ----------------------------------------------------------
+
+Value KindContext::at(Q key) const { return ev.attribute(stage, -1, key, a); }
+Value KindContext::at(int gear, Q key) const { return ev.attribute(stage, gear, key, a); }
+Value KindContext::orZero(int gear, Q key) const {
+  Value v = at(gear, key);
+  return v.kind == Value::Invalid ? Value::rational(Rational(0)) : v;
+}
+Value KindContext::derived(Q key) const { return ev.derived(stage, -1, key, a); }
+Value KindContext::derived(int gear, Q key) const { return ev.derived(stage, gear, key, a); }
+Value KindContext::gearbox(Q key) const { return ev.gearboxQuantity(key, a); }
+Value KindContext::upstreamRatio() const { return ev.ratioProduct(0, stage, a); }
+Value KindContext::material(Q property) const { return ev.materialProperty(stage, property); }
+
+} // namespace gbx::rt

@@ -1,0 +1,85 @@
+#pragma once
+// A gearbox of the IR arranged for search: its integer decision variables as slots with
+// explicit value lists, its continuous freedoms as box dimensions, per stage, and a table
+// from (gear, key) to the attribute, slot or freedom that gives it.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ir/Ir.h"
+#include "model/Value.h"
+
+namespace gbx::rt {
+
+class StageKindImpl;
+using cat::Q;
+
+struct Slot {
+  std::string path;  // "upper.pinion.z"
+  std::string attr;  // "pinion.z"
+  int stage = 0;
+  int gear = -1;
+  Q key = Q::None;
+  std::vector<Value> values;  // the domain, ascending
+};
+
+struct Freedom {
+  std::string path;
+  std::string attr;
+  int stage = 0;
+  int gear = -1;
+  Q key = Q::None;
+  double lo = 0, hi = 0;
+};
+
+struct StageInfo {
+  const ir::Stage* ir = nullptr;
+  const StageKindImpl* kind = nullptr;
+  std::vector<int> slots;
+  std::vector<int> freedoms;
+  // (gear + 1) * kKeyCount + key: what gives the attribute.
+  struct Entry {
+    const ir::Attribute* attr = nullptr;
+    int slot = -1, freedom = -1;
+  };
+  std::vector<Entry> entries;
+  const Entry& entry(int gear, Q key) const {
+    static const Entry none;
+    size_t i = static_cast<size_t>(gear + 1) * cat::kKeyCount + static_cast<size_t>(key);
+    return i < entries.size() ? entries[i] : none;
+  }
+};
+
+class Model {
+public:
+  Model(const ir::Program& program, const ir::Gearbox& gearbox);
+
+  const ir::Program& program;
+  const ir::Gearbox& gearbox;
+  std::vector<StageInfo> stages;
+  std::vector<Slot> slots;
+  std::vector<Freedom> freedoms;
+
+  int stageIndex(const std::string& name) const { return gearbox.stageIndex(name); }
+  const ir::Attribute* attribute(int stage, int gear, Q key) const { return info(stage).entry(gear, key).attr; }
+  const ir::Attribute* attribute(int stage, Q key) const { return attribute(stage, -1, key); }
+  int slotOf(int stage, int gear, Q key) const { return info(stage).entry(gear, key).slot; }
+  int freedomOf(int stage, int gear, Q key) const { return info(stage).entry(gear, key).freedom; }
+  // SI value of an operating setting, when given.
+  std::optional<double> operating(Q key) const;
+  // The material a stage names, or nullptr.
+  const ir::Material* material(int stage) const;
+  const StageInfo& info(int stage) const { return stages[static_cast<size_t>(stage)]; }
+};
+
+// A point of the search: a value index per slot (-1 when unassigned) and the current
+// interval of every freedom.
+struct Assignment {
+  std::vector<int> choice;
+  std::vector<std::pair<double, double>> box;
+  std::optional<Rational> ratio;  // the gearbox ratio when already known exactly
+  std::optional<double> ratioApprox;  // or approximately, to screen designs cheaply
+  explicit Assignment(const Model& m);
+};
+
+} // namespace gbx::rt

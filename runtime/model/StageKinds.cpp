@@ -1,0 +1,39 @@
+#include "model/StageKind.h"
+
+#include <cmath>
+
+#include "model/Evaluator.h"
+
+namespace gbx::rt {
+
+StageKindImpl::StageKindImpl(ir::StageKind k, SceneModel s, std::vector<DerivedRow> r, std::vector<ImplicitRule> ru)
+    : kind(k), scene(s), rows(std::move(r)), rules(std::move(ru)) {
+  for (const auto& row : rows) (row.perGear ? gear_ : stage_)[static_cast<size_t>(row.key)] = row.fn;
+}
+
+std::vector<DerivedRow> trainRows() {
+  // Speeds run down the train from the input; torques grow by each ratio (no losses).
+  return {
+      {Q::InputSpeed, false, [](const KindContext& c, int) { return arith::div(c.gearbox(Q::InputSpeed), c.upstreamRatio()); }},
+      {Q::OutputSpeed, false, [](const KindContext& c, int) { return arith::div(c.derived(Q::InputSpeed), c.derived(Q::Ratio)); }},
+      {Q::InputTorque, false, [](const KindContext& c, int) { return arith::mul(c.gearbox(Q::InputTorque), c.upstreamRatio()); }},
+      {Q::OutputTorque, false, [](const KindContext& c, int) { return arith::mul(c.derived(Q::InputTorque), c.derived(Q::Ratio)); }},
+  };
+}
+
+const std::vector<const StageKindImpl*>& stageKindImpls() {
+  static const std::vector<const StageKindImpl*> all = {&kinds::spur(), &kinds::helical(), &kinds::bevel(), &kinds::planetary(),
+                                                        &kinds::idler()};
+  return all;
+}
+
+const StageKindImpl& stageKindImpl(ir::StageKind kind) {
+  static const auto table = [] {
+    std::vector<const StageKindImpl*> t(stageKindImpls().size());
+    for (const auto* k : stageKindImpls()) t[static_cast<size_t>(k->kind)] = k;
+    return t;
+  }();
+  return *table[static_cast<size_t>(kind)];
+}
+
+} // namespace gbx::rt

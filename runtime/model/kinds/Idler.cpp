@@ -1,0 +1,62 @@
+// Idler trains: a driver, a free idler and a driven gear in line.
+#include <cmath>
+
+#include "catalogue/StageKinds.h"
+#include "model/Evaluator.h"
+#include "model/StageKind.h"
+
+namespace gbx::rt::kinds {
+
+namespace {
+
+using cat::gear::Driven;
+using cat::gear::Driver;
+using cat::gear::Idler;
+
+std::vector<DerivedRow> rows() {
+  auto r = trainRows();
+  std::vector<DerivedRow> own = {
+      {Q::Ratio, false, [](const KindContext& c, int) { return arith::div(c.at(Driven, Q::Z), c.at(Driver, Q::Z)); }},
+      {Q::MeshFrequency, false,
+       [](const KindContext& c, int) {
+         return arith::mul(arith::mul(c.derived(Q::InputSpeed), Value::number(1.0 / (2.0 * M_PI))), c.at(Driver, Q::Z));
+       }},
+      {Q::CenterDistance, false,
+       [](const KindContext& c, int) {
+         Value half = Value::rational(Rational::make(1, 2));
+         Value teeth = arith::add(arith::add(arith::mul(c.at(Driver, Q::Z), half), c.at(Idler, Q::Z)), arith::mul(c.at(Driven, Q::Z), half));
+         return arith::mul(teeth, c.at(Q::Module));
+       }},
+      {Q::D, true, [](const KindContext& c, int g) { return arith::mul(c.at(g, Q::Z), c.at(Q::Module)); }},
+      {Q::BaseRadius, true,
+       [](const KindContext& c, int g) {
+         return arith::corners({c.derived(g, Q::D), c.at(Q::PressureAngle)}, [](const std::vector<double>& x) { return 0.5 * x[0] * std::cos(x[1]); });
+       }},
+      {Q::Speed, true,
+       [](const KindContext& c, int g) {
+         if (g == Driver) return c.derived(Q::InputSpeed);
+         if (g == Idler) return arith::mul(c.derived(Q::InputSpeed), arith::div(c.at(Driver, Q::Z), c.at(Idler, Q::Z)));
+         return c.derived(Q::OutputSpeed);
+       }},
+      // The idler carries no net torque; at each of its meshes its flanks see T_driver z_i / z_d.
+      {Q::Torque, true,
+       [](const KindContext& c, int g) {
+         if (g == Driver) return c.derived(Q::InputTorque);
+         if (g == Idler) return arith::mul(c.derived(Q::InputTorque), arith::div(c.at(Idler, Q::Z), c.at(Driver, Q::Z)));
+         return c.derived(Q::OutputTorque);
+       }},
+  };
+  r.insert(r.end(), own.begin(), own.end());
+  return r;
+}
+
+Truth reduction(const KindContext& c) { return arith::less(c.at(Driver, Q::Z), c.at(Driven, Q::Z), false); }
+
+} // namespace
+
+const StageKindImpl& idler() {
+  static const StageKindImpl k(ir::StageKind::Idler, SceneModel::None, rows(), {{"reduction: driven.z > driver.z", reduction}});
+  return k;
+}
+
+} // namespace gbx::rt::kinds

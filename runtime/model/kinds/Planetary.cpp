@@ -1,0 +1,88 @@
+// Planetary stages: sun input, ring fixed, carrier output, equally spaced planets.
+#include <cmath>
+
+#include "catalogue/StageKinds.h"
+#include "model/Evaluator.h"
+#include "model/StageKind.h"
+
+namespace gbx::rt::kinds {
+
+namespace {
+
+using cat::gear::Planet;
+using cat::gear::Ring;
+using cat::gear::Sun;
+
+Value half() { return Value::rational(Rational::make(1, 2)); }
+Truth truth(bool b) { return b ? Truth::True : Truth::False; }
+
+std::vector<DerivedRow> rows() {
+  auto r = trainRows();
+  std::vector<DerivedRow> own = {
+      {Q::Ratio, false, [](const KindContext& c, int) { return arith::add(Value::rational(Rational(1)), arith::div(c.at(Ring, Q::Z), c.at(Sun, Q::Z))); }},
+      // Ring fixed: each ring tooth meets a planet once per carrier turn.
+      {Q::MeshFrequency, false,
+       [](const KindContext& c, int) {
+         return arith::mul(arith::mul(c.derived(Q::OutputSpeed), Value::number(1.0 / (2.0 * M_PI))), c.at(Ring, Q::Z));
+       }},
+      {Q::CarrierSpeed, false, [](const KindContext& c, int) { return c.derived(Q::OutputSpeed); }},
+      {Q::CenterDistance, false,
+       [](const KindContext& c, int) { return arith::mul(arith::add(c.at(Sun, Q::Z), c.at(Planet, Q::Z)), arith::mul(c.at(Q::Module), half())); }},
+      {Q::D, true, [](const KindContext& c, int g) { return arith::mul(c.at(g, Q::Z), c.at(Q::Module)); }},
+      {Q::BaseRadius, true,
+       [](const KindContext& c, int g) {
+         return arith::corners({c.derived(g, Q::D), c.at(Q::PressureAngle)}, [](const std::vector<double>& x) { return 0.5 * x[0] * std::cos(x[1]); });
+       }},
+      // Absolute speeds: the sun drives, the ring stands, a planet turns at
+      // w_c (1 - z_r / z_p) about its own axis.
+      {Q::Speed, true,
+       [](const KindContext& c, int g) {
+         if (g == Sun) return c.derived(Q::InputSpeed);
+         if (g == Ring) return Value::rational(Rational(0));
+         return arith::mul(c.derived(Q::OutputSpeed), arith::sub(Value::rational(Rational(1)), arith::div(c.at(Ring, Q::Z), c.at(Planet, Q::Z))));
+       }},
+      // Torques on each member's own axis: T_sun, each planet T_sun z_p / (z_s N), the ring's
+      // reaction T_sun z_r / z_s.
+      {Q::Torque, true,
+       [](const KindContext& c, int g) {
+         Value ts = c.derived(Q::InputTorque);
+         if (g == Sun) return ts;
+         if (g == Ring) return arith::mul(ts, arith::div(c.at(Ring, Q::Z), c.at(Sun, Q::Z)));
+         return arith::div(arith::mul(ts, c.at(Planet, Q::Z)), arith::mul(c.at(Sun, Q::Z), c.at(Q::Planets)));
+       }},
+  };
+  r.insert(r.end(), own.begin(), own.end());
+  return r;
+}
+
+std::vector<ImplicitRule> rules() {
+  return {
+      {"concentric: ring.z == sun.z + 2 * planet.z",
+       [](const KindContext& c) {
+         Value want = arith::add(c.at(Sun, Q::Z), arith::mul(Value::rational(Rational(2)), c.at(Planet, Q::Z)));
+         return arith::equal(c.at(Ring, Q::Z), want);
+       }},
+      {"assembly: (sun.z + ring.z) / planets is whole",
+       [](const KindContext& c) {
+         Value q = arith::div(arith::add(c.at(Sun, Q::Z), c.at(Ring, Q::Z)), c.at(Q::Planets));
+         if (!q.exact) return Truth::Unknown;
+         return truth(q.exact->isInteger());
+       }},
+      {"adjacency: (sun.z + planet.z) * sin(pi / planets) > planet.z + 2",
+       [](const KindContext& c) {
+         Value n = c.at(Q::Planets);
+         if (!n.isPoint()) return Truth::Unknown;
+         double lhs = (c.at(Sun, Q::Z).lo + c.at(Planet, Q::Z).lo) * std::sin(M_PI / n.lo);
+         return truth(lhs > c.at(Planet, Q::Z).lo + 2.0);
+       }},
+  };
+}
+
+} // namespace
+
+const StageKindImpl& planetary() {
+  static const StageKindImpl k(ir::StageKind::Planetary, SceneModel::Planetary, rows(), rules());
+  return k;
+}
+
+} // namespace gbx::rt::kinds
