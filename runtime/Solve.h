@@ -1,5 +1,5 @@
 #pragma once
-// `gbxc solve`: every gearbox of a checked program through the runtime, then reports.
+// `gbxc solve`: every gearbox of a checked program through the runtime's passes, then one report.
 #include <iosfwd>
 #include <string>
 
@@ -9,7 +9,7 @@ namespace gbx::rt {
 
 struct SolveOptions {
   std::string gearbox;  // only this one, when set
-  std::string format = "text";
+  std::string format = "text";  // a name in report/Formats.h
   std::string outDir;
   int jobs = 1;
   bool quiet = false;

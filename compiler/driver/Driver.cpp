@@ -7,6 +7,7 @@
 
 #include "driver/Golden.h"
 #include "lower/Lower.h"
+#include "report/Formats.h"
 #include "sema/Sema.h"
 #include "Solve.h"
 
@@ -229,9 +230,10 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     positional.erase(positional.begin());
   }
   o.files = positional;
-  bool solveFormats = o.command == "solve";
-  if (o.format != "text" && o.format != "json" &&
-      !(solveFormats && (o.format == "md" || o.format == "html" || o.format == "csv")))
+  // --format names a row of the runtime's table of report formats; check, dump and test
+  // print diagnostics, which come in fewer forms.
+  const rt::ReportFormat* format = rt::findReportFormat(o.format);
+  if (!format || (o.command != "solve" && !format->diagnostics))
     return usage(err, fmt::format("unknown format `{}` for `{}`", o.format, o.command));
   if (o.command == "test") {
     if (o.files.empty()) return usage(err, "`test` needs at least one file or folder");

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include "diag/Diagnostic.h"
+#include "report/Optimisation.h"
+#include "report/Studies.h"
 
 namespace gbx::rt {
 
@@ -74,7 +76,7 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
     if (g.count == 0 || g.undecided) {
       o += "  elimination funnel:\n";
       for (const auto& f : g.funnel) {
-        if (f.rule == "domain") {
+        if (f.domain) {
           o += fmt::format("    stage {}: {} candidates\n", f.scope, count(-f.removed));
           continue;
         }
@@ -86,9 +88,10 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
       if (!c.exact) o += "  note: intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images\n";
     for (const auto& n : g.notes) o += "  note: " + n + "\n";
     if (g.undecided) o += "  ? = feasibility undecided at the freedom resolution (kept, not proven)\n";
-    for (const auto& l : g.optimisation) o += "  " + l + "\n";
-    if (ro.timings)
-      for (const auto& l : g.optimisationTimings) o += "  " + l + "\n";
+    if (g.optimisation) {
+      for (const auto& l : optimisationLines(*g.optimisation)) o += "  " + l + "\n";
+      if (ro.timings) o += "  " + optimisationTiming(*g.optimisation) + "\n";
+    }
     for (const auto& md : g.modifications) {
       o += fmt::format("  modify {} (design 1)\n", md.stage);
       for (const auto& r : md.rows) {
@@ -105,12 +108,12 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
         o += "    failed: " + sc.failure + "\n";
         continue;
       }
-      if (sc.method == "eigen") o += "    accuracy: generalised eigenproblem (Eigen), double precision\n";
+      if (sc.eigen) o += "    accuracy: generalised eigenproblem (Eigen), double precision\n";
       else o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled)\n", sc.method, sc.rtol, sc.atol);
       for (const auto& out : sc.outputs)
         o += fmt::format("    {} = {}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit);
       if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative ({})\n", sc.errorEstimate, sc.errorMethod);
-      if (sc.method != "eigen")
+      if (!sc.eigen)
         o += fmt::format("    cost: {} steps, {} rejected, {} RHS evaluations, {} Jacobians, {} events located\n", sc.steps, sc.rejected,
                        sc.rhs, sc.jacobians, sc.events);
       for (const auto& sp : sc.spectra) {
@@ -124,7 +127,8 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
       for (const auto& f : sc.files) o += "    wrote " + f + "\n";
       if (ro.timings) o += fmt::format("    timing: {:.1f} ms CPU (error estimate run {:.1f} ms)\n", sc.cpu * 1e3, sc.referenceCpu * 1e3);
     }
-    for (const auto& st : g.studies) {
+    for (const auto& study : g.studies) {
+      StudyTable st = studyTable(study, ro);
       o += fmt::format("  study {} ({})\n", st.name, st.kind);
       std::vector<std::vector<std::string>> table = {st.header};
       for (const auto& r : st.rows) table.push_back(r);
@@ -137,7 +141,7 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
         o += line + "\n";
       }
       for (const auto& n : st.notes) o += "    note: " + n + "\n";
-      for (const auto& f : st.files) o += "    wrote " + f + "\n";
+      for (const auto& f : study.files) o += "    wrote " + f + "\n";
     }
   }
   return o;
@@ -195,7 +199,7 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
     o += "],\n   \"funnel\": [";
     for (size_t i = 0; i < g.funnel.size(); ++i) {
       const auto& f = g.funnel[i];
-      if (f.rule == "domain")
+      if (f.domain)
         o += fmt::format("{}\n    {{\"scope\": \"{}\", \"rule\": \"domain\", \"candidates\": {}}}", i ? "," : "", jsonEscape(f.scope),
                          count(-f.removed));
       else
@@ -203,7 +207,7 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
                          jsonEscape(f.scope), jsonEscape(f.rule), count(f.before), count(f.removed));
     }
     o += g.funnel.empty() ? "]," : "\n   ],";
-    if (!g.optimisationJson.empty()) o += "\n   \"optimisation\": " + g.optimisationJson + ",";
+    if (g.optimisation) o += "\n   \"optimisation\": " + optimisationJson(*g.optimisation) + ",";
     o += "\n   \"scenes\": {";
     for (size_t si = 0; si < g.scenes.size(); ++si) {
       const auto& sc = g.scenes[si];
@@ -252,14 +256,14 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
     o += g.modifications.empty() ? "}, " : "\n   }, ";
     o += "\"studies\": {";
     for (size_t si = 0; si < g.studies.size(); ++si)
-      o += fmt::format("{}\n    \"{}\": {}", si ? "," : "", jsonEscape(g.studies[si].name), g.studies[si].json);
+      o += fmt::format("{}\n    \"{}\": {}", si ? "," : "", jsonEscape(studyName(g.studies[si])), studyJson(g.studies[si], ro));
     o += g.studies.empty() ? "}}" : "\n   }}";
   }
   o += "\n]}\n";
   return o;
 }
 
-std::string renderCsv(const std::vector<GearboxReport>& reports) {
+std::string renderCsv(const std::vector<GearboxReport>& reports, const RenderOptions&) {
   std::string o;
   for (const auto& g : reports) {
     auto h = header(g);
@@ -279,7 +283,9 @@ std::string renderCsv(const std::vector<GearboxReport>& reports) {
   return o;
 }
 
-std::string renderMarkdown(const std::vector<GearboxReport>& reports, bool html) {
+namespace {
+
+std::string markdown(const std::vector<GearboxReport>& reports, const RenderOptions& ro, bool html) {
   auto esc = [&](const std::string& x) {
     if (!html) return x;
     std::string o;
@@ -333,11 +339,11 @@ std::string renderMarkdown(const std::vector<GearboxReport>& reports, bool html)
     if (g.count == 0) {
       std::vector<std::string> f;
       for (const auto& x : g.funnel)
-        f.push_back(x.rule == "domain" ? fmt::format("stage {}: {} candidates", x.scope, count(-x.removed))
+        f.push_back(x.domain ? fmt::format("stage {}: {} candidates", x.scope, count(-x.removed))
                                        : fmt::format("{}{}: {} of {} removed", x.scope.empty() ? "" : x.scope + ": ", x.rule, count(x.removed), count(x.before)));
       o += heading(3, "Elimination funnel") + list(f);
     }
-    if (!g.optimisation.empty()) o += heading(3, "Optimisation") + list(g.optimisation);
+    if (g.optimisation) o += heading(3, "Optimisation") + list(optimisationLines(*g.optimisation));
     for (const auto& md : g.modifications) {
       o += heading(3, "Modification of " + md.stage);
       std::vector<std::vector<std::string>> mr;
@@ -354,21 +360,28 @@ std::string renderMarkdown(const std::vector<GearboxReport>& reports, bool html)
       std::vector<std::string> items;
       for (const auto& out : sc.outputs) items.push_back(fmt::format("{} = {}{}", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit));
       if (sc.errorEstimate >= 0) items.push_back(fmt::format("error estimate {:.2e} ({})", sc.errorEstimate, sc.errorMethod));
-      if (sc.method != "eigen")
+      if (!sc.eigen)
         items.push_back(fmt::format("{} at rtol {:.0e}: {} steps, {} RHS evaluations", sc.method, sc.rtol, sc.steps, sc.rhs));
       for (const auto& m : sc.model) items.push_back(m);
       o += list(items);
       for (const auto& f : sc.files) o += image(f);
     }
-    for (const auto& st : g.studies) {
+    for (const auto& study : g.studies) {
+      StudyTable st = studyTable(study, ro);
       o += heading(3, "Study " + st.name);
       o += table(st.header, st.rows);
       if (!st.notes.empty()) o += list(st.notes);
-      for (const auto& f : st.files) o += image(f);
+      for (const auto& f : study.files) o += image(f);
     }
   }
   if (html) o += "</body></html>\n";
   return o;
 }
+
+} // namespace
+
+std::string renderMarkdown(const std::vector<GearboxReport>& reports, const RenderOptions& o) { return markdown(reports, o, false); }
+
+std::string renderHtml(const std::vector<GearboxReport>& reports, const RenderOptions& o) { return markdown(reports, o, true); }
 
 } // namespace gbx::rt

@@ -1,10 +1,14 @@
 #pragma once
-// Reports of solved gearboxes: text tables, JSON (keys of LANGUAGE.md §10), CSV and
-// Markdown. Numbers are printed in a fixed format so that reports are byte-stable.
+// Reports of solved gearboxes: text tables, JSON (keys of LANGUAGE.md §10), CSV,
+// Markdown and HTML. Numbers are printed in a fixed format so that reports are byte-stable.
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "search/Search.h"
+#include "study/Study.h"
+#include "units/Unit.h"
 
 namespace gbx::rt {
 
@@ -39,6 +43,7 @@ struct ScenePeakRow {
 
 struct SceneReport {
   std::string name, target, method;
+  bool eigen = false;  // modes of a lumped model: no integrator, no error estimate
   double rtol = 0, atol = 0;
   long steps = 0, rejected = 0, rhs = 0, jacobians = 0, events = 0;
   double cpu = 0, referenceCpu = 0;
@@ -55,16 +60,48 @@ struct SceneReport {
     std::vector<ScenePeakRow> peaks;
   };
   std::vector<SpectrumRow> spectra;
-  std::vector<std::string> model, files;
+  // The scene's `plot(…)` and `spectrum(…)` outputs as drawn: x in s or Hz, y in `unit`.
+  struct Plot {
+    std::string key, signal, unit;
+    bool spectrum = false;
+    std::vector<double> x, y;
+  };
+  std::vector<Plot> plots;
+  std::vector<std::string> model;
+  std::vector<std::string> files;  // charts written, set by the render step
   std::string failure;
 };
 
 struct StudyReport {
-  std::string name, kind;  // "sweep" or "work_precision"
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;  // text cells
-  std::string json;                            // the study as a JSON value
-  std::vector<std::string> notes, files;
+  std::variant<SweepStudy, WorkPrecisionStudy> study;
+  std::vector<std::string> files;  // charts written, set by the render step
+};
+
+// What the optimiser did for a gearbox whose objectives need scenes or a baseline.
+struct OptimisationSummary {
+  size_t candidates = 0, infeasible = 0;  // candidates optimised; of them, with no feasible freedoms
+  long evaluations = 0;
+  double sceneRtol = 0;                   // of the scenes inside the objective
+  std::string baseline;                   // the gearbox `relative(…)` compares with
+  std::vector<std::string> termNames;     // the quantities under `relative(…)`
+  std::vector<double> baselineTerms;      // their baseline values
+  struct FreedomValue {
+    std::string path;
+    double value = 0;                     // SI
+    units::DisplayUnit unit{"", 1};
+  };
+  struct Optimum {
+    Rational ratio;
+    std::vector<FreedomValue> freedoms;
+    double objective = 0;
+    std::vector<double> terms;            // absolute, in termNames order
+  };
+  std::optional<Optimum> best;
+  std::string rankCheck;
+  std::vector<std::pair<double, double>> cloud, pareto;  // relative terms of feasible evaluations; the non-dominated ones
+  double wallSeconds = 0;                 // not part of golden output
+  int jobs = 1;
+  std::vector<std::string> files;         // the Pareto chart, set by the render step
 };
 
 struct ModRow {
@@ -94,13 +131,12 @@ struct GearboxReport {
   std::vector<SceneReport> scenes;
   std::vector<StudyReport> studies;
   std::vector<ModifyReport> modifications;
-  std::vector<std::string> optimisation;  // text lines of the optimisation summary
-  std::string optimisationJson;           // its JSON value, "" when none
-  std::vector<std::string> optimisationTimings;  // not part of golden output
+  std::optional<OptimisationSummary> optimisation;
 };
 
 struct RenderOptions {
   bool timings = true;  // CPU times: off for golden files
+  bool charts = false;  // SVG charts beside the report (an output folder is given)
 };
 
 std::string formatNumber(double v);
@@ -108,7 +144,8 @@ std::string formatNumber(double v);
 std::string formatLength(double metres);
 std::string renderText(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderJson(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
-std::string renderCsv(const std::vector<GearboxReport>& r);
-std::string renderMarkdown(const std::vector<GearboxReport>& r, bool html);
+std::string renderCsv(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
+std::string renderMarkdown(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
+std::string renderHtml(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 
 } // namespace gbx::rt

@@ -101,7 +101,7 @@ std::string renderSvg(const SvgChart& c) {
         o += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{}\" fill=\"{}\" stroke=\"{}\"/>\n", px(s.x[i]), py(s.y[i]), radius,
                          col, radius > 3 ? "black" : col);
     }
-    o += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.2\" points=\"{}\"/>\n", col, pts);
+    if (s.line) o += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.2\" points=\"{}\"/>\n", col, pts);
     if (!s.label.empty())
       o += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", W - R - 170, T + 16 + 14 * static_cast<double>(k), col, esc(s.label));
   }

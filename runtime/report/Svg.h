@@ -1,5 +1,5 @@
 #pragma once
-// Small, dependency-free SVG charts: line plots with linear or logarithmic axes.
+// Small, dependency-free SVG charts: line plots and point clouds with linear or logarithmic axes.
 #include <string>
 #include <vector>
 
@@ -9,6 +9,7 @@ struct SvgSeries {
   std::string label;
   std::vector<double> x, y;
   bool markers = false;
+  bool line = true;  // false: the points alone, e.g. a cloud whose order means nothing
 };
 
 struct SvgChart {

@@ -371,7 +371,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
   StageResult res;
   double before = static_cast<double>(total);
   const std::string& name = info.ir->name;
-  res.funnel.push_back({"domain", name, 0, -before});
+  res.funnel.push_back({"domain", name, 0, -before, true});
   for (size_t r = 0; r < rules.size(); ++r) {
     double removed = 0;
     for (const auto& ch : chunks) removed += ch.removed[r];

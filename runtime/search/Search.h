@@ -19,6 +19,7 @@ struct FunnelStep {
   std::string scope;   // stage name, or "" for the gearbox
   double before = 0;   // candidates (or combinations) that reached this rule
   double removed = 0;  // how many it removed
+  bool domain = false; // the stage's candidate count before any rule (rule "domain")
 };
 
 struct Design {

@@ -2,15 +2,12 @@
 // `study … { work_precision of SCENE; rtol in {…}; harmonics in a..b; methods in {…}; }`:
 // reruns the scene at each setting and reports the error of its first numeric output
 // against a reference (itself checked against a still tighter run) with the CPU time.
-#include <string>
-
 #include "ir/Ir.h"
-#include "report/Report.h"
 #include "model/Model.h"
+#include "study/Study.h"
 
 namespace gbx::rt {
 
-StudyReport workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene,
-                          const std::string& outDir, const std::string& filePrefix, bool timings);
+WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene);
 
 } // namespace gbx::rt

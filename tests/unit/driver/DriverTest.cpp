@@ -6,6 +6,7 @@
 
 #include "driver/Driver.h"
 #include "driver/Golden.h"
+#include "report/Formats.h"
 
 using namespace gbx;
 namespace fs = std::filesystem;
@@ -60,6 +61,22 @@ TEST(Cli, CheckAndDumpOfASpecExample) {
   auto ir = gbxc({"dump", "ir", spec.string()});
   EXPECT_EQ(ir.status, 0);
   EXPECT_NE(ir.out.find("gearbox ThrusterOneStagePinned extends ThrusterOneStageWindow"), std::string::npos);
+}
+
+TEST(Cli, EveryReportFormatOfTheTable) {
+  fs::path spec = fs::path(GBX_SOURCE_DIR) / "specs" / "thruster_one_stage.gbx";
+  for (const auto& f : rt::reportFormats()) {
+    std::string name(f.name);
+    fs::path d = tempDir("format-" + name);
+    auto r = gbxc({"solve", spec.string(), "--no-timings", "--format", name, "-o", d.string()});
+    EXPECT_EQ(r.status, 0) << name << r.err;
+    std::ifstream in(d / ("report." + std::string(f.extension)), std::ios::binary);
+    std::stringstream file;
+    file << in.rdbuf();
+    EXPECT_EQ(file.str(), r.out) << name;
+    EXPECT_EQ(gbxc({"check", spec.string(), "--format", name}).status, f.diagnostics ? 0 : 2) << name;
+  }
+  EXPECT_EQ(gbxc({"solve", spec.string(), "--format", "yaml"}).status, 2);
 }
 
 TEST(Golden, UnifiedDiffShowsChangedLines) {

@@ -1,0 +1,161 @@
+#include "passes/Designs.h"
+
+#include <functional>
+#include <map>
+
+#include "optimise/Optimise.h"
+#include "model/Evaluator.h"
+#include "units/Unit.h"
+
+namespace gbx::rt::passes {
+
+namespace {
+
+GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<const ir::Expr*>& columnExprs,
+                       const std::vector<std::string>& columnNames, const std::vector<std::vector<double>>& freedoms = {},
+                       const Model* baseline = nullptr, const Assignment* baseDesign = nullptr) {
+  Evaluator ev(m);
+  if (!freedoms.empty()) {
+    // Optimised designs: scene results and relative values at the scenes' own accuracy.
+    const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, Q::Rtol);
+    installHooks(ev, m, baseline, baseDesign, own && own->value ? own->value->toDouble() : 1e-9);
+  }
+  GearboxReport g;
+  g.name = m.gearbox.name;
+  g.count = r.count;
+  g.undecided = r.undecided;
+  g.window = r.window;
+  g.funnel = r.funnel;
+  // Rules `q in a..b` with constant bounds: the part of q's interval a design may use.
+  std::map<std::string, std::pair<double, double>> bounds;
+  std::function<void(const ir::Expr&)> collect = [&](const ir::Expr& e) {
+    if (e.op == ir::Op::And || e.op == ir::Op::Forall) {
+      for (const auto& x : e.args) collect(*x);
+      return;
+    }
+    if (e.op == ir::Op::Within && e.args[0]->op == ir::Op::Quantity && e.args[1]->isConst() && e.args[2]->isConst())
+      bounds[e.args[0]->name] = {e.args[1]->value.toDouble(), e.args[2]->value.toDouble()};
+  };
+  for (const auto& rule : m.gearbox.rules)
+    if (rule.expr) collect(*rule.expr);
+  for (size_t i = 0; i < columnExprs.size(); ++i) {
+    Column c;
+    c.name = columnNames[i];
+    // A catalogue quantity is monotone in each freedom: its corners give its exact image.
+    c.exact = columnExprs[i]->op == ir::Op::Quantity || columnExprs[i]->isConst();
+    auto u = units::displayUnitFor(columnExprs[i]->type.dim);
+    // Imbalances read best in percent.
+    if (columnExprs[i]->op == ir::Op::Quantity && columnExprs[i]->ref.key == Q::Imbalance) u = {"%", 0.01};
+    c.unit = u.name;
+    c.scale = u.scale;
+    g.columns.push_back(c);
+  }
+  int rank = 0;
+  for (const auto& d : r.designs) {
+    DesignRow row;
+    row.rank = ++rank;
+    row.ratio = d.ratio;
+    row.undecided = d.undecided;
+    Assignment a(m);
+    a.choice = d.choice;
+    size_t ri = static_cast<size_t>(row.rank - 1);
+    if (ri < freedoms.size())
+      for (size_t f = 0; f < freedoms[ri].size(); ++f) {
+        a.box[f] = {freedoms[ri][f], freedoms[ri][f]};
+        const Freedom& fr = m.freedoms[f];
+        const ir::Attribute* at = m.attribute(fr.stage, fr.gear, fr.key);
+        auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
+        row.choices.emplace_back(m.freedoms[f].path, formatNumber(freedoms[ri][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
+      }
+    for (size_t s = 0; s < m.stages.size(); ++s) {
+      const ir::Stage& st = *m.stages[s].ir;
+      for (size_t g = 0; g < st.gears.size(); ++g) {
+        Value z = ev.attribute(static_cast<int>(s), static_cast<int>(g), Q::Z, a);
+        if (z.exact && z.exact->isInteger()) row.teeth.emplace_back(st.name + "." + st.gears[g] + ".z", static_cast<long long>(z.exact->num()));
+      }
+      for (int sl : m.stages[s].slots) {
+        const Slot& slot = m.slots[static_cast<size_t>(sl)];
+        if (slot.key == Q::Z && slot.gear >= 0) continue;
+        const Value& v = slot.values[static_cast<size_t>(d.choice[static_cast<size_t>(sl)])];
+        if (v.exact && v.exact->isInteger()) row.teeth.emplace_back(slot.path, static_cast<long long>(v.exact->num()));
+        else {
+          auto du = units::displayUnitFor(st.find(slot.attr) ? st.find(slot.attr)->dim : units::Dim{});
+          row.choices.emplace_back(slot.path, formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name));
+        }
+      }
+    }
+    for (size_t i = 0; i < columnExprs.size(); ++i) {
+      Value v = ev.eval(*columnExprs[i], a);
+      Cell c;
+      if (v.isNumber()) {
+        c.valid = true;
+        c.lo = v.lo;
+        c.hi = v.hi;
+        double s = g.columns[i].scale;
+        c.text = v.lo == v.hi ? formatNumber(v.lo / s) : "[" + formatNumber(v.lo / s) + ", " + formatNumber(v.hi / s) + "]";
+        auto b = columnExprs[i]->op == ir::Op::Quantity ? bounds.find(columnExprs[i]->name) : bounds.end();
+        if (b != bounds.end() && v.lo != v.hi) {
+          c.feasible = true;
+          c.flo = std::max(v.lo, b->second.first);
+          c.fhi = std::min(v.hi, b->second.second);
+          c.text += " feasible [" + formatNumber(c.flo / s) + ", " + formatNumber(c.fhi / s) + "]";
+        }
+      } else {
+        c.text = "n/a";
+      }
+      row.cells.push_back(c);
+    }
+    g.rows.push_back(std::move(row));
+  }
+  // Only a column that shows intervals can show enclosures.
+  for (size_t i = 0; i < g.columns.size(); ++i) {
+    bool interval = false;
+    for (const auto& row : g.rows) interval = interval || (row.cells[i].valid && row.cells[i].lo != row.cells[i].hi);
+    if (!interval) g.columns[i].exact = true;
+  }
+  return g;
+}
+
+} // namespace
+
+Columns reportColumns(const ir::Gearbox& gb) {
+  Columns c;
+  if (gb.report && !gb.report->columns.empty()) {
+    for (size_t i = 0; i < gb.report->columns.size(); ++i) {
+      if (gb.report->ratioColumn[i]) continue;  // always shown
+      c.exprs.push_back(gb.report->columns[i].get());
+      c.names.push_back(gb.report->columnTexts[i]);
+    }
+  } else {
+    for (const auto& ob : gb.objectives) {
+      c.exprs.push_back(ob.expr.get());
+      c.names.push_back(ob.text);
+    }
+  }
+  return c;
+}
+
+GearboxReport designTable(const Model& m, const Optimised& o, const Columns& columns) {
+  return reportOf(m, o.designs, columns.exprs, columns.names, o.freedoms, o.baseline.get(), o.baselineDesign.get());
+}
+
+std::optional<Assignment> bestDesign(const Model& m, const Optimised& o) {
+  if (o.designs.designs.empty()) return std::nullopt;
+  Assignment best(m);
+  best.choice = o.designs.designs[0].choice;
+  if (!o.freedoms.empty())
+    for (size_t f = 0; f < o.freedoms[0].size(); ++f) best.box[f] = {o.freedoms[0][f], o.freedoms[0][f]};
+  return best;
+}
+
+void setSceneColumns(GearboxReport& table, const std::vector<SceneColumn>& values) {
+  for (const auto& v : values) {
+    if (table.rows.empty()) break;
+    Cell& c = table.rows[0].cells[v.column];
+    c.valid = true;
+    c.lo = c.hi = v.value;
+    c.text = formatNumber(v.value / table.columns[v.column].scale);
+  }
+}
+
+} // namespace gbx::rt::passes

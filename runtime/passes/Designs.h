@@ -1,0 +1,33 @@
+#pragma once
+// Pass 3, the design table: every ranked design with its teeth, its other choices and
+// the values of the report's columns.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "passes/Optimise.h"
+#include "report/Report.h"
+
+namespace gbx::rt::passes {
+
+// `report { columns … }`, or else the objectives.
+struct Columns {
+  std::vector<const ir::Expr*> exprs;
+  std::vector<std::string> names;
+};
+Columns reportColumns(const ir::Gearbox& gearbox);
+
+GearboxReport designTable(const Model& m, const Optimised& designs, const Columns& columns);
+
+// What scenes, modifications and studies run on: the best design at its optimum freedoms.
+std::optional<Assignment> bestDesign(const Model& m, const Optimised& designs);
+
+// A report column that is a scene result, as the scene pass computed it for the best design.
+struct SceneColumn {
+  size_t column = 0;
+  double value = 0;  // SI
+};
+// Scene results are known for the best design only: its row takes them from the scene pass.
+void setSceneColumns(GearboxReport& table, const std::vector<SceneColumn>& values);
+
+} // namespace gbx::rt::passes

@@ -1,0 +1,14 @@
+#include "passes/Render.h"
+
+namespace gbx::rt::passes {
+
+Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, const RenderOptions& o) {
+  Rendered r;
+  // Charts first: the report names the files it is drawn beside.
+  if (o.charts) r.charts = drawCharts(reports);
+  r.report = format.render(reports, o);
+  r.reportFile = "report." + std::string(format.extension);
+  return r;
+}
+
+} // namespace gbx::rt::passes

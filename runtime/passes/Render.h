@@ -1,0 +1,20 @@
+#pragma once
+// Pass 7, render: the reports of all gearboxes in one format, and their charts.
+#include <string>
+#include <vector>
+
+#include "report/Charts.h"
+#include "report/Formats.h"
+#include "report/Report.h"
+
+namespace gbx::rt::passes {
+
+struct Rendered {
+  std::string report;
+  std::string reportFile;         // its name in the output folder
+  std::vector<ChartFile> charts;  // drawn only when the options ask for charts
+};
+
+Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, const RenderOptions& options);
+
+} // namespace gbx::rt::passes

@@ -1,0 +1,88 @@
+#include "passes/Scenes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "dynamics/Scene.h"
+#include "units/Unit.h"
+
+namespace gbx::rt::passes {
+
+namespace {
+
+SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
+  SceneReport s;
+  s.name = r.name.empty() ? scene.name : r.name;
+  s.target = scene.target;
+  s.failure = r.failure;
+  if (!r.failure.empty()) return s;
+  s.method = r.method;
+  s.eigen = r.eigen;
+  s.rtol = r.rtol;
+  s.atol = r.atol;
+  s.steps = r.stats.steps;
+  s.rejected = r.stats.rejected;
+  s.rhs = r.stats.rhsEvaluations;
+  s.jacobians = r.stats.jacobianEvaluations;
+  s.events = r.stats.events;
+  s.cpu = r.stats.cpuSeconds;
+  s.referenceCpu = r.referenceStats.cpuSeconds;
+  s.errorEstimate = r.errorEstimate;
+  s.errorMethod = r.errorMethod;
+  s.model = r.model;
+  for (const auto& n : r.numbers) {
+    auto u = units::displayUnitFor(n.dim);
+    s.outputs.push_back({n.key, u.name, n.value, n.value / u.scale});
+  }
+  for (const auto& ser : r.series) {
+    auto u = units::displayUnitFor(ser.dim);
+    if (ser.isSpectrum) {
+      SceneReport::SpectrumRow row{ser.key, u.name, u.scale, {}};
+      for (const auto& p : ser.spectrum.peaks) row.peaks.push_back({p.frequency, p.amplitude, p.harmonic});
+      s.spectra.push_back(row);
+    }
+    SceneReport::Plot line;
+    line.key = ser.key;
+    line.signal = ser.signal;
+    line.unit = u.name;
+    line.spectrum = ser.isSpectrum;
+    if (ser.isSpectrum) {
+      double fmax = r.meshFrequency > 0 ? 10.5 * r.meshFrequency : INFINITY;
+      for (size_t i = 0; i < ser.spectrum.frequency.size() && ser.spectrum.frequency[i] <= fmax; ++i) {
+        line.x.push_back(ser.spectrum.frequency[i]);
+        line.y.push_back(ser.spectrum.amplitude[i] / u.scale);
+      }
+    } else {
+      // At most 4000 points: every k-th sample, so the file stays small and faithful.
+      size_t step = std::max<size_t>(1, ser.t.size() / 4000);
+      for (size_t i = 0; i < ser.t.size(); i += step) {
+        line.x.push_back(ser.t[i]);
+        line.y.push_back(ser.v[i] / u.scale);
+      }
+    }
+    s.plots.push_back(std::move(line));
+  }
+  return s;
+}
+
+} // namespace
+
+SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns) {
+  SceneRuns out;
+  std::vector<dyn::SceneResult> results;
+  for (const auto& sc : m.gearbox.scenes) {
+    auto res = dyn::runScene(m, best, sc);
+    if (!res.failure.empty()) out.errors.push_back(res.failure);
+    out.scenes.push_back(sceneReport(res, sc));
+    results.push_back(std::move(res));
+  }
+  for (size_t i = 0; i < columns.exprs.size(); ++i) {
+    const ir::Expr& c = *columns.exprs[i];
+    if (c.op != ir::Op::SceneOutput || c.output.scene < 0) continue;
+    if (const auto* n = results[static_cast<size_t>(c.output.scene)].find(c.output.fn, c.output.signal)) out.columns.push_back({i, n->value});
+  }
+  return out;
+}
+
+} // namespace gbx::rt::passes

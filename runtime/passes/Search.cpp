@@ -1,0 +1,23 @@
+#include "passes/Search.h"
+
+namespace gbx::rt::passes {
+
+namespace {
+constexpr long long kDefaultTop = 50;
+}
+
+SearchResult search(const Model& m, int jobs, std::function<void(double)> progress) {
+  const ir::Gearbox& gb = m.gearbox;
+  SearchOptions so;
+  so.jobs = jobs;
+  so.top = gb.report && gb.report->top ? *gb.report->top : kDefaultTop;
+  if (gb.report && gb.report->sortBy) so.sortBy = gb.report->sortBy.get();
+  so.progress = std::move(progress);
+  if (needsOptimiser(gb)) {
+    so.deferDynamics = true;
+    so.top = std::nullopt;
+  }
+  return rt::search(m, so);
+}
+
+} // namespace gbx::rt::passes

@@ -1,0 +1,13 @@
+#pragma once
+// Pass 1, search: every design of a gearbox that satisfies its rules.
+#include <functional>
+
+#include "search/Search.h"
+
+namespace gbx::rt::passes {
+
+// Ranked and cut as the gearbox's `report` asks; all of them, unranked, when the
+// objectives need the optimiser.
+SearchResult search(const Model& m, int jobs, std::function<void(double)> progress);
+
+} // namespace gbx::rt::passes

@@ -1,0 +1,21 @@
+#include "passes/Studies.h"
+
+#include "study/Sweep.h"
+#include "study/WorkPrecision.h"
+
+namespace gbx::rt::passes {
+
+std::vector<StudyReport> studies(const Model& m, const Assignment& best) {
+  std::vector<StudyReport> out;
+  for (const auto& st : m.gearbox.studies) {
+    if (st.kind == ir::Study::Sweep) {
+      out.push_back({sweep(m, best, st), {}});
+      continue;
+    }
+    const ir::Scene* scene = st.scene >= 0 ? &m.gearbox.scenes[static_cast<size_t>(st.scene)] : nullptr;
+    if (scene) out.push_back({workPrecision(m, best, st, *scene), {}});
+  }
+  return out;
+}
+
+} // namespace gbx::rt::passes

@@ -1,0 +1,116 @@
+#include "report/Charts.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include <fmt/format.h>
+
+#include "report/Svg.h"
+
+namespace gbx::rt {
+
+namespace {
+
+std::string fileSafe(const std::string& k) {
+  std::string o;
+  for (char c : k) o += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.') ? c : '_';
+  while (!o.empty() && o.back() == '_') o.pop_back();
+  return o;
+}
+
+std::string withUnit(const std::string& label, const std::string& unit) { return label + (unit.empty() ? "" : " [" + unit + "]"); }
+
+void add(std::vector<ChartFile>& out, std::vector<std::string>& files, std::string name, const SvgChart& chart) {
+  files.push_back(name);
+  out.push_back({std::move(name), renderSvg(chart)});
+}
+
+void paretoChart(const std::string& gearbox, OptimisationSummary& s, std::vector<ChartFile>& out) {
+  if (s.termNames.size() != 2) return;
+  SvgChart c;
+  c.title = fmt::format("{}: objectives relative to {}", gearbox, s.baseline);
+  c.xLabel = "relative " + s.termNames[0];
+  c.yLabel = "relative " + s.termNames[1];
+  SvgSeries cloud{"feasible evaluations", {}, {}, true, false}, front{"Pareto front", {}, {}, true}, base{"baseline", {1.0}, {1.0}, true},
+      weighted{"weighted optimum", {}, {}, true};
+  for (const auto& p : s.cloud) {
+    cloud.x.push_back(p.first);
+    cloud.y.push_back(p.second);
+  }
+  for (const auto& p : s.pareto) {
+    front.x.push_back(p.first);
+    front.y.push_back(p.second);
+  }
+  if (s.best && s.best->terms.size() == 2) {
+    weighted.x.push_back(s.best->terms[0] / s.baselineTerms[0]);
+    weighted.y.push_back(s.best->terms[1] / s.baselineTerms[1]);
+  }
+  c.series = {cloud, front, base, weighted};
+  add(out, s.files, fileSafe(gearbox) + ".pareto.svg", c);
+}
+
+void sceneCharts(const std::string& gearbox, SceneReport& sc, std::vector<ChartFile>& out) {
+  for (const auto& p : sc.plots) {
+    SvgChart chart;
+    chart.title = fmt::format("{} — scene {}: {}", gearbox, sc.name, p.key);
+    chart.xLabel = p.spectrum ? "frequency [Hz]" : "time [s]";
+    chart.yLabel = withUnit(p.spectrum ? "amplitude" : p.signal, p.unit);
+    chart.series.push_back({"", p.x, p.y});
+    add(out, sc.files, fileSafe(gearbox + "." + sc.name + "." + p.key) + ".svg", chart);
+  }
+}
+
+void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<std::string>& files, std::vector<ChartFile>& out) {
+  if (!s.plot) return;
+  // One chart per output: outputs of different units do not share an axis.
+  for (size_t i = 0; i < s.outputs.size(); ++i) {
+    SvgSeries series{s.outputs[i].text, {}, {}, true};
+    for (const auto& p : s.points) {
+      series.x.push_back(p.x / s.unit.scale);
+      series.y.push_back(p.y[i] / s.outputs[i].unit.scale);
+    }
+    SvgChart c;
+    c.title = fmt::format("{}: {} against {}", s.name, s.outputs[i].text, s.target);
+    c.xLabel = withUnit(s.target, s.unit.name);
+    c.yLabel = withUnit(s.outputs[i].text, s.outputs[i].unit.name);
+    c.series = {series};
+    add(out, files, fileSafe(gearbox) + "." + s.name + (s.outputs.size() > 1 ? fmt::format(".{}", i + 1) : "") + ".svg", c);
+  }
+}
+
+void workPrecisionChart(const std::string& gearbox, const WorkPrecisionStudy& s, std::vector<std::string>& files, std::vector<ChartFile>& out) {
+  SvgChart chart;
+  chart.title = fmt::format("work-precision of scene {}", s.scene);
+  chart.xLabel = "CPU time [s]";
+  chart.yLabel = "relative error";
+  chart.logX = chart.logY = true;
+  for (const auto& c : s.curves) {
+    SvgSeries series;
+    series.label = fmt::format("{}{}", c.method, c.harmonics > 0 ? fmt::format(", {} harmonics", c.harmonics) : "");
+    series.markers = true;
+    for (const auto& run : c.runs) {
+      if (!run.ok) continue;
+      series.x.push_back(std::max(run.cpuSeconds, 1e-6));
+      series.y.push_back(std::max(run.error, 1e-16));
+    }
+    chart.series.push_back(series);
+  }
+  add(out, files, fileSafe(gearbox) + "." + s.name + ".svg", chart);
+}
+
+} // namespace
+
+std::vector<ChartFile> drawCharts(std::vector<GearboxReport>& reports) {
+  std::vector<ChartFile> out;
+  for (auto& g : reports) {
+    if (g.optimisation) paretoChart(g.name, *g.optimisation, out);
+    for (auto& sc : g.scenes) sceneCharts(g.name, sc, out);
+    for (auto& st : g.studies) {
+      if (const auto* s = std::get_if<SweepStudy>(&st.study)) sweepCharts(g.name, *s, st.files, out);
+      else workPrecisionChart(g.name, std::get<WorkPrecisionStudy>(st.study), st.files, out);
+    }
+  }
+  return out;
+}
+
+} // namespace gbx::rt

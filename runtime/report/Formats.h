@@ -1,0 +1,24 @@
+#pragma once
+// The report formats of `gbxc solve --format F`, one row each. The driver validates
+// --format against this table and solve renders with the row it names.
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "report/Report.h"
+
+namespace gbx::rt {
+
+struct ReportFormat {
+  std::string_view name;       // the value of --format
+  std::string_view extension;  // -o DIR writes DIR/report.<extension>
+  std::string (*render)(const std::vector<GearboxReport>&, const RenderOptions&);
+  bool diagnostics;            // check, dump and test print their diagnostics in it too
+};
+
+// The first row, text, is the default.
+std::span<const ReportFormat> reportFormats();
+const ReportFormat* findReportFormat(std::string_view name);
+
+} // namespace gbx::rt

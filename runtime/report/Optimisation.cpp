@@ -1,0 +1,61 @@
+#include "report/Optimisation.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+namespace gbx::rt {
+
+std::vector<std::string> optimisationLines(const OptimisationSummary& s) {
+  std::vector<std::string> lines;
+  lines.push_back(fmt::format("optimisation: {} candidates, {} with no feasible freedoms; {} objective evaluations (scenes at rtol {:.0e})",
+                              s.candidates, s.infeasible, s.evaluations, s.sceneRtol));
+  lines.push_back("  method: Nelder-Mead (GSL nmsimplex2) over the freedoms of each candidate; bounds by x = lo + (hi - lo) sin^2(u);");
+  lines.push_back("          rules by an exterior penalty (a violated rule costs 1000 (1 + relative violation)); best optimum kept");
+  if (s.best) {
+    const auto& best = *s.best;
+    std::string vars;
+    for (const auto& f : best.freedoms)
+      vars += fmt::format("{}{} = {}{}", vars.empty() ? "" : ", ", f.path, formatNumber(f.value / f.unit.scale),
+                          f.unit.name.empty() ? "" : " " + f.unit.name);
+    lines.push_back(fmt::format("  optimum: ratio {}, {}; objective {}", best.ratio.str(), vars, formatNumber(best.objective)));
+    for (size_t t = 0; t < s.termNames.size() && t < best.terms.size(); ++t) {
+      double rel = best.terms[t] / s.baselineTerms[t];
+      lines.push_back(fmt::format("  {}: {} against the baseline's {}: {:+.1f} %", s.termNames[t], formatNumber(best.terms[t]),
+                                  formatNumber(s.baselineTerms[t]), (rel - 1) * 100));
+    }
+  }
+  if (!s.rankCheck.empty()) lines.push_back("  ranking: " + s.rankCheck);
+  if (s.termNames.size() == 2) {
+    lines.push_back(fmt::format("  Pareto front of ({}, {}) relative to the baseline, {} points:", s.termNames[0], s.termNames[1], s.pareto.size()));
+    size_t step = std::max<size_t>(1, s.pareto.size() / 12);
+    for (size_t i = 0; i < s.pareto.size(); i += step) lines.push_back(fmt::format("    {:.4f}  {:.4f}", s.pareto[i].first, s.pareto[i].second));
+  }
+  for (const auto& f : s.files) lines.push_back("  wrote " + f);
+  return lines;
+}
+
+std::string optimisationTiming(const OptimisationSummary& s) {
+  return fmt::format("timing: optimisation {:.2f} s wall with --jobs {}", s.wallSeconds, s.jobs);
+}
+
+std::string optimisationJson(const OptimisationSummary& s) {
+  std::string json = fmt::format(R"({{"candidates": {}, "infeasible": {}, "evaluations": {}, "scene_rtol": {}, )", s.candidates, s.infeasible,
+                                 s.evaluations, s.sceneRtol);
+  if (s.best) {
+    const auto& best = *s.best;
+    json += fmt::format(R"("objective": {}, "terms": {{)", best.objective);
+    for (size_t t = 0; t < s.termNames.size() && t < best.terms.size(); ++t) {
+      double rel = best.terms[t] / s.baselineTerms[t];
+      json += fmt::format("{}\"{}\": {{\"value\": {}, \"baseline\": {}, \"relative\": {}}}", t ? ", " : "", s.termNames[t], best.terms[t],
+                          s.baselineTerms[t], rel);
+    }
+    json += "}, ";
+  }
+  json += fmt::format(R"("rank_check": "{}", "pareto": [)", s.rankCheck);
+  for (size_t i = 0; i < s.pareto.size(); ++i) json += fmt::format("{}[{}, {}]", i ? ", " : "", s.pareto[i].first, s.pareto[i].second);
+  json += "]}";
+  return json;
+}
+
+} // namespace gbx::rt

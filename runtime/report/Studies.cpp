@@ -1,0 +1,107 @@
+#include "report/Studies.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace gbx::rt {
+
+namespace {
+
+StudyTable table(const SweepStudy& s) {
+  StudyTable t;
+  t.name = s.name;
+  t.kind = "sweep";
+  t.header.push_back(s.target + (s.unit.name.empty() ? "" : " [" + s.unit.name + "]"));
+  for (const auto& out : s.outputs) t.header.push_back(out.text + (out.unit.name.empty() ? "" : " [" + out.unit.name + "]"));
+  for (const auto& p : s.points) {
+    std::vector<std::string> row = {fmt::format("{:.6g}", p.x / s.unit.scale)};
+    for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i)
+      row.push_back(std::isfinite(p.y[i]) ? formatNumber(p.y[i] / s.outputs[i].unit.scale) : "n/a");
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+StudyTable table(const WorkPrecisionStudy& s, bool timings) {
+  StudyTable t;
+  t.name = s.name;
+  t.kind = "work_precision";
+  t.header = {"harmonics", "method", "rtol", "error", "steps", "RHS evaluations"};
+  if (timings) t.header.push_back("CPU ms");
+  for (const auto& c : s.curves)
+    for (const auto& run : c.runs) {
+      std::vector<std::string> row = {c.harmonics == 0 ? "-" : std::to_string(c.harmonics), c.method, fmt::format("{:.0e}", run.rtol)};
+      if (!run.ok) {
+        row.push_back("failed");
+        row.push_back("-");
+        row.push_back("-");
+        if (timings) row.push_back("-");
+      } else {
+        row.push_back(fmt::format("{:.2e}", run.error));
+        row.push_back(std::to_string(run.steps));
+        row.push_back(std::to_string(run.rhsEvaluations));
+        if (timings) row.push_back(fmt::format("{:.2f}", run.cpuSeconds * 1e3));
+      }
+      t.rows.push_back(std::move(row));
+    }
+  for (const auto& r : s.references) {
+    if (!r.ok) {
+      t.notes.push_back(fmt::format("harmonics {}: no reference ({})", r.harmonics, r.failure));
+      continue;
+    }
+    t.notes.push_back(fmt::format("harmonics {}: reference {} = {:.10g} at rtol {:.0e} (rk8pd), within {:.1e} of a run at rtol {:.0e}",
+                                  r.harmonics == 0 ? std::string("-") : std::to_string(r.harmonics), r.output, r.value, r.rtol,
+                                  r.difference, r.checkRtol));
+  }
+  return t;
+}
+
+std::string json(const SweepStudy& s) {
+  std::string points;
+  for (size_t k = 0; k < s.points.size(); ++k) {
+    const auto& p = s.points[k];
+    std::string outs;
+    for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i)
+      outs += fmt::format("{}\"{}\": {}", i ? ", " : "", s.outputs[i].text, std::isfinite(p.y[i]) ? fmt::format("{}", p.y[i]) : "null");
+    points += fmt::format("{}{{\"x\": {}, \"outputs\": {{{}}}}}", k ? ", " : "", p.x, outs);
+  }
+  return fmt::format("{{\"sweep\": \"{}\", \"unit\": \"SI\", \"points\": [{}]}}", s.target, points);
+}
+
+std::string json(const WorkPrecisionStudy& s, bool timings) {
+  // The output named is that of the last reference.
+  std::string key, refs, runs;
+  for (const auto& r : s.references) {
+    if (!r.ok) continue;
+    key = r.output;
+    refs += fmt::format("{}{{\"harmonics\": {}, \"rtol\": {}, \"value\": {}, \"checked_against_rtol\": {}, \"difference\": {}}}",
+                        refs.empty() ? "" : ", ", r.harmonics, r.rtol, r.value, r.checkRtol, r.difference);
+  }
+  for (const auto& c : s.curves)
+    for (const auto& run : c.runs) {
+      if (!run.ok) continue;
+      runs += fmt::format("{}{{\"harmonics\": {}, \"method\": \"{}\", \"rtol\": {}, \"error\": {}, \"steps\": {}, \"rhs_evaluations\": {}{}}}",
+                          runs.empty() ? "" : ", ", c.harmonics, c.method, run.rtol, run.error, run.steps, run.rhsEvaluations,
+                          timings ? fmt::format(", \"cpu_seconds\": {}", run.cpuSeconds) : "");
+    }
+  return fmt::format("{{\"scene\": \"{}\", \"output\": \"{}\", \"references\": [{}], \"runs\": [{}]}}", s.scene, key, refs, runs);
+}
+
+} // namespace
+
+std::string studyName(const StudyReport& st) {
+  return std::visit([](const auto& s) { return s.name; }, st.study);
+}
+
+StudyTable studyTable(const StudyReport& st, const RenderOptions& o) {
+  if (const auto* s = std::get_if<SweepStudy>(&st.study)) return table(*s);
+  return table(std::get<WorkPrecisionStudy>(st.study), o.timings);
+}
+
+std::string studyJson(const StudyReport& st, const RenderOptions& o) {
+  if (const auto* s = std::get_if<SweepStudy>(&st.study)) return json(*s);
+  return json(std::get<WorkPrecisionStudy>(st.study), o.timings);
+}
+
+} // namespace gbx::rt

@@ -1,0 +1,57 @@
+#pragma once
+// What a study returns: plain data in SI. report/ turns it into tables, JSON and charts.
+#include <string>
+#include <vector>
+
+#include "units/Unit.h"
+
+namespace gbx::rt {
+
+// `sweep X in a..b step s`: every output at every value of X.
+struct SweepStudy {
+  std::string name;
+  std::string target;                   // the swept quantity
+  units::DisplayUnit unit{"", 1};       // how X is shown
+  struct Output {
+    std::string text;                   // as written in the spec
+    units::DisplayUnit unit{"", 1};
+  };
+  std::vector<Output> outputs;
+  struct Point {
+    double x = 0;
+    std::vector<double> y;              // one per output; NaN where it has no value
+  };
+  std::vector<Point> points;
+  bool plot = false;                    // `plot;`: one chart per output
+};
+
+// `work_precision of SCENE`: the error of the scene's first numeric output against a
+// reference, for every harmonics setting, method and tolerance.
+struct WorkPrecisionStudy {
+  std::string name, scene;
+  struct Reference {
+    int harmonics = 0;                  // 0: the scene's own model
+    bool ok = false;
+    std::string failure;                // why there is none, when !ok
+    std::string output;                 // the output compared
+    double rtol = 0, value = 0;         // the reference run (rk8pd)
+    double checkRtol = 0, difference = 0;  // a still tighter run, and the relative difference to it
+  };
+  std::vector<Reference> references;
+  struct Run {
+    double rtol = 0;
+    bool ok = false;
+    double error = 0;                   // relative, against the reference
+    long steps = 0, rhsEvaluations = 0;
+    double cpuSeconds = 0;
+  };
+  // One per harmonics setting with a reference and method, its runs from loose to tight.
+  struct Curve {
+    int harmonics = 0;
+    std::string method;
+    std::vector<Run> runs;
+  };
+  std::vector<Curve> curves;
+};
+
+} // namespace gbx::rt
