@@ -3,6 +3,8 @@
 #   scripts/setup.sh              release build in build/
 #   scripts/setup.sh --sanitize   AddressSanitizer + UBSan build in build-asan/
 # Idempotent: packages already present are not touched; the build is incremental.
+# Works on a bare Debian bookworm (debootstrap --variant=minbase): as root it needs no sudo;
+# as another user it uses sudo, and only when a package is missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,18 +15,31 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   cmake_args=(-DCMAKE_BUILD_TYPE=Debug -DGBX_SANITIZE=ON)
 fi
 
-packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev libeigen3-dev libgsl-dev
-          libfmt-dev googletest libgtest-dev)
+# uuid-dev: the ANTLR runtime's CMake target links -luuid, and libantlr4-runtime-dev does
+# not depend on it.
+packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
+          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev)
 missing=()
 for p in "${packages[@]}"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+  # Installed, not merely known to dpkg (a removed package keeps its config-files state).
+  [[ $(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null) == installed ]] || missing+=("$p")
 done
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
-  sudo=""
-  [[ $(id -u) -ne 0 ]] && sudo=sudo
-  $sudo apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+  as_root=()
+  if ((EUID != 0)); then
+    if ! command -v sudo >/dev/null 2>&1; then
+      echo "setup: not root and no sudo; as root run:" >&2
+      echo "  apt-get update && apt-get install --no-install-recommends ${missing[*]}" >&2
+      exit 1
+    fi
+    as_root=(sudo)
+  fi
+  # Through env: sudo resets the environment, which would drop DEBIAN_FRONTEND.
+  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y -q --no-install-recommends "${missing[@]}"
+  echo "setup: packages installed in ${SECONDS}s"
 fi
 
 cmake -S . -B "$build_dir" -G Ninja "${cmake_args[@]}" >/dev/null

@@ -3,6 +3,7 @@
 // (`scene.rms(acceleration)`). Every number-valued function has one runtime row in
 // runtime/dynamics/Statistics.cpp; every signal is recorded by each scene model.
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -81,5 +82,12 @@ inline const SignalFnSpec* findSignalFn(std::string_view name) {
 }
 
 inline const SignalFnSpec& signalFnSpec(SignalFn id) { return kSignalFns[static_cast<size_t>(id)]; }
+
+// "rms, peak, …, plot", for messages.
+inline std::string signalFnList() {
+  std::string out;
+  for (const auto& f : kSignalFns) out += (out.empty() ? "" : ", ") + std::string(f.name);
+  return out;
+}
 
 } // namespace gbx::cat

@@ -623,7 +623,7 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
     const SignalFnSpec* fnSpec = findSignalFn(fn);
     if (!fnSpec) {
       diags_.error("E0220", callee->span,
-                   fmt::format("`{}` is not a scene result function (rms, peak, mean, min, max, spectrum, plot)", fn));
+                   fmt::format("`{}` is not a scene result function ({})", fn, signalFnList()));
       return error(e.span);
     }
     if (argAst.size() != 1 || !argAst[0] || argAst[0]->kind != ast::ExprKind::Name) {

@@ -983,7 +983,7 @@ private:
       o.signal = e->args[1]->text;
       if (!findSignalFn(o.function)) {
         diags_.error("E0220", e->args[0]->span,
-                     fmt::format("`{}` is not a scene result function (rms, peak, mean, min, max, spectrum, plot)", o.function));
+                     fmt::format("`{}` is not a scene result function ({})", o.function, signalFnList()));
         return;
       }
     } else {
