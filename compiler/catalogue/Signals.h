@@ -61,7 +61,7 @@ inline const SignalSpec* findSignal(std::string_view name) {
 inline const SignalSpec& signalSpec(Signal id) { return sceneSignals()[static_cast<size_t>(id)]; }
 
 // Functions of a signal: a number over the recorded window, or an artefact.
-enum class SignalFn : std::uint8_t { Rms, Peak, Mean, Min, Max, Spectrum, Plot };
+enum class SignalFn : std::uint8_t { Rms, Peak, Mean, Min, Max, PeakToPeak, Spectrum, Plot };
 
 struct SignalFnSpec {
   SignalFn id;
@@ -71,7 +71,7 @@ struct SignalFnSpec {
 
 inline constexpr SignalFnSpec kSignalFns[] = {
     {SignalFn::Rms, "rms", true},        {SignalFn::Peak, "peak", true}, {SignalFn::Mean, "mean", true},
-    {SignalFn::Min, "min", true},        {SignalFn::Max, "max", true},
+    {SignalFn::Min, "min", true},        {SignalFn::Max, "max", true},   {SignalFn::PeakToPeak, "peak_to_peak", true},
     {SignalFn::Spectrum, "spectrum", false}, {SignalFn::Plot, "plot", false},
 };
 

@@ -31,6 +31,12 @@ const std::vector<StatisticRow> kRows = {
      }},
     {SignalFn::Min, [](const W& v) { return *std::min_element(v.begin(), v.end()); }},
     {SignalFn::Max, [](const W& v) { return *std::max_element(v.begin(), v.end()); }},
+    // The full swing, max - min: what a fluctuating load or speed spans.
+    {SignalFn::PeakToPeak,
+     [](const W& v) {
+       auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+       return *hi - *lo;
+     }},
 };
 
 } // namespace

@@ -1,4 +1,5 @@
 // Hard cases for the dynamics runtime, each with an asserted answer, at several tolerances.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -485,4 +486,30 @@ gearbox P {
     EXPECT_GT(r.stats.events, 100) << "the meshes lose and regain contact";
     EXPECT_NEAR(r.find("mean(output_speed)")->value / (600 * M_PI / 30 / (1 + 65.0 / 19)), 1.0, 2e-3);
   }
+}
+
+TEST(Scenes, PeakToPeakIsTheSwingOfTheRecordedWindow) {
+  auto c = driver::compileText("p2p.gbx", R"(gearbox G {
+    stage s: spur { pinion.z = 20; wheel.z = 60; normal_module = 2 mm; face_width = 20 mm; }
+    operating { input_speed = 1000 rpm; input_torque = 100 N*m; }
+    scene v on s {
+      effects { varying_stiffness { harmonics = 3; } damping { ratio = 0.05; } }
+      settle = 50 mesh_periods; record = 4 mesh_periods;
+      output peak_to_peak(mesh_force), min(mesh_force), max(mesh_force), peak_to_peak(acceleration), plot(mesh_force);
+    }
+  })");
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  const auto& g = c->program.gearboxes[0];
+  rt::Model m(c->program, g);
+  rt::Assignment a(m);
+  auto r = runScene(m, a, g.scenes[0]);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  double swing = r.find("peak_to_peak(mesh_force)")->value;
+  EXPECT_DOUBLE_EQ(swing, r.find("max(mesh_force)")->value - r.find("min(mesh_force)")->value);
+  // The same swing from the plotted series, and a real one: the stiffness varies.
+  ASSERT_EQ(r.series.size(), 1u);
+  auto [lo, hi] = std::minmax_element(r.series[0].v.begin(), r.series[0].v.end());
+  EXPECT_DOUBLE_EQ(swing, *hi - *lo);
+  EXPECT_GT(swing, 1.0);
+  EXPECT_GT(r.find("peak_to_peak(acceleration)")->value, 0.0);
 }
