@@ -60,6 +60,7 @@ options:
   --quiet                  no progress output
   --no-timings             leave CPU times out of reports (for golden files)
   --update                 (test) rewrite the expected files
+  --timings                (test) compare CPU times too (left out by default: they vary)
   --help                   this text
   --version                the version
 
@@ -77,6 +78,7 @@ struct Options {
   bool quiet = false;
   bool update = false;
   bool timings = true;
+  bool testTimings = false;  // test: keep CPU times in the compared output
 };
 
 int usage(std::ostream& err, const std::string& msg) {
@@ -151,7 +153,7 @@ int test(const Options& o, std::ostream& out, std::ostream& err) {
   for (const auto& p : problems) err << "gbxc test: " << p << "\n";
   int passed = 0, failed = 0;
   for (const auto& c : cases) {
-    auto r = runGolden(c, o.update);
+    auto r = runGolden(c, GoldenOptions{o.update, o.testTimings});
     switch (r.status) {
     case GoldenOutcome::Pass: ++passed; break;
     case GoldenOutcome::Updated:
@@ -214,6 +216,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
       o.update = true;
     } else if (a == "--no-timings") {
       o.timings = false;
+    } else if (a == "--timings") {
+      o.testTimings = true;
     } else if (a.size() > 1 && a[0] == '-') {
       return usage(err, fmt::format("unknown option `{}`", a));
     } else {
@@ -243,6 +247,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     return usage(err, fmt::format("unknown command `{}`", o.command));
   if (o.files.size() != 1) return usage(err, fmt::format("`{}` takes exactly one file", o.command));
   if (o.update) return usage(err, "--update goes with `test`");
+  if (o.testTimings) return usage(err, "--timings goes with `test` (solve shows CPU times unless --no-timings)");
   if (o.command == "check") return check(o, out, err);
   if (o.command == "dump") return dump(o, out, err);
   return solve(o, out, err);

@@ -1,6 +1,9 @@
 #include "driver/Golden.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -30,14 +33,13 @@ std::vector<std::string> words(const std::string& s) {
   return w;
 }
 
-std::vector<std::string> argsFor(const fs::path& gbx) {
-  std::string text = readAll(gbx);
-  std::string first = text.substr(0, text.find('\n'));
-  const std::string tag = "// ARGS:";
-  if (first.rfind(tag, 0) == 0) return words(first.substr(tag.size()));
-  fs::path folderArgs = gbx.parent_path() / "golden.args";
-  if (fs::exists(folderArgs)) return words(readAll(folderArgs));
-  return {"solve"};
+// `// KEY: value` among the spec's leading comment lines.
+std::optional<std::string> header(const std::string& text, const std::string& key) {
+  std::istringstream in(text);
+  std::string line, tag = "// " + key + ":";
+  while (std::getline(in, line) && line.rfind("//", 0) == 0)
+    if (line.rfind(tag, 0) == 0) return line.substr(tag.size());
+  return std::nullopt;
 }
 
 void addCase(const fs::path& gbx, std::vector<GoldenCase>& out) {
@@ -47,8 +49,51 @@ void addCase(const fs::path& gbx, std::vector<GoldenCase>& out) {
   exp.replace_extension(".expected");
   c.expected = exp.string();
   c.name = gbx.parent_path().filename().string() + "/" + gbx.stem().string();
-  c.args = argsFor(gbx);
+  std::string text = readAll(gbx);
+  fs::path folderArgs = gbx.parent_path() / "golden.args";
+  if (auto a = header(text, "ARGS")) c.args = words(*a);
+  else if (fs::exists(folderArgs)) c.args = words(readAll(folderArgs));
+  else c.args = {"solve"};
+  if (auto t = header(text, "TOLERANCE")) c.tolerance = std::strtod(t->c_str(), nullptr);
   out.push_back(std::move(c));
+}
+
+// A line split into its numbers and the text around them.
+struct Split {
+  std::vector<std::string> text;
+  std::vector<double> numbers;
+};
+
+Split splitNumbers(const std::string& line) {
+  Split s;
+  std::string cur;
+  size_t i = 0;
+  while (i < line.size()) {
+    char c = line[i];
+    bool starts = std::isdigit(static_cast<unsigned char>(c)) ||
+                  ((c == '-' || c == '.') && i + 1 < line.size() && std::isdigit(static_cast<unsigned char>(line[i + 1])));
+    // A digit inside a word (`E0201`, `rk8pd`, `s1`) is part of the word.
+    bool inWord = i > 0 && (std::isalnum(static_cast<unsigned char>(line[i - 1])) || line[i - 1] == '_');
+    if (!starts || inWord) {
+      cur += c;
+      ++i;
+      continue;
+    }
+    char* end = nullptr;
+    double v = std::strtod(line.c_str() + i, &end);
+    size_t n = static_cast<size_t>(end - (line.c_str() + i));
+    if (n == 0) {
+      cur += c;
+      ++i;
+      continue;
+    }
+    s.text.push_back(cur);
+    cur.clear();
+    s.numbers.push_back(v);
+    i += n;
+  }
+  s.text.push_back(cur);
+  return s;
 }
 
 } // namespace
@@ -72,10 +117,13 @@ std::vector<GoldenCase> discoverGolden(const std::vector<std::string>& paths, st
   return out;
 }
 
-std::string captureGolden(const GoldenCase& c) {
+std::string captureGolden(const GoldenCase& c, const GoldenOptions& o) {
   fs::path file(c.gbx);
   fs::path dir = file.parent_path();
   std::vector<std::string> args = c.args;
+  // CPU times differ from run to run and machine to machine: never part of a golden file.
+  bool solve = !args.empty() && args[0] == "solve";
+  if (solve && !o.timings && std::find(args.begin(), args.end(), "--no-timings") == args.end()) args.push_back("--no-timings");
   args.push_back(file.filename().string());
   std::ostringstream out, err;
   fs::path cwd = fs::current_path();
@@ -87,12 +135,30 @@ std::string captureGolden(const GoldenCase& c) {
   return text + fmt::format("[exit {}]\n", status);
 }
 
-GoldenOutcome runGolden(const GoldenCase& c, bool update) {
-  std::string actual = captureGolden(c);
+bool equalWithin(const std::string& expected, const std::string& actual, double tolerance) {
+  if (expected == actual) return true;
+  if (tolerance <= 0) return false;
+  std::istringstream a(expected), b(actual);
+  std::string x, y;
+  while (true) {
+    bool ga = static_cast<bool>(std::getline(a, x)), gb = static_cast<bool>(std::getline(b, y));
+    if (!ga || !gb) return ga == gb;
+    if (x == y) continue;
+    Split sx = splitNumbers(x), sy = splitNumbers(y);
+    if (sx.text != sy.text || sx.numbers.size() != sy.numbers.size()) return false;
+    for (size_t i = 0; i < sx.numbers.size(); ++i) {
+      double u = sx.numbers[i], v = sy.numbers[i];
+      if (std::fabs(u - v) > tolerance * std::max(std::fabs(u), std::fabs(v))) return false;
+    }
+  }
+}
+
+GoldenOutcome runGolden(const GoldenCase& c, const GoldenOptions& o) {
+  std::string actual = captureGolden(c, o);
   GoldenOutcome r;
   std::error_code ec;
   bool exists = fs::exists(c.expected, ec);
-  if (update) {
+  if (o.update) {
     if (!exists || readAll(c.expected) != actual) {
       std::ofstream(c.expected, std::ios::binary) << actual;
       r.status = GoldenOutcome::Updated;
@@ -104,7 +170,7 @@ GoldenOutcome runGolden(const GoldenCase& c, bool update) {
     return r;
   }
   std::string expected = readAll(c.expected);
-  if (expected != actual) {
+  if (!equalWithin(expected, actual, c.tolerance)) {
     r.status = GoldenOutcome::Fail;
     r.diff = unifiedDiff(expected, actual, c.expected, "actual");
   }
@@ -140,10 +206,10 @@ std::string unifiedDiff(const std::string& expected, const std::string& actual, 
       ops.push_back({' ', a[i]});
       ++i;
       ++j;
-    } else if (j < m && (i == n || L[i][j + 1] >= L[i + 1][j])) {
-      ops.push_back({'+', b[j++]});
-    } else {
+    } else if (i < n && (j == m || L[i + 1][j] >= L[i][j + 1])) {
       ops.push_back({'-', a[i++]});
+    } else {
+      ops.push_back({'+', b[j++]});
     }
   }
   std::string out = fmt::format("--- {}\n+++ {}\n", expectedName, actualName);

@@ -25,7 +25,7 @@ class GoldenFileTest : public testing::Test {
 public:
   explicit GoldenFileTest(driver::GoldenCase c) : c_(std::move(c)) {}
   void TestBody() override {
-    auto r = driver::runGolden(c_, updating());
+    auto r = driver::runGolden(c_, driver::GoldenOptions{updating(), false});
     switch (r.status) {
     case driver::GoldenOutcome::Pass:
     case driver::GoldenOutcome::Updated: break;

@@ -119,6 +119,62 @@ TEST(Golden, FolderArgumentsApplyWithoutAnArgsLine) {
   fs::remove_all(d);
 }
 
+// A spec with a scene: its expected output holds no CPU times, so an unchanged rerun passes.
+TEST(Golden, SceneSpecPassesTwiceInARowUnchanged) {
+  fs::path d = tempDir("golden-scene");
+  write(d / "mesh.gbx", R"(gearbox G {
+  stage s: spur { pinion.z = 20; wheel.z = 60; normal_module = 2 mm; face_width = 20 mm; }
+  operating { input_speed = 1000 rpm; input_torque = 100 N*m; }
+  scene v on s {
+    effects { varying_stiffness { harmonics = 3; } damping { ratio = 0.05; } }
+    settle = 20 mesh_periods; record = 2 mesh_periods;
+    output rms(acceleration);
+  }
+}
+)");
+  EXPECT_EQ(gbxc({"test", d.string(), "--update"}).status, 0);
+  std::ifstream in(d / "mesh.expected");
+  std::string expected((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(expected.find("CPU"), std::string::npos) << expected;
+  for (int run = 0; run < 2; ++run) {
+    auto r = gbxc({"test", d.string()});
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("1 passed, 0 failed"), std::string::npos);
+  }
+  // A person who wants the times asks for them; then they are compared (and differ).
+  EXPECT_EQ(gbxc({"test", d.string(), "--timings"}).status, 1);
+  EXPECT_EQ(gbxc({"solve", "--timings", (d / "mesh.gbx").string()}).status, 2);
+  fs::remove_all(d);
+}
+
+TEST(Golden, DiffShowsExpectedBeforeActual) {
+  std::string diff = driver::unifiedDiff("a\nold\nc\n", "a\nnew\nc\n", "x.expected", "actual");
+  auto minus = diff.find("-old"), plus = diff.find("+new");
+  ASSERT_NE(minus, std::string::npos);
+  ASSERT_NE(plus, std::string::npos);
+  EXPECT_LT(minus, plus) << diff;
+}
+
+TEST(Golden, ToleranceComparesNumbersRelativelyAndTextExactly) {
+  EXPECT_TRUE(driver::equalWithin("rms = 50.5300 m/s^2\n", "rms = 50.5300 m/s^2\n", 0));
+  EXPECT_FALSE(driver::equalWithin("rms = 50.5300 m/s^2\n", "rms = 50.5301 m/s^2\n", 0));
+  EXPECT_TRUE(driver::equalWithin("rms = 50.5300 m/s^2\n", "rms = 50.5301 m/s^2\n", 1e-5));
+  EXPECT_FALSE(driver::equalWithin("rms = 50.5300 m/s^2\n", "rms = 50.6300 m/s^2\n", 1e-5));
+  EXPECT_FALSE(driver::equalWithin("rms = 50.53 m/s^2\n", "rms = 50.53 m/s\n", 1e-3));  // text differs
+  EXPECT_FALSE(driver::equalWithin("steps 6558\n", "steps 6558\nextra\n", 1e-3));      // a line more
+  EXPECT_TRUE(driver::equalWithin("error[E0201] at 3:5, -1.5e-3\n", "error[E0201] at 3:5, -1.5000001e-3\n", 1e-6));
+  EXPECT_FALSE(driver::equalWithin("error[E0201]\n", "error[E0202]\n", 0.5));  // codes are words, not numbers
+
+  fs::path d = tempDir("golden-tol");
+  write(d / "g.gbx", "// ARGS: check\n// TOLERANCE: 1e-9\ngearbox G { stage s: spur { pinion.z = 14; wheel.z = 31; } }\n");
+  std::vector<std::string> problems;
+  auto cases = driver::discoverGolden({d.string()}, problems);
+  ASSERT_EQ(cases.size(), 1u);
+  EXPECT_EQ(cases[0].args, (std::vector<std::string>{"check"}));
+  EXPECT_DOUBLE_EQ(cases[0].tolerance, 1e-9);
+  fs::remove_all(d);
+}
+
 // specs/ holds the acceptance corpus unchanged: it must match shared/spec-examples.
 TEST(Specs, MatchTheSharedAcceptanceCorpus) {
   fs::path shared(GBX_SHARED_EXAMPLES);
