@@ -5,12 +5,14 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <ostream>
 
 #include <fmt/format.h>
 
 #include "passes/Designs.h"
+#include "report/Progress.h"
 #include "passes/Modifications.h"
 #include "passes/Optimise.h"
 #include "passes/Render.h"
@@ -22,14 +24,10 @@ namespace gbx::rt {
 
 namespace {
 
-// A one-line progress bar on stderr, cleared when done.
+// A progress bar on stderr, shared by the callback; finished when the last copy goes.
 std::function<void(double)> progressBar(std::ostream& err, std::string label) {
-  return [&err, label](double f) {
-    int filled = static_cast<int>(f * 30);
-    err << fmt::format("\r  {} [{}{}] {:3.0f}%", label, std::string(static_cast<size_t>(filled), '#'),
-                       std::string(static_cast<size_t>(30 - filled), '.'), f * 100)
-        << (f >= 1.0 ? "\r\033[K" : "") << std::flush;
-  };
+  auto bar = std::make_shared<ProgressBar>(err, std::move(label));
+  return [bar](double f) { bar->update(f); };
 }
 
 } // namespace
@@ -66,7 +64,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       passes::Modifications mods = passes::modifications(m, *best);
       fail(gb.name, mods.errors);
       rep.modifications = std::move(mods.modifications);
-      rep.studies = passes::studies(m, *best);
+      rep.studies = passes::studies(m, *best, progress(gb.name + " studies"));
     }
     reports.push_back(std::move(rep));
   }

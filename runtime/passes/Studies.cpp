@@ -5,7 +5,7 @@
 
 namespace gbx::rt::passes {
 
-std::vector<StudyReport> studies(const Model& m, const Assignment& best) {
+std::vector<StudyReport> studies(const Model& m, const Assignment& best, std::function<void(double)> progress) {
   std::vector<StudyReport> out;
   for (const auto& st : m.gearbox.studies) {
     if (st.kind == ir::Study::Sweep) {
@@ -13,7 +13,7 @@ std::vector<StudyReport> studies(const Model& m, const Assignment& best) {
       continue;
     }
     const ir::Scene* scene = st.scene >= 0 ? &m.gearbox.scenes[static_cast<size_t>(st.scene)] : nullptr;
-    if (scene) out.push_back({workPrecision(m, best, st, *scene), {}});
+    if (scene) out.push_back({workPrecision(m, best, st, *scene, progress), {}});
   }
   return out;
 }

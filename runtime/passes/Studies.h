@@ -1,5 +1,6 @@
 #pragma once
 // Pass 6, studies: every `study` of the gearbox (sweeps, work-precision) on the best design.
+#include <functional>
 #include <vector>
 
 #include "report/Report.h"
@@ -7,6 +8,7 @@
 
 namespace gbx::rt::passes {
 
-std::vector<StudyReport> studies(const Model& m, const Assignment& best);
+// `progress`, when set, hears the fraction of the work-precision runs done.
+std::vector<StudyReport> studies(const Model& m, const Assignment& best, std::function<void(double)> progress = {});
 
 } // namespace gbx::rt::passes

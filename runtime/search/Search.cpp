@@ -954,6 +954,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
           visit(lo, a, hit, le, x, std::max(loP, floor), hiP);
         }
       }
+      if (report) opt.progress(1.0);
       return;
     }
     size_t loP = lower(wantLo(left.r[begin])), hiP = upper(wantHi(left.r[begin]));

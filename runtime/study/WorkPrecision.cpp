@@ -9,7 +9,8 @@
 
 namespace gbx::rt {
 
-WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene) {
+WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene,
+                                 const std::function<void(double)>& progress) {
   WorkPrecisionStudy r;
   r.name = study.name;
   r.scene = scene.name;
@@ -32,6 +33,12 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
   if (harmonics.empty() || !varying) harmonics = {0};
   if (methods.empty()) methods = {scene.method()};
   double tightest = rtols.back();
+  // Runs in all: a reference and its check per harmonics setting, then every method at every tolerance.
+  double total = static_cast<double>(harmonics.size() * (2 + methods.size() * rtols.size())), done = 0;
+  auto tick = [&](double n) {
+    done += n;
+    if (progress) progress(done / total);
+  };
   for (int h : harmonics) {
     dyn::SceneOverrides base;
     base.estimateError = false;
@@ -44,11 +51,13 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
     auto ref = dyn::runScene(m, design, scene, refOv);
     refOv.rtol = tightest / 1000;
     auto check = dyn::runScene(m, design, scene, refOv);
+    tick(2);
     WorkPrecisionStudy::Reference rf;
     rf.harmonics = h;
     if (!ref.failure.empty() || ref.numbers.empty() || !check.failure.empty()) {
       rf.failure = ref.failure.empty() ? check.failure : ref.failure;
       r.references.push_back(rf);
+      tick(static_cast<double>(methods.size() * rtols.size()));
       continue;
     }
     double refValue = ref.numbers[0].value;
@@ -66,6 +75,7 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
         ov.method = method;
         ov.rtol = rtol;
         auto run = dyn::runScene(m, design, scene, ov);
+        tick(1);
         WorkPrecisionStudy::Run w;
         w.rtol = rtol;
         if (run.failure.empty() && !run.numbers.empty()) {

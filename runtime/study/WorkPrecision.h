@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 // `study … { work_precision of SCENE; rtol in {…}; harmonics in a..b; methods in {…}; }`:
 // reruns the scene at each setting and reports the error of its first numeric output
 // against a reference (itself checked against a still tighter run) with the CPU time.
@@ -8,6 +9,7 @@
 
 namespace gbx::rt {
 
-WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene);
+WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene,
+                                 const std::function<void(double)>& progress = {});
 
 } // namespace gbx::rt

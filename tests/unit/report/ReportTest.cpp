@@ -1,8 +1,11 @@
+#include <sstream>
+#include <algorithm>
 #include <set>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "report/Progress.h"
 #include "report/Formats.h"
 #include "report/Svg.h"
 
@@ -30,4 +33,32 @@ TEST(Svg, ASeriesWithoutALineDrawsItsPointsOnly) {
   EXPECT_EQ(svg.find("<polyline fill=\"none\" stroke=\"#1f77b4\""), std::string::npos) << "the cloud has no line";
   EXPECT_NE(svg.find("<polyline fill=\"none\" stroke=\"#d62728\""), std::string::npos) << "the front keeps its line";
   EXPECT_NE(svg.find("<circle"), std::string::npos);
+}
+
+// The bar ends at 100 % with a newline, whether the work said 1.0 or stopped short.
+TEST(Progress, EndsAtOneHundredPercentWithANewline) {
+  std::ostringstream a;
+  {
+    rt::ProgressBar bar(a, "G");
+    bar.update(0.1);
+    bar.update(0.97);
+  }  // the work stopped at 97 %: the bar still finishes
+  std::string sa = a.str();
+  EXPECT_EQ(sa.substr(sa.size() - 5), "100%\n") << sa;
+  EXPECT_EQ(std::count(sa.begin(), sa.end(), '\n'), 1);
+
+  std::ostringstream b;
+  {
+    rt::ProgressBar bar(b, "G");
+    bar.update(0.5);
+    bar.update(1.0);
+    bar.update(0.7);  // after the end: nothing more
+  }
+  std::string sb = b.str();
+  EXPECT_EQ(sb.substr(sb.size() - 5), "100%\n") << sb;
+  EXPECT_EQ(std::count(sb.begin(), sb.end(), '\n'), 1);
+
+  std::ostringstream c;
+  { rt::ProgressBar bar(c, "G"); }  // never drawn: prints nothing
+  EXPECT_TRUE(c.str().empty());
 }

@@ -361,3 +361,21 @@ TEST(Search, AgreesWithBruteForceOnRandomSpecs) {
   }
   EXPECT_GT(nonEmpty, 40) << "the generator should mostly make solvable specs";
 }
+
+// The three-stage row walk reports its progress to the end (it used to stop short).
+TEST(Search, ProgressReachesTheEndOfTheJoin) {
+  std::string text = "gearbox Bench {\n  stage s0: spur { pinion.z in 12..100; wheel.z in 12..100; require coprime(pinion.z, wheel.z); }\n"
+                     "  stage s1 like s0;\n  stage s2 like s0;\n  interchangeable s0, s1, s2;\n"
+                     "  require ratio == 13.36838 +- 0.0001%;\n}\n";
+  auto c = driver::compileText("t.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::Model m(c->program, c->program.gearboxes[0]);
+  rt::SearchOptions o;
+  std::vector<double> seen;
+  o.progress = [&](double f) { seen.push_back(f); };
+  auto r = rt::search(m, o);
+  EXPECT_EQ(r.count, 1117u);
+  ASSERT_FALSE(seen.empty());
+  EXPECT_DOUBLE_EQ(seen.back(), 1.0);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+}
