@@ -77,6 +77,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     std::error_code ec;
     std::filesystem::create_directories(o.outDir, ec);
     for (const auto& c : rendered.charts) std::ofstream(std::filesystem::path(o.outDir) / c.name) << c.svg;
+    for (const auto& t : rendered.tables) std::ofstream(std::filesystem::path(o.outDir) / t.name, std::ios::binary) << t.text;
     std::ofstream f(std::filesystem::path(o.outDir) / rendered.reportFile, std::ios::binary);
     if (!f) {
       err << fmt::format("gbxc: cannot write into `{}`\n", o.outDir);

@@ -1,5 +1,7 @@
 #include "ir/Ir.h"
 
+#include "catalogue/StageKinds.h"
+
 namespace gbx::ir {
 
 std::string Type::str() const {
@@ -36,6 +38,7 @@ ExprPtr Expr::clone() const {
   e->marker = marker;
   e->relative = relative;
   e->output = output;
+  if (inBaseline) e->inBaseline = inBaseline->clone();
   for (const auto& a : args) e->args.push_back(a ? a->clone() : nullptr);
   return e;
 }
@@ -49,16 +52,7 @@ ExprPtr makeConst(Number v, Dim d, bool integer, Span span) {
   return e;
 }
 
-const char* stageKindName(StageKind k) {
-  switch (k) {
-  case StageKind::Spur: return "spur";
-  case StageKind::Helical: return "helical";
-  case StageKind::Bevel: return "bevel";
-  case StageKind::Planetary: return "planetary";
-  case StageKind::Idler: return "idler";
-  }
-  return "?";
-}
+const char* stageKindName(StageKind k) { return cat::kindSpec(k).name.c_str(); }
 
 const Attribute* Stage::find(const std::string& n) const {
   for (const auto& a : attributes)

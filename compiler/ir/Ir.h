@@ -53,7 +53,7 @@ enum class Op {
   Call,         // name: function; args
   Forall,       // name: variable, detail in type: collection; args: one instance per element
   SceneOutput,  // name: "scene.fn(signal)"
-  Relative,     // args[0] divided by its value in the baseline gearbox
+  Relative,     // args[0] divided by its value in the baseline gearbox (`inBaseline`)
 };
 
 struct Expr;
@@ -97,6 +97,7 @@ struct Expr {
   Marker marker = Marker::None;  // Const
   bool relative = false;     // Tol: the tolerance is a fraction of the centre
   SceneOutputRef output;     // SceneOutput
+  ExprPtr inBaseline;        // Relative: args[0] resolved in the baseline gearbox (its ids, not ours)
 
   ExprPtr clone() const;
   bool isConst() const { return op == Op::Const; }
@@ -217,6 +218,7 @@ struct ModRule {
 
 struct Modify {
   std::string stage;
+  int stageIndex = -1;  // resolved by lowering
   std::vector<ModRule> rules;
   Span span;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
 
 #include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
@@ -52,7 +53,7 @@ void lowerStage(ir::Stage& st) {
 // scene outputs and study targets.
 class Resolver {
 public:
-  Resolver(const ir::Program& p, ir::Gearbox& g) : p_(p), g_(g) {}
+  Resolver(const ir::Program& p, const ir::Gearbox& g, const Resolver* baseline = nullptr) : p_(p), g_(g), baseline_(baseline) {}
 
   QuantityRef quantity(const std::string& path) const { return quantityRef(p_, g_, path); }
 
@@ -83,6 +84,11 @@ public:
     }
     for (auto& a : e.args)
       if (a) expr(*a);
+    // `relative(x)` divides by x of the baseline gearbox: x resolved there too.
+    if (e.op == ir::Op::Relative && baseline_ && !e.args.empty() && e.args[0]) {
+      e.inBaseline = e.args[0]->clone();
+      baseline_->expr(*e.inBaseline);
+    }
   }
 
   void expr(ir::ExprPtr& e) const {
@@ -122,7 +128,8 @@ public:
     }
   }
 
-  void gearbox() {
+  void gearbox(ir::Gearbox& g) {
+    ir::Gearbox& g_ = g;
     for (auto& st : g_.stages)
       for (auto& a : st.attributes) expr(a.value);
     for (auto& l : g_.lets) expr(l.expr);
@@ -144,11 +151,13 @@ public:
         if (const auto* s = cat::findSignal(o.signal)) o.id = s->id;
       }
     }
-    for (auto& md : g_.modifies)
+    for (auto& md : g_.modifies) {
+      md.stageIndex = g_.stageIndex(md.stage);
       for (auto& r : md.rules) {
         expr(r.value);
         expr(r.when);
       }
+    }
     for (auto& sp : g_.splits) settings(sp.settings, cat::splitSettings());
     for (auto& st : g_.studies) {
       if (st.kind == ir::Study::Sweep) st.swept = quantity(st.target);
@@ -169,7 +178,8 @@ public:
 
 private:
   const ir::Program& p_;
-  ir::Gearbox& g_;
+  const ir::Gearbox& g_;
+  const Resolver* baseline_;
 };
 
 } // namespace
@@ -217,9 +227,16 @@ QuantityRef quantityRef(const ir::Program& p_, const ir::Gearbox& g_, const std:
 ir::Program lower(ir::Program p) {
   for (auto& m : p.materials)
     for (auto& s : m.properties) s.key = cat::keyOf(s.name).value_or(Q::None);
-  for (auto& g : p.gearboxes) {
+  // Every stage first: a gearbox's `relative(x)` resolves x in its baseline too.
+  for (auto& g : p.gearboxes)
     for (auto& st : g.stages) lowerStage(st);
-    Resolver(p, g).gearbox();
+  for (auto& g : p.gearboxes) {
+    const ir::Gearbox* base = nullptr;
+    for (const auto& b : p.gearboxes)
+      if (!g.baseline.empty() && b.name == g.baseline) base = &b;
+    std::optional<Resolver> baseline;
+    if (base) baseline.emplace(p, *base);
+    Resolver(p, g, baseline ? &*baseline : nullptr).gearbox(g);
   }
   return p;
 }

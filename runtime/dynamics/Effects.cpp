@@ -13,7 +13,9 @@ double param(const ir::Effect& e, Q key, double dflt, const std::vector<double>&
   return s ? settingValue(*s, locals) : dflt;
 }
 
-const std::vector<EffectRow> kRows = {
+// A function-local table: ready whenever it is first asked for.
+const std::vector<EffectRow>& kRowsTable() {
+  static const std::vector<EffectRow> rows = {
     {Effect::VaryingStiffness,
      [](const ir::Effect& e, const SceneOverrides& ov, MeshParameters& p, MeshEffects& fx, std::vector<std::string>&) {
        fx.varyingStiffness = true;
@@ -62,14 +64,16 @@ const std::vector<EffectRow> kRows = {
        fx.torqueOmega = angularFrequency(*effectParam(&e, Q::Frequency));
      },
      false, true},
-};
+  };
+  return rows;
+}
 
 } // namespace
 
-const std::vector<EffectRow>& effectRows() { return kRows; }
+const std::vector<EffectRow>& effectRows() { return kRowsTable(); }
 
 const EffectRow* effectRow(cat::Effect id) {
-  for (const auto& r : kRows)
+  for (const auto& r : kRowsTable())
     if (r.id == id) return &r;
   return nullptr;
 }

@@ -67,17 +67,21 @@ struct Integrator::Impl {
 
 namespace {
 // The runtime side of the method registry (compiler/catalogue/Methods.h): GSL's stepper.
-const std::vector<MethodRow> kMethodRows = {
+// A function-local table: ready whenever it is first asked for.
+const std::vector<MethodRow>& kMethodRowsTable() {
+  static const std::vector<MethodRow> rows = {
     {cat::Method::Rk8pd, gsl_odeiv2_step_rk8pd}, {cat::Method::Rkf45, gsl_odeiv2_step_rkf45},
     {cat::Method::Rkck, gsl_odeiv2_step_rkck},   {cat::Method::Rk4, gsl_odeiv2_step_rk4},
     {cat::Method::Msbdf, gsl_odeiv2_step_msbdf},
-};
+  };
+  return rows;
+}
 } // namespace
 
-const std::vector<MethodRow>& methodRows() { return kMethodRows; }
+const std::vector<MethodRow>& methodRows() { return kMethodRowsTable(); }
 
 const gsl_odeiv2_step_type* stepType(cat::Method m) {
-  for (const auto& r : kMethodRows)
+  for (const auto& r : kMethodRowsTable())
     if (r.id == m) return r.stepper;
   return nullptr;
 }

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "catalogue/StageKinds.h"
+#include "dynamics/Effects.h"
 #include "dynamics/Scene.h"
 #include "dynamics/Stiffness.h"
 
@@ -62,6 +63,10 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   double Rsp = 1.0 / (1.0 / rhoS + 1.0 / rhoP), Rrp = 1.0 / (1.0 / rhoP - 1.0 / rhoR);
   double Ksp = 4.0 / 3.0 * std::sqrt(Rsp) * Estar, Krp = 4.0 / 3.0 * std::sqrt(Rrp) * Estar;
 
+  // Every listed effect must be one the planetary model implements (its registry row says).
+  for (const auto& fx : scene.effects)
+    if (const EffectRow* row = effectRow(fx.kind); !row || !row->planetary)
+      throw SceneFailure{fmt::format("effect `{}` is not modelled on planetary stages", fx.name)};
   const ir::Effect* hertz = scene.findEffect(Effect::HertzContact);
   const ir::Effect* varying = scene.findEffect(Effect::VaryingStiffness);
   const ir::Effect* damping = scene.findEffect(Effect::Damping);

@@ -15,7 +15,6 @@
 #include "dynamics/Planetary.h"
 #include "dynamics/SceneSupport.h"
 #include "model/Standards.h"
-#include "report/Report.h"
 
 namespace gbx::rt::dyn {
 

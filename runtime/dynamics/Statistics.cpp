@@ -10,7 +10,9 @@ namespace {
 using cat::SignalFn;
 using W = std::vector<double>;
 
-const std::vector<StatisticRow> kRows = {
+// A function-local table: ready whenever it is first asked for.
+const std::vector<StatisticRow>& kRowsTable() {
+  static const std::vector<StatisticRow> rows = {
     {SignalFn::Rms,
      [](const W& v) {
        double s = 0;
@@ -37,14 +39,16 @@ const std::vector<StatisticRow> kRows = {
        auto [lo, hi] = std::minmax_element(v.begin(), v.end());
        return *hi - *lo;
      }},
-};
+  };
+  return rows;
+}
 
 } // namespace
 
-const std::vector<StatisticRow>& statisticRows() { return kRows; }
+const std::vector<StatisticRow>& statisticRows() { return kRowsTable(); }
 
 Statistic statistic(cat::SignalFn id) {
-  for (const auto& r : kRows)
+  for (const auto& r : kRowsTable())
     if (r.id == id) return r.fn;
   return nullptr;
 }

@@ -110,7 +110,9 @@ Value absOf(const Value& x) {
   return Value::range(0, std::max(-x.lo, x.hi));
 }
 
-const std::vector<BuiltinRow> kRows = {
+// A function-local table: ready whenever it is first asked for.
+const std::vector<BuiltinRow>& kRowsTable() {
+  static const std::vector<BuiltinRow> rows = {
     {Fn::Abs, [](const V& v) { return absOf(v[0]); }},
     {Fn::Sqrt, [](const V& v) { return v[0].lo < 0 ? Value::invalid() : unary(v[0], [](double x) { return std::sqrt(x); }); }},
     {Fn::Sin, [](const V& v) { return periodic(v[0], Fn::Sin); }},
@@ -138,16 +140,18 @@ const std::vector<BuiltinRow> kRows = {
     {Fn::Gcd, [](const V& v) { return gcdOf(v, false); }},
     // relative(x): x over its value in the baseline gearbox, given as the second argument.
     {Fn::Relative, [](const V& v) { return arith::div(v[0], v[1]); }},
-};
+  };
+  return rows;
+}
 
 } // namespace
 
-const std::vector<BuiltinRow>& builtinRows() { return kRows; }
+const std::vector<BuiltinRow>& builtinRows() { return kRowsTable(); }
 
 BuiltinFn builtin(cat::Fn id) {
   static const auto table = [] {
     std::array<BuiltinFn, cat::kFunctionCount> t{};
-    for (const auto& r : kRows) t[static_cast<size_t>(r.id)] = r.fn;
+    for (const auto& r : kRowsTable()) t[static_cast<size_t>(r.id)] = r.fn;
     return t;
   }();
   return table[static_cast<size_t>(id)];

@@ -135,7 +135,7 @@ Value Evaluator::eval(const ir::Expr& e, const Assignment& a) const {
     return constant(e.value);
   case Op::Quantity: return quantity(e.ref, a);
   case Op::Let: {
-    if (e.let < 0) return Value::invalid();
+    if (e.let < 0 || static_cast<size_t>(e.let) >= m_.gearbox.lets.size()) return Value::invalid();
     const auto& l = m_.gearbox.lets[static_cast<size_t>(e.let)];
     if (!l.expr || ++depth_ > 64) {
       if (l.expr) --depth_;
@@ -204,8 +204,9 @@ Value Evaluator::eval(const ir::Expr& e, const Assignment& a) const {
   case Op::Call: return call(e, a);
   case Op::SceneOutput: return sceneOutput ? sceneOutput(e, a) : Value::invalid();
   case Op::Relative: {
-    if (!baseline) return Value::invalid();
-    return builtin(cat::Fn::Relative)({arg(0), baseline(*e.args[0])});
+    // The baseline evaluates the argument as lowering resolved it in the baseline gearbox.
+    if (!baseline || !e.inBaseline) return Value::invalid();
+    return builtin(cat::Fn::Relative)({arg(0), baseline(*e.inBaseline)});
   }
   default: return Value::invalid();  // Tol and Set stand only inside comparisons
   }
@@ -253,8 +254,11 @@ Value Evaluator::quantity(const ir::QuantityRef& r, const Assignment& a) const {
     if (const Value* v = overridden(r)) return *v;
   switch (r.owner) {
   case ir::QuantityRef::Gearbox: return gearboxQuantity(r.key, a);
-  case ir::QuantityRef::Split: return splitQuantity(r.index, r.key, a);
+  case ir::QuantityRef::Split:
+    if (r.index < 0 || static_cast<size_t>(r.index) >= m_.gearbox.splits.size()) return Value::invalid();
+    return splitQuantity(r.index, r.key, a);
   case ir::QuantityRef::Stage: {
+    if (!m_.hasStage(r.index)) return Value::invalid();
     const StageInfo::Entry& en = m_.info(r.index).entry(r.gear, r.key);
     if (en.attr || en.slot >= 0) return attribute(r.index, r.gear, r.key, a);
     return derived(r.index, r.gear, r.key, a);

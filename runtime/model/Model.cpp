@@ -59,6 +59,8 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
         freedoms.push_back(f);
       }
     }
+    if (const ir::Attribute* mat = info.entry(-1, Q::Material).attr; mat && !mat->symbol.empty())
+      info.material = p.findMaterial(mat->symbol);
     stages.push_back(std::move(info));
   }
 }
@@ -69,11 +71,7 @@ std::optional<double> Model::operating(Q key) const {
   return s->value->toDouble();
 }
 
-const ir::Material* Model::material(int stage) const {
-  const ir::Attribute* mat = attribute(stage, Q::Material);
-  if (!mat || mat->symbol.empty()) return nullptr;
-  return program.findMaterial(mat->symbol);
-}
+const ir::Material* Model::material(int stage) const { return info(stage).material; }
 
 Assignment::Assignment(const Model& m) : choice(m.slots.size(), -1) {
   for (const auto& f : m.freedoms) box.emplace_back(f.lo, f.hi);

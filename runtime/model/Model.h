@@ -35,6 +35,7 @@ struct Freedom {
 struct StageInfo {
   const ir::Stage* ir = nullptr;
   const StageKindImpl* kind = nullptr;
+  const ir::Material* material = nullptr;  // the material it names, found once
   std::vector<int> slots;
   std::vector<int> freedoms;
   // (gear + 1) * kKeyCount + key: what gives the attribute.
@@ -45,6 +46,7 @@ struct StageInfo {
   std::vector<Entry> entries;
   const Entry& entry(int gear, Q key) const {
     static const Entry none;
+    if (key == Q::None) return none;
     size_t i = static_cast<size_t>(gear + 1) * cat::kKeyCount + static_cast<size_t>(key);
     return i < entries.size() ? entries[i] : none;
   }
@@ -70,6 +72,7 @@ public:
   // The material a stage names, or nullptr.
   const ir::Material* material(int stage) const;
   const StageInfo& info(int stage) const { return stages[static_cast<size_t>(stage)]; }
+  bool hasStage(int stage) const { return stage >= 0 && static_cast<size_t>(stage) < stages.size(); }
 };
 
 // A point of the search: a value index per slot (-1 when unassigned) and the current

@@ -28,6 +28,10 @@ std::optional<SplitResult> computeSplit(const Evaluator& ev, int index, const As
   const ir::Setting* between = ir::findSetting(split.settings, Q::Between);
   int st = between ? between->stage : -1;
   if (st < 0) return fail("`between` names no stage");
+  // The branches start at the stage's wheel: a pinion-wheel pair.
+  ir::StageKind kind = ev.model().info(st).ir->kind;
+  if (kind == ir::StageKind::Planetary || kind == ir::StageKind::Idler)
+    return fail(fmt::format("`between` must name a pinion-wheel stage, not a {} stage", ir::stageKindName(kind)));
   auto branches = setting(Q::Branches), L = setting(Q::TorsionShaftLength), d = setting(Q::TorsionShaftDiameter),
        G = setting(Q::TorsionShaftShearModulus), dl = setting(Q::BacklashDifference);
   if (!branches || !L || !d || !G || !dl) return fail("the torsion shaft and backlash difference must be given");

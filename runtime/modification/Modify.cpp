@@ -12,7 +12,7 @@ namespace gbx::rt {
 std::vector<ModOutcome> evaluateModify(const Model& m, const Assignment& a, const ir::Modify& mod) {
   Evaluator ev(m);
   std::vector<ModOutcome> out;
-  int st = m.stageIndex(mod.stage);
+  int st = mod.stageIndex;
   for (const auto& rule : mod.rules) {
     ModOutcome o;
     o.target = rule.target;

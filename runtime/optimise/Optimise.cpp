@@ -54,13 +54,15 @@ double violation(const Evaluator& ev, const ir::Expr& e, const Assignment& a) {
 }
 
 // The quantities under `relative(…)` in the objectives, in order.
-void termsOf(const ir::Expr& e, std::vector<const ir::Expr*>& out) {
+// The arguments of `relative(…)`: as the gearbox resolves them, and as its baseline does.
+void termsOf(const ir::Expr& e, std::vector<const ir::Expr*>& out, std::vector<const ir::Expr*>& inBaseline) {
   if (e.op == ir::Op::Relative) {
     out.push_back(e.args[0].get());
+    inBaseline.push_back(e.inBaseline.get());
     return;
   }
   for (const auto& x : e.args)
-    if (x) termsOf(*x, out);
+    if (x) termsOf(*x, out, inBaseline);
 }
 
 struct Task {
@@ -123,7 +125,7 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
       *key = k;
     }
     int scene = e.output.scene;
-    if (scene < 0) return Value::invalid();
+    if (scene < 0 || static_cast<size_t>(scene) >= m.gearbox.scenes.size()) return Value::invalid();
     auto it = cache->find(scene);
     if (it == cache->end()) {
       dyn::SceneOverrides ov;
@@ -156,14 +158,14 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
                         const OptimiseOptions& opt) {
   OptimiseResult res;
   double cpu0 = dyn::threadCpuSeconds();
-  std::vector<const ir::Expr*> terms;
+  std::vector<const ir::Expr*> terms, baseTerms;
   for (const auto& o : m.gearbox.objectives)
-    if (o.expr) termsOf(*o.expr, terms);
+    if (o.expr) termsOf(*o.expr, terms, baseTerms);
   for (const auto* t : terms) res.termNames.push_back(ir::print(*t));
   // The baseline's values, computed once and shared by every thread.
   Evaluator probe(m);
   installHooks(probe, m, baseline, baseDesign, opt.sceneRtol);
-  for (const auto* t : terms) res.baselineTerms.push_back(probe.baseline ? probe.baseline(*t).mid() : NAN);
+  for (const auto* t : baseTerms) res.baselineTerms.push_back(probe.baseline && t ? probe.baseline(*t).mid() : NAN);
   auto sharedBaseline = probe.baseline;
 
   std::vector<OptCandidate> out(candidates.size());

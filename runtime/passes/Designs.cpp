@@ -66,6 +66,7 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
         const ir::Attribute* at = m.attribute(fr.stage, fr.gear, fr.key);
         auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
         row.choices.emplace_back(m.freedoms[f].path, formatNumber(freedoms[ri][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
+        row.choiceValues.push_back({freedoms[ri][f] / u.scale, u.name});
       }
     for (size_t s = 0; s < m.stages.size(); ++s) {
       const ir::Stage& st = *m.stages[s].ir;
@@ -81,6 +82,7 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
         else {
           auto du = units::displayUnitFor(st.find(slot.attr) ? st.find(slot.attr)->dim : units::Dim{});
           row.choices.emplace_back(slot.path, formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name));
+          row.choiceValues.push_back({v.lo / du.scale, du.name});
         }
       }
     }

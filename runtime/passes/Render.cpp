@@ -8,6 +8,7 @@ Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, 
   if (o.charts) r.charts = drawCharts(reports);
   r.report = format.render(reports, o);
   r.reportFile = "report." + std::string(format.extension);
+  if (o.charts && format.tables) r.tables = format.tables(reports, o);
   return r;
 }
 

@@ -13,6 +13,7 @@ struct Rendered {
   std::string report;
   std::string reportFile;         // its name in the output folder
   std::vector<ChartFile> charts;  // drawn only when the options ask for charts
+  std::vector<TableFile> tables;  // further files of the format (CSV tables), with charts
 };
 
 Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, const RenderOptions& options);

@@ -15,6 +15,8 @@ struct ReportFormat {
   std::string_view extension;  // -o DIR writes DIR/report.<extension>
   std::string (*render)(const std::vector<GearboxReport>&, const RenderOptions&);
   bool diagnostics;            // check, dump and test print their diagnostics in it too
+  // With -o DIR, further files beside the report (CSV: one table per kind of result).
+  std::vector<TableFile> (*tables)(const std::vector<GearboxReport>&, const RenderOptions&) = nullptr;
 };
 
 // The first row, text, is the default.

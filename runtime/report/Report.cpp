@@ -263,26 +263,6 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
   return o;
 }
 
-std::string renderCsv(const std::vector<GearboxReport>& reports, const RenderOptions&) {
-  std::string o;
-  for (const auto& g : reports) {
-    auto h = header(g);
-    o += "gearbox";
-    for (const auto& x : h) o += "," + x;
-    o += ",ratio_exact\n";
-    for (const auto& r : g.rows) {
-      o += g.name + "," + std::to_string(r.rank);
-      for (const auto& [_, z] : r.teeth) o += "," + std::to_string(z);
-      for (const auto& [_, c] : r.choices) o += "," + c;
-      o += "," + fmt::format("{}", r.ratio.toDouble());
-      for (const auto& c : r.cells)
-        o += "," + (!c.valid ? std::string() : c.lo == c.hi ? fmt::format("{}", c.lo) : fmt::format("\"[{}, {}]\"", c.lo, c.hi));
-      o += "," + r.ratio.str() + "\n";
-    }
-  }
-  return o;
-}
-
 namespace {
 
 std::string markdown(const std::vector<GearboxReport>& reports, const RenderOptions& ro, bool html) {

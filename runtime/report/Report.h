@@ -31,6 +31,11 @@ struct DesignRow {
   int rank = 0;
   std::vector<std::pair<std::string, long long>> teeth;  // integer choices and tooth counts
   std::vector<std::pair<std::string, std::string>> choices;  // other chosen values, as text
+  struct Value {
+    double shown = 0;  // in `unit`
+    std::string unit;
+  };
+  std::vector<Value> choiceValues;  // the same, as numbers in their display unit
   Rational ratio;
   bool undecided = false;
   std::vector<Cell> cells;
@@ -145,6 +150,12 @@ std::string formatLength(double metres);
 std::string renderText(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderJson(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderCsv(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
+// With -o DIR: one tidy CSV per kind of result (designs, scenes, spectra, sweeps,
+// work-precision runs, modifications), those that have rows.
+struct TableFile {
+  std::string name, text;
+};
+std::vector<TableFile> csvTables(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderMarkdown(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderHtml(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 

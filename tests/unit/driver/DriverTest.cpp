@@ -197,3 +197,40 @@ TEST(Specs, MatchTheSharedAcceptanceCorpus) {
   }
   EXPECT_GE(n, 6);
 }
+
+// CSV numbers are in the unit their header names; intervals are two columns.
+TEST(Csv, NumbersInTheHeadersUnitIntervalsAsLoHi) {
+  auto csv = gbxc({"solve", "--format", "csv", "--no-timings", "--gearbox", "MarineReducer",
+                   std::string(GBX_SOURCE_DIR) + "/specs/marine_reducer.gbx"});
+  ASSERT_EQ(csv.status, 0) << csv.err;
+  std::istringstream in(csv.out);
+  std::string head, row;
+  std::getline(in, head);
+  std::getline(in, row);
+  auto cell = [](const std::string& line, size_t k) {
+    std::istringstream s(line);
+    std::string c;
+    for (size_t i = 0; i <= k; ++i) std::getline(s, c, ',');
+    return c;
+  };
+  ASSERT_EQ(cell(head, 5), "main.center_distance [mm]");
+  EXPECT_NEAR(std::stod(cell(row, 5)), 855.0, 0.01);  // not 0.855 (m)
+  EXPECT_EQ(cell(head, 6), "main.mass [kg]");
+  EXPECT_NEAR(std::stod(cell(row, 6)), 4603.4, 0.1);
+
+  auto bevel = gbxc({"solve", "--format", "csv", std::string(GBX_SOURCE_DIR) + "/specs/thruster_one_stage.gbx"});
+  EXPECT_NE(bevel.out.find("main.mmn_b_lo,main.mmn_b_hi"), std::string::npos) << bevel.out;
+  EXPECT_EQ(bevel.out.find("\"["), std::string::npos) << "no quoted interval strings";
+
+  fs::path d = tempDir("csv-tables");
+  auto tables = gbxc({"solve", "--format", "csv", "--no-timings", "-o", d.string(), std::string(GBX_SOURCE_DIR) + "/specs/turbine_modification.gbx"});
+  ASSERT_EQ(tables.status, 0) << tables.err;
+  EXPECT_TRUE(fs::exists(d / "designs.csv"));
+  std::ifstream mods(d / "modifications.csv");
+  std::string mhead, first;
+  std::getline(mods, mhead);
+  std::getline(mods, first);
+  EXPECT_EQ(mhead, "gearbox,stage,target,present,value [um],rule,condition,error");
+  EXPECT_NE(first.find("tip_relief,yes,30"), std::string::npos) << first;
+  fs::remove_all(d);
+}

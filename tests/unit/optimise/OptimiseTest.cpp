@@ -88,3 +88,29 @@ TEST(Optimise, ResultsDoNotDependOnJobs) {
     EXPECT_EQ(a.ranked[i].objective, b.ranked[i].objective);
   }
 }
+
+// relative(x) evaluates x in the baseline as the baseline names it: a variant whose own
+// lets, stages or scenes sit at other positions must not read the baseline's by position.
+TEST(Optimise, RelativeResolvesItsArgumentInTheBaseline) {
+  auto c = driver::compileText("rel.gbx", R"(gearbox B {
+  stage s: spur { pinion.z = 20; wheel.z = 60; normal_module = 2 mm; face_width = 20 mm; }
+  let m = s.center_distance;
+}
+gearbox A extends B {
+  stage aux: spur { pinion.z = 20; wheel.z = 40; normal_module = 1 mm; let k = 3; }
+  s.normal_module = 3 mm;
+  minimize relative(m);
+})");
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  const ir::Gearbox *a = nullptr, *b = nullptr;
+  for (const auto& g : c->program.gearboxes) (g.name == "A" ? a : b) = &g;
+  ASSERT_TRUE(a && b);
+  ASSERT_NE(a->lets.size(), b->lets.size());  // the let `m` stands at another position in A
+  rt::Model ma(c->program, *a), mb(c->program, *b);
+  rt::Assignment da(ma), db(mb);
+  rt::Evaluator ev(ma);
+  rt::installHooks(ev, ma, &mb, &db, 1e-6);
+  rt::Value v = ev.eval(*a->objectives[0].expr, da);
+  ASSERT_TRUE(v.isNumber());
+  EXPECT_NEAR(v.mid(), 120.0 / 80.0, 1e-12);  // centre distance 120 mm in A, 80 mm in B
+}

@@ -77,6 +77,8 @@ TEST(Registry, EveryMethodHasAStepper) {
 
 TEST(Registry, EveryStageKindComputesWhatItsCatalogueDerives) {
   ASSERT_EQ(cat::stageKinds().size(), rt::stageKindImpls().size());
+  for (size_t i = 0; i < cat::stageKinds().size(); ++i)
+    EXPECT_EQ(static_cast<size_t>(cat::stageKinds()[i].kind), i) << "kind row " << cat::stageKinds()[i].name << " is out of place";
   for (const auto& k : cat::stageKinds()) {
     const auto& impl = rt::stageKindImpl(k.kind);
     EXPECT_EQ(impl.kind, k.kind);

@@ -1,0 +1,171 @@
+// CSV: every number in the unit its header names (the display unit of the text report),
+// an interval as `_lo` and `_hi` columns, one tidy table per kind of result.
+#include <cmath>
+#include <variant>
+
+#include <fmt/format.h>
+
+#include "report/Report.h"
+
+namespace gbx::rt {
+
+namespace {
+
+std::string field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string o = "\"";
+  for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return o + "\"";
+}
+
+std::string number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string(); }
+
+std::string withUnit(const std::string& name, const std::string& unit) { return unit.empty() ? name : name + " [" + unit + "]"; }
+
+std::string row(const std::vector<std::string>& cells) {
+  std::string o;
+  for (size_t i = 0; i < cells.size(); ++i) o += (i ? "," : "") + field(cells[i]);
+  return o + "\n";
+}
+
+// Columns that show an interval in some row get two CSV columns.
+std::vector<bool> intervalColumns(const GearboxReport& g) {
+  std::vector<bool> v(g.columns.size(), false);
+  for (const auto& r : g.rows)
+    for (size_t i = 0; i < r.cells.size() && i < v.size(); ++i) v[i] = v[i] || (r.cells[i].valid && r.cells[i].lo != r.cells[i].hi);
+  return v;
+}
+
+std::string designs(const std::vector<GearboxReport>& reports) {
+  std::string o;
+  for (const auto& g : reports) {
+    auto wide = intervalColumns(g);
+    std::vector<std::string> h = {"gearbox", "rank"};
+    if (!g.rows.empty()) {
+      for (const auto& [n, _] : g.rows[0].teeth) h.push_back(n);
+      for (size_t i = 0; i < g.rows[0].choices.size(); ++i)
+        h.push_back(withUnit(g.rows[0].choices[i].first, i < g.rows[0].choiceValues.size() ? g.rows[0].choiceValues[i].unit : ""));
+    }
+    h.push_back("ratio");
+    for (size_t i = 0; i < g.columns.size(); ++i) {
+      const auto& c = g.columns[i];
+      if (wide[i]) {
+        h.push_back(withUnit(c.name + "_lo", c.unit));
+        h.push_back(withUnit(c.name + "_hi", c.unit));
+      } else {
+        h.push_back(withUnit(c.name, c.unit));
+      }
+    }
+    h.push_back("ratio_exact");
+    o += row(h);
+    for (const auto& r : g.rows) {
+      std::vector<std::string> v = {g.name, std::to_string(r.rank)};
+      for (const auto& [_, z] : r.teeth) v.push_back(std::to_string(z));
+      for (const auto& c : r.choiceValues) v.push_back(number(c.shown));
+      v.push_back(number(r.ratio.toDouble()));
+      for (size_t i = 0; i < r.cells.size(); ++i) {
+        const Cell& c = r.cells[i];
+        double s = g.columns[i].scale;
+        v.push_back(c.valid ? number(c.lo / s) : "");
+        if (wide[i]) v.push_back(c.valid ? number(c.hi / s) : "");
+      }
+      v.push_back(r.ratio.str());
+      o += row(v);
+    }
+  }
+  return o;
+}
+
+std::string scenes(const std::vector<GearboxReport>& reports) {
+  std::string o = row({"gearbox", "scene", "target", "output", "value", "unit", "method", "rtol", "error_estimate"});
+  bool any = false;
+  for (const auto& g : reports)
+    for (const auto& s : g.scenes)
+      for (const auto& x : s.outputs) {
+        any = true;
+        o += row({g.name, s.name, s.target, x.key, number(x.shown), x.unit, s.method, s.eigen ? "" : number(s.rtol),
+                  s.errorEstimate >= 0 ? number(s.errorEstimate) : ""});
+      }
+  return any ? o : "";
+}
+
+std::string spectra(const std::vector<GearboxReport>& reports) {
+  std::string o = row({"gearbox", "scene", "spectrum", "frequency [Hz]", "amplitude", "unit", "harmonic"});
+  bool any = false;
+  for (const auto& g : reports)
+    for (const auto& s : g.scenes)
+      for (const auto& sp : s.spectra)
+        for (const auto& p : sp.peaks) {
+          any = true;
+          o += row({g.name, s.name, sp.key, number(p.frequency), number(p.amplitude / sp.scale), sp.unit,
+                    p.harmonic > 0 ? std::to_string(p.harmonic) : ""});
+        }
+  return any ? o : "";
+}
+
+std::string sweeps(const std::vector<GearboxReport>& reports) {
+  std::string o = row({"gearbox", "study", "swept", "x", "x_unit", "output", "value", "unit"});
+  bool any = false;
+  for (const auto& g : reports)
+    for (const auto& st : g.studies)
+      if (const auto* s = std::get_if<SweepStudy>(&st.study))
+        for (const auto& p : s->points)
+          for (size_t i = 0; i < s->outputs.size() && i < p.y.size(); ++i) {
+            any = true;
+            o += row({g.name, s->name, s->target, number(p.x / s->unit.scale), s->unit.name, s->outputs[i].text,
+                      number(p.y[i] / s->outputs[i].unit.scale), s->outputs[i].unit.name});
+          }
+  return any ? o : "";
+}
+
+std::string workPrecision(const std::vector<GearboxReport>& reports, bool timings) {
+  std::vector<std::string> h = {"gearbox", "study", "scene", "harmonics", "method", "rtol", "error", "steps", "rhs_evaluations"};
+  if (timings) h.push_back("cpu [ms]");
+  std::string o = row(h);
+  bool any = false;
+  for (const auto& g : reports)
+    for (const auto& st : g.studies)
+      if (const auto* w = std::get_if<WorkPrecisionStudy>(&st.study))
+        for (const auto& c : w->curves)
+          for (const auto& r : c.runs) {
+            any = true;
+            std::vector<std::string> v = {g.name, w->name, w->scene, c.harmonics > 0 ? std::to_string(c.harmonics) : "", c.method,
+                                          number(r.rtol), r.ok ? number(r.error) : "", r.ok ? std::to_string(r.steps) : "",
+                                          r.ok ? std::to_string(r.rhsEvaluations) : ""};
+            if (timings) v.push_back(r.ok ? number(r.cpuSeconds * 1e3) : "");
+            o += row(v);
+          }
+  return any ? o : "";
+}
+
+std::string modifications(const std::vector<GearboxReport>& reports) {
+  std::string o = row({"gearbox", "stage", "target", "present", "value [um]", "rule", "condition", "error"});
+  bool any = false;
+  for (const auto& g : reports)
+    for (const auto& m : g.modifications)
+      for (const auto& r : m.rows) {
+        any = true;
+        o += row({g.name, m.stage, r.target, r.present ? "yes" : "no", r.valid ? number(r.si * 1e6) : "", r.text, r.condition, r.error});
+      }
+  return any ? o : "";
+}
+
+} // namespace
+
+std::string renderCsv(const std::vector<GearboxReport>& reports, const RenderOptions&) { return designs(reports); }
+
+std::vector<TableFile> csvTables(const std::vector<GearboxReport>& reports, const RenderOptions& o) {
+  std::vector<TableFile> out;
+  auto add = [&](const char* name, std::string text) {
+    if (!text.empty()) out.push_back({name, std::move(text)});
+  };
+  add("designs.csv", designs(reports));
+  add("scenes.csv", scenes(reports));
+  add("spectra.csv", spectra(reports));
+  add("sweeps.csv", sweeps(reports));
+  add("work_precision.csv", workPrecision(reports, o.timings));
+  add("modifications.csv", modifications(reports));
+  return out;
+}
+
+} // namespace gbx::rt
