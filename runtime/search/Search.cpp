@@ -119,6 +119,17 @@ std::optional<Rational> rationalConst(const ir::Expr& e) {
   return std::nullopt;
 }
 
+// An objective's value as the ranking compares it: to 12 significant digits, so values
+// equal but for the rounding of their formulas (a centre distance summed in another order)
+// tie, and the documented rule orders them (stage ratios, then values).
+double rankingKey(double v) {
+  if (v == 0 || !std::isfinite(v)) return v;
+  int e = static_cast<int>(std::floor(std::log10(std::fabs(v))));
+  double scale = std::pow(10.0, 11 - e);
+  double snapped = std::round(v * scale) / scale;
+  return std::isfinite(snapped) ? snapped : v;
+}
+
 bool isRatio(const ir::Expr& e) { return e.op == Op::Quantity && isGearboxRatio(e.ref); }
 
 // Recognises `ratio == t +- tol`, `ratio in a..b` and one-sided bounds on the gearbox ratio.
@@ -743,13 +754,13 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     std::vector<double> keys;
     if (opt.sortBy) {
       Value v = ev.eval(*opt.sortBy, a);
-      keys.push_back(v.isNumber() ? v.lo : INFINITY);
+      keys.push_back(v.isNumber() ? rankingKey(v.lo) : INFINITY);
     }
     for (const auto& o : m.gearbox.objectives) {
       if (opt.deferDynamics) break;  // ranked by the optimiser
       Value v = o.expr ? ev.eval(*o.expr, a) : Value::invalid();
       // Over a freedom the best attainable value counts: the design may choose it.
-      keys.push_back(v.isNumber() ? (o.minimize ? v.lo : -v.hi) : INFINITY);
+      keys.push_back(v.isNumber() ? rankingKey(o.minimize ? v.lo : -v.hi) : INFINITY);
     }
     return keys;
   };

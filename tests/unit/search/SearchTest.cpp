@@ -379,3 +379,18 @@ TEST(Search, ProgressReachesTheEndOfTheJoin) {
   EXPECT_DOUBLE_EQ(seen.back(), 1.0);
   EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
 }
+
+// Equal objectives that differ only by rounding tie, and ties go by stage ratio: every
+// design here has the centre distance 100 teeth x 2.5 mm / cos 12 deg / 2, which the
+// formula gives as two different doubles.
+TEST(Search, RoundingLevelTiesRankByStageRatio) {
+  auto s = solveText(R"(gearbox G {
+  stage s: helical { pinion.z in 12..49; wheel.z in 51..88; normal_module = 2.5 mm; helix_angle = 12 deg; }
+  require s.pinion.z + s.wheel.z == 100;
+  minimize s.center_distance;
+  report { top 40; }
+})", "G");
+  ASSERT_EQ(s.result.designs.size(), 38u);
+  for (size_t i = 1; i < s.result.designs.size(); ++i)
+    EXPECT_LT(s.result.designs[i - 1].ratio, s.result.designs[i].ratio) << "rank " << i + 1;
+}
