@@ -809,7 +809,30 @@ private:
     if (m.report) g.report = report(*m.report, gs);
 
     if (!m.hasOperating) requireOperating(g);
+    requireMaterial(g, m);
     return g;
+  }
+
+  // A gear pair's mass needs its material's density: say so at check time, not as `n/a`.
+  void requireMaterial(const ir::Gearbox& g, const GearboxModel& m) {
+    std::set<std::pair<int, int>> reported;
+    auto visit = [&](const ir::Expr* e, const char* where) {
+      if (!e) return;
+      walk(*e, [&](const ir::Expr& x) {
+        if (x.op != Op::Quantity || !x.type.isNumber() || keyOf(lastPart(x.name)) != Q::Mass) return;
+        auto dot = x.name.find('.');
+        const StageModel* st = dot == std::string::npos ? nullptr : m.findStage(x.name.substr(0, dot));
+        if (!st || !st->kind || st->findAttr(std::string(keyName(Q::Material))) || x.name.find('.', dot + 1) != std::string::npos) return;
+        if (!reported.insert({x.span.line, x.span.col}).second) return;
+        diags_.error("E0233", x.span,
+                     fmt::format("`{}` needs the density of the stage's material, but stage `{}` names no `material` ({})", x.name,
+                                 st->name, where));
+      });
+    };
+    for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
+    for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
+    if (g.report)
+      for (const auto& c : g.report->columns) visit(c.get(), "reported");
   }
 
   void requireOperating(const ir::Gearbox& g) {

@@ -3,6 +3,8 @@
 #include <functional>
 #include <map>
 
+#include <fmt/format.h>
+
 #include "optimise/Optimise.h"
 #include "model/Evaluator.h"
 #include "units/Unit.h"
@@ -68,6 +70,8 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
         row.choices.emplace_back(m.freedoms[f].path, formatNumber(freedoms[ri][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
         row.choiceValues.push_back({freedoms[ri][f] / u.scale, u.name});
       }
+    row.choice = a.choice;
+    row.box = a.box;
     for (size_t s = 0; s < m.stages.size(); ++s) {
       const ir::Stage& st = *m.stages[s].ir;
       for (size_t g = 0; g < st.gears.size(); ++g) {
@@ -119,6 +123,51 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
 }
 
 } // namespace
+
+std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table, const Columns& columns) {
+  std::vector<std::string> errors;
+  if (table.rows.empty()) return errors;
+  // Needs scenes or a baseline: evaluated by the optimiser and the scene pass, not here.
+  std::function<bool(const ir::Expr&)> dynamic = [&](const ir::Expr& e) {
+    if (e.op == ir::Op::SceneOutput || e.op == ir::Op::Relative) return true;
+    for (const auto& a : e.args)
+      if (a && dynamic(*a)) return true;
+    return false;
+  };
+  Evaluator ev(m);
+  auto check = [&](const ir::Expr& e, const std::string& what) {
+    if (dynamic(e)) return;
+    for (const auto& row : table.rows) {
+      Assignment a(m);
+      a.choice = row.choice;
+      a.box = row.box;
+      if (ev.eval(e, a).isNumber()) continue;
+      // The first quantity inside that has no value says what is missing.
+      std::string missing;
+      std::function<void(const ir::Expr&)> find = [&](const ir::Expr& x) {
+        if (!missing.empty()) return;
+        if (x.op == ir::Op::Quantity && x.type.isNumber() && !ev.eval(x, a).isNumber()) missing = x.name;
+        for (const auto& y : x.args)
+          if (y) find(*y);
+      };
+      find(e);
+      std::string teeth;
+      for (const auto& [n, z] : row.teeth) teeth += fmt::format("{}{} = {}", teeth.empty() ? "" : ", ", n, z);
+      errors.push_back(fmt::format("{} `{}` has no value for design {} ({}){}", what, ir::print(e), row.rank, teeth,
+                                   missing.empty() ? std::string()
+                                                   : fmt::format(": `{}` cannot be computed; give it, or what it is computed from", missing)));
+      return;  // once per expression
+    }
+  };
+  for (const auto& o : m.gearbox.objectives)
+    if (o.expr) check(*o.expr, "objective");
+  for (const auto* c : columns.exprs) {
+    bool objective = false;
+    for (const auto& o : m.gearbox.objectives) objective = objective || o.expr.get() == c;
+    if (c && !objective) check(*c, "report column");
+  }
+  return errors;
+}
 
 Columns reportColumns(const ir::Gearbox& gb) {
   Columns c;

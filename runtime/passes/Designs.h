@@ -19,6 +19,11 @@ Columns reportColumns(const ir::Gearbox& gearbox);
 
 GearboxReport designTable(const Model& m, const Optimised& designs, const Columns& columns);
 
+// An objective or a report column with no value for a listed design ranks or reports
+// nothing: one message per such expression, naming the design and the quantity that
+// cannot be computed. Scene results (known for the best design only) are not checked.
+std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table, const Columns& columns);
+
 // What scenes, modifications and studies run on: the best design at its optimum freedoms.
 std::optional<Assignment> bestDesign(const Model& m, const Optimised& designs);
 

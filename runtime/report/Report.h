@@ -36,6 +36,9 @@ struct DesignRow {
     std::string unit;
   };
   std::vector<Value> choiceValues;  // the same, as numbers in their display unit
+  // The design as the search model has it, for passes that evaluate more of it.
+  std::vector<int> choice;
+  std::vector<std::pair<double, double>> box;
   Rational ratio;
   bool undecided = false;
   std::vector<Cell> cells;

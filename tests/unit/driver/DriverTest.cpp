@@ -234,3 +234,21 @@ TEST(Csv, NumbersInTheHeadersUnitIntervalsAsLoHi) {
   EXPECT_NE(first.find("tip_relief,yes,30"), std::string::npos) << first;
   fs::remove_all(d);
 }
+
+// An objective with no value for a design is a run-time error naming the design, not a
+// ranking on nothing.
+TEST(Solve, ObjectiveWithoutAValueFailsNamingTheDesign) {
+  fs::path d = tempDir("no-value");
+  write(d / "g.gbx", R"(gearbox G {
+  stage s1: spur { pinion.z in 20..21; wheel.z = 60; normal_module = 2 mm; face_width = 20 mm; }
+  operating { input_speed = 1000 rpm; input_torque = 100 N*m; }
+  minimize s1.pinion.bending_deflection;
+}
+)");
+  auto r = gbxc({"solve", (d / "g.gbx").string()});
+  EXPECT_EQ(r.status, 3);
+  EXPECT_NE(r.err.find("objective `s1.pinion.bending_deflection` has no value for design 1 (s1.pinion.z = 21, s1.wheel.z = 60)"),
+            std::string::npos)
+      << r.err;
+  fs::remove_all(d);
+}
