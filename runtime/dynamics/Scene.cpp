@@ -248,6 +248,17 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     r.failure = fmt::format("scene `{}`: {}", scene.name, failure);
     return r;
   }
+  // A linear mesh carries tension when the force changes sign: the teeth would separate,
+  // which only a contact law (backlash, Hertz contact) models.
+  if (!scene.findEffect(cat::Effect::Backlash) && !scene.findEffect(cat::Effect::HertzContact)) {
+    const auto& f = series(samples.signals, Signal::MeshForce);
+    auto [lo, hi] = std::minmax_element(f.begin(), f.end());
+    if (lo != f.end() && *lo < 0 && *hi > 0)
+      r.warnings.push_back(fmt::format(
+          "the mesh force changes sign (down to {:.4g} N against a static load of {:.4g} N): the teeth would separate, which this "
+          "linear mesh does not allow; list `backlash {{ clearance = …; }}` among the effects to model contact loss",
+          *lo, samples.staticLoad));
+  }
   // Outputs over the statistics window.
   size_t first = static_cast<size_t>(std::lower_bound(samples.t.begin(), samples.t.end(), tp.statsFrom - 1e-12) - samples.t.begin());
   auto window = [&](Signal sig) {

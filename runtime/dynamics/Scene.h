@@ -46,6 +46,7 @@ struct SceneResult {
   std::vector<SceneSeries> series;
   std::vector<std::string> model;  // how the model was built, parameter by parameter
   std::string failure;             // set when the run failed (exit 3)
+  std::vector<std::string> warnings;  // results to read with care (teeth that would separate)
   const SceneNumber* find(cat::SignalFn fn, cat::Signal signal) const;
   const SceneNumber* find(const std::string& key) const;  // by the report's key, for tests
 };

@@ -31,6 +31,7 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
   s.errorEstimate = r.errorEstimate;
   s.errorMethod = r.errorMethod;
   s.model = r.model;
+  s.warnings = r.warnings;
   for (const auto& n : r.numbers) {
     auto u = units::displayUnitFor(n.dim);
     s.outputs.push_back({n.key, u.name, n.value, n.value / u.scale});

@@ -113,6 +113,7 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
       for (const auto& out : sc.outputs)
         o += fmt::format("    {} = {}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit);
       if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative ({})\n", sc.errorEstimate, sc.errorMethod);
+      for (const auto& w : sc.warnings) o += "    warning: " + w + "\n";
       if (!sc.eigen)
         o += fmt::format("    cost: {} steps, {} rejected, {} RHS evaluations, {} Jacobians, {} events located\n", sc.steps, sc.rejected,
                        sc.rhs, sc.jacobians, sc.events);
@@ -234,7 +235,13 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
       }
       o += "}, \"model\": [";
       for (size_t i = 0; i < sc.model.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", jsonEscape(sc.model[i]));
-      o += "]}";
+      o += "]";
+      if (!sc.warnings.empty()) {
+        o += ", \"warnings\": [";
+        for (size_t i = 0; i < sc.warnings.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", jsonEscape(sc.warnings[i]));
+        o += "]";
+      }
+      o += "}";
     }
     o += g.scenes.empty() ? "}, " : "\n   }, ";
     o += "\"modifications\": {";
@@ -340,6 +347,7 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       std::vector<std::string> items;
       for (const auto& out : sc.outputs) items.push_back(fmt::format("{} = {}{}", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit));
       if (sc.errorEstimate >= 0) items.push_back(fmt::format("error estimate {:.2e} ({})", sc.errorEstimate, sc.errorMethod));
+      for (const auto& w : sc.warnings) items.push_back("warning: " + w);
       if (!sc.eigen)
         items.push_back(fmt::format("{} at rtol {:.0e}: {} steps, {} RHS evaluations", sc.method, sc.rtol, sc.steps, sc.rhs));
       for (const auto& m : sc.model) items.push_back(m);

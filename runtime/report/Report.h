@@ -76,6 +76,7 @@ struct SceneReport {
   };
   std::vector<Plot> plots;
   std::vector<std::string> model;
+  std::vector<std::string> warnings;
   std::vector<std::string> files;  // charts written, set by the render step
   std::string failure;
 };

@@ -513,3 +513,32 @@ TEST(Scenes, PeakToPeakIsTheSwingOfTheRecordedWindow) {
   EXPECT_GT(swing, 1.0);
   EXPECT_GT(r.find("peak_to_peak(acceleration)")->value, 0.0);
 }
+
+// A linear mesh whose force changes sign says the teeth would separate, and suggests
+// backlash; with backlash listed the contact law handles it and nothing is said.
+TEST(Scenes, LinearMeshWarnsWhenTheForceChangesSign) {
+  auto run = [](const std::string& extra) {
+    auto c = driver::compileText("neg.gbx", R"(gearbox G {
+    stage s: spur { pinion.z = 20; wheel.z = 60; normal_module = 2 mm; face_width = 20 mm; }
+    operating { input_speed = 13000 rpm; input_torque = 10 N*m; }
+    scene v on s {
+      effects { varying_stiffness { harmonics = 5; } damping { ratio = 0.02; } transmission_error { amplitude = 10 um; } )" + extra + R"( }
+      settle = 50 mesh_periods; record = 4 mesh_periods;
+      output min(mesh_force), dynamic_factor;
+    }
+  })");
+    EXPECT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+    const auto& g = c->program.gearboxes[0];
+    rt::Model m(c->program, g);
+    rt::Assignment a(m);
+    return runScene(m, a, g.scenes[0], {.estimateError = false});
+  };
+  auto linear = run("");
+  ASSERT_TRUE(linear.failure.empty()) << linear.failure;
+  EXPECT_LT(linear.find("min(mesh_force)")->value, 0.0);
+  ASSERT_EQ(linear.warnings.size(), 1u);
+  EXPECT_NE(linear.warnings[0].find("backlash"), std::string::npos);
+  auto contact = run("backlash { clearance = 0.1 mm; }");
+  ASSERT_TRUE(contact.failure.empty()) << contact.failure;
+  EXPECT_TRUE(contact.warnings.empty());
+}
