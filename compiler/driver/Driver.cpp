@@ -67,6 +67,35 @@ options:
 exit status: 0 success, 1 the spec has errors, 2 usage, 3 runtime failure
 )";
 
+const char* kSolveUsage = R"(usage: gbxc solve FILE [options]
+
+Solves every gearbox of the spec: the search, the optimiser, scenes, modifications and
+studies, then one report.
+
+options:
+  --format FORMAT          text (default), json, csv, md or html
+  --gearbox NAME           solve only this gearbox
+  -o DIR                   write the report, plots (SVG) and, for csv, one table per result into DIR
+  --jobs N                 worker threads (results do not depend on N)
+  --quiet                  no progress bar
+  --no-timings             leave CPU times out of reports
+
+exit status: 0 solved (an empty design list too), 1 the spec has errors, 2 usage,
+3 a runtime failure (a scene that fails, a value that cannot be computed)
+)";
+
+const char* kTestUsage = R"(usage: gbxc test PATH... [--update] [--timings]
+
+Golden regression tests: each x.gbx below PATH against x.expected beside it.
+
+options:
+  --update                 write the expected files (review them with a diff)
+  --timings                compare CPU times too (left out by default: they vary)
+
+A leading `// ARGS: check` runs another command; `// TOLERANCE: 1e-9` compares numbers
+within that relative tolerance.
+)";
+
 struct Options {
   std::string command;
   std::string sub;  // ast|ir for dump
@@ -185,7 +214,9 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     // The option's argument, consumed; nullptr when the line ends.
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
     if (a == "--help" || a == "-h") {
-      out << kUsage;
+      // After a command, that command's options.
+      bool solveHelp = !positional.empty() && positional[0] == "solve", testHelp = !positional.empty() && positional[0] == "test";
+      out << (solveHelp ? kSolveUsage : testHelp ? kTestUsage : kUsage);
       return 0;
     }
     if (a == "--version") {
@@ -239,6 +270,9 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   const rt::ReportFormat* format = rt::findReportFormat(o.format);
   if (!format || (o.command != "solve" && !format->diagnostics))
     return usage(err, fmt::format("unknown format `{}` for `{}`", o.format, o.command));
+  // A dump is the program as text; its diagnostics in JSON would make a file that is neither.
+  if (o.command == "dump" && format != &rt::reportFormats().front())
+    return usage(err, "`dump` prints text only; `check --format json` gives the diagnostics as JSON");
   if (o.command == "test") {
     if (o.files.empty()) return usage(err, "`test` needs at least one file or folder");
     return test(o, out, err);

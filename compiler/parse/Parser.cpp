@@ -1,6 +1,9 @@
 #include "parse/Parser.h"
 
+#include "diag/Suggest.h"
+
 #include <algorithm>
+#include <cctype>
 #include <set>
 
 #include <antlr4-runtime.h>
@@ -64,17 +67,20 @@ public:
     std::string got = "end of file";
     if (offending && offending->getType() != antlr4::Token::EOF) got = "`" + offending->getText() + "`";
     std::string expected;
-    bool wantsSemicolon = false;
+    bool wantsSemicolon = false, wantsStatement = false;
+    std::vector<std::string> keywords;  // the words that could stand here
     if (parser) {
       auto set = parser->getExpectedTokens();
       const auto& voc = parser->getVocabulary();
       std::vector<std::string> names;
-      bool wantsValue = false, wantsStatement = false;
+      bool wantsValue = false;
       for (auto t : set.toList()) {
         std::string sym = voc.getSymbolicName(t);
         if (sym == "NUMBER") wantsValue = true;
         if (sym == "STAGE" || sym == "REQUIRE") wantsStatement = true;
         if (voc.getLiteralName(t) == "';'") wantsSemicolon = true;
+        std::string lit = voc.getLiteralName(t);
+        if (lit.size() > 2 && std::isalpha(static_cast<unsigned char>(lit[1]))) keywords.push_back(lit.substr(1, lit.size() - 2));
         names.push_back(describeToken(voc, t));
       }
       std::sort(names.begin(), names.end());
@@ -100,6 +106,7 @@ public:
         return;
       }
     }
+    if (parser && offending && hint(*parser, *offending, span, keywords)) return;
     std::string text;
     if (msg.rfind("missing ", 0) == 0) {
       // "missing ';' at '}'": ANTLR inserted the token to recover.
@@ -113,6 +120,41 @@ public:
   }
 
 private:
+  // Mistakes a newcomer makes, said in their words: `=` in a rule, a misspelt keyword.
+  bool hint(antlr4::Parser& parser, antlr4::Token& offending, const Span& span, const std::vector<std::string>& keywords) {
+    // The statement's tokens before the offending one, back to its start (the stream may
+    // stand elsewhere after a failed prediction).
+    std::vector<antlr4::Token*> stmt;
+    auto* stream = parser.getTokenStream();
+    for (size_t i = offending.getTokenIndex(); i-- > 0 && stmt.size() < 256;) {
+      auto* t = stream->get(i);
+      if (t->getChannel() != antlr4::Token::DEFAULT_CHANNEL) continue;
+      std::string x = t->getText();
+      if (x == ";" || x == "{" || x == "}") break;
+      stmt.insert(stmt.begin(), t);
+    }
+    const auto& voc = parser.getVocabulary();
+    if (offending.getText() == "=" && !stmt.empty() && voc.getSymbolicName(stmt.front()->getType()) == "REQUIRE") {
+      diags_.error("E0102", span, "syntax error: a rule compares values: write `==`, not `=` (which sets a value)");
+      return true;
+    }
+    // A word where a statement starts, then something no statement has after a name: a
+    // keyword misspelt (`minimise`).
+    if (stmt.size() == 1 && voc.getSymbolicName(stmt[0]->getType()) == "ID" && voc.getSymbolicName(offending.getType()) == "ID") {
+      std::vector<std::string> words = keywords;
+      for (size_t t = 1; t <= voc.getMaxTokenType(); ++t) {
+        std::string lit = voc.getLiteralName(t);
+        if (lit.size() > 2 && std::isalpha(static_cast<unsigned char>(lit[1]))) words.push_back(lit.substr(1, lit.size() - 2));
+      }
+      std::string word = diag::closest(stmt[0]->getText(), words);
+      if (word.empty()) return false;
+      diags_.error("E0102", tokenSpan(file_, stmt[0]),
+                   fmt::format("syntax error: unknown statement `{}`; did you mean `{}`?", stmt[0]->getText(), word));
+      return true;
+    }
+    return false;
+  }
+
   int file_;
   diag::DiagnosticEngine& diags_;
   int cutoff_;
@@ -145,6 +187,41 @@ public:
   }
 
 private:
+  // Mistakes a newcomer makes, said in their words: `=` in a rule, a misspelt keyword.
+  bool hint(antlr4::Parser& parser, antlr4::Token& offending, const Span& span, const std::vector<std::string>& keywords) {
+    // The statement's tokens before the offending one, back to its start (the stream may
+    // stand elsewhere after a failed prediction).
+    std::vector<antlr4::Token*> stmt;
+    auto* stream = parser.getTokenStream();
+    for (size_t i = offending.getTokenIndex(); i-- > 0 && stmt.size() < 256;) {
+      auto* t = stream->get(i);
+      if (t->getChannel() != antlr4::Token::DEFAULT_CHANNEL) continue;
+      std::string x = t->getText();
+      if (x == ";" || x == "{" || x == "}") break;
+      stmt.insert(stmt.begin(), t);
+    }
+    const auto& voc = parser.getVocabulary();
+    if (offending.getText() == "=" && !stmt.empty() && voc.getSymbolicName(stmt.front()->getType()) == "REQUIRE") {
+      diags_.error("E0102", span, "syntax error: a rule compares values: write `==`, not `=` (which sets a value)");
+      return true;
+    }
+    // A word where a statement starts, then something no statement has after a name: a
+    // keyword misspelt (`minimise`).
+    if (stmt.size() == 1 && voc.getSymbolicName(stmt[0]->getType()) == "ID" && voc.getSymbolicName(offending.getType()) == "ID") {
+      std::vector<std::string> words = keywords;
+      for (size_t t = 1; t <= voc.getMaxTokenType(); ++t) {
+        std::string lit = voc.getLiteralName(t);
+        if (lit.size() > 2 && std::isalpha(static_cast<unsigned char>(lit[1]))) words.push_back(lit.substr(1, lit.size() - 2));
+      }
+      std::string word = diag::closest(stmt[0]->getText(), words);
+      if (word.empty()) return false;
+      diags_.error("E0102", tokenSpan(file_, stmt[0]),
+                   fmt::format("syntax error: unknown statement `{}`; did you mean `{}`?", stmt[0]->getText(), word));
+      return true;
+    }
+    return false;
+  }
+
   std::optional<ast::Stmt> topDecl(GbxParser::TopDeclContext* ctx) {
     ast::Stmt s;
     s.span = span(ctx);

@@ -10,14 +10,12 @@
 #include "catalogue/Settings.h"
 #include "catalogue/Signals.h"
 #include "catalogue/StageKinds.h"
+#include "diag/Suggest.h"
 
 namespace gbx::sema {
 
 using namespace gbx::cat;
-
-// Closest known name within two edits, for "did you mean" hints; "" when none.
-std::string closest(const std::string& name, const std::vector<std::string>& candidates);
-// "; did you mean `x`?" for a hint from `closest`, "" for none.
-std::string suggestion(const std::string& hint);
+using diag::closest;
+using diag::suggestion;
 
 } // namespace gbx::sema

@@ -215,9 +215,14 @@ private:
     }
     if (x->type.dim != spec.dim && !(spec.altDim && x->type.dim == *spec.altDim)) {
       std::string written = v && v->kind == ast::ExprKind::Number && v->unit ? v->unit->text : "";
+      // A bare number where a quantity with a unit belongs: show it with the usual unit.
+      std::string fix;
+      auto unit = units::displayUnitFor(spec.dim);
+      if (v && v->kind == ast::ExprKind::Number && !v->unit && x->type.dim.dimensionless() && !unit.name.empty())
+        fix = fmt::format("; write it with a unit, as `{} {}`", v->text, unit.name);
       diags_.error("E0302", x->span,
-                   fmt::format("unit mismatch: `{}` needs {}{}, got {}", name, spec.dim.describe(),
-                               spec.altDim ? " or " + spec.altDim->describe() : "", describe(x->type, written)));
+                   fmt::format("unit mismatch: `{}` needs {}{}, got {}{}", name, spec.dim.describe(),
+                               spec.altDim ? " or " + spec.altDim->describe() : "", describe(x->type, written), fix));
       return out;
     }
     out.meshPeriods = x->marker == ir::Marker::MeshPeriods;
@@ -597,6 +602,8 @@ private:
       diags_.error("E0211", where,
                    fmt::format("`{}` is not an attribute of a {} stage{}{}", path, st.kind->name, extra,
                                suggestion(hint)));
+      // The attribute it was meant to be is then not "missing": one error, not two.
+      if (!hint.empty()) misspelt_.insert({st.name, hint});
       a.role = ir::Attribute::Fixed;
       return a;
     }
@@ -692,11 +699,11 @@ private:
     for (const auto& [path, b] : st.attrs) out.attributes.push_back(attribute(st, path, b, s));
     Span where = st.decl ? nameOr(*st.decl) : Span{};
     for (const auto& a : st.kind->stage)
-      if (a.required && !st.findAttr(a.name))
+      if (a.required && !st.findAttr(a.name) && !misspelt_.count({st.name, a.name}))
         diags_.error("E0225", where, fmt::format("stage `{}` does not give `{}` ({})", st.name, a.name, a.meaning));
     for (const auto& g : st.kind->gears)
       for (const auto& a : st.kind->gear)
-        if (a.required && !st.findAttr(g + "." + a.name))
+        if (a.required && !st.findAttr(g + "." + a.name) && !misspelt_.count({st.name, g + "." + a.name}))
           diags_.error("E0225", where, fmt::format("stage `{}` does not give `{}.{}` ({})", st.name, g, a.name, a.meaning));
     return out;
   }
@@ -906,10 +913,14 @@ private:
     std::string target = st.path.str();
     const StageModel* stage = m.findStage(target);
     if (stage) out.target = target;
-    else if (target != m.name)
+    else if (target != m.name) {
+      std::vector<std::string> names;
+      for (const auto& x : m.stages) names.push_back(x.name);
+      std::string hint = closest(target, names);
       diags_.error("E0232", st.path.span,
-                   fmt::format("a scene runs on a stage of gearbox `{}` or on the gearbox itself (`on {}`); `{}` is neither",
-                               m.name, m.name, target));
+                   fmt::format("a scene runs on a stage of gearbox `{}` or on the gearbox itself (`on {}`); `{}` is neither{} (stages: {})",
+                               m.name, m.name, target, suggestion(hint), fmt::join(names, ", ")));
+    }
     if (!m.hasOperating)
       diags_.error("E0231", nameOr(st), fmt::format("{} needs an operating point, but gearbox `{}` has no `operating` block", owner, m.name));
     std::vector<std::pair<std::string, Binding>> items, acc;
@@ -1373,6 +1384,7 @@ private:
     return r;
   }
 
+  std::set<std::pair<std::string, std::string>> misspelt_;  // (stage, attribute) a reported misspelling meant
   diag::DiagnosticEngine& diags_;
   Globals globals_;
   ExprChecker checker_;

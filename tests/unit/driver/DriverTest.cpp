@@ -252,3 +252,14 @@ TEST(Solve, ObjectiveWithoutAValueFailsNamingTheDesign) {
       << r.err;
   fs::remove_all(d);
 }
+
+TEST(Cli, SolveHelpShowsSolveOptionsAndDumpRefusesJson) {
+  auto help = gbxc({"solve", "--help"});
+  EXPECT_EQ(help.status, 0);
+  EXPECT_EQ(help.out.rfind("usage: gbxc solve FILE", 0), 0u) << help.out;
+  EXPECT_NE(help.out.find("--format FORMAT"), std::string::npos);
+  auto dump = gbxc({"dump", "ir", "--format", "json", std::string(GBX_SOURCE_DIR) + "/specs/thruster_one_stage.gbx"});
+  EXPECT_EQ(dump.status, 2);
+  EXPECT_TRUE(dump.out.empty()) << "no half-JSON, half-text output";
+  EXPECT_NE(dump.err.find("`dump` prints text only"), std::string::npos) << dump.err;
+}

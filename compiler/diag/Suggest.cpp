@@ -1,8 +1,8 @@
-#include "sema/Catalogue.h"
+#include "diag/Suggest.h"
 
 #include <algorithm>
 
-namespace gbx::sema {
+namespace gbx::diag {
 
 std::string closest(const std::string& name, const std::vector<std::string>& candidates) {
   auto dist = [](const std::string& a, const std::string& b) {
@@ -30,4 +30,4 @@ std::string closest(const std::string& name, const std::vector<std::string>& can
 
 std::string suggestion(const std::string& hint) { return hint.empty() ? "" : "; did you mean `" + hint + "`?"; }
 
-} // namespace gbx::sema
+} // namespace gbx::diag
