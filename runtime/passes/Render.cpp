@@ -5,8 +5,10 @@ namespace gbx::rt::passes {
 Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, const RenderOptions& o) {
   Rendered r;
   // Charts first: the report names the files it is drawn beside.
-  if (o.charts) r.charts = drawCharts(reports);
-  r.report = format.render(reports, o);
+  if (o.charts || format.inlineCharts) r.charts = drawCharts(reports);
+  RenderOptions ro = o;
+  if (format.inlineCharts) ro.inlineCharts = &r.charts;
+  r.report = format.render(reports, ro);
   r.reportFile = "report." + std::string(format.extension);
   if (o.charts && format.tables) r.tables = format.tables(reports, o);
   return r;

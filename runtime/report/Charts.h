@@ -8,11 +8,6 @@
 
 namespace gbx::rt {
 
-struct ChartFile {
-  std::string name;  // relative to the output folder
-  std::string svg;
-};
-
 // Draws every chart of the reports and records each file's name with the part it shows.
 std::vector<ChartFile> drawCharts(std::vector<GearboxReport>& reports);
 

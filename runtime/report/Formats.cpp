@@ -11,7 +11,7 @@ const std::array<ReportFormat, 5> kFormats = {{
     {"json", "json", renderJson, true},
     {"csv", "csv", renderCsv, false, csvTables},
     {"md", "md", renderMarkdown, false},
-    {"html", "html", renderHtml, false},
+    {"html", "html", renderHtml, false, nullptr, true},
 }};
 
 } // namespace

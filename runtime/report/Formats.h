@@ -17,6 +17,7 @@ struct ReportFormat {
   bool diagnostics;            // check, dump and test print their diagnostics in it too
   // With -o DIR, further files beside the report (CSV: one table per kind of result).
   std::vector<TableFile> (*tables)(const std::vector<GearboxReport>&, const RenderOptions&) = nullptr;
+  bool inlineCharts = false;   // the charts go inside the report, with or without -o DIR
 };
 
 // The first row, text, is the default.

@@ -6,7 +6,7 @@
 
 namespace gbx::rt {
 
-std::vector<std::string> optimisationLines(const OptimisationSummary& s) {
+std::vector<std::string> optimisationLines(const OptimisationSummary& s, bool files) {
   std::vector<std::string> lines;
   lines.push_back(fmt::format("optimisation: {} candidates, {} with no feasible freedoms; {} objective evaluations (scenes at rtol {:.0e})",
                               s.candidates, s.infeasible, s.evaluations, s.sceneRtol));
@@ -31,7 +31,8 @@ std::vector<std::string> optimisationLines(const OptimisationSummary& s) {
     size_t step = std::max<size_t>(1, s.pareto.size() / 12);
     for (size_t i = 0; i < s.pareto.size(); i += step) lines.push_back(fmt::format("    {:.4f}  {:.4f}", s.pareto[i].first, s.pareto[i].second));
   }
-  for (const auto& f : s.files) lines.push_back("  wrote " + f);
+  if (files)
+    for (const auto& f : s.files) lines.push_back("  wrote " + f);
   return lines;
 }
 

@@ -7,7 +7,8 @@
 
 namespace gbx::rt {
 
-std::vector<std::string> optimisationLines(const OptimisationSummary& s);
+// `files`: name the chart files written beside the report.
+std::vector<std::string> optimisationLines(const OptimisationSummary& s, bool files = true);
 std::string optimisationTiming(const OptimisationSummary& s);
 std::string optimisationJson(const OptimisationSummary& s);
 

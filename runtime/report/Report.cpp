@@ -308,7 +308,12 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
     return html ? fmt::format("<h{}>{}</h{}>\n", level, esc(t), level) : std::string(static_cast<size_t>(level), '#') + " " + t + "\n\n";
   };
   auto para = [&](const std::string& t) { return html ? "<p>" + esc(t) + "</p>\n" : t + "\n\n"; };
-  auto image = [&](const std::string& f) { return html ? fmt::format("<p><img src=\"{}\" alt=\"{}\"></p>\n", f, f) : fmt::format("![{}]({})\n\n", f, f); };
+  auto image = [&](const std::string& f) {
+    if (html && ro.inlineCharts)
+      for (const auto& c : *ro.inlineCharts)
+        if (c.name == f) return fmt::format("<figure>\n{}</figure>\n", c.svg);
+    return html ? fmt::format("<p><img src=\"{}\" alt=\"{}\"></p>\n", f, f) : fmt::format("![{}]({})\n\n", f, f);
+  };
   auto list = [&](const std::vector<std::string>& items) {
     std::string o = html ? "<ul>\n" : "";
     for (const auto& i : items) o += html ? "<li>" + esc(i) + "</li>\n" : "- " + i + "\n";
@@ -330,13 +335,19 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
                                        : fmt::format("{}{}: {} of {} removed", x.scope.empty() ? "" : x.scope + ": ", x.rule, count(x.removed), count(x.before)));
       o += heading(3, "Elimination funnel") + list(f);
     }
-    if (g.optimisation) o += heading(3, "Optimisation") + list(optimisationLines(*g.optimisation));
+    if (g.optimisation) {
+      o += heading(3, "Optimisation") + list(optimisationLines(*g.optimisation, !(html && ro.inlineCharts)));
+      for (const auto& f : g.optimisation->files) o += image(f);
+    }
     for (const auto& md : g.modifications) {
       o += heading(3, "Modification of " + md.stage);
       std::vector<std::vector<std::string>> mr;
-      for (const auto& r : md.rows)
-        mr.push_back({r.target, !r.error.empty() ? "not computed" : r.present ? r.shown : "absent", r.text});
-      o += table({"target", "value", "rule"}, mr);
+      for (const auto& r : md.rows) {
+        std::string inputs;
+        for (const auto& in : r.inputs) inputs += (inputs.empty() ? "" : "; ") + in;
+        mr.push_back({r.target, !r.error.empty() ? "not computed: " + r.error : r.present ? r.shown : "absent", r.text, r.condition, inputs});
+      }
+      o += table({"target", "value", "rule", "when", "inputs"}, mr);
     }
     for (const auto& sc : g.scenes) {
       o += heading(3, "Scene " + sc.name);
@@ -350,6 +361,13 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       for (const auto& w : sc.warnings) items.push_back("warning: " + w);
       if (!sc.eigen)
         items.push_back(fmt::format("{} at rtol {:.0e}: {} steps, {} RHS evaluations", sc.method, sc.rtol, sc.steps, sc.rhs));
+      for (const auto& sp : sc.spectra) {
+        std::string peaks;
+        for (const auto& p : sp.peaks)
+          peaks += fmt::format("{}{:.2f} Hz{} {}{}", peaks.empty() ? "" : "; ", p.frequency, p.harmonic ? fmt::format(" ({}x mesh)", p.harmonic) : "",
+                               formatNumber(p.amplitude / sp.scale), sp.unit.empty() ? "" : " " + sp.unit);
+        items.push_back(sp.key + " peaks: " + peaks);
+      }
       for (const auto& m : sc.model) items.push_back(m);
       o += list(items);
       for (const auto& f : sc.files) o += image(f);

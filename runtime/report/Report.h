@@ -143,9 +143,16 @@ struct GearboxReport {
   std::optional<OptimisationSummary> optimisation;
 };
 
+struct ChartFile {
+  std::string name;  // relative to the output folder
+  std::string svg;
+};
+
 struct RenderOptions {
   bool timings = true;  // CPU times: off for golden files
   bool charts = false;  // SVG charts beside the report (an output folder is given)
+  // Charts to draw inside the report itself (HTML: one file that travels alone).
+  const std::vector<ChartFile>* inlineCharts = nullptr;
 };
 
 std::string formatNumber(double v);
