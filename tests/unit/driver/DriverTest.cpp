@@ -263,3 +263,29 @@ TEST(Cli, SolveHelpShowsSolveOptionsAndDumpRefusesJson) {
   EXPECT_TRUE(dump.out.empty()) << "no half-JSON, half-text output";
   EXPECT_NE(dump.err.find("`dump` prints text only"), std::string::npos) << dump.err;
 }
+
+// The HTML report travels alone: its plots are inline SVG, not links to files beside it,
+// and it carries what the text report has (spectrum peaks, model lines).
+TEST(Html, OneSelfContainedFile) {
+  fs::path d = tempDir("html");
+  write(d / "g.gbx", R"(gearbox G {
+  stage s: spur { pinion.z = 20; wheel.z = 60; normal_module = 2 mm; face_width = 20 mm; }
+  operating { input_speed = 1000 rpm; input_torque = 100 N*m; }
+  scene v on s {
+    effects { varying_stiffness { harmonics = 3; } damping { ratio = 0.05; } }
+    settle = 20 mesh_periods; record = 8 mesh_periods;
+    output rms(acceleration), spectrum(mesh_force), plot(acceleration);
+  }
+}
+)");
+  auto r = gbxc({"solve", "--format", "html", "--no-timings", (d / "g.gbx").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  size_t svgs = 0;
+  for (size_t at = r.out.find("<svg"); at != std::string::npos; at = r.out.find("<svg", at + 1)) ++svgs;
+  EXPECT_EQ(svgs, 2u);
+  EXPECT_EQ(r.out.find("<img"), std::string::npos);
+  EXPECT_NE(r.out.find("spectrum(mesh_force) peaks: "), std::string::npos);
+  EXPECT_NE(r.out.find("(1x mesh)"), std::string::npos);
+  EXPECT_EQ(r.out.find("wrote "), std::string::npos);
+  fs::remove_all(d);
+}
