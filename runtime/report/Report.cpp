@@ -1,5 +1,6 @@
 #include "report/Report.h"
 
+#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -287,7 +288,11 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       o += "</tr>\n";
       for (const auto& r : rows) {
         o += "<tr>";
-        for (const auto& c : r) o += "<td>" + esc(c) + "</td>";
+        // Numbers right-aligned, words (rules, inputs, targets) left.
+        for (const auto& c : r) {
+          bool number = !c.empty() && (std::isdigit(static_cast<unsigned char>(c[0])) || c[0] == '-' || c[0] == '[');
+          o += (number ? "<td>" : "<td class=\"t\">") + esc(c) + "</td>";
+        }
         o += "</tr>\n";
       }
       return o + "</table>\n";
@@ -320,7 +325,7 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
     return o + (html ? "</ul>\n" : "\n");
   };
   std::string o = html ? "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>gbxc report</title>"
-                         "<style>body{font-family:sans-serif}td,th{padding:2px 8px;text-align:right}</style></head><body>\n"
+                         "<style>body{font-family:sans-serif}td,th{padding:2px 8px;text-align:right}td.t{text-align:left}</style></head><body>\n"
                        : "";
   for (const auto& g : reports) {
     o += heading(2, g.name);

@@ -49,9 +49,13 @@ std::string renderSvg(const SvgChart& c) {
   if (!std::isfinite(x0)) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
   if (x1 == x0) x1 = x0 + 1;
   if (y1 == y0) y0 -= 0.5, y1 += 0.5;
+  // A linear y axis starts at zero unless the data sit far from it (a speed near its mean).
+  bool fromZero = false, toZero = false;
+  if (!c.logY && y0 > 0 && y0 <= y1 - y0) y0 = 0, fromZero = true;
+  if (!c.logY && y1 < 0 && -y1 <= y1 - y0) y1 = 0, toZero = true;
   double pad = 0.05 * (y1 - y0);
-  y0 -= pad;
-  y1 += pad;
+  if (!fromZero) y0 -= pad;
+  if (!toZero) y1 += pad;
   auto px = [&](double v) { return L + (tx(v) - x0) / (x1 - x0) * (W - L - R); };
   auto py = [&](double v) { return H - B - (ty(v) - y0) / (y1 - y0) * (H - T - B); };
   std::string o = fmt::format(
@@ -60,14 +64,21 @@ std::string renderSvg(const SvgChart& c) {
       W, H, W, H);
   o += fmt::format("<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n", W / 2, esc(c.title));
   o += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n", L, T, W - L - R, H - T - B);
-  // Ticks: six even ones on a linear axis, the decades on a logarithmic one.
+  // Ticks: round values in steps of 1, 2 or 5 times a power of ten on a linear axis (about
+  // five of them), the decades on a logarithmic one.
   auto ticks = [](double lo, double hi, bool log) {
     std::vector<double> t;
     if (log && hi - lo >= 1.0) {
       for (double d = std::ceil(lo); d <= hi + 1e-9; d += std::max(1.0, std::floor((hi - lo) / 6.0))) t.push_back(d);
-    } else {
-      for (int i = 0; i <= 5; ++i) t.push_back(lo + (hi - lo) * i / 5.0);
+      return t;
     }
+    double raw = (hi - lo) / 5.0, p = std::pow(10.0, std::floor(std::log10(raw))), step = 10 * p;
+    for (double m : {1.0, 2.0, 5.0})
+      if (m * p >= raw * 0.999) {
+        step = m * p;
+        break;
+      }
+    for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step) t.push_back(std::fabs(v) < 1e-12 * step ? 0.0 : v);
     return t;
   };
   for (double fx : ticks(x0, x1, c.logX)) {

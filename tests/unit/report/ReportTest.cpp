@@ -62,3 +62,15 @@ TEST(Progress, EndsAtOneHundredPercentWithANewline) {
   { rt::ProgressBar bar(c, "G"); }  // never drawn: prints nothing
   EXPECT_TRUE(c.str().empty());
 }
+
+// Axes carry round ticks (1, 2 or 5 times a power of ten), and an amplitude axis starts at zero.
+TEST(Svg, RoundTicksAndAnAxisFromZero) {
+  rt::SvgChart c;
+  c.title = "spectrum";
+  c.series.push_back({"amplitude", {280, 840, 1400, 2800}, {1050, 5562, 8824, 10}, false});
+  std::string svg = rt::renderSvg(c);
+  for (const char* label : {">0<", ">2000<", ">4000<", ">6000<", ">8000<", ">1000<"})
+    EXPECT_NE(svg.find(label), std::string::npos) << label << "\n" << svg;
+  EXPECT_EQ(svg.find("1504"), std::string::npos);
+  EXPECT_EQ(svg.find(">-"), std::string::npos) << "no negative tick on an axis of amplitudes";
+}
