@@ -2,6 +2,7 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "driver/Driver.h"
@@ -287,5 +288,66 @@ TEST(Html, OneSelfContainedFile) {
   EXPECT_NE(r.out.find("spectrum(mesh_force) peaks: "), std::string::npos);
   EXPECT_NE(r.out.find("(1x mesh)"), std::string::npos);
   EXPECT_EQ(r.out.find("wrote "), std::string::npos);
+  fs::remove_all(d);
+}
+
+// One spec in all five formats: every design-table number agrees (text, Markdown and HTML
+// show 4 decimals in the display unit, CSV the full value in that unit, JSON SI).
+TEST(Formats, AllFiveAgreeOnEveryNumber) {
+  fs::path d = tempDir("formats");
+  write(d / "g.gbx", R"(import materials;
+gearbox G {
+  stage s: helical { pinion.z in 18..20; wheel.z = 61; normal_module = 2.5 mm; helix_angle = 12 deg;
+                     face_width = 30 mm; material = steel_20CrMnMo; }
+  operating { input_speed = 1000 rpm; input_torque = 100 N*m; }
+  minimize s.mass;
+  report { columns s.center_distance, s.mass, s.eps_alpha; }
+}
+)");
+  auto run = [&](const char* f) {
+    auto r = gbxc({"solve", "--format", f, "--no-timings", (d / "g.gbx").string()});
+    EXPECT_EQ(r.status, 0) << f << ": " << r.err;
+    return r.out;
+  };
+  std::string text = run("text"), json = run("json"), csv = run("csv"), md = run("md"), html = run("html");
+  auto split = [](const std::string& s, char sep) {
+    std::vector<std::string> v;
+    std::string x;
+    std::istringstream in(s);
+    while (std::getline(in, x, sep)) v.push_back(x);
+    return v;
+  };
+  // CSV is the reference here: rows of (rank, teeth…, ratio, centre distance, mass, eps_alpha, exact ratio).
+  auto lines = split(csv, '\n');
+  ASSERT_EQ(lines.size(), 4u) << csv;
+  EXPECT_EQ(lines[0], "gearbox,rank,s.pinion.z,s.wheel.z,ratio,s.center_distance [mm],s.mass [kg],s.eps_alpha,ratio_exact");
+  std::vector<std::vector<double>> want;  // per design: centre distance mm, mass kg, eps_alpha
+  for (size_t i = 1; i < lines.size(); ++i) {
+    auto c = split(lines[i], ',');
+    want.push_back({std::stod(c[5]), std::stod(c[6]), std::stod(c[7])});
+  }
+  auto shown = [](double v) { return fmt::format("{:.4f}", v); };
+  // Text, Markdown and HTML: each design's row holds the same numbers, rounded.
+  for (const auto& w : want) {
+    for (double v : w) {
+      EXPECT_NE(text.find(shown(v)), std::string::npos) << shown(v) << " not in the text report";
+      EXPECT_NE(md.find("| " + shown(v) + " |"), std::string::npos) << shown(v) << " not in the Markdown report";
+      EXPECT_NE(html.find("<td>" + shown(v) + "</td>"), std::string::npos) << shown(v) << " not in the HTML report";
+    }
+  }
+  // JSON: SI, the centre distance in metres.
+  size_t at = 0;
+  for (const auto& w : want) {
+    at = json.find("\"values\": {", at);
+    ASSERT_NE(at, std::string::npos) << json;
+    auto value = [&](const std::string& key) {
+      size_t k = json.find("\"" + key + "\": ", at);
+      return std::stod(json.substr(k + key.size() + 4));
+    };
+    EXPECT_NEAR(value("s.center_distance") * 1e3, w[0], 1e-9 * w[0]);
+    EXPECT_NEAR(value("s.mass"), w[1], 1e-9 * w[1]);
+    EXPECT_NEAR(value("s.eps_alpha"), w[2], 1e-12);
+    ++at;
+  }
   fs::remove_all(d);
 }
