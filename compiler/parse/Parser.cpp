@@ -187,41 +187,6 @@ public:
   }
 
 private:
-  // Mistakes a newcomer makes, said in their words: `=` in a rule, a misspelt keyword.
-  bool hint(antlr4::Parser& parser, antlr4::Token& offending, const Span& span, const std::vector<std::string>& keywords) {
-    // The statement's tokens before the offending one, back to its start (the stream may
-    // stand elsewhere after a failed prediction).
-    std::vector<antlr4::Token*> stmt;
-    auto* stream = parser.getTokenStream();
-    for (size_t i = offending.getTokenIndex(); i-- > 0 && stmt.size() < 256;) {
-      auto* t = stream->get(i);
-      if (t->getChannel() != antlr4::Token::DEFAULT_CHANNEL) continue;
-      std::string x = t->getText();
-      if (x == ";" || x == "{" || x == "}") break;
-      stmt.insert(stmt.begin(), t);
-    }
-    const auto& voc = parser.getVocabulary();
-    if (offending.getText() == "=" && !stmt.empty() && voc.getSymbolicName(stmt.front()->getType()) == "REQUIRE") {
-      diags_.error("E0102", span, "syntax error: a rule compares values: write `==`, not `=` (which sets a value)");
-      return true;
-    }
-    // A word where a statement starts, then something no statement has after a name: a
-    // keyword misspelt (`minimise`).
-    if (stmt.size() == 1 && voc.getSymbolicName(stmt[0]->getType()) == "ID" && voc.getSymbolicName(offending.getType()) == "ID") {
-      std::vector<std::string> words = keywords;
-      for (size_t t = 1; t <= voc.getMaxTokenType(); ++t) {
-        std::string lit = voc.getLiteralName(t);
-        if (lit.size() > 2 && std::isalpha(static_cast<unsigned char>(lit[1]))) words.push_back(lit.substr(1, lit.size() - 2));
-      }
-      std::string word = diag::closest(stmt[0]->getText(), words);
-      if (word.empty()) return false;
-      diags_.error("E0102", tokenSpan(file_, stmt[0]),
-                   fmt::format("syntax error: unknown statement `{}`; did you mean `{}`?", stmt[0]->getText(), word));
-      return true;
-    }
-    return false;
-  }
-
   std::optional<ast::Stmt> topDecl(GbxParser::TopDeclContext* ctx) {
     ast::Stmt s;
     s.span = span(ctx);

@@ -68,6 +68,11 @@ private:
 
 // The rows every kind shares: speeds and torques along the train.
 std::vector<DerivedRow> trainRows();
+// The rows of a pinion driving a wheel (spur, helical, bevel): the ratio, the mesh
+// frequency, each gear's speed and torque; with the train's rows.
+std::vector<DerivedRow> pinionWheelRows();
+// Teeth passing per second: a member's speed over 2 pi times its tooth count.
+Value meshFrequency(const KindContext& c, Q speed, int gear);
 
 const StageKindImpl& stageKindImpl(ir::StageKind kind);
 const std::vector<const StageKindImpl*>& stageKindImpls();

@@ -21,6 +21,23 @@ std::vector<DerivedRow> trainRows() {
   };
 }
 
+Value meshFrequency(const KindContext& c, Q speed, int gear) {
+  return arith::mul(arith::mul(c.derived(speed), Value::number(1.0 / (2.0 * M_PI))), c.at(gear, Q::Z));
+}
+
+std::vector<DerivedRow> pinionWheelRows() {
+  constexpr int pinion = 0, wheel = 1;
+  auto r = trainRows();
+  std::vector<DerivedRow> own = {
+      {Q::Ratio, false, [](const KindContext& c, int) { return arith::div(c.at(wheel, Q::Z), c.at(pinion, Q::Z)); }},
+      {Q::MeshFrequency, false, [](const KindContext& c, int) { return meshFrequency(c, Q::InputSpeed, pinion); }},
+      {Q::Speed, true, [](const KindContext& c, int g) { return c.derived(g == pinion ? Q::InputSpeed : Q::OutputSpeed); }},
+      {Q::Torque, true, [](const KindContext& c, int g) { return c.derived(g == pinion ? Q::InputTorque : Q::OutputTorque); }},
+  };
+  r.insert(r.end(), own.begin(), own.end());
+  return r;
+}
+
 const std::vector<const StageKindImpl*>& stageKindImpls() {
   static const std::vector<const StageKindImpl*> all = {&kinds::spur(), &kinds::helical(), &kinds::bevel(), &kinds::planetary(),
                                                         &kinds::idler()};

@@ -17,21 +17,14 @@ using cat::gear::Wheel;
 double wheelCone(double z1, double z2, double shaft) { return std::atan2(std::sin(shaft), z1 / z2 + std::cos(shaft)); }
 
 std::vector<DerivedRow> rows() {
-  auto r = trainRows();
+  auto r = pinionWheelRows();
   std::vector<DerivedRow> own = {
-      {Q::Ratio, false, [](const KindContext& c, int) { return arith::div(c.at(Wheel, Q::Z), c.at(Pinion, Q::Z)); }},
-      {Q::MeshFrequency, false,
-       [](const KindContext& c, int) {
-         return arith::mul(arith::mul(c.derived(Q::InputSpeed), Value::number(1.0 / (2.0 * M_PI))), c.at(Pinion, Q::Z));
-       }},
       // mmn/b = (2 Re/b - 1) cos(beta_m) sin(delta2)/z2; at 90° sin(delta2)/z2 = 1/sqrt(z1² + z2²).
       {Q::MmnB, false,
        [](const KindContext& c, int) {
          return arith::corners({c.at(Pinion, Q::Z), c.at(Wheel, Q::Z), c.at(Q::SpiralAngle), c.at(Q::FaceRatio), c.at(Q::ShaftAngle)},
                                [](const V& x) { return (2.0 / x[3] - 1.0) * std::cos(x[2]) * std::sin(wheelCone(x[0], x[1], x[4])) / x[1]; });
        }},
-      {Q::Speed, true, [](const KindContext& c, int g) { return c.derived(g == Pinion ? Q::InputSpeed : Q::OutputSpeed); }},
-      {Q::Torque, true, [](const KindContext& c, int g) { return c.derived(g == Pinion ? Q::InputTorque : Q::OutputTorque); }},
       {Q::ConeAngle, true,
        [](const KindContext& c, int g) {
          bool p = g == Pinion;

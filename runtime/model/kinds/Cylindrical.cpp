@@ -27,13 +27,8 @@ struct Cyl {
   }
 
   static std::vector<DerivedRow> rows() {
-    auto r = trainRows();
+    auto r = pinionWheelRows();
     std::vector<DerivedRow> own = {
-        {Q::Ratio, false, [](const KindContext& c, int) { return arith::div(c.at(Wheel, Q::Z), c.at(Pinion, Q::Z)); }},
-        {Q::MeshFrequency, false,
-         [](const KindContext& c, int) {
-           return arith::mul(arith::mul(c.derived(Q::InputSpeed), Value::number(1.0 / (2.0 * M_PI))), c.at(Pinion, Q::Z));
-         }},
         {Q::CenterDistance, false,
          [](const KindContext& c, int) {
            return arith::corners(pair(c), [](const V& x) { return cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6]).a; });
@@ -98,10 +93,6 @@ struct Cyl {
            });
          }},
         // Gear-level quantities.
-        {Q::Speed, true,
-         [](const KindContext& c, int g) { return c.derived(g == Pinion ? Q::InputSpeed : Q::OutputSpeed); }},
-        {Q::Torque, true,
-         [](const KindContext& c, int g) { return c.derived(g == Pinion ? Q::InputTorque : Q::OutputTorque); }},
         {Q::D, true,
          [](const KindContext& c, int g) {
            return arith::corners({c.at(g, Q::Z), mn(c), beta(c)}, [](const V& x) { return x[0] * x[1] / std::cos(x[2]); });

@@ -17,10 +17,7 @@ std::vector<DerivedRow> rows() {
   auto r = trainRows();
   std::vector<DerivedRow> own = {
       {Q::Ratio, false, [](const KindContext& c, int) { return arith::div(c.at(Driven, Q::Z), c.at(Driver, Q::Z)); }},
-      {Q::MeshFrequency, false,
-       [](const KindContext& c, int) {
-         return arith::mul(arith::mul(c.derived(Q::InputSpeed), Value::number(1.0 / (2.0 * M_PI))), c.at(Driver, Q::Z));
-       }},
+      {Q::MeshFrequency, false, [](const KindContext& c, int) { return meshFrequency(c, Q::InputSpeed, Driver); }},
       {Q::CenterDistance, false,
        [](const KindContext& c, int) {
          Value half = Value::rational(Rational::make(1, 2));

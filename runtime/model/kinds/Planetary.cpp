@@ -21,10 +21,7 @@ std::vector<DerivedRow> rows() {
   std::vector<DerivedRow> own = {
       {Q::Ratio, false, [](const KindContext& c, int) { return arith::add(Value::rational(Rational(1)), arith::div(c.at(Ring, Q::Z), c.at(Sun, Q::Z))); }},
       // Ring fixed: each ring tooth meets a planet once per carrier turn.
-      {Q::MeshFrequency, false,
-       [](const KindContext& c, int) {
-         return arith::mul(arith::mul(c.derived(Q::OutputSpeed), Value::number(1.0 / (2.0 * M_PI))), c.at(Ring, Q::Z));
-       }},
+      {Q::MeshFrequency, false, [](const KindContext& c, int) { return meshFrequency(c, Q::OutputSpeed, Ring); }},
       {Q::CarrierSpeed, false, [](const KindContext& c, int) { return c.derived(Q::OutputSpeed); }},
       {Q::CenterDistance, false,
        [](const KindContext& c, int) { return arith::mul(arith::add(c.at(Sun, Q::Z), c.at(Planet, Q::Z)), arith::mul(c.at(Q::Module), half())); }},

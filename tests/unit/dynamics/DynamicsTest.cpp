@@ -514,6 +514,12 @@ TEST(Scenes, PeakToPeakIsTheSwingOfTheRecordedWindow) {
   EXPECT_GT(r.find("peak_to_peak(acceleration)")->value, 0.0);
 }
 
+SceneOverrides noEstimate() {
+  SceneOverrides o;
+  o.estimateError = false;
+  return o;
+}
+
 // A linear mesh whose force changes sign says the teeth would separate, and suggests
 // backlash; with backlash listed the contact law handles it and nothing is said.
 TEST(Scenes, LinearMeshWarnsWhenTheForceChangesSign) {
@@ -531,7 +537,7 @@ TEST(Scenes, LinearMeshWarnsWhenTheForceChangesSign) {
     const auto& g = c->program.gearboxes[0];
     rt::Model m(c->program, g);
     rt::Assignment a(m);
-    return runScene(m, a, g.scenes[0], {.estimateError = false});
+    return runScene(m, a, g.scenes[0], noEstimate());
   };
   auto linear = run("");
   ASSERT_TRUE(linear.failure.empty()) << linear.failure;

@@ -84,11 +84,15 @@ TEST(Registry, EveryStageKindComputesWhatItsCatalogueDerives) {
     EXPECT_EQ(impl.kind, k.kind);
     for (const auto& a : k.stage) {
       EXPECT_NE(a.key, cat::Q::None) << k.name << "." << a.name << " has no key";
-      if (a.role != cat::AttrRole::Input) EXPECT_NE(impl.stageFn(a.key), nullptr) << k.name << " stages do not compute `" << a.name << "`";
+      if (a.role != cat::AttrRole::Input) {
+        EXPECT_NE(impl.stageFn(a.key), nullptr) << k.name << " stages do not compute `" << a.name << "`";
+      }
     }
     for (const auto& a : k.gear) {
       EXPECT_NE(a.key, cat::Q::None) << k.name << " gear ." << a.name << " has no key";
-      if (a.role != cat::AttrRole::Input) EXPECT_NE(impl.gearFn(a.key), nullptr) << k.name << " gears do not compute `" << a.name << "`";
+      if (a.role != cat::AttrRole::Input) {
+        EXPECT_NE(impl.gearFn(a.key), nullptr) << k.name << " gears do not compute `" << a.name << "`";
+      }
     }
     // And nothing the runtime computes is missing from the catalogue (it could never be named).
     for (const auto& row : impl.rows) {
@@ -108,6 +112,13 @@ TEST(Registry, EverySettingRowHasAKey) {
 TEST(Registry, ReportFormatsAreDistinct) {
   std::set<std::string_view> names;
   for (const auto& f : rt::reportFormats()) EXPECT_TRUE(names.insert(f.name).second);
+}
+
+rt::dyn::SceneOverrides quickRun() {
+  rt::dyn::SceneOverrides o;
+  o.estimateError = false;
+  o.keepSeries = false;
+  return o;
 }
 
 // Run end to end: every gearbox and split quantity evaluates, every time signal is
@@ -155,7 +166,7 @@ TEST(Registry, EverySignalIsRecordedBySingleMeshAndPlanetaryScenes) {
   for (const auto& g : c->program.gearboxes) {
     rt::Model m(c->program, g);
     rt::Assignment a(m);
-    auto r = rt::dyn::runScene(m, a, g.scenes[0], {.estimateError = false, .keepSeries = false});
+    auto r = rt::dyn::runScene(m, a, g.scenes[0], quickRun());
     ASSERT_TRUE(r.failure.empty()) << r.failure;
     size_t n = 0;
     for (const auto& s : cat::sceneSignals()) {
