@@ -48,6 +48,7 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
     line.signal = ser.signal;
     line.unit = u.name;
     line.spectrum = ser.isSpectrum;
+    line.meshFrequency = r.meshFrequency;
     if (ser.isSpectrum) {
       double fmax = r.meshFrequency > 0 ? 10.5 * r.meshFrequency : INFINITY;
       for (size_t i = 0; i < ser.spectrum.frequency.size() && ser.spectrum.frequency[i] <= fmax; ++i) {

@@ -56,6 +56,11 @@ void sceneCharts(const std::string& gearbox, SceneReport& sc, std::vector<ChartF
     chart.xLabel = p.spectrum ? "frequency [Hz]" : "time [s]";
     chart.yLabel = withUnit(p.spectrum ? "amplitude" : p.signal, p.unit);
     chart.series.push_back({"", p.x, p.y});
+    // A spectrum reads by mesh orders: ticks at 1x, 2x, … the mesh frequency.
+    if (p.spectrum && p.meshFrequency > 0) {
+      chart.xLabel = fmt::format("frequency [Hz], ticks at mesh orders ({:.2f} Hz)", p.meshFrequency);
+      for (int k = 1; k <= 10; ++k) chart.xTicks.emplace_back(k * p.meshFrequency, fmt::format("{}x", k));
+    }
     add(out, sc.files, fileSafe(gearbox + "." + sc.name + "." + p.key) + ".svg", chart);
   }
 }

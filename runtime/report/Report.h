@@ -72,6 +72,7 @@ struct SceneReport {
   struct Plot {
     std::string key, signal, unit;
     bool spectrum = false;
+    double meshFrequency = 0;  // spectra: ticked at its orders, Hz
     std::vector<double> x, y;
   };
   std::vector<Plot> plots;

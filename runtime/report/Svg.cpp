@@ -81,10 +81,17 @@ std::string renderSvg(const SvgChart& c) {
     for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step) t.push_back(std::fabs(v) < 1e-12 * step ? 0.0 : v);
     return t;
   };
-  for (double fx : ticks(x0, x1, c.logX)) {
+  std::vector<std::pair<double, std::string>> xt;
+  if (!c.xTicks.empty() && !c.logX) {
+    for (const auto& [v, label] : c.xTicks)
+      if (v >= x0 - 1e-9 * (x1 - x0) && v <= x1 + 1e-9 * (x1 - x0)) xt.emplace_back(v, label);
+  }
+  if (xt.empty())
+    for (double fx : ticks(x0, x1, c.logX)) xt.emplace_back(fx, tick(c.logX ? std::pow(10.0, fx) : fx));
+  for (const auto& [fx, label] : xt) {
     double X = L + (fx - x0) / (x1 - x0) * (W - L - R);
     o += fmt::format("<line x1=\"{:.1f}\" y1=\"{}\" x2=\"{:.1f}\" y2=\"{}\" stroke=\"#ddd\"/>\n", X, T, X, H - B);
-    o += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", X, H - B + 16, tick(c.logX ? std::pow(10.0, fx) : fx));
+    o += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", X, H - B + 16, esc(label));
   }
   for (double fy : ticks(y0, y1, c.logY)) {
     double Y = H - B - (fy - y0) / (y1 - y0) * (H - T - B);

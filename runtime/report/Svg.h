@@ -16,6 +16,9 @@ struct SvgChart {
   std::string title, xLabel, yLabel;
   bool logX = false, logY = false;
   std::vector<SvgSeries> series;
+  // Ticks of the x axis at these values with these labels (a spectrum's mesh orders);
+  // empty: round values.
+  std::vector<std::pair<double, std::string>> xTicks;
 };
 
 std::string renderSvg(const SvgChart& chart);

@@ -74,3 +74,14 @@ TEST(Svg, RoundTicksAndAnAxisFromZero) {
   EXPECT_EQ(svg.find("1504"), std::string::npos);
   EXPECT_EQ(svg.find(">-"), std::string::npos) << "no negative tick on an axis of amplitudes";
 }
+
+TEST(Svg, SpectrumTicksAtMeshOrders) {
+  rt::SvgChart c;
+  c.series.push_back({"", {280, 560, 840, 1400, 2800}, {1000, 1200, 5562, 8824, 10}, false});
+  for (int k = 1; k <= 10; ++k) c.xTicks.emplace_back(280.0 * k, std::to_string(k) + "x");
+  c.xTicks.emplace_back(280.0 * 20, "20x");  // outside the data: not drawn
+  std::string svg = rt::renderSvg(c);
+  for (const char* label : {">1x<", ">3x<", ">5x<", ">10x<"}) EXPECT_NE(svg.find(label), std::string::npos) << label;
+  EXPECT_EQ(svg.find(">20x<"), std::string::npos);
+  EXPECT_EQ(svg.find(">1000<"), std::string::npos) << "no round-value ticks beside the orders";
+}
