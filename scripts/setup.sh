@@ -17,8 +17,9 @@ fi
 
 # uuid-dev: the ANTLR runtime's CMake target links -luuid, and libantlr4-runtime-dev does
 # not depend on it.
+# chromium: the tests render every example's HTML report in a real (headless) browser.
 packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
-          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev)
+          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium)
 missing=()
 for p in "${packages[@]}"; do
   # Installed, not merely known to dpkg (a removed package keeps its config-files state).
