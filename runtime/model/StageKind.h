@@ -71,6 +71,9 @@ std::vector<DerivedRow> trainRows();
 // The rows of a pinion driving a wheel (spur, helical, bevel): the ratio, the mesh
 // frequency, each gear's speed and torque; with the train's rows.
 std::vector<DerivedRow> pinionWheelRows();
+// The rows of gears cut to one plain `module` (planetary, idler): each gear's reference
+// diameter z m and base radius; with the train's rows.
+std::vector<DerivedRow> moduleGearRows();
 // Teeth passing per second: a member's speed over 2 pi times its tooth count.
 Value meshFrequency(const KindContext& c, Q speed, int gear);
 

@@ -38,6 +38,16 @@ std::vector<DerivedRow> pinionWheelRows() {
   return r;
 }
 
+std::vector<DerivedRow> moduleGearRows() {
+  auto r = trainRows();
+  r.push_back({Q::D, true, [](const KindContext& c, int g) { return arith::mul(c.at(g, Q::Z), c.at(Q::Module)); }});
+  r.push_back({Q::BaseRadius, true, [](const KindContext& c, int g) {
+                 return arith::corners({c.derived(g, Q::D), c.at(Q::PressureAngle)},
+                                       [](const std::vector<double>& x) { return 0.5 * x[0] * std::cos(x[1]); });
+               }});
+  return r;
+}
+
 const std::vector<const StageKindImpl*>& stageKindImpls() {
   static const std::vector<const StageKindImpl*> all = {&kinds::spur(), &kinds::helical(), &kinds::bevel(), &kinds::planetary(),
                                                         &kinds::idler()};

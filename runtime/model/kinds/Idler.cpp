@@ -14,7 +14,7 @@ using cat::gear::Driver;
 using cat::gear::Idler;
 
 std::vector<DerivedRow> rows() {
-  auto r = trainRows();
+  auto r = moduleGearRows();
   std::vector<DerivedRow> own = {
       {Q::Ratio, false, [](const KindContext& c, int) { return arith::div(c.at(Driven, Q::Z), c.at(Driver, Q::Z)); }},
       {Q::MeshFrequency, false, [](const KindContext& c, int) { return meshFrequency(c, Q::InputSpeed, Driver); }},
@@ -23,11 +23,6 @@ std::vector<DerivedRow> rows() {
          Value half = Value::rational(Rational::make(1, 2));
          Value teeth = arith::add(arith::add(arith::mul(c.at(Driver, Q::Z), half), c.at(Idler, Q::Z)), arith::mul(c.at(Driven, Q::Z), half));
          return arith::mul(teeth, c.at(Q::Module));
-       }},
-      {Q::D, true, [](const KindContext& c, int g) { return arith::mul(c.at(g, Q::Z), c.at(Q::Module)); }},
-      {Q::BaseRadius, true,
-       [](const KindContext& c, int g) {
-         return arith::corners({c.derived(g, Q::D), c.at(Q::PressureAngle)}, [](const std::vector<double>& x) { return 0.5 * x[0] * std::cos(x[1]); });
        }},
       {Q::Speed, true,
        [](const KindContext& c, int g) {

@@ -17,7 +17,7 @@ Value half() { return Value::rational(Rational::make(1, 2)); }
 Truth truth(bool b) { return b ? Truth::True : Truth::False; }
 
 std::vector<DerivedRow> rows() {
-  auto r = trainRows();
+  auto r = moduleGearRows();
   std::vector<DerivedRow> own = {
       {Q::Ratio, false, [](const KindContext& c, int) { return arith::add(Value::rational(Rational(1)), arith::div(c.at(Ring, Q::Z), c.at(Sun, Q::Z))); }},
       // Ring fixed: each ring tooth meets a planet once per carrier turn.
@@ -25,11 +25,6 @@ std::vector<DerivedRow> rows() {
       {Q::CarrierSpeed, false, [](const KindContext& c, int) { return c.derived(Q::OutputSpeed); }},
       {Q::CenterDistance, false,
        [](const KindContext& c, int) { return arith::mul(arith::add(c.at(Sun, Q::Z), c.at(Planet, Q::Z)), arith::mul(c.at(Q::Module), half())); }},
-      {Q::D, true, [](const KindContext& c, int g) { return arith::mul(c.at(g, Q::Z), c.at(Q::Module)); }},
-      {Q::BaseRadius, true,
-       [](const KindContext& c, int g) {
-         return arith::corners({c.derived(g, Q::D), c.at(Q::PressureAngle)}, [](const std::vector<double>& x) { return 0.5 * x[0] * std::cos(x[1]); });
-       }},
       // Absolute speeds: the sun drives, the ring stands, a planet turns at
       // w_c (1 - z_r / z_p) about its own axis.
       {Q::Speed, true,
