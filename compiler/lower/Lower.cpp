@@ -128,16 +128,16 @@ public:
     }
   }
 
+  // `g` is the gearbox this resolver reads (`g_`), taken here to be written.
   void gearbox(ir::Gearbox& g) {
-    ir::Gearbox& g_ = g;
-    for (auto& st : g_.stages)
+    for (auto& st : g.stages)
       for (auto& a : st.attributes) expr(a.value);
-    for (auto& l : g_.lets) expr(l.expr);
-    for (auto& r : g_.rules) expr(r.expr);
-    for (auto& o : g_.objectives) expr(o.expr);
-    settings(g_.operating, cat::operatingSettings());
-    for (auto& sc : g_.scenes) {
-      sc.stage = g_.stageIndex(sc.target);
+    for (auto& l : g.lets) expr(l.expr);
+    for (auto& r : g.rules) expr(r.expr);
+    for (auto& o : g.objectives) expr(o.expr);
+    settings(g.operating, cat::operatingSettings());
+    for (auto& sc : g.scenes) {
+      sc.stage = g.stageIndex(sc.target);
       settings(sc.settings, cat::sceneSettings());
       settings(sc.accuracy, cat::accuracySettings());
       for (auto& fx : sc.effects)
@@ -151,27 +151,27 @@ public:
         if (const auto* s = cat::findSignal(o.signal)) o.id = s->id;
       }
     }
-    for (auto& md : g_.modifies) {
-      md.stageIndex = g_.stageIndex(md.stage);
+    for (auto& md : g.modifies) {
+      md.stageIndex = g.stageIndex(md.stage);
       for (auto& r : md.rules) {
         expr(r.value);
         expr(r.when);
       }
     }
-    for (auto& sp : g_.splits) settings(sp.settings, cat::splitSettings());
-    for (auto& st : g_.studies) {
+    for (auto& sp : g.splits) settings(sp.settings, cat::splitSettings());
+    for (auto& st : g.studies) {
       if (st.kind == ir::Study::Sweep) st.swept = quantity(st.target);
-      for (size_t i = 0; i < g_.scenes.size(); ++i)
-        if (g_.scenes[i].name == st.target) st.scene = static_cast<int>(i);
+      for (size_t i = 0; i < g.scenes.size(); ++i)
+        if (g.scenes[i].name == st.target) st.scene = static_cast<int>(i);
       for (auto& o : st.outputs) expr(o);
       settings(st.settings, cat::workPrecisionSettings());
     }
-    if (g_.report) {
-      expr(g_.report->sortBy);
-      g_.report->ratioColumn.clear();
-      for (auto& c : g_.report->columns) {
+    if (g.report) {
+      expr(g.report->sortBy);
+      g.report->ratioColumn.clear();
+      for (auto& c : g.report->columns) {
         expr(c);
-        g_.report->ratioColumn.push_back(c && c->op == ir::Op::Quantity && c->ref.owner == QuantityRef::Gearbox && c->ref.key == Q::Ratio);
+        g.report->ratioColumn.push_back(c && c->op == ir::Op::Quantity && c->ref.owner == QuantityRef::Gearbox && c->ref.key == Q::Ratio);
       }
     }
   }
