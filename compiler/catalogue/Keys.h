@@ -105,7 +105,63 @@ namespace gbx::cat {
   X(Displacement, "displacement")                                                                      \
   X(Imbalance, "imbalance")                                                                            \
   X(BranchTorque, "branch_torque")                                                                     \
-  X(PreloadDisplacement, "preload_displacement")
+  X(PreloadDisplacement, "preload_displacement")                                                \
+  X(TipDiameter, "tip_diameter")                                                                \
+  X(ProfileFormDeviation, "profile_form_deviation")                                             \
+  X(HelixSlopeDeviation, "helix_slope_deviation")                                               \
+  X(BoreDiameter, "bore_diameter")                                                              \
+  X(WebThickness, "web_thickness")                                                              \
+  X(RimThickness, "rim_thickness")                                                              \
+  X(RatingApplicationFactor, "rating.application_factor")                                       \
+  X(RatingLife, "rating.life")                                                                  \
+  X(RatingLifeCurve, "rating.life_curve")                                                       \
+  X(RatingViscosity40, "rating.lubricant.viscosity_40")                                         \
+  X(RatingRoughnessFlank, "rating.roughness.flank")                                             \
+  X(RatingRoughnessRoot, "rating.roughness.root")                                               \
+  X(RatingRoughnessFlankRz, "rating.roughness.flank_rz")                                        \
+  X(RatingRoughnessRootRz, "rating.roughness.root_rz")                                          \
+  X(RatingRackAddendum, "rating.basic_rack.addendum")                                           \
+  X(RatingRackDedendum, "rating.basic_rack.dedendum")                                           \
+  X(RatingRackRootRadius, "rating.basic_rack.root_radius")                                      \
+  X(RatingFaceLoadFactor, "rating.face_load_factor")                                            \
+  X(RatingDynamicFactor, "rating.dynamic_factor")                                               \
+  X(RatingTransverseLoadFactor, "rating.transverse_load_factor")                                \
+  X(RatingMeshLoadFactor, "rating.mesh_load_factor")                                            \
+  X(RatingMeshMisalignment, "rating.mesh_misalignment")                                         \
+  X(RatingMinContact, "rating.min_safety.contact")                                              \
+  X(RatingMinBending, "rating.min_safety.bending")                                              \
+  X(Treatment, "treatment")                                                                     \
+  X(ContactSafety, "contact_safety")                                                            \
+  X(BendingSafety, "bending_safety")                                                            \
+  X(ContactStress, "contact_stress")                                                            \
+  X(BendingStress, "bending_stress")                                                            \
+  X(PermissibleContactStress, "permissible_contact_stress")                                     \
+  X(PermissibleBendingStress, "permissible_bending_stress")                                     \
+  X(KV, "K_v")                                                                                  \
+  X(KHbeta, "K_Hbeta")                                                                          \
+  X(KFbeta, "K_Fbeta")                                                                          \
+  X(KHalpha, "K_Halpha")                                                                        \
+  X(KFalpha, "K_Falpha")                                                                        \
+  X(ZH, "Z_H")                                                                                  \
+  X(ZE, "Z_E")                                                                                  \
+  X(Zeps, "Z_eps")                                                                              \
+  X(Zbeta, "Z_beta")                                                                            \
+  X(ZNT, "Z_NT")                                                                                \
+  X(ZL, "Z_L")                                                                                  \
+  X(Zv, "Z_v")                                                                                  \
+  X(ZR, "Z_R")                                                                                  \
+  X(ZW, "Z_W")                                                                                  \
+  X(ZX, "Z_X")                                                                                  \
+  X(ZB, "Z_B")                                                                                  \
+  X(ZD, "Z_D")                                                                                  \
+  X(YF, "Y_F")                                                                                  \
+  X(YS, "Y_S")                                                                                  \
+  X(Ybeta, "Y_beta")                                                                            \
+  X(YNT, "Y_NT")                                                                                \
+  X(YdeltarelT, "Y_deltarelT")                                                                  \
+  X(YRrelT, "Y_RrelT")                                                                          \
+  X(YX, "Y_X")                                                                                  \
+  X(YM, "Y_M")
 
 enum class Q : std::uint8_t {
 #define GBX_KEY_ENUM(id, name) id,

@@ -39,6 +39,8 @@ const std::vector<AttrSpec>& materialProperties() {
       pos("sigma_hlim", pressure, "ISO 6336-5 allowable contact stress number"),
       pos("sigma_flim", pressure, "ISO 6336-5 nominal bending stress number"),
       pos("hardness", none, "surface hardness (HRC or HV, as the material states)"),
+      symbol("treatment", {"case_hardened", "nitrided", "through_hardened"},
+             "heat treatment: selects the ISO 6336 life curves, running-in, notch sensitivity and size factors"),
   };
   return q;
 }
@@ -160,8 +162,13 @@ bool dependsOnOperatingPoint(Q key) {
   case Q::Twist:
   case Q::Displacement:
   case Q::Imbalance: return true;
-  default: return false;
+  default: return isRatingQuantity(key);
   }
+}
+
+bool isRatingQuantity(Q key) {
+  auto k = static_cast<int>(key);
+  return k >= static_cast<int>(Q::ContactSafety) && k <= static_cast<int>(Q::YM);
 }
 
 } // namespace gbx::cat

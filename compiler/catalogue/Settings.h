@@ -31,6 +31,23 @@ const std::vector<BuiltinSpec>& modifyBuiltins();
 // and what follows from them).
 bool dependsOnOperatingPoint(Q key);
 
+// The results of a load-capacity rating: safeties, stresses and influence factors.
+bool isRatingQuantity(Q key);
+
+// Modification targets by their position in modificationTargets().
+enum class Mod : int {
+  TipRelief, TipReliefHeight, RootRelief, RootReliefHeight, ProfileCrowning,
+  LeadCrowning, ThermalLeadRelief, EndRelief, EndReliefWidth, HelixSlope,
+};
+
+// Heat treatments of a material and the rating's life curves, by their words' positions.
+namespace treatment {
+inline constexpr int CaseHardened = 0, Nitrided = 1, ThroughHardened = 2;
+}
+namespace lifeCurve {
+inline constexpr int Normal = 0, Optimum = 1;
+}
+
 // Install choices of a split, by their position in the `install` row's words.
 namespace install {
 inline constexpr int Free = 0, Preloaded = 1;

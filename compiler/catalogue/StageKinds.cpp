@@ -54,6 +54,73 @@ std::vector<AttrSpec> plainGearAttrs() {
   return g;
 }
 
+// The `rating { … }` block (LANGUAGE.md §11): ISO 6336 inputs of the stage's meshes.
+// Absent values take the defaults their meaning names, applied by the rating itself.
+std::vector<AttrSpec> ratingInputs() {
+  const Dim viscosity{2, 0, -1, 0};
+  return {
+      pos("rating.application_factor", none, "application factor K_A (default 1.0)"),
+      pos("rating.life", time, "required service life"),
+      symbol("rating.life_curve", {"normal", "optimum"}, "life-factor curves beyond the endurance knee (default normal: Z_NT, Y_NT >= 0.85)"),
+      pos("rating.lubricant.viscosity_40", viscosity, "lubricant kinematic viscosity at 40 degC"),
+      pos("rating.roughness.flank", length, "flank arithmetic mean roughness Ra"),
+      pos("rating.roughness.root", length, "root arithmetic mean roughness Ra"),
+      pos("rating.roughness.flank_rz", length, "flank mean peak-to-valley roughness Rz (default 6 Ra)"),
+      pos("rating.roughness.root_rz", length, "root mean peak-to-valley roughness Rz (default 6 Ra)"),
+      pos("rating.basic_rack.addendum", none, "basic rack addendum h_aP* (default 1.0)"),
+      pos("rating.basic_rack.dedendum", none, "basic rack dedendum h_fP* (default 1.25)"),
+      pos("rating.basic_rack.root_radius", none, "basic rack root radius rho_fP* (default 0.38)"),
+      pos("rating.face_load_factor", none, "face load factor K_Hbeta, given (computed when absent)"),
+      pos("rating.dynamic_factor", none, "dynamic factor K_v, given (method B when absent)"),
+      pos("rating.transverse_load_factor", none, "transverse load factor K_Halpha, given (method B when absent)"),
+      pos("rating.mesh_load_factor", none, "mesh load factor K_gamma of multi-path drives (default 1.0)"),
+      in("rating.mesh_misalignment", length, "mesh misalignment from manufacture f_ma (default the helix slope tolerance f_Hbeta)"),
+      pos("rating.min_safety.contact", none, "minimum contact safety S_Hmin (default 1.0)"),
+      pos("rating.min_safety.bending", none, "minimum bending safety S_Fmin (default 1.0)"),
+  };
+}
+
+std::vector<AttrSpec> ratingStageQuantities() {
+  return {
+      derived("K_v", none, "dynamic factor (ISO 6336-1 method B)"),
+      derived("K_Hbeta", none, "face load factor for contact stress"),
+      derived("K_Fbeta", none, "face load factor for tooth root stress"),
+      derived("K_Halpha", none, "transverse load factor for contact stress"),
+      derived("K_Falpha", none, "transverse load factor for tooth root stress"),
+      derived("Z_H", none, "zone factor"),
+      derived("Z_E", none, "elasticity factor, as a number in sqrt(N/mm^2) (a unit the dimension system has no half powers for)"),
+      derived("Z_eps", none, "contact ratio factor"),
+      derived("Z_beta", none, "helix angle factor (Corrigendum 1: 1/sqrt(cos beta))"),
+  };
+}
+
+std::vector<AttrSpec> ratingGearQuantities() {
+  return {
+      derived("contact_safety", none, "safety factor for contact stress S_H"),
+      derived("bending_safety", none, "safety factor for bending stress S_F"),
+      derived("contact_stress", pressure, "contact stress sigma_H"),
+      derived("bending_stress", pressure, "tooth root stress sigma_F"),
+      derived("permissible_contact_stress", pressure, "permissible contact stress sigma_HP"),
+      derived("permissible_bending_stress", pressure, "permissible bending stress sigma_FP"),
+      derived("Z_NT", none, "life factor for contact stress"),
+      derived("Z_L", none, "lubricant factor"),
+      derived("Z_v", none, "velocity factor"),
+      derived("Z_R", none, "roughness factor for contact stress"),
+      derived("Z_W", none, "work hardening factor"),
+      derived("Z_X", none, "size factor for contact stress"),
+      derived("Z_B", none, "single pair tooth contact factor (Z_B of the pinion, Z_D of the wheel)"),
+      derived("Z_D", none, "single pair tooth contact factor (Z_B of the pinion, Z_D of the wheel)"),
+      derived("Y_F", none, "tooth form factor (method B)"),
+      derived("Y_S", none, "stress correction factor (method B)"),
+      derived("Y_beta", none, "helix angle factor for bending"),
+      derived("Y_NT", none, "life factor for tooth root stress"),
+      derived("Y_deltarelT", none, "relative notch sensitivity factor"),
+      derived("Y_RrelT", none, "relative surface factor"),
+      derived("Y_X", none, "size factor for tooth root stress"),
+      derived("Y_M", none, "mean stress factor (0.7 for a gear loaded on both flanks)"),
+  };
+}
+
 std::vector<KindSpec> buildKinds() {
   std::vector<KindSpec> k;
   auto cylStage = [](bool helical) {
@@ -79,10 +146,23 @@ std::vector<KindSpec> buildKinds() {
     a[3].role = AttrRole::Either;
     if (helical) a.insert(a.begin() + 1, required(in("helix_angle", angle, "helix angle at the reference circle")));
     for (auto& d : commonDerived()) a.push_back(d);
+    for (auto& r : ratingInputs()) a.push_back(r);
+    for (auto& r : ratingStageQuantities()) a.push_back(r);
     return a;
   };
-  k.push_back({ir::StageKind::Spur, "spur", {"pinion", "wheel"}, cylStage(false), cylindricalGearAttrs()});
-  k.push_back({ir::StageKind::Helical, "helical", {"pinion", "wheel"}, cylStage(true), cylindricalGearAttrs()});
+  auto cylGear = [] {
+    auto g = cylindricalGearAttrs();
+    g.push_back(pos("tip_diameter", length, "tip diameter, given (else from the basic rack, the shift and the tip alteration)"));
+    g.push_back(pos("profile_form_deviation", length, "profile form deviation f_f_alpha (else ISO 1328-1 from the grade)"));
+    g.push_back(pos("helix_slope_deviation", length, "helix slope deviation f_H_beta (else ISO 1328-1 from the grade)"));
+    g.push_back(pos("bore_diameter", length, "inner diameter of the gear blank (0: solid; for the reduced mass of K_v)"));
+    g.push_back(pos("web_thickness", length, "web thickness b_s of a webbed gear blank (for C_R; solid when absent)"));
+    g.push_back(pos("rim_thickness", length, "rim thickness s_R of a webbed gear blank (for C_R)"));
+    for (auto& r : ratingGearQuantities()) g.push_back(r);
+    return g;
+  };
+  k.push_back({ir::StageKind::Spur, "spur", {"pinion", "wheel"}, cylStage(false), cylGear()});
+  k.push_back({ir::StageKind::Helical, "helical", {"pinion", "wheel"}, cylStage(true), cylGear()});
 
   {
     std::vector<AttrSpec> a = {
@@ -172,7 +252,11 @@ const AttrSpec* findAttr(const KindSpec& k, const std::string& path) {
       if (a.name == path) return &a;
     return nullptr;
   }
-  if (!isGear(k, path.substr(0, dot))) return nullptr;
+  if (!isGear(k, path.substr(0, dot))) {
+    for (const auto& a : k.stage)  // a block's setting: `rating.life`
+      if (a.name == path) return &a;
+    return nullptr;
+  }
   std::string rest = path.substr(dot + 1);
   for (const auto& a : k.gear)
     if (a.name == rest) return &a;

@@ -123,6 +123,7 @@ struct Attribute {
   std::string origin;          // where the binding came from: "stage", "preset klingelnberg", "like upper", "gearbox Name"
   Span span;
   std::string symbol;          // material or other named value
+  int choice = -1;             // resolved by lowering: an enumerated value's position in its row's words
 };
 
 struct Rule {
@@ -210,6 +211,8 @@ struct Scene {
 
 struct ModRule {
   std::string target;  // "tip_relief", "pinion.lead_crowning"
+  int gear = -1;       // resolved by lowering: the gear it is for, -1 both
+  int modTarget = -1;  // resolved by lowering: the target's position in cat::modificationTargets()
   ExprPtr value;
   ExprPtr when;
   std::string text;

@@ -45,7 +45,12 @@ void lowerStage(ir::Stage& st) {
   for (auto& a : st.attributes) {
     auto dot = a.name.find('.');
     if (dot != std::string::npos) a.gear = cat::gearIndex(k, a.name.substr(0, dot));
-    a.key = cat::keyOf(dot == std::string::npos ? a.name : a.name.substr(dot + 1)).value_or(Q::None);
+    // `pinion.z` names a gear's attribute; `rating.life` is a block's setting of the stage.
+    a.key = cat::keyOf(a.gear < 0 ? a.name : a.name.substr(dot + 1)).value_or(Q::None);
+    if (const auto* row = cat::findAttr(k, a.name); row && !a.symbol.empty()) {
+      auto w = std::find(row->symbols.begin(), row->symbols.end(), a.symbol);
+      if (w != row->symbols.end()) a.choice = static_cast<int>(w - row->symbols.begin());
+    }
   }
 }
 
@@ -154,6 +159,16 @@ public:
     for (auto& md : g.modifies) {
       md.stageIndex = g.stageIndex(md.stage);
       for (auto& r : md.rules) {
+        // `pinion.lead_crowning`: the gear's position and the target's position in the catalogue.
+        auto dot = r.target.find('.');
+        std::string what = r.target;
+        if (dot != std::string::npos && md.stageIndex >= 0) {
+          r.gear = cat::gearIndex(cat::kindSpec(g.stages[static_cast<size_t>(md.stageIndex)].kind), r.target.substr(0, dot));
+          what = r.target.substr(dot + 1);
+        }
+        const auto& targets = cat::modificationTargets();
+        auto t = std::find(targets.begin(), targets.end(), what);
+        r.modTarget = t == targets.end() ? -1 : static_cast<int>(t - targets.begin());
         expr(r.value);
         expr(r.when);
       }
@@ -226,7 +241,14 @@ QuantityRef quantityRef(const ir::Program& p_, const ir::Gearbox& g_, const std:
 
 ir::Program lower(ir::Program p) {
   for (auto& m : p.materials)
-    for (auto& s : m.properties) s.key = cat::keyOf(s.name).value_or(Q::None);
+    for (auto& s : m.properties) {
+      s.key = cat::keyOf(s.name).value_or(Q::None);
+      for (const auto& row : cat::materialProperties())
+        if (row.key == s.key && !s.symbol.empty()) {
+          auto w = std::find(row.symbols.begin(), row.symbols.end(), s.symbol);
+          if (w != row.symbols.end()) s.choice = static_cast<int>(w - row.symbols.begin());
+        }
+    }
   // Every stage first: a gearbox's `relative(x)` resolves x in its baseline too.
   for (auto& g : p.gearboxes)
     for (auto& st : g.stages) lowerStage(st);

@@ -30,6 +30,7 @@ struct StageModel {
   std::vector<std::pair<std::string, Binding>> attrs;  // in declaration order
   std::vector<ScopedStmt> rules;                       // `require` inside the stage
   std::vector<const ast::Stmt*> lets;                  // `let` inside the stage
+  bool rated = false;                                  // has a `rating { … }` block
 
   Binding* findAttr(const std::string& path);
   const Binding* findAttr(const std::string& path) const;

@@ -23,6 +23,8 @@ using units::Number;
 
 namespace {
 
+constexpr std::string_view kRatingBlock = "rating";
+
 Span nameOr(const Stmt& s) { return s.nameSpan.valid() ? s.nameSpan : s.span; }
 
 void walk(const ir::Expr& e, const std::function<void(const ir::Expr&)>& f) {
@@ -359,6 +361,10 @@ private:
         break;
       }
       case StmtKind::Require: m.rules.push_back({&b, st.name}); break;
+      case StmtKind::Block:
+        if (b.name == kRatingBlock) ratingBlock(m, b);
+        else diags_.error("E0224", nameOr(b), fmt::format("stage `{}` has no block `{}` (a stage's one block is `{}`)", st.name, b.name, kRatingBlock));
+        break;
       case StmtKind::Let:
         if (std::any_of(m.lets.begin(), m.lets.end(), [&](const Stmt* l) { return l->name == b.name; }))
           diags_.error("E0202", nameOr(b), fmt::format("duplicate declaration: `let {}` is already in stage `{}`", b.name, st.name));
@@ -369,6 +375,27 @@ private:
       }
     }
     return m;
+  }
+
+  // `rating { … }`: its settings become the stage's `rating.…` attributes, so that a
+  // variant overrides them (`hs.rating.life = …`) like any other attribute.
+  void ratingBlock(StageModel& m, const Stmt& b) {
+    if (m.kind && !findAttr(*m.kind, "rating.life")) {
+      diags_.error("E0235", nameOr(b),
+                   fmt::format("a {} stage has no load-capacity rating yet{}", m.kind->name,
+                               m.kind->kind == ir::StageKind::Bevel ? " (bevel gears are rated by ISO 10300, which gbxc does not implement)"
+                                                                    : " (ISO 6336 rating covers spur and helical stages)"));
+      return;
+    }
+    if (m.rated) {
+      diags_.error("E0202", nameOr(b), fmt::format("duplicate declaration: stage `{}` already has a `rating` block", m.name));
+      return;
+    }
+    std::vector<std::pair<std::string, Binding>> items;
+    flatten(b.body, std::string(kRatingBlock) + ".", fmt::format("the `rating` of stage `{}`", m.name), items,
+            {"rating.lubricant", "rating.roughness", "rating.basic_rack", "rating.min_safety"});
+    for (auto& [p, bind] : items) m.setAttr(p, {bind.stmt, "stage"});
+    m.rated = true;
   }
 
   template <class T, class Key>
@@ -705,7 +732,37 @@ private:
       for (const auto& a : st.kind->gear)
         if (a.required && !st.findAttr(g + "." + a.name) && !misspelt_.count({st.name, g + "." + a.name}))
           diags_.error("E0225", where, fmt::format("stage `{}` does not give `{}.{}` ({})", st.name, g, a.name, a.meaning));
+    if (st.rated) ratingInputs(st, where);
     return out;
+  }
+
+  // A rated stage needs its service life and a material with the ISO 6336-5 numbers.
+  void ratingInputs(const StageModel& st, Span where) {
+    for (const char* need : {"rating.life", "rating.lubricant.viscosity_40", "rating.roughness.flank", "rating.roughness.root"}) {
+      std::string rz = std::string(need) + "_rz";
+      if (!st.findAttr(need) && !st.findAttr(rz))
+        diags_.error("E0225", where,
+                     fmt::format("the `rating` of stage `{}` does not give `{}` ({})", st.name, std::string(need).substr(7),
+                                 findAttr(*st.kind, need)->meaning));
+    }
+    const Binding* mat = st.findAttr(std::string(keyName(Q::Material)));
+    if (!mat) {
+      diags_.error("E0233", where, fmt::format("stage `{}` is rated but names no `material` (the rating needs its E, nu, sigma_hlim, sigma_flim and treatment)", st.name));
+      return;
+    }
+    const ast::Expr* v = mat->stmt->value.get();
+    if (!v || v->kind != ast::ExprKind::Name) return;
+    auto it = globals_.materials.find(v->text);
+    if (it == globals_.materials.end()) return;  // reported as an unknown material
+    std::vector<std::string> missing;
+    for (Q need : {Q::SigmaHlim, Q::SigmaFlim, Q::Treatment}) {
+      std::string n(keyName(need));
+      if (std::none_of(it->second->body.begin(), it->second->body.end(), [&](const Stmt& b) { return b.path.str() == n; }))
+        missing.push_back("`" + n + "`");
+    }
+    if (!missing.empty())
+      diags_.error("E0233", mat->stmt->value->span,
+                   fmt::format("stage `{}` is rated, but material `{}` does not give {}", st.name, v->text, fmt::join(missing, ", ")));
   }
 
   ir::Rule rule(const Stmt& st, const Scope& s, const std::string& scopeName) {
@@ -817,6 +874,12 @@ private:
 
     if (!m.hasOperating) requireOperating(g);
     requireMaterial(g, m);
+    requireRating(g, m);
+    if (!m.hasOperating)
+      for (const auto& st : m.stages)
+        if (st.rated)
+          diags_.error("E0231", st.decl ? nameOr(*st.decl) : Span{},
+                       fmt::format("stage `{}` is rated, but gearbox `{}` has no `operating` block (the rating needs the load and speed)", st.name, g.name));
     return g;
   }
 
@@ -840,6 +903,35 @@ private:
     for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
     if (g.report)
       for (const auto& c : g.report->columns) visit(c.get(), "reported");
+  }
+
+  // A safety or an influence factor needs the stage's `rating` inputs.
+  void requireRating(const ir::Gearbox& g, const GearboxModel& m) {
+    std::set<std::pair<int, int>> reported;
+    auto visit = [&](const ir::Expr* e, const char* where) {
+      if (!e) return;
+      walk(*e, [&](const ir::Expr& x) {
+        if (x.op != Op::Quantity || !x.type.isNumber()) return;
+        auto k = keyOf(lastPart(x.name));
+        if (!k || !isRatingQuantity(*k)) return;
+        auto dot = x.name.find('.');
+        const StageModel* st = dot == std::string::npos ? nullptr : m.findStage(x.name.substr(0, dot));
+        if (!st || !st->kind || st->rated) return;
+        if (!reported.insert({x.span.line, x.span.col}).second) return;
+        diags_.error("E0236", x.span,
+                     fmt::format("`{}` is a load-capacity result, but stage `{}` has no `rating {{ … }}` block with its inputs ({})",
+                                 x.name, st->name, where));
+      });
+    };
+    for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
+    for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
+    for (const auto& l : g.lets) visit(l.expr.get(), "used in a let");
+    if (g.report) {
+      for (const auto& c : g.report->columns) visit(c.get(), "reported");
+      visit(g.report->sortBy.get(), "used to sort");
+    }
+    for (const auto& st : g.studies)
+      for (const auto& o : st.outputs) visit(o.get(), "output of a study");
   }
 
   void requireOperating(const ir::Gearbox& g) {

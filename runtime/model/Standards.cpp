@@ -1,6 +1,7 @@
 #include "model/Standards.h"
 
 #include <cmath>
+#include <initializer_list>
 
 namespace gbx::rt::iso {
 
@@ -10,6 +11,33 @@ double gradeFactor(int grade) { return std::pow(2.0, 0.5 * (grade - 5)); }
 double mm(double m) { return m * 1e3; }
 double um(double v) { return v * 1e-6; }
 } // namespace
+
+namespace {
+// The range [lo, hi) of `bounds` that holds v, as its geometric mean (mm).
+double rangeMean(double v, std::initializer_list<double> bounds) {
+  double lo = *bounds.begin();
+  for (double hi : bounds) {
+    if (hi <= lo) continue;
+    if (v <= hi) return std::sqrt(lo * hi);
+    lo = hi;
+  }
+  return v;  // beyond the table: the value itself
+}
+double dMean(double d) { return rangeMean(mm(d), {5, 20, 50, 125, 280, 560, 1000, 1600, 2500, 4000, 6000, 8000, 10000}); }
+double mMean(double mn) { return rangeMean(mm(mn), {0.5, 2, 3.5, 6, 10, 16, 25, 40, 70}); }
+double bMean(double b) { return rangeMean(mm(b), {4, 10, 20, 40, 80, 160, 250, 400, 650, 1000}); }
+double rounded(double v) { return v > 10 ? std::round(v) : v >= 5 ? std::round(2 * v) / 2 : std::round(10 * v) / 10; }
+} // namespace
+
+double tabulatedSinglePitch(int q, double mn, double d) {
+  return um(rounded((0.3 * (mMean(mn) + 0.4 * std::sqrt(dMean(d))) + 4.0) * gradeFactor(q)));
+}
+double tabulatedProfileForm(int q, double mn, double d) {
+  return um(rounded((2.5 * std::sqrt(mMean(mn)) + 0.17 * std::sqrt(dMean(d)) + 0.5) * gradeFactor(q)));
+}
+double tabulatedHelixSlope(int q, double d, double b) {
+  return um(rounded((0.07 * std::sqrt(dMean(d)) + 0.45 * std::sqrt(bMean(b)) + 3.0) * gradeFactor(q)));
+}
 
 double singlePitch(int q, double mn, double d) { return um((0.3 * (mm(mn) + 0.4 * std::sqrt(mm(d))) + 4.0) * gradeFactor(q)); }
 double totalProfile(int q, double mn, double d) {

@@ -6,6 +6,7 @@
 #include "model/Standards.h"
 #include "model/StageKind.h"
 #include "model/kinds/Geometry.h"
+#include "rating/PairRows.h"
 
 namespace gbx::rt::kinds {
 
@@ -140,6 +141,8 @@ struct Cyl {
          }},
     };
     r.insert(r.end(), own.begin(), own.end());
+    auto rating = rating::pairRows();
+    r.insert(r.end(), rating.begin(), rating.end());
     return r;
   }
 

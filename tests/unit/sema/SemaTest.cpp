@@ -189,7 +189,7 @@ TEST(Sema, ImportsAreLoadedOnceAndResolved) {
   ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
   EXPECT_EQ(c->sources.size(), 2);
   ASSERT_TRUE(c->program.findMaterial("steel_42CrMo4"));
-  EXPECT_EQ(c->program.findMaterial("steel_20CrMnMo")->properties.size(), 6u);
+  EXPECT_EQ(c->program.findMaterial("steel_20CrMnMo")->properties.size(), 7u);
 }
 
 TEST(Sema, ErrorsAreCollectedNotStoppedAtTheFirst) {

@@ -1,0 +1,336 @@
+#include "rating/Iso6336.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace gbx::rt::rating {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+double inv(double a) { return std::tan(a) - a; }
+double invInverse(double t) {
+  double a = std::cbrt(3.0 * t);
+  for (int i = 0; i < 40; ++i) {
+    double next = a - (inv(a) - t) / (std::tan(a) * std::tan(a));
+    if (std::fabs(next - a) < 1e-15) return next;
+    a = next;
+  }
+  return a;
+}
+double sq(double x) { return x * x; }
+
+// Running-in allowance of a deviation f [um] (ISO 6336-1 y_alpha, y_p, y_f).
+double runIn(double f, const PairInput& in, double sigmaHlim, double v) {
+  if (in.treatment != Treatment::ThroughHardened) return std::min(0.075 * f, 3.0);
+  double y = 160.0 / sigmaHlim * f;
+  if (v > 10) return std::min(y, 6400.0 / sigmaHlim);
+  if (v > 5) return std::min(y, 12800.0 / sigmaHlim);
+  return y;
+}
+
+// Log-log life curve through (nStatic, static), (nKnee, 1), (1e10, end), flat beyond.
+double lifeFactor(double n, double nStatic, double fStatic, double nKnee, double fEnd) {
+  if (n <= nStatic) return fStatic;
+  if (n <= nKnee) return std::pow(nKnee / n, std::log(fStatic) / std::log(nKnee / nStatic));
+  if (n >= 1e10) return fEnd;
+  return std::pow(nKnee / n, std::log(1.0 / fEnd) / std::log(1e10 / nKnee));
+}
+
+} // namespace
+
+ToothForm toothForm(double z, double x, double da, double mn, double alphaN, double beta, double epsAlpha, double hfP, double rhoFP) {
+  double betaB = std::asin(std::sin(beta) * std::cos(alphaN));
+  double zn = z / (sq(std::cos(betaB)) * std::cos(beta));
+  double d = z * mn / std::cos(beta);
+  double G = rhoFP - hfP + x;
+  double E = kPi / 4 * mn - hfP * mn * std::tan(alphaN) - (1 - std::sin(alphaN)) * rhoFP * mn / std::cos(alphaN);
+  double H = 2.0 / zn * (kPi / 2 - E / mn) - kPi / 3;
+  // theta = 2G/zn tan(theta) - H, by Newton from pi/6.
+  double th = kPi / 6;
+  for (int i = 0; i < 60; ++i) {
+    double f = th - 2 * G / zn * std::tan(th) + H;
+    double df = 1 - 2 * G / zn / sq(std::cos(th));
+    double next = th - f / df;
+    if (std::fabs(next - th) < 1e-14) {
+      th = next;
+      break;
+    }
+    th = next;
+  }
+  ToothForm t{};
+  t.theta = th;
+  double sFn = mn * (zn * std::sin(kPi / 3 - th) + std::sqrt(3.0) * (G / std::cos(th) - rhoFP));
+  double rhoF = mn * (rhoFP + 2 * G * G / (std::cos(th) * (zn * sq(std::cos(th)) - 2 * G)));
+  double dn = mn * zn, dbn = dn * std::cos(alphaN), dan = dn + da - d;
+  double epsAn = epsAlpha / sq(std::cos(betaB));
+  double den = 2 * std::sqrt(sq(std::sqrt(sq(dan / 2) - sq(dbn / 2)) - kPi * d * std::cos(beta) * std::cos(alphaN) / z * (epsAn - 1)) +
+                             sq(dbn / 2));
+  double alphaEn = std::acos(dbn / den);
+  double gammaE = (kPi / 2 + 2 * x * std::tan(alphaN)) / zn + inv(alphaN) - inv(alphaEn);
+  double alphaFen = alphaEn - gammaE;
+  double hFe = 0.5 * mn *
+               ((std::cos(gammaE) - std::sin(gammaE) * std::tan(alphaFen)) * den / mn - zn * std::cos(kPi / 3 - th) - G / std::cos(th) +
+                rhoFP);
+  t.sFn = sFn;
+  t.rhoF = rhoF;
+  t.hFe = hFe;
+  t.alphaFen = alphaFen;
+  t.YF = 6 * (hFe / mn) * std::cos(alphaFen) / (sq(sFn / mn) * std::cos(alphaN));
+  double L = sFn / hFe, qs = sFn / (2 * rhoF);
+  t.YS = (1.2 + 0.13 * L) * std::pow(qs, 1.0 / (1.21 + 2.3 / L));
+  if (!(sFn > 0 && rhoF > 0 && hFe > 0 && std::isfinite(t.YF) && std::isfinite(t.YS)))
+    throw std::domain_error("the tooth root has no 30-degree tangent section (check the basic rack and the profile shift)");
+  return t;
+}
+
+PairRating rate(const PairInput& in) {
+  PairRating r{};
+  // The standard's units: mm, N, um, N/mm^2.
+  const double mn = in.mn * 1e3, b = in.b * 1e3, an = in.alphaN, beta = in.beta;
+  const double z1 = in.gear[0].z, z2 = in.gear[1].z;
+  const double x1 = in.gear[0].x, x2 = in.gear[1].x;
+  const double sigmaHlim = std::min(in.gear[0].sigmaHlim, in.gear[1].sigmaHlim) * 1e-6;
+  if (!(z1 > 0 && z2 > 0 && mn > 0 && b > 0)) throw std::domain_error("the rating needs positive tooth counts, module and face width");
+
+  // Geometry (ISO 21771).
+  double at = std::atan(std::tan(an) / std::cos(beta));
+  double mt = mn / std::cos(beta);
+  double d1 = z1 * mt, d2 = z2 * mt;
+  double db1 = d1 * std::cos(at), db2 = d2 * std::cos(at);
+  double betaB = std::asin(std::sin(beta) * std::cos(an));
+  double ad = 0.5 * (d1 + d2), a = 0, awt = 0;
+  if (std::isfinite(in.a)) {
+    a = in.a * 1e3;
+    awt = std::acos(ad * std::cos(at) / a);
+  } else {
+    awt = (x1 + x2) == 0 ? at : invInverse(inv(at) + 2 * std::tan(an) * (x1 + x2) / (z1 + z2));
+    a = ad * std::cos(at) / std::cos(awt);
+  }
+  double k = std::min(0.0, (a - ad) / mn - (x1 + x2));  // tip alteration keeps the bottom clearance
+  std::array<double, 2> da, df, d = {d1, d2}, db = {db1, db2};
+  for (int g = 0; g < 2; ++g) {
+    const auto& gi = in.gear[static_cast<size_t>(g)];
+    da[g] = std::isfinite(gi.tipDiameter) ? gi.tipDiameter * 1e3 : d[g] + 2 * mn * (in.haP + gi.x + k);
+    df[g] = d[g] - 2 * mn * (in.hfP - gi.x);
+  }
+  double pbt = kPi * mt * std::cos(at);
+  r.alphaWt = awt;
+  r.epsAlpha = (std::sqrt(sq(da[0] / 2) - sq(db1 / 2)) + std::sqrt(sq(da[1] / 2) - sq(db2 / 2)) - a * std::sin(awt)) / pbt;
+  r.epsBeta = b * std::sin(beta) / (kPi * mn);
+  r.epsGamma = r.epsAlpha + r.epsBeta;
+  if (!(r.epsAlpha > 0)) throw std::domain_error("the gears do not mesh: the transverse contact ratio is not positive");
+  const double ea = r.epsAlpha, eb = r.epsBeta, eg = r.epsGamma;
+
+  // Load and speed.
+  r.u = z2 / z1;
+  r.Ft = 2000.0 * in.torque1 / d1;                 // N
+  r.v = in.gear[0].speed * in.mn * z1 / std::cos(beta) / 2;  // m/s
+  const double w = in.KA * r.Ft / b;                // N/mm
+
+  // Deviations and running-in (um).
+  double fpb = std::max(in.gear[0].fpb, in.gear[1].fpb) * 1e6;
+  double ffa = std::max(in.gear[0].ffa, in.gear[1].ffa) * 1e6;
+  double fHb = std::max(in.gear[0].fHb, in.gear[1].fHb) * 1e6;
+  r.yAlpha = runIn(fpb, in, sigmaHlim, r.v);
+  double yf = runIn(ffa, in, sigmaHlim, r.v);
+
+  // Stiffness, ISO 6336-1 clause 9 (method B).
+  // Virtual tooth counts of the normal section, z / (cos^2 beta_b cos beta).
+  double virt = sq(std::cos(betaB)) * std::cos(beta);
+  double zn1 = z1 / virt, zn2 = z2 / virt;
+  double q = 0.04723 + 0.15551 / zn1 + 0.25791 / zn2 - 0.00635 * x1 - 0.11654 * x1 / zn1 - 0.00193 * x2 - 0.24188 * x2 / zn2 +
+             0.00529 * x1 * x1 + 0.00182 * x2 * x2;
+  double CR = std::min(in.gear[0].webFactor, in.gear[1].webFactor);
+  double CB = (1 + 0.5 * (1.2 - in.hfP)) * (1 - 0.02 * (20.0 - an * 180 / kPi));
+  double cth = 1 / q;
+  r.cprime = cth * 0.8 * CR * CB * std::cos(beta);
+  if (w < 100) r.cprime *= std::pow(w / 100, 0.25);
+  r.cgammaAlpha = r.cprime * (0.75 * ea + 0.25);
+  if (std::isfinite(in.cgammaGiven)) {
+    r.cgammaAlpha = in.cgammaGiven * 1e-9;
+    r.cprime = r.cgammaAlpha / (0.75 * ea + 0.25);
+  }
+  r.cgammaBeta = 0.85 * r.cgammaAlpha;
+
+  // Dynamic factor, clause 6.5 (method B): resonance ratio from the reduced mass.
+  double rho = in.density * 1e-9;  // kg/mm^3
+  auto blank = [&](int g) {
+    double dm = 0.5 * (da[g] + df[g]);
+    double qi = in.gear[static_cast<size_t>(g)].bore * 1e3 / dm;
+    return kPi / 8 * rho * std::pow(dm, 4) * (1 - std::pow(qi, 4)) / sq(db[g]);
+  };
+  double m1 = blank(0), m2 = blank(1);
+  r.mred = m1 * m2 / (m1 + m2);
+  r.nE1 = 30000.0 / (kPi * z1) * std::sqrt(r.cgammaAlpha / r.mred);
+  double n1 = in.gear[0].speed * 30 / kPi;
+  r.N = n1 / r.nE1;
+  r.NS = w < 100 ? 0.5 + 0.35 * std::sqrt(w / 100) : 0.85;
+  double Ca = std::isfinite(in.tipRelief) ? in.tipRelief * 1e6 : (1.0 / 18) * sq(sigmaHlim / 97 - 18.45) + 1.5;
+  double Bp = r.cprime * std::max(0.0, fpb - r.yAlpha) / w;
+  double Bf = r.cprime * std::max(0.0, ffa - yf) / w;
+  double Bk = std::fabs(1 - r.cprime * Ca / w);
+  double Cv1 = 0.32, Cv2 = eg <= 2 ? 0.34 : 0.57 / (eg - 0.3), Cv3 = eg <= 2 ? 0.23 : 0.096 / (eg - 1.56);
+  double Cv4 = eg <= 2 ? 0.90 : (0.57 - 0.05 * eg) / (eg - 1.44), Cv5 = 0.47, Cv6 = eg <= 2 ? 0.47 : 0.12 / (eg - 1.74);
+  double Cv7 = eg <= 1.5 ? 0.75 : eg <= 2.5 ? 0.125 * std::sin(kPi * (eg - 2)) + 0.875 : 1.0;
+  auto main = [&] { return Cv1 * Bp + Cv2 * Bf + Cv4 * Bk + 1; };
+  auto super = [&] { return Cv5 * Bp + Cv6 * Bf + Cv7; };
+  if (std::isfinite(in.KvGiven)) {
+    r.Kv = in.KvGiven;
+    r.kvRange = KvRange::Given;
+  } else if (r.N <= r.NS) {
+    r.Kv = r.N * (Cv1 * Bp + Cv2 * Bf + Cv3 * Bk) + 1;
+    r.kvRange = KvRange::Subcritical;
+  } else if (r.N <= 1.15) {
+    r.Kv = main();
+    r.kvRange = KvRange::MainResonance;
+  } else if (r.N < 1.5) {
+    r.Kv = super() + (main() - super()) / 0.35 * (1.5 - r.N);
+    r.kvRange = KvRange::Intermediate;
+  } else {
+    r.Kv = super();
+    r.kvRange = KvRange::Supercritical;
+  }
+
+  // Face load factor, clause 7.6: the effective mismatch from the pinion's deflection
+  // (symmetric between its bearings), the manufacturing misalignment and the lead
+  // modifications, less running-in.
+  double Fmb = r.Ft * in.KA * in.Kgamma * r.Kv / b;
+  r.fsh = Fmb * 0.023 * sq(b / d1);
+  double fma = std::isfinite(in.fma) ? in.fma * 1e6 : fHb;
+  r.FbetaX = std::max({1.33 * in.B1 * r.fsh + in.B2 * fma, 0.005 * Fmb, 0.5 * fHb});
+  if (in.treatment == Treatment::ThroughHardened) {
+    double y = 320.0 / sigmaHlim * r.FbetaX;
+    double cap = r.v > 10 ? 6400.0 / sigmaHlim : r.v > 5 ? 12800.0 / sigmaHlim : 25600.0 / sigmaHlim;
+    r.yBeta = std::min(y, cap);
+  } else {
+    r.yBeta = std::min(0.15 * r.FbetaX, 6.0);
+  }
+  r.FbetaY = r.FbetaX - r.yBeta;
+  if (std::isfinite(in.KHbetaGiven)) {
+    r.KHbeta = in.KHbetaGiven;
+  } else {
+    double kb = 1 + r.FbetaY * r.cgammaBeta / (2 * Fmb);
+    r.KHbeta = kb <= 2 ? kb : std::sqrt(2 * r.FbetaY * r.cgammaBeta / Fmb);
+  }
+  double bh = std::max(3.0, b / ((in.haP + in.hfP) * mn));
+  r.KFbeta = std::pow(r.KHbeta, sq(bh) / (1 + bh + sq(bh)));
+
+  // Contact factors, ISO 6336-2.
+  r.ZH = std::sqrt(2 * std::cos(betaB) * std::cos(awt) / (sq(std::cos(at)) * std::sin(awt)));
+  double E = in.E * 1e-6;
+  r.ZE = std::sqrt(1 / (kPi * 2 * (1 - sq(in.nu)) / E));
+  r.Zeps = eb < 1 ? std::sqrt((4 - ea) * (1 - eb) / 3 + eb / ea) : std::sqrt(1 / ea);
+  r.Zbeta = 1 / std::sqrt(std::cos(beta));
+
+  // Transverse load factors, clause 8 (method B).
+  if (std::isfinite(in.KHalphaGiven)) {
+    r.KHalpha = r.KFalpha = in.KHalphaGiven;
+  } else {
+    double FtHb = r.Ft * in.KA * in.Kgamma * r.Kv * r.KHbeta / b;
+    double qa = r.cgammaAlpha * (std::max(fpb, ffa) - r.yAlpha) / FtHb;
+    double raw = eg <= 2 ? eg / 2 * (0.9 + 0.4 * qa) : 0.9 + 0.4 * std::sqrt(2 * (eg - 1) / eg) * qa;
+    r.KHalpha = std::clamp(raw, 1.0, std::max(1.0, eg / (ea * sq(r.Zeps))));
+    r.KFalpha = std::clamp(raw, 1.0, std::max(1.0, eg / (0.25 * ea + 0.75)));
+  }
+
+  r.sigmaH0 = r.ZH * r.ZE * r.Zeps * r.Zbeta * std::sqrt(r.Ft / (d1 * b) * (r.u + 1) / r.u);
+
+  // Single pair contact factors Z_B (pinion) and Z_D (wheel).
+  double s1 = std::sqrt(sq(da[0] / db1) - 1), s2 = std::sqrt(sq(da[1] / db2) - 1);
+  double M1 = std::tan(awt) / std::sqrt((s1 - 2 * kPi / z1) * (s2 - (ea - 1) * 2 * kPi / z2));
+  double M2 = std::tan(awt) / std::sqrt((s2 - 2 * kPi / z2) * (s1 - (ea - 1) * 2 * kPi / z1));
+  auto single = [&](double M) {
+    if (eb >= 1) return 1.0;
+    double s = M > 1 ? M : 1.0;
+    return std::max(1.0, s - eb * (s - 1));
+  };
+  std::array<double, 2> ZBD = {single(M1), single(M2)};
+
+  // Lubricant, velocity and roughness factors (clause 11), from the softer flank.
+  double CZL = sigmaHlim < 850 ? 0.83 : sigmaHlim > 1200 ? 0.91 : 0.83 + 0.08 * (sigmaHlim - 850) / 350;
+  double nu40 = in.nu40 * 1e6;  // mm^2/s
+  double ZL = CZL + 4 * (1 - CZL) / sq(1.2 + 134 / nu40);
+  double CZv = CZL + 0.02;
+  double Zv = CZv + 2 * (1 - CZv) / std::sqrt(0.8 + 32 / r.v);
+  double rho1 = 0.5 * db1 * std::tan(awt), rho2 = 0.5 * db2 * std::tan(awt);
+  double rhoRed = rho1 * rho2 / (rho1 + rho2);
+  double Rz10 = in.RzFlank * 1e6 * std::cbrt(10 / rhoRed);
+  double CZR = sigmaHlim < 850 ? 0.15 : sigmaHlim > 1200 ? 0.08 : 0.32 - 0.0002 * sigmaHlim;
+  double ZR = std::pow(3 / Rz10, CZR);
+
+  double Ybeta = 1 - std::min(eb, 1.0) * std::min(beta * 180 / kPi, 30.0) / 120;
+  double epsAn = ea / sq(std::cos(betaB));
+  double YDT = 1;
+  if (in.grade > 0 && in.grade <= 4 && epsAn > 2.05) YDT = epsAn > 2.5 ? 0.7 : 2.366 - 0.666 * epsAn;
+  double KH = in.KA * in.Kgamma * r.Kv * r.KHbeta * r.KHalpha;
+  double KF = in.KA * in.Kgamma * r.Kv * r.KFbeta * r.KFalpha;
+  double rhoSlip = in.treatment == Treatment::CaseHardened ? 0.0030 : in.treatment == Treatment::Nitrided ? 0.1005 : 0.0064;
+  for (int g = 0; g < 2; ++g) {
+    const auto& gi = in.gear[static_cast<size_t>(g)];
+    GearRating& o = r.gear[static_cast<size_t>(g)];
+    o.tipDiameter = da[g] * 1e-3;
+    o.rootDiameter = df[g] * 1e-3;
+    o.cycles = gi.speed / (2 * kPi) * in.life * gi.cyclesPerRev;
+    double end = in.optimumLife ? 1.0 : 0.85;
+    // Life factors, ISO 6336-2 Table 2 and ISO 6336-3 Table 3.
+    switch (in.treatment) {
+    case Treatment::Nitrided:
+      o.ZNT = lifeFactor(o.cycles, 1e5, 1.3, 2e6, end);
+      o.YNT = lifeFactor(o.cycles, 1e3, 1.6, 3e6, end);
+      break;
+    case Treatment::ThroughHardened:
+      o.ZNT = lifeFactor(o.cycles, 1e5, 1.6, 5e7, end);
+      o.YNT = lifeFactor(o.cycles, 1e4, 2.5, 3e6, end);
+      break;
+    case Treatment::CaseHardened:
+      o.ZNT = lifeFactor(o.cycles, 1e5, 1.6, 5e7, end);
+      o.YNT = lifeFactor(o.cycles, 1e3, 2.5, 3e6, end);
+      break;
+    }
+    o.ZL = ZL;
+    o.Zv = Zv;
+    o.ZR = ZR;
+    o.ZW = 1;  // both gears of one material
+    o.ZX = 1;
+    o.ZBD = ZBD[static_cast<size_t>(g)];
+    double shl = gi.sigmaHlim * 1e-6;
+    o.sigmaH = o.ZBD * r.sigmaH0 * std::sqrt(KH);
+    double hLimit = shl * o.ZNT * o.ZL * o.Zv * o.ZR * o.ZW * o.ZX;
+    o.sigmaHP = hLimit / in.SHmin;
+    o.SH = hLimit / o.sigmaH;
+
+    ToothForm t = toothForm(gi.z, gi.x, da[g], mn, an, beta, ea, in.hfP, in.rhoFP);
+    o.sFn = t.sFn * 1e-3;
+    o.hFe = t.hFe * 1e-3;
+    o.rhoF = t.rhoF * 1e-3;
+    o.alphaFen = t.alphaFen;
+    o.YF = t.YF;
+    o.YS = t.YS;
+    o.Ybeta = Ybeta;
+    o.YB = 1;
+    o.YDT = YDT;
+    double qs = t.sFn / (2 * t.rhoF);
+    o.YdeltarelT = (1 + std::sqrt(rhoSlip * (1 + 2 * qs) / 5)) / (1 + std::sqrt(rhoSlip * 1.2));
+    double Rz = in.RzRoot * 1e6;
+    bool nitr = in.treatment == Treatment::Nitrided;
+    o.YRrelT = Rz < 1 ? (nitr ? 1.070 : 1.120) : nitr ? 5.306 - 4.203 * std::pow(Rz + 1, 0.01) : 1.674 - 0.529 * std::pow(Rz + 1, 0.1);
+    o.YX = in.treatment == Treatment::ThroughHardened ? std::clamp(1.03 - 0.006 * mn, 0.85, 1.0) : std::clamp(1.05 - 0.01 * mn, 0.8, 1.0);
+    o.YM = gi.YM;
+    o.sigmaF0 = r.Ft / (b * mn) * o.YF * o.YS * o.Ybeta * o.YB * o.YDT;
+    o.sigmaF = o.sigmaF0 * KF;
+    double fLimit = gi.sigmaFlim * 1e-6 * 2.0 * o.YNT * o.YdeltarelT * o.YRrelT * o.YX * o.YM;
+    o.sigmaFP = fLimit / in.SFmin;
+    o.SF = fLimit / o.sigmaF;
+    // Back to SI.
+    o.sigmaH *= 1e6;
+    o.sigmaHP *= 1e6;
+    o.sigmaF0 *= 1e6;
+    o.sigmaF *= 1e6;
+    o.sigmaFP *= 1e6;
+  }
+  r.sigmaH0 *= 1e6;
+  return r;
+}
+
+} // namespace gbx::rt::rating

@@ -1,0 +1,85 @@
+#pragma once
+// Load capacity of one cylindrical gear mesh by ISO 6336-1, -2, -3 (2006 with
+// Corrigendum 1:2008), method B unless a factor is given (DOMAIN.md §6). Inputs and
+// outputs are SI except where the standard's factor is conventionally a pure number in
+// its own units (Z_E in sqrt(N/mm^2)). Internally the formulas run in the standard's
+// units: mm, N, um, N/mm^2.
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace gbx::rt::rating {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+enum class Treatment { CaseHardened, Nitrided, ThroughHardened };
+enum class KvRange { Given, Subcritical, MainResonance, Intermediate, Supercritical };
+
+struct GearInput {
+  double z = 0;              // tooth count (external gears)
+  double x = 0;              // profile shift coefficient
+  double tipDiameter = kNaN; // [m]; NaN: from the basic rack, the shift and the tip alteration
+  double fpb = 0;            // base pitch deviation [m]
+  double ffa = 0;            // profile form deviation [m]
+  double fHb = 0;            // helix slope deviation [m]
+  double speed = 0;          // [rad/s]
+  double cyclesPerRev = 1;   // load cycles per revolution
+  double YM = 1;             // mean stress factor (0.7 for a gear loaded on both flanks)
+  double webFactor = 1;      // C_R of the gear blank (1 for a solid gear)
+  double bore = 0;           // inner diameter of the gear blank [m] (0: solid)
+  double sigmaHlim = 0, sigmaFlim = 0;  // [Pa]
+};
+
+struct PairInput {
+  std::array<GearInput, 2> gear;  // pinion (driving), wheel
+  double mn = 0, alphaN = 0, beta = 0, b = 0;
+  double a = kNaN;         // working centre distance [m]; NaN: from the shifts
+  double torque1 = 0;      // pinion torque [N m]
+  double E = 206e9, nu = 0.3, density = 7830;  // [Pa], [-], [kg/m^3]
+  Treatment treatment = Treatment::CaseHardened;
+  bool optimumLife = false;
+  int grade = 0;           // ISO 1328-1 grade, 0 when not given (Y_DT)
+  double KA = 1, Kgamma = 1;
+  double life = 0;         // [s]
+  double nu40 = 0;         // [m^2/s]
+  double RzFlank = 0, RzRoot = 0;  // [m]
+  double haP = 1.0, hfP = 1.25, rhoFP = 0.38;
+  double KHbetaGiven = kNaN, KvGiven = kNaN, KHalphaGiven = kNaN;
+  double cgammaGiven = kNaN;  // c_gamma_alpha [N/m per m]
+  double tipRelief = kNaN;    // C_a [m]; NaN: the running-in amount
+  double fma = kNaN;          // mesh misalignment [m]; NaN: the larger f_Hbeta
+  double B1 = 1, B2 = 1;      // lead modification factors of F_betax (crowning, helix correction)
+  double SHmin = 1, SFmin = 1;
+};
+
+struct GearRating {
+  double tipDiameter, rootDiameter, cycles;
+  double ZNT, ZL, Zv, ZR, ZW, ZX, ZBD;
+  double sFn, hFe, rhoF, alphaFen, YF, YS, Ybeta, YB, YDT, YNT, YdeltarelT, YRrelT, YX, YM;
+  double sigmaH, sigmaHP, SH, sigmaF0, sigmaF, sigmaFP, SF;
+};
+
+struct PairRating {
+  double Ft, v, u, alphaWt, epsAlpha, epsBeta, epsGamma;
+  double cprime, cgammaAlpha, cgammaBeta, mred, nE1, N, NS;
+  KvRange kvRange;
+  double fsh, FbetaX, FbetaY, yBeta, yAlpha;
+  double Kv, KHbeta, KFbeta, KHalpha, KFalpha;
+  double ZH, ZE, Zeps, Zbeta, sigmaH0;
+  std::array<GearRating, 2> gear;
+};
+
+// Every factor and both safeties of the mesh. Throws std::domain_error with a sentence
+// when the geometry admits no rating (no contact, no 30-degree tangent in the fillet).
+PairRating rate(const PairInput& in);
+
+// ISO 6336-3 method B for one external gear of the pair: the critical section (30-degree
+// tangent) of the fillet the basic rack generates, the load at the outer point of single
+// pair contact. Lengths in mm, angles in rad.
+struct ToothForm {
+  double sFn, hFe, rhoF, alphaFen, YF, YS, theta;
+};
+ToothForm toothForm(double z, double x, double tipDiameter, double mn, double alphaN, double beta, double epsAlpha,
+                    double hfP, double rhoFP);
+
+} // namespace gbx::rt::rating
