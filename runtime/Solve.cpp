@@ -14,6 +14,7 @@
 #include "passes/Designs.h"
 #include "report/Progress.h"
 #include "passes/Modifications.h"
+#include "passes/Ratings.h"
 #include "passes/Optimise.h"
 #include "passes/Render.h"
 #include "passes/Scenes.h"
@@ -66,6 +67,11 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       fail(gb.name, mods.errors);
       rep.modifications = std::move(mods.modifications);
       rep.studies = passes::studies(m, *best, progress(gb.name + " studies"));
+    }
+    if (best) {
+      passes::Ratings rated = passes::ratings(m, *best);
+      fail(gb.name, rated.errors);
+      rep.ratings = std::move(rated.ratings);
     }
     reports.push_back(std::move(rep));
   }

@@ -17,8 +17,9 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
                        const std::vector<std::string>& columnNames, const std::vector<std::vector<double>>& freedoms = {},
                        const Model* baseline = nullptr, const Assignment* baseDesign = nullptr) {
   Evaluator ev(m);
-  if (!freedoms.empty()) {
-    // Optimised designs: scene results and relative values at the scenes' own accuracy.
+  if (!freedoms.empty() || baseline) {
+    // Optimised designs, or `relative(x)` columns: scene results and relative values at the
+    // scenes' own accuracy.
     const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, Q::Rtol);
     installHooks(ev, m, baseline, baseDesign, own && own->value ? own->value->toDouble() : 1e-9);
   }

@@ -1,17 +1,74 @@
 #include "passes/Optimise.h"
 
 #include <chrono>
+#include <functional>
 
+#include <algorithm>
+#include <cmath>
+
+#include "model/Evaluator.h"
 #include "optimise/Optimise.h"
 #include "units/Unit.h"
 
 namespace gbx::rt::passes {
 
+namespace {
+
+// How far each inequality rule `q >= c` / `q <= c` stands from its bound at the optimum:
+// the rule with no margin is the one that binds.
+std::vector<OptimisationSummary::Optimum::Margin> margins(const Model& m, const std::vector<int>& choice, const std::vector<double>& freedoms) {
+  std::vector<OptimisationSummary::Optimum::Margin> out;
+  Evaluator ev(m);
+  Assignment a(m);
+  a.choice = choice;
+  for (size_t f = 0; f < freedoms.size() && f < a.box.size(); ++f) a.box[f] = {freedoms[f], freedoms[f]};
+  std::function<void(const ir::Expr&, const std::string&)> visit = [&](const ir::Expr& e, const std::string& text) {
+    if (e.op == ir::Op::And) {
+      for (const auto& x : e.args) visit(*x, ir::print(*x));
+      return;
+    }
+    bool ge = e.op == ir::Op::Ge || e.op == ir::Op::Gt, le = e.op == ir::Op::Le || e.op == ir::Op::Lt;
+    if (!(ge || le) || e.args.size() != 2 || !e.args[1]->isConst()) return;
+    Value q = ev.eval(*e.args[0], a);
+    if (!q.isNumber()) return;
+    double bound = e.args[1]->value.toDouble();
+    if (bound == 0) return;
+    auto u = units::displayUnitFor(e.args[0]->type.dim);
+    OptimisationSummary::Optimum::Margin mg;
+    mg.rule = text;
+    mg.value = q.mid() / u.scale;
+    mg.bound = bound / u.scale;
+    mg.unit = u.name;
+    mg.margin = (ge ? q.mid() - bound : bound - q.mid()) / std::fabs(bound);
+    out.push_back(mg);
+  };
+  for (const auto& r : m.gearbox.rules)
+    if (r.expr) visit(*r.expr, r.text);
+  std::stable_sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.margin < y.margin; });
+  return out;
+}
+
+} // namespace
+
 Optimised optimise(const ir::Program& program, const Model& m, SearchResult found, int jobs, std::function<void(double)> progress) {
   const ir::Gearbox& gb = m.gearbox;
   Optimised out;
   out.designs = std::move(found);
-  if (!needsOptimiser(gb)) return out;
+  // `relative(x)` in the report needs the baseline's design even when nothing is optimised.
+  std::function<bool(const ir::Expr*)> relative = [&](const ir::Expr* e) {
+    if (!e) return false;
+    if (e->op == ir::Op::Relative) return true;
+    for (const auto& a : e->args)
+      if (relative(a.get())) return true;
+    return false;
+  };
+  bool reportsRelative = false;
+  if (gb.report) {
+    reportsRelative = relative(gb.report->sortBy.get());
+    for (const auto& c : gb.report->columns) reportsRelative = reportsRelative || relative(c.get());
+  }
+  bool optimised = needsOptimiser(gb);
+  if (!optimised && !reportsRelative) return out;
   for (const auto& other : program.gearboxes)
     if (other.name == gb.baseline) {
       out.baseline = std::make_unique<Model>(program, other);
@@ -24,6 +81,7 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
         out.baselineDesign->choice = br.designs[0].choice;
       }
     }
+  if (!optimised) return out;
   OptimiseOptions oo;
   oo.jobs = jobs;
   oo.progress = std::move(progress);
@@ -61,6 +119,7 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
     }
     b.objective = best.objective;
     b.terms = best.terms;
+    b.margins = margins(m, best.choice, best.freedoms);
   }
   s.rankCheck = opt.rankCheck;
   s.cloud = opt.cloud;

@@ -18,6 +18,13 @@ using V = std::vector<double>;
 
 constexpr double kAbsent = -1;  // an optional input left out (corner values must be numbers)
 
+// A value the spec gives (fixed, chosen or free), not the one a kind derives when absent.
+Value givenOnly(const KindContext& c, int gear, Q k) {
+  const auto& en = c.ev.model().info(c.stage).entry(gear, k);
+  if (!en.attr && en.slot < 0 && en.freedom < 0) return Value::invalid();
+  return c.at(gear, k);
+}
+
 double num2(const KindContext& c, int gear, Q k, double dflt) {
   Value v = c.at(gear, k);
   return v.isNumber() ? v.mid() : dflt;
@@ -115,7 +122,8 @@ std::optional<PairInput> fixedInputs(const KindContext& c, std::string* why) {
   in.KHbetaGiven = num(Q::RatingFaceLoadFactor, kNaN);
   in.KvGiven = num(Q::RatingDynamicFactor, kNaN);
   in.KHalphaGiven = num(Q::RatingTransverseLoadFactor, kNaN);
-  in.cgammaGiven = num(Q::MeshStiffness, kNaN);
+  Value cg = givenOnly(c, -1, Q::MeshStiffness);
+  in.cgammaGiven = cg.isNumber() ? cg.mid() : kNaN;
   in.fma = num(Q::RatingMeshMisalignment, kNaN);
   in.SHmin = num(Q::RatingMinContact, 1.0);
   in.SFmin = num(Q::RatingMinBending, 1.0);
@@ -147,13 +155,15 @@ std::optional<std::vector<Value>> varyingInputs(const KindContext& c, const Pair
   x[AlphaN] = c.at(Q::PressureAngle);
   x[Beta] = c.ev.model().info(c.stage).ir->kind == ir::StageKind::Helical ? c.at(Q::HelixAngle) : Value::number(0.0);
   x[B] = c.at(Q::FaceWidth);
-  Value a = c.at(Q::CenterDistance);
+  // Given, or from the shifts inside the rating (an interval of its own would pair
+  // corners of the centre distance with shifts that cannot produce it).
+  Value a = givenOnly(c, -1, Q::CenterDistance);
   x[A] = a.isNumber() ? a : Value::number(kAbsent);
   x[T1] = c.derived(Pinion, Q::Torque);
   x[N1] = c.derived(Pinion, Q::Speed);
   x[N2] = c.derived(Wheel, Q::Speed);
   auto opt = [&](int g, Q k) {
-    Value v = c.at(g, k);
+    Value v = givenOnly(c, g, k);
     return v.isNumber() ? v : Value::number(kAbsent);
   };
   x[Fpb1] = opt(Pinion, Q::PitchDeviation);

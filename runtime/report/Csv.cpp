@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "report/Ratings.h"
 #include "report/Report.h"
 
 namespace gbx::rt {
@@ -150,6 +151,18 @@ std::string modifications(const std::vector<GearboxReport>& reports) {
   return any ? o : "";
 }
 
+std::string ratings(const std::vector<GearboxReport>& reports) {
+  std::string o = row({"gearbox", "stage", "gear", "quantity", "unit", "value"});
+  bool any = false;
+  for (const auto& g : reports)
+    for (const auto& r : g.ratings)
+      for (const auto& v : ratingCsvRows(g.name, r)) {
+        any = true;
+        o += row(v);
+      }
+  return any ? o : "";
+}
+
 } // namespace
 
 std::string renderCsv(const std::vector<GearboxReport>& reports, const RenderOptions&) { return designs(reports); }
@@ -165,6 +178,7 @@ std::vector<TableFile> csvTables(const std::vector<GearboxReport>& reports, cons
   add("sweeps.csv", sweeps(reports));
   add("work_precision.csv", workPrecision(reports, o.timings));
   add("modifications.csv", modifications(reports));
+  add("ratings.csv", ratings(reports));
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace gbx::rt {
 
@@ -24,6 +25,17 @@ std::vector<std::string> optimisationLines(const OptimisationSummary& s, bool fi
       lines.push_back(fmt::format("  {}: {} against the baseline's {}: {:+.1f} %", s.termNames[t], formatNumber(best.terms[t]),
                                   formatNumber(s.baselineTerms[t]), (rel - 1) * 100));
     }
+  }
+  if (s.best && !s.best->margins.empty()) {
+    // A rule binds when the optimum sits on its bound (within 0.1 %).
+    std::vector<std::string> binds;
+    for (const auto& mg : s.best->margins)
+      if (mg.margin <= 1e-3) binds.push_back("`" + mg.rule + "`");
+    lines.push_back(binds.empty() ? "  binding rules: none (the optimum is interior to every inequality rule)"
+                                  : "  binding rules: " + fmt::format("{}", fmt::join(binds, ", ")));
+    for (const auto& mg : s.best->margins)
+      lines.push_back(fmt::format("    {}: {}{} against {}, margin {:+.1f} %", mg.rule, formatNumber(mg.value), mg.unit.empty() ? "" : " " + mg.unit,
+                                  formatNumber(mg.bound), mg.margin * 100));
   }
   if (!s.rankCheck.empty()) lines.push_back("  ranking: " + s.rankCheck);
   if (s.termNames.size() == 2) {
@@ -51,7 +63,11 @@ std::string optimisationJson(const OptimisationSummary& s) {
       json += fmt::format("{}\"{}\": {{\"value\": {}, \"baseline\": {}, \"relative\": {}}}", t ? ", " : "", s.termNames[t], best.terms[t],
                           s.baselineTerms[t], rel);
     }
-    json += "}, ";
+    json += "}, \"margins\": [";
+    for (size_t i = 0; i < best.margins.size(); ++i)
+      json += fmt::format("{}{{\"rule\": \"{}\", \"margin\": {}, \"binds\": {}}}", i ? ", " : "", best.margins[i].rule, best.margins[i].margin,
+                          best.margins[i].margin <= 1e-3 ? "true" : "false");
+    json += "], ";
   }
   json += fmt::format(R"("rank_check": "{}", "pareto": [)", s.rankCheck);
   for (size_t i = 0; i < s.pareto.size(); ++i) json += fmt::format("{}[{}, {}]", i ? ", " : "", s.pareto[i].first, s.pareto[i].second);

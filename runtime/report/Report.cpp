@@ -7,6 +7,7 @@
 
 #include "diag/Diagnostic.h"
 #include "report/Optimisation.h"
+#include "report/Ratings.h"
 #include "report/Studies.h"
 
 namespace gbx::rt {
@@ -102,6 +103,23 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
         o += fmt::format("      rule: {}\n", r.text);
         for (const auto& in : r.inputs) o += "      input: " + in + "\n";
       }
+    }
+    for (const auto& r : g.ratings) {
+      o += fmt::format("  rating {} (design 1), ISO 6336-1/-2/-3 method B\n", r.stage);
+      if (r.error.empty()) {
+        auto rows = ratingRows(r);
+        rows.insert(rows.begin(), ratingHeader(r));
+        std::vector<size_t> w(rows[0].size(), 0);
+        for (const auto& row : rows)
+          for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
+        for (const auto& row : rows) {
+          std::string line = fmt::format("    {:<{}}", row[0], w[0]);
+          for (size_t i = 1; i < row.size(); ++i) line += " " + fmt::format("{:>{}}", row[i], w[i]);
+          while (!line.empty() && line.back() == ' ') line.pop_back();
+          o += line + "\n";
+        }
+      }
+      o += "    " + ratingVerdict(r) + "\n";
     }
     for (const auto& sc : g.scenes) {
       o += fmt::format("  scene {} on {} (design 1)\n", sc.name, sc.target.empty() ? g.name : sc.target);
@@ -262,6 +280,10 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
       o += "]";
     }
     o += g.modifications.empty() ? "}, " : "\n   }, ";
+    o += "\"ratings\": {";
+    for (size_t ri = 0; ri < g.ratings.size(); ++ri)
+      o += fmt::format("{}\n    \"{}\": {}", ri ? "," : "", jsonEscape(g.ratings[ri].stage), ratingJson(g.ratings[ri]));
+    o += g.ratings.empty() ? "}, " : "\n   }, ";
     o += "\"studies\": {";
     for (size_t si = 0; si < g.studies.size(); ++si)
       o += fmt::format("{}\n    \"{}\": {}", si ? "," : "", jsonEscape(studyName(g.studies[si])), studyJson(g.studies[si], ro));
@@ -353,6 +375,11 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
         mr.push_back({r.target, !r.error.empty() ? "not computed: " + r.error : r.present ? r.shown : "absent", r.text, r.condition, inputs});
       }
       o += table({"target", "value", "rule", "when", "inputs"}, mr);
+    }
+    for (const auto& r : g.ratings) {
+      o += heading(3, "Rating of " + r.stage + " (ISO 6336 method B)");
+      if (r.error.empty()) o += table(ratingHeader(r), ratingRows(r));
+      o += para(ratingVerdict(r));
     }
     for (const auto& sc : g.scenes) {
       o += heading(3, "Scene " + sc.name);

@@ -105,6 +105,13 @@ struct OptimisationSummary {
     std::vector<FreedomValue> freedoms;
     double objective = 0;
     std::vector<double> terms;            // absolute, in termNames order
+    struct Margin {
+      std::string rule;                   // `q >= bound` as written
+      double value = 0, bound = 0;        // q and its bound, in the display unit
+      std::string unit;
+      double margin = 0;                  // (q - bound) / |bound|, positive on the allowed side
+    };
+    std::vector<Margin> margins;          // the inequality rules at the optimum, nearest first
   };
   std::optional<Optimum> best;
   std::string rankCheck;
@@ -129,6 +136,27 @@ struct ModifyReport {
   std::vector<ModRow> rows;
 };
 
+// A stage's load-capacity rating at design 1: each factor per gear (or of the mesh), the
+// safeties against their minimums, and which one governs.
+struct RatingReport {
+  std::string stage;
+  std::vector<std::string> gears;
+  struct Row {
+    std::string key;     // the quantity's name (`K_v`, `contact_safety`) or a geometry term
+    std::string unit;    // display unit
+    double scale = 1;    // SI per display unit
+    bool perGear = false;
+    std::vector<double> si;  // one value, or one per gear
+  };
+  std::vector<Row> rows;
+  double minContact = 1, minBending = 1;
+  std::string kvRange;    // the K_v range (subcritical, …) or "given"
+  std::string governs;    // "bending of the wheel: S_F 1.48 against 1.56 (below the minimum)"
+  double governingRatio = 0;  // the smallest safety over its minimum
+  std::string error;      // why the stage could not be rated
+  std::string note;       // how the design was rated, when not at a point
+};
+
 struct GearboxReport {
   std::string name;
   unsigned long long count = 0;
@@ -141,6 +169,7 @@ struct GearboxReport {
   std::vector<SceneReport> scenes;
   std::vector<StudyReport> studies;
   std::vector<ModifyReport> modifications;
+  std::vector<RatingReport> ratings;
   std::optional<OptimisationSummary> optimisation;
 };
 

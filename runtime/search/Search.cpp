@@ -29,6 +29,7 @@ struct Conjunct {
   std::set<int> stages;
   bool freedom = false;      // depends on a continuous freedom
   bool unsupported = false;  // needs dynamics, load sharing or a baseline: not a search rule
+  bool strength = false;     // reads a load-capacity rating: costly, so tested after the cheap rules
 };
 
 bool isGearboxRatio(const ir::QuantityRef& r) { return r.owner == ir::QuantityRef::Gearbox && r.key == Q::Ratio; }
@@ -49,6 +50,7 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth = 0)
       break;
     }
     int st = r.index;
+    if (cat::isRatingQuantity(r.key)) c.strength = true;
     if (cat::dependsOnOperatingPoint(r.key))
       for (int s = 0; s <= st; ++s) c.stages.insert(s);
     c.stages.insert(st);
@@ -586,6 +588,11 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     else if (c.stages.empty()) global.push_back(&c);
     else cross.push_back(&c);
   }
+  // A strength rule runs only on the candidates the cheaper rules kept; the funnel then
+  // says how many it removed.
+  for (auto& l : local)
+    std::stable_sort(l.begin(), l.end(), [](const Conjunct* a, const Conjunct* b) { return !a->strength && b->strength; });
+  std::stable_sort(cross.begin(), cross.end(), [](const Conjunct* a, const Conjunct* b) { return !a->strength && b->strength; });
   for (const auto& o : m.gearbox.objectives) {
     Conjunct c;
     if (o.expr) dependencies(m, *o.expr, c);

@@ -1,0 +1,89 @@
+#include "report/Ratings.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace gbx::rt {
+
+namespace {
+
+std::string label(const RatingReport::Row& row) {
+  std::string name = row.key == "Z_B" ? "Z_B, Z_D" : row.key;
+  return row.unit.empty() ? name : name + " [" + row.unit + "]";
+}
+
+std::string shown(const RatingReport::Row& row, double si) {
+  if (row.key == "load_cycles") return fmt::format("{:.4e}", si);
+  return formatNumber(si / row.scale);
+}
+
+std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
+
+} // namespace
+
+std::vector<std::string> ratingHeader(const RatingReport& r) {
+  std::vector<std::string> h = {"ISO 6336"};
+  for (const auto& g : r.gears) h.push_back(g);
+  h.push_back("minimum");
+  return h;
+}
+
+std::vector<std::vector<std::string>> ratingRows(const RatingReport& r) {
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& row : r.rows) {
+    std::vector<std::string> v = {label(row)};
+    if (row.perGear)
+      for (double x : row.si) v.push_back(shown(row, x));
+    else {
+      v.push_back(shown(row, row.si[0]));
+      v.push_back("");
+    }
+    v.push_back(row.key == "contact_safety" ? formatNumber(r.minContact) : row.key == "bending_safety" ? formatNumber(r.minBending) : "");
+    rows.push_back(std::move(v));
+  }
+  return rows;
+}
+
+std::string ratingVerdict(const RatingReport& r) {
+  if (!r.error.empty()) return "not rated: " + r.error;
+  return fmt::format("governs: {}; K_v {}{}", r.governs, r.kvRange, r.note.empty() ? "" : "; " + r.note);
+}
+
+std::string ratingJson(const RatingReport& r) {
+  if (!r.error.empty()) return fmt::format("{{\"error\": \"{}\"}}", r.error);
+  std::string o = "{\"mesh\": {";
+  bool first = true;
+  for (const auto& row : r.rows)
+    if (!row.perGear) {
+      o += fmt::format("{}\"{}\": {}", first ? "" : ", ", row.key, jsonNumber(row.si[0]));
+      first = false;
+    }
+  o += "}";
+  for (size_t g = 0; g < r.gears.size(); ++g) {
+    o += fmt::format(", \"{}\": {{", r.gears[g]);
+    first = true;
+    for (const auto& row : r.rows)
+      if (row.perGear) {
+        o += fmt::format("{}\"{}\": {}", first ? "" : ", ", row.key, jsonNumber(row.si[g]));
+        first = false;
+      }
+    o += "}";
+  }
+  o += fmt::format(", \"min_safety\": {{\"contact\": {}, \"bending\": {}}}", jsonNumber(r.minContact), jsonNumber(r.minBending));
+  o += fmt::format(", \"governs\": \"{}\", \"governing_ratio\": {}, \"K_v_range\": \"{}\"}}", r.governs, jsonNumber(r.governingRatio), r.kvRange);
+  return o;
+}
+
+std::vector<std::vector<std::string>> ratingCsvRows(const std::string& gearbox, const RatingReport& r) {
+  std::vector<std::vector<std::string>> out;
+  for (const auto& row : r.rows) {
+    auto value = [&](double si) { return fmt::format("{:.10g}", si / row.scale); };
+    if (!row.perGear) out.push_back({gearbox, r.stage, "", row.key, row.unit, value(row.si[0])});
+    else
+      for (size_t g = 0; g < r.gears.size(); ++g) out.push_back({gearbox, r.stage, r.gears[g], row.key, row.unit, value(row.si[g])});
+  }
+  return out;
+}
+
+} // namespace gbx::rt
