@@ -94,6 +94,17 @@ std::vector<AttrSpec> ratingStageQuantities() {
   };
 }
 
+// Gear inputs only the rating reads.
+std::vector<AttrSpec> ratingGearExtras() {
+  return {
+      pos("profile_form_deviation", length, "profile form deviation f_f_alpha (else ISO 1328-1 from the grade)"),
+      pos("helix_slope_deviation", length, "helix slope deviation f_H_beta (else ISO 1328-1 from the grade)"),
+      pos("bore_diameter", length, "inner diameter of the gear blank (0: solid; for the reduced mass of K_v)"),
+      pos("web_thickness", length, "web thickness b_s of a webbed gear blank (for C_R; solid when absent)"),
+      pos("rim_thickness", length, "rim thickness s_R of a webbed gear blank (for C_R)"),
+  };
+}
+
 std::vector<AttrSpec> ratingGearQuantities() {
   return {
       derived("contact_safety", none, "safety factor for contact stress S_H"),
@@ -153,11 +164,7 @@ std::vector<KindSpec> buildKinds() {
   auto cylGear = [] {
     auto g = cylindricalGearAttrs();
     g.push_back(pos("tip_diameter", length, "tip diameter, given (else from the basic rack, the shift and the tip alteration)"));
-    g.push_back(pos("profile_form_deviation", length, "profile form deviation f_f_alpha (else ISO 1328-1 from the grade)"));
-    g.push_back(pos("helix_slope_deviation", length, "helix slope deviation f_H_beta (else ISO 1328-1 from the grade)"));
-    g.push_back(pos("bore_diameter", length, "inner diameter of the gear blank (0: solid; for the reduced mass of K_v)"));
-    g.push_back(pos("web_thickness", length, "web thickness b_s of a webbed gear blank (for C_R; solid when absent)"));
-    g.push_back(pos("rim_thickness", length, "rim thickness s_R of a webbed gear blank (for C_R)"));
+    for (auto& r : ratingGearExtras()) g.push_back(r);
     for (auto& r : ratingGearQuantities()) g.push_back(r);
     return g;
   };
@@ -215,7 +222,13 @@ std::vector<KindSpec> buildKinds() {
         derived("center_distance", length, "driver-to-driven distance (z1/2 + z2 + z3/2) m"),
     };
     for (auto& d : commonDerived()) a.push_back(d);
-    k.push_back({ir::StageKind::Idler, "idler", {"driver", "idler", "driven"}, a, plainGearAttrs()});
+    // Rated as two spur meshes; a stage factor is that of the governing mesh.
+    for (auto& r : ratingInputs()) a.push_back(r);
+    for (auto& r : ratingStageQuantities()) a.push_back(r);
+    auto g = plainGearAttrs();
+    for (auto& r : ratingGearExtras()) g.push_back(r);
+    for (auto& r : ratingGearQuantities()) g.push_back(r);
+    k.push_back({ir::StageKind::Idler, "idler", {"driver", "idler", "driven"}, a, g});
   }
   return k;
 }

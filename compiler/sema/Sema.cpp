@@ -384,7 +384,7 @@ private:
       diags_.error("E0235", nameOr(b),
                    fmt::format("a {} stage has no load-capacity rating yet{}", m.kind->name,
                                m.kind->kind == ir::StageKind::Bevel ? " (bevel gears are rated by ISO 10300, which gbxc does not implement)"
-                                                                    : " (ISO 6336 rating covers spur and helical stages)"));
+                                                                    : " (ISO 6336 rating covers spur, helical and idler stages)"));
       return;
     }
     if (m.rated) {

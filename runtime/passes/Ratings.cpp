@@ -24,10 +24,12 @@ const char* rangeName(rating::KvRange r) {
   return "";
 }
 
-RatingReport table(const ir::Stage& st, const PairRating& r, double minH, double minF) {
+RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool several, double minH, double minF) {
+  const PairRating& r = mr.rating;
   RatingReport out;
   out.stage = st.name;
-  out.gears = st.gears;
+  out.gears = {st.gears[static_cast<size_t>(mr.driving)], st.gears[static_cast<size_t>(mr.driven)]};
+  if (several) out.mesh = out.gears[0] + "-" + out.gears[1];
   out.minContact = minH;
   out.minBending = minF;
   out.kvRange = rangeName(r.kvRange);
@@ -84,7 +86,7 @@ RatingReport table(const ir::Stage& st, const PairRating& r, double minH, double
       double s = contact ? r.gear[g].SH : r.gear[g].SF, min = contact ? minH : minF;
       if (s / min < worst) {
         worst = s / min;
-        out.governs = fmt::format("{} of the {}: {} {} against {}{}", contact ? "contact" : "bending", st.gears[g],
+        out.governs = fmt::format("{} of the {}: {} {} against {}{}", contact ? "contact" : "bending", out.gears[g],
                                   contact ? "S_H" : "S_F", formatNumber(s), formatNumber(min), s < min ? " (below the minimum)" : "");
       }
     }
@@ -102,8 +104,8 @@ Ratings ratings(const Model& m, const Assignment& best) {
     if (!m.attribute(static_cast<int>(s), Q::RatingLife)) continue;
     KindContext c{ev, static_cast<int>(s), best};
     std::string why;
-    auto r = rating::ratePair(c, &why);
-    if (!r) {
+    auto meshes = rating::rateStage(c, &why);
+    if (meshes.empty()) {
       RatingReport failed;
       failed.stage = st.name;
       failed.error = why;
@@ -115,11 +117,13 @@ Ratings ratings(const Model& m, const Assignment& best) {
       Value v = c.at(k);
       return v.isNumber() ? v.mid() : 1.0;
     };
-    result.ratings.push_back(table(st, *r, minOf(Q::RatingMinContact), minOf(Q::RatingMinBending)));
-    // A freedom still spanning an interval (not optimised): rated at its middle, said so.
-    for (int f : m.stages[s].freedoms)
-      if (best.box[static_cast<size_t>(f)].first != best.box[static_cast<size_t>(f)].second)
-        result.ratings.back().note = "rated at the middle of each free attribute's interval";
+    for (const auto& mr : meshes) {
+      result.ratings.push_back(table(st, mr, meshes.size() > 1, minOf(Q::RatingMinContact), minOf(Q::RatingMinBending)));
+      // A freedom still spanning an interval (not optimised): rated at its middle, said so.
+      for (int f : m.stages[s].freedoms)
+        if (best.box[static_cast<size_t>(f)].first != best.box[static_cast<size_t>(f)].second)
+          result.ratings.back().note = "rated at the middle of each free attribute's interval";
+    }
   }
   return result;
 }

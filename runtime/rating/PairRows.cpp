@@ -30,6 +30,28 @@ double num2(const KindContext& c, int gear, Q k, double dflt) {
   return v.isNumber() ? v.mid() : dflt;
 }
 
+// A rated mesh of the stage: its driving and driven gear, and their mean stress factors
+// (an idler's teeth are loaded on both flanks).
+struct Mesh {
+  int g0, g1;
+  double YM0 = 1, YM1 = 1;
+};
+
+std::vector<Mesh> meshesOf(const KindContext& c) {
+  using namespace cat::gear;
+  switch (c.ev.model().info(c.stage).ir->kind) {
+  case ir::StageKind::Spur:
+  case ir::StageKind::Helical: return {{Pinion, Wheel}};
+  case ir::StageKind::Idler: return {{Driver, Idler, 1.0, 0.7}, {Idler, Driven, 0.7, 1.0}};
+  default: return {};
+  }
+}
+
+// Spur and helical stages have a normal module; an idler train one plain module.
+Q moduleKey(const KindContext& c) {
+  return c.ev.model().info(c.stage).ir->kind == ir::StageKind::Idler ? Q::Module : Q::NormalModule;
+}
+
 // The inputs that vary with the design, as values that may span a freedom's interval.
 enum In { Z1, Z2, X1, X2, Mn, AlphaN, Beta, B, A, T1, N1, N2, Fpb1, Fpb2, Ffa1, Ffa2, Fhb1, Fhb2, Ca, Da1, Da2, B1, B2, Count };
 
@@ -78,7 +100,7 @@ Lead lead(const KindContext& c) {
 }
 
 // The inputs that do not vary with the design; nullopt when one the rating needs is missing.
-std::optional<PairInput> fixedInputs(const KindContext& c, std::string* why) {
+std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std::string* why) {
   auto fail = [&](std::string s) -> std::optional<PairInput> {
     if (why) *why = std::move(s);
     return std::nullopt;
@@ -131,11 +153,13 @@ std::optional<PairInput> fixedInputs(const KindContext& c, std::string* why) {
   in.optimumLife = curve && curve->choice == cat::lifeCurve::Optimum;
   Value grade = c.at(Q::Accuracy);
   in.grade = grade.exact && grade.exact->isInteger() ? static_cast<int>(grade.exact->num()) : 0;
-  for (int g = 0; g < 2; ++g) {
-    GearInput& gi = in.gear[static_cast<size_t>(g)];
+  for (int slot = 0; slot < 2; ++slot) {
+    GearInput& gi = in.gear[static_cast<size_t>(slot)];
+    int g = slot == 0 ? mesh.g0 : mesh.g1;
+    gi.YM = slot == 0 ? mesh.YM0 : mesh.YM1;
     gi.bore = num2(c, g, Q::BoreDiameter, 0.0);
     double bs = num2(c, g, Q::WebThickness, kNaN), sr = num2(c, g, Q::RimThickness, kNaN);
-    double b = c.at(Q::FaceWidth).mid(), mn = c.at(Q::NormalModule).mid();
+    double b = c.at(Q::FaceWidth).mid(), mn = c.at(moduleKey(c)).mid();
     // C_R of a webbed blank, ISO 6336-1 eq. (clause 9.3.4): 1 + ln(b_s/b) / (5 e^(s_R/(5 m_n))).
     if (std::isfinite(bs) && std::isfinite(sr) && bs / b >= 0.2 && bs / b < 1.2)
       gi.webFactor = 1 + std::log(bs / b) / (5 * std::exp(sr / (5 * mn)));
@@ -145,35 +169,38 @@ std::optional<PairInput> fixedInputs(const KindContext& c, std::string* why) {
 
 
 // The varying inputs at the design, in `In` order.
-std::optional<std::vector<Value>> varyingInputs(const KindContext& c, const PairInput& fixed, std::string* why) {
+std::optional<std::vector<Value>> varyingInputs(const KindContext& c, const PairInput& fixed, const Mesh& mesh, std::string* why) {
   std::vector<Value> x(In::Count);
-  x[Z1] = c.at(Pinion, Q::Z);
-  x[Z2] = c.at(Wheel, Q::Z);
-  x[X1] = c.orZero(Pinion, Q::Shift);
-  x[X2] = c.orZero(Wheel, Q::Shift);
-  x[Mn] = c.at(Q::NormalModule);
+  const int p = mesh.g0, w = mesh.g1;
+  bool cylindrical = c.ev.model().info(c.stage).ir->kind != ir::StageKind::Idler;
+  x[Z1] = c.at(p, Q::Z);
+  x[Z2] = c.at(w, Q::Z);
+  x[X1] = c.orZero(p, Q::Shift);
+  x[X2] = c.orZero(w, Q::Shift);
+  x[Mn] = c.at(moduleKey(c));
   x[AlphaN] = c.at(Q::PressureAngle);
   x[Beta] = c.ev.model().info(c.stage).ir->kind == ir::StageKind::Helical ? c.at(Q::HelixAngle) : Value::number(0.0);
   x[B] = c.at(Q::FaceWidth);
   // Given, or from the shifts inside the rating (an interval of its own would pair
-  // corners of the centre distance with shifts that cannot produce it).
-  Value a = givenOnly(c, -1, Q::CenterDistance);
+  // corners of the centre distance with shifts that cannot produce it). An idler train's
+  // centre distance is the driver's to the driven gear's: each mesh's comes from its shifts.
+  Value a = cylindrical ? givenOnly(c, -1, Q::CenterDistance) : Value::invalid();
   x[A] = a.isNumber() ? a : Value::number(kAbsent);
-  x[T1] = c.derived(Pinion, Q::Torque);
-  x[N1] = c.derived(Pinion, Q::Speed);
-  x[N2] = c.derived(Wheel, Q::Speed);
+  x[T1] = c.derived(p, Q::Torque);
+  x[N1] = c.derived(p, Q::Speed);
+  x[N2] = c.derived(w, Q::Speed);
   auto opt = [&](int g, Q k) {
     Value v = givenOnly(c, g, k);
     return v.isNumber() ? v : Value::number(kAbsent);
   };
-  x[Fpb1] = opt(Pinion, Q::PitchDeviation);
-  x[Fpb2] = opt(Wheel, Q::PitchDeviation);
-  x[Ffa1] = opt(Pinion, Q::ProfileFormDeviation);
-  x[Ffa2] = opt(Wheel, Q::ProfileFormDeviation);
-  x[Fhb1] = opt(Pinion, Q::HelixSlopeDeviation);
-  x[Fhb2] = opt(Wheel, Q::HelixSlopeDeviation);
-  x[Da1] = opt(Pinion, Q::TipDiameter);
-  x[Da2] = opt(Wheel, Q::TipDiameter);
+  x[Fpb1] = opt(p, Q::PitchDeviation);
+  x[Fpb2] = opt(w, Q::PitchDeviation);
+  x[Ffa1] = opt(p, Q::ProfileFormDeviation);
+  x[Ffa2] = opt(w, Q::ProfileFormDeviation);
+  x[Fhb1] = opt(p, Q::HelixSlopeDeviation);
+  x[Fhb2] = opt(w, Q::HelixSlopeDeviation);
+  x[Da1] = opt(p, Q::TipDiameter);
+  x[Da2] = opt(w, Q::TipDiameter);
   Lead l = lead(c);
   x[Ca] = l.tipRelief;
   x[B1] = Value::number(l.B1);
@@ -222,14 +249,74 @@ PairRating rateAt(PairInput in, const V& x) {
   return rate(in);
 }
 
-Value rated(const KindContext& c, int gear, double (*select)(const PairRating&, int)) {
-  auto fixed = fixedInputs(c, nullptr);
-  if (!fixed) return Value::invalid();
-  auto x = varyingInputs(c, *fixed, nullptr);
-  if (!x) return Value::invalid();
-  return arith::corners(*x, [&](const V& v) {
+enum class Side { Contact, Bending, Any };
+
+// Over a stage's meshes: the rating of the mesh that governs the asked gear's side (a gear
+// in two meshes, the idler, is as safe as its weaker one), or the stage's governing mesh.
+int governing(const std::vector<PairRating>& r, const std::vector<Mesh>& meshes, int gear, Side side, double minH, double minF) {
+  int best = -1;
+  double worst = 1e300;
+  for (size_t k = 0; k < r.size(); ++k)
+    for (int slot = 0; slot < 2; ++slot) {
+      int g = slot == 0 ? meshes[k].g0 : meshes[k].g1;
+      if (gear >= 0 && g != gear) continue;
+      const GearRating& o = r[k].gear[static_cast<size_t>(slot)];
+      double v = side == Side::Contact ? o.SH / minH : side == Side::Bending ? o.SF / minF : std::min(o.SH / minH, o.SF / minF);
+      if (v < worst) {
+        worst = v;
+        best = static_cast<int>(k);
+      }
+    }
+  return best;
+}
+
+struct Rated {
+  std::vector<Mesh> meshes;
+  std::vector<PairInput> fixed;  // per mesh
+  std::vector<std::vector<Value>> varying;
+};
+
+std::optional<Rated> gather(const KindContext& c, std::string* why) {
+  Rated r;
+  r.meshes = meshesOf(c);
+  if (r.meshes.empty()) {
+    if (why) *why = "this stage kind has no ISO 6336 rating";
+    return std::nullopt;
+  }
+  for (const auto& mesh : r.meshes) {
+    auto fixed = fixedInputs(c, mesh, why);
+    if (!fixed) return std::nullopt;
+    auto x = varyingInputs(c, *fixed, mesh, why);
+    if (!x) return std::nullopt;
+    r.fixed.push_back(*fixed);
+    r.varying.push_back(std::move(*x));
+  }
+  return r;
+}
+
+// Each mesh's rating at one corner of the concatenated varying inputs.
+std::vector<PairRating> rateAll(const Rated& g, const V& x) {
+  std::vector<PairRating> out;
+  for (size_t k = 0; k < g.meshes.size(); ++k) {
+    auto at = x.begin() + static_cast<long>(k * In::Count);
+    out.push_back(rateAt(g.fixed[k], V(at, at + In::Count)));
+  }
+  return out;
+}
+
+Value rated(const KindContext& c, int gear, Side side, double (*select)(const PairRating&, int slot)) {
+  auto g = gather(c, nullptr);
+  if (!g) return Value::invalid();
+  std::vector<Value> all;
+  for (const auto& v : g->varying) all.insert(all.end(), v.begin(), v.end());
+  double minH = g->fixed[0].SHmin, minF = g->fixed[0].SFmin;
+  return arith::corners(all, [&](const V& v) {
     try {
-      return select(rateAt(*fixed, v), gear < 0 ? 0 : gear);
+      auto r = rateAll(*g, v);
+      int k = governing(r, g->meshes, gear, side, minH, minF);
+      if (k < 0) return kNaN;
+      int slot = gear < 0 ? 0 : g->meshes[static_cast<size_t>(k)].g0 == gear ? 0 : 1;
+      return select(r[static_cast<size_t>(k)], slot);
     } catch (const std::domain_error&) {
       return kNaN;
     }
@@ -238,29 +325,31 @@ Value rated(const KindContext& c, int gear, double (*select)(const PairRating&, 
 
 template <double PairRating::*M>
 DerivedRow stageRow(Q key) {
-  return {key, false, [](const KindContext& c, int g) { return rated(c, g, [](const PairRating& r, int) { return r.*M; }); }};
+  return {key, false, [](const KindContext& c, int g) { return rated(c, g, Side::Any, [](const PairRating& r, int) { return r.*M; }); }};
 }
-template <double GearRating::*M>
+template <double GearRating::*M, Side S>
 DerivedRow gearRow(Q key) {
   return {key, true, [](const KindContext& c, int g) {
-            return rated(c, g, [](const PairRating& r, int gear) { return r.gear[static_cast<size_t>(gear)].*M; });
+            return rated(c, g, S, [](const PairRating& r, int slot) { return r.gear[static_cast<size_t>(slot)].*M; });
           }};
 }
 
 } // namespace
 
-std::optional<PairRating> ratePair(const KindContext& c, std::string* why) {
-  auto fixed = fixedInputs(c, why);
-  if (!fixed) return std::nullopt;
-  auto x = varyingInputs(c, *fixed, why);
-  if (!x) return std::nullopt;
+std::vector<MeshRating> rateStage(const KindContext& c, std::string* why) {
+  auto g = gather(c, why);
+  if (!g) return {};
   V point;
-  for (const auto& v : *x) point.push_back(v.mid());
+  for (const auto& v : g->varying)
+    for (const auto& x : v) point.push_back(x.mid());
   try {
-    return rateAt(*fixed, point);
+    auto r = rateAll(*g, point);
+    std::vector<MeshRating> out;
+    for (size_t k = 0; k < r.size(); ++k) out.push_back({g->meshes[k].g0, g->meshes[k].g1, r[k]});
+    return out;
   } catch (const std::domain_error& e) {
     if (why) *why = e.what();
-    return std::nullopt;
+    return {};
   }
 }
 
@@ -277,28 +366,28 @@ std::vector<DerivedRow> pairRows() {
       stageRow<&P::ZE>(Q::ZE),
       stageRow<&P::Zeps>(Q::Zeps),
       stageRow<&P::Zbeta>(Q::Zbeta),
-      gearRow<&G::SH>(Q::ContactSafety),
-      gearRow<&G::SF>(Q::BendingSafety),
-      gearRow<&G::sigmaH>(Q::ContactStress),
-      gearRow<&G::sigmaF>(Q::BendingStress),
-      gearRow<&G::sigmaHP>(Q::PermissibleContactStress),
-      gearRow<&G::sigmaFP>(Q::PermissibleBendingStress),
-      gearRow<&G::ZNT>(Q::ZNT),
-      gearRow<&G::ZL>(Q::ZL),
-      gearRow<&G::Zv>(Q::Zv),
-      gearRow<&G::ZR>(Q::ZR),
-      gearRow<&G::ZW>(Q::ZW),
-      gearRow<&G::ZX>(Q::ZX),
-      gearRow<&G::ZBD>(Q::ZB),
-      gearRow<&G::ZBD>(Q::ZD),
-      gearRow<&G::YF>(Q::YF),
-      gearRow<&G::YS>(Q::YS),
-      gearRow<&G::Ybeta>(Q::Ybeta),
-      gearRow<&G::YNT>(Q::YNT),
-      gearRow<&G::YdeltarelT>(Q::YdeltarelT),
-      gearRow<&G::YRrelT>(Q::YRrelT),
-      gearRow<&G::YX>(Q::YX),
-      gearRow<&G::YM>(Q::YM),
+      gearRow<&G::SH, Side::Contact>(Q::ContactSafety),
+      gearRow<&G::SF, Side::Bending>(Q::BendingSafety),
+      gearRow<&G::sigmaH, Side::Contact>(Q::ContactStress),
+      gearRow<&G::sigmaF, Side::Bending>(Q::BendingStress),
+      gearRow<&G::sigmaHP, Side::Contact>(Q::PermissibleContactStress),
+      gearRow<&G::sigmaFP, Side::Bending>(Q::PermissibleBendingStress),
+      gearRow<&G::ZNT, Side::Contact>(Q::ZNT),
+      gearRow<&G::ZL, Side::Contact>(Q::ZL),
+      gearRow<&G::Zv, Side::Contact>(Q::Zv),
+      gearRow<&G::ZR, Side::Contact>(Q::ZR),
+      gearRow<&G::ZW, Side::Contact>(Q::ZW),
+      gearRow<&G::ZX, Side::Contact>(Q::ZX),
+      gearRow<&G::ZBD, Side::Contact>(Q::ZB),
+      gearRow<&G::ZBD, Side::Contact>(Q::ZD),
+      gearRow<&G::YF, Side::Bending>(Q::YF),
+      gearRow<&G::YS, Side::Bending>(Q::YS),
+      gearRow<&G::Ybeta, Side::Bending>(Q::Ybeta),
+      gearRow<&G::YNT, Side::Bending>(Q::YNT),
+      gearRow<&G::YdeltarelT, Side::Bending>(Q::YdeltarelT),
+      gearRow<&G::YRrelT, Side::Bending>(Q::YRrelT),
+      gearRow<&G::YX, Side::Bending>(Q::YX),
+      gearRow<&G::YM, Side::Bending>(Q::YM),
   };
 }
 

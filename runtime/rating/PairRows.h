@@ -1,7 +1,9 @@
 #pragma once
-// The rating quantities of a pinion-wheel stage (spur, helical) as derived rows: each
-// gathers the stage's geometry, load, material, `rating { … }` inputs and `modify` lead
-// and tip rules at the design, and reads one factor of the ISO 6336 rating.
+// The rating quantities of a stage of external meshes (spur, helical, idler) as derived
+// rows: each gathers the stage's geometry, load, material, `rating { … }` inputs and
+// `modify` lead and tip rules at the design, rates each mesh and reads one factor. A gear
+// in two meshes (the idler) takes the mesh that governs its contact or bending safety;
+// a stage factor is that of the stage's governing mesh.
 #include <optional>
 #include <vector>
 
@@ -12,9 +14,15 @@ namespace gbx::rt::rating {
 
 std::vector<DerivedRow> pairRows();
 
-// The whole rating of a pinion-wheel stage at a point design (no freedom spans an
-// interval), or nothing when an input is missing or the geometry admits no rating; the
-// reason, when there is one, goes to `why`.
-std::optional<PairRating> ratePair(const KindContext& c, std::string* why = nullptr);
+// One mesh of a stage rated: its driving and driven gear's positions in the stage.
+struct MeshRating {
+  int driving, driven;
+  PairRating rating;
+};
+
+// Every mesh of the stage rated at the design (a freedom spanning an interval is taken at
+// its middle), or none when an input is missing or the geometry admits no rating; the
+// reason then goes to `why`.
+std::vector<MeshRating> rateStage(const KindContext& c, std::string* why = nullptr);
 
 } // namespace gbx::rt::rating

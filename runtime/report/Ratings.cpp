@@ -79,9 +79,10 @@ std::vector<std::vector<std::string>> ratingCsvRows(const std::string& gearbox, 
   std::vector<std::vector<std::string>> out;
   for (const auto& row : r.rows) {
     auto value = [&](double si) { return fmt::format("{:.10g}", si / row.scale); };
-    if (!row.perGear) out.push_back({gearbox, r.stage, "", row.key, row.unit, value(row.si[0])});
+    std::string stage = r.mesh.empty() ? r.stage : r.stage + "." + r.mesh;
+    if (!row.perGear) out.push_back({gearbox, stage, "", row.key, row.unit, value(row.si[0])});
     else
-      for (size_t g = 0; g < r.gears.size(); ++g) out.push_back({gearbox, r.stage, r.gears[g], row.key, row.unit, value(row.si[g])});
+      for (size_t g = 0; g < r.gears.size(); ++g) out.push_back({gearbox, stage, r.gears[g], row.key, row.unit, value(row.si[g])});
   }
   return out;
 }

@@ -105,7 +105,7 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
       }
     }
     for (const auto& r : g.ratings) {
-      o += fmt::format("  rating {} (design 1), ISO 6336-1/-2/-3 method B\n", r.stage);
+      o += fmt::format("  rating {}{} (design 1), ISO 6336-1/-2/-3 method B\n", r.stage, r.mesh.empty() ? "" : ", mesh " + r.mesh);
       if (r.error.empty()) {
         auto rows = ratingRows(r);
         rows.insert(rows.begin(), ratingHeader(r));
@@ -282,7 +282,8 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
     o += g.modifications.empty() ? "}, " : "\n   }, ";
     o += "\"ratings\": {";
     for (size_t ri = 0; ri < g.ratings.size(); ++ri)
-      o += fmt::format("{}\n    \"{}\": {}", ri ? "," : "", jsonEscape(g.ratings[ri].stage), ratingJson(g.ratings[ri]));
+      o += fmt::format("{}\n    \"{}\": {}", ri ? "," : "",
+                       jsonEscape(g.ratings[ri].stage + (g.ratings[ri].mesh.empty() ? "" : "." + g.ratings[ri].mesh)), ratingJson(g.ratings[ri]));
     o += g.ratings.empty() ? "}, " : "\n   }, ";
     o += "\"studies\": {";
     for (size_t si = 0; si < g.studies.size(); ++si)
@@ -377,7 +378,7 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       o += table({"target", "value", "rule", "when", "inputs"}, mr);
     }
     for (const auto& r : g.ratings) {
-      o += heading(3, "Rating of " + r.stage + " (ISO 6336 method B)");
+      o += heading(3, "Rating of " + r.stage + (r.mesh.empty() ? "" : ", mesh " + r.mesh) + " (ISO 6336 method B)");
       if (r.error.empty()) o += table(ratingHeader(r), ratingRows(r));
       o += para(ratingVerdict(r));
     }

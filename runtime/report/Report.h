@@ -140,6 +140,7 @@ struct ModifyReport {
 // safeties against their minimums, and which one governs.
 struct RatingReport {
   std::string stage;
+  std::string mesh;       // "driver-idler" when the stage has several meshes, else ""
   std::vector<std::string> gears;
   struct Row {
     std::string key;     // the quantity's name (`K_v`, `contact_safety`) or a geometry term

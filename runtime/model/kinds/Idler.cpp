@@ -4,6 +4,7 @@
 #include "catalogue/StageKinds.h"
 #include "model/Evaluator.h"
 #include "model/StageKind.h"
+#include "rating/PairRows.h"
 
 namespace gbx::rt::kinds {
 
@@ -39,6 +40,8 @@ std::vector<DerivedRow> rows() {
        }},
   };
   r.insert(r.end(), own.begin(), own.end());
+  auto rating = rating::pairRows();
+  r.insert(r.end(), rating.begin(), rating.end());
   return r;
 }
 

@@ -89,3 +89,32 @@ gearbox G {
     EXPECT_GE(ev.quantity("s1.pinion.contact_safety", a).lo, 1.1);
   }
 }
+
+// An idler train is rated as its two spur meshes: the driver as the pinion of the first,
+// the driven gear as the wheel of the second, the idler by the weaker of its two meshes
+// and with Y_M = 0.7 for its teeth loaded on both flanks.
+TEST(RatingSpec, IdlerIsRatedAsItsTwoMeshes) {
+  const char* rating = "material = steel_18CrNiMo7_6; accuracy = 6; rating { life = 20000 h; lubricant { viscosity_40 = 220 mm^2/s; } "
+                       "roughness { flank = 0.8 um; root = 3 um; } }";
+  std::string text = std::string("import materials;\ngearbox I { stage t: idler { driver.z = 20; idler.z = 31; driven.z = 40; module = 3 mm; "
+                                 "face_width = 30 mm; ") +
+                     rating +
+                     " }\n operating { input_speed = 1500 rpm; input_torque = 150 N*m; } }\n"
+                     "gearbox S { stage a: spur { pinion.z = 20; wheel.z = 31; normal_module = 3 mm; face_width = 30 mm; " +
+                     rating + " }\n stage b: spur { pinion.z = 31; wheel.z = 40; normal_module = 3 mm; face_width = 30 mm; " + rating +
+                     " }\n operating { input_speed = 1500 rpm; input_torque = 150 N*m; } }\n";
+  auto c = driver::compileText("idler.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  auto i = fixed(c, "I"), s = fixed(c, "S");
+  rt::Evaluator ei(*i.model), es(*s.model);
+  auto qi = [&](const char* p) { return ei.quantity(p, *i.design).lo; };
+  auto qs = [&](const char* p) { return es.quantity(p, *s.design).lo; };
+  EXPECT_DOUBLE_EQ(qi("t.driver.contact_safety"), qs("a.pinion.contact_safety"));
+  EXPECT_DOUBLE_EQ(qi("t.driver.bending_safety"), qs("a.pinion.bending_safety"));
+  EXPECT_DOUBLE_EQ(qi("t.driven.contact_safety"), qs("b.wheel.contact_safety"));
+  EXPECT_DOUBLE_EQ(qi("t.driven.bending_safety"), qs("b.wheel.bending_safety"));
+  EXPECT_DOUBLE_EQ(qi("t.idler.contact_safety"), std::min(qs("a.wheel.contact_safety"), qs("b.pinion.contact_safety")));
+  EXPECT_NEAR(qi("t.idler.bending_safety"), 0.7 * std::min(qs("a.wheel.bending_safety"), qs("b.pinion.bending_safety")), 1e-12);
+  EXPECT_DOUBLE_EQ(qi("t.idler.Y_M"), 0.7);
+  EXPECT_DOUBLE_EQ(qi("t.driver.Y_M"), 1.0);
+}
