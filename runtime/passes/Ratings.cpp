@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "model/Evaluator.h"
-#include "rating/PairRows.h"
+#include "model/RatingRows.h"
 #include "units/Unit.h"
 
 namespace gbx::rt::passes {

@@ -6,7 +6,7 @@
 #include "model/Standards.h"
 #include "model/StageKind.h"
 #include "model/kinds/Geometry.h"
-#include "rating/PairRows.h"
+#include "model/RatingRows.h"
 
 namespace gbx::rt::kinds {
 

@@ -4,7 +4,7 @@
 #include "catalogue/StageKinds.h"
 #include "model/Evaluator.h"
 #include "model/StageKind.h"
-#include "rating/PairRows.h"
+#include "model/RatingRows.h"
 
 namespace gbx::rt::kinds {
 

@@ -1,4 +1,4 @@
-#include "rating/PairRows.h"
+#include "model/RatingRows.h"
 
 #include <cmath>
 #include <stdexcept>
