@@ -73,7 +73,7 @@ std::vector<AttrSpec> ratingInputs() {
       pos("rating.face_load_factor", none, "face load factor K_Hbeta, given (computed when absent)"),
       pos("rating.dynamic_factor", none, "dynamic factor K_v, given (method B when absent)"),
       pos("rating.transverse_load_factor", none, "transverse load factor K_Halpha, given (method B when absent)"),
-      pos("rating.mesh_load_factor", none, "mesh load factor K_gamma of multi-path drives (default 1.0)"),
+      pos("rating.mesh_load_factor", none, "mesh load factor K_gamma of multi-path drives (default 1.0; planetary: by the number of planets, IEC 61400-4)"),
       in("rating.mesh_misalignment", length, "mesh misalignment from manufacture f_ma (default the helix slope tolerance f_Hbeta)"),
       pos("rating.min_safety.contact", none, "minimum contact safety S_Hmin (default 1.0)"),
       pos("rating.min_safety.bending", none, "minimum bending safety S_Fmin (default 1.0)"),
@@ -97,6 +97,7 @@ std::vector<AttrSpec> ratingStageQuantities() {
 // Gear inputs only the rating reads.
 std::vector<AttrSpec> ratingGearExtras() {
   return {
+      pos("tip_diameter", length, "tip diameter, given (else from the basic rack, the shift and the tip alteration)"),
       pos("profile_form_deviation", length, "profile form deviation f_f_alpha (else ISO 1328-1 from the grade)"),
       pos("helix_slope_deviation", length, "helix slope deviation f_H_beta (else ISO 1328-1 from the grade)"),
       pos("bore_diameter", length, "inner diameter of the gear blank (0: solid; for the reduced mass of K_v)"),
@@ -163,7 +164,6 @@ std::vector<KindSpec> buildKinds() {
   };
   auto cylGear = [] {
     auto g = cylindricalGearAttrs();
-    g.push_back(pos("tip_diameter", length, "tip diameter, given (else from the basic rack, the shift and the tip alteration)"));
     for (auto& r : ratingGearExtras()) g.push_back(r);
     for (auto& r : ratingGearQuantities()) g.push_back(r);
     return g;
@@ -208,8 +208,13 @@ std::vector<KindSpec> buildKinds() {
         derived("carrier_speed", angularSpeed, "carrier speed"),
     };
     for (auto& d : commonDerived()) a.push_back(d);
+    // Rated as its sun-planet and planet-ring meshes (K_gamma: `rating.mesh_load_factor`).
+    for (auto& r : ratingInputs()) a.push_back(r);
+    for (auto& r : ratingStageQuantities()) a.push_back(r);
     auto g = plainGearAttrs();
     g.push_back(pos("mass", mass, "gear mass (planets: each)"));
+    for (auto& r : ratingGearExtras()) g.push_back(r);
+    for (auto& r : ratingGearQuantities()) g.push_back(r);
     k.push_back({ir::StageKind::Planetary, "planetary", {"sun", "planet", "ring"}, a, g});
   }
   {

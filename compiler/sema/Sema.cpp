@@ -384,7 +384,7 @@ private:
       diags_.error("E0235", nameOr(b),
                    fmt::format("a {} stage has no load-capacity rating yet{}", m.kind->name,
                                m.kind->kind == ir::StageKind::Bevel ? " (bevel gears are rated by ISO 10300, which gbxc does not implement)"
-                                                                    : " (ISO 6336 rating covers spur, helical and idler stages)"));
+                                                                    : " (ISO 6336 rating covers spur, helical, idler and planetary stages)"));
       return;
     }
     if (m.rated) {
@@ -916,7 +916,19 @@ private:
         if (!k || !isRatingQuantity(*k)) return;
         auto dot = x.name.find('.');
         const StageModel* st = dot == std::string::npos ? nullptr : m.findStage(x.name.substr(0, dot));
-        if (!st || !st->kind || st->rated) return;
+        if (!st || !st->kind) return;
+        if (st->rated) {
+          // An internal gear's tooth root: ISO 6336-3 for internal gears is not implemented.
+          static const std::set<Q> root = {Q::BendingSafety, Q::BendingStress, Q::PermissibleBendingStress, Q::YF, Q::YS, Q::Ybeta,
+                                           Q::YNT, Q::YdeltarelT, Q::YRrelT, Q::YX};
+          bool ring = st->kind->kind == ir::StageKind::Planetary && x.name.find("." + st->kind->gears[2] + ".") != std::string::npos;
+          if (ring && root.count(*k) && reported.insert({x.span.line, x.span.col}).second)
+            diags_.error("E0235", x.span,
+                         fmt::format("`{}`: the tooth root of an internal gear is not rated (ISO 6336-3 for internal gears is not "
+                                     "implemented); its contact is ({})",
+                                     x.name, where));
+          return;
+        }
         if (!reported.insert({x.span.line, x.span.col}).second) return;
         diags_.error("E0236", x.span,
                      fmt::format("`{}` is a load-capacity result, but stage `{}` has no `rating {{ … }}` block with its inputs ({})",

@@ -35,6 +35,8 @@ double num2(const KindContext& c, int gear, Q k, double dflt) {
 struct Mesh {
   int g0, g1;
   double YM0 = 1, YM1 = 1;
+  bool internal = false;   // g1 is an internal gear (a ring)
+  bool planetary = false;  // speeds relative to the carrier, load per planet
 };
 
 std::vector<Mesh> meshesOf(const KindContext& c) {
@@ -43,13 +45,27 @@ std::vector<Mesh> meshesOf(const KindContext& c) {
   case ir::StageKind::Spur:
   case ir::StageKind::Helical: return {{Pinion, Wheel}};
   case ir::StageKind::Idler: return {{Driver, Idler, 1.0, 0.7}, {Idler, Driven, 0.7, 1.0}};
+  // The planets are loaded on both flanks (sun side, ring side).
+  case ir::StageKind::Planetary: return {{Sun, Planet, 1.0, 0.7, false, true}, {Planet, Ring, 0.7, 1.0, true, true}};
   default: return {};
   }
 }
 
 // Spur and helical stages have a normal module; an idler train one plain module.
 Q moduleKey(const KindContext& c) {
-  return c.ev.model().info(c.stage).ir->kind == ir::StageKind::Idler ? Q::Module : Q::NormalModule;
+  auto k = c.ev.model().info(c.stage).ir->kind;
+  return k == ir::StageKind::Idler || k == ir::StageKind::Planetary ? Q::Module : Q::NormalModule;
+}
+
+// K_gamma of a planetary stage when the spec gives none: by the number of planets, as
+// IEC 61400-4 tabulates it (3: 1.10, 4: 1.25, 5: 1.35, 6: 1.44, 7: 1.47).
+double planetaryMeshLoadFactor(double planets) {
+  if (planets <= 2) return 1.0;
+  if (planets <= 3) return 1.10;
+  if (planets <= 4) return 1.25;
+  if (planets <= 5) return 1.35;
+  if (planets <= 6) return 1.44;
+  return 1.47;
 }
 
 // The inputs that vary with the design, as values that may span a freedom's interval.
@@ -153,6 +169,15 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
   in.optimumLife = curve && curve->choice == cat::lifeCurve::Optimum;
   Value grade = c.at(Q::Accuracy);
   in.grade = grade.exact && grade.exact->isInteger() ? static_cast<int>(grade.exact->num()) : 0;
+  if (mesh.planetary) {
+    double planets = c.at(Q::Planets).mid();
+    in.Kgamma = num(Q::RatingMeshLoadFactor, planetaryMeshLoadFactor(planets));
+    // The sun meets every planet, the ring every planet, per turn relative to the carrier.
+    in.gear[0].cyclesPerRev = mesh.internal ? 1 : planets;
+    in.gear[1].cyclesPerRev = mesh.internal ? planets : 1;
+    in.planets = mesh.internal ? 0 : static_cast<int>(planets);
+    in.gear[1].internal = mesh.internal;
+  }
   for (int slot = 0; slot < 2; ++slot) {
     GearInput& gi = in.gear[static_cast<size_t>(slot)];
     int g = slot == 0 ? mesh.g0 : mesh.g1;
@@ -172,7 +197,8 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
 std::optional<std::vector<Value>> varyingInputs(const KindContext& c, const PairInput& fixed, const Mesh& mesh, std::string* why) {
   std::vector<Value> x(In::Count);
   const int p = mesh.g0, w = mesh.g1;
-  bool cylindrical = c.ev.model().info(c.stage).ir->kind != ir::StageKind::Idler;
+  auto kind = c.ev.model().info(c.stage).ir->kind;
+  bool cylindrical = kind == ir::StageKind::Spur || kind == ir::StageKind::Helical;
   x[Z1] = c.at(p, Q::Z);
   x[Z2] = c.at(w, Q::Z);
   x[X1] = c.orZero(p, Q::Shift);
@@ -189,6 +215,17 @@ std::optional<std::vector<Value>> varyingInputs(const KindContext& c, const Pair
   x[T1] = c.derived(p, Q::Torque);
   x[N1] = c.derived(p, Q::Speed);
   x[N2] = c.derived(w, Q::Speed);
+  if (mesh.planetary) {
+    // Relative to the carrier: the sun at n_s - n_c, a planet at that times z_s / z_p, the
+    // ring at n_c; each planet mesh carries T_sun / planets.
+    using namespace cat::gear;
+    Value carrier = c.derived(Q::CarrierSpeed);
+    Value sun = arith::sub(c.derived(Sun, Q::Speed), carrier);
+    Value planet = arith::mul(sun, arith::div(c.at(Sun, Q::Z), c.at(Planet, Q::Z)));
+    x[T1] = mesh.internal ? c.derived(Planet, Q::Torque) : arith::div(c.derived(Sun, Q::Torque), c.at(Q::Planets));
+    x[N1] = mesh.internal ? planet : sun;
+    x[N2] = mesh.internal ? carrier : planet;
+  }
   auto opt = [&](int g, Q k) {
     Value v = givenOnly(c, g, k);
     return v.isNumber() ? v : Value::number(kAbsent);

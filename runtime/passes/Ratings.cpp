@@ -1,5 +1,7 @@
 #include "passes/Ratings.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "model/Evaluator.h"
@@ -84,6 +86,10 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   for (size_t g = 0; g < 2; ++g)
     for (bool contact : {true, false}) {
       double s = contact ? r.gear[g].SH : r.gear[g].SF, min = contact ? minH : minF;
+      if (!std::isfinite(s)) {
+        out.note = fmt::format("the {}'s tooth root is not rated (ISO 6336-3 for internal gears is not implemented)", out.gears[g]);
+        continue;
+      }
       if (s / min < worst) {
         worst = s / min;
         out.governs = fmt::format("{} of the {}: {} {} against {}{}", contact ? "contact" : "bending", out.gears[g],
@@ -121,8 +127,11 @@ Ratings ratings(const Model& m, const Assignment& best) {
       result.ratings.push_back(table(st, mr, meshes.size() > 1, minOf(Q::RatingMinContact), minOf(Q::RatingMinBending)));
       // A freedom still spanning an interval (not optimised): rated at its middle, said so.
       for (int f : m.stages[s].freedoms)
-        if (best.box[static_cast<size_t>(f)].first != best.box[static_cast<size_t>(f)].second)
-          result.ratings.back().note = "rated at the middle of each free attribute's interval";
+        if (best.box[static_cast<size_t>(f)].first != best.box[static_cast<size_t>(f)].second) {
+          auto& note = result.ratings.back().note;
+          note += std::string(note.empty() ? "" : "; ") + "rated at the middle of each free attribute's interval";
+          break;
+        }
     }
   }
   return result;

@@ -93,37 +93,42 @@ PairRating rate(const PairInput& in) {
   const double sigmaHlim = std::min(in.gear[0].sigmaHlim, in.gear[1].sigmaHlim) * 1e-6;
   if (!(z1 > 0 && z2 > 0 && mn > 0 && b > 0)) throw std::domain_error("the rating needs positive tooth counts, module and face width");
 
-  // Geometry (ISO 21771).
+  // Geometry (ISO 21771). An internal wheel is signed: z2, d2, d_b2, d_a2 and the centre
+  // distance negative, its shift as ISO 21771 signs it, so one set of formulas serves both.
+  const bool internal = in.gear[1].internal;
+  const double s2 = internal ? -1.0 : 1.0, z2s = s2 * z2;
   double at = std::atan(std::tan(an) / std::cos(beta));
   double mt = mn / std::cos(beta);
-  double d1 = z1 * mt, d2 = z2 * mt;
+  double d1 = z1 * mt, d2 = z2s * mt;
   double db1 = d1 * std::cos(at), db2 = d2 * std::cos(at);
   double betaB = std::asin(std::sin(beta) * std::cos(an));
   double ad = 0.5 * (d1 + d2), a = 0, awt = 0;
   if (std::isfinite(in.a)) {
-    a = in.a * 1e3;
+    a = s2 * in.a * 1e3;
     awt = std::acos(ad * std::cos(at) / a);
   } else {
-    awt = (x1 + x2) == 0 ? at : invInverse(inv(at) + 2 * std::tan(an) * (x1 + x2) / (z1 + z2));
+    awt = (x1 + x2) == 0 ? at : invInverse(inv(at) + 2 * std::tan(an) * (x1 + x2) / (z1 + z2s));
     a = ad * std::cos(at) / std::cos(awt);
   }
-  double k = std::min(0.0, (a - ad) / mn - (x1 + x2));  // tip alteration keeps the bottom clearance
+  // Tip alteration keeps the bottom clearance of an external pair.
+  double k = internal ? 0.0 : std::min(0.0, (a - ad) / mn - (x1 + x2));
   std::array<double, 2> da, df, d = {d1, d2}, db = {db1, db2};
   for (int g = 0; g < 2; ++g) {
     const auto& gi = in.gear[static_cast<size_t>(g)];
-    da[g] = std::isfinite(gi.tipDiameter) ? gi.tipDiameter * 1e3 : d[g] + 2 * mn * (in.haP + gi.x + k);
+    double sign = g == 1 ? s2 : 1.0;
+    da[g] = std::isfinite(gi.tipDiameter) ? sign * gi.tipDiameter * 1e3 : d[g] + 2 * mn * (in.haP + gi.x + k);
     df[g] = d[g] - 2 * mn * (in.hfP - gi.x);
   }
   double pbt = kPi * mt * std::cos(at);
   r.alphaWt = awt;
-  r.epsAlpha = (std::sqrt(sq(da[0] / 2) - sq(db1 / 2)) + std::sqrt(sq(da[1] / 2) - sq(db2 / 2)) - a * std::sin(awt)) / pbt;
+  r.epsAlpha = (std::sqrt(sq(da[0] / 2) - sq(db1 / 2)) + s2 * std::sqrt(sq(da[1] / 2) - sq(db2 / 2)) - a * std::sin(awt)) / pbt;
   r.epsBeta = b * std::sin(beta) / (kPi * mn);
   r.epsGamma = r.epsAlpha + r.epsBeta;
   if (!(r.epsAlpha > 0)) throw std::domain_error("the gears do not mesh: the transverse contact ratio is not positive");
   const double ea = r.epsAlpha, eb = r.epsBeta, eg = r.epsGamma;
 
   // Load and speed.
-  r.u = z2 / z1;
+  r.u = z2s / z1;
   r.Ft = 2000.0 * in.torque1 / d1;                 // N
   r.v = in.gear[0].speed * in.mn * z1 / std::cos(beta) / 2;  // m/s
   const double w = in.KA * r.Ft / b;                // N/mm
@@ -138,9 +143,13 @@ PairRating rate(const PairInput& in) {
   // Stiffness, ISO 6336-1 clause 9 (method B).
   // Virtual tooth counts of the normal section, z / (cos^2 beta_b cos beta).
   double virt = sq(std::cos(betaB)) * std::cos(beta);
-  double zn1 = z1 / virt, zn2 = z2 / virt;
-  double q = 0.04723 + 0.15551 / zn1 + 0.25791 / zn2 - 0.00635 * x1 - 0.11654 * x1 / zn1 - 0.00193 * x2 - 0.24188 * x2 / zn2 +
-             0.00529 * x1 * x1 + 0.00182 * x2 * x2;
+  // The polynomial's gear 1 is the pinion, the gear with fewer teeth (a sun may have more
+  // than its planets); an internal wheel is a rack (1/z_n2 = 0).
+  bool swap = !internal && z2 < z1;
+  double zA = swap ? z2 : z1, zB = swap ? z1 : z2, xA = swap ? x2 : x1, xB = swap ? x1 : x2;
+  double zn1 = zA / virt, zn2 = internal ? INFINITY : zB / virt;
+  double q = 0.04723 + 0.15551 / zn1 + 0.25791 / zn2 - 0.00635 * xA - 0.11654 * xA / zn1 - 0.00193 * xB - 0.24188 * xB / zn2 +
+             0.00529 * xA * xA + 0.00182 * xB * xB;
   double CR = std::min(in.gear[0].webFactor, in.gear[1].webFactor);
   double CB = (1 + 0.5 * (1.2 - in.hfP)) * (1 - 0.02 * (20.0 - an * 180 / kPi));
   double cth = 1 / q;
@@ -160,8 +169,9 @@ PairRating rate(const PairInput& in) {
     double qi = in.gear[static_cast<size_t>(g)].bore * 1e3 / dm;
     return kPi / 8 * rho * std::pow(dm, 4) * (1 - std::pow(qi, 4)) / sq(db[g]);
   };
-  double m1 = blank(0), m2 = blank(1);
-  r.mred = m1 * m2 / (m1 + m2);
+  // Planetary meshes: a sun drives `planets` planets; a ring counts as infinitely heavy.
+  double m1 = blank(0), m2 = internal ? INFINITY : blank(1);
+  r.mred = internal ? m1 : in.planets > 0 ? m1 * m2 / (m1 + in.planets * m2) : m1 * m2 / (m1 + m2);
   r.nE1 = 30000.0 / (kPi * z1) * std::sqrt(r.cgammaAlpha / r.mred);
   double n1 = in.gear[0].speed * 30 / kPi;
   r.N = n1 / r.nE1;
@@ -237,15 +247,16 @@ PairRating rate(const PairInput& in) {
   r.sigmaH0 = r.ZH * r.ZE * r.Zeps * r.Zbeta * std::sqrt(r.Ft / (d1 * b) * (r.u + 1) / r.u);
 
   // Single pair contact factors Z_B (pinion) and Z_D (wheel).
-  double s1 = std::sqrt(sq(da[0] / db1) - 1), s2 = std::sqrt(sq(da[1] / db2) - 1);
-  double M1 = std::tan(awt) / std::sqrt((s1 - 2 * kPi / z1) * (s2 - (ea - 1) * 2 * kPi / z2));
-  double M2 = std::tan(awt) / std::sqrt((s2 - 2 * kPi / z2) * (s1 - (ea - 1) * 2 * kPi / z1));
+  double t1 = std::sqrt(sq(da[0] / db1) - 1), t2 = std::sqrt(sq(da[1] / db2) - 1);
+  double M1 = std::tan(awt) / std::sqrt((t1 - 2 * kPi / z1) * (t2 - (ea - 1) * 2 * kPi / z2));
+  double M2 = std::tan(awt) / std::sqrt((t2 - 2 * kPi / z2) * (t1 - (ea - 1) * 2 * kPi / z1));
   auto single = [&](double M) {
     if (eb >= 1) return 1.0;
     double s = M > 1 ? M : 1.0;
     return std::max(1.0, s - eb * (s - 1));
   };
   std::array<double, 2> ZBD = {single(M1), single(M2)};
+  if (internal) ZBD = {1.0, 1.0};  // internal meshes: Z_B = Z_D = 1
 
   // Lubricant, velocity and roughness factors (clause 11), from the softer flank.
   double CZL = sigmaHlim < 850 ? 0.83 : sigmaHlim > 1200 ? 0.91 : 0.83 + 0.08 * (sigmaHlim - 850) / 350;
@@ -269,8 +280,8 @@ PairRating rate(const PairInput& in) {
   for (int g = 0; g < 2; ++g) {
     const auto& gi = in.gear[static_cast<size_t>(g)];
     GearRating& o = r.gear[static_cast<size_t>(g)];
-    o.tipDiameter = da[g] * 1e-3;
-    o.rootDiameter = df[g] * 1e-3;
+    o.tipDiameter = std::fabs(da[g]) * 1e-3;
+    o.rootDiameter = std::fabs(df[g]) * 1e-3;
     o.cycles = gi.speed / (2 * kPi) * in.life * gi.cyclesPerRev;
     double end = in.optimumLife ? 1.0 : 0.85;
     // Life factors, ISO 6336-2 Table 2 and ISO 6336-3 Table 3.
@@ -300,6 +311,16 @@ PairRating rate(const PairInput& in) {
     o.sigmaHP = hLimit / in.SHmin;
     o.SH = hLimit / o.sigmaH;
 
+    if (g == 1 && internal) {
+      // ISO 6336-3 for internal gears is not implemented: the ring's root is not rated.
+      o.sFn = o.hFe = o.rhoF = o.alphaFen = o.YF = o.YS = o.Ybeta = o.YB = o.YDT = kNaN;
+      o.YNT = o.YdeltarelT = o.YRrelT = o.YX = kNaN;
+      o.YM = gi.YM;
+      o.sigmaF0 = o.sigmaF = o.sigmaFP = o.SF = kNaN;
+      o.sigmaH *= 1e6;
+      o.sigmaHP *= 1e6;
+      continue;
+    }
     ToothForm t = toothForm(gi.z, gi.x, da[g], mn, an, beta, ea, in.hfP, in.rhoFP);
     o.sFn = t.sFn * 1e-3;
     o.hFe = t.hFe * 1e-3;

@@ -28,6 +28,7 @@ struct GearInput {
   double webFactor = 1;      // C_R of the gear blank (1 for a solid gear)
   double bore = 0;           // inner diameter of the gear blank [m] (0: solid)
   double sigmaHlim = 0, sigmaFlim = 0;  // [Pa]
+  bool internal = false;     // an internal gear (the wheel of the pair only): z, d signed negative inside
 };
 
 struct PairInput {
@@ -50,6 +51,7 @@ struct PairInput {
   double fma = kNaN;          // mesh misalignment [m]; NaN: the larger f_Hbeta
   double B1 = 1, B2 = 1;      // lead modification factors of F_betax (crowning, helix correction)
   double SHmin = 1, SFmin = 1;
+  int planets = 0;            // a sun meshing with this many planets (reduced mass of K_v)
 };
 
 struct GearRating {
@@ -71,6 +73,8 @@ struct PairRating {
 
 // Every factor and both safeties of the mesh. Throws std::domain_error with a sentence
 // when the geometry admits no rating (no contact, no 30-degree tangent in the fillet).
+// An internal wheel's tooth root is not rated (ISO 6336-3 for internal gears is not
+// implemented): its bending values are NaN.
 PairRating rate(const PairInput& in);
 
 // ISO 6336-3 method B for one external gear of the pair: the critical section (30-degree

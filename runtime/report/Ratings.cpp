@@ -14,6 +14,7 @@ std::string label(const RatingReport::Row& row) {
 }
 
 std::string shown(const RatingReport::Row& row, double si) {
+  if (!std::isfinite(si)) return "not rated";  // an internal gear's root (ISO 6336-3 internal gears)
   if (row.key == "load_cycles") return fmt::format("{:.4e}", si);
   return formatNumber(si / row.scale);
 }
@@ -78,7 +79,7 @@ std::string ratingJson(const RatingReport& r) {
 std::vector<std::vector<std::string>> ratingCsvRows(const std::string& gearbox, const RatingReport& r) {
   std::vector<std::vector<std::string>> out;
   for (const auto& row : r.rows) {
-    auto value = [&](double si) { return fmt::format("{:.10g}", si / row.scale); };
+    auto value = [&](double si) { return std::isfinite(si) ? fmt::format("{:.10g}", si / row.scale) : std::string(); };
     std::string stage = r.mesh.empty() ? r.stage : r.stage + "." + r.mesh;
     if (!row.perGear) out.push_back({gearbox, stage, "", row.key, row.unit, value(row.si[0])});
     else

@@ -3,6 +3,7 @@
 
 #include "catalogue/StageKinds.h"
 #include "model/Evaluator.h"
+#include "model/RatingRows.h"
 #include "model/StageKind.h"
 
 namespace gbx::rt::kinds {
@@ -44,6 +45,8 @@ std::vector<DerivedRow> rows() {
        }},
   };
   r.insert(r.end(), own.begin(), own.end());
+  auto rating = rating::pairRows();
+  r.insert(r.end(), rating.begin(), rating.end());
   return r;
 }
 

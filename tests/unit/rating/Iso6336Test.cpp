@@ -189,6 +189,65 @@ TEST(Iso6336, NrelHighSpeedStage) {
   EXPECT_NEAR(r.gear[1].alphaFen / kDeg, 22.20, 0.02);
 }
 
+// NREL 5 MW gearbox, stage 1 (planetary, 3 planets, m 45 mm, z 19/17/-56): the sun-planet
+// mesh of the same commercial report (@NREL_5MW/stage_01.rtf), K_v and K_Hbeta given there.
+TEST(Iso6336, NrelPlanetarySunPlanetMesh) {
+  PairInput in;
+  double ns = (47.8 - 12.1) * kRpm;  // relative to the carrier
+  in.gear[0] = {19, 0.6170, 978.808e-3, 31e-6, 33e-6, 0, ns, 3, 1.0, 0.862, 482.33e-3, 1500e6, 430e6};
+  in.gear[1] = {17, 0.8021, 905.470e-3, 31e-6, 33e-6, 0, ns * 19 / 17, 1, 0.7, 1, 408.99e-3, 1500e6, 430e6};
+  in.mn = 45e-3;
+  in.alphaN = 20 * kDeg;
+  in.beta = 0;
+  in.b = 491e-3;
+  in.a = 863e-3;
+  in.torque1 = 999650.9 / 3;
+  in.grade = 6;
+  in.KA = 1.25;
+  in.Kgamma = 1.10;
+  in.KvGiven = 1.01;
+  in.KHbetaGiven = 1.15;
+  in.life = 175200 * 3600.0;
+  in.nu40 = 220e-6;
+  in.RzFlank = 4.8e-6;
+  in.RzRoot = 20e-6;
+  in.SHmin = 1.25;
+  in.SFmin = 1.56;
+  in.planets = 3;
+  PairRating r = rate(in);
+  printed(r.Ft, 779454.877, 0, "F_t");
+  printed(r.epsAlpha, 1.115, 3, "eps_alpha");
+  printed(r.alphaWt / kDeg, 28.118, 3, "alpha_wt");
+  relative(r.cprime, 12.362, 1e-3, "c'");
+  relative(r.cgammaAlpha, 13.426, 1e-3, "c_gamma_alpha");
+  printed(r.ZH, 2.06, 2, "Z_H");
+  printed(r.Zeps, 0.981, 3, "Z_eps");
+  printed(r.sigmaH0 * 1e-6, 759.92, 2, "sigma_H0");
+  printed(r.KFbeta, 1.12, 2, "K_Fbeta");
+  EXPECT_DOUBLE_EQ(r.KHalpha, 1.0);
+  const double ZBD[] = {1.04, 1.05}, sH[] = {996.13, 1002.73}, ZNT[] = {0.909, 0.937}, SH[] = {1.37, 1.41};
+  const double YF[] = {1.56, 1.44}, YS[] = {2.06, 2.14}, YNT[] = {0.888, 0.906}, sF[] = {175.90, 168.90}, SF[] = {3.33, 2.48};
+  for (int g = 0; g < 2; ++g) {
+    const GearRating& o = r.gear[static_cast<size_t>(g)];
+    SCOPED_TRACE(g == 0 ? "sun" : "planet");
+    printed(o.ZBD, ZBD[g], 2, "Z_B/Z_D");
+    // The report's own sigma_Hw / sigma_H0 implies K_A K_gamma K_v K_Hbeta = 1.5898, its
+    // printed factors multiply to 1.5970: its sigma_H sits 0.23 % below theirs.
+    relative(o.sigmaH * 1e-6, sH[g], 3e-3, "sigma_H");
+    printed(o.ZNT, ZNT[g], 3, "Z_NT");
+    printed(o.ZL, 1.020, 3, "Z_L");
+    printed(o.Zv, 0.961, 3, "Z_v");
+    printed(o.ZR, 1.024, 3, "Z_R");
+    printed(o.SH, SH[g], 2, "S_H");
+    printed(o.YF, YF[g], 2, "Y_F");
+    printed(o.YS, YS[g], 2, "Y_S");
+    printed(o.YNT, YNT[g], 3, "Y_NT");
+    printed(o.YX, 0.8, 3, "Y_X");
+    relative(o.sigmaF * 1e-6, sF[g], 2e-3, "sigma_F");
+    printed(o.SF, SF[g], 2, "S_F (the planet's with Y_M 0.7)");
+  }
+}
+
 // Y_F and Y_S from the standard's theta iteration against a dense numerical search of the
 // 30-degree tangent on the generated fillet, over shifts, helix angles and tooth counts.
 TEST(Iso6336, ToothFormAgainstGeneratedFillet) {
