@@ -55,6 +55,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     passes::Optimised designs = passes::optimise(program, m, std::move(found), o.jobs, progress(gb.name + " optimising"));
     passes::Columns columns = passes::reportColumns(gb);
     GearboxReport rep = passes::designTable(m, designs, columns);
+    rep.notes = designs.designs.notes;
     fail(gb.name, passes::unevaluated(m, rep, columns));
     rep.optimisation = std::move(designs.summary);
     std::optional<Assignment> best = passes::bestDesign(m, designs);

@@ -47,6 +47,11 @@ AttrSpec keyed(AttrSpec a, Q key) {
   a.key = key;
   return a;
 }
+AttrSpec bounded(AttrSpec a, std::optional<Number> lo, std::optional<Number> hi) {
+  a.atLeast = lo;
+  a.atMost = hi;
+  return a;
+}
 Number deg(std::int64_t d) { return Number::exact(Rational::make(d, 180), 1); }
 Number num(std::int64_t n, std::int64_t d) { return Number::exact(Rational::make(n, d)); }
 

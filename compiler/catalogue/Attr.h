@@ -34,6 +34,8 @@ struct AttrSpec {
   std::optional<units::Number> dflt;   // default when absent (SI)
   bool required = false;
   bool positive = false;               // must be > 0
+  std::optional<units::Number> atLeast, atMost;  // inclusive bounds (SI), where the standard sets them
+  std::string unitHint;                // the unit to suggest for a bare number, when not the display unit
   bool meshPeriods = false;            // may be given in mesh periods
   std::vector<std::string> symbols;    // accepted words for ValueKind::Symbol
 };
@@ -48,6 +50,7 @@ AttrSpec withDefault(AttrSpec a, units::Number v);
 AttrSpec required(AttrSpec a);
 AttrSpec symbol(std::string n, std::vector<std::string> words, std::string meaning);
 AttrSpec keyed(AttrSpec a, Q key);
+AttrSpec bounded(AttrSpec a, std::optional<units::Number> lo, std::optional<units::Number> hi);
 units::Number deg(std::int64_t d);
 units::Number num(std::int64_t n, std::int64_t d = 1);
 } // namespace rows

@@ -54,27 +54,41 @@ std::vector<AttrSpec> plainGearAttrs() {
   return g;
 }
 
+// ISO 1328-1:1995 accuracy grades run from 0 to 12.
+AttrSpec accuracyRow() {
+  auto a = bounded(count("accuracy", "ISO 1328-1 accuracy grade"), num(0), num(12));
+  a.positive = false;
+  return a;
+}
+
+AttrSpec hinted(AttrSpec a, std::string unit) {
+  a.unitHint = std::move(unit);
+  return a;
+}
+
 // The `rating { … }` block (LANGUAGE.md §11): ISO 6336 inputs of the stage's meshes.
 // Absent values take the defaults their meaning names, applied by the rating itself.
 std::vector<AttrSpec> ratingInputs() {
   const Dim viscosity{2, 0, -1, 0};
+  auto factor = [](std::string n, std::string meaning) { return bounded(pos(std::move(n), none, std::move(meaning)), num(1), std::nullopt); };
+  auto um = [](std::int64_t v) { return num(v, 1000000); };
   return {
-      pos("rating.application_factor", none, "application factor K_A (default 1.0)"),
-      pos("rating.life", time, "required service life"),
+      factor("rating.application_factor", "application factor K_A (default 1.0)"),
+      hinted(pos("rating.life", time, "required service life"), "h"),
       symbol("rating.life_curve", {"normal", "optimum"}, "life-factor curves beyond the endurance knee (default normal: Z_NT, Y_NT >= 0.85)"),
-      pos("rating.lubricant.viscosity_40", viscosity, "lubricant kinematic viscosity at 40 degC"),
-      pos("rating.roughness.flank", length, "flank arithmetic mean roughness Ra"),
-      pos("rating.roughness.root", length, "root arithmetic mean roughness Ra"),
-      pos("rating.roughness.flank_rz", length, "flank mean peak-to-valley roughness Rz (default 6 Ra)"),
-      pos("rating.roughness.root_rz", length, "root mean peak-to-valley roughness Rz (default 6 Ra)"),
+      hinted(pos("rating.lubricant.viscosity_40", viscosity, "lubricant kinematic viscosity at 40 degC"), "mm^2/s"),
+      hinted(bounded(pos("rating.roughness.flank", length, "flank arithmetic mean roughness Ra"), std::nullopt, um(25)), "um"),
+      hinted(bounded(pos("rating.roughness.root", length, "root arithmetic mean roughness Ra"), std::nullopt, um(25)), "um"),
+      hinted(bounded(pos("rating.roughness.flank_rz", length, "flank mean peak-to-valley roughness Rz (default 6 Ra)"), std::nullopt, um(150)), "um"),
+      hinted(bounded(pos("rating.roughness.root_rz", length, "root mean peak-to-valley roughness Rz (default 6 Ra)"), std::nullopt, um(150)), "um"),
       pos("rating.basic_rack.addendum", none, "basic rack addendum h_aP* (default 1.0)"),
       pos("rating.basic_rack.dedendum", none, "basic rack dedendum h_fP* (default 1.25)"),
       pos("rating.basic_rack.root_radius", none, "basic rack root radius rho_fP* (default 0.38)"),
-      pos("rating.face_load_factor", none, "face load factor K_Hbeta, given (computed when absent)"),
-      pos("rating.dynamic_factor", none, "dynamic factor K_v, given (method B when absent)"),
-      pos("rating.transverse_load_factor", none, "transverse load factor K_Halpha, given (method B when absent)"),
-      pos("rating.mesh_load_factor", none, "mesh load factor K_gamma of multi-path drives (default 1.0; planetary: by the number of planets, IEC 61400-4)"),
-      in("rating.mesh_misalignment", length, "mesh misalignment from manufacture f_ma (default the helix slope tolerance f_Hbeta)"),
+      factor("rating.face_load_factor", "face load factor K_Hbeta, given (computed when absent)"),
+      factor("rating.dynamic_factor", "dynamic factor K_v, given (method B when absent)"),
+      factor("rating.transverse_load_factor", "transverse load factor K_Halpha, given (method B when absent)"),
+      factor("rating.mesh_load_factor", "mesh load factor K_gamma of multi-path drives (default 1.0; planetary: by the number of planets, IEC 61400-4)"),
+      hinted(in("rating.mesh_misalignment", length, "mesh misalignment from manufacture f_ma (default the helix slope tolerance f_Hbeta)"), "um"),
       pos("rating.min_safety.contact", none, "minimum contact safety S_Hmin (default 1.0)"),
       pos("rating.min_safety.bending", none, "minimum bending safety S_Fmin (default 1.0)"),
   };
@@ -142,7 +156,7 @@ std::vector<KindSpec> buildKinds() {
         pos("face_width", length, "face width"),
         pos("center_distance", length, "centre distance"),
         material(),
-        count("accuracy", "ISO 1328-1 accuracy grade"),
+        accuracyRow(),
         pos("mesh_stiffness", pressure, "mesh stiffness per unit face width (c_gamma)"),
         derived("pitch_line_velocity", velocity, "pitch-line velocity"),
         derived("eps_alpha", none, "transverse contact ratio"),
@@ -181,7 +195,7 @@ std::vector<KindSpec> buildKinds() {
         pos("face_width", length, "face width"),
         withDefault(pos("pressure_angle", angle, "normal pressure angle"), deg(20)),
         material(),
-        count("accuracy", "ISO 1328-1 accuracy grade"),
+        accuracyRow(),
         derived("mmn_b", none, "mean normal module over face width (DOMAIN.md §1)"),
     };
     for (auto& d : commonDerived()) a.push_back(d);
@@ -201,7 +215,7 @@ std::vector<KindSpec> buildKinds() {
         withDefault(pos("pressure_angle", angle, "pressure angle"), deg(20)),
         pos("face_width", length, "face width"),
         material(),
-        count("accuracy", "ISO 1328-1 accuracy grade"),
+        accuracyRow(),
         pos("mesh_stiffness", pressure, "mesh stiffness per unit face width (c_gamma)"),
         pos("carrier_inertia", inertia, "carrier moment of inertia"),
         derived("center_distance", length, "sun-planet centre distance"),
@@ -223,7 +237,7 @@ std::vector<KindSpec> buildKinds() {
         withDefault(pos("pressure_angle", angle, "pressure angle"), deg(20)),
         pos("face_width", length, "face width"),
         material(),
-        count("accuracy", "ISO 1328-1 accuracy grade"),
+        accuracyRow(),
         derived("center_distance", length, "driver-to-driven distance (z1/2 + z2 + z3/2) m"),
     };
     for (auto& d : commonDerived()) a.push_back(d);

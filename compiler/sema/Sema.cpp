@@ -156,10 +156,13 @@ private:
   }
 
   void notAllowed(const Stmt& st, const std::string& owner) {
-    std::string what = st.kind == StmtKind::Flag ? fmt::format("`{};`", st.name)
+    std::string what = st.kind == StmtKind::Flag     ? fmt::format("`{};`", st.name)
                        : st.kind == StmtKind::Domain ? fmt::format("a domain `{} in …`", st.path.str())
+                       : st.kind == StmtKind::Block  ? fmt::format("a `{} {{ … }}` block", st.name)
                                                      : fmt::format("`{}`", ast::stmtKindName(st.kind));
-    diags_.error("E0110", st.span, fmt::format("{} is not allowed in {}", what, owner));
+    diags_.error("E0110", st.span,
+                 fmt::format("{} is not allowed in {}{}", what, owner,
+                             st.kind == StmtKind::Block && st.name == kRatingBlock ? " (a `rating` belongs inside the stage it rates)" : ""));
   }
 
   // Checks one value against its spec; returns the setting (value unset on error).
@@ -221,7 +224,7 @@ private:
       std::string fix;
       auto unit = units::displayUnitFor(spec.dim);
       if (v && v->kind == ast::ExprKind::Number && !v->unit && x->type.dim.dimensionless() && !unit.name.empty())
-        fix = fmt::format("; write it with a unit, as `{} {}`", v->text, unit.name);
+        fix = fmt::format("; write it with a unit, as `{} {}`", v->text, spec.unitHint.empty() ? unit.name : spec.unitHint);
       diags_.error("E0302", x->span,
                    fmt::format("unit mismatch: `{}` needs {}{}, got {}{}", name, spec.dim.describe(),
                                spec.altDim ? " or " + spec.altDim->describe() : "", describe(x->type, written), fix));
@@ -236,6 +239,15 @@ private:
       if (spec.positive && x->value.sign() <= 0) {
         diags_.error(name == "z" || lastPart(name) == "z" ? "E0402" : "E0405", x->span,
                      fmt::format("`{}` must be positive, got {}", name, units::showQuantity(x->value, x->type.dim)));
+        return out;
+      }
+      if ((spec.atLeast && x->value.compare(*spec.atLeast) < 0) || (spec.atMost && x->value.compare(*spec.atMost) > 0)) {
+        std::string range = spec.atLeast && spec.atMost ? fmt::format("between {} and {}", units::showQuantity(*spec.atLeast, spec.dim),
+                                                                      units::showQuantity(*spec.atMost, spec.dim))
+                            : spec.atLeast ? fmt::format("at least {}", units::showQuantity(*spec.atLeast, spec.dim))
+                                           : fmt::format("at most {}", units::showQuantity(*spec.atMost, spec.dim));
+        diags_.error("E0405", x->span,
+                     fmt::format("`{}` must be {} ({}), got {}", name, range, spec.meaning, units::showQuantity(x->value, x->type.dim)));
         return out;
       }
       out.value = x->value;
@@ -362,7 +374,7 @@ private:
       }
       case StmtKind::Require: m.rules.push_back({&b, st.name}); break;
       case StmtKind::Block:
-        if (b.name == kRatingBlock) ratingBlock(m, b);
+        if (b.name == kRatingBlock) ratingBlock(m, b, seen);
         else diags_.error("E0224", nameOr(b), fmt::format("stage `{}` has no block `{}` (a stage's one block is `{}`)", st.name, b.name, kRatingBlock));
         break;
       case StmtKind::Let:
@@ -379,10 +391,10 @@ private:
 
   // `rating { … }`: its settings become the stage's `rating.…` attributes, so that a
   // variant overrides them (`hs.rating.life = …`) like any other attribute.
-  void ratingBlock(StageModel& m, const Stmt& b) {
+  void ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen) {
     if (m.kind && !findAttr(*m.kind, "rating.life")) {
       diags_.error("E0235", nameOr(b),
-                   fmt::format("a {} stage has no load-capacity rating yet{}", m.kind->name,
+                   fmt::format("{} {} stage has no load-capacity rating yet{}", m.kind->name[0] == 'i' ? "an" : "a", m.kind->name,
                                m.kind->kind == ir::StageKind::Bevel ? " (bevel gears are rated by ISO 10300, which gbxc does not implement)"
                                                                     : " (ISO 6336 rating covers spur, helical, idler and planetary stages)"));
       return;
@@ -394,7 +406,15 @@ private:
     std::vector<std::pair<std::string, Binding>> items;
     flatten(b.body, std::string(kRatingBlock) + ".", fmt::format("the `rating` of stage `{}`", m.name), items,
             {"rating.lubricant", "rating.roughness", "rating.basic_rack", "rating.min_safety"});
-    for (auto& [p, bind] : items) m.setAttr(p, {bind.stmt, "stage"});
+    for (auto& [p, bind] : items) {
+      if (auto it = seen.find(p); it != seen.end()) {
+        auto& d = diags_.error("E0202", bind.stmt->path.span, fmt::format("duplicate declaration: `{}` is already given in stage `{}`", p, m.name));
+        d.notes.push_back({it->second->path.span, "first given here"});
+        continue;
+      }
+      seen[p] = bind.stmt;
+      m.setAttr(p, {bind.stmt, "stage"});
+    }
     m.rated = true;
   }
 
@@ -745,6 +765,23 @@ private:
                      fmt::format("the `rating` of stage `{}` does not give `{}` ({})", st.name, std::string(need).substr(7),
                                  findAttr(*st.kind, need)->meaning));
     }
+    bool plainModule = st.kind->kind == ir::StageKind::Idler || st.kind->kind == ir::StageKind::Planetary;
+    for (const char* need : {plainModule ? "module" : "normal_module", "face_width"})
+      if (!st.findAttr(need))
+        diags_.error("E0225", where, fmt::format("stage `{}` is rated but does not give `{}` ({})", st.name, need, findAttr(*st.kind, need)->meaning));
+    if (!st.findAttr("accuracy")) {
+      std::vector<std::string> missing;
+      for (const auto& g : st.kind->gears)
+        for (const char* dev : {"pitch_deviation", "profile_form_deviation", "helix_slope_deviation"})
+          if (!st.findAttr(g + "." + dev)) missing.push_back("`" + g + "." + dev + "`");
+      if (!missing.empty())
+        diags_.error("E0225", where,
+                     fmt::format("stage `{}` is rated but gives no `accuracy` (ISO 1328-1 grade) from which to take {}", st.name,
+                                 fmt::join(missing, ", ")));
+    }
+    for (const auto& g : st.kind->gears)
+      if (st.findAttr(g + ".web_thickness") && !st.findAttr(g + ".rim_thickness"))
+        diags_.error("E0225", where, fmt::format("`{}.web_thickness` needs `{}.rim_thickness` (C_R of a webbed blank)", g, g));
     const Binding* mat = st.findAttr(std::string(keyName(Q::Material)));
     if (!mat) {
       diags_.error("E0233", where, fmt::format("stage `{}` is rated but names no `material` (the rating needs its E, nu, sigma_hlim, sigma_flim and treatment)", st.name));
@@ -925,7 +962,7 @@ private:
           if (ring && root.count(*k) && reported.insert({x.span.line, x.span.col}).second)
             diags_.error("E0235", x.span,
                          fmt::format("`{}`: the tooth root of an internal gear is not rated (ISO 6336-3 for internal gears is not "
-                                     "implemented); its contact is ({})",
+                                     "implemented; its contact is rated) ({})",
                                      x.name, where));
           return;
         }
@@ -1221,6 +1258,17 @@ private:
         if (!r.when->type.isError() && r.when->type.kind != Type::Bool)
           diags_.error("E0305", r.when->span, fmt::format("`when` needs a condition, but this is {}", describe(r.when->type)));
       }
+      // The rating reads the modification (tip relief, crowning): a rule cannot read the rating.
+      for (const ir::Expr* e : {r.value.get(), r.when.get()})
+        if (e)
+          walk(*e, [&](const ir::Expr& x) {
+            auto k = x.op == Op::Quantity ? keyOf(lastPart(x.name)) : std::nullopt;
+            if (k && isRatingQuantity(*k))
+              diags_.error("E0228", x.span,
+                           fmt::format("a `modify` rule cannot read `{}`: the rating is computed from the stage's modification, "
+                                       "so the rule would be defined in terms of itself",
+                                       x.name));
+          });
       out.rules.push_back(std::move(r));
     }
     return out;

@@ -239,6 +239,12 @@ const Value* Evaluator::overridden(const ir::QuantityRef& r) const {
   return nullptr;
 }
 
+bool Evaluator::overrides(int stage, int gear, Q key) const {
+  for (const auto& [k, v] : overrides_)
+    if (k.owner == ir::QuantityRef::Stage && k.index == stage && k.gear == gear && k.key == key) return true;
+  return false;
+}
+
 const Value* Evaluator::overridden(Q gearboxKey) const {
   for (const auto& [k, v] : overrides_)
     if (k.owner == ir::QuantityRef::Gearbox && k.key == gearboxKey) return &v;

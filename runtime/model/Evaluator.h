@@ -43,6 +43,8 @@ public:
   // A sweep's value for a fixed quantity: an operating value (`power`), a stage attribute
   // (`main.face_width`) or a split setting (`sharing.torsion_shaft.diameter`).
   void setOverride(const ir::QuantityRef& r, Value v);
+  // Whether a sweep gives this stage attribute a value (which then counts as given).
+  bool overrides(int stage, int gear, Q key) const;
 
   // Scene results (`vibration.rms(acceleration)`) and `relative(x)` need the dynamics
   // and the baseline gearbox: the optimiser provides them.

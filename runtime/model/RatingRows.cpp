@@ -21,7 +21,7 @@ constexpr double kAbsent = -1;  // an optional input left out (corner values mus
 // A value the spec gives (fixed, chosen or free), not the one a kind derives when absent.
 Value givenOnly(const KindContext& c, int gear, Q k) {
   const auto& en = c.ev.model().info(c.stage).entry(gear, k);
-  if (!en.attr && en.slot < 0 && en.freedom < 0) return Value::invalid();
+  if (!en.attr && en.slot < 0 && en.freedom < 0 && !c.ev.overrides(c.stage, gear, k)) return Value::invalid();
   return c.at(gear, k);
 }
 
@@ -168,7 +168,7 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
   const ir::Attribute* curve = m.attribute(c.stage, Q::RatingLifeCurve);
   in.optimumLife = curve && curve->choice == cat::lifeCurve::Optimum;
   Value grade = c.at(Q::Accuracy);
-  in.grade = grade.exact && grade.exact->isInteger() ? static_cast<int>(grade.exact->num()) : 0;
+  in.grade = grade.isPoint() && grade.lo == std::round(grade.lo) ? static_cast<int>(grade.lo) : 0;
   if (mesh.planetary) {
     double planets = c.at(Q::Planets).mid();
     in.Kgamma = num(Q::RatingMeshLoadFactor, planetaryMeshLoadFactor(planets));
@@ -186,8 +186,9 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
     double bs = num2(c, g, Q::WebThickness, kNaN), sr = num2(c, g, Q::RimThickness, kNaN);
     double b = c.at(Q::FaceWidth).mid(), mn = c.at(moduleKey(c)).mid();
     // C_R of a webbed blank, ISO 6336-1 eq. (clause 9.3.4): 1 + ln(b_s/b) / (5 e^(s_R/(5 m_n))).
-    if (std::isfinite(bs) && std::isfinite(sr) && bs / b >= 0.2 && bs / b < 1.2)
-      gi.webFactor = 1 + std::log(bs / b) / (5 * std::exp(sr / (5 * mn)));
+    // b_s/b outside 0.2..1.2 takes the nearer limit; a web as wide as the face is solid.
+    if (std::isfinite(bs) && std::isfinite(sr) && bs / b < 1.2)
+      gi.webFactor = 1 + std::log(std::max(bs / b, 0.2)) / (5 * std::exp(sr / (5 * mn)));
   }
   return in;
 }
@@ -314,6 +315,18 @@ struct Rated {
 };
 
 std::optional<Rated> gather(const KindContext& c, std::string* why) {
+  // A `modify` rule that reads a rating quantity would rate the stage inside its own
+  // rating; sema refuses it, and this guard keeps any other path from recursing.
+  thread_local int active = 0;
+  if (active > 0) {
+    if (why) *why = "the stage's modification reads its own rating";
+    return std::nullopt;
+  }
+  struct Guard {
+    int& n;
+    explicit Guard(int& x) : n(x) { ++n; }
+    ~Guard() { --n; }
+  } guard(active);
   Rated r;
   r.meshes = meshesOf(c);
   if (r.meshes.empty()) {
@@ -382,7 +395,7 @@ std::vector<MeshRating> rateStage(const KindContext& c, std::string* why) {
   try {
     auto r = rateAll(*g, point);
     std::vector<MeshRating> out;
-    for (size_t k = 0; k < r.size(); ++k) out.push_back({g->meshes[k].g0, g->meshes[k].g1, r[k]});
+    for (size_t k = 0; k < r.size(); ++k) out.push_back({g->meshes[k].g0, g->meshes[k].g1, g->meshes[k].internal, g->fixed[k], r[k]});
     return out;
   } catch (const std::domain_error& e) {
     if (why) *why = e.what();
@@ -424,7 +437,7 @@ std::vector<DerivedRow> pairRows() {
       gearRow<&G::YdeltarelT, Side::Bending>(Q::YdeltarelT),
       gearRow<&G::YRrelT, Side::Bending>(Q::YRrelT),
       gearRow<&G::YX, Side::Bending>(Q::YX),
-      gearRow<&G::YM, Side::Bending>(Q::YM),
+      gearRow<&G::YM, Side::Contact>(Q::YM),
   };
 }
 

@@ -17,6 +17,8 @@ std::vector<DerivedRow> pairRows();
 // One mesh of a stage rated: its driving and driven gear's positions in the stage.
 struct MeshRating {
   int driving, driven;
+  bool internal;  // the driven gear is internal (its tooth root is not rated)
+  PairInput input;
   PairRating rating;
 };
 

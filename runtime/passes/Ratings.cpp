@@ -26,7 +26,7 @@ const char* rangeName(rating::KvRange r) {
   return "";
 }
 
-RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool several, double minH, double minF) {
+RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool several, double minH, double minF, double ka, double kgamma) {
   const PairRating& r = mr.rating;
   RatingReport out;
   out.stage = st.name;
@@ -35,13 +35,17 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   out.minContact = minH;
   out.minBending = minF;
   out.kvRange = rangeName(r.kvRange);
+  using Row = RatingReport::Row;
   auto mesh = [&](std::string key, double v, const units::Dim& d = units::dims::none) {
     auto u = units::displayUnitFor(d);
-    out.rows.push_back({std::move(key), u.name, u.scale, false, {v}});
+    std::string label = key;
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, false, {v}});
   };
-  auto gear = [&](std::string key, double GearRating::*m, const units::Dim& d = units::dims::none) {
+  auto gear = [&](std::string key, double GearRating::*m, const units::Dim& d = units::dims::none, Row::Minimum min = Row::NoMinimum,
+                  Row::Format f = Row::Plain, std::string label = "") {
     auto u = units::displayUnitFor(d);
-    out.rows.push_back({std::move(key), u.name, u.scale, true, {r.gear[0].*m, r.gear[1].*m}});
+    if (label.empty()) label = key;
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, true, {r.gear[0].*m, r.gear[1].*m}, f, min});
   };
   using namespace units::dims;
   mesh("tangential_force", r.Ft, force);
@@ -49,6 +53,8 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   mesh("eps_alpha", r.epsAlpha);
   mesh("eps_beta", r.epsBeta);
   mesh("resonance_ratio", r.N);
+  mesh("K_A", ka);
+  mesh("K_gamma", kgamma);
   mesh("K_v", r.Kv);
   mesh("K_Hbeta", r.KHbeta);
   mesh("K_Fbeta", r.KFbeta);
@@ -59,8 +65,8 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   mesh("Z_eps", r.Zeps);
   mesh("Z_beta", r.Zbeta);
   gear("tip_diameter", &GearRating::tipDiameter, length);
-  gear("load_cycles", &GearRating::cycles);
-  gear("Z_B", &GearRating::ZBD);
+  gear("load_cycles", &GearRating::cycles, units::dims::none, Row::NoMinimum, Row::Count);
+  gear("Z_B", &GearRating::ZBD, units::dims::none, Row::NoMinimum, Row::Plain, "Z_B, Z_D");
   gear("Z_NT", &GearRating::ZNT);
   gear("Z_L", &GearRating::ZL);
   gear("Z_v", &GearRating::Zv);
@@ -69,7 +75,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   gear("Z_X", &GearRating::ZX);
   gear("contact_stress", &GearRating::sigmaH, pressure);
   gear("permissible_contact_stress", &GearRating::sigmaHP, pressure);
-  gear("contact_safety", &GearRating::SH);
+  gear("contact_safety", &GearRating::SH, units::dims::none, Row::Contact);
   gear("Y_F", &GearRating::YF);
   gear("Y_S", &GearRating::YS);
   gear("Y_beta", &GearRating::Ybeta);
@@ -80,16 +86,13 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   gear("Y_M", &GearRating::YM);
   gear("bending_stress", &GearRating::sigmaF, pressure);
   gear("permissible_bending_stress", &GearRating::sigmaFP, pressure);
-  gear("bending_safety", &GearRating::SF);
+  gear("bending_safety", &GearRating::SF, units::dims::none, Row::Bending);
   // The governing side: the smallest safety relative to its minimum.
   double worst = 1e300;
   for (size_t g = 0; g < 2; ++g)
     for (bool contact : {true, false}) {
       double s = contact ? r.gear[g].SH : r.gear[g].SF, min = contact ? minH : minF;
-      if (!std::isfinite(s)) {
-        out.note = fmt::format("the {}'s tooth root is not rated (ISO 6336-3 for internal gears is not implemented)", out.gears[g]);
-        continue;
-      }
+      if (!std::isfinite(s)) continue;  // an internal gear's root: said below
       if (s / min < worst) {
         worst = s / min;
         out.governs = fmt::format("{} of the {}: {} {} against {}{}", contact ? "contact" : "bending", out.gears[g],
@@ -97,6 +100,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
       }
     }
   out.governingRatio = worst;
+  if (mr.internal) out.note = fmt::format("the {}'s tooth root is not rated (ISO 6336-3 for internal gears is not implemented)", out.gears[1]);
   return out;
 }
 
@@ -124,7 +128,13 @@ Ratings ratings(const Model& m, const Assignment& best) {
       return v.isNumber() ? v.mid() : 1.0;
     };
     for (const auto& mr : meshes) {
-      result.ratings.push_back(table(st, mr, meshes.size() > 1, minOf(Q::RatingMinContact), minOf(Q::RatingMinBending)));
+      result.ratings.push_back(table(st, mr, meshes.size() > 1, minOf(Q::RatingMinContact), minOf(Q::RatingMinBending), mr.input.KA,
+                                     mr.input.Kgamma));
+      // Every value is a number except an internal gear's root, which the note names.
+      for (const auto& row : result.ratings.back().rows)
+        for (size_t g = 0; g < row.si.size(); ++g)
+          if (!std::isfinite(row.si[g]) && !(mr.internal && g == 1))
+            result.errors.push_back(fmt::format("stage `{}`: the rating's `{}` is not a number at design 1", st.name, row.key));
       // A freedom still spanning an interval (not optimised): rated at its middle, said so.
       for (int f : m.stages[s].freedoms)
         if (best.box[static_cast<size_t>(f)].first != best.box[static_cast<size_t>(f)].second) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 namespace gbx::rt::rating {
 
 namespace {
@@ -119,12 +121,41 @@ PairRating rate(const PairInput& in) {
     da[g] = std::isfinite(gi.tipDiameter) ? sign * gi.tipDiameter * 1e3 : d[g] + 2 * mn * (in.haP + gi.x + k);
     df[g] = d[g] - 2 * mn * (in.hfP - gi.x);
   }
+  // Geometry the method cannot rate, said rather than rated.
+  if (!std::isfinite(awt)) throw std::domain_error("the centre distance does not fit the tooth counts and shifts");
+  const char* names[] = {"driving gear", "driven gear"};
+  double rhoMax = (kPi / 4 - in.hfP * std::tan(an)) * std::cos(an) / (1 - std::sin(an));
+  if (in.rhoFP > rhoMax)
+    throw std::domain_error(fmt::format("the basic rack's root radius {:.3f} exceeds the largest its dedendum and pressure angle allow ({:.3f})",
+                                        in.rhoFP, rhoMax));
+  for (int g = 0; g < 2; ++g) {
+    if (g == 1 && internal) continue;
+    double zg = g == 0 ? z1 : z2, xg = in.gear[static_cast<size_t>(g)].x;
+    // Tooth thickness at the tip circle (transverse), from the reference thickness.
+    double dag = std::fabs(da[g]), dbg = std::fabs(db[g]), dg = std::fabs(d[g]);
+    if (dag <= dbg) throw std::domain_error(fmt::format("the {}'s tip circle lies inside its base circle", names[g]));
+    double aa = std::acos(dbg / dag);
+    double sa = dag * ((kPi / 2 + 2 * xg * std::tan(an)) / zg + inv(at) - inv(aa));
+    if (sa <= 0) throw std::domain_error(fmt::format("the {}'s teeth are pointed at the tip diameter {:.3f} mm", names[g], dag));
+    // Undercut by the basic rack: the rack's straight flank starts below the base circle.
+    double xmin = in.hfP - in.rhoFP * (1 - std::sin(an)) - zg * sq(std::sin(at)) / (2 * std::cos(beta));
+    if (xg < xmin - 1e-9)
+      throw std::domain_error(fmt::format("the {} is undercut (shift {:.4f} below {:.4f}); method B assumes a fillet without undercut",
+                                          names[g], xg, xmin));
+    (void)dg;
+  }
+  if (!internal) {
+    // Bottom clearance at the working centre distance: a tip must clear the mate's root.
+    double c1 = std::fabs(a) - da[0] / 2 - df[1] / 2, c2 = std::fabs(a) - da[1] / 2 - df[0] / 2;
+    if (c1 < -1e-9 || c2 < -1e-9)
+      throw std::domain_error("a tip diameter reaches into the mating gear's root at this centre distance");
+  }
   double pbt = kPi * mt * std::cos(at);
   r.alphaWt = awt;
   r.epsAlpha = (std::sqrt(sq(da[0] / 2) - sq(db1 / 2)) + s2 * std::sqrt(sq(da[1] / 2) - sq(db2 / 2)) - a * std::sin(awt)) / pbt;
   r.epsBeta = b * std::sin(beta) / (kPi * mn);
   r.epsGamma = r.epsAlpha + r.epsBeta;
-  if (!(r.epsAlpha > 0)) throw std::domain_error("the gears do not mesh: the transverse contact ratio is not positive");
+  if (!(r.epsAlpha >= 1)) throw std::domain_error(fmt::format("the transverse contact ratio is {:.3f}, below 1: the gears do not mesh continuously", r.epsAlpha));
   const double ea = r.epsAlpha, eb = r.epsBeta, eg = r.epsGamma;
 
   // Load and speed.
@@ -175,6 +206,8 @@ PairRating rate(const PairInput& in) {
   r.nE1 = 30000.0 / (kPi * z1) * std::sqrt(r.cgammaAlpha / r.mred);
   double n1 = in.gear[0].speed * 30 / kPi;
   r.N = n1 / r.nE1;
+  if (!(r.mred > 0) || !std::isfinite(r.N))
+    throw std::domain_error("the gear blanks have no mass for K_v (is a bore diameter as large as the gear?)");
   r.NS = w < 100 ? 0.5 + 0.35 * std::sqrt(w / 100) : 0.85;
   double Ca = std::isfinite(in.tipRelief) ? in.tipRelief * 1e6 : (1.0 / 18) * sq(sigmaHlim / 97 - 18.45) + 1.5;
   double Bp = r.cprime * std::max(0.0, fpb - r.yAlpha) / w;
@@ -206,12 +239,15 @@ PairRating rate(const PairInput& in) {
   // (symmetric between its bearings), the manufacturing misalignment and the lead
   // modifications, less running-in.
   double Fmb = r.Ft * in.KA * in.Kgamma * r.Kv / b;
-  r.fsh = Fmb * 0.023 * sq(b / d1);
+  // The pinion's bending and torsion: the smaller gear of an external pair.
+  double dPinion = internal ? d1 : std::min(d1, d2);
+  r.fsh = Fmb * 0.023 * sq(b / dPinion);
   double fma = std::isfinite(in.fma) ? in.fma * 1e6 : fHb;
   r.FbetaX = std::max({1.33 * in.B1 * r.fsh + in.B2 * fma, 0.005 * Fmb, 0.5 * fHb});
   if (in.treatment == Treatment::ThroughHardened) {
     double y = 320.0 / sigmaHlim * r.FbetaX;
-    double cap = r.v > 10 ? 6400.0 / sigmaHlim : r.v > 5 ? 12800.0 / sigmaHlim : 25600.0 / sigmaHlim;
+    // F_betax limited to 80 um (5 < v <= 10 m/s) and 40 um (v > 10 m/s) in y_beta.
+    double cap = r.v > 10 ? 12800.0 / sigmaHlim : r.v > 5 ? 25600.0 / sigmaHlim : INFINITY;
     r.yBeta = std::min(y, cap);
   } else {
     r.yBeta = std::min(0.15 * r.FbetaX, 6.0);

@@ -8,14 +8,11 @@ namespace gbx::rt {
 
 namespace {
 
-std::string label(const RatingReport::Row& row) {
-  std::string name = row.key == "Z_B" ? "Z_B, Z_D" : row.key;
-  return row.unit.empty() ? name : name + " [" + row.unit + "]";
-}
+std::string label(const RatingReport::Row& row) { return row.unit.empty() ? row.label : row.label + " [" + row.unit + "]"; }
 
 std::string shown(const RatingReport::Row& row, double si) {
   if (!std::isfinite(si)) return "not rated";  // an internal gear's root (ISO 6336-3 internal gears)
-  if (row.key == "load_cycles") return fmt::format("{:.4e}", si);
+  if (row.format == RatingReport::Row::Count) return fmt::format("{:.4e}", si);
   return formatNumber(si / row.scale);
 }
 
@@ -40,7 +37,9 @@ std::vector<std::vector<std::string>> ratingRows(const RatingReport& r) {
       v.push_back(shown(row, row.si[0]));
       v.push_back("");
     }
-    v.push_back(row.key == "contact_safety" ? formatNumber(r.minContact) : row.key == "bending_safety" ? formatNumber(r.minBending) : "");
+    v.push_back(row.minimum == RatingReport::Row::Contact   ? formatNumber(r.minContact)
+                : row.minimum == RatingReport::Row::Bending ? formatNumber(r.minBending)
+                                                            : "");
     rows.push_back(std::move(v));
   }
   return rows;

@@ -143,11 +143,16 @@ struct RatingReport {
   std::string mesh;       // "driver-idler" when the stage has several meshes, else ""
   std::vector<std::string> gears;
   struct Row {
+    enum Format { Plain, Count };             // a count (load cycles) prints in exponent form
+    enum Minimum { NoMinimum, Contact, Bending };  // a safety: its minimum goes beside it
     std::string key;     // the quantity's name (`K_v`, `contact_safety`) or a geometry term
+    std::string label;   // as the table heads it (`Z_B, Z_D`)
     std::string unit;    // display unit
     double scale = 1;    // SI per display unit
     bool perGear = false;
-    std::vector<double> si;  // one value, or one per gear
+    std::vector<double> si;  // one value, or one per gear; NaN: not rated (an internal gear's root)
+    Format format = Plain;
+    Minimum minimum = NoMinimum;
   };
   std::vector<Row> rows;
   double minContact = 1, minBending = 1;

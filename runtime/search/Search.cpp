@@ -309,6 +309,7 @@ std::vector<StageRule> implicitRules(const Model& m, int s) {
 struct StageResult {
   std::vector<Candidate> candidates;
   std::vector<FunnelStep> funnel;
+  std::vector<std::string> notes;
 };
 
 StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conjunct*>& local, int jobs) {
@@ -324,7 +325,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
   }
   struct Chunk {
     std::vector<Candidate> out;
-    std::vector<double> removed;
+    std::vector<double> removed, unevaluable;
     double jointRemoved = 0;
   };
   int threads = std::max(1, std::min<int>(jobs, static_cast<int>(total / 2048) + 1));
@@ -332,6 +333,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
   auto work = [&](int t) {
     Chunk& ch = chunks[static_cast<size_t>(t)];
     ch.removed.assign(rules.size(), 0);
+    ch.unevaluable.assign(rules.size(), 0);
     Assignment a(m);
     size_t begin = total * static_cast<size_t>(t) / static_cast<size_t>(threads);
     size_t end = total * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
@@ -355,7 +357,8 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
         } else if (t == Truth::Unknown) {
           if (rules[r].conjunct && rules[r].conjunct->freedom) open.push_back(rules[r].conjunct);
           else {
-            ch.removed[r] += 1;  // cannot be evaluated: reported as an error by the caller
+            ch.removed[r] += 1;  // cannot be evaluated: counted, and said in a note
+            ch.unevaluable[r] += 1;
             dead = true;
           }
         }
@@ -386,9 +389,16 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
   const std::string& name = info.ir->name;
   res.funnel.push_back({"domain", name, 0, -before, true});
   for (size_t r = 0; r < rules.size(); ++r) {
-    double removed = 0;
-    for (const auto& ch : chunks) removed += ch.removed[r];
+    double removed = 0, unevaluable = 0;
+    for (const auto& ch : chunks) {
+      removed += ch.removed[r];
+      unevaluable += ch.unevaluable[r];
+    }
     res.funnel.push_back({rules[r].text, name, before, removed});
+    if (unevaluable > 0)
+      res.notes.push_back(fmt::format("stage {}: `{}` could not be evaluated for {:.0f} of its {:.0f} candidates, which it removed "
+                                      "(a rating refuses their geometry, or an input is missing)",
+                                      name, rules[r].text, unevaluable, before));
     before -= removed;
   }
   double joint = 0;
@@ -614,6 +624,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   for (int s = 0; s < k; ++s) {
     stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs));
     for (auto& f : stages.back().funnel) res.funnel.push_back(f);
+    for (auto& n : stages.back().notes) res.notes.push_back(n);
   }
 
   // Interchangeable groups as permutations of slots.

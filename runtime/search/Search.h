@@ -49,6 +49,7 @@ struct SearchResult {
   std::string window;                // the exact ratio window used, if any ("[579/100, 581/100]")
   std::vector<std::string> errors;   // rules or objectives the search cannot evaluate
   std::vector<std::string> deferred; // rules left to the optimiser (deferDynamics)
+  std::vector<std::string> notes;    // candidates removed because a rule could not be evaluated for them
 };
 
 // True when a rule or objective of the gearbox needs a scene result or `relative(…)`.

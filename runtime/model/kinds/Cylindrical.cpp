@@ -26,6 +26,26 @@ struct Cyl {
     return {c.at(Pinion, Q::Z), c.at(Wheel, Q::Z), mn(c), beta(c), c.at(Q::PressureAngle), c.orZero(Pinion, Q::Shift),
             c.orZero(Wheel, Q::Shift)};
   }
+  // The same with the tip geometry: the basic rack's addendum (the rating's, else 1) and
+  // each gear's tip diameter when given (0: from the rack), so that eps_alpha and the tip
+  // radii are those the rating uses.
+  static std::vector<Value> tips(const KindContext& c) {
+    auto v = pair(c);
+    Value haP = c.at(Q::RatingRackAddendum);
+    v.push_back(haP.isNumber() ? haP : Value::number(1.0));
+    for (int g : {Pinion, Wheel}) {
+      const auto& en = c.ev.model().info(c.stage).entry(g, Q::TipDiameter);
+      bool given = en.attr || en.slot >= 0 || en.freedom >= 0 || c.ev.overrides(c.stage, g, Q::TipDiameter);
+      v.push_back(given ? c.at(g, Q::TipDiameter) : Value::number(0.0));
+    }
+    return v;
+  }
+  static geometry::CylPair tipped(const V& x) {
+    auto p = cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7]);
+    if (x[8] > 0) p.ra1 = 0.5 * x[8];
+    if (x[9] > 0) p.ra2 = 0.5 * x[9];
+    return p;
+  }
 
   static std::vector<DerivedRow> rows() {
     auto r = pinionWheelRows();
@@ -64,8 +84,8 @@ struct Cyl {
          }},
         {Q::EpsAlpha, false,
          [](const KindContext& c, int) {
-           return arith::corners(pair(c), [](const V& x) {
-             auto p = cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6]);
+           return arith::corners(tips(c), [](const V& x) {
+             auto p = tipped(x);
              double pbt = M_PI * x[2] / std::cos(x[3]) * std::cos(p.alphaT);
              return (std::sqrt(p.ra1 * p.ra1 - p.rb1 * p.rb1) + std::sqrt(p.ra2 * p.ra2 - p.rb2 * p.rb2) - p.a * std::sin(p.alphaWt)) / pbt;
            });
@@ -108,8 +128,8 @@ struct Cyl {
         {Q::TipRadius, true,
          [](const KindContext& c, int g) {
            bool p = g == Pinion;
-           return arith::corners(pair(c), [p](const V& x) {
-             auto q = cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6]);
+           return arith::corners(tips(c), [p](const V& x) {
+             auto q = tipped(x);
              return p ? q.ra1 : q.ra2;
            });
          }},

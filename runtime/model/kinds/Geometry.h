@@ -25,7 +25,7 @@ struct CylPair {
   double alphaT, alphaWt, a0, a, d1, d2, rb1, rb2, ra1, ra2;
 };
 
-inline CylPair cylPair(double z1, double z2, double mn, double beta, double alphaN, double x1, double x2) {
+inline CylPair cylPair(double z1, double z2, double mn, double beta, double alphaN, double x1, double x2, double haP = 1.0) {
   CylPair p{};
   p.alphaT = std::atan(std::tan(alphaN) / std::cos(beta));
   double invWt = involute(p.alphaT) + 2.0 * (x1 + x2) * std::tan(alphaN) / (z1 + z2);
@@ -37,8 +37,8 @@ inline CylPair cylPair(double z1, double z2, double mn, double beta, double alph
   double dy = (x1 + x2) - (p.a - p.a0) / mn;
   p.rb1 = 0.5 * p.d1 * std::cos(p.alphaT);
   p.rb2 = 0.5 * p.d2 * std::cos(p.alphaT);
-  p.ra1 = 0.5 * p.d1 + mn * (1.0 + x1 - dy);
-  p.ra2 = 0.5 * p.d2 + mn * (1.0 + x2 - dy);
+  p.ra1 = 0.5 * p.d1 + mn * (haP + x1 - dy);
+  p.ra2 = 0.5 * p.d2 + mn * (haP + x2 - dy);
   return p;
 }
 

@@ -282,3 +282,161 @@ TEST(Iso6336, ToothFormAgainstGeneratedFillet) {
 }
 
 } // namespace
+
+namespace {
+
+// A plain helical pair for the checks below.
+PairInput plainPair() {
+  PairInput in;
+  double n1 = 1500 * kRpm;
+  in.gear[0] = {23, 0.2, kNaN, 10e-6, 12e-6, 14e-6, n1, 1, 1, 1, 0, 1200e6, 400e6};
+  in.gear[1] = {79, 0.0, kNaN, 12e-6, 14e-6, 15e-6, n1 * 23 / 79, 1, 1, 1, 0, 1200e6, 400e6};
+  in.mn = 5e-3;
+  in.alphaN = 20 * kDeg;
+  in.beta = 12 * kDeg;
+  in.b = 80e-3;
+  in.torque1 = 1300;
+  in.grade = 6;
+  in.KA = 1.25;
+  in.life = 20000 * 3600.0;
+  in.nu40 = 220e-6;
+  in.RzFlank = 4.8e-6;
+  in.RzRoot = 18e-6;
+  return in;
+}
+
+} // namespace
+
+// The face load factor's chain (ISO 6336-1 cl. 7.6): crowning halves F_betax (B1 = B2 = 0.5),
+// helix correction takes the shaft part to a tenth, running-in takes 15 % (at most 6 um),
+// and K_Hbeta = 1 + F_betay c_gamma_beta / (2 F_m / b) below 2.
+TEST(Iso6336, FaceLoadFactorChain) {
+  PairInput plain = plainPair(), crowned = plainPair(), corrected = plainPair();
+  crowned.B1 = crowned.B2 = 0.5;
+  corrected.B1 = 0.1;
+  PairRating p = rate(plain), c = rate(crowned), h = rate(corrected);
+  double fHb = 15.0, Fmb = p.Ft * 1.25 * p.Kv / 80;
+  EXPECT_NEAR(p.fsh, Fmb * 0.023 * std::pow(80 / (23 * 5 / std::cos(12 * kDeg)), 2), 1e-9);
+  EXPECT_NEAR(p.FbetaX, 1.33 * p.fsh + fHb, 1e-9);
+  EXPECT_NEAR(c.FbetaX, 0.5 * p.FbetaX, 1e-9);
+  EXPECT_NEAR(h.FbetaX, 0.133 * p.fsh + fHb, 1e-9);
+  EXPECT_NEAR(p.yBeta, std::min(0.15 * p.FbetaX, 6.0), 1e-12);
+  EXPECT_NEAR(p.FbetaY, p.FbetaX - p.yBeta, 1e-12);
+  EXPECT_NEAR(p.KHbeta, 1 + p.FbetaY * p.cgammaBeta / (2 * Fmb), 1e-12);
+  EXPECT_LT(c.KHbeta, p.KHbeta);
+  EXPECT_LT(h.KHbeta, p.KHbeta);
+  // K_Fbeta = K_Hbeta^N_F, b/h with h = 2.25 m_n.
+  double bh = 80 / (2.25 * 5);
+  EXPECT_NEAR(p.KFbeta, std::pow(p.KHbeta, bh * bh / (1 + bh + bh * bh)), 1e-12);
+}
+
+// The pinion of f_sh is the smaller gear whichever drives: a wheel driving a pinion has the
+// same K_Hbeta as the pinion driving the wheel.
+TEST(Iso6336, ShaftDeflectionIsThePinions) {
+  PairInput forward = plainPair(), backward = plainPair();
+  std::swap(backward.gear[0], backward.gear[1]);
+  backward.torque1 = forward.torque1 * 79 / 23;
+  PairRating f = rate(forward), b = rate(backward);
+  EXPECT_NEAR(b.fsh, f.fsh, 1e-9 * f.fsh);
+  EXPECT_NEAR(b.KHbeta, f.KHbeta, 1e-9);
+  EXPECT_NEAR(b.cprime, f.cprime, 1e-9);
+}
+
+// Life factors, Y_X, Y_RrelT and Y_deltarelT by treatment, from the standard's tables and
+// formulas (ISO 6336-2 Table 2, ISO 6336-3 Tables 3, cl. 12-14).
+TEST(Iso6336, TreatmentsSelectTheirCurvesAndFactors) {
+  PairInput nit = plainPair(), thr = plainPair();
+  nit.treatment = Treatment::Nitrided;
+  thr.treatment = Treatment::ThroughHardened;
+  for (auto* in : {&nit, &thr})
+    for (auto& g : in->gear) {
+      g.sigmaHlim = 1000e6;
+      g.sigmaFlim = 370e6;
+    }
+  // The wheel turns 1500 * 23/79 rpm for 20 000 h: 5.24e8 cycles.
+  PairRating n = rate(nit), t = rate(thr);
+  double NL2 = 1500.0 * 23 / 79 * 60 * 20000;
+  EXPECT_NEAR(n.gear[1].cycles, NL2, 1);
+  // Nitrided: Z_NT 1.0 at 2e6 falling log-log to 0.85 at 1e10; Y_NT 1.0 at 3e6 to 0.85.
+  EXPECT_NEAR(n.gear[1].ZNT, std::pow(2e6 / NL2, std::log(1 / 0.85) / std::log(1e10 / 2e6)), 1e-12);
+  EXPECT_NEAR(n.gear[1].YNT, std::pow(3e6 / NL2, std::log(1 / 0.85) / std::log(1e10 / 3e6)), 1e-12);
+  // Through hardened: Z_NT knee at 5e7.
+  EXPECT_NEAR(t.gear[1].ZNT, std::pow(5e7 / NL2, std::log(1 / 0.85) / std::log(1e10 / 5e7)), 1e-12);
+  // Y_X: 1.05 - 0.01 m_n (nitrided), 1.03 - 0.006 m_n (through hardened), m_n = 5 mm.
+  EXPECT_NEAR(n.gear[0].YX, 1.0, 1e-12);
+  EXPECT_NEAR(t.gear[0].YX, 1.0, 1e-12);
+  // Y_RrelT at Rz 18 um: 5.306 - 4.203 (Rz + 1)^0.01 nitrided, 1.674 - 0.529 (Rz + 1)^0.1 otherwise.
+  EXPECT_NEAR(n.gear[0].YRrelT, 5.306 - 4.203 * std::pow(19.0, 0.01), 1e-12);
+  EXPECT_NEAR(t.gear[0].YRrelT, 1.674 - 0.529 * std::pow(19.0, 0.1), 1e-12);
+  // Y_deltarelT with the slip-layer thickness of nitrided steel, 0.1005 mm.
+  double qs = n.gear[0].sFn / (2 * n.gear[0].rhoF);
+  EXPECT_NEAR(n.gear[0].YdeltarelT, (1 + std::sqrt(0.1005 * (1 + 2 * qs) / 5)) / (1 + std::sqrt(0.1005 * 1.2)), 1e-12);
+  // Through hardened running-in at 5 < v <= 10 m/s: y_alpha = 160 / sigma_Hlim f_pb up to
+  // 12800 / sigma_Hlim, y_beta = 320 / sigma_Hlim F_betax up to 25600 / sigma_Hlim.
+  ASSERT_GT(t.v, 5.0);
+  ASSERT_LE(t.v, 10.0);
+  EXPECT_NEAR(t.yAlpha, std::min(160.0 / 1000 * 12, 12.8), 1e-12);
+  EXPECT_NEAR(t.yBeta, std::min(320.0 / 1000 * t.FbetaX, 25.6), 1e-12);
+  PairInput fast = thr;  // above 10 m/s the caps halve
+  for (auto& g : fast.gear) g.speed *= 3;
+  fast.torque1 /= 3;
+  PairRating f = rate(fast);
+  ASSERT_GT(f.v, 10.0);
+  EXPECT_NEAR(f.yBeta, std::min(320.0 / 1000 * f.FbetaX, 12.8), 1e-12);
+}
+
+// An internal mesh (planet in a ring) against the signed ISO 21771 geometry written out
+// here: the transverse contact ratio, u < 0, the ring as a rack in c', Z_B = Z_D = 1, and
+// the planet alone in the reduced mass.
+TEST(Iso6336, InternalMeshGeometry) {
+  PairInput in = plainPair();
+  in.beta = 0;
+  in.gear[0] = {30, 0, kNaN, 12e-6, 14e-6, 15e-6, 500 * kRpm, 1, 0.7, 1, 0, 1500e6, 500e6};
+  in.gear[1] = {81, 0, kNaN, 12e-6, 14e-6, 15e-6, 500 * 30.0 / 81 * kRpm, 3, 1, 1, 0, 1500e6, 500e6, true};
+  in.mn = 8e-3;
+  in.b = 120e-3;
+  PairRating r = rate(in);
+  double m = 8, a20 = 20 * kDeg;
+  double d1 = 30 * m, d2 = 81 * m, db1 = d1 * std::cos(a20), db2 = d2 * std::cos(a20);
+  double da1 = d1 + 2 * m, da2 = d2 - 2 * m, a = (d2 - d1) / 2;
+  double ga = 0.5 * std::sqrt(da1 * da1 - db1 * db1) - 0.5 * std::sqrt(da2 * da2 - db2 * db2) + a * std::sin(a20);
+  EXPECT_NEAR(r.epsAlpha, ga / (M_PI * m * std::cos(a20)), 1e-12);
+  EXPECT_NEAR(r.u, -81.0 / 30, 1e-12);
+  EXPECT_NEAR(r.gear[1].tipDiameter * 1e3, da2, 1e-9);
+  double q = 0.04723 + 0.15551 / 30;  // z_n2 infinite, no shifts
+  EXPECT_NEAR(r.cprime, 1 / q * 0.8 * 0.975, 1e-9);
+  EXPECT_DOUBLE_EQ(r.gear[0].ZBD, 1.0);
+  EXPECT_DOUBLE_EQ(r.gear[1].ZBD, 1.0);
+  double dm = (da1 + d1 - 2 * m * 1.25) / 2;
+  double mPlanet = M_PI / 8 * 7830e-9 * std::pow(dm, 4) / (db1 * db1);
+  EXPECT_NEAR(r.mred, mPlanet, 1e-12);
+  // sigma_H0 with u < 0: sqrt(F_t (u + 1) / (d1 b u)).
+  double u = -81.0 / 30;
+  EXPECT_NEAR(r.sigmaH0 * 1e-6, r.ZH * r.ZE * r.Zeps * r.Zbeta * std::sqrt(r.Ft / (d1 * 120) * (u + 1) / u), 1e-9);
+  EXPECT_TRUE(std::isnan(r.gear[1].SF));  // the ring's root is not rated
+  EXPECT_TRUE(std::isfinite(r.gear[1].SH));
+}
+
+// Geometry the method does not cover is refused with a sentence, never rated.
+TEST(Iso6336, ImpossibleGeometryIsRefused) {
+  auto refused = [](PairInput in, const char* what) {
+    try {
+      rate(in);
+      ADD_FAILURE() << "rated: " << what;
+    } catch (const std::domain_error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  PairInput undercut = plainPair();
+  undercut.gear[0].x = -0.8;
+  refused(undercut, "undercut");
+  PairInput pointed = plainPair();
+  pointed.gear[0].tipDiameter = 140e-3;
+  refused(pointed, "pointed");
+  PairInput rack = plainPair();
+  rack.rhoFP = 0.6;
+  refused(rack, "root radius");
+  PairInput bore = plainPair();
+  bore.gear[0].bore = 130e-3;
+  refused(bore, "no mass");
+}

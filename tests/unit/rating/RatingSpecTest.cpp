@@ -82,6 +82,7 @@ gearbox G {
   EXPECT_GT(r.funnel[static_cast<size_t>(strength)].removed, 0);
   EXPECT_LT(r.funnel[static_cast<size_t>(strength)].before, r.funnel[static_cast<size_t>(ratio)].before);
   // Every design kept meets the rule.
+  ASSERT_FALSE(r.designs.empty());
   rt::Evaluator ev(m);
   for (const auto& d : r.designs) {
     rt::Assignment a(m);
@@ -117,4 +118,27 @@ TEST(RatingSpec, IdlerIsRatedAsItsTwoMeshes) {
   EXPECT_NEAR(qi("t.idler.bending_safety"), 0.7 * std::min(qs("a.wheel.bending_safety"), qs("b.pinion.bending_safety")), 1e-12);
   EXPECT_DOUBLE_EQ(qi("t.idler.Y_M"), 0.7);
   EXPECT_DOUBLE_EQ(qi("t.driver.Y_M"), 1.0);
+}
+
+// A driver larger than its idler: the meshes are rated with the smaller gear as the pinion
+// of f_sh and c', as the same pairs rated as spur stages with their pinions driving.
+TEST(RatingSpec, IdlerMeshesWithTheLargerGearDriving) {
+  const char* rating = "material = steel_18CrNiMo7_6; accuracy = 6; rating { life = 20000 h; lubricant { viscosity_40 = 220 mm^2/s; } "
+                       "roughness { flank = 0.8 um; root = 3 um; } }";
+  std::string text = std::string("import materials;\ngearbox I { stage t: idler { driver.z = 40; idler.z = 20; driven.z = 50; module = 3 mm; "
+                                 "face_width = 30 mm; ") +
+                     rating +
+                     " }\n operating { input_speed = 1500 rpm; input_torque = 300 N*m; } }\n"
+                     "gearbox S { stage a: spur { pinion.z = 20; wheel.z = 40; normal_module = 3 mm; face_width = 30 mm; " +
+                     rating + " }\n operating { input_speed = 3000 rpm; input_torque = 150 N*m; } }\n";
+  auto c = driver::compileText("idler2.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  auto i = fixed(c, "I"), s = fixed(c, "S");
+  rt::Evaluator ei(*i.model), es(*s.model);
+  auto qi = [&](const char* p) { return ei.quantity(p, *i.design).lo; };
+  auto qs = [&](const char* p) { return es.quantity(p, *s.design).lo; };
+  // The driver-idler mesh is the spur pair 20/40 driven from its wheel: same contact stress.
+  EXPECT_NEAR(qi("t.driver.contact_stress"), qs("a.wheel.contact_stress"), 1e-6 * qs("a.wheel.contact_stress"));
+  EXPECT_NEAR(qi("t.driver.Y_F"), qs("a.wheel.Y_F"), 1e-9);
+  EXPECT_GT(qi("t.K_Hbeta"), 1.0);
 }
