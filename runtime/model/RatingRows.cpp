@@ -279,7 +279,9 @@ PairRating rateAt(PairInput in, const V& x) {
     double d = gi.z * in.mn / std::cos(in.beta);
     auto pick = [&](int idx, double tab) { return x[static_cast<size_t>(idx + g)] == kAbsent ? tab : x[static_cast<size_t>(idx + g)]; };
     int q = in.grade;
-    gi.fpb = pick(Fpb1, q > 0 ? iso::tabulatedSinglePitch(q, in.mn, d) : 0);
+    // The base pitch deviation from the grade's single pitch tolerance: f_pb = f_pt cos(alpha_t).
+    double alphaT = std::atan(std::tan(in.alphaN) / std::cos(in.beta));
+    gi.fpb = pick(Fpb1, q > 0 ? iso::tabulatedSinglePitch(q, in.mn, d) * std::cos(alphaT) : 0);
     gi.ffa = pick(Ffa1, q > 0 ? iso::tabulatedProfileForm(q, in.mn, d) : 0);
     gi.fHb = pick(Fhb1, q > 0 ? iso::tabulatedHelixSlope(q, d, in.b) : 0);
     gi.tipDiameter = x[static_cast<size_t>(Da1 + g)] == kAbsent ? kNaN : x[static_cast<size_t>(Da1 + g)];
@@ -349,7 +351,11 @@ std::vector<PairRating> rateAll(const Rated& g, const V& x) {
   std::vector<PairRating> out;
   for (size_t k = 0; k < g.meshes.size(); ++k) {
     auto at = x.begin() + static_cast<long>(k * In::Count);
-    out.push_back(rateAt(g.fixed[k], V(at, at + In::Count)));
+    V xk(at, at + In::Count);
+    // A planet is one gear: in the ring mesh it keeps the tip diameter of the sun mesh
+    // (whose tip alteration shortened it), unless the spec gives it.
+    if (g.meshes[k].planetary && g.meshes[k].internal && xk[Da1] == kAbsent && !out.empty()) xk[Da1] = out[0].gear[1].tipDiameter;
+    out.push_back(rateAt(g.fixed[k], xk));
   }
   return out;
 }

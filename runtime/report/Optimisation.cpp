@@ -31,8 +31,8 @@ std::vector<std::string> optimisationLines(const OptimisationSummary& s, bool fi
     std::vector<std::string> binds;
     for (const auto& mg : s.best->margins)
       if (mg.margin <= 1e-3) binds.push_back("`" + mg.rule + "`");
-    lines.push_back(binds.empty() ? "  binding rules: none (the optimum is interior to every inequality rule)"
-                                  : "  binding rules: " + fmt::format("{}", fmt::join(binds, ", ")));
+    lines.push_back(binds.empty() ? "  binding rules: none of the rules bounded by a constant sits on its bound; their margins:"
+                                  : "  binding rules: " + fmt::format("{}", fmt::join(binds, ", ")) + "; margins of the rules bounded by a constant:");
     for (const auto& mg : s.best->margins)
       lines.push_back(fmt::format("    {}: {}{} against {}, margin {:+.1f} %", mg.rule, formatNumber(mg.value), mg.unit.empty() ? "" : " " + mg.unit,
                                   formatNumber(mg.bound), mg.margin * 100));
