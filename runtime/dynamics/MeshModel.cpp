@@ -2,43 +2,174 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace gbx::rt::dyn {
+
+// The right-hand side is compiled per combination of listed effects: each term is present
+// or absent at compile time, so a scene pays for exactly the effects it lists — no flag
+// tests, no dead terms (bench/dynamics_bench.cpp `rhs` measures it against a hand-written base).
+namespace contact {
+inline constexpr int Linear = 0, Backlash = 1, Hertz = 2;
+}
+namespace te {
+inline constexpr int None = 0, Force = 1, Displacement = 2;  // F = dk e, or e inside the contact law
+}
+namespace drivephase {
+inline constexpr int Constant = 0, ClosedForm = 1, State = 2;
+}
+
+template <bool Varying, bool Damped, int Contact, int Te, bool TorqueFl, int Phase>
+struct Terms {
+  static constexpr bool varying = Varying, damped = Damped, torqueFl = TorqueFl;
+  static constexpr int contact = Contact, te = Te, phase = Phase;
+  static constexpr bool needsPhase = Varying || Te != te::None;
+};
+
+template <class T>
+struct MeshKernel {
+  static double tau(const MeshModel& m, double t, const double* y) {
+    if constexpr (T::phase == drivephase::Constant) return m.p_.teethDriver * m.p_.drive.speed0 * t * (0.5 / M_PI);
+    else if constexpr (T::phase == drivephase::ClosedForm) return m.p_.teethDriver * m.p_.drive.angle(t) * (0.5 / M_PI);
+    else return m.p_.teethDriver * y[2] * (0.5 / M_PI);
+  }
+  // Elastic (and contact-damping) force along the line of action, its slopes in x and v.
+  static double force(const MeshModel& m, double t, const double* y, double* slope, double* vslope) {
+    double rel = 1.0, ph = 0.0;
+    if constexpr (T::needsPhase) ph = tau(m, t, y);
+    if constexpr (T::varying) rel = relativeStiffness(m.fourier_, ph);
+    double x = y[0];
+    if constexpr (T::te == te::Displacement) x -= m.teDisplacement(ph);
+    double f = 0, k = 0, kv = 0;
+    if constexpr (T::contact == contact::Linear) {
+      k = m.p_.meanStiffness * rel;
+      f = k * x;
+    } else if constexpr (T::contact == contact::Backlash) {
+      double kk = m.p_.meanStiffness * rel;
+      if (x > m.b_) {
+        k = kk;
+        f = kk * (x - m.b_);
+      } else if (x < -m.b_) {
+        k = kk;
+        f = kk * (x + m.b_);
+      }
+    } else {
+      if (x > 0) {
+        double K = m.p_.hertzStiffness * rel;
+        double e = m.e_.hertzExponent;
+        double fe = K * (e == 1.5 ? x * std::sqrt(x) : std::pow(x, e));
+        // Contact damping ramps in over the first `penetrationRamp` of penetration (a cubic step).
+        double r = m.e_.penetrationRamp;
+        double s = r > 0 ? std::min(1.0, x / r) : 1.0;
+        double step = s * s * (3.0 - 2.0 * s);
+        double dstep = r > 0 && s < 1.0 ? 6.0 * s * (1.0 - s) / r : 0.0;
+        double damped = fe + m.e_.hertzDamping * step * y[1];
+        if (damped > 0) {  // a contact pushes, never pulls
+          f = damped;
+          k = e * fe / x + m.e_.hertzDamping * dstep * y[1];
+          kv = m.e_.hertzDamping * step;
+        }
+      }
+    }
+    if constexpr (T::damped) {
+      f += m.c_ * y[1];
+      kv += m.c_;
+    }
+    // External loads: the static load or the fluctuating load torque; F = dk e.
+    double load;
+    if constexpr (T::torqueFl)
+      load = (m.e_.torqueMean + m.e_.torqueAmplitude * std::sin(m.e_.torqueOmega * t)) / (m.p_.outputRadius * m.p_.downstream);
+    else
+      load = m.p_.staticLoad;
+    if constexpr (T::te == te::Force) load += m.p_.meanStiffness * (rel - 1.0) * m.teDisplacement(ph);
+    if (slope) *slope = k;
+    if (vslope) *vslope = kv;
+    return load - f;
+  }
+  static void rhs(const MeshModel& m, double t, const double* y, double* dy) {
+    double f = force(m, t, y, nullptr, nullptr);
+    dy[0] = y[1];
+    dy[1] = f / m.p_.mass;
+    if constexpr (T::phase == drivephase::State) dy[2] = m.p_.drive.speed(t);
+  }
+  static void dfdy(const MeshModel& m, double t, const double* y, double* J) {
+    double k, kv;
+    force(m, t, y, &k, &kv);
+    constexpr size_t n = T::phase == drivephase::State ? 3 : 2;
+    for (size_t i = 0; i < n * n; ++i) J[i] = 0;
+    J[1] = 1.0;
+    J[n + 0] = -k / m.p_.mass;
+    J[n + 1] = -kv / m.p_.mass;
+  }
+};
+
+namespace {
+template <class F>
+void withBool(bool b, F&& f) {
+  if (b) f(std::true_type{});
+  else f(std::false_type{});
+}
+template <class F>
+void withInt3(int v, F&& f) {
+  if (v == 0) f(std::integral_constant<int, 0>{});
+  else if (v == 1) f(std::integral_constant<int, 1>{});
+  else f(std::integral_constant<int, 2>{});
+}
+} // namespace
 
 MeshModel::MeshModel(const MeshParameters& p, const MeshEffects& e) : p_(p), e_(e) {
   if (e.varyingStiffness) fourier_ = contactLineSeries(p.epsAlpha, p.epsBeta, e.harmonics);
   if (e.damping) c_ = e.dampingCoefficient >= 0 ? e.dampingCoefficient : 2.0 * e.dampingRatio * std::sqrt(p.meanStiffness * p.mass);
-  // The static load, or the fluctuating load torque carried by the driven member.
-  if (e.torqueFluctuation) {
-    double r = p.outputRadius * p.downstream;
-    loads_.push_back([this, r](double t, const Instant&) {
-      return (e_.torqueMean + e_.torqueAmplitude * std::sin(e_.torqueOmega * t)) / r;
-    });
-  } else {
-    loads_.push_back([this](double, const Instant&) { return p_.staticLoad; });
-  }
+  b_ = 0.5 * e.clearance;
+  int contactKind = e.backlash ? contact::Backlash : e.hertz ? contact::Hertz : contact::Linear;
   // Transmission error: for a mesh always in contact the paper's force F = dk(t) e(t); with
   // contact loss (backlash, Hertz) a displacement inside the contact law, so that the
   // force stays continuous where contact begins and ends.
-  if (e.transmissionError && e.varyingStiffness && !e.backlash && !e.hertz)
-    loads_.push_back([this](double, const Instant& at) {
-      double dk = p_.meanStiffness * (at.rel - 1.0);
-      return dk * (e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * at.tau + e_.tePhase));
+  int teKind = !e.transmissionError                          ? te::None
+               : contactKind != contact::Linear              ? te::Displacement
+               : e.varyingStiffness                          ? te::Force
+                                                             : te::None;
+  int phaseKind = p.drive.needsState()                 ? drivephase::State
+                  : p.drive.fluctuates || p.drive.ramp > 0 ? drivephase::ClosedForm
+                                                           : drivephase::Constant;
+  withBool(e.varyingStiffness, [&](auto V) {
+    withBool(e.damping, [&](auto D) {
+      withInt3(contactKind, [&](auto C) {
+        withInt3(teKind, [&](auto TE) {
+          withBool(e.torqueFluctuation, [&](auto Q) {
+            withInt3(phaseKind, [&](auto P) {
+              using K = MeshKernel<Terms<decltype(V)::value, decltype(D)::value, decltype(C)::value, decltype(TE)::value,
+                                         decltype(Q)::value, decltype(P)::value>>;
+              sys_.rhs = [this](double t, const double* y, double* dy) { K::rhs(*this, t, y, dy); };
+              sys_.dfdy = [this](double t, const double* y, double* J) { K::dfdy(*this, t, y, J); };
+            });
+          });
+        });
+      });
     });
+  });
   sys_.dim = p.drive.needsState() ? 3 : 2;
-  sys_.rhs = [this](double t, const double* y, double* dydt) { rhs(t, y, dydt); };
-  sys_.jacobian = [this](double t, const double* y, double* dfdy, double* dfdt) { jacobian(t, y, dfdy, dfdt); };
+  // The implicit method's Jacobian: dfdy as above, dfdt by a central difference (the terms
+  // depend on t only through the drive's phase and the load, both smooth).
+  sys_.jacobian = [this](double t, const double* y, double* dfdy, double* dfdt) {
+    size_t n = sys_.dim;
+    sys_.dfdy(t, y, dfdy);
+    double h = 1e-7 * std::max(1e-3, meshPeriod());
+    double a[3], b[3];
+    sys_.rhs(t + h, y, a);
+    sys_.rhs(t - h, y, b);
+    for (size_t i = 0; i < n; ++i) dfdt[i] = (a[i] - b[i]) / (2 * h);
+  };
   double xs = p.staticLoad / p.meanStiffness;
   double wn = 2.0 * M_PI / naturalPeriod();
   sys_.scale = {xs, xs * wn, 1.0};
   sys_.scale.resize(sys_.dim);
   // Contact onset and loss are events: no step may carry the solution across them.
   if (e.backlash) {
-    double b = 0.5 * e.clearance;
-    sys_.events.push_back([this, b](double t, const double* y) { return y[0] - excitation(instant(t, y)) - b; });
-    sys_.events.push_back([this, b](double t, const double* y) { return y[0] - excitation(instant(t, y)) + b; });
+    for (double side : {1.0, -1.0})
+      sys_.events.push_back([this, side](double t, const double* y) { return y[0] - teDisplacementAt(t, y) - side * b_; });
   } else if (e.hertz) {
-    sys_.events.push_back([this](double t, const double* y) { return y[0] - excitation(instant(t, y)); });
+    sys_.events.push_back([this](double t, const double* y) { return y[0] - teDisplacementAt(t, y); });
   }
 }
 
@@ -46,112 +177,86 @@ double MeshModel::meshPeriod() const { return 2.0 * M_PI / (p_.drive.speed0 * p_
 
 double MeshModel::naturalPeriod() const { return 2.0 * M_PI * std::sqrt(p_.mass / p_.meanStiffness); }
 
+double MeshModel::excitationPeriod() const {
+  double Tz = meshPeriod();
+  if (p_.drive.ramp > 0) return 0;  // a start-up is a transient by definition
+  // Whole periods of every fluctuation in a whole number of mesh periods (at most 1000).
+  std::vector<double> periods;
+  if (e_.torqueFluctuation && e_.torqueOmega > 0 && e_.torqueAmplitude != 0) periods.push_back(2.0 * M_PI / e_.torqueOmega);
+  double meshes = 1.0;  // mesh periods per excitation period
+  if (p_.drive.fluctuates) {
+    // The mesh phase advances by z * mean * T / (2 pi) over a fluctuation period T.
+    if (p_.drive.omega <= 0) return 0;
+    double T = 2.0 * M_PI / p_.drive.omega;
+    double per = p_.teethDriver * p_.drive.mean * T / (2.0 * M_PI);
+    for (int q = 1; q <= 1000; ++q) {
+      double n = per * q;
+      if (std::fabs(n - std::round(n)) <= 1e-9 * std::max(1.0, n)) {
+        for (double P : periods) {
+          double r = q * T / P;
+          if (std::fabs(r - std::round(r)) > 1e-9 * std::max(1.0, r)) return 0;
+        }
+        return q * T;
+      }
+    }
+    return 0;
+  }
+  for (double P : periods) {
+    double r = P / Tz;
+    bool found = false;
+    for (int q = 1; q <= 1000 && !found; ++q) {
+      double n = r * q;
+      if (std::fabs(n - std::round(n)) <= 1e-9 * std::max(1.0, n)) {
+        meshes = std::max(meshes, std::round(n));
+        found = true;
+      }
+    }
+    if (!found) return 0;
+  }
+  return meshes * Tz;
+}
+
 double MeshModel::phase(double t, const double* y) const {
   double angle = p_.drive.needsState() ? y[2] : p_.drive.angle(t);
   return p_.teethDriver * angle / (2.0 * M_PI);
 }
 
+double MeshModel::teDisplacement(double tau) const {
+  return e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * tau + e_.tePhase);
+}
+
+double MeshModel::teDisplacementAt(double t, const double* y) const {
+  return e_.transmissionError ? teDisplacement(phase(t, y)) : 0.0;
+}
+
 std::vector<double> MeshModel::initialState() const {
   // At rest on the mean mesh under the static load.
   double x0 = e_.hertz ? std::pow(p_.staticLoad / p_.hertzStiffness, 1.0 / e_.hertzExponent)
-                       : p_.staticLoad / p_.meanStiffness + (e_.backlash ? 0.5 * e_.clearance : 0.0);
+                       : p_.staticLoad / p_.meanStiffness + (e_.backlash ? b_ : 0.0);
   std::vector<double> y = {x0, 0.0};
   if (p_.drive.needsState()) y.push_back(0.0);
   return y;
 }
 
-MeshModel::Instant MeshModel::instant(double t, const double* y) const {
-  double tau = phase(t, y);
-  return {tau, e_.varyingStiffness ? relativeStiffness(fourier_, tau) : 1.0};
-}
-
-double MeshModel::excitation(const Instant& at) const {
-  if (!e_.transmissionError || !(e_.backlash || e_.hertz)) return 0.0;
-  return e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * at.tau + e_.tePhase);
-}
-
-// Elastic mesh force and its slope in x.
-double MeshModel::elastic(const double* y, const Instant& at, double* slope) const {
-  double rel = at.rel;
-  double x = y[0] - excitation(at);
-  if (e_.hertz) {
-    if (x <= 0) {
-      *slope = 0;
-      return 0;
-    }
-    double K = p_.hertzStiffness * rel;
-    double f = K * (e_.hertzExponent == 1.5 ? x * std::sqrt(x) : std::pow(x, e_.hertzExponent));
-    *slope = e_.hertzExponent * f / x;
-    // Damping ramps in over the first `penetrationRamp` of penetration (a cubic step).
-    double s = e_.penetrationRamp > 0 ? std::min(1.0, x / e_.penetrationRamp) : 1.0;
-    double step = s * s * (3.0 - 2.0 * s);
-    double damped = f + e_.hertzDamping * step * y[1];
-    return std::max(0.0, damped);  // a contact pushes, never pulls
-  }
-  double k = p_.meanStiffness * rel;
-  if (e_.backlash) {
-    double b = 0.5 * e_.clearance;
-    if (x > b) {
-      *slope = k;
-      return k * (x - b);
-    }
-    if (x < -b) {
-      *slope = k;
-      return k * (x + b);
-    }
-    *slope = 0;
-    return 0;
-  }
-  *slope = k;
-  return k * x;
-}
-
-void MeshModel::rhs(double t, const double* y, double* dydt) const {
-  double slope;
-  Instant at = instant(t, y);
-  double f = -elastic(y, at, &slope) - c_ * y[1];
-  for (const auto& l : loads_) f += l(t, at);
-  dydt[0] = y[1];
-  dydt[1] = f / p_.mass;
-  if (p_.drive.needsState()) dydt[2] = p_.drive.speed(t);
-}
-
-void MeshModel::jacobian(double t, const double* y, double* dfdy, double* dfdt) const {
-  size_t n = sys_.dim;
-  for (size_t i = 0; i < n * n; ++i) dfdy[i] = 0;
-  double slope;
-  elastic(y, instant(t, y), &slope);
-  dfdy[0 * n + 1] = 1.0;
-  dfdy[1 * n + 0] = -slope / p_.mass;
-  double dampingSlope = c_;
-  if (e_.hertz && y[0] > 0) {
-    double s = e_.penetrationRamp > 0 ? std::min(1.0, y[0] / e_.penetrationRamp) : 1.0;
-    dampingSlope += e_.hertzDamping * s * s * (3.0 - 2.0 * s);
-  }
-  dfdy[1 * n + 1] = -dampingSlope / p_.mass;
-  // Time derivatives by a central difference: the terms depend on t only through the
-  // drive's phase and the load, both smooth.
-  double h = 1e-7 * std::max(1e-3, meshPeriod());
-  std::vector<double> a(n), b(n);
-  rhs(t + h, y, a.data());
-  rhs(t - h, y, b.data());
-  for (size_t i = 0; i < n; ++i) dfdt[i] = (a[i] - b[i]) / (2 * h);
-}
-
 MeshSignals MeshModel::signals(double t, const double* y) const {
   MeshSignals s{};
   double d[3];
-  rhs(t, y, d);
-  double slope;
-  Instant at = instant(t, y);
-  double contact = elastic(y, at, &slope);
+  sys_.rhs(t, y, d);
+  double tau = phase(t, y);
+  double rel = e_.varyingStiffness ? relativeStiffness(fourier_, tau) : 1.0;
+  // The load side of the balance m a = load - contact - c v.
+  double load = e_.torqueFluctuation
+                    ? (e_.torqueMean + e_.torqueAmplitude * std::sin(e_.torqueOmega * t)) / (p_.outputRadius * p_.downstream)
+                    : p_.staticLoad;
+  if (e_.transmissionError && e_.varyingStiffness && linear()) load += p_.meanStiffness * (rel - 1.0) * teDisplacement(tau);
+  double meshForce = load - p_.mass * d[1];  // contact (with its damping) plus the mesh damping
   s.displacement = y[0];
   s.velocity = y[1];
   s.acceleration = d[1];
-  s.contactForce = contact;
-  s.meshForce = contact + c_ * y[1];
-  s.stiffness = p_.meanStiffness * at.rel;
-  s.transmissionError = e_.transmissionError ? e_.teMean + e_.teAmplitude * std::sin(2.0 * M_PI * at.tau + e_.tePhase) : 0.0;
+  s.meshForce = meshForce;
+  s.contactForce = meshForce - c_ * y[1];
+  s.stiffness = p_.meanStiffness * rel;
+  s.transmissionError = e_.transmissionError ? teDisplacement(tau) : 0.0;
   s.inputSpeed = p_.drive.speed(t);
   s.outputSpeed = (s.inputSpeed / p_.ratio + y[1] / p_.outputRadius) / p_.downstream;
   return s;

@@ -53,6 +53,8 @@ struct MeshSignals {
 class MeshModel {
 public:
   MeshModel(const MeshParameters& p, const MeshEffects& e);
+  MeshModel(const MeshModel&) = delete;
+  MeshModel& operator=(const MeshModel&) = delete;
 
   const System& system() const { return sys_; }
   std::vector<double> initialState() const;
@@ -61,27 +63,24 @@ public:
   double naturalPeriod() const;   // of the mean linearised mesh, s
   double dampingCoefficient() const { return c_; }
   const Fourier& series() const { return fourier_; }
+  // The period of the excitation (the mesh period, or a whole number of them that also
+  // holds whole periods of a fluctuation), or 0 when the excitation is not periodic.
+  double excitationPeriod() const;
+  bool linear() const { return !e_.backlash && !e_.hertz; }
 
 private:
-  // What one instant needs from the drive: the mesh phase and the relative stiffness,
-  // computed once per right-hand side.
-  struct Instant {
-    double tau, rel;
-  };
-  Instant instant(double t, const double* y) const;
+  template <class Terms>
+  friend struct MeshKernel;
   double phase(double t, const double* y) const;
-  double elastic(const double* y, const Instant& at, double* slope) const;
-  double excitation(const Instant& at) const;  // transmission error as a displacement
-  void rhs(double t, const double* y, double* dydt) const;
-  void jacobian(double t, const double* y, double* dfdy, double* dfdt) const;
+  double teDisplacement(double tau) const;
+  double teDisplacementAt(double t, const double* y) const;
 
   MeshParameters p_;
   MeshEffects e_;
   Fourier fourier_;
   double c_ = 0;
+  double b_ = 0;  // half the backlash clearance
   System sys_;
-  // Terms composed from the listed effects.
-  std::vector<std::function<double(double t, const Instant& at)>> loads_;  // forces along the line of action
 };
 
 } // namespace gbx::rt::dyn

@@ -17,6 +17,9 @@ struct System {
   std::function<void(double t, const double* y, double* dydt)> rhs;
   // Analytic Jacobian (required by msbdf): dfdy row-major dim x dim, dfdt.
   std::function<void(double t, const double* y, double* dfdy, double* dfdt)> jacobian;
+  // The state Jacobian alone (row-major dim x dim), for the variational equations of the
+  // periodic steady state; empty: the monodromy matrix is found by differences.
+  std::function<void(double t, const double* y, double* dfdy)> dfdy;
   // Events: the integrator stops at every sign change of each function and restarts there.
   std::vector<std::function<double(double t, const double* y)>> events;
   std::vector<double> scale;  // absolute tolerance per component = atol * scale[i]

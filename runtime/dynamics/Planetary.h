@@ -2,6 +2,7 @@
 // An NGW planetary stage as a lumped torsional model (sun driven, ring fixed, carrier
 // out): the carrier and each planet's spin are degrees of freedom; every sun-planet and
 // ring-planet mesh is a contact along its line of action (DOMAIN.md §2).
+#include <complex>
 #include <map>
 #include <string>
 #include <vector>
@@ -22,10 +23,16 @@ struct PlanetaryRun {
   double staticLoad = 0;      // the mean sun-planet mesh force, for the dynamic factor
   std::vector<double> modes;  // natural frequencies of the linearised model, Hz
   std::string failure;
+  // With `periodic`: the periodic steady state found directly (dynamics/Periodic.h).
+  bool periodic = false;
+  double stability = 0;                             // largest Floquet multiplier modulus
+  std::vector<std::complex<double>> multipliers;    // largest modulus first
+  int newtonIterations = 0;
+  double newtonResidual = 0;                        // scaled, at the converged orbit
 };
 
 PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int stage, const ir::Scene& scene,
                           Accuracy acc, const SceneOverrides& ov, double upstream, double downstream, double speed, double E,
-                          double nu, double density, bool materialAssumed);
+                          double nu, double density, bool materialAssumed, bool periodic = false);
 
 } // namespace gbx::rt::dyn

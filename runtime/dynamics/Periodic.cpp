@@ -1,0 +1,184 @@
+#include "dynamics/Periodic.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace gbx::rt::dyn {
+
+namespace {
+
+void addStats(Stats& into, const Stats& s) {
+  into.steps += s.steps;
+  into.rejected += s.rejected;
+  into.rhsEvaluations += s.rhsEvaluations;
+  into.jacobianEvaluations += s.jacobianEvaluations;
+  into.events += s.events;
+  into.cpuSeconds += s.cpuSeconds;
+}
+
+std::vector<double> stateScale(const System& sys) {
+  std::vector<double> s = sys.scale;
+  s.resize(sys.dim, 1.0);
+  for (double& x : s)
+    if (!(x > 0)) x = 1.0;
+  return s;
+}
+
+// The system with its variational equations: [y, Phi] with Phi' = J(t, y) Phi, Phi(0) = I.
+// Events and tolerances act on y; Phi_ij is scaled by scale_i / scale_j.
+System variational(const System& sys) {
+  size_t n = sys.dim;
+  System v;
+  v.dim = n + n * n;
+  v.rhs = [&sys, n](double t, const double* y, double* dy) {
+    sys.rhs(t, y, dy);
+    double J[64];
+    std::vector<double> big;
+    double* jac = J;
+    if (n * n > 64) {
+      big.resize(n * n);
+      jac = big.data();
+    }
+    sys.dfdy(t, y, jac);
+    const double* P = y + n;
+    double* dP = dy + n;
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = 0; j < n; ++j) {
+        double s = 0;
+        for (size_t k = 0; k < n; ++k) s += jac[i * n + k] * P[k * n + j];
+        dP[i * n + j] = s;
+      }
+  };
+  v.events = sys.events;  // they read y's first n components only
+  std::vector<double> sc = stateScale(sys);
+  v.scale = sc;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < n; ++j) v.scale.push_back(sc[i] / sc[j]);
+  return v;
+}
+
+bool integrate(const System& sys, const Accuracy& acc, double t0, double period, std::vector<double>& y, Stats& stats,
+               std::string& failure) {
+  Integrator integ(sys, acc);
+  double t = t0;
+  bool ok = integ.advance(t, y, t0 + period, {}, [](double, const double*) {});
+  addStats(stats, integ.stats());
+  if (!ok) failure = integ.error();
+  return ok;
+}
+
+} // namespace
+
+double scaledNorm(const std::vector<double>& v, const std::vector<double>& scale) {
+  double m = 0;
+  for (size_t i = 0; i < v.size(); ++i) m = std::max(m, std::fabs(v[i]) / (i < scale.size() && scale[i] > 0 ? scale[i] : 1.0));
+  return m;
+}
+
+double spectralRadius(const Eigen::MatrixXd& M, std::vector<std::complex<double>>* eigenvalues) {
+  Eigen::EigenSolver<Eigen::MatrixXd> es(M, false);
+  double r = 0;
+  if (eigenvalues) eigenvalues->clear();
+  for (long i = 0; i < es.eigenvalues().size(); ++i) {
+    r = std::max(r, std::abs(es.eigenvalues()(i)));
+    if (eigenvalues) eigenvalues->push_back(es.eigenvalues()(i));
+  }
+  // Sorted by modulus, largest first, so reports and tests read them in a fixed order.
+  if (eigenvalues)
+    std::stable_sort(eigenvalues->begin(), eigenvalues->end(), [](auto a, auto b) { return std::abs(a) > std::abs(b); });
+  return r;
+}
+
+FlowResult flowWithMonodromy(const System& sys, const Accuracy& acc, double t0, double period, const std::vector<double>& y0,
+                             Stats& stats) {
+  FlowResult r;
+  size_t n = sys.dim;
+  r.phi = Eigen::MatrixXd::Identity(static_cast<long>(n), static_cast<long>(n));
+  if (sys.dfdy) {
+    System v = variational(sys);
+    std::vector<double> y = y0;
+    y.resize(n + n * n, 0.0);
+    for (size_t i = 0; i < n; ++i) y[n + i * n + i] = 1.0;
+    if (!integrate(v, acc, t0, period, y, stats, r.failure)) return r;
+    r.y.assign(y.begin(), y.begin() + static_cast<long>(n));
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = 0; j < n; ++j) r.phi(static_cast<long>(i), static_cast<long>(j)) = y[n + i * n + j];
+    r.ok = true;
+    return r;
+  }
+  // Central differences, each column its own pair of runs; the step balances truncation
+  // (h^2) against the integration error (rtol / h).
+  std::vector<double> y = y0;
+  if (!integrate(sys, acc, t0, period, y, stats, r.failure)) return r;
+  r.y = y;
+  std::vector<double> sc = stateScale(sys);
+  double rel = std::cbrt(std::max(acc.rtol, 1e-15));
+  for (size_t j = 0; j < n; ++j) {
+    double h = rel * sc[j];
+    std::vector<double> yp = y0, ym = y0;
+    yp[j] += h;
+    ym[j] -= h;
+    if (!integrate(sys, acc, t0, period, yp, stats, r.failure) || !integrate(sys, acc, t0, period, ym, stats, r.failure)) return r;
+    for (size_t i = 0; i < n; ++i) r.phi(static_cast<long>(i), static_cast<long>(j)) = (yp[i] - ym[i]) / (2 * h);
+  }
+  r.ok = true;
+  return r;
+}
+
+PeriodicOrbit periodicOrbit(const System& sys, const Accuracy& acc, const PeriodicOptions& opt, std::vector<double> guess) {
+  PeriodicOrbit o;
+  size_t n = sys.dim;
+  o.variational = static_cast<bool>(sys.dfdy);
+  std::vector<double> sc = stateScale(sys);
+  std::vector<double> drift = opt.drift;
+  drift.resize(n, 0.0);
+  // Newton stops when the correction is at the level the integration can resolve.
+  double tol = std::max(10.0 * acc.rtol, 1e-13);
+  std::vector<double> y0 = std::move(guess);
+  double lastStep = INFINITY;
+  for (int it = 0; it < opt.maxIterations; ++it) {
+    FlowResult f = flowWithMonodromy(sys, acc, 0.0, opt.period, y0, o.stats);
+    ++o.iterations;
+    if (!f.ok) {
+      o.failure = f.failure;
+      return o;
+    }
+    Eigen::VectorXd R(static_cast<long>(n));
+    std::vector<double> res(n);
+    for (size_t i = 0; i < n; ++i) res[i] = R(static_cast<long>(i)) = f.y[i] - y0[i] - drift[i];
+    o.residual = scaledNorm(res, sc);
+    o.monodromy = f.phi;
+    o.y0 = y0;
+    // Converged: the last correction was negligible (or, for a linear system, exact).
+    if (o.residual <= tol || lastStep <= tol || (opt.linear && it >= 1)) {
+      o.converged = o.residual <= std::max(tol, 1e3 * acc.rtol);
+      if (!o.converged)
+        o.failure = fmt::format("Newton stalled: the orbit's residual is {:.3g} of the state scale after {} iterations", o.residual,
+                                o.iterations);
+      break;
+    }
+    Eigen::MatrixXd A = f.phi - Eigen::MatrixXd::Identity(static_cast<long>(n), static_cast<long>(n));
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+    if (!lu.isInvertible()) {
+      o.failure = "the monodromy matrix has a multiplier at 1: the periodic orbit is not isolated (a resonance without damping?)";
+      return o;
+    }
+    Eigen::VectorXd d = lu.solve(-R);
+    // Damped Newton: never move further than ten state scales in one iteration.
+    std::vector<double> step(n);
+    for (size_t i = 0; i < n; ++i) step[i] = d(static_cast<long>(i));
+    double sn = scaledNorm(step, sc);
+    double damp = sn > 10.0 ? 10.0 / sn : 1.0;
+    for (size_t i = 0; i < n; ++i) y0[i] += damp * step[i];
+    lastStep = damp * sn;
+    if (it + 1 == opt.maxIterations) o.failure = fmt::format("Newton did not converge in {} iterations (residual {:.3g} of the state scale)",
+                                                             opt.maxIterations, o.residual);
+  }
+  if (!o.failure.empty()) return o;
+  o.stability = spectralRadius(o.monodromy, &o.multipliers);
+  return o;
+}
+
+} // namespace gbx::rt::dyn

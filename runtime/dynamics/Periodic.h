@@ -1,0 +1,56 @@
+#pragma once
+// The periodic steady state of a periodically forced system, found directly instead of by
+// settling a transient (DOMAIN.md §7): shooting, Newton on the initial state x0 so that one
+// period of the flow returns to x0 (plus a known drift of angle coordinates). Its Jacobian
+// is the monodromy matrix, from the variational equations when the system gives dfdy,
+// else by differences. For a linear system the first Newton step is exact; the eigenvalues
+// of the monodromy matrix (Floquet multipliers) give the orbit's stability.
+#include <complex>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "dynamics/Ode.h"
+
+namespace gbx::rt::dyn {
+
+struct PeriodicOptions {
+  double period = 0;          // s
+  std::vector<double> drift;  // y(T) - y(0) on the orbit (angles that advance), 0 if empty
+  int maxIterations = 40;
+  bool linear = false;        // one Newton step is exact; the second only confirms it
+};
+
+struct PeriodicOrbit {
+  bool converged = false;
+  std::vector<double> y0;
+  Eigen::MatrixXd monodromy;
+  std::vector<std::complex<double>> multipliers;
+  double stability = 0;   // largest multiplier modulus
+  double residual = 0;    // |phi_T(y0) - y0 - drift| over the state scale, at the last check
+  int iterations = 0;
+  bool variational = false;  // monodromy from the variational equations (else differences)
+  Stats stats;               // every right-hand side, variational ones included
+  std::string failure;
+};
+
+// One period of the flow from y and its monodromy matrix.
+struct FlowResult {
+  bool ok = false;
+  std::vector<double> y;  // phi_T(y0)
+  Eigen::MatrixXd phi;    // d phi_T / d y0
+  std::string failure;
+};
+FlowResult flowWithMonodromy(const System& sys, const Accuracy& acc, double t0, double period, const std::vector<double>& y0,
+                             Stats& stats);
+
+// Largest modulus of the eigenvalues of M, and the eigenvalues.
+double spectralRadius(const Eigen::MatrixXd& M, std::vector<std::complex<double>>* eigenvalues = nullptr);
+
+// Scaled max norm: max |v_i| / scale_i.
+double scaledNorm(const std::vector<double>& v, const std::vector<double>& scale);
+
+PeriodicOrbit periodicOrbit(const System& sys, const Accuracy& acc, const PeriodicOptions& opt, std::vector<double> guess);
+
+} // namespace gbx::rt::dyn
