@@ -68,6 +68,10 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       fail(gb.name, mods.errors);
       rep.modifications = std::move(mods.modifications);
       rep.studies = passes::studies(m, *best, progress(gb.name + " studies"));
+      std::vector<std::string> studyErrors;
+      for (const auto& st : rep.studies)
+        if (const auto* s = std::get_if<SweepStudy>(&st.study); s && !s->failure.empty()) studyErrors.push_back(s->failure);
+      fail(gb.name, studyErrors);
     }
     if (best) {
       passes::Ratings rated = passes::ratings(m, *best);

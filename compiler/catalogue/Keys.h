@@ -86,6 +86,8 @@ namespace gbx::cat {
   X(Samples, "samples")                                                                                \
   X(Duration, "duration")                                                                              \
   X(Ramp, "ramp")                                                                                      \
+  X(SteadyState, "steady_state")                                                                       \
+  X(Continuation, "continuation")                                                                      \
   X(Method, "method")                                                                                  \
   X(Rtol, "rtol")                                                                                      \
   X(Atol, "atol")                                                                                      \

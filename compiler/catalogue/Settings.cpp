@@ -58,6 +58,7 @@ const std::vector<AttrSpec>& sceneSettings() {
         withDefault(count("samples", "samples per recorded mesh period"), num(160)),
         t("duration", "simulated time from rest"),
         t("ramp", "smooth start-up time of the drive speed"),
+        symbol("steady_state", {"periodic"}, "solve for the periodic response directly (Floquet, shooting with Newton)"),
     };
   }();
   return s;
@@ -107,6 +108,14 @@ const std::vector<AttrSpec>& splitOutputs() {
       derived("imbalance", none, "load imbalance between the branches"),
       derived("branch_torque", torque, "torque in one branch"),
       derived("preload_displacement", length, "backlash taken up by the preload"),
+  };
+  return s;
+}
+
+const std::vector<AttrSpec>& sweepSettings() {
+  static const std::vector<AttrSpec> s = {
+      symbol("continuation", {"natural", "arclength"},
+             "how a sweep of a scene follows its periodic response: point by point, or by arclength through folds"),
   };
   return s;
 }

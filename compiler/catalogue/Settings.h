@@ -17,6 +17,12 @@ const std::vector<AttrSpec>& accuracySettings();
 const std::vector<AttrSpec>& splitSettings();
 const std::vector<AttrSpec>& splitOutputs();
 const std::vector<AttrSpec>& workPrecisionSettings();
+const std::vector<AttrSpec>& sweepSettings();
+
+// Sweep continuation choices, by their position in the `continuation` row's words.
+namespace continuation {
+inline constexpr int Natural = 0, Arclength = 1;
+}
 
 // Tooth modification: targets (lengths, per gear or both) and built-in quantities.
 const std::vector<std::string>& modificationTargets();

@@ -23,6 +23,7 @@ enum class Signal : std::uint8_t {
   InputSpeed,
   OutputSpeed,
   DynamicFactor,
+  Stability,
   Modes,
 };
 
@@ -47,6 +48,7 @@ inline const std::vector<SignalSpec>& sceneSignals() {
       {Signal::InputSpeed, "input_speed", angularSpeed, {}, false},
       {Signal::OutputSpeed, "output_speed", angularSpeed, {}, false},
       {Signal::DynamicFactor, "dynamic_factor", none, {}, true},
+      {Signal::Stability, "stability", none, {}, true},
       {Signal::Modes, "modes", frequency, {}, true},
   };
   return s;

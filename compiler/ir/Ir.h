@@ -79,6 +79,7 @@ enum class Marker : std::uint8_t { None, Percent, MeshPeriods };
 // `scene.fn(signal)`, resolved.
 struct SceneOutputRef {
   int scene = -1;
+  bool bare = false;  // a single result (`scene.dynamic_factor`): matched by its signal alone
   cat::SignalFn fn = cat::SignalFn::Rms;
   cat::Signal signal = cat::Signal::Displacement;
 };

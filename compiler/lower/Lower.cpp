@@ -78,9 +78,16 @@ public:
     case ir::Op::SceneOutput: {
       // "scene.fn(signal)"
       auto dot = e.name.find('.'), open = e.name.find('('), close = e.name.rfind(')');
-      if (dot == std::string::npos || open == std::string::npos || close == std::string::npos) break;
+      if (dot == std::string::npos) break;
       for (size_t i = 0; i < g_.scenes.size(); ++i)
         if (g_.scenes[i].name == e.name.substr(0, dot)) e.output.scene = static_cast<int>(i);
+      // "scene.signal": a single result (dynamic_factor, stability), read by its signal alone.
+      if (open == std::string::npos) {
+        e.output.bare = true;
+        if (const auto* s = cat::findSignal(e.name.substr(dot + 1))) e.output.signal = s->id;
+        break;
+      }
+      if (close == std::string::npos) break;
       if (const auto* f = cat::findSignalFn(e.name.substr(dot + 1, open - dot - 1))) e.output.fn = f->id;
       if (const auto* s = cat::findSignal(e.name.substr(open + 1, close - open - 1))) e.output.signal = s->id;
       break;
@@ -179,7 +186,7 @@ public:
       for (size_t i = 0; i < g.scenes.size(); ++i)
         if (g.scenes[i].name == st.target) st.scene = static_cast<int>(i);
       for (auto& o : st.outputs) expr(o);
-      settings(st.settings, cat::workPrecisionSettings());
+      settings(st.settings, st.kind == ir::Study::Sweep ? cat::sweepSettings() : cat::workPrecisionSettings());
     }
     if (g.report) {
       expr(g.report->sortBy);

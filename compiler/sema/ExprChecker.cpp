@@ -396,6 +396,20 @@ ir::ExprPtr ExprChecker::member(const ast::Expr& e, const Scope& s) {
     return error(e.span);
   }
   case Type::Scene:
+    // A single result of the scene: `vibration.dynamic_factor`, `vibration.stability`.
+    if (const auto* sig = findSignal(m); sig && sig->scalar && sig->id != Signal::Modes) {
+      const ast::Stmt* scene = s.gearbox->findScene(obj->name);
+      bool declared = sig->id == Signal::Stability;  // every periodic scene has one
+      for (const auto& st : scene->body)
+        if (st.kind == ast::StmtKind::Output)
+          for (const auto& o : st.exprs)
+            if (o && o->kind == ast::ExprKind::Name && o->text == m) declared = true;
+      if (!declared) {
+        diags_.error("E0218", e.span, fmt::format("scene `{}` does not output `{}`; add it to the scene's `output` list", obj->name, m));
+        return error(e.span);
+      }
+      return make(Op::SceneOutput, Type::number(sig->dim), e.span, obj->name + "." + m);
+    }
     diags_.error("E0218", e.span,
                  fmt::format("a scene's results are read by a function of a signal, as in `{}.rms(acceleration)`",
                              obj->name));

@@ -1086,6 +1086,19 @@ private:
     }
     out.settings = settings(items, sceneSettings(), gs, owner, nameOr(st), "E0225");
     out.accuracy = settings(acc, accuracySettings(), gs, owner + " accuracy", nameOr(st), "E0225");
+    if (ir::findSetting(out.settings, "steady_state")) {
+      for (const char* other : {"settle", "duration", "ramp"})
+        if (const auto* s = ir::findSetting(out.settings, other))
+          diags_.error("E0202", s->span,
+                       fmt::format("{} asks for the periodic steady state (`steady_state = periodic`), which has no `{}`: the periodic "
+                                   "response is found directly; drop one of the two",
+                                   owner, other));
+      if (!ir::findSetting(out.settings, "record"))
+        diags_.error("E0225", nameOr(st), fmt::format("{} needs `record` (the steady-state window) with `steady_state = periodic`", owner));
+      if (!stage)
+        diags_.error("E0232", nameOr(st), fmt::format("{}: `steady_state = periodic` needs a scene on a stage; on the whole gearbox only "
+                                                     "`modes` are computed", owner));
+    }
     if (!ir::findSetting(out.settings, "duration") && !ir::findSetting(out.settings, "record"))
       diags_.error("E0225", nameOr(st), fmt::format("{} needs `duration` (a run from rest) or `record` (a steady-state window)", owner));
     if (out.hasEffect("transmission_error") && !out.hasEffect("varying_stiffness"))
@@ -1331,6 +1344,7 @@ private:
     std::string owner = fmt::format("study `{}`", st.name);
     bool sweep = false, wp = false;
     std::vector<std::pair<std::string, const Stmt*>> domains;
+    std::vector<std::pair<std::string, Binding>> items;
     for (const auto& b : st.body) {
       switch (b.kind) {
       case StmtKind::Sweep: {
@@ -1391,6 +1405,7 @@ private:
         break;
       }
       case StmtKind::Domain: domains.emplace_back(b.path.str(), &b); break;
+      case StmtKind::Assign: flattenOne(b, items, owner); break;
       case StmtKind::Output:
         for (const auto& e : b.exprs) {
           auto x = checker_.check(e.get(), gs);
@@ -1409,6 +1424,14 @@ private:
     }
     if (!sweep && !wp) diags_.error("E0225", nameOr(st), fmt::format("{} needs `sweep X in a..b step s;` or `work_precision of SCENE;`", owner));
     if (sweep && out.outputs.empty()) diags_.error("E0225", nameOr(st), fmt::format("{} sweeps but has no `output`", owner));
+    if (!items.empty()) {
+      if (wp)
+        for (const auto& [name, b] : items)
+          diags_.error("E0214", b.stmt->path.span,
+                       fmt::format("`{}` is not a setting of a work-precision study (rtol, harmonics, methods)", name));
+      else
+        out.settings = settings(items, sweepSettings(), gs, owner, nameOr(st), "E0225");
+    }
     for (const auto& [name, b] : domains) {
       if (!wp) {
         diags_.error("E0110", b->span, fmt::format("`{} in …` belongs in a work-precision study", name));

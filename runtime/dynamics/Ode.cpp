@@ -118,7 +118,8 @@ bool Integrator::advance(double& t, std::vector<double>& y, double t1, const std
   double span = std::max(t1 - t, 1e-300);
   if (I.h <= 0) I.h = acc_.maxStep > 0 ? std::min(acc_.maxStep, span / 100) : span / 100;
   size_t next = static_cast<size_t>(std::lower_bound(samples.begin(), samples.end(), t) - samples.begin());
-  while (next < samples.size() && samples[next] <= t) ++next;
+  // A sample at the start (a periodic orbit's first point) is the state as given.
+  while (next < samples.size() && samples[next] == t) onSample(samples[next++], y.data());
   std::vector<double> y0, ys;
   std::vector<double> ev0(sys.events.size());
   for (size_t k = 0; k < sys.events.size(); ++k) ev0[k] = sys.events[k](t, y.data());

@@ -45,6 +45,15 @@ struct Accuracy {
 struct Stats {
   long steps = 0, rejected = 0, rhsEvaluations = 0, jacobianEvaluations = 0, events = 0;
   double cpuSeconds = 0;
+  Stats& operator+=(const Stats& s) {
+    steps += s.steps;
+    rejected += s.rejected;
+    rhsEvaluations += s.rhsEvaluations;
+    jacobianEvaluations += s.jacobianEvaluations;
+    events += s.events;
+    cpuSeconds += s.cpuSeconds;
+    return *this;
+  }
 };
 
 class Integrator {

@@ -9,15 +9,6 @@ namespace gbx::rt::dyn {
 
 namespace {
 
-void addStats(Stats& into, const Stats& s) {
-  into.steps += s.steps;
-  into.rejected += s.rejected;
-  into.rhsEvaluations += s.rhsEvaluations;
-  into.jacobianEvaluations += s.jacobianEvaluations;
-  into.events += s.events;
-  into.cpuSeconds += s.cpuSeconds;
-}
-
 std::vector<double> stateScale(const System& sys) {
   std::vector<double> s = sys.scale;
   s.resize(sys.dim, 1.0);
@@ -64,7 +55,7 @@ bool integrate(const System& sys, const Accuracy& acc, double t0, double period,
   Integrator integ(sys, acc);
   double t = t0;
   bool ok = integ.advance(t, y, t0 + period, {}, [](double, const double*) {});
-  addStats(stats, integ.stats());
+  stats += integ.stats();
   if (!ok) failure = integ.error();
   return ok;
 }

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
+#include <type_traits>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include "catalogue/StageKinds.h"
 #include "dynamics/Effects.h"
+#include "dynamics/Periodic.h"
 #include "dynamics/Scene.h"
 #include "dynamics/Stiffness.h"
 
@@ -25,11 +28,263 @@ struct Mesh {
   int planet = 0;
 };
 
+// What the right-hand side reads; effects the scene does not list keep their zeros.
+struct Params {
+  int N = 0;
+  size_t nq = 0;
+  double rbs = 0, rbp = 0, rbr = 0, zr = 0, JcEff = 0, Jp = 0;
+  std::vector<Mesh> meshes;
+  Fourier fourier;
+  double e = 1.5, ramp = 0, hertzDampingSp = 0, hertzDampingRp = 0, halfClearance = 0;
+  double teMean = 0, teAmp = 0, tePhase = 0, cSp = 0, cRp = 0;
+  double tMean = 0, tAmp = 0, tOmega = 0;
+  Drive drive;
+};
+
+// d(relativeStiffness)/d tau, by the same recurrence.
+double relativeStiffnessSlope(const Fourier& f, double tau) {
+  double w = 2.0 * M_PI * (tau - std::floor(tau));
+  double c1 = std::cos(w), s1 = std::sin(w);
+  double ck = c1, sk = s1, sum = 0.0;
+  for (size_t k = 0; k < f.a.size(); ++k) {
+    sum += 2.0 * M_PI * static_cast<double>(k + 1) * (f.b[k] * ck - f.a[k] * sk);
+    double cn = ck * c1 - sk * s1, sn = sk * c1 + ck * s1;
+    ck = cn;
+    sk = sn;
+  }
+  return sum;
+}
+
+// The right-hand side is compiled per combination of listed effects (as in MeshModel.cpp):
+// an effect the scene does not list is absent from it, not tested for.
+namespace contact {
+inline constexpr int Linear = 0, Backlash = 1, Hertz = 2;
+}
+namespace drivephase {
+inline constexpr int Constant = 0, ClosedForm = 1, State = 2;
+}
+
+template <bool Varying, bool Damped, int Contact, bool Te, bool TorqueFl, int Phase>
+struct Kernel {
+  // Transmission error: F = dk(t) e(t) on a mesh always in contact (DOMAIN.md §3); with
+  // contact loss a displacement inside the contact law, so the force stays continuous.
+  static constexpr bool teDisplacement = Te && Contact != contact::Linear;
+  static constexpr bool teForce = Te && Contact == contact::Linear && Varying;
+  static constexpr bool needsPhase = Varying || teDisplacement || teForce;
+
+  static double sunAngle(const Params& p, double t, const double* y) {
+    if constexpr (Phase == drivephase::Constant) return p.drive.speed0 * t;
+    else if constexpr (Phase == drivephase::ClosedForm) return p.drive.angle(t);
+    else return y[2 * p.nq];
+  }
+  static double sunSpeed(const Params& p, double t) {
+    if constexpr (Phase == drivephase::Constant) return p.drive.speed0;
+    else return p.drive.speed(t);
+  }
+  // Mesh deflection and its rate: sun-planet rbs(ts - tc) + rbp phi; ring-planet -rbp phi - rbr tc.
+  static double deflection(const Params& p, const Mesh& me, double ts, double ws, const double* y, double& rate) {
+    size_t ip = 1 + static_cast<size_t>(me.planet);
+    if (me.ring) {
+      rate = -p.rbp * y[p.nq + ip] - p.rbr * y[p.nq];
+      return -p.rbp * y[ip] - p.rbr * y[0];
+    }
+    rate = p.rbs * (ws - y[p.nq]) + p.rbp * y[p.nq + ip];
+    return p.rbs * (ts - y[0]) + p.rbp * y[ip];
+  }
+  // The mesh force at deflection d and rate; with Slopes also its partial derivatives in
+  // d, the rate and the mesh phase tau (for the state Jacobian).
+  template <bool Slopes>
+  static double force(const Params& p, const Mesh& me, double carrierPhase, double d, double rate, double* fd, double* fv,
+                      double* ft) {
+    [[maybe_unused]] double tau = 0, rel = 1.0, drel = 0, err = 0, derr = 0;
+    if constexpr (needsPhase) tau = carrierPhase + me.phase0;
+    if constexpr (Varying) {
+      rel = relativeStiffness(p.fourier, tau);
+      if constexpr (Slopes) drel = relativeStiffnessSlope(p.fourier, tau);
+    }
+    if constexpr (teDisplacement || teForce) {
+      err = p.teMean + p.teAmp * std::sin(2.0 * M_PI * tau + p.tePhase);
+      if constexpr (Slopes) derr = 2.0 * M_PI * p.teAmp * std::cos(2.0 * M_PI * tau + p.tePhase);
+    }
+    double K = me.K;
+    if constexpr (Varying) K *= rel;
+    [[maybe_unused]] double c = 0;
+    if constexpr (Damped) c = me.ring ? p.cRp : p.cSp;
+    if constexpr (teDisplacement) d -= err;
+    if constexpr (Slopes) *fd = *fv = *ft = 0;
+    if constexpr (Contact == contact::Backlash) {
+      // Dead zone: both flanks, contact lost inside the clearance.
+      double hc = p.halfClearance;
+      double e2 = d > hc ? d - hc : d < -hc ? d + hc : 0.0;
+      if (e2 == 0) return 0.0;  // no contact, no force
+      if constexpr (Slopes) {
+        *fd = K;
+        *fv = c;
+        *ft = me.K * drel * e2 - K * derr;
+      }
+      if constexpr (Damped) return K * e2 + c * rate;
+      else return K * e2;
+    } else if constexpr (Contact == contact::Hertz) {
+      if (d <= 0) return 0.0;
+      double s = p.ramp > 0 ? std::min(1.0, d / p.ramp) : 1.0;
+      double hd = me.ring ? p.hertzDampingRp : p.hertzDampingSp;
+      double C = hd * s * s * (3.0 - 2.0 * s);
+      if constexpr (Damped) C += c;
+      double de = p.e == 1.5 ? d * std::sqrt(d) : std::pow(d, p.e);
+      double f = K * de + C * rate;
+      if (f <= 0) return 0.0;  // a contact pushes, never pulls
+      if constexpr (Slopes) {
+        double dstep = p.ramp > 0 && s < 1.0 ? 6.0 * s * (1.0 - s) / p.ramp : 0.0;
+        *fd = p.e * K * de / d + hd * dstep * rate;
+        *fv = C;
+        *ft = me.K * drel * de - *fd * derr;
+      }
+      return f;
+    } else {
+      double f = K * d;
+      if constexpr (Damped) f += c * rate;
+      if constexpr (teForce) f += me.K * (rel - 1.0) * err;
+      if constexpr (Slopes) {
+        *fd = K;
+        *fv = c;
+        *ft = me.K * drel * d;
+        if constexpr (teForce) *ft += me.K * (drel * err + (rel - 1.0) * derr);
+      }
+      return f;
+    }
+  }
+  static double carrierPhase(const Params& p, const double* y) {
+    if constexpr (needsPhase) return p.zr * y[0] / (2.0 * M_PI);
+    else return 0.0;
+  }
+  static double meshForce(const Params& p, const Mesh& me, double t, const double* y) {
+    double rate;
+    double d = deflection(p, me, sunAngle(p, t, y), sunSpeed(p, t), y, rate);
+    return force<false>(p, me, carrierPhase(p, y), d, rate, nullptr, nullptr, nullptr);
+  }
+  static void rhs(const Params& p, double t, const double* y, double* dy) {
+    size_t nq = p.nq;
+    for (size_t i = 0; i < nq; ++i) dy[i] = y[nq + i];
+    double torqueC;
+    if constexpr (TorqueFl) torqueC = -(p.tMean + p.tAmp * std::sin(p.tOmega * t));
+    else torqueC = -p.tMean;
+    double ts = sunAngle(p, t, y), ws = sunSpeed(p, t), cp = carrierPhase(p, y);
+    std::array<double, 32> spin{};  // planets (at most 32, checked)
+    for (const auto& me : p.meshes) {
+      double rate;
+      double d = deflection(p, me, ts, ws, y, rate);
+      double f = force<false>(p, me, cp, d, rate, nullptr, nullptr, nullptr);
+      torqueC += f * (me.ring ? p.rbr : p.rbs);
+      spin[static_cast<size_t>(me.planet)] += me.ring ? f * p.rbp : -f * p.rbp;
+    }
+    dy[nq] = torqueC / p.JcEff;
+    for (int i = 0; i < p.N; ++i) dy[nq + 1 + static_cast<size_t>(i)] = spin[static_cast<size_t>(i)] / p.Jp;
+    if constexpr (Phase == drivephase::State) dy[2 * nq] = p.drive.speed(t);
+  }
+  // The state Jacobian, row-major: each mesh force depends on the carrier angle (deflection
+  // and mesh phase), its planet's angle, their speeds, and the drive angle when it is a state.
+  static void dfdy(const Params& p, double t, const double* y, double* J) {
+    size_t nq = p.nq, n = 2 * nq + (Phase == drivephase::State ? 1 : 0);
+    std::fill(J, J + n * n, 0.0);
+    for (size_t i = 0; i < nq; ++i) J[i * n + nq + i] = 1.0;
+    double ts = sunAngle(p, t, y), ws = sunSpeed(p, t), cp = carrierPhase(p, y);
+    double dtau = needsPhase ? p.zr / (2.0 * M_PI) : 0.0;
+    for (const auto& me : p.meshes) {
+      double rate, fd, fv, ft;
+      double d = deflection(p, me, ts, ws, y, rate);
+      force<true>(p, me, cp, d, rate, &fd, &fv, &ft);
+      size_t ip = 1 + static_cast<size_t>(me.planet);
+      double gc = me.ring ? -p.rbr : -p.rbs, gp = me.ring ? -p.rbp : p.rbp;  // d(deflection)/d(theta_c, phi)
+      double df[4] = {fd * gc + ft * dtau, fd * gp, fv * gc, fv * gp};
+      size_t col[4] = {0, ip, nq, nq + ip};
+      double toC = (me.ring ? p.rbr : p.rbs) / p.JcEff, toP = (me.ring ? p.rbp : -p.rbp) / p.Jp;
+      double* rowC = J + nq * n;
+      double* rowP = J + (nq + ip) * n;
+      for (int k = 0; k < 4; ++k) {
+        rowC[col[k]] += toC * df[k];
+        rowP[col[k]] += toP * df[k];
+      }
+      if constexpr (Phase == drivephase::State)
+        if (!me.ring) {
+          rowC[2 * nq] += toC * fd * p.rbs;
+          rowP[2 * nq] += toP * fd * p.rbs;
+        }
+    }
+  }
+};
+
+template <class F>
+void withBool(bool b, F&& f) {
+  if (b) f(std::true_type{});
+  else f(std::false_type{});
+}
+template <class F>
+void withInt3(int v, F&& f) {
+  if (v == 0) f(std::integral_constant<int, 0>{});
+  else if (v == 1) f(std::integral_constant<int, 1>{});
+  else f(std::integral_constant<int, 2>{});
+}
+
+struct Compiled {
+  std::function<void(double, const double*, double*)> rhs;
+  std::function<void(double, const double*, double*)> dfdy;
+  std::function<double(const Mesh&, double, const double*)> force;
+};
+
+Compiled compile(const Params& p, bool varying, bool damped, int contactKind, bool te, bool torqueFl, int phase) {
+  Compiled c;
+  withBool(varying, [&](auto V) {
+    withBool(damped, [&](auto D) {
+      withInt3(contactKind, [&](auto C) {
+        withBool(te, [&](auto TE) {
+          withBool(torqueFl, [&](auto Q) {
+            withInt3(phase, [&](auto P) {
+              using K = Kernel<decltype(V)::value, decltype(D)::value, decltype(C)::value, decltype(TE)::value, decltype(Q)::value,
+                               decltype(P)::value>;
+              const Params* pp = &p;
+              c.rhs = [pp](double t, const double* y, double* dy) { K::rhs(*pp, t, y, dy); };
+              c.dfdy = [pp](double t, const double* y, double* J) { K::dfdy(*pp, t, y, J); };
+              c.force = [pp](const Mesh& me, double t, const double* y) { return K::meshForce(*pp, me, t, y); };
+            });
+          });
+        });
+      });
+    });
+  });
+  return c;
+}
+
+void addStats(Stats& into, const Stats& s) {
+  into.steps += s.steps;
+  into.rejected += s.rejected;
+  into.rhsEvaluations += s.rhsEvaluations;
+  into.jacobianEvaluations += s.jacobianEvaluations;
+  into.events += s.events;
+  into.cpuSeconds += s.cpuSeconds;
+}
+
+// The fewest whole mean mesh periods Tm (at most 1000) that hold whole periods of every
+// fluctuation; 0 when there is none.
+int wholeMeshPeriods(double Tm, const std::vector<double>& periods) {
+  for (int q = 1; q <= 1000; ++q) {
+    bool whole = true;
+    for (double P : periods) {
+      double r = q * Tm / P;
+      if (std::round(r) < 1 || std::fabs(r - std::round(r)) > 1e-9 * std::max(1.0, r)) {
+        whole = false;
+        break;
+      }
+    }
+    if (whole) return q;
+  }
+  return 0;
+}
+
 } // namespace
 
 PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, const ir::Scene& scene, Accuracy acc,
                           const SceneOverrides& ov, double upstream, double downstream, double speed, double E, double nu,
-                          double density, bool materialAssumed) {
+                          double density, bool materialAssumed, bool periodic) {
   PlanetaryRun run;
   auto& prov = run.provenance;
   using namespace cat::gear;
@@ -153,8 +408,38 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   // Degrees of freedom: q = [theta_c, phi_1..phi_N]; state = [q, q'] (+ drive angle).
   size_t nq = static_cast<size_t>(N) + 1;
   size_t dim = 2 * nq + (drive.needsState() ? 1 : 0);
+  Params P;
+  P.N = N;
+  P.nq = nq;
+  P.rbs = rbs;
+  P.rbp = rbp;
+  P.rbr = rbr;
+  P.zr = zr;
+  P.JcEff = JcEff;
+  P.Jp = Jp;
+  P.meshes = meshes;
+  P.fourier = fourier;
+  P.e = e;
+  P.ramp = ramp;
+  P.hertzDampingSp = hertzDampingSp;
+  P.hertzDampingRp = hertzDampingRp;
+  P.halfClearance = halfClearance;
+  P.teMean = teMean;
+  P.teAmp = teAmp;
+  P.tePhase = tePhase;
+  P.cSp = cSp;
+  P.cRp = cRp;
+  P.tMean = tMean;
+  P.tAmp = tAmp;
+  P.tOmega = tOmega;
+  P.drive = drive;
+  int contactKind = backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
+  int phaseKind = drive.needsState()                   ? drivephase::State
+                  : drive.fluctuates || drive.ramp > 0 ? drivephase::ClosedForm
+                                                       : drivephase::Constant;
+  Compiled model = compile(P, varying != nullptr, damping != nullptr, contactKind, te != nullptr, torqueFx != nullptr, phaseKind);
   auto sunAngle = [&](double t, const double* y) { return drive.needsState() ? y[2 * nq] : drive.angle(t); };
-  // Mesh deflection and its rate: sun-planet rbs(ts - tc) + rbp phi; ring-planet -rbp phi - rbr tc.
+  // Deflection and rate for events and signals (the right-hand side has its own, compiled).
   auto deflection = [&](const Mesh& me, double t, const double* y, double& rate) {
     double tc = y[0], phi = y[1 + static_cast<size_t>(me.planet)], wc = y[nq], wphi = y[nq + 1 + static_cast<size_t>(me.planet)];
     if (me.ring) {
@@ -164,58 +449,15 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
     rate = rbs * (drive.speed(t) - wc) + rbp * wphi;
     return rbs * (sunAngle(t, y) - tc) + rbp * phi;
   };
-  auto carrierAngle = [&](const double* y) { return y[0]; };
-  auto force = [&](const Mesh& me, double t, const double* y) {
-    double rate;
-    double d = deflection(me, t, y, rate);
-    double rel = 1.0;
-    if (varying) {
-      // Mesh phase in the carrier frame: ring teeth passing per carrier turn.
-      double tau = zr * carrierAngle(y) / (2.0 * M_PI) + me.phase0;
-      rel = relativeStiffness(fourier, tau);
-    }
-    double K = me.K * rel;
-    double c = me.ring ? cRp : cSp;
-    // Transmission error: F = dk(t) e(t) on a mesh always in contact (DOMAIN.md §3); with
-    // contact loss a displacement inside the contact law, so the force stays continuous.
-    double tau = zr * carrierAngle(y) / (2.0 * M_PI) + me.phase0;
-    double err = te ? teMean + teAmp * std::sin(2.0 * M_PI * tau + tePhase) : 0.0;
-    double teForce = te && varying && !backlash && !hertz ? me.K * (rel - 1.0) * err : 0.0;
-    if (backlash || hertz) d -= err;
-    if (backlash) {
-      // Dead zone: both flanks, contact lost inside the clearance.
-      double e2 = d > halfClearance ? d - halfClearance : d < -halfClearance ? d + halfClearance : 0.0;
-      return e2 != 0 ? K * e2 + c * rate : 0.0;  // no contact, no force
-    }
-    if (hertz) {
-      if (d <= 0) return 0.0;
-      double s = ramp > 0 ? std::min(1.0, d / ramp) : 1.0;
-      double C = (me.ring ? hertzDampingRp : hertzDampingSp) * s * s * (3.0 - 2.0 * s);
-      double de = e == 1.5 ? d * std::sqrt(d) : std::pow(d, e);
-      return std::max(0.0, K * de + (C + c) * rate);
-    }
-    return K * d + c * rate + teForce;
-  };
-  auto load = [&](double t) { return tMean + tAmp * std::sin(tOmega * t); };
-  System sys;
-  sys.dim = dim;
-  sys.rhs = [&](double t, const double* y, double* dy) {
-    for (size_t i = 0; i < nq; ++i) dy[i] = y[nq + i];
-    double torqueC = -load(t);
-    std::array<double, 32> spin{};  // planets (at most 32, checked above)
-    for (const auto& me : meshes) {
-      double f = force(me, t, y);
-      torqueC += f * (me.ring ? rbr : rbs);
-      spin[static_cast<size_t>(me.planet)] += me.ring ? f * rbp : -f * rbp;
-    }
-    dy[nq] = torqueC / JcEff;
-    for (int i = 0; i < N; ++i) dy[nq + 1 + static_cast<size_t>(i)] = spin[static_cast<size_t>(i)] / Jp;
-    if (drive.needsState()) dy[2 * nq] = drive.speed(t);
-  };
+  // The transmission error of a mesh at the carrier angle y[0].
   auto error = [&](const Mesh& me, const double* y) {
-    double tau = zr * carrierAngle(y) / (2.0 * M_PI) + me.phase0;
+    double tau = zr * y[0] / (2.0 * M_PI) + me.phase0;
     return te ? teMean + teAmp * std::sin(2.0 * M_PI * tau + tePhase) : 0.0;
   };
+  System sys;
+  sys.dim = dim;
+  sys.rhs = model.rhs;
+  sys.dfdy = model.dfdy;
   if (hertz)
     for (const auto& me : meshes)
       sys.events.push_back([&, me](double t, const double* y) {
@@ -273,14 +515,13 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
     sys.scale[i] = d0 / rbp;
     sys.scale[nq + i] = std::max(speed, d0 / rbp / Tn);
   }
-  Integrator integ(sys, acc);
-  double t = 0;
-  bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, [&](double ts, const double* ys) {
+  run.staticLoad = F0;
+  auto sample = [&](double ts, const double* ys) {
     std::vector<double> dy(dim);
     sys.rhs(ts, ys, dy.data());
     double rate;
     double d = deflection(meshes[0], ts, ys, rate);
-    double f = force(meshes[0], ts, ys);
+    double f = model.force(meshes[0], ts, ys);
     run.t.push_back(ts);
     using cat::Signal;
     series(run.signals, Signal::Displacement).push_back(d);
@@ -289,13 +530,76 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
     series(run.signals, Signal::MeshForce).push_back(f);
     series(run.signals, Signal::ContactForce).push_back(f);
     series(run.signals, Signal::Stiffness).push_back(varying ? meshes[0].K * relativeStiffness(fourier, zr * ys[0] / (2.0 * M_PI)) : meshes[0].K);
-    series(run.signals, Signal::TransmissionError).push_back(0.0);
+    if (te) series(run.signals, Signal::TransmissionError).push_back(error(meshes[0], ys));
     series(run.signals, Signal::InputSpeed).push_back(drive.speed(ts) * upstream);
     series(run.signals, Signal::OutputSpeed).push_back(ys[nq] / downstream);
-  });
-  run.stats = integ.stats();
+  };
+  if (!periodic) {
+    Integrator integ(sys, acc);
+    double t = 0;
+    bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, sample);
+    run.stats = integ.stats();
+    if (!ok) run.failure = integ.error();
+    return run;
+  }
+
+  // The periodic steady state (dynamics/Periodic.h). The excitation repeats after whole
+  // mean mesh periods that also hold whole periods of every fluctuation.
+  run.periodic = true;
+  const std::string notPeriodic = "the excitation is not periodic";
+  const std::string instead = ": find the steady state from rest with `settle` and `record` (or `duration`) instead";
+  if (drive.ramp > 0) {
+    run.failure = notPeriodic + " (a `ramp` start-up is a transient)" + instead;
+    return run;
+  }
+  double sunMean = drive.fluctuates ? drive.mean : drive.speed0;
+  std::vector<double> periods;
+  if (drive.fluctuates && drive.amplitude != 0) periods.push_back(drive.omega > 0 ? 2.0 * M_PI / drive.omega : INFINITY);
+  if (torqueFx && tAmp != 0) periods.push_back(tOmega > 0 ? 2.0 * M_PI / tOmega : INFINITY);
+  double Tm = !drive.fluctuates ? Tz : sunMean > 0 ? 2.0 * M_PI * ratio / (sunMean * zr) : INFINITY;
+  int q = std::isfinite(Tm) ? wholeMeshPeriods(Tm, periods) : 0;
+  if (q == 0 || drive.needsState()) {
+    run.failure = notPeriodic + " (no whole number of mesh periods, up to 1000, holds whole fluctuation periods)" + instead;
+    return run;
+  }
+  double period = q * Tm;
+  // Drift over a period: the carrier turns q ring-tooth pitches; the sun-planet deflection
+  // rbs (theta_s - theta_c) + rbp phi repeats, so phi advances -rbs (d theta_s - d theta_c) / rbp.
+  double carrierAdvance = q * 2.0 * M_PI / zr, sunAdvance = ratio * carrierAdvance;
+  PeriodicOptions opt;
+  opt.period = period;
+  opt.drift.assign(dim, 0.0);
+  opt.drift[0] = carrierAdvance;
+  for (size_t i = 1; i < nq; ++i) opt.drift[i] = -rbs * (sunAdvance - carrierAdvance) / rbp;
+  opt.linear = !hertz && !backlash && !varying;  // the phase (carrier angle) makes varying stiffness nonlinear
+  PeriodicOrbit orbit = periodicOrbit(sys, acc, opt, y);
+  run.stats = orbit.stats;
+  run.newtonIterations = orbit.iterations;
+  run.newtonResidual = orbit.residual;
+  if (!orbit.failure.empty()) {
+    run.failure = "the periodic steady state was not found: " + orbit.failure;
+    return run;
+  }
+  run.stability = orbit.stability;
+  run.multipliers = orbit.multipliers;
+  prov.push_back(fmt::format("periodic steady state: period {:.4g} ms ({} mesh period{}), Newton {} iterations, residual {:.2g}, "
+                             "largest Floquet multiplier {:.4g} ({})",
+                             period * 1e3, q, q == 1 ? "" : "s", orbit.iterations, orbit.residual, orbit.stability,
+                             orbit.variational ? "variational equations" : "differences"));
+  // Record the scene's window from the orbit's start, t = 0.
+  TimePlan& plan = run.plan;
+  size_t n = std::max<size_t>(1, plan.samples.size());
+  plan.samples.clear();
+  for (size_t i = 0; i < n; ++i) plan.samples.push_back(static_cast<double>(i) * plan.dt);
+  plan.statsFrom = 0;
+  plan.end = plan.samples.back();
+  y = orbit.y0;
+  sample(0.0, y.data());  // advance() samples in (t, end] only
+  Integrator integ(sys, acc);
+  double t = 0;
+  bool ok = integ.advance(t, y, plan.end, plan.samples, sample);
+  addStats(run.stats, integ.stats());
   if (!ok) run.failure = integ.error();
-  run.staticLoad = F0;
   return run;
 }
 

@@ -12,6 +12,7 @@
 #include "dynamics/Lumped.h"
 #include "dynamics/Statistics.h"
 #include "model/StageKind.h"
+#include "dynamics/Periodic.h"
 #include "dynamics/Planetary.h"
 #include "dynamics/SceneSupport.h"
 #include "model/Standards.h"
@@ -21,6 +22,13 @@ namespace gbx::rt::dyn {
 const SceneNumber* SceneResult::find(const std::string& key) const {
   for (const auto& n : numbers)
     if (n.key == key) return &n;
+  return nullptr;
+}
+
+const SceneNumber* SceneResult::find(const ir::SceneOutputRef& ref) const {
+  if (!ref.bare) return find(ref.fn, ref.signal);
+  for (const auto& n : numbers)
+    if (n.signal == ref.signal) return &n;
   return nullptr;
 }
 
@@ -97,7 +105,7 @@ Accuracy sceneAccuracy(const ir::Scene& scene, const SceneOverrides& ov) {
 
 MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov, Accuracy acc,
                       std::vector<std::string>& prov) {
-  Evaluator ev(m);
+  Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
   int st = scene.stage;
   const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
   using cat::gear::Pinion;
@@ -156,11 +164,31 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
   prov.push_back(fmt::format("mesh frequency {:.4f} Hz, natural frequency {:.4f} Hz", 1.0 / Tz, 1.0 / model.naturalPeriod()));
   // Steps: at most a quarter period of the highest stiffness harmonic; with contact
   // (backlash, Hertz) also a twentieth of the natural period, the scale of a contact.
-  acc.maxStep = Tz / (4.0 * (fx.varyingStiffness ? std::max(1, fx.harmonics) : 1));
-  if (fx.backlash || fx.hertz) acc.maxStep = std::min(acc.maxStep, model.naturalPeriod() / 20.0);
-  if (const auto* s = ir::findSetting(scene.accuracy, Q::MaxStep); s && s->value) acc.maxStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+  int harmonics = fx.varyingStiffness ? std::max(1, fx.harmonics) : 1;
+  acc.maxStep = Tz / (4.0 * harmonics);
+  std::string rule = fx.varyingStiffness ? fmt::format("Tz/(4 x {} harmonics)", harmonics) : "Tz/4";
+  if ((fx.backlash || fx.hertz) && model.naturalPeriod() / 20.0 < acc.maxStep) {
+    acc.maxStep = model.naturalPeriod() / 20.0;
+    rule = "Tn/20 (natural period, a contact's time scale)";
+  }
+  if (const auto* s = ir::findSetting(scene.accuracy, Q::MaxStep); s && s->value) {
+    acc.maxStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+    rule = "given";
+  }
+  if (ov.maxStepFactor) {
+    acc.maxStep *= *ov.maxStepFactor;
+    rule += fmt::format(" x {:g}", *ov.maxStepFactor);
+  }
   if (const auto* s = ir::findSetting(scene.accuracy, Q::MinStep); s && s->value) acc.minStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
-  MeshScene out{p, fx, acc, timePlan(scene, Tz), 1.0 / Tz, prov};
+  MeshScene out;
+  out.params = p;
+  out.effects = fx;
+  out.accuracy = acc;
+  out.plan = timePlan(scene, Tz, ov.settlePeriods);
+  out.meshFrequency = 1.0 / Tz;
+  out.provenance = prov;
+  out.stepRule = fmt::format("max step {} = {:.4g} ms", rule, acc.maxStep * 1e3);
+  out.harmonics = fx.varyingStiffness ? fx.harmonics : 0;
   return out;
 }
 
@@ -168,7 +196,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
   SceneResult r;
   r.name = scene.name;
   r.target = scene.target;
-  Evaluator ev(m);
+  Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
   int st = scene.stage;
   if (st < 0) {
     // The whole gearbox: its lumped torsional model, for its modes.
@@ -203,8 +231,43 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     acc = ms.accuracy;
     tp = ms.plan;
     r.meshFrequency = ms.meshFrequency;
-    Integrator integ(model.system(), acc);
+    r.stepRule = ms.stepRule;
+    r.harmonics = ms.harmonics;
+    r.steady = tp.steady;
     std::vector<double> y = model.initialState();
+    if (tp.steady == SteadyMethod::Periodic) {
+      double Tz = 1.0 / ms.meshFrequency, T = model.excitationPeriod();
+      if (T <= 0)
+        throw Failure{fmt::format("the excitation is not periodic (a start-up ramp, or a fluctuation whose period holds no whole number of "
+                                  "mesh periods), so there is no periodic steady state{}; write `settle = N mesh_periods` to settle a "
+                                  "transient, or `duration` for a run from rest",
+                                  tp.periodicWritten ? "" : " (the default when a scene neither settles nor runs from rest)")};
+      PeriodicOptions po;
+      po.period = T;
+      po.linear = model.linear();
+      std::vector<double> guess = ov.guess && ov.guess->size() == y.size() ? *ov.guess : y;
+      PeriodicOrbit orbit = periodicOrbit(model.system(), acc, po, guess);
+      r.stats += orbit.stats;
+      if (!orbit.converged) {
+        r.failure = fmt::format("scene `{}`: the periodic steady state was not found: {}", scene.name, orbit.failure);
+        return r;
+      }
+      y = orbit.y0;
+      r.orbit = orbit.y0;
+      r.period = T;
+      r.stability = orbit.stability;
+      r.unstable = orbit.stability >= 1.0;
+      r.multipliers = orbit.multipliers;
+      r.newtonIterations = orbit.iterations;
+      r.newtonResidual = orbit.residual;
+      r.model.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), {} by {}, {} Newton iteration{}, residual "
+                                    "{:.2e} of the state scale, largest Floquet multiplier {:.6f}",
+                                    T * 1e3, std::lround(T / Tz), std::lround(T / Tz) == 1 ? "" : "s",
+                                    po.linear ? "linear: the monodromy matrix" : "shooting with Newton",
+                                    orbit.variational ? "variational equations" : "differences", orbit.iterations,
+                                    orbit.iterations == 1 ? "" : "s", orbit.residual, orbit.stability));
+    }
+    Integrator integ(model.system(), acc);
     double t = 0;
     bool ok = integ.advance(t, y, tp.end, tp.samples, [&](double ts, const double* ys) {
       MeshSignals s = model.signals(ts, ys);
@@ -219,7 +282,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       record(Signal::InputSpeed, s.inputSpeed);
       record(Signal::OutputSpeed, s.outputSpeed);
     });
-    r.stats = integ.stats();
+    r.stats += integ.stats();
     if (!ok) failure = integ.error();
     samples.staticLoad = p.staticLoad;
     break;
@@ -229,10 +292,22 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
     double speed = num(ev.derived(st, Q::InputSpeed, a), "an input speed (`operating`)");
     Elastic mat = materialOf(m, st);
+    bool periodic = timePlan(scene, 1.0, ov.settlePeriods).steady == SteadyMethod::Periodic;
     PlanetaryRun pr = runPlanetary(ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
-                                   mat.assumed);
+                                   mat.assumed, periodic);
     r.model = pr.provenance;
     r.stats = pr.stats;
+    if (periodic) {
+      r.steady = SteadyMethod::Periodic;
+      r.stability = pr.stability;
+      r.unstable = pr.failure.empty() && pr.stability >= 1.0;
+      r.multipliers = pr.multipliers;
+      r.newtonIterations = pr.newtonIterations;
+      r.newtonResidual = pr.newtonResidual;
+      r.period = pr.plan.dt > 0 ? pr.plan.end - pr.plan.samples.front() + pr.plan.dt : 0;
+    } else {
+      r.steady = pr.plan.steady;
+    }
     r.meshFrequency = pr.meshFrequency;
     tp = pr.plan;
     samples.t = pr.t;
@@ -248,6 +323,11 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     r.failure = fmt::format("scene `{}`: {}", scene.name, failure);
     return r;
   }
+  if (r.unstable && !ov.keepUnstable)
+    r.warnings.push_back(fmt::format("scene `{}` has no steady response: its periodic solution is unstable (largest Floquet multiplier "
+                                     "{:.6f} > 1; a parametric resonance or a jump); the response grows by that factor every {:.6g} ms, "
+                                     "so no steady value is reported",
+                                     scene.name, r.stability, r.period * 1e3));
   // A linear mesh carries tension when the force changes sign: the teeth would separate,
   // which only a contact law (backlash, Hertz contact) models.
   if (!scene.findEffect(cat::Effect::Backlash) && !scene.findEffect(cat::Effect::HertzContact)) {
@@ -271,6 +351,17 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     if (o.id == Signal::Modes) {
       for (size_t i = 0; i < samples.modes.size(); ++i)
         r.numbers.push_back({fmt::format("mode {}", i + 1), samples.modes[i], units::dims::frequency});
+      continue;
+    }
+    if (o.id == Signal::Stability) {
+      if (r.steady != SteadyMethod::Periodic)
+        throw Failure{"`stability` is a property of the periodic steady state: write `steady_state = periodic`, or leave out `settle`"};
+      r.numbers.push_back({"stability", r.stability, {}, cat::SignalFn::Max, Signal::Stability});
+      continue;
+    }
+    // An unstable periodic response has no steady value to report (LANGUAGE.md §12).
+    if (r.unstable && !ov.keepUnstable && cat::signalFnSpec(o.fn).number) {
+      r.numbers.push_back({o.key(), NAN, o.id == Signal::DynamicFactor ? Dim{} : dim, o.fn, o.id});
       continue;
     }
     if (o.id == Signal::DynamicFactor) {
@@ -336,12 +427,33 @@ double settingValue(const ir::Setting& s, const std::vector<double>& locals) {
   return ev(*s.expr);
 }
 
-TimePlan timePlan(const ir::Scene& scene, double Tz) {
+TimePlan periodicPlan(const ir::Scene& scene, double Tz) {
+  const ir::Setting* ns = ir::findSetting(scene.settings, Q::Samples);
+  int perPeriod = ns && ns->value ? static_cast<int>(ns->value->toDouble()) : 160;
+  const ir::Setting* rec = ir::findSetting(scene.settings, Q::Record);
+  double window = rec && rec->value ? rec->value->toDouble() * (rec->meshPeriods ? Tz : 1.0) : Tz;
+  TimePlan p;
+  p.dt = Tz / perPeriod;
+  long n = std::max<long>(1, std::lround(window / Tz * perPeriod));
+  for (long i = 0; i < n; ++i) p.samples.push_back(static_cast<double>(i) * p.dt);
+  p.end = p.samples.back();
+  p.statsFrom = 0;
+  p.steady = SteadyMethod::Periodic;
+  p.periodicWritten = ir::findSetting(scene.settings, Q::SteadyState) != nullptr;
+  return p;
+}
+
+TimePlan timePlan(const ir::Scene& scene, double Tz, std::optional<long> settlePeriods) {
   auto get = [&](Q key) -> std::optional<double> {
+    if (key == Q::Settle && settlePeriods) return static_cast<double>(*settlePeriods) * Tz;
     const ir::Setting* s = ir::findSetting(scene.settings, key);
     if (!s || !s->value) return std::nullopt;
     return s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
   };
+  // The periodic steady state when the scene asks for it, and by default when it neither
+  // settles nor runs from rest (LANGUAGE.md §12).
+  bool written = ir::findSetting(scene.settings, Q::SteadyState) != nullptr;
+  if (!settlePeriods && (written || (!get(Q::Settle) && !get(Q::Duration)))) return periodicPlan(scene, Tz);
   const ir::Setting* ns = ir::findSetting(scene.settings, Q::Samples);
   int perPeriod = ns && ns->value ? static_cast<int>(ns->value->toDouble()) : 160;
   TimePlan p;
@@ -352,6 +464,7 @@ TimePlan timePlan(const ir::Scene& scene, double Tz) {
     for (long i = 0; i < n; ++i) p.samples.push_back(settle + static_cast<double>(i) * p.dt);
     p.end = p.samples.back();
     p.statsFrom = settle;
+    p.steady = SteadyMethod::Settle;
   } else {
     double duration = get(Q::Duration).value_or(0);
     long n = static_cast<long>(std::floor(duration / p.dt));
@@ -359,6 +472,7 @@ TimePlan timePlan(const ir::Scene& scene, double Tz) {
     p.end = duration;
     // Statistics of a run from rest leave out the start-up.
     p.statsFrom = std::max(settle, ramp);
+    p.steady = SteadyMethod::FromRest;
   }
   return p;
 }
@@ -383,29 +497,68 @@ MeshScene meshScene(const Model& m, const Assignment& a, const ir::Scene& scene,
   return meshSceneOf(m, a, scene, ov, sceneAccuracy(scene, ov), prov);
 }
 
+namespace {
+
+// The largest relative difference of the steady outputs of two runs of one scene (the
+// same outputs, so the numbers come in the same order); stability is not an output value.
+double outputDifference(const SceneResult& r, const SceneResult& ref) {
+  double worst = 0;
+  for (size_t i = 0; i < r.numbers.size() && i < ref.numbers.size(); ++i) {
+    const auto &n = r.numbers[i], &x = ref.numbers[i];
+    if (n.signal == Signal::Stability || !std::isfinite(n.value) || !std::isfinite(x.value)) continue;
+    worst = std::max(worst, std::fabs(n.value - x.value) / std::max(std::fabs(x.value), 1e-300));
+  }
+  return worst;
+}
+
+} // namespace
+
+// The error estimate covers the model, not only the integrator: the integration (a rerun at
+// a hundredth of the tolerance with half the maximum step, so the two step sequences can
+// never coincide), the truncation of the stiffness series (N against 2N harmonics) and,
+// for the periodic steady state, Newton's residual. The parts add up.
+static void estimateError(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov, SceneResult& r) {
+  SceneOverrides tight = ov;
+  tight.rtol = r.rtol / 100.0;
+  tight.maxStepFactor = 0.5 * ov.maxStepFactor.value_or(1.0);
+  tight.keepSeries = false;
+  tight.estimateError = false;
+  if (!r.orbit.empty()) tight.guess = r.orbit;
+  SceneResult ref = runOnce(m, a, scene, tight);
+  if (!ref.failure.empty()) return;
+  r.referenceStats = ref.stats;
+  r.errorParts.push_back({"integration", outputDifference(r, ref),
+                          fmt::format("against a rerun at rtol {:.0e} with half the maximum step", tight.rtol.value())});
+  if (r.harmonics > 0) {
+    SceneOverrides twice = tight;
+    twice.rtol = ov.rtol;
+    twice.maxStepFactor = ov.maxStepFactor;
+    twice.harmonics = 2 * r.harmonics;
+    SceneResult h2 = runOnce(m, a, scene, twice);
+    if (h2.failure.empty()) {
+      r.referenceStats += h2.stats;
+      r.errorParts.push_back({"stiffness series", outputDifference(r, h2), fmt::format("{} against {} harmonics", r.harmonics, 2 * r.harmonics)});
+    }
+  }
+  if (r.steady == SteadyMethod::Periodic)
+    r.errorParts.push_back({"Newton residual", r.newtonResidual, fmt::format("of the state scale, after {} iteration{}", r.newtonIterations,
+                                                                             r.newtonIterations == 1 ? "" : "s")});
+  r.errorEstimate = 0;
+  std::string text;
+  for (const auto& p : r.errorParts) {
+    r.errorEstimate += p.value;
+    text += fmt::format("{}{} {:.2e} ({})", text.empty() ? "" : "; ", p.name, p.value, p.detail);
+  }
+  r.errorMethod = text;
+}
+
 SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
   SceneResult r;
   try {
     r = runOnce(m, a, scene, ov);
-    if (r.failure.empty() && ov.estimateError && !r.numbers.empty() && !r.eigen) {
-      // The error estimate: the same scene at a hundredth of the tolerance.
-      SceneOverrides tight = ov;
-      tight.rtol = r.rtol / 100.0;
-      tight.keepSeries = false;
-      tight.estimateError = false;
-      SceneResult ref = runOnce(m, a, scene, tight);
-      if (ref.failure.empty()) {
-        double worst = 0;
-        // The same scene with the same outputs: the numbers come in the same order.
-        for (size_t i = 0; i < r.numbers.size() && i < ref.numbers.size(); ++i) {
-          const auto &n = r.numbers[i], &x = ref.numbers[i];
-          worst = std::max(worst, std::fabs(n.value - x.value) / std::max(std::fabs(x.value), 1e-300));
-        }
-        r.errorEstimate = worst;
-        r.errorMethod = fmt::format("against a rerun at rtol {:.0e}", tight.rtol.value());
-        r.referenceStats = ref.stats;
-      }
-    }
+    bool steadyNumbers = std::any_of(r.numbers.begin(), r.numbers.end(),
+                                     [](const SceneNumber& n) { return n.signal != Signal::Stability && std::isfinite(n.value); });
+    if (r.failure.empty() && ov.estimateError && steadyNumbers && !r.eigen) estimateError(m, a, scene, ov, r);
   } catch (const Failure& f) {
     r.name = scene.name;
     r.failure = fmt::format("scene `{}`: {}", scene.name, f.what);

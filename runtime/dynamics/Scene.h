@@ -2,6 +2,7 @@
 // Runs a `scene` of a solved design: builds the model from the stage and the listed
 // effects, integrates it to the scene's accuracy, and returns its outputs with their
 // cost and an error estimate.
+#include <complex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +41,24 @@ struct SceneResult {
   Stats stats;
   double errorEstimate = -1;  // relative, over the numeric outputs; < 0 when not estimated
   std::string errorMethod;
+  // The estimate's parts: the integration, the stiffness series' truncation, Newton's residual.
+  struct ErrorPart {
+    std::string name;
+    double value = 0;
+    std::string detail;
+  };
+  std::vector<ErrorPart> errorParts;
+  std::string stepRule;  // the maximum step and where it comes from
+  // Periodic steady state: how it was found and whether it is stable.
+  SteadyMethod steady = SteadyMethod::Settle;
+  double period = 0;      // of the excitation, s
+  double stability = NAN; // largest Floquet multiplier modulus (periodic only)
+  bool unstable = false;  // stability >= 1: no steady outputs
+  std::vector<std::complex<double>> multipliers;
+  int newtonIterations = 0;
+  double newtonResidual = 0;
+  std::vector<double> orbit;  // the orbit's initial state, for a neighbouring sweep point
+  int harmonics = 0;          // of the stiffness series, 0 without varying_stiffness
   Stats referenceStats;
   double meshFrequency = 0;
   std::vector<SceneNumber> numbers;
@@ -49,6 +68,7 @@ struct SceneResult {
   std::vector<std::string> warnings;  // results to read with care (teeth that would separate)
   const SceneNumber* find(cat::SignalFn fn, cat::Signal signal) const;
   const SceneNumber* find(const std::string& key) const;  // by the report's key, for tests
+  const SceneNumber* find(const ir::SceneOutputRef& ref) const;
 };
 
 // The single-mesh model of a scene on a spur or helical stage, as runScene builds it.
@@ -59,6 +79,8 @@ struct MeshScene {
   TimePlan plan;
   double meshFrequency = 0;
   std::vector<std::string> provenance;
+  std::string stepRule;
+  int harmonics = 0;  // of the stiffness series, 0 without varying_stiffness
 };
 MeshScene meshScene(const Model& m, const Assignment& design, const ir::Scene& scene, const SceneOverrides& ov = {});
 

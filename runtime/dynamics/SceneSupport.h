@@ -12,6 +12,10 @@
 #include "ir/Ir.h"
 #include "model/Value.h"
 
+namespace gbx::rt {
+class Evaluator;
+}
+
 namespace gbx::rt::dyn {
 
 using cat::Q;
@@ -24,6 +28,22 @@ struct SceneOverrides {
   std::optional<double> rtol;
   bool estimateError = true;
   bool keepSeries = true;
+  // A sweep's evaluator, whose overrides (an operating value, a stage attribute) the scene
+  // is built with; nullptr: the design as it is.
+  const Evaluator* evaluator = nullptr;
+  // The periodic orbit's initial state from a neighbouring sweep point: Newton's first guess.
+  std::optional<std::vector<double>> guess;
+  // Settle exactly this many mesh periods instead (a work-precision study's settled curve).
+  std::optional<long> settlePeriods;
+  std::optional<double> maxStepFactor;  // times the scene's maximum step (an error-estimate rerun)
+  bool keepUnstable = false;  // values on an unstable orbit too (a continuation's middle branch)
+};
+
+// How a scene reaches its steady state (LANGUAGE.md §12).
+enum class SteadyMethod {
+  FromRest,   // `duration`: a run from rest, start-up included
+  Settle,     // `settle = N mesh_periods`: exactly N periods, then record
+  Periodic,   // `steady_state = periodic`, or the default where the excitation is periodic
 };
 
 // Recorded samples of every signal of a scene, by signal.
@@ -38,12 +58,16 @@ struct SceneFailure {
 struct TimePlan {
   double end = 0, statsFrom = 0, dt = 0;
   std::vector<double> samples;  // exactly `samples` per mesh period
+  SteadyMethod steady = SteadyMethod::Settle;
+  bool periodicWritten = false;  // `steady_state = periodic` in the scene
 };
 
 // A number the model needs: its value, or a SceneFailure naming what is missing.
 double needNumber(const Value& v, const std::string& what);
 
-TimePlan timePlan(const ir::Scene& scene, double meshPeriod);
+TimePlan timePlan(const ir::Scene& scene, double meshPeriod, std::optional<long> settlePeriods = std::nullopt);
+// The plan of a periodic steady state: the record window from t = 0 on the orbit.
+TimePlan periodicPlan(const ir::Scene& scene, double meshPeriod);
 Drive sceneDrive(const ir::Scene& scene, double nominal, double upstream, double meshPeriod);
 // A setting's SI value; `locals` are the values of the effect's own words (`stiffness`).
 double settingValue(const ir::Setting& s, const std::vector<double>& locals = {});

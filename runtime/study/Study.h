@@ -1,5 +1,6 @@
 #pragma once
 // What a study returns: plain data in SI. report/ turns it into tables, JSON and charts.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -20,9 +21,19 @@ struct SweepStudy {
   struct Point {
     double x = 0;
     std::vector<double> y;              // one per output; NaN where it has no value
+    // Sweeps of a scene: the periodic response's stability (largest Floquet multiplier
+    // modulus) and, with continuation, the branch (parts between turning points).
+    double stability = NAN;
+    int branch = 0;
+    double error = NAN;                 // the scene's error estimate at this point
   };
   std::vector<Point> points;
   bool plot = false;                    // `plot;`: one chart per output
+  bool scene = false;                   // the outputs include a scene's
+  std::string continuation;             // "", "natural" or "arclength"
+  std::vector<double> folds;            // turning points of the continuation, in SI of X
+  std::vector<std::string> notes;       // how the sweep was followed
+  std::string failure;                  // a point that could not be solved (exit 3)
 };
 
 // `work_precision of SCENE`: the error of the scene's first numeric output against a

@@ -1,8 +1,16 @@
 #include "study/Sweep.h"
 
 #include <cmath>
+#include <functional>
+#include <map>
+#include <set>
 
+#include <fmt/format.h>
+
+#include "catalogue/Settings.h"
+#include "dynamics/Scene.h"
 #include "model/Evaluator.h"
+#include "study/Continuation.h"
 
 namespace gbx::rt {
 
@@ -12,6 +20,13 @@ units::DisplayUnit unitFor(const ir::Expr& e) {
   if (e.op == ir::Op::Quantity && e.ref.key == Q::Imbalance) return {"%", 0.01};
   return units::displayUnitFor(e.type.dim);
 }
+
+void scenesOf(const ir::Expr& e, std::set<int>& out) {
+  if (e.op == ir::Op::SceneOutput && e.output.scene >= 0) out.insert(e.output.scene);
+  for (const auto& x : e.args)
+    if (x) scenesOf(*x, out);
+}
+
 } // namespace
 
 SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
@@ -23,11 +38,52 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   for (size_t i = 0; i < st.outputs.size(); ++i) r.outputs.push_back({st.outputTexts[i], unitFor(*st.outputs[i])});
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
   long n = static_cast<long>(std::floor((hi - lo) / step * (1 + 1e-12))) + 1;
+  std::set<int> scenes;
+  for (const auto& o : st.outputs) scenesOf(*o, scenes);
+  r.scene = !scenes.empty();
+  const ir::Setting* cont = ir::findSetting(st.settings, Q::Continuation);
+  bool arclength = cont && cont->choice == cat::continuation::Arclength;
+  if (r.scene) r.continuation = arclength ? "arclength" : "natural";
+  if (arclength) {
+    if (scenes.size() != 1) {
+      r.failure = fmt::format("study `{}`: `continuation = arclength` follows one scene's periodic response; its outputs read {} scenes",
+                              st.name, scenes.size());
+      return r;
+    }
+    continuation(m, a, st, m.gearbox.scenes[static_cast<size_t>(*scenes.begin())], r);
+    return r;
+  }
+  // Natural continuation: point by point, each periodic orbit the next point's first guess.
+  std::map<int, std::vector<double>> guesses;
   for (long k = 0; k < n; ++k) {
     double x = lo + static_cast<double>(k) * step;
     Evaluator ev(m);
     ev.setOverride(st.swept, Value::number(x));
     SweepStudy::Point p{x, {}};
+    std::map<int, dyn::SceneResult> results;
+    for (int s : scenes) {
+      dyn::SceneOverrides ov;
+      ov.evaluator = &ev;
+      ov.keepSeries = false;
+      if (guesses.count(s)) ov.guess = guesses[s];
+      dyn::SceneResult res = dyn::runScene(m, a, m.gearbox.scenes[static_cast<size_t>(s)], ov);
+      if (!res.failure.empty()) {
+        r.failure = fmt::format("study `{}` at {} = {:.6g} {}: {}", st.name, st.target, x / r.unit.scale, r.unit.name, res.failure);
+        return r;
+      }
+      if (!res.orbit.empty()) guesses[s] = res.orbit;
+      if (s == *scenes.begin()) {
+        p.stability = res.stability;
+        p.error = res.errorEstimate >= 0 ? res.errorEstimate : NAN;
+      }
+      results.emplace(s, std::move(res));
+    }
+    if (r.scene)
+      ev.sceneOutput = [&](const ir::Expr& e, const Assignment&) {
+        auto it = results.find(e.output.scene);
+        const dyn::SceneNumber* num = it == results.end() ? nullptr : it->second.find(e.output);
+        return num && std::isfinite(num->value) ? Value::number(num->value) : Value::invalid();
+      };
     for (size_t i = 0; i < st.outputs.size(); ++i) {
       Value v = ev.eval(*st.outputs[i], a);
       p.y.push_back(v.isNumber() ? v.mid() : NAN);

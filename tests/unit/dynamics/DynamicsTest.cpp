@@ -406,7 +406,7 @@ TEST(Scenes, MarineVibrationIsAccurateAndOnlyComputesItsEffects) {
 
 TEST(Scenes, ElectricCylinderStartUpReachesTheKinematicSpeed) {
   auto f = fixture("electric_cylinder.gbx", "ElectricCylinderBuilt");
-  auto r = runScene(*f.model, *f.design, sceneOf(f, "start_up"), SceneOverrides{std::nullopt, std::nullopt, std::nullopt, false, true});
+  auto r = runScene(*f.model, *f.design, sceneOf(f, "start_up"), [] { SceneOverrides o; o.estimateError = false; return o; }());
   ASSERT_TRUE(r.failure.empty()) << r.failure;
   double deg = r.find("mean(output_speed)")->value * 180 / M_PI;
   EXPECT_NEAR(deg / 472.3, 1.0, 0.01);
@@ -421,7 +421,7 @@ TEST(Scenes, ElectricCylinderStartUpReachesTheKinematicSpeed) {
 
 TEST(Scenes, ElectricCylinderFluctuationPeriods) {
   auto f = fixture("electric_cylinder.gbx", "ElectricCylinderBuilt");
-  auto r = runScene(*f.model, *f.design, sceneOf(f, "fluctuating"), SceneOverrides{std::nullopt, std::nullopt, std::nullopt, false, true});
+  auto r = runScene(*f.model, *f.design, sceneOf(f, "fluctuating"), [] { SceneOverrides o; o.estimateError = false; return o; }());
   ASSERT_TRUE(r.failure.empty()) << r.failure;
   // The strongest slow component of each signal: output speed at 5 Hz (0.2 s), contact
   // force at 3.33 Hz (0.3 s).

@@ -1,0 +1,228 @@
+#include "study/Continuation.h"
+
+#include <cmath>
+#include <memory>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "dynamics/MeshModel.h"
+#include "dynamics/Periodic.h"
+#include "dynamics/Scene.h"
+#include "model/Evaluator.h"
+#include "model/StageKind.h"
+
+namespace gbx::rt {
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// The shooting equations R(u, lambda) = S^-1 (phi_T(S u) - S u) of the scene's mesh model
+// at lambda, the swept quantity's position in [lo, hi]; S scales the state.
+class Shooting {
+public:
+  Shooting(const Model& m, const Assignment& a, const ir::Study& st, const ir::Scene& scene)
+      : m_(m), a_(a), st_(st), scene_(scene), lo_(st.lo->toDouble()), hi_(st.hi->toDouble()) {}
+
+  double x(double lambda) const { return lo_ + lambda * (hi_ - lo_); }
+
+  struct At {
+    std::unique_ptr<Evaluator> ev;
+    dyn::MeshScene ms;
+    std::unique_ptr<dyn::MeshModel> model;
+    double period = 0;
+  };
+  At build(double lambda) const {
+    At at;
+    at.ev = std::make_unique<Evaluator>(m_);
+    at.ev->setOverride(st_.swept, Value::number(x(lambda)));
+    dyn::SceneOverrides ov;
+    ov.evaluator = at.ev.get();
+    at.ms = dyn::meshScene(m_, a_, scene_, ov);
+    at.model = std::make_unique<dyn::MeshModel>(at.ms.params, at.ms.effects);
+    at.period = at.model->excitationPeriod();
+    if (at.period <= 0) throw dyn::SceneFailure{"the excitation is not periodic, so there is no periodic response to follow"};
+    return at;
+  }
+
+  std::vector<double> scale(const At& at) const {
+    std::vector<double> s = at.model->system().scale;
+    s.resize(at.model->system().dim, 1.0);
+    return s;
+  }
+
+  // R at (u, lambda); with A, also dR/du.
+  VectorXd residual(const VectorXd& u, double lambda, MatrixXd* A) {
+    At at = build(lambda);
+    std::vector<double> s = scale(at);
+    size_t n = s.size();
+    std::vector<double> y0(n);
+    for (size_t i = 0; i < n; ++i) y0[i] = s[i] * u(static_cast<long>(i));
+    VectorXd R(static_cast<long>(n));
+    if (A) {
+      dyn::FlowResult f = dyn::flowWithMonodromy(at.model->system(), at.ms.accuracy, 0.0, at.period, y0, stats);
+      if (!f.ok) throw dyn::SceneFailure{f.failure};
+      for (size_t i = 0; i < n; ++i) R(static_cast<long>(i)) = (f.y[i] - y0[i]) / s[i];
+      A->resize(static_cast<long>(n), static_cast<long>(n));
+      for (size_t i = 0; i < n; ++i)
+        for (size_t j = 0; j < n; ++j)
+          (*A)(static_cast<long>(i), static_cast<long>(j)) = f.phi(static_cast<long>(i), static_cast<long>(j)) * s[j] / s[i] - (i == j ? 1.0 : 0.0);
+      return R;
+    }
+    dyn::Integrator integ(at.model->system(), at.ms.accuracy);
+    double t = 0;
+    std::vector<double> y = y0;
+    bool ok = integ.advance(t, y, at.period, {}, [](double, const double*) {});
+    stats += integ.stats();
+    if (!ok) throw dyn::SceneFailure{integ.error()};
+    for (size_t i = 0; i < n; ++i) R(static_cast<long>(i)) = (y[i] - y0[i]) / s[i];
+    return R;
+  }
+
+  dyn::Stats stats;
+
+private:
+  const Model& m_;
+  const Assignment& a_;
+  const ir::Study& st_;
+  const ir::Scene& scene_;
+  double lo_, hi_;
+};
+
+} // namespace
+
+void continuation(const Model& m, const Assignment& a, const ir::Study& st, const ir::Scene& scene, SweepStudy& out) {
+  if (scene.stage < 0 || m.info(scene.stage).kind->scene != SceneModel::SingleMesh) {
+    out.failure = fmt::format("study `{}`: `continuation = arclength` follows the periodic response of a scene on a spur or helical "
+                              "stage; scene `{}` is not one (use a plain sweep)",
+                              st.name, scene.name);
+    return;
+  }
+  double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
+  double dLambda = step / (hi - lo);
+  Shooting sh(m, a, st, scene);
+  // The scene's own tolerance sets the corrector's; lambda's difference step balances the
+  // integration error against truncation.
+  double rtol = 1e-6;
+  try {
+    auto at0 = sh.build(0.0);
+    rtol = at0.ms.accuracy.rtol;
+    // The first point: the periodic orbit at the sweep's start, by plain shooting.
+    dyn::PeriodicOptions po;
+    po.period = at0.period;
+    po.linear = at0.model->linear();
+    dyn::PeriodicOrbit o = dyn::periodicOrbit(at0.model->system(), at0.ms.accuracy, po, at0.model->initialState());
+    sh.stats += o.stats;
+    if (!o.converged) throw dyn::SceneFailure{"the periodic steady state at the sweep's start was not found: " + o.failure};
+    std::vector<double> s = sh.scale(at0);
+    long n = static_cast<long>(s.size());
+    VectorXd z(n + 1);
+    for (long i = 0; i < n; ++i) z(i) = o.y0[static_cast<size_t>(i)] / s[static_cast<size_t>(i)];
+    z(n) = 0.0;
+    double h = std::max(1e-7, 30.0 * std::sqrt(rtol)) * dLambda;
+    double tol = std::max(1e-9, 100.0 * rtol);
+    auto jacobian = [&](const VectorXd& zz, VectorXd& R, MatrixXd& J) {
+      MatrixXd A;
+      VectorXd u = zz.head(n);
+      R = sh.residual(u, zz(n), &A);
+      VectorXd Rl = (sh.residual(u, zz(n) + h, nullptr) - R) / h;
+      J.resize(n + 1, n + 1);
+      J.topLeftCorner(n, n) = A;
+      J.topRightCorner(n, 1) = Rl;
+    };
+    // Tangent: [A R_lambda; t_old^T] t = [0; 1], normalised, continuing the old direction.
+    auto tangent = [&](MatrixXd J, const VectorXd& old) {
+      J.bottomRows(1) = old.transpose();
+      VectorXd rhs = VectorXd::Zero(n + 1);
+      rhs(n) = 1.0;
+      VectorXd t = J.fullPivLu().solve(rhs);
+      return VectorXd(t / t.norm());
+    };
+    VectorXd R;
+    MatrixXd J;
+    jacobian(z, R, J);
+    VectorXd start = VectorXd::Zero(n + 1);
+    start(n) = 1.0;
+    VectorXd t = tangent(J, start);
+    double ds = dLambda, dsMax = 8.0 * dLambda, dsMin = 1e-4 * dLambda;
+    int branch = 1;
+    long maxPoints = 40 * static_cast<long>(std::ceil(1.0 / dLambda)) + 400;
+    auto record = [&](const VectorXd& zz) {
+      double x = sh.x(zz(n));
+      Evaluator ev(m);
+      ev.setOverride(st.swept, Value::number(x));
+      dyn::SceneOverrides ov;
+      ov.evaluator = &ev;
+      ov.keepSeries = false;
+      ov.estimateError = false;
+      ov.keepUnstable = true;
+      std::vector<double> y(static_cast<size_t>(n));
+      for (long i = 0; i < n; ++i) y[static_cast<size_t>(i)] = s[static_cast<size_t>(i)] * zz(i);
+      ov.guess = y;
+      dyn::SceneResult res = dyn::runScene(m, a, scene, ov);
+      if (!res.failure.empty()) throw dyn::SceneFailure{res.failure};
+      sh.stats += res.stats;
+      SweepStudy::Point p{x, {}};
+      p.stability = res.stability;
+      p.branch = branch;
+      ev.sceneOutput = [&](const ir::Expr& e, const Assignment&) {
+        const dyn::SceneNumber* num = res.find(e.output);
+        return num && std::isfinite(num->value) ? Value::number(num->value) : Value::invalid();
+      };
+      for (const auto& o2 : st.outputs) {
+        Value v = ev.eval(*o2, a);
+        p.y.push_back(v.isNumber() ? v.mid() : NAN);
+      }
+      out.points.push_back(std::move(p));
+    };
+    record(z);
+    long points = 1;
+    while (points < maxPoints) {
+      VectorXd pred = z + ds * t, zz = pred;
+      bool ok = false;
+      int iterations = 0;
+      for (; iterations < 8; ++iterations) {
+        jacobian(zz, R, J);
+        J.bottomRows(1) = t.transpose();
+        VectorXd rhs(n + 1);
+        rhs.head(n) = -R;
+        rhs(n) = -t.dot(zz - pred);
+        VectorXd d = J.fullPivLu().solve(rhs);
+        zz += d;
+        if (!std::isfinite(d.norm())) break;
+        if (d.lpNorm<Eigen::Infinity>() < tol) {
+          ok = true;
+          break;
+        }
+      }
+      if (!ok) {
+        ds *= 0.5;
+        if (ds < dsMin) throw dyn::SceneFailure{fmt::format("the continuation could not pass {} = {:.6g} (the step fell below {:.2g} of the range)",
+                                                           st.target, sh.x(z(n)), dsMin)};
+        continue;
+      }
+      jacobian(zz, R, J);
+      VectorXd tn = tangent(J, t);
+      if ((tn(n) > 0) != (t(n) > 0)) {
+        out.folds.push_back(sh.x(zz(n)));
+        ++branch;
+      }
+      if (zz(n) > 1.0 + 1e-12 || zz(n) < -1e-12) break;
+      z = zz;
+      t = tn;
+      record(z);
+      ++points;
+      if (iterations <= 2) ds = std::min(dsMax, 1.5 * ds);
+    }
+    if (points >= maxPoints) out.notes.push_back(fmt::format("stopped after {} points before the end of the range", points));
+    out.notes.push_back(fmt::format("pseudo-arclength continuation of the shooting equations: {} points, {} turning point{}, {} RHS "
+                                    "evaluations",
+                                    out.points.size(), out.folds.size(), out.folds.size() == 1 ? "" : "s", sh.stats.rhsEvaluations));
+  } catch (const dyn::SceneFailure& f) {
+    out.failure = fmt::format("study `{}`: scene `{}`: {}", st.name, scene.name, f.what);
+  }
+}
+
+} // namespace gbx::rt
