@@ -118,7 +118,9 @@ FlowResult flowWithMonodromy(const System& sys, const Accuracy& acc, double t0, 
   return r;
 }
 
-PeriodicOrbit periodicOrbit(const System& sys, const Accuracy& acc, const PeriodicOptions& opt, std::vector<double> guess) {
+namespace {
+
+PeriodicOrbit newton(const System& sys, const Accuracy& acc, const PeriodicOptions& opt, std::vector<double> guess, Stats& stats) {
   PeriodicOrbit o;
   size_t n = sys.dim;
   o.variational = static_cast<bool>(sys.dfdy);
@@ -130,7 +132,7 @@ PeriodicOrbit periodicOrbit(const System& sys, const Accuracy& acc, const Period
   std::vector<double> y0 = std::move(guess);
   double lastStep = INFINITY;
   for (int it = 0; it < opt.maxIterations; ++it) {
-    FlowResult f = flowWithMonodromy(sys, acc, 0.0, opt.period, y0, o.stats);
+    FlowResult f = flowWithMonodromy(sys, acc, 0.0, opt.period, y0, stats);
     ++o.iterations;
     if (!f.ok) {
       o.failure = f.failure;
@@ -169,6 +171,35 @@ PeriodicOrbit periodicOrbit(const System& sys, const Accuracy& acc, const Period
   }
   if (!o.failure.empty()) return o;
   o.stability = spectralRadius(o.monodromy, &o.multipliers);
+  return o;
+}
+
+} // namespace
+
+PeriodicOrbit periodicOrbit(const System& sys, const Accuracy& acc, const PeriodicOptions& opt, std::vector<double> guess) {
+  // Newton from the guess; when it fails (a guess outside the orbit's basin: contact lost
+  // for a whole period, a wrong branch), settle the transient for a growing number of
+  // periods from the guess and start Newton again from there.
+  Stats stats;
+  std::vector<double> start = guess;
+  long settled = 0;
+  PeriodicOrbit o;
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    o = newton(sys, acc, opt, start, stats);
+    if (o.converged) break;
+    long periods = 25L << attempt;
+    std::string failure;
+    bool ok = true;
+    for (long k = 0; k < periods && ok; ++k) ok = integrate(sys, acc, 0.0, opt.period, start, stats, failure);
+    if (!ok) {
+      o.failure += "; settling from it failed: " + failure;
+      break;
+    }
+    for (size_t i = 0; i < start.size() && i < opt.drift.size(); ++i) start[i] -= static_cast<double>(periods) * opt.drift[i];
+    settled += periods;
+  }
+  o.stats = stats;
+  o.settledPeriods = settled;
   return o;
 }
 

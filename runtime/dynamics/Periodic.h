@@ -31,6 +31,7 @@ struct PeriodicOrbit {
   double residual = 0;    // |phi_T(y0) - y0 - drift| over the state scale, at the last check
   int iterations = 0;
   bool variational = false;  // monodromy from the variational equations (else differences)
+  long settledPeriods = 0;   // periods settled before Newton converged (0: Newton from the guess)
   Stats stats;               // every right-hand side, variational ones included
   std::string failure;
 };

@@ -254,15 +254,6 @@ Compiled compile(const Params& p, bool varying, bool damped, int contactKind, bo
   return c;
 }
 
-void addStats(Stats& into, const Stats& s) {
-  into.steps += s.steps;
-  into.rejected += s.rejected;
-  into.rhsEvaluations += s.rhsEvaluations;
-  into.jacobianEvaluations += s.jacobianEvaluations;
-  into.events += s.events;
-  into.cpuSeconds += s.cpuSeconds;
-}
-
 // The fewest whole mean mesh periods Tm (at most 1000) that hold whole periods of every
 // fluctuation; 0 when there is none.
 int wholeMeshPeriods(double Tm, const std::vector<double>& periods) {
@@ -501,7 +492,9 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
                              }()));
   double Tn = fmax > 0 ? 1.0 / fmax : Tz;
   acc.maxStep = std::min(Tz, Tn) / 20.0;
-  run.plan = timePlan(scene, Tz);
+  if (ov.maxStepFactor) acc.maxStep *= *ov.maxStepFactor;
+  // With `periodic` the record window starts at t = 0 on the orbit.
+  run.plan = periodic ? periodicPlan(scene, Tz) : timePlan(scene, Tz, ov.settlePeriods);
   // Initial state: the static deflection on every mesh, at the kinematic speeds.
   double d0 = hertz ? std::pow(F0 / Ksp, 1.0 / e) : F0 / Ksp + halfClearance;
   std::vector<double> y(dim, 0.0);
@@ -546,22 +539,20 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   // The periodic steady state (dynamics/Periodic.h). The excitation repeats after whole
   // mean mesh periods that also hold whole periods of every fluctuation.
   run.periodic = true;
-  const std::string notPeriodic = "the excitation is not periodic";
-  const std::string instead = ": find the steady state from rest with `settle` and `record` (or `duration`) instead";
-  if (drive.ramp > 0) {
-    run.failure = notPeriodic + " (a `ramp` start-up is a transient)" + instead;
+  auto notPeriodic = [&](const std::string& why) {
+    run.failure = fmt::format("the excitation is not periodic ({}), so there is no periodic steady state: write `settle = N "
+                              "mesh_periods` to settle a transient, or `duration` for a run from rest",
+                              why);
     return run;
-  }
+  };
+  if (drive.ramp > 0) return notPeriodic("a `ramp` start-up");
   double sunMean = drive.fluctuates ? drive.mean : drive.speed0;
   std::vector<double> periods;
   if (drive.fluctuates && drive.amplitude != 0) periods.push_back(drive.omega > 0 ? 2.0 * M_PI / drive.omega : INFINITY);
   if (torqueFx && tAmp != 0) periods.push_back(tOmega > 0 ? 2.0 * M_PI / tOmega : INFINITY);
   double Tm = !drive.fluctuates ? Tz : sunMean > 0 ? 2.0 * M_PI * ratio / (sunMean * zr) : INFINITY;
   int q = std::isfinite(Tm) ? wholeMeshPeriods(Tm, periods) : 0;
-  if (q == 0 || drive.needsState()) {
-    run.failure = notPeriodic + " (no whole number of mesh periods, up to 1000, holds whole fluctuation periods)" + instead;
-    return run;
-  }
+  if (q == 0) return notPeriodic("no whole number of mesh periods, up to 1000, holds whole periods of the fluctuations");
   double period = q * Tm;
   // Drift over a period: the carrier turns q ring-tooth pitches; the sun-planet deflection
   // rbs (theta_s - theta_c) + rbp phi repeats, so phi advances -rbs (d theta_s - d theta_c) / rbp.
@@ -572,33 +563,25 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   opt.drift[0] = carrierAdvance;
   for (size_t i = 1; i < nq; ++i) opt.drift[i] = -rbs * (sunAdvance - carrierAdvance) / rbp;
   opt.linear = !hertz && !backlash && !varying;  // the phase (carrier angle) makes varying stiffness nonlinear
-  PeriodicOrbit orbit = periodicOrbit(sys, acc, opt, y);
+  PeriodicOrbit orbit = periodicOrbit(sys, acc, opt, ov.guess && ov.guess->size() == dim ? *ov.guess : y);
   run.stats = orbit.stats;
   run.newtonIterations = orbit.iterations;
   run.newtonResidual = orbit.residual;
-  if (!orbit.failure.empty()) {
+  if (!orbit.converged) {
     run.failure = "the periodic steady state was not found: " + orbit.failure;
     return run;
   }
   run.stability = orbit.stability;
   run.multipliers = orbit.multipliers;
-  prov.push_back(fmt::format("periodic steady state: period {:.4g} ms ({} mesh period{}), Newton {} iterations, residual {:.2g}, "
-                             "largest Floquet multiplier {:.4g} ({})",
-                             period * 1e3, q, q == 1 ? "" : "s", orbit.iterations, orbit.residual, orbit.stability,
-                             orbit.variational ? "variational equations" : "differences"));
-  // Record the scene's window from the orbit's start, t = 0.
-  TimePlan& plan = run.plan;
-  size_t n = std::max<size_t>(1, plan.samples.size());
-  plan.samples.clear();
-  for (size_t i = 0; i < n; ++i) plan.samples.push_back(static_cast<double>(i) * plan.dt);
-  plan.statsFrom = 0;
-  plan.end = plan.samples.back();
+  prov.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), Newton {} iteration{} (monodromy by {}), "
+                             "residual {:.2e} of the state scale, largest Floquet multiplier {:.6f}",
+                             period * 1e3, q, q == 1 ? "" : "s", orbit.iterations, orbit.iterations == 1 ? "" : "s",
+                             orbit.variational ? "variational equations" : "differences", orbit.residual, orbit.stability));
   y = orbit.y0;
-  sample(0.0, y.data());  // advance() samples in (t, end] only
   Integrator integ(sys, acc);
   double t = 0;
-  bool ok = integ.advance(t, y, plan.end, plan.samples, sample);
-  addStats(run.stats, integ.stats());
+  bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, sample);
+  run.stats += integ.stats();
   if (!ok) run.failure = integ.error();
   return run;
 }

@@ -233,6 +233,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     r.meshFrequency = ms.meshFrequency;
     r.stepRule = ms.stepRule;
     r.harmonics = ms.harmonics;
+    r.naturalFrequency = 1.0 / model.naturalPeriod();
     r.steady = tp.steady;
     std::vector<double> y = model.initialState();
     if (tp.steady == SteadyMethod::Periodic) {
@@ -547,7 +548,7 @@ static void estimateError(const Model& m, const Assignment& a, const ir::Scene& 
   std::string text;
   for (const auto& p : r.errorParts) {
     r.errorEstimate += p.value;
-    text += fmt::format("{}{} {:.2e} ({})", text.empty() ? "" : "; ", p.name, p.value, p.detail);
+    text += fmt::format("{}{} {:.2e} ({})", text.empty() ? "" : " + ", p.name, p.value, p.detail);
   }
   r.errorMethod = text;
 }

@@ -61,6 +61,7 @@ struct SceneResult {
   int harmonics = 0;          // of the stiffness series, 0 without varying_stiffness
   Stats referenceStats;
   double meshFrequency = 0;
+  double naturalFrequency = 0;  // of the mean linearised mesh (single-mesh scenes), Hz
   std::vector<SceneNumber> numbers;
   std::vector<SceneSeries> series;
   std::vector<std::string> model;  // how the model was built, parameter by parameter

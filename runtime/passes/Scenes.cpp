@@ -30,6 +30,9 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
   s.referenceCpu = r.referenceStats.cpuSeconds;
   s.errorEstimate = r.errorEstimate;
   s.errorMethod = r.errorMethod;
+  for (const auto& p : r.errorParts) s.errorParts.emplace_back(p.name, p.value);
+  s.stepRule = r.stepRule;
+  s.steady = r.steady == dyn::SteadyMethod::Periodic ? "periodic" : r.steady == dyn::SteadyMethod::Settle ? "settle" : "from rest";
   s.model = r.model;
   s.warnings = r.warnings;
   for (const auto& n : r.numbers) {

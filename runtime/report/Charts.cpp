@@ -69,16 +69,41 @@ void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<st
   if (!s.plot) return;
   // One chart per output: outputs of different units do not share an axis.
   for (size_t i = 0; i < s.outputs.size(); ++i) {
-    SvgSeries series{s.outputs[i].text, {}, {}, true};
-    for (const auto& p : s.points) {
-      series.x.push_back(p.x / s.unit.scale);
-      series.y.push_back(p.y[i] / s.outputs[i].unit.scale);
-    }
     SvgChart c;
     c.title = fmt::format("{}: {} against {}", s.name, s.outputs[i].text, s.target);
     c.xLabel = withUnit(s.target, s.unit.name);
     c.yLabel = withUnit(s.outputs[i].text, s.outputs[i].unit.name);
-    c.series = {series};
+    // A scene's response: stable parts solid, unstable parts dashed, one colour; each part
+    // shares its end point with the next so the curve stays whole.
+    bool labelledStable = false, labelledUnstable = false;
+    for (size_t k = 0; k < s.points.size();) {
+      auto unstable = [&](size_t j) { return std::isfinite(s.points[j].stability) && s.points[j].stability >= 1.0; };
+      bool u = unstable(k);
+      SvgSeries part;
+      part.colour = 0;
+      part.dashed = u;
+      size_t j = k;
+      for (; j < s.points.size() && unstable(j) == u; ++j) {
+        part.x.push_back(s.points[j].x / s.unit.scale);
+        part.y.push_back(s.points[j].y[i] / s.outputs[i].unit.scale);
+      }
+      if (j < s.points.size()) {
+        part.x.push_back(s.points[j].x / s.unit.scale);
+        part.y.push_back(s.points[j].y[i] / s.outputs[i].unit.scale);
+      }
+      if (s.scene && !u && !labelledStable) {
+        part.label = s.outputs[i].text + ", stable";
+        labelledStable = true;
+      }
+      if (u && !labelledUnstable) {
+        part.label = "unstable (dashed)";
+        labelledUnstable = true;
+      }
+      if (!s.scene) part.label = s.outputs[i].text;
+      c.series.push_back(std::move(part));
+      k = j;
+    }
+    for (const auto& [x, label] : s.marks) c.xMarks.emplace_back(x / s.unit.scale, label);
     add(out, files, fileSafe(gearbox) + "." + s.name + (s.outputs.size() > 1 ? fmt::format(".{}", i + 1) : "") + ".svg", c);
   }
 }

@@ -105,7 +105,7 @@ std::string spectra(const std::vector<GearboxReport>& reports) {
 }
 
 std::string sweeps(const std::vector<GearboxReport>& reports) {
-  std::string o = row({"gearbox", "study", "swept", "x", "x_unit", "output", "value", "unit"});
+  std::string o = row({"gearbox", "study", "swept", "x", "x_unit", "output", "value", "unit", "stability", "branch"});
   bool any = false;
   for (const auto& g : reports)
     for (const auto& st : g.studies)
@@ -114,7 +114,8 @@ std::string sweeps(const std::vector<GearboxReport>& reports) {
           for (size_t i = 0; i < s->outputs.size() && i < p.y.size(); ++i) {
             any = true;
             o += row({g.name, s->name, s->target, number(p.x / s->unit.scale), s->unit.name, s->outputs[i].text,
-                      number(p.y[i] / s->outputs[i].unit.scale), s->outputs[i].unit.name});
+                      number(p.y[i] / s->outputs[i].unit.scale), s->outputs[i].unit.name, number(p.stability),
+                      s->continuation == "arclength" ? std::to_string(p.branch) : ""});
           }
   return any ? o : "";
 }

@@ -128,10 +128,12 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
         continue;
       }
       if (sc.eigen) o += "    accuracy: generalised eigenproblem (Eigen), double precision\n";
-      else o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled)\n", sc.method, sc.rtol, sc.atol);
+      else
+        o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled){}; steady state: {}\n", sc.method, sc.rtol, sc.atol,
+                         sc.stepRule.empty() ? "" : ", " + sc.stepRule, sc.steady);
       for (const auto& out : sc.outputs)
         o += fmt::format("    {} = {}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit);
-      if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative ({})\n", sc.errorEstimate, sc.errorMethod);
+      if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative = {}\n", sc.errorEstimate, sc.errorMethod);
       for (const auto& w : sc.warnings) o += "    warning: " + w + "\n";
       if (!sc.eigen)
         o += fmt::format("    cost: {} steps, {} rejected, {} RHS evaluations, {} Jacobians, {} events located\n", sc.steps, sc.rejected,
@@ -240,8 +242,12 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
                        "\"rhs_evaluations\": {}, \"jacobian_evaluations\": {}, \"events\": {}, ",
                        jsonEscape(sc.target), sc.method, num(sc.rtol), num(sc.atol), sc.steps, sc.rejected, sc.rhs, sc.jacobians, sc.events);
       if (ro.timings) o += fmt::format("\"cpu_seconds\": {}, ", num(sc.cpu));
-      o += fmt::format("\"error_estimate\": {}, \"error_method\": \"{}\", \"outputs\": {{", sc.errorEstimate >= 0 ? num(sc.errorEstimate) : "null",
+      o += fmt::format("\"steady_state\": \"{}\", \"max_step_rule\": \"{}\", ", jsonEscape(sc.steady), jsonEscape(sc.stepRule));
+      o += fmt::format("\"error_estimate\": {}, \"error_method\": \"{}\", \"error_parts\": {{", sc.errorEstimate >= 0 ? num(sc.errorEstimate) : "null",
                        jsonEscape(sc.errorMethod));
+      for (size_t i = 0; i < sc.errorParts.size(); ++i)
+        o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(sc.errorParts[i].first), num(sc.errorParts[i].second));
+      o += "}, \"outputs\": {";
       for (size_t i = 0; i < sc.outputs.size(); ++i) o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(sc.outputs[i].key), num(sc.outputs[i].si));
       o += "}, \"spectra\": {";
       for (size_t i = 0; i < sc.spectra.size(); ++i) {

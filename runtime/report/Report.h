@@ -57,6 +57,9 @@ struct SceneReport {
   double cpu = 0, referenceCpu = 0;
   double errorEstimate = -1;
   std::string errorMethod;
+  std::vector<std::pair<std::string, double>> errorParts;  // integration, stiffness series, Newton residual
+  std::string stepRule;     // the maximum step and its rule
+  std::string steady;       // "periodic", "settle", "from rest"
   struct Output {
     std::string key, unit;
     double si = 0, shown = 0;

@@ -14,12 +14,22 @@ StudyTable table(const SweepStudy& s) {
   t.kind = "sweep";
   t.header.push_back(s.target + (s.unit.name.empty() ? "" : " [" + s.unit.name + "]"));
   for (const auto& out : s.outputs) t.header.push_back(out.text + (out.unit.name.empty() ? "" : " [" + out.unit.name + "]"));
+  bool arclength = s.continuation == "arclength";
+  if (s.scene) t.header.push_back("stability");
+  if (arclength) t.header.push_back("branch");
   for (const auto& p : s.points) {
     std::vector<std::string> row = {fmt::format("{:.6g}", p.x / s.unit.scale)};
+    bool unstable = std::isfinite(p.stability) && p.stability >= 1.0;
     for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i)
-      row.push_back(std::isfinite(p.y[i]) ? formatNumber(p.y[i] / s.outputs[i].unit.scale) : "n/a");
+      row.push_back(std::isfinite(p.y[i]) ? formatNumber(p.y[i] / s.outputs[i].unit.scale) : unstable ? "unstable" : "n/a");
+    if (s.scene) row.push_back(std::isfinite(p.stability) ? fmt::format("{:.4f}{}", p.stability, unstable ? " (unstable)" : "") : "-");
+    if (arclength) row.push_back(std::to_string(p.branch));
     t.rows.push_back(std::move(row));
   }
+  for (double f : s.folds) t.notes.push_back(fmt::format("turning point (jump) at {} = {:.6g} {}", s.target, f / s.unit.scale, s.unit.name));
+  for (const auto& [x, label] : s.marks)
+    t.notes.push_back(fmt::format("{}: {} = {:.6g} {}", label, s.target, x / s.unit.scale, s.unit.name));
+  for (const auto& n : s.notes) t.notes.push_back(n);
   return t;
 }
 
@@ -64,9 +74,17 @@ std::string json(const SweepStudy& s) {
     std::string outs;
     for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i)
       outs += fmt::format("{}\"{}\": {}", i ? ", " : "", s.outputs[i].text, std::isfinite(p.y[i]) ? fmt::format("{}", p.y[i]) : "null");
-    points += fmt::format("{}{{\"x\": {}, \"outputs\": {{{}}}}}", k ? ", " : "", p.x, outs);
+    std::string extra;
+    if (s.scene)
+      extra += fmt::format(", \"stability\": {}", std::isfinite(p.stability) ? fmt::format("{}", p.stability) : "null");
+    if (s.continuation == "arclength") extra += fmt::format(", \"branch\": {}", p.branch);
+    // The swept quantity under its own name too (LANGUAGE.md §12).
+    points += fmt::format("{}{{\"x\": {}, \"{}\": {}{}, \"outputs\": {{{}}}}}", k ? ", " : "", p.x, s.target, p.x, extra, outs);
   }
-  return fmt::format("{{\"sweep\": \"{}\", \"unit\": \"SI\", \"points\": [{}]}}", s.target, points);
+  std::string folds;
+  for (size_t i = 0; i < s.folds.size(); ++i) folds += fmt::format("{}{}", i ? ", " : "", s.folds[i]);
+  return fmt::format("{{\"sweep\": \"{}\", \"unit\": \"SI\"{}, \"points\": [{}]}}", s.target,
+                     s.scene ? fmt::format(", \"continuation\": \"{}\", \"folds\": [{}]", s.continuation, folds) : "", points);
 }
 
 std::string json(const WorkPrecisionStudy& s, bool timings) {

@@ -101,6 +101,12 @@ std::string renderSvg(const SvgChart& c) {
   o += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", (L + W - R) / 2, H - 18, esc(c.xLabel));
   o += fmt::format("<text x=\"16\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 16 {})\">{}</text>\n", (T + H - B) / 2,
                    (T + H - B) / 2, esc(c.yLabel));
+  for (const auto& [v, label] : c.xMarks) {
+    if (c.logX || v < x0 || v > x1) continue;
+    double X = L + (v - x0) / (x1 - x0) * (W - L - R);
+    o += fmt::format("<line x1=\"{:.1f}\" y1=\"{}\" x2=\"{:.1f}\" y2=\"{}\" stroke=\"#999\" stroke-dasharray=\"2,3\"/>\n", X, T, X, H - B);
+    o += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\" fill=\"#666\">{}</text>\n", X, T + 12, esc(label));
+  }
   bool labelled = false;
   for (const auto& s : c.series) labelled = labelled || !s.label.empty();
   if (labelled)
@@ -108,7 +114,7 @@ std::string renderSvg(const SvgChart& c) {
                      T + 2, 6 + 14 * static_cast<double>(c.series.size()));
   for (size_t k = 0; k < c.series.size(); ++k) {
     const auto& s = c.series[k];
-    const char* col = kColours[k % 10];
+    const char* col = kColours[(s.colour >= 0 ? static_cast<size_t>(s.colour) : k) % 10];
     std::string pts;
     for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
       if ((c.logX && s.x[i] <= 0) || (c.logY && s.y[i] <= 0) || !std::isfinite(s.y[i])) continue;
@@ -119,7 +125,9 @@ std::string renderSvg(const SvgChart& c) {
         o += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{}\" fill=\"{}\" stroke=\"{}\"/>\n", px(s.x[i]), py(s.y[i]), radius,
                          col, radius > 3 ? "black" : col);
     }
-    if (s.line) o += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.2\" points=\"{}\"/>\n", col, pts);
+    if (s.line)
+      o += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{} points=\"{}\"/>\n", col, s.dashed ? "1.6" : "1.2",
+                       s.dashed ? " stroke-dasharray=\"5,4\"" : "", pts);
     if (!s.label.empty())
       o += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", W - R - 170, T + 16 + 14 * static_cast<double>(k), col, esc(s.label));
   }

@@ -10,6 +10,8 @@ struct SvgSeries {
   std::vector<double> x, y;
   bool markers = false;
   bool line = true;  // false: the points alone, e.g. a cloud whose order means nothing
+  bool dashed = false;  // an unstable branch
+  int colour = -1;      // a fixed colour index (parts of one curve), -1: by position
 };
 
 struct SvgChart {
@@ -19,6 +21,8 @@ struct SvgChart {
   // Ticks of the x axis at these values with these labels (a spectrum's mesh orders);
   // empty: round values.
   std::vector<std::pair<double, std::string>> xTicks;
+  // Vertical marks across the plot (resonance speeds), with a label at the top.
+  std::vector<std::pair<double, std::string>> xMarks;
 };
 
 std::string renderSvg(const SvgChart& chart);

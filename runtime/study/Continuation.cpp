@@ -11,6 +11,7 @@
 #include "dynamics/Scene.h"
 #include "model/Evaluator.h"
 #include "model/StageKind.h"
+#include "study/Sweep.h"
 
 namespace gbx::rt {
 
@@ -165,6 +166,7 @@ void continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
       if (!res.failure.empty()) throw dyn::SceneFailure{res.failure};
       sh.stats += res.stats;
       SweepStudy::Point p{x, {}};
+      if (out.points.empty()) resonanceMarks(out, st, x, res.meshFrequency, res.naturalFrequency);
       p.stability = res.stability;
       p.branch = branch;
       ev.sceneOutput = [&](const ir::Expr& e, const Assignment&) {

@@ -32,6 +32,9 @@ struct SweepStudy {
   bool scene = false;                   // the outputs include a scene's
   std::string continuation;             // "", "natural" or "arclength"
   std::vector<double> folds;            // turning points of the continuation, in SI of X
+  // Where an order of the mesh frequency meets the mesh's natural frequency (f_mesh = f_n / k),
+  // in SI of X: the resonance speeds of a speed sweep.
+  std::vector<std::pair<double, std::string>> marks;
   std::vector<std::string> notes;       // how the sweep was followed
   std::string failure;                  // a point that could not be solved (exit 3)
 };

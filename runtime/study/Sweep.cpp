@@ -29,6 +29,12 @@ void scenesOf(const ir::Expr& e, std::set<int>& out) {
 
 } // namespace
 
+void resonanceMarks(SweepStudy& r, const ir::Study& st, double x, double fm, double fn) {
+  if (st.swept.key != Q::InputSpeed || !(fm > 0) || !(fn > 0)) return;
+  const std::pair<double, const char*> orders[] = {{2.0, "f_mesh = 2 f_n (parametric)"}, {1.0, "f_mesh = f_n"}, {0.5, "2 f_mesh = f_n"}};
+  for (const auto& [k, label] : orders) r.marks.emplace_back(x * k * fn / fm, label);
+}
+
 SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   SweepStudy r;
   r.name = st.name;
@@ -73,6 +79,7 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
       }
       if (!res.orbit.empty()) guesses[s] = res.orbit;
       if (s == *scenes.begin()) {
+        if (k == 0) resonanceMarks(r, st, x, res.meshFrequency, res.naturalFrequency);
         p.stability = res.stability;
         p.error = res.errorEstimate >= 0 ? res.errorEstimate : NAN;
       }

@@ -9,4 +9,8 @@ namespace gbx::rt {
 
 SweepStudy sweep(const Model& m, const Assignment& design, const ir::Study& study);
 
+// A speed sweep's resonance marks: where the mesh frequency (fm at x) meets the natural
+// frequency fn, half of it, or twice it (the principal parametric resonance).
+void resonanceMarks(SweepStudy& r, const ir::Study& st, double x, double fm, double fn);
+
 } // namespace gbx::rt
