@@ -1101,6 +1101,14 @@ private:
     }
     if (!ir::findSetting(out.settings, "duration") && !ir::findSetting(out.settings, "record"))
       diags_.error("E0225", nameOr(st), fmt::format("{} needs `duration` (a run from rest) or `record` (a steady-state window)", owner));
+    for (const auto& o : out.outputs)
+      if (o.signal == "stability")
+        for (const char* transient : {"settle", "duration"})
+          if (ir::findSetting(out.settings, transient))
+            diags_.error("E0232", o.span,
+                         fmt::format("{}: `stability` is the largest Floquet multiplier of the periodic steady state, which a scene with "
+                                     "`{}` does not compute; write `steady_state = periodic` instead of `{}`",
+                                     owner, transient, transient));
     if (out.hasEffect("transmission_error") && !out.hasEffect("varying_stiffness"))
       diags_.warning("W0501", nameOr(st),
                      fmt::format("{}: `transmission_error` acts through F = dk(t)·e(t) and does nothing without `varying_stiffness`", owner));

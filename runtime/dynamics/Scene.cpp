@@ -236,6 +236,8 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     r.naturalFrequency = 1.0 / model.naturalPeriod();
     r.steady = tp.steady;
     std::vector<double> y = model.initialState();
+    // A transient may start from a given state (a study's run from another initial condition).
+    if (tp.steady != SteadyMethod::Periodic && ov.guess && ov.guess->size() == y.size()) y = *ov.guess;
     if (tp.steady == SteadyMethod::Periodic) {
       double Tz = 1.0 / ms.meshFrequency, T = model.excitationPeriod();
       if (T <= 0)
@@ -272,6 +274,8 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     double t = 0;
     bool ok = integ.advance(t, y, tp.end, tp.samples, [&](double ts, const double* ys) {
       MeshSignals s = model.signals(ts, ys);
+      // A settled run's first sample lies on its orbit at phase 0 (a whole number of periods).
+      if (samples.t.empty() && tp.steady == SteadyMethod::Settle) r.orbit.assign(ys, ys + model.system().dim);
       samples.t.push_back(ts);
       record(Signal::Displacement, s.displacement);
       record(Signal::Velocity, s.velocity);
@@ -355,7 +359,8 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       continue;
     }
     if (o.id == Signal::Stability) {
-      if (r.steady != SteadyMethod::Periodic)
+      // A caller that forces a settled run (a study's settled curve) gets no multiplier.
+      if (r.steady != SteadyMethod::Periodic && !ov.settlePeriods)
         throw Failure{"`stability` is a property of the periodic steady state: write `steady_state = periodic`, or leave out `settle`"};
       r.numbers.push_back({"stability", r.stability, {}, cat::SignalFn::Max, Signal::Stability});
       continue;
@@ -524,7 +529,7 @@ static void estimateError(const Model& m, const Assignment& a, const ir::Scene& 
   tight.maxStepFactor = 0.5 * ov.maxStepFactor.value_or(1.0);
   tight.keepSeries = false;
   tight.estimateError = false;
-  if (!r.orbit.empty()) tight.guess = r.orbit;
+  if (r.steady == SteadyMethod::Periodic && !r.orbit.empty()) tight.guess = r.orbit;
   SceneResult ref = runOnce(m, a, scene, tight);
   if (!ref.failure.empty()) return;
   r.referenceStats = ref.stats;

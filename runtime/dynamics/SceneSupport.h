@@ -31,7 +31,8 @@ struct SceneOverrides {
   // A sweep's evaluator, whose overrides (an operating value, a stage attribute) the scene
   // is built with; nullptr: the design as it is.
   const Evaluator* evaluator = nullptr;
-  // The periodic orbit's initial state from a neighbouring sweep point: Newton's first guess.
+  // The periodic orbit's initial state from a neighbouring sweep point: Newton's first guess;
+  // for a transient, the state it starts from.
   std::optional<std::vector<double>> guess;
   // Settle exactly this many mesh periods instead (a work-precision study's settled curve).
   std::optional<long> settlePeriods;

@@ -1,0 +1,277 @@
+// The periodic steady state on the product's own scenes, with asserted answers: the linear
+// marine scene against a long transient, a Mathieu tongue of a spur mesh, and the softening
+// jumps of a spur pair with backlash against brute-force transient runs.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "Specs.h"
+
+#include "driver/Driver.h"
+#include "dynamics/MeshModel.h"
+#include "dynamics/Periodic.h"
+#include "dynamics/Scene.h"
+#include "model/Evaluator.h"
+#include "study/Sweep.h"
+
+using namespace gbx;
+using namespace gbx::rt::dyn;
+
+namespace {
+
+struct Fixture {
+  std::unique_ptr<driver::Compilation> c;
+  std::unique_ptr<rt::Model> model;
+  std::unique_ptr<rt::Assignment> design;
+  const ir::Scene& scene(const std::string& name) const {
+    for (const auto& s : model->gearbox.scenes)
+      if (s.name == name) return s;
+    throw std::runtime_error(name);
+  }
+  const ir::Study& study(const std::string& name) const {
+    for (const auto& s : model->gearbox.studies)
+      if (s.name == name) return s;
+    throw std::runtime_error(name);
+  }
+};
+
+Fixture compile(const std::string& file, const std::string& text, const std::string& gearbox) {
+  Fixture f;
+  f.c = driver::compileText(file, text);
+  EXPECT_TRUE(f.c->ok()) << f.c->diags.renderText(f.c->sources);
+  for (const auto& g : f.c->program.gearboxes)
+    if (g.name == gearbox) {
+      f.model = std::make_unique<rt::Model>(f.c->program, g);
+      f.design = std::make_unique<rt::Assignment>(*f.model);
+      for (size_t i = 0; i < f.model->slots.size(); ++i) f.design->choice[i] = 0;
+    }
+  EXPECT_TRUE(f.model) << gearbox;
+  return f;
+}
+
+std::string replaced(std::string s, const std::string& a, const std::string& b) {
+  auto at = s.find(a);
+  EXPECT_NE(at, std::string::npos) << a;
+  if (at != std::string::npos) s.replace(at, a.size(), b);
+  return s;
+}
+
+double value(const SceneResult& r, const std::string& key) {
+  const SceneNumber* n = r.find(key);
+  EXPECT_TRUE(n) << key << (r.failure.empty() ? "" : ": " + r.failure);
+  return n ? n->value : NAN;
+}
+
+// The scene at an input speed (rad/s), through a sweep's override.
+SceneResult at(const Fixture& f, const ir::Study& sweep, const ir::Scene& scene, double speed, SceneOverrides ov = {}) {
+  rt::Evaluator ev(*f.model);
+  ev.setOverride(sweep.swept, rt::Value::number(speed));
+  ov.evaluator = &ev;
+  ov.keepSeries = false;
+  return runScene(*f.model, *f.design, scene, ov);
+}
+
+double rpm(double v) { return v * M_PI / 30.0; }
+
+} // namespace
+
+TEST(SteadyState, LinearMarinePeriodicEqualsALongTransient) {
+  std::string text = readSpec("marine_reducer.gbx");
+  // The transient settles 200 mesh periods (the response decays by e^-1.8 each); the
+  // periodic scene solves for the orbit directly. Both at rtol 1e-11.
+  std::string transient = replaced(text, "rtol = 1e-9;", "rtol = 1e-11;");
+  std::string periodic = replaced(transient, "settle = 200 mesh_periods;", "steady_state = periodic;");
+  auto ft = compile("t.gbx", transient, "MarineReducer"), fp = compile("p.gbx", periodic, "MarineReducer");
+  SceneOverrides ov;
+  ov.estimateError = false;
+  SceneResult t = runScene(*ft.model, *ft.design, ft.scene("vibration"), ov);
+  SceneResult p = runScene(*fp.model, *fp.design, fp.scene("vibration"), ov);
+  ASSERT_TRUE(t.failure.empty()) << t.failure;
+  ASSERT_TRUE(p.failure.empty()) << p.failure;
+  EXPECT_EQ(p.steady, SteadyMethod::Periodic);
+  EXPECT_EQ(t.steady, SteadyMethod::Settle);
+  double rt = value(t, "rms(acceleration)"), rp = value(p, "rms(acceleration)");
+  EXPECT_NEAR(rp / rt, 1.0, 1e-9) << "periodic " << rp << " against transient " << rt;
+  // An independent measurement (DOMAIN.md §7) gives 50.53239936 for this scene.
+  EXPECT_NEAR(rp, 50.53239936, 5e-8);
+  // Linear: one Newton step is exact, a second only confirms it; the orbit is stable.
+  EXPECT_EQ(p.newtonIterations, 2);
+  EXPECT_LT(p.newtonResidual, 1e-10);
+  EXPECT_LT(p.stability, 1.0);
+  EXPECT_GT(p.stability, 0.0);
+  // The work: a small fraction of the settled transient's.
+  EXPECT_LT(p.stats.rhsEvaluations * 10, t.stats.rhsEvaluations)
+      << p.stats.rhsEvaluations << " against " << t.stats.rhsEvaluations;
+}
+
+TEST(SteadyState, MathieuTongueOfASpurMesh) {
+  // A spur mesh (eps_alpha 1.68: the stiffness swings by about a third) with 2 % damping,
+  // its mesh frequency twice its natural frequency: the principal parametric resonance.
+  const char* text = R"(import materials;
+gearbox SpurTongue {
+  stage s1: spur {
+    pinion.z = 25;  wheel.z = 50;
+    normal_module = 3 mm; pressure_angle = 20 deg;
+    face_width = 30 mm; material = steel_42CrMo4;
+  }
+  operating { input_speed = 27693 rpm; input_torque = 200 N*m; }
+  scene mesh on s1 {
+    effects { varying_stiffness { harmonics = 10; } damping { ratio = 0.02; } }
+    steady_state = periodic;
+    record = 1 mesh_period; samples = 160;
+    accuracy { method = rk8pd; rtol = 1e-9; }
+    output rms(acceleration), dynamic_factor, stability;
+  }
+  study tongue { sweep input_speed in 20000..36000 rpm step 1000 rpm; output mesh.stability; }
+}
+)";
+  auto f = compile("tongue.gbx", text, "SpurTongue");
+  const auto& scene = f.scene("mesh");
+  const auto& sweep = f.study("tongue");
+  SceneResult inside = runScene(*f.model, *f.design, scene);
+  ASSERT_TRUE(inside.failure.empty()) << inside.failure;
+  double fn = inside.naturalFrequency, fm = inside.meshFrequency;
+  EXPECT_NEAR(fm / fn, 2.0, 0.01) << "the scene sits at f_mesh = 2 f_n";
+  EXPECT_GT(inside.stability, 1.05);
+  EXPECT_TRUE(inside.unstable);
+  EXPECT_TRUE(std::isnan(value(inside, "rms(acceleration)"))) << "no steady RMS inside the tongue";
+  EXPECT_TRUE(std::isnan(value(inside, "dynamic_factor")));
+  EXPECT_NEAR(value(inside, "stability"), inside.stability, 0);
+  ASSERT_FALSE(inside.warnings.empty());
+  EXPECT_NE(inside.warnings.back().find("unstable"), std::string::npos);
+  // Just outside the tongue, on both sides: stable, with a steady RMS.
+  for (double speed : {24500.0, 30500.0}) {
+    SceneResult out = at(f, sweep, scene, rpm(speed));
+    ASSERT_TRUE(out.failure.empty()) << out.failure;
+    EXPECT_LT(out.stability, 1.0) << speed;
+    EXPECT_GT(out.stability, 0.9) << speed << ": lightly damped";
+    EXPECT_TRUE(std::isfinite(value(out, "rms(acceleration)"))) << speed;
+  }
+  // The multiplier is the growth a transient shows: from a state near the orbit, the
+  // deviation grows by `stability` every period (a real multiplier) once the other has decayed.
+  SceneOverrides ov;
+  MeshScene ms = meshScene(*f.model, *f.design, scene, ov);
+  MeshModel model(ms.params, ms.effects);
+  std::vector<double> y = inside.orbit;
+  y[0] *= 1.0 + 1e-9;
+  std::vector<double> dev;
+  double T = model.excitationPeriod();
+  Integrator integ(model.system(), ms.accuracy);
+  double t = 0;
+  for (int k = 1; k <= 60; ++k) {
+    ASSERT_TRUE(integ.advance(t, y, k * T, {}, [](double, const double*) {})) << integ.error();
+    dev.push_back(std::hypot((y[0] - inside.orbit[0]) / model.system().scale[0], (y[1] - inside.orbit[1]) / model.system().scale[1]));
+  }
+  double growth = std::pow(dev[59] / dev[39], 1.0 / 20.0);
+  EXPECT_NEAR(growth, inside.stability, 2e-3 * inside.stability);
+  // A sweep marks the tongue: unstable points only around f_mesh = 2 f_n.
+  rt::SweepStudy s = rt::sweep(*f.model, *f.design, sweep);
+  ASSERT_TRUE(s.failure.empty()) << s.failure;
+  for (const auto& p : s.points) {
+    double ratio = p.x / rpm(27693.0);
+    if (std::fabs(ratio - 1.0) < 0.03) {
+      EXPECT_GT(p.stability, 1.0) << p.x * 30 / M_PI;
+    }
+    if (std::fabs(ratio - 1.0) > 0.12) {
+      EXPECT_LT(p.stability, 1.0) << p.x * 30 / M_PI;
+    }
+  }
+}
+
+TEST(SteadyState, BacklashSofteningJumpsAgreeWithBruteForceTransients) {
+  auto f = compile("spur_resonance.gbx", readSpec("spur_resonance.gbx"), "SpurResonance");
+  const auto& scene = f.scene("mesh");
+  const auto& study = f.study("resonance");
+  rt::SweepStudy s = rt::sweep(*f.model, *f.design, study);
+  ASSERT_TRUE(s.failure.empty()) << s.failure;
+  EXPECT_EQ(s.continuation, "arclength");
+  // Two turning points: the up-sweep's jump-up speed above the down-sweep's jump-down speed.
+  ASSERT_EQ(s.folds.size(), 2u);
+  double up = s.folds[0], down = s.folds[1];
+  EXPECT_GT(up, down);
+  EXPECT_GT(up, rpm(12500));
+  EXPECT_LT(up, rpm(13600));
+  EXPECT_GT(down, rpm(10800));
+  EXPECT_LT(down, rpm(11800));
+  // Three branches in the order followed; the middle one unstable, the others stable away
+  // from the turning points, and the sweep covers the whole range.
+  int unstableMiddle = 0, middle = 0;
+  for (const auto& p : s.points) {
+    ASSERT_GE(p.branch, 1);
+    ASSERT_LE(p.branch, 3);
+    if (p.branch == 2) {
+      ++middle;
+      if (p.stability > 1.0) ++unstableMiddle;
+    } else if (std::fabs(p.x - up) > rpm(150) && std::fabs(p.x - down) > rpm(150)) {
+      EXPECT_LT(p.stability, 1.0) << p.x * 30 / M_PI;
+    }
+  }
+  EXPECT_GE(middle, 5);
+  EXPECT_EQ(unstableMiddle, middle);
+  EXPECT_EQ(s.points.front().branch, 1);
+  EXPECT_EQ(s.points.back().branch, 3);
+  EXPECT_NEAR(s.points.front().x, rpm(9000), 1e-9);
+  EXPECT_GT(s.points.back().x, rpm(17000));
+  // Brute force at three speeds inside the hysteresis region: a transient from the static
+  // state settles on the lower branch, one started with a hard knock on the upper branch;
+  // the periodic solutions from each end state agree with them, and with each other only
+  // where the branches are distinct.
+  SceneOverrides settle;
+  settle.settlePeriods = 600;
+  settle.estimateError = false;
+  for (double speed : {down + 0.2 * (up - down), down + 0.5 * (up - down), down + 0.8 * (up - down)}) {
+    SceneResult lower = at(f, study, scene, speed, settle);
+    ASSERT_TRUE(lower.failure.empty()) << lower.failure;
+    SceneOverrides knock = settle;
+    MeshScene ms = [&] {
+      rt::Evaluator ev(*f.model);
+      ev.setOverride(study.swept, rt::Value::number(speed));
+      SceneOverrides o;
+      o.evaluator = &ev;
+      return meshScene(*f.model, *f.design, scene, o);
+    }();
+    MeshModel model(ms.params, ms.effects);
+    // Knocks of 10 to 80 times the static deflection's velocity scale; the largest settled
+    // response is the upper branch's.
+    SceneResult upper;
+    for (double k : {10.0, 20.0, 40.0, 80.0}) {
+      std::vector<double> y0 = model.initialState();
+      y0[1] = k * model.system().scale[1];
+      knock.guess = y0;
+      SceneResult r = at(f, study, scene, speed, knock);
+      ASSERT_TRUE(r.failure.empty()) << r.failure;
+      if (upper.numbers.empty() || value(r, "rms(acceleration)") > value(upper, "rms(acceleration)")) upper = r;
+    }
+    double rl = value(lower, "rms(acceleration)"), ru = value(upper, "rms(acceleration)");
+    EXPECT_GT(ru, 1.5 * rl) << "two coexisting responses at " << speed * 30 / M_PI << " rpm";
+    EXPECT_GT(value(lower, "min(contact_force)"), 0.0) << "the lower branch keeps contact";
+    EXPECT_LE(value(upper, "min(contact_force)"), 0.0) << "the upper branch loses contact";
+    // The continuation's stable branches at this speed, interpolated.
+    auto onBranch = [&](int b) {
+      const rt::SweepStudy::Point* a = nullptr;
+      for (const auto& p : s.points) {
+        if (p.branch != b) continue;
+        if (a && (a->x - speed) * (p.x - speed) <= 0)
+          return a->y[1] + (p.y[1] - a->y[1]) * (speed - a->x) / (p.x - a->x);
+        a = &p;
+      }
+      return static_cast<double>(NAN);
+    };
+    EXPECT_NEAR(onBranch(1) / rl, 1.0, 0.02) << speed * 30 / M_PI << " rpm, lower branch";
+    EXPECT_NEAR(onBranch(3) / ru, 1.0, 0.02) << speed * 30 / M_PI << " rpm, upper branch";
+    // Shooting at exactly this speed, started from each transient's settled state: the
+    // same orbit, so the same RMS to the integration's accuracy, and stable.
+    for (const SceneResult* tr : {&lower, &upper}) {
+      ASSERT_EQ(tr->orbit.size(), 2u);
+      SceneOverrides ov;
+      ov.estimateError = false;
+      ov.guess = tr->orbit;
+      SceneResult p = at(f, study, scene, speed, ov);
+      ASSERT_TRUE(p.failure.empty()) << p.failure;
+      EXPECT_NEAR(value(p, "rms(acceleration)") / value(*tr, "rms(acceleration)"), 1.0, 1e-6) << speed * 30 / M_PI << " rpm";
+      EXPECT_LT(p.stability, 1.0);
+    }
+  }
+}
