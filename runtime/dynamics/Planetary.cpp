@@ -359,6 +359,7 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   int harmonics = 0;
   if (varying) {
     harmonics = ov.harmonics ? *ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)));
+    run.harmonics = harmonics;
     // Spur meshes: contact ratio from the standard geometry of each pair.
     auto epsAlpha = [&](double z1, double z2, bool internal) {
       double ra1 = 0.5 * z1 * mod + mod, rb1 = 0.5 * z1 * mod * std::cos(alpha);
@@ -492,7 +493,12 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
                              }()));
   double Tn = fmax > 0 ? 1.0 / fmax : Tz;
   acc.maxStep = std::min(Tz, Tn) / 20.0;
-  if (ov.maxStepFactor) acc.maxStep *= *ov.maxStepFactor;
+  std::string rule = Tn < Tz ? "Tn/20 (the highest linearised mode)" : "Tz/20";
+  if (ov.maxStepFactor) {
+    acc.maxStep *= *ov.maxStepFactor;
+    rule += fmt::format(" x {:g}", *ov.maxStepFactor);
+  }
+  run.stepRule = fmt::format("max step {} = {:.4g} ms", rule, acc.maxStep * 1e3);
   // With `periodic` the record window starts at t = 0 on the orbit.
   run.plan = periodic ? periodicPlan(scene, Tz) : timePlan(scene, Tz, ov.settlePeriods);
   // Initial state: the static deflection on every mesh, at the kinematic speeds.
@@ -578,6 +584,8 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
                              period * 1e3, q, q == 1 ? "" : "s", orbit.iterations, orbit.iterations == 1 ? "" : "s",
                              orbit.variational ? "variational equations" : "differences", orbit.residual, orbit.stability));
   y = orbit.y0;
+  run.orbit = orbit.y0;
+  run.period = period;
   Integrator integ(sys, acc);
   double t = 0;
   bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, sample);

@@ -29,6 +29,10 @@ struct PlanetaryRun {
   std::vector<std::complex<double>> multipliers;    // largest modulus first
   int newtonIterations = 0;
   double newtonResidual = 0;                        // scaled, at the converged orbit
+  std::vector<double> orbit;                        // the orbit's initial state (a sweep's next guess)
+  std::string stepRule;                             // the maximum step and its rule
+  double period = 0;                                // of the excitation, s
+  int harmonics = 0;                                // of the stiffness series, 0 without varying_stiffness
 };
 
 PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int stage, const ir::Scene& scene,

@@ -184,7 +184,7 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
   out.params = p;
   out.effects = fx;
   out.accuracy = acc;
-  out.plan = timePlan(scene, Tz, ov.settlePeriods);
+  out.plan = ov.forcePeriodic ? periodicPlan(scene, Tz) : timePlan(scene, Tz, ov.settlePeriods);
   out.meshFrequency = 1.0 / Tz;
   out.provenance = prov;
   out.stepRule = fmt::format("max step {} = {:.4g} ms", rule, acc.maxStep * 1e3);
@@ -297,11 +297,13 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
     double speed = num(ev.derived(st, Q::InputSpeed, a), "an input speed (`operating`)");
     Elastic mat = materialOf(m, st);
-    bool periodic = timePlan(scene, 1.0, ov.settlePeriods).steady == SteadyMethod::Periodic;
+    bool periodic = ov.forcePeriodic || timePlan(scene, 1.0, ov.settlePeriods).steady == SteadyMethod::Periodic;
     PlanetaryRun pr = runPlanetary(ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
                                    mat.assumed, periodic);
     r.model = pr.provenance;
     r.stats = pr.stats;
+    r.harmonics = pr.harmonics;
+    r.stepRule = pr.stepRule;
     if (periodic) {
       r.steady = SteadyMethod::Periodic;
       r.stability = pr.stability;
@@ -309,7 +311,8 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       r.multipliers = pr.multipliers;
       r.newtonIterations = pr.newtonIterations;
       r.newtonResidual = pr.newtonResidual;
-      r.period = pr.plan.dt > 0 ? pr.plan.end - pr.plan.samples.front() + pr.plan.dt : 0;
+      r.period = pr.period;
+      r.orbit = pr.orbit;
     } else {
       r.steady = pr.plan.steady;
     }

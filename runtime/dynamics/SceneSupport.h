@@ -36,6 +36,7 @@ struct SceneOverrides {
   std::optional<std::vector<double>> guess;
   // Settle exactly this many mesh periods instead (a work-precision study's settled curve).
   std::optional<long> settlePeriods;
+  bool forcePeriodic = false;  // the periodic steady state whatever the scene says (a study's periodic curve)
   std::optional<double> maxStepFactor;  // times the scene's maximum step (an error-estimate rerun)
   bool keepUnstable = false;  // values on an unstable orbit too (a continuation's middle branch)
 };

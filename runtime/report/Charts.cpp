@@ -116,7 +116,7 @@ void workPrecisionChart(const std::string& gearbox, const WorkPrecisionStudy& s,
   chart.logX = chart.logY = true;
   for (const auto& c : s.curves) {
     SvgSeries series;
-    series.label = fmt::format("{}{}", c.method, c.harmonics > 0 ? fmt::format(", {} harmonics", c.harmonics) : "");
+    series.label = fmt::format("{}, {}{}", c.method, c.steady, c.harmonics > 0 ? fmt::format(", {} harmonics", c.harmonics) : "");
     series.markers = true;
     for (const auto& run : c.runs) {
       if (!run.ok) continue;

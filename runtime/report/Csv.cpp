@@ -78,14 +78,14 @@ std::string designs(const std::vector<GearboxReport>& reports) {
 }
 
 std::string scenes(const std::vector<GearboxReport>& reports) {
-  std::string o = row({"gearbox", "scene", "target", "output", "value", "unit", "method", "rtol", "error_estimate"});
+  std::string o = row({"gearbox", "scene", "target", "output", "value", "unit", "method", "rtol", "error_estimate", "steady_state"});
   bool any = false;
   for (const auto& g : reports)
     for (const auto& s : g.scenes)
       for (const auto& x : s.outputs) {
         any = true;
         o += row({g.name, s.name, s.target, x.key, number(x.shown), x.unit, s.method, s.eigen ? "" : number(s.rtol),
-                  s.errorEstimate >= 0 ? number(s.errorEstimate) : ""});
+                  s.errorEstimate >= 0 ? number(s.errorEstimate) : "", s.eigen ? "" : s.steady});
       }
   return any ? o : "";
 }
@@ -121,7 +121,7 @@ std::string sweeps(const std::vector<GearboxReport>& reports) {
 }
 
 std::string workPrecision(const std::vector<GearboxReport>& reports, bool timings) {
-  std::vector<std::string> h = {"gearbox", "study", "scene", "harmonics", "method", "rtol", "error", "steps", "rhs_evaluations"};
+  std::vector<std::string> h = {"gearbox", "study", "scene", "harmonics", "method", "steady_state", "rtol", "error", "steps", "rhs_evaluations"};
   if (timings) h.push_back("cpu [ms]");
   std::string o = row(h);
   bool any = false;
@@ -131,7 +131,7 @@ std::string workPrecision(const std::vector<GearboxReport>& reports, bool timing
         for (const auto& c : w->curves)
           for (const auto& r : c.runs) {
             any = true;
-            std::vector<std::string> v = {g.name, w->name, w->scene, c.harmonics > 0 ? std::to_string(c.harmonics) : "", c.method,
+            std::vector<std::string> v = {g.name, w->name, w->scene, c.harmonics > 0 ? std::to_string(c.harmonics) : "", c.method, c.steady,
                                           number(r.rtol), r.ok ? number(r.error) : "", r.ok ? std::to_string(r.steps) : "",
                                           r.ok ? std::to_string(r.rhsEvaluations) : ""};
             if (timings) v.push_back(r.ok ? number(r.cpuSeconds * 1e3) : "");

@@ -132,7 +132,9 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
         o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled){}; steady state: {}\n", sc.method, sc.rtol, sc.atol,
                          sc.stepRule.empty() ? "" : ", " + sc.stepRule, sc.steady);
       for (const auto& out : sc.outputs)
-        o += fmt::format("    {} = {}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit);
+        o += std::isfinite(out.shown)
+                 ? fmt::format("    {} = {}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit)
+                 : fmt::format("    {} = none (no steady response)\n", out.key);
       if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative = {}\n", sc.errorEstimate, sc.errorMethod);
       for (const auto& w : sc.warnings) o += "    warning: " + w + "\n";
       if (!sc.eigen)
@@ -395,7 +397,11 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
         continue;
       }
       std::vector<std::string> items;
-      for (const auto& out : sc.outputs) items.push_back(fmt::format("{} = {}{}", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit));
+      for (const auto& out : sc.outputs)
+        items.push_back(std::isfinite(out.shown)
+                            ? fmt::format("{} = {}{}", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit)
+                            : fmt::format("{} = none (no steady response)", out.key));
+      if (!sc.eigen) items.push_back(fmt::format("steady state: {}{}", sc.steady, sc.stepRule.empty() ? "" : "; " + sc.stepRule));
       if (sc.errorEstimate >= 0) items.push_back(fmt::format("error estimate {:.2e} ({})", sc.errorEstimate, sc.errorMethod));
       for (const auto& w : sc.warnings) items.push_back("warning: " + w);
       if (!sc.eigen)

@@ -37,11 +37,11 @@ StudyTable table(const WorkPrecisionStudy& s, bool timings) {
   StudyTable t;
   t.name = s.name;
   t.kind = "work_precision";
-  t.header = {"harmonics", "method", "rtol", "error", "steps", "RHS evaluations"};
+  t.header = {"harmonics", "method", "steady state", "rtol", "error", "steps", "RHS evaluations"};
   if (timings) t.header.push_back("CPU ms");
   for (const auto& c : s.curves)
     for (const auto& run : c.runs) {
-      std::vector<std::string> row = {c.harmonics == 0 ? "-" : std::to_string(c.harmonics), c.method, fmt::format("{:.0e}", run.rtol)};
+      std::vector<std::string> row = {c.harmonics == 0 ? "-" : std::to_string(c.harmonics), c.method, c.steady, fmt::format("{:.0e}", run.rtol)};
       if (!run.ok) {
         row.push_back("failed");
         row.push_back("-");
@@ -60,8 +60,8 @@ StudyTable table(const WorkPrecisionStudy& s, bool timings) {
       t.notes.push_back(fmt::format("harmonics {}: no reference ({})", r.harmonics, r.failure));
       continue;
     }
-    t.notes.push_back(fmt::format("harmonics {}: reference {} = {:.10g} at rtol {:.0e} (rk8pd), within {:.1e} of a run at rtol {:.0e}",
-                                  r.harmonics == 0 ? std::string("-") : std::to_string(r.harmonics), r.output, r.value, r.rtol,
+    t.notes.push_back(fmt::format("harmonics {}: reference {} = {:.10g} at rtol {:.0e} (rk8pd, {}), within {:.1e} of a run at rtol {:.0e}",
+                                  r.harmonics == 0 ? std::string("-") : std::to_string(r.harmonics), r.output, r.value, r.rtol, r.steady,
                                   r.difference, r.checkRtol));
   }
   return t;
@@ -99,8 +99,8 @@ std::string json(const WorkPrecisionStudy& s, bool timings) {
   for (const auto& c : s.curves)
     for (const auto& run : c.runs) {
       if (!run.ok) continue;
-      runs += fmt::format("{}{{\"harmonics\": {}, \"method\": \"{}\", \"rtol\": {}, \"error\": {}, \"steps\": {}, \"rhs_evaluations\": {}{}}}",
-                          runs.empty() ? "" : ", ", c.harmonics, c.method, run.rtol, run.error, run.steps, run.rhsEvaluations,
+      runs += fmt::format("{}{{\"harmonics\": {}, \"method\": \"{}\", \"steady_state\": \"{}\", \"rtol\": {}, \"error\": {}, \"steps\": {}, \"rhs_evaluations\": {}{}}}",
+                          runs.empty() ? "" : ", ", c.harmonics, c.method, c.steady, run.rtol, run.error, run.steps, run.rhsEvaluations,
                           timings ? fmt::format(", \"cpu_seconds\": {}", run.cpuSeconds) : "");
     }
   return fmt::format("{{\"scene\": \"{}\", \"output\": \"{}\", \"references\": [{}], \"runs\": [{}]}}", s.scene, key, refs, runs);

@@ -147,7 +147,9 @@ void continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
     VectorXd start = VectorXd::Zero(n + 1);
     start(n) = 1.0;
     VectorXd t = tangent(J, start);
-    double ds = dLambda, dsMax = 8.0 * dLambda, dsMin = 1e-4 * dLambda;
+    // Steps along the curve (lambda and the scaled state together) at most four of the
+    // sweep's own steps: where the response changes fast the points come denser.
+    double ds = dLambda, dsMax = 4.0 * dLambda, dsMin = 1e-4 * dLambda;
     int branch = 1;
     long maxPoints = 40 * static_cast<long>(std::ceil(1.0 / dLambda)) + 400;
     auto record = [&](const VectorXd& zz) {
@@ -211,7 +213,15 @@ void continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
         out.folds.push_back(sh.x(zz(n)));
         ++branch;
       }
-      if (zz(n) > 1.0 + 1e-12 || zz(n) < -1e-12) break;
+      if (zz(n) > 1.0 + 1e-12 || zz(n) < -1e-12) {
+        // Leaving the range: the last point at its end, from the state interpolated there
+        // (the scene's own Newton solves it exactly).
+        double end = zz(n) > 1.0 ? 1.0 : 0.0, w = (end - z(n)) / (zz(n) - z(n));
+        VectorXd last = z + w * (zz - z);
+        last(n) = end;
+        record(last);
+        break;
+      }
       z = zz;
       t = tn;
       record(z);

@@ -49,6 +49,7 @@ struct WorkPrecisionStudy {
     std::string failure;                // why there is none, when !ok
     std::string output;                 // the output compared
     double rtol = 0, value = 0;         // the reference run (rk8pd)
+    std::string steady;                 // how it reached its steady state
     double checkRtol = 0, difference = 0;  // a still tighter run, and the relative difference to it
   };
   std::vector<Reference> references;
@@ -63,6 +64,7 @@ struct WorkPrecisionStudy {
   struct Curve {
     int harmonics = 0;
     std::string method;
+    std::string steady;                 // "periodic" or "settle N"
     std::vector<Run> runs;
   };
   std::vector<Curve> curves;

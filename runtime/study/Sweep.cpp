@@ -32,7 +32,9 @@ void scenesOf(const ir::Expr& e, std::set<int>& out) {
 void resonanceMarks(SweepStudy& r, const ir::Study& st, double x, double fm, double fn) {
   if (st.swept.key != Q::InputSpeed || !(fm > 0) || !(fn > 0)) return;
   const std::pair<double, const char*> orders[] = {{2.0, "f_mesh = 2 f_n (parametric)"}, {1.0, "f_mesh = f_n"}, {0.5, "2 f_mesh = f_n"}};
-  for (const auto& [k, label] : orders) r.marks.emplace_back(x * k * fn / fm, label);
+  double lo = st.lo->toDouble(), hi = st.hi->toDouble();
+  for (const auto& [k, label] : orders)
+    if (double at = x * k * fn / fm; at >= lo && at <= hi) r.marks.emplace_back(at, label);
 }
 
 SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {

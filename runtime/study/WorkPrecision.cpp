@@ -5,6 +5,8 @@
 #include <functional>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "dynamics/Scene.h"
 
 namespace gbx::rt {
@@ -33,8 +35,25 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
   if (harmonics.empty() || !varying) harmonics = {0};
   if (methods.empty()) methods = {scene.method()};
   double tightest = rtols.back();
+  // The periodic steady state against settling a transient, both drawn: the scene's own
+  // `settle = N`, or 200 periods when the scene is periodic by default.
+  const ir::Setting* settleSetting = ir::findSetting(scene.settings, Q::Settle);
+  bool fromRest = ir::findSetting(scene.settings, Q::Duration) && !ir::findSetting(scene.settings, Q::Record);
+  long settle = settleSetting && settleSetting->value && settleSetting->meshPeriods ? std::lround(settleSetting->value->toDouble()) : 200;
+  struct Steady {
+    std::string name;
+    bool periodic;
+  };
+  std::vector<Steady> steadies;
+  if (!fromRest) steadies.push_back({"periodic", true});
+  if (!settleSetting || settleSetting->meshPeriods) steadies.push_back({fmt::format("settle {}", settle), false});
+  auto steadyOv = [&](dyn::SceneOverrides ov, const Steady& s) {
+    if (s.periodic) ov.forcePeriodic = true;
+    else if (!fromRest) ov.settlePeriods = settle;
+    return ov;
+  };
   // Runs in all: a reference and its check per harmonics setting, then every method at every tolerance.
-  double total = static_cast<double>(harmonics.size() * (2 + methods.size() * rtols.size())), done = 0;
+  double total = static_cast<double>(harmonics.size() * (2 + steadies.size() * methods.size() * rtols.size())), done = 0;
   auto tick = [&](double n) {
     done += n;
     if (progress) progress(done / total);
@@ -45,7 +64,7 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
     base.keepSeries = false;
     if (h > 0) base.harmonics = h;
     // The reference, and a still tighter run that says how far it can be trusted.
-    auto refOv = base;
+    auto refOv = steadyOv(base, steadies.front());
     refOv.method = cat::Method::Rk8pd;
     refOv.rtol = tightest / 100;
     auto ref = dyn::runScene(m, design, scene, refOv);
@@ -57,21 +76,23 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
     if (!ref.failure.empty() || ref.numbers.empty() || !check.failure.empty()) {
       rf.failure = ref.failure.empty() ? check.failure : ref.failure;
       r.references.push_back(rf);
-      tick(static_cast<double>(methods.size() * rtols.size()));
+      tick(static_cast<double>(steadies.size() * methods.size() * rtols.size()));
       continue;
     }
     double refValue = ref.numbers[0].value;
     rf.ok = true;
     rf.output = ref.numbers[0].key;
     rf.rtol = tightest / 100;
+    rf.steady = steadies.front().name;
     rf.value = refValue;
     rf.checkRtol = tightest / 1000;
     rf.difference = std::fabs(refValue - check.numbers[0].value) / std::max(std::fabs(check.numbers[0].value), 1e-300);
     r.references.push_back(rf);
+    for (const Steady& steady : steadies)
     for (cat::Method method : methods) {
-      WorkPrecisionStudy::Curve curve{h, std::string(cat::methodSpec(method).name), {}};
+      WorkPrecisionStudy::Curve curve{h, std::string(cat::methodSpec(method).name), steady.name, {}};
       for (double rtol : rtols) {
-        auto ov = base;
+        auto ov = steadyOv(base, steady);
         ov.method = method;
         ov.rtol = rtol;
         auto run = dyn::runScene(m, design, scene, ov);
