@@ -1,5 +1,7 @@
 #include "dynamics/MeshModel.h"
 
+#include "dynamics/Dispatch.h"
+
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -102,20 +104,6 @@ struct MeshKernel {
     J[n + 1] = -kv / m.p_.mass;
   }
 };
-
-namespace {
-template <class F>
-void withBool(bool b, F&& f) {
-  if (b) f(std::true_type{});
-  else f(std::false_type{});
-}
-template <class F>
-void withInt3(int v, F&& f) {
-  if (v == 0) f(std::integral_constant<int, 0>{});
-  else if (v == 1) f(std::integral_constant<int, 1>{});
-  else f(std::integral_constant<int, 2>{});
-}
-} // namespace
 
 MeshModel::MeshModel(const MeshParameters& p, const MeshEffects& e) : p_(p), e_(e) {
   if (e.varyingStiffness) fourier_ = contactLineSeries(p.epsAlpha, p.epsBeta, e.harmonics);

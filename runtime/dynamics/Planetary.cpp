@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "catalogue/StageKinds.h"
+#include "dynamics/Dispatch.h"
 #include "dynamics/Effects.h"
 #include "dynamics/Periodic.h"
 #include "dynamics/Scene.h"
@@ -40,20 +41,6 @@ struct Params {
   double tMean = 0, tAmp = 0, tOmega = 0;
   Drive drive;
 };
-
-// d(relativeStiffness)/d tau, by the same recurrence.
-double relativeStiffnessSlope(const Fourier& f, double tau) {
-  double w = 2.0 * M_PI * (tau - std::floor(tau));
-  double c1 = std::cos(w), s1 = std::sin(w);
-  double ck = c1, sk = s1, sum = 0.0;
-  for (size_t k = 0; k < f.a.size(); ++k) {
-    sum += 2.0 * M_PI * static_cast<double>(k + 1) * (f.b[k] * ck - f.a[k] * sk);
-    double cn = ck * c1 - sk * s1, sn = sk * c1 + ck * s1;
-    ck = cn;
-    sk = sn;
-  }
-  return sum;
-}
 
 // The right-hand side is compiled per combination of listed effects (as in MeshModel.cpp):
 // an effect the scene does not list is absent from it, not tested for.
@@ -212,18 +199,6 @@ struct Kernel {
     }
   }
 };
-
-template <class F>
-void withBool(bool b, F&& f) {
-  if (b) f(std::true_type{});
-  else f(std::false_type{});
-}
-template <class F>
-void withInt3(int v, F&& f) {
-  if (v == 0) f(std::integral_constant<int, 0>{});
-  else if (v == 1) f(std::integral_constant<int, 1>{});
-  else f(std::integral_constant<int, 2>{});
-}
 
 struct Compiled {
   std::function<void(double, const double*, double*)> rhs;

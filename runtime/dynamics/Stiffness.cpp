@@ -25,18 +25,32 @@ Fourier contactLineSeries(double epsAlpha, double epsBeta, int harmonics) {
   return f;
 }
 
-double relativeStiffness(const Fourier& f, double tau) {
-  // One sincos, then the harmonics by the angle-addition recurrence.
+namespace {
+// Sum over the harmonics of term(k, cos 2 pi k tau, sin 2 pi k tau): one sincos, then the
+// harmonics by the angle-addition recurrence.
+template <class Term>
+double overHarmonics(const Fourier& f, double tau, Term term) {
   double w = 2.0 * M_PI * (tau - std::floor(tau));
   double c1 = std::cos(w), s1 = std::sin(w);
-  double ck = c1, sk = s1, sum = 1.0;
+  double ck = c1, sk = s1, sum = 0.0;
   for (size_t k = 0; k < f.a.size(); ++k) {
-    sum += f.a[k] * ck + f.b[k] * sk;
+    sum += term(k, ck, sk);
     double cn = ck * c1 - sk * s1, sn = sk * c1 + ck * s1;
     ck = cn;
     sk = sn;
   }
   return sum;
+}
+} // namespace
+
+double relativeStiffness(const Fourier& f, double tau) {
+  return 1.0 + overHarmonics(f, tau, [&](size_t k, double c, double s) { return f.a[k] * c + f.b[k] * s; });
+}
+
+double relativeStiffnessSlope(const Fourier& f, double tau) {
+  return overHarmonics(f, tau, [&](size_t k, double c, double s) {
+    return 2.0 * M_PI * static_cast<double>(k + 1) * (f.b[k] * c - f.a[k] * s);
+  });
 }
 
 } // namespace gbx::rt::dyn

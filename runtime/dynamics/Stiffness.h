@@ -19,5 +19,7 @@ Fourier contactLineSeries(double epsAlpha, double epsBeta, int harmonics);
 
 // Relative stiffness L(tau)/Lm at phase tau (mesh periods).
 double relativeStiffness(const Fourier& f, double tau);
+// Its derivative in tau.
+double relativeStiffnessSlope(const Fourier& f, double tau);
 
 } // namespace gbx::rt::dyn
