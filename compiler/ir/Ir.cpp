@@ -25,6 +25,43 @@ std::string Type::str() const {
   return "?";
 }
 
+Setting Setting::clone() const {
+  Setting s;
+  s.name = name;
+  s.key = key;
+  s.choice = choice;
+  s.choices = choices;
+  s.stage = stage;
+  s.dim = dim;
+  s.integer = integer;
+  s.meshPeriods = meshPeriods;
+  s.value = value;
+  s.symbol = symbol;
+  if (expr) s.expr = expr->clone();
+  s.members = members;
+  s.lo = lo;
+  s.hi = hi;
+  s.span = span;
+  return s;
+}
+
+Scene Scene::clone() const {
+  Scene s;
+  s.name = name;
+  s.target = target;
+  s.stage = stage;
+  for (const auto& e : effects) {
+    Effect c{e.name, e.kind, {}, e.span};
+    for (const auto& p : e.params) c.params.push_back(p.clone());
+    s.effects.push_back(std::move(c));
+  }
+  for (const auto& x : settings) s.settings.push_back(x.clone());
+  for (const auto& x : accuracy) s.accuracy.push_back(x.clone());
+  s.outputs = outputs;
+  s.span = span;
+  return s;
+}
+
 ExprPtr Expr::clone() const {
   auto e = std::make_unique<Expr>();
   e->op = op;

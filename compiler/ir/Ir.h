@@ -174,6 +174,7 @@ struct Setting {
   std::vector<Number> members;  // `rtol in {…}`
   std::optional<Number> lo, hi;  // `harmonics in 1..8`
   Span span;
+  Setting clone() const;
 };
 
 const Setting* findSetting(const std::vector<Setting>& s, const std::string& name);
@@ -208,6 +209,7 @@ struct Scene {
   bool hasEffect(const std::string& n) const;
   const Effect* findEffect(cat::Effect kind) const;
   cat::Method method() const;  // the accuracy block's method, or the default
+  Scene clone() const;         // a sweep of an effect parameter changes a copy
 };
 
 struct ModRule {
@@ -239,6 +241,12 @@ struct Study {
   Kind kind = Sweep;
   std::string target;  // swept quantity path, or the scene of a work-precision study
   QuantityRef swept;   // resolved by lowering: the swept quantity
+  // An effect parameter of a scene (`vibration.damping.ratio`), resolved by lowering: the
+  // scene, the effect's position in it and the parameter's key; scene < 0 otherwise.
+  struct EffectParam {
+    int scene = -1, effect = -1;
+    Q key = Q::None;
+  } sweptEffect;
   int scene = -1;      // resolved by lowering: the scene of a work-precision study
   std::optional<Dim> dim;
   std::optional<Number> lo, hi, step;

@@ -182,7 +182,19 @@ public:
     }
     for (auto& sp : g.splits) settings(sp.settings, cat::splitSettings());
     for (auto& st : g.studies) {
-      if (st.kind == ir::Study::Sweep) st.swept = quantity(st.target);
+      if (st.kind == ir::Study::Sweep) {
+        st.swept = quantity(st.target);
+        // `scene.effect.parameter`
+        auto d1 = st.target.find('.'), d2 = st.target.find('.', d1 == std::string::npos ? d1 : d1 + 1);
+        if (d1 != std::string::npos && d2 != std::string::npos)
+          for (size_t i = 0; i < g.scenes.size(); ++i)
+            if (g.scenes[i].name == st.target.substr(0, d1))
+              for (size_t k = 0; k < g.scenes[i].effects.size(); ++k)
+                if (g.scenes[i].effects[k].name == st.target.substr(d1 + 1, d2 - d1 - 1))
+                  if (const auto* spec = cat::findEffect(g.scenes[i].effects[k].name))
+                    for (const auto& prm : spec->params)
+                      if (prm.name == st.target.substr(d2 + 1)) st.sweptEffect = {static_cast<int>(i), static_cast<int>(k), prm.key};
+      }
       for (size_t i = 0; i < g.scenes.size(); ++i)
         if (g.scenes[i].name == st.target) st.scene = static_cast<int>(i);
       for (auto& o : st.outputs) expr(o);

@@ -1102,7 +1102,7 @@ private:
     if (!ir::findSetting(out.settings, "duration") && !ir::findSetting(out.settings, "record"))
       diags_.error("E0225", nameOr(st), fmt::format("{} needs `duration` (a run from rest) or `record` (a steady-state window)", owner));
     for (const auto& o : out.outputs)
-      if (o.signal == "stability")
+      if (o.signal == "stability" && !ir::findSetting(out.settings, "steady_state"))  // else E0202 already says it
         for (const char* transient : {"settle", "duration"})
           if (ir::findSetting(out.settings, transient))
             diags_.error("E0232", o.span,
@@ -1440,6 +1440,23 @@ private:
       else
         out.settings = settings(items, sweepSettings(), gs, owner, nameOr(st), "E0225");
     }
+    // Arclength continuation follows one scene's orbit: its outputs must read exactly one.
+    if (const auto* c = ir::findSetting(out.settings, "continuation"); c && c->symbol == "arclength") {
+      std::set<std::string> scenes;
+      std::function<void(const ir::Expr&)> visit = [&](const ir::Expr& e) {
+        if (e.op == ir::Op::SceneOutput) scenes.insert(e.name.substr(0, e.name.find('.')));
+        for (const auto& a : e.args)
+          if (a) visit(*a);
+      };
+      for (const auto& o : out.outputs)
+        if (o) visit(*o);
+      if (scenes.size() != 1)
+        diags_.error("E0225", c->span,
+                     scenes.empty() ? fmt::format("{}: `continuation = arclength` follows a scene's periodic response, but no output reads a scene", owner)
+                                    : fmt::format("{}: `continuation = arclength` follows one scene's periodic response; the outputs read {} "
+                                                  "scenes ({}): give each its own study",
+                                                  owner, scenes.size(), fmt::join(scenes, ", ")));
+    }
     for (const auto& [name, b] : domains) {
       if (!wp) {
         diags_.error("E0110", b->span, fmt::format("`{} in …` belongs in a work-precision study", name));
@@ -1523,6 +1540,20 @@ private:
       std::string rest = p.str().substr(parts[0].size() + 1);
       for (const auto& s : splitSettings())
         if (s.name == rest && s.value == ValueKind::Number) return s.dim;
+    } else if (const ast::Stmt* sc = m.findScene(parts[0]); sc && parts.size() == 3) {
+      // An effect parameter of a scene: `vibration.damping.ratio`.
+      bool listed = false;
+      for (const auto& b : sc->body)
+        if (b.kind == StmtKind::Effects)
+          for (const auto& e : b.body) listed = listed || e.name == parts[1];
+      const EffectSpec* fx = findEffect(parts[1]);
+      if (fx && !listed) {
+        diags_.error("E0219", p.span, fmt::format("scene `{}` does not list the effect `{}`, so it has no `{}` to sweep", parts[0], parts[1], parts[2]));
+        return std::nullopt;
+      }
+      if (fx)
+        for (const auto& prm : fx->params)
+          if (prm.name == parts[2] && prm.value == ValueKind::Number) return prm.dim;
     }
     diags_.error("E0219", p.span,
                  fmt::format("cannot sweep `{}`: a sweep varies an operating value, a stage attribute or a split setting",

@@ -104,6 +104,7 @@ void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<st
       k = j;
     }
     for (const auto& [x, label] : s.marks) c.xMarks.emplace_back(x / s.unit.scale, label);
+    for (double f : s.folds) c.xMarks.emplace_back(f / s.unit.scale, "jump");
     add(out, files, fileSafe(gearbox) + "." + s.name + (s.outputs.size() > 1 ? fmt::format(".{}", i + 1) : "") + ".svg", c);
   }
 }

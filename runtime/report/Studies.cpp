@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "diag/Diagnostic.h"
+
 namespace gbx::rt {
 
 namespace {
@@ -15,13 +17,15 @@ StudyTable table(const SweepStudy& s) {
   t.header.push_back(s.target + (s.unit.name.empty() ? "" : " [" + s.unit.name + "]"));
   for (const auto& out : s.outputs) t.header.push_back(out.text + (out.unit.name.empty() ? "" : " [" + out.unit.name + "]"));
   bool arclength = s.continuation == "arclength";
-  if (s.scene) t.header.push_back("stability");
+  if (s.scene) t.header.push_back("stability of " + s.stabilityScene);
   if (arclength) t.header.push_back("branch");
   for (const auto& p : s.points) {
     std::vector<std::string> row = {fmt::format("{:.6g}", p.x / s.unit.scale)};
     bool unstable = std::isfinite(p.stability) && p.stability >= 1.0;
-    for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i)
-      row.push_back(std::isfinite(p.y[i]) ? formatNumber(p.y[i] / s.outputs[i].unit.scale) : unstable ? "unstable" : "n/a");
+    for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i) {
+      bool u = i < p.unstable.size() ? p.unstable[i] : unstable;
+      row.push_back(std::isfinite(p.y[i]) ? formatNumber(p.y[i] / s.outputs[i].unit.scale) : u ? "unstable" : "n/a");
+    }
     if (s.scene) row.push_back(std::isfinite(p.stability) ? fmt::format("{:.4f}{}", p.stability, unstable ? " (unstable)" : "") : "-");
     if (arclength) row.push_back(std::to_string(p.branch));
     t.rows.push_back(std::move(row));
@@ -81,10 +85,16 @@ std::string json(const SweepStudy& s) {
     // The swept quantity under its own name too (LANGUAGE.md §12).
     points += fmt::format("{}{{\"x\": {}, \"{}\": {}{}, \"outputs\": {{{}}}}}", k ? ", " : "", p.x, s.target, p.x, extra, outs);
   }
-  std::string folds;
+  std::string folds, marks, notes;
   for (size_t i = 0; i < s.folds.size(); ++i) folds += fmt::format("{}{}", i ? ", " : "", s.folds[i]);
+  for (size_t i = 0; i < s.marks.size(); ++i)
+    marks += fmt::format("{}{{\"at\": {}, \"label\": \"{}\"}}", i ? ", " : "", s.marks[i].first, diag::jsonEscape(s.marks[i].second));
+  for (size_t i = 0; i < s.notes.size(); ++i) notes += fmt::format("{}\"{}\"", i ? ", " : "", diag::jsonEscape(s.notes[i]));
   return fmt::format("{{\"sweep\": \"{}\", \"unit\": \"SI\"{}, \"points\": [{}]}}", s.target,
-                     s.scene ? fmt::format(", \"continuation\": \"{}\", \"folds\": [{}]", s.continuation, folds) : "", points);
+                     s.scene ? fmt::format(", \"continuation\": \"{}\", \"stability_of\": \"{}\", \"folds\": [{}], \"marks\": [{}], \"notes\": [{}]",
+                                           s.continuation, diag::jsonEscape(s.stabilityScene), folds, marks, notes)
+                             : "",
+                     points);
 }
 
 std::string json(const WorkPrecisionStudy& s, bool timings) {

@@ -109,9 +109,18 @@ std::string renderSvg(const SvgChart& c) {
   }
   bool labelled = false;
   for (const auto& s : c.series) labelled = labelled || !s.label.empty();
+  // The legend box as wide as its longest label (about 7 px a character at 12 px).
+  size_t longest = 0, rows = 0;
+  for (const auto& s : c.series)
+    if (!s.label.empty()) {
+      longest = std::max(longest, s.label.size());
+      ++rows;
+    }
+  double legendWidth = std::max(176.0, 7.0 * static_cast<double>(longest) + 12.0);
   if (labelled)
-    o += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"176\" height=\"{}\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#ccc\"/>\n", W - R - 178,
-                     T + 2, 6 + 14 * static_cast<double>(c.series.size()));
+    o += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#ccc\"/>\n",
+                     W - R - 2 - legendWidth, T + 2, legendWidth, 6 + 14 * static_cast<double>(rows));
+  size_t legendRow = 0;
   for (size_t k = 0; k < c.series.size(); ++k) {
     const auto& s = c.series[k];
     const char* col = kColours[(s.colour >= 0 ? static_cast<size_t>(s.colour) : k) % 10];
@@ -128,8 +137,11 @@ std::string renderSvg(const SvgChart& c) {
     if (s.line)
       o += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{} points=\"{}\"/>\n", col, s.dashed ? "1.6" : "1.2",
                        s.dashed ? " stroke-dasharray=\"5,4\"" : "", pts);
-    if (!s.label.empty())
-      o += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", W - R - 170, T + 16 + 14 * static_cast<double>(k), col, esc(s.label));
+    if (!s.label.empty()) {
+      o += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", W - R + 6 - legendWidth, T + 16 + 14 * static_cast<double>(legendRow),
+                       col, esc(s.label));
+      ++legendRow;
+    }
   }
   o += "</svg>\n";
   return o;

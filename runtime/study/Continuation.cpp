@@ -94,12 +94,12 @@ private:
 
 } // namespace
 
-void continuation(const Model& m, const Assignment& a, const ir::Study& st, const ir::Scene& scene, SweepStudy& out) {
+bool continuation(const Model& m, const Assignment& a, const ir::Study& st, const ir::Scene& scene, SweepStudy& out) {
   if (scene.stage < 0 || m.info(scene.stage).kind->scene != SceneModel::SingleMesh) {
     out.failure = fmt::format("study `{}`: `continuation = arclength` follows the periodic response of a scene on a spur or helical "
                               "stage; scene `{}` is not one (use a plain sweep)",
                               st.name, scene.name);
-    return;
+    return true;
   }
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
   double dLambda = step / (hi - lo);
@@ -109,6 +109,7 @@ void continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
   double rtol = 1e-6;
   try {
     auto at0 = sh.build(0.0);
+    if (at0.model->linear()) return false;
     rtol = at0.ms.accuracy.rtol;
     // The first point: the periodic orbit at the sweep's start, by plain shooting.
     dyn::PeriodicOptions po;
@@ -167,7 +168,8 @@ void continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
       dyn::SceneResult res = dyn::runScene(m, a, scene, ov);
       if (!res.failure.empty()) throw dyn::SceneFailure{res.failure};
       sh.stats += res.stats;
-      SweepStudy::Point p{x, {}};
+      SweepStudy::Point p;
+      p.x = x;
       if (out.points.empty()) resonanceMarks(out, st, x, res.meshFrequency, res.naturalFrequency);
       p.stability = res.stability;
       p.branch = branch;
@@ -228,13 +230,17 @@ void continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
       ++points;
       if (iterations <= 2) ds = std::min(dsMax, 1.5 * ds);
     }
-    if (points >= maxPoints) out.notes.push_back(fmt::format("stopped after {} points before the end of the range", points));
+    if (points >= maxPoints)
+      throw dyn::SceneFailure{fmt::format("the continuation stopped after {} points at {} = {:.6g} before the end of the range (a "
+                                          "Floquet multiplier near 1 there: the response grows without bound)",
+                                          points, st.target, sh.x(z(n)))};
     out.notes.push_back(fmt::format("pseudo-arclength continuation of the shooting equations: {} points, {} turning point{}, {} RHS "
                                     "evaluations",
                                     out.points.size(), out.folds.size(), out.folds.size() == 1 ? "" : "s", sh.stats.rhsEvaluations));
   } catch (const dyn::SceneFailure& f) {
     out.failure = fmt::format("study `{}`: scene `{}`: {}", st.name, scene.name, f.what);
   }
+  return true;
 }
 
 } // namespace gbx::rt

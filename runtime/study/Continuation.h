@@ -9,6 +9,8 @@
 
 namespace gbx::rt {
 
-void continuation(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene, SweepStudy& out);
+// Returns false, doing nothing, for a linear scene: its response has no turning points (only
+// poles where a Floquet multiplier passes 1), so the sweep follows it point by point.
+bool continuation(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene, SweepStudy& out);
 
 } // namespace gbx::rt

@@ -26,10 +26,12 @@ struct SweepStudy {
     double stability = NAN;
     int branch = 0;
     double error = NAN;                 // the scene's error estimate at this point
+    std::vector<bool> unstable;         // per output: it reads a scene whose orbit is unstable here
   };
   std::vector<Point> points;
   bool plot = false;                    // `plot;`: one chart per output
   bool scene = false;                   // the outputs include a scene's
+  std::string stabilityScene;           // whose stability the points carry (the first scene read)
   std::string continuation;             // "", "natural" or "arclength"
   std::vector<double> folds;            // turning points of the continuation, in SI of X
   // Where an order of the mesh frequency meets the mesh's natural frequency (f_mesh = f_n / k),

@@ -21,6 +21,23 @@ units::DisplayUnit unitFor(const ir::Expr& e) {
   return units::displayUnitFor(e.type.dim);
 }
 
+// The scene with one effect parameter set to x (a sweep of `scene.effect.parameter`).
+ir::Scene withEffectParam(const ir::Scene& scene, const ir::Study::EffectParam& p, double x) {
+  ir::Scene s = scene.clone();
+  ir::Effect& fx = s.effects[static_cast<size_t>(p.effect)];
+  for (auto& set : fx.params)
+    if (set.key == p.key) {
+      set.value = units::Number::approx(x);
+      set.expr.reset();
+      return s;
+    }
+  ir::Setting set;
+  set.key = p.key;
+  set.value = units::Number::approx(x);
+  fx.params.push_back(std::move(set));
+  return s;
+}
+
 void scenesOf(const ir::Expr& e, std::set<int>& out) {
   if (e.op == ir::Op::SceneOutput && e.output.scene >= 0) out.insert(e.output.scene);
   for (const auto& x : e.args)
@@ -47,34 +64,51 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
   long n = static_cast<long>(std::floor((hi - lo) / step * (1 + 1e-12))) + 1;
   std::set<int> scenes;
-  for (const auto& o : st.outputs) scenesOf(*o, scenes);
+  std::vector<std::set<int>> outputScenes(st.outputs.size());
+  for (size_t i = 0; i < st.outputs.size(); ++i) {
+    scenesOf(*st.outputs[i], outputScenes[i]);
+    scenes.insert(outputScenes[i].begin(), outputScenes[i].end());
+  }
   r.scene = !scenes.empty();
   const ir::Setting* cont = ir::findSetting(st.settings, Q::Continuation);
   bool arclength = cont && cont->choice == cat::continuation::Arclength;
   if (r.scene) r.continuation = arclength ? "arclength" : "natural";
+  const auto& fxp = st.sweptEffect;
+  if (arclength && fxp.scene >= 0) {
+    r.failure = fmt::format("study `{}`: `continuation = arclength` follows the operating point or a stage attribute; sweep `{}` "
+                            "point by point (leave out `continuation`)",
+                            st.name, st.target);
+    return r;
+  }
+  if (fxp.scene >= 0 && !scenes.count(fxp.scene)) scenes.insert(fxp.scene);
+  if (!scenes.empty()) r.stabilityScene = m.gearbox.scenes[static_cast<size_t>(*scenes.begin())].name;
   if (arclength) {
     if (scenes.size() != 1) {
       r.failure = fmt::format("study `{}`: `continuation = arclength` follows one scene's periodic response; its outputs read {} scenes",
                               st.name, scenes.size());
       return r;
     }
-    continuation(m, a, st, m.gearbox.scenes[static_cast<size_t>(*scenes.begin())], r);
-    return r;
+    if (continuation(m, a, st, m.gearbox.scenes[static_cast<size_t>(*scenes.begin())], r)) return r;
+    r.continuation = "natural";
+    r.notes.push_back("the scene is linear: its response has no turning points, only poles where a Floquet multiplier passes 1, so it "
+                      "is followed point by point");
   }
   // Natural continuation: point by point, each periodic orbit the next point's first guess.
   std::map<int, std::vector<double>> guesses;
   for (long k = 0; k < n; ++k) {
     double x = lo + static_cast<double>(k) * step;
     Evaluator ev(m);
-    ev.setOverride(st.swept, Value::number(x));
-    SweepStudy::Point p{x, {}};
+    if (fxp.scene < 0) ev.setOverride(st.swept, Value::number(x));
+    SweepStudy::Point p;
+    p.x = x;
     std::map<int, dyn::SceneResult> results;
     for (int s : scenes) {
       dyn::SceneOverrides ov;
       ov.evaluator = &ev;
       ov.keepSeries = false;
       if (guesses.count(s)) ov.guess = guesses[s];
-      dyn::SceneResult res = dyn::runScene(m, a, m.gearbox.scenes[static_cast<size_t>(s)], ov);
+      const ir::Scene& declared = m.gearbox.scenes[static_cast<size_t>(s)];
+      dyn::SceneResult res = s == fxp.scene ? dyn::runScene(m, a, withEffectParam(declared, fxp, x), ov) : dyn::runScene(m, a, declared, ov);
       if (!res.failure.empty()) {
         r.failure = fmt::format("study `{}` at {} = {:.6g} {}: {}", st.name, st.target, x / r.unit.scale, r.unit.name, res.failure);
         return r;
@@ -96,6 +130,9 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
     for (size_t i = 0; i < st.outputs.size(); ++i) {
       Value v = ev.eval(*st.outputs[i], a);
       p.y.push_back(v.isNumber() ? v.mid() : NAN);
+      bool unstable = false;
+      for (int s : outputScenes[i]) unstable = unstable || results.at(s).unstable;
+      p.unstable.push_back(unstable);
     }
     r.points.push_back(std::move(p));
   }
