@@ -251,6 +251,9 @@ private:
         return out;
       }
       out.value = x->value;
+      // The alternative dimension is kept (a fluctuation's frequency in Hz is 2 pi rad/s
+      // a hertz; the runtime converts by the setting's own dimension).
+      if (spec.altDim && x->type.dim == *spec.altDim) out.dim = x->type.dim;
     }
     out.expr = std::move(x);
     return out;

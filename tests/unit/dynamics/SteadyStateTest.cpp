@@ -275,3 +275,16 @@ TEST(SteadyState, BacklashSofteningJumpsAgreeWithBruteForceTransients) {
     }
   }
 }
+
+TEST(SteadyState, FluctuationFrequencyInHertzIsTwoPiRadiansPerSecond) {
+  auto spec = [](const std::string& frequency) {
+    return "gearbox G {\n  stage s1: spur { pinion.z = 25; wheel.z = 50; normal_module = 3 mm; face_width = 30 mm; }\n"
+           "  operating { input_speed = 3000 rpm; input_torque = 200 N*m; }\n"
+           "  scene vib on s1 { effects { torque_fluctuation { mean = 200 N*m; amplitude = 20 N*m; frequency = " +
+           frequency + "; } } settle = 10 mesh_periods; record = 1 mesh_period; output rms(acceleration); }\n}\n";
+  };
+  auto hz = compile("hz.gbx", spec("6.25 Hz"), "G"), deg = compile("deg.gbx", spec("2250 deg/s"), "G");
+  MeshScene a = meshScene(*hz.model, *hz.design, hz.scene("vib")), b = meshScene(*deg.model, *deg.design, deg.scene("vib"));
+  EXPECT_NEAR(a.effects.torqueOmega, 2 * M_PI * 6.25, 1e-12);
+  EXPECT_NEAR(b.effects.torqueOmega, 2 * M_PI * 6.25, 1e-12);
+}
