@@ -290,6 +290,26 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     r.stats += integ.stats();
     if (!ok) failure = integ.error();
     samples.staticLoad = p.staticLoad;
+    // `settle = N` integrates exactly N periods; whether the transient has died out there is
+    // measured: one more excitation period from the settled state must come back to it.
+    if (ok && tp.steady == SteadyMethod::Settle && r.orbit.size() == model.system().dim) {
+      double T = model.excitationPeriod();
+      if (T > 0) {
+        Integrator check(model.system(), acc);
+        std::vector<double> y1 = r.orbit;
+        double t0 = 0;
+        if (check.advance(t0, y1, T, {}, [](double, const double*) {})) {
+          std::vector<double> d(y1.size());
+          for (size_t i = 0; i < d.size(); ++i) d[i] = y1[i] - r.orbit[i];
+          double settleResidual = scaledNorm(d, model.system().scale);
+          r.stats += check.stats();
+          if (settleResidual > std::max(1e-6, 1e3 * acc.rtol))
+            r.warnings.push_back(fmt::format("the transient has not died out after the settled periods: one more period moves the state "
+                                             "by {:.2e} of its scale; settle longer, or write `steady_state = periodic`",
+                                             settleResidual));
+        }
+      }
+    }
     break;
   }
   case SceneModel::Planetary: {

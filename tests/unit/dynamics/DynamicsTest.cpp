@@ -555,5 +555,8 @@ TEST(Scenes, LinearMeshWarnsWhenTheForceChangesSign) {
   EXPECT_NE(linear.warnings[0].find("backlash"), std::string::npos);
   auto contact = run("backlash { clearance = 0.1 mm; }");
   ASSERT_TRUE(contact.failure.empty()) << contact.failure;
-  EXPECT_TRUE(contact.warnings.empty());
+  // The contact law handles the separation; what may remain is that this rattling mesh has
+  // not settled to a periodic response in 50 periods, which is measured and said.
+  for (const auto& w : contact.warnings) EXPECT_EQ(w.find("separate"), std::string::npos) << w;
+  for (const auto& w : contact.warnings) EXPECT_NE(w.find("not died out"), std::string::npos) << w;
 }
