@@ -399,7 +399,18 @@ ir::ExprPtr ExprChecker::member(const ast::Expr& e, const Scope& s) {
     // A single result of the scene: `vibration.dynamic_factor`, `vibration.stability`.
     if (const auto* sig = findSignal(m); sig && sig->scalar && sig->id != Signal::Modes) {
       const ast::Stmt* scene = s.gearbox->findScene(obj->name);
-      bool declared = sig->id == Signal::Stability;  // every periodic scene has one
+      // Every periodic scene has a stability; a settled or from-rest one has none.
+      bool transient = false;
+      for (const auto& st : scene->body)
+        if (st.kind == ast::StmtKind::Assign && (st.path.str() == "settle" || st.path.str() == "duration")) transient = true;
+      if (sig->id == Signal::Stability && transient) {
+        diags_.error("E0232", e.span,
+                     fmt::format("scene `{}` settles a transient or runs from rest, so it has no `stability` (the largest Floquet "
+                                 "multiplier of the periodic steady state); write `steady_state = periodic` in it",
+                                 obj->name));
+        return error(e.span);
+      }
+      bool declared = sig->id == Signal::Stability;
       for (const auto& st : scene->body)
         if (st.kind == ast::StmtKind::Output)
           for (const auto& o : st.exprs)

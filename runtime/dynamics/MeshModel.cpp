@@ -180,11 +180,12 @@ double MeshModel::excitationPeriod() const {
     for (int q = 1; q <= 1000; ++q) {
       double n = per * q;
       if (std::fabs(n - std::round(n)) <= 1e-9 * std::max(1.0, n)) {
+        bool whole = true;
         for (double P : periods) {
           double r = q * T / P;
-          if (std::fabs(r - std::round(r)) > 1e-9 * std::max(1.0, r)) return 0;
+          whole = whole && std::fabs(r - std::round(r)) <= 1e-9 * std::max(1.0, r);
         }
-        return q * T;
+        if (whole) return q * T;
       }
     }
     return 0;

@@ -114,6 +114,11 @@ bool Integrator::advance(double& t, std::vector<double>& y, double t1, const std
                          const std::function<void(double, const double*)>& onSample) {
   double cpu0 = threadCpuSeconds();
   auto& I = *impl_;
+  if (I.implicit && !I.sys->jacobian) {
+    error_ = fmt::format("method {} needs the model's Jacobian, which this model does not give; use an explicit method (rk8pd)",
+                         cat::methodSpec(acc_.method).name);
+    return false;
+  }
   const System& sys = *I.sys;
   double span = std::max(t1 - t, 1e-300);
   if (I.h <= 0) I.h = acc_.maxStep > 0 ? std::min(acc_.maxStep, span / 100) : span / 100;

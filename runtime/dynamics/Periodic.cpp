@@ -42,6 +42,22 @@ System variational(const System& sys) {
         dP[i * n + j] = s;
       }
   };
+  // For the implicit method: the block Jacobian [[J, 0], [., I (x) J]], leaving out the
+  // second derivatives of f (it only steers the method's own Newton iteration).
+  if (sys.jacobian)
+    v.jacobian = [&sys, n](double t, const double* y, double* dfdy, double* dfdt) {
+      size_t N = n + n * n;
+      for (size_t i = 0; i < N * N; ++i) dfdy[i] = 0;
+      for (size_t i = 0; i < N; ++i) dfdt[i] = 0;
+      std::vector<double> J(n * n);
+      sys.jacobian(t, y, J.data(), dfdt);
+      for (size_t i = 0; i < n; ++i)
+        for (size_t k = 0; k < n; ++k) dfdy[i * N + k] = J[i * n + k];
+      // d(Phi'_ij)/d(Phi_kj) = J_ik
+      for (size_t j = 0; j < n; ++j)
+        for (size_t i = 0; i < n; ++i)
+          for (size_t k = 0; k < n; ++k) dfdy[(n + i * n + j) * N + (n + k * n + j)] = J[i * n + k];
+    };
   v.events = sys.events;  // they read y's first n components only
   std::vector<double> sc = stateScale(sys);
   v.scale = sc;
@@ -189,7 +205,8 @@ PeriodicOrbit periodicOrbit(const System& sys, const Accuracy& acc, const Period
   PeriodicOrbit o;
   for (int attempt = 0; attempt < 5; ++attempt) {
     o = newton(sys, acc, opt, start, stats);
-    if (o.converged) break;
+    // Settling helps a guess outside the basin, not an orbit that is not isolated.
+    if (o.converged || attempt == 4 || o.failure.find("not isolated") != std::string::npos) break;
     long periods = 25L << attempt;
     std::string failure;
     bool ok = true;

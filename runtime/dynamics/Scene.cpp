@@ -29,6 +29,8 @@ const SceneNumber* SceneResult::find(const ir::SceneOutputRef& ref) const {
   if (!ref.bare) return find(ref.fn, ref.signal);
   for (const auto& n : numbers)
     if (n.signal == ref.signal) return &n;
+  // Every periodic scene has a stability, listed or not.
+  if (ref.signal == cat::Signal::Stability && steady == SteadyMethod::Periodic && std::isfinite(stability)) return &stabilityNumber;
   return nullptr;
 }
 
@@ -258,6 +260,15 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       y = orbit.y0;
       r.orbit = orbit.y0;
       r.period = T;
+      // Outputs over a whole orbit: a window shorter than its period (a fluctuation holding
+      // several mesh periods) is widened to it.
+      if (tp.samples.size() * tp.dt < T * (1 - 1e-9)) {
+        long n = std::lround(T / tp.dt);
+        tp.samples.clear();
+        for (long i = 0; i < n; ++i) tp.samples.push_back(static_cast<double>(i) * tp.dt);
+        tp.end = tp.samples.back();
+        r.model.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", std::lround(T / Tz)));
+      }
       r.stability = orbit.stability;
       r.unstable = orbit.stability >= 1.0;
       r.multipliers = orbit.multipliers;
@@ -297,8 +308,8 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       if (T > 0) {
         Integrator check(model.system(), acc);
         std::vector<double> y1 = r.orbit;
-        double t0 = 0;
-        if (check.advance(t0, y1, T, {}, [](double, const double*) {})) {
+        double t0 = tp.statsFrom;  // the settled state's own time: the excitation's phase there
+        if (check.advance(t0, y1, tp.statsFrom + T, {}, [](double, const double*) {})) {
           std::vector<double> d(y1.size());
           for (size_t i = 0; i < d.size(); ++i) d[i] = y1[i] - r.orbit[i];
           double settleResidual = scaledNorm(d, model.system().scale);
@@ -351,6 +362,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     r.failure = fmt::format("scene `{}`: {}", scene.name, failure);
     return r;
   }
+  r.stabilityNumber = {"stability", r.stability, {}, cat::SignalFn::Max, Signal::Stability};
   if (r.unstable && !ov.keepUnstable)
     r.warnings.push_back(fmt::format("scene `{}` has no steady response: its periodic solution is unstable (largest Floquet multiplier "
                                      "{:.6f} > 1; a parametric resonance or a jump); the response grows by that factor every {:.6g} ms, "

@@ -70,6 +70,7 @@ struct SceneResult {
   const SceneNumber* find(cat::SignalFn fn, cat::Signal signal) const;
   const SceneNumber* find(const std::string& key) const;  // by the report's key, for tests
   const SceneNumber* find(const ir::SceneOutputRef& ref) const;
+  SceneNumber stabilityNumber;  // `scene.stability` read where the scene does not list it
 };
 
 // The single-mesh model of a scene on a spur or helical stage, as runScene builds it.

@@ -77,7 +77,12 @@ void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<st
     // shares its end point with the next so the curve stays whole.
     bool labelledStable = false, labelledUnstable = false;
     for (size_t k = 0; k < s.points.size();) {
-      auto unstable = [&](size_t j) { return std::isfinite(s.points[j].stability) && s.points[j].stability >= 1.0; };
+      // This output's own scene decides (a sweep may read several).
+      auto unstable = [&](size_t j) {
+        const auto& p = s.points[j];
+        if (i < p.unstable.size()) return static_cast<bool>(p.unstable[i]);
+        return std::isfinite(p.stability) && p.stability >= 1.0;
+      };
       bool u = unstable(k);
       SvgSeries part;
       part.colour = 0;

@@ -82,6 +82,12 @@ std::string json(const SweepStudy& s) {
     if (s.scene)
       extra += fmt::format(", \"stability\": {}", std::isfinite(p.stability) ? fmt::format("{}", p.stability) : "null");
     if (s.continuation == "arclength") extra += fmt::format(", \"branch\": {}", p.branch);
+    if (s.scene) {
+      std::string flags;
+      for (size_t i = 0; i < s.outputs.size(); ++i)
+        flags += fmt::format("{}{}", i ? ", " : "", i < p.unstable.size() && p.unstable[i] ? "true" : "false");
+      extra += ", \"unstable\": [" + flags + "]";
+    }
     // The swept quantity under its own name too (LANGUAGE.md §12).
     points += fmt::format("{}{{\"x\": {}, \"{}\": {}{}, \"outputs\": {{{}}}}}", k ? ", " : "", p.x, s.target, p.x, extra, outs);
   }

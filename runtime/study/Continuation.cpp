@@ -180,6 +180,7 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
       for (const auto& o2 : st.outputs) {
         Value v = ev.eval(*o2, a);
         p.y.push_back(v.isNumber() ? v.mid() : NAN);
+        p.unstable.push_back(res.unstable);
       }
       out.points.push_back(std::move(p));
     };
@@ -215,10 +216,15 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
         out.folds.push_back(sh.x(zz(n)));
         ++branch;
       }
-      if (zz(n) > 1.0 + 1e-12 || zz(n) < -1e-12) {
+      if (zz(n) < -1e-12)
+        throw dyn::SceneFailure{fmt::format("the response turned back at {} turning point{} and left the range at its start; the rest of "
+                                            "the range (above {} = {:.6g}) was not reached: start the sweep where the response is unique",
+                                            out.folds.size(), out.folds.size() == 1 ? "" : "s", st.target,
+                                            out.folds.empty() ? sh.x(z(n)) : out.folds.back())};
+      if (zz(n) > 1.0 + 1e-12) {
         // Leaving the range: the last point at its end, from the state interpolated there
         // (the scene's own Newton solves it exactly).
-        double end = zz(n) > 1.0 ? 1.0 : 0.0, w = (end - z(n)) / (zz(n) - z(n));
+        double end = 1.0, w = (end - z(n)) / (zz(n) - z(n));
         VectorXd last = z + w * (zz - z);
         last(n) = end;
         record(last);

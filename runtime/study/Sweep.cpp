@@ -22,17 +22,19 @@ units::DisplayUnit unitFor(const ir::Expr& e) {
 }
 
 // The scene with one effect parameter set to x (a sweep of `scene.effect.parameter`).
-ir::Scene withEffectParam(const ir::Scene& scene, const ir::Study::EffectParam& p, double x) {
+ir::Scene withEffectParam(const ir::Scene& scene, const ir::Study::EffectParam& p, double x, units::Dim dim) {
   ir::Scene s = scene.clone();
   ir::Effect& fx = s.effects[static_cast<size_t>(p.effect)];
   for (auto& set : fx.params)
     if (set.key == p.key) {
       set.value = units::Number::approx(x);
+      set.dim = dim;  // the sweep's own unit (a frequency swept in rad/s is not in Hz)
       set.expr.reset();
       return s;
     }
   ir::Setting set;
   set.key = p.key;
+  set.dim = dim;
   set.value = units::Number::approx(x);
   fx.params.push_back(std::move(set));
   return s;
@@ -108,7 +110,7 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
       ov.keepSeries = false;
       if (guesses.count(s)) ov.guess = guesses[s];
       const ir::Scene& declared = m.gearbox.scenes[static_cast<size_t>(s)];
-      dyn::SceneResult res = s == fxp.scene ? dyn::runScene(m, a, withEffectParam(declared, fxp, x), ov) : dyn::runScene(m, a, declared, ov);
+      dyn::SceneResult res = s == fxp.scene ? dyn::runScene(m, a, withEffectParam(declared, fxp, x, st.dim.value_or(units::Dim{})), ov) : dyn::runScene(m, a, declared, ov);
       if (!res.failure.empty()) {
         r.failure = fmt::format("study `{}` at {} = {:.6g} {}: {}", st.name, st.target, x / r.unit.scale, r.unit.name, res.failure);
         return r;

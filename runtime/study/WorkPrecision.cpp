@@ -46,7 +46,8 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
   };
   std::vector<Steady> steadies;
   if (!fromRest) steadies.push_back({"periodic", true});
-  if (!settleSetting || settleSetting->meshPeriods) steadies.push_back({fmt::format("settle {}", settle), false});
+  if (fromRest) steadies.push_back({"from rest", false});
+  else if (!settleSetting || settleSetting->meshPeriods) steadies.push_back({fmt::format("settle {}", settle), false});
   auto steadyOv = [&](dyn::SceneOverrides ov, const Steady& s) {
     if (s.periodic) ov.forcePeriodic = true;
     else if (!fromRest) ov.settlePeriods = settle;
@@ -79,14 +80,23 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
       tick(static_cast<double>(steadies.size() * methods.size() * rtols.size()));
       continue;
     }
-    double refValue = ref.numbers[0].value;
+    // The first steady output (not the stability, a property of the method).
+    size_t o = 0;
+    while (o < ref.numbers.size() && (ref.numbers[o].signal == cat::Signal::Stability || !std::isfinite(ref.numbers[o].value))) ++o;
+    if (o == ref.numbers.size() || o >= check.numbers.size()) {
+      rf.failure = "the scene has no steady output to compare (unstable, or only its stability)";
+      r.references.push_back(rf);
+      tick(static_cast<double>(steadies.size() * methods.size() * rtols.size()));
+      continue;
+    }
+    double refValue = ref.numbers[o].value;
     rf.ok = true;
-    rf.output = ref.numbers[0].key;
+    rf.output = ref.numbers[o].key;
     rf.rtol = tightest / 100;
     rf.steady = steadies.front().name;
     rf.value = refValue;
     rf.checkRtol = tightest / 1000;
-    rf.difference = std::fabs(refValue - check.numbers[0].value) / std::max(std::fabs(check.numbers[0].value), 1e-300);
+    rf.difference = std::fabs(refValue - check.numbers[o].value) / std::max(std::fabs(check.numbers[o].value), 1e-300);
     r.references.push_back(rf);
     for (const Steady& steady : steadies)
     for (cat::Method method : methods) {
@@ -99,9 +109,9 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
         tick(1);
         WorkPrecisionStudy::Run w;
         w.rtol = rtol;
-        if (run.failure.empty() && !run.numbers.empty()) {
+        if (run.failure.empty() && o < run.numbers.size() && std::isfinite(run.numbers[o].value)) {
           w.ok = true;
-          w.error = std::fabs(run.numbers[0].value - refValue) / std::max(std::fabs(refValue), 1e-300);
+          w.error = std::fabs(run.numbers[o].value - refValue) / std::max(std::fabs(refValue), 1e-300);
           w.steps = run.stats.steps;
           w.rhsEvaluations = run.stats.rhsEvaluations;
           w.cpuSeconds = run.stats.cpuSeconds;
