@@ -535,6 +535,14 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   int q = std::isfinite(Tm) ? wholeMeshPeriods(Tm, periods) : 0;
   if (q == 0) return notPeriodic("no whole number of mesh periods, up to 1000, holds whole periods of the fluctuations");
   double period = q * Tm;
+  // Outputs over a whole orbit: a record window shorter than its period is widened to it.
+  if (static_cast<double>(run.plan.samples.size()) * run.plan.dt < period * (1 - 1e-9)) {
+    long n = std::lround(period / run.plan.dt);
+    run.plan.samples.clear();
+    for (long i = 0; i < n; ++i) run.plan.samples.push_back(static_cast<double>(i) * run.plan.dt);
+    run.plan.end = run.plan.samples.back();
+    prov.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", q));
+  }
   // Drift over a period: the carrier turns q ring-tooth pitches; the sun-planet deflection
   // rbs (theta_s - theta_c) + rbp phi repeats, so phi advances -rbs (d theta_s - d theta_c) / rbp.
   double carrierAdvance = q * 2.0 * M_PI / zr, sunAdvance = ratio * carrierAdvance;
