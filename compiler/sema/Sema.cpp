@@ -1388,9 +1388,9 @@ private:
         out.lo = bound(std::move(lo), "start");
         out.hi = bound(std::move(hi), "end");
         out.step = bound(std::move(step), "step");
-        if (out.lo && out.hi && out.lo->compare(*out.hi) >= 0)
-          diags_.error("E0401", b.span, fmt::format("empty sweep: the start {} is not below the end {}", units::showQuantity(*out.lo, *out.dim),
-                                                  units::showQuantity(*out.hi, *out.dim)));
+        // A sweep may run downwards (a down-sweep follows the upper branch of a jump).
+        if (out.lo && out.hi && out.lo->compare(*out.hi) == 0)
+          diags_.error("E0401", b.span, fmt::format("empty sweep: it starts and ends at {}", units::showQuantity(*out.lo, *out.dim)));
         if (out.step && out.step->sign() <= 0) diags_.error("E0407", b.step->span, "the sweep's step must be positive");
         break;
       }

@@ -102,7 +102,7 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
     return true;
   }
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
-  double dLambda = step / (hi - lo);
+  double dLambda = step / std::fabs(hi - lo);
   Shooting sh(m, a, st, scene);
   // The scene's own tolerance sets the corrector's; lambda's difference step balances the
   // integration error against truncation.

@@ -51,7 +51,7 @@ void scenesOf(const ir::Expr& e, std::set<int>& out) {
 void resonanceMarks(SweepStudy& r, const ir::Study& st, double x, double fm, double fn) {
   if (st.swept.key != Q::InputSpeed || !(fm > 0) || !(fn > 0)) return;
   const std::pair<double, const char*> orders[] = {{2.0, "f_mesh = 2 f_n (parametric)"}, {1.0, "f_mesh = f_n"}, {0.5, "2 f_mesh = f_n"}};
-  double lo = st.lo->toDouble(), hi = st.hi->toDouble();
+  double lo = std::min(st.lo->toDouble(), st.hi->toDouble()), hi = std::max(st.lo->toDouble(), st.hi->toDouble());
   for (const auto& [k, label] : orders)
     if (double at = x * k * fn / fm; at >= lo && at <= hi) r.marks.emplace_back(at, label);
 }
@@ -64,7 +64,8 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   r.unit = units::displayUnitFor(st.dim.value_or(units::Dim{}));
   for (size_t i = 0; i < st.outputs.size(); ++i) r.outputs.push_back({st.outputTexts[i], unitFor(*st.outputs[i])});
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
-  long n = static_cast<long>(std::floor((hi - lo) / step * (1 + 1e-12))) + 1;
+  long n = static_cast<long>(std::floor(std::fabs(hi - lo) / step * (1 + 1e-12))) + 1;
+  if (hi < lo) step = -step;  // a down-sweep
   std::set<int> scenes;
   std::vector<std::set<int>> outputScenes(st.outputs.size());
   for (size_t i = 0; i < st.outputs.size(); ++i) {

@@ -313,3 +313,28 @@ TEST(SteadyState, RecordWindowCoversAWholeOrbit) {
   for (const auto& line : a.model) said = said || line.find("record window widened") != std::string::npos;
   EXPECT_TRUE(said);
 }
+
+TEST(SteadyState, NaturalUpAndDownSweepsRideDifferentBranches) {
+  // Inside the hysteresis region an up-sweep rides the lower branch and a down-sweep the
+  // upper one: the same speeds, two responses.
+  std::string text = readSpec("spur_resonance.gbx");
+  auto sweepOf = [&](const std::string& range) {
+    std::string t = replaced(text, "sweep input_speed in 9000..18000 rpm step 250 rpm;", "sweep input_speed in " + range + ";");
+    t = replaced(t, "continuation = arclength;", "");
+    auto f = compile("updown.gbx", t, "SpurResonance");
+    rt::SweepStudy s = rt::sweep(*f.model, *f.design, f.study("resonance"));
+    EXPECT_TRUE(s.failure.empty()) << s.failure;
+    return s;
+  };
+  rt::SweepStudy up = sweepOf("11000..12500 rpm step 500 rpm"), down = sweepOf("14000..12000 rpm step 500 rpm");
+  ASSERT_EQ(up.points.size(), 4u);
+  ASSERT_EQ(down.points.size(), 5u);
+  EXPECT_GT(down.points[0].x, down.points[4].x) << "the points follow the sweep's direction";
+  // 12000 and 12500 rpm: up-sweep points 2 and 3, down-sweep points 4 and 3.
+  for (auto [u, d] : {std::pair<size_t, size_t>{2, 4}, {3, 3}}) {
+    EXPECT_NEAR(up.points[u].x, down.points[d].x, 1e-9);
+    EXPECT_GT(down.points[d].y[1], 2.0 * up.points[u].y[1]) << up.points[u].x * 30 / M_PI << " rpm";
+    EXPECT_LT(up.points[u].stability, 1.0);
+    EXPECT_LT(down.points[d].stability, 1.0);
+  }
+}
