@@ -27,6 +27,8 @@ std::string esc(const std::string& s) {
 std::string tick(double v) {
   if (v == 0) return "0";
   double a = std::fabs(v);
+  // Whole numbers below a million as they are (speeds in rpm, forces in N).
+  if (a < 1e6 && a >= 1 && v == std::round(v)) return fmt::format("{:.0f}", v);
   if (a >= 1e4 || a < 1e-3) return fmt::format("{:.1e}", v);
   return fmt::format("{:.4g}", v);
 }
@@ -34,7 +36,7 @@ std::string tick(double v) {
 } // namespace
 
 std::string renderSvg(const SvgChart& c) {
-  const double W = 720, H = 400, L = 80, R = 20, T = 40, B = 60;
+  const double W = 720, H = 400, L = 80, R = 30, T = 40, B = 60;
   auto tx = [&](double v) { return c.logX ? std::log10(v) : v; };
   auto ty = [&](double v) { return c.logY ? std::log10(v) : v; };
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
@@ -101,11 +103,13 @@ std::string renderSvg(const SvgChart& c) {
   o += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", (L + W - R) / 2, H - 18, esc(c.xLabel));
   o += fmt::format("<text x=\"16\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 16 {})\">{}</text>\n", (T + H - B) / 2,
                    (T + H - B) / 2, esc(c.yLabel));
+  size_t markRow = 0;  // labels on alternate rows, so neighbouring marks do not overprint
   for (const auto& [v, label] : c.xMarks) {
     if (c.logX || v < x0 || v > x1) continue;
     double X = L + (v - x0) / (x1 - x0) * (W - L - R);
     o += fmt::format("<line x1=\"{:.1f}\" y1=\"{}\" x2=\"{:.1f}\" y2=\"{}\" stroke=\"#999\" stroke-dasharray=\"2,3\"/>\n", X, T, X, H - B);
-    o += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\" fill=\"#666\">{}</text>\n", X, T + 12, esc(label));
+    o += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\" fill=\"#666\">{}</text>\n", X,
+                     T + 12 + 14 * static_cast<double>(markRow++ % 2), esc(label));
   }
   bool labelled = false;
   for (const auto& s : c.series) labelled = labelled || !s.label.empty();
