@@ -204,6 +204,7 @@ struct Compiled {
   std::function<void(double, const double*, double*)> rhs;
   std::function<void(double, const double*, double*)> dfdy;
   std::function<double(const Mesh&, double, const double*)> force;
+  std::function<double(const Mesh&, double, const double*, double&)> deflection;  // events and signals
 };
 
 Compiled compile(const Params& p, bool varying, bool damped, int contactKind, bool te, bool torqueFl, int phase) {
@@ -220,6 +221,9 @@ Compiled compile(const Params& p, bool varying, bool damped, int contactKind, bo
               c.rhs = [pp](double t, const double* y, double* dy) { K::rhs(*pp, t, y, dy); };
               c.dfdy = [pp](double t, const double* y, double* J) { K::dfdy(*pp, t, y, J); };
               c.force = [pp](const Mesh& me, double t, const double* y) { return K::meshForce(*pp, me, t, y); };
+              c.deflection = [pp](const Mesh& me, double t, const double* y, double& rate) {
+                return K::deflection(*pp, me, K::sunAngle(*pp, t, y), K::sunSpeed(*pp, t), y, rate);
+              };
             });
           });
         });
@@ -405,17 +409,7 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
                   : drive.fluctuates || drive.ramp > 0 ? drivephase::ClosedForm
                                                        : drivephase::Constant;
   Compiled model = compile(P, varying != nullptr, damping != nullptr, contactKind, te != nullptr, torqueFx != nullptr, phaseKind);
-  auto sunAngle = [&](double t, const double* y) { return drive.needsState() ? y[2 * nq] : drive.angle(t); };
-  // Deflection and rate for events and signals (the right-hand side has its own, compiled).
-  auto deflection = [&](const Mesh& me, double t, const double* y, double& rate) {
-    double tc = y[0], phi = y[1 + static_cast<size_t>(me.planet)], wc = y[nq], wphi = y[nq + 1 + static_cast<size_t>(me.planet)];
-    if (me.ring) {
-      rate = -rbp * wphi - rbr * wc;
-      return -rbp * phi - rbr * tc;
-    }
-    rate = rbs * (drive.speed(t) - wc) + rbp * wphi;
-    return rbs * (sunAngle(t, y) - tc) + rbp * phi;
-  };
+  const auto& deflection = model.deflection;
   // The transmission error of a mesh at the carrier angle y[0].
   auto error = [&](const Mesh& me, const double* y) {
     double tau = zr * y[0] / (2.0 * M_PI) + me.phase0;
@@ -480,7 +474,7 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   double d0 = hertz ? std::pow(F0 / Ksp, 1.0 / e) : F0 / Ksp + halfClearance;
   std::vector<double> y(dim, 0.0);
   y[0] = -2.0 * d0 / (rbs + rbr);
-  for (int i = 0; i < N; ++i) y[1 + static_cast<size_t>(i)] = (d0 - rbs * (sunAngle(0, y.data()) - y[0])) / rbp;
+  for (int i = 0; i < N; ++i) y[1 + static_cast<size_t>(i)] = (d0 - rbs * (drive.angle(0.0) - y[0])) / rbp;
   double ws0 = drive.speed(0);
   y[nq] = ws0 / ratio;
   for (int i = 0; i < N; ++i) y[nq + 1 + static_cast<size_t>(i)] = -rbs * (ws0 - y[nq]) / rbp;
@@ -536,13 +530,7 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
   if (q == 0) return notPeriodic("no whole number of mesh periods, up to 1000, holds whole periods of the fluctuations");
   double period = q * Tm;
   // Outputs over a whole orbit: a record window shorter than its period is widened to it.
-  if (static_cast<double>(run.plan.samples.size()) * run.plan.dt < period * (1 - 1e-9)) {
-    long n = std::lround(period / run.plan.dt);
-    run.plan.samples.clear();
-    for (long i = 0; i < n; ++i) run.plan.samples.push_back(static_cast<double>(i) * run.plan.dt);
-    run.plan.end = run.plan.samples.back();
-    prov.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", q));
-  }
+  if (widenToPeriod(run.plan, period)) prov.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", q));
   // Drift over a period: the carrier turns q ring-tooth pitches; the sun-planet deflection
   // rbs (theta_s - theta_c) + rbp phi repeats, so phi advances -rbs (d theta_s - d theta_c) / rbp.
   double carrierAdvance = q * 2.0 * M_PI / zr, sunAdvance = ratio * carrierAdvance;
@@ -561,7 +549,6 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
     return run;
   }
   run.stability = orbit.stability;
-  run.multipliers = orbit.multipliers;
   prov.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), Newton {} iteration{} (monodromy by {}), "
                              "residual {:.2e} of the state scale, largest Floquet multiplier {:.6f}",
                              period * 1e3, q, q == 1 ? "" : "s", orbit.iterations, orbit.iterations == 1 ? "" : "s",

@@ -2,7 +2,6 @@
 // An NGW planetary stage as a lumped torsional model (sun driven, ring fixed, carrier
 // out): the carrier and each planet's spin are degrees of freedom; every sun-planet and
 // ring-planet mesh is a contact along its line of action (DOMAIN.md §2).
-#include <complex>
 #include <map>
 #include <string>
 #include <vector>
@@ -26,7 +25,6 @@ struct PlanetaryRun {
   // With `periodic`: the periodic steady state found directly (dynamics/Periodic.h).
   bool periodic = false;
   double stability = 0;                             // largest Floquet multiplier modulus
-  std::vector<std::complex<double>> multipliers;    // largest modulus first
   int newtonIterations = 0;
   double newtonResidual = 0;                        // scaled, at the converged orbit
   std::vector<double> orbit;                        // the orbit's initial state (a sweep's next guess)

@@ -262,16 +262,10 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       r.period = T;
       // Outputs over a whole orbit: a window shorter than its period (a fluctuation holding
       // several mesh periods) is widened to it.
-      if (tp.samples.size() * tp.dt < T * (1 - 1e-9)) {
-        long n = std::lround(T / tp.dt);
-        tp.samples.clear();
-        for (long i = 0; i < n; ++i) tp.samples.push_back(static_cast<double>(i) * tp.dt);
-        tp.end = tp.samples.back();
+      if (widenToPeriod(tp, T))
         r.model.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", std::lround(T / Tz)));
-      }
       r.stability = orbit.stability;
       r.unstable = orbit.stability >= 1.0;
-      r.multipliers = orbit.multipliers;
       r.newtonIterations = orbit.iterations;
       r.newtonResidual = orbit.residual;
       r.model.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), {} by {}, {} Newton iteration{}, residual "
@@ -328,7 +322,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
     double speed = num(ev.derived(st, Q::InputSpeed, a), "an input speed (`operating`)");
     Elastic mat = materialOf(m, st);
-    bool periodic = ov.forcePeriodic || timePlan(scene, 1.0, ov.settlePeriods).steady == SteadyMethod::Periodic;
+    bool periodic = ov.forcePeriodic || steadyMethod(scene, ov.settlePeriods) == SteadyMethod::Periodic;
     PlanetaryRun pr = runPlanetary(ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
                                    mat.assumed, periodic);
     r.model = pr.provenance;
@@ -339,7 +333,6 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       r.steady = SteadyMethod::Periodic;
       r.stability = pr.stability;
       r.unstable = pr.failure.empty() && pr.stability >= 1.0;
-      r.multipliers = pr.multipliers;
       r.newtonIterations = pr.newtonIterations;
       r.newtonResidual = pr.newtonResidual;
       r.period = pr.period;
@@ -397,7 +390,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       // A caller that forces a settled run (a study's settled curve) gets no multiplier.
       if (r.steady != SteadyMethod::Periodic && !ov.settlePeriods)
         throw Failure{"`stability` is a property of the periodic steady state: write `steady_state = periodic`, or leave out `settle`"};
-      r.numbers.push_back({"stability", r.stability, {}, cat::SignalFn::Max, Signal::Stability});
+      r.numbers.push_back(r.stabilityNumber);
       continue;
     }
     // An unstable periodic response has no steady value to report (LANGUAGE.md §12).
@@ -468,9 +461,33 @@ double settingValue(const ir::Setting& s, const std::vector<double>& locals) {
   return ev(*s.expr);
 }
 
-TimePlan periodicPlan(const ir::Scene& scene, double Tz) {
+namespace {
+int samplesPerPeriod(const ir::Scene& scene) {
   const ir::Setting* ns = ir::findSetting(scene.settings, Q::Samples);
-  int perPeriod = ns && ns->value ? static_cast<int>(ns->value->toDouble()) : 160;
+  return ns && ns->value ? static_cast<int>(ns->value->toDouble()) : 160;
+}
+} // namespace
+
+SteadyMethod steadyMethod(const ir::Scene& scene, std::optional<long> settlePeriods) {
+  // The periodic steady state when the scene asks for it, and by default when it neither
+  // settles nor runs from rest (LANGUAGE.md §12).
+  bool written = ir::findSetting(scene.settings, Q::SteadyState) != nullptr;
+  bool settle = settlePeriods || ir::findSetting(scene.settings, Q::Settle);
+  if (!settlePeriods && (written || (!settle && !ir::findSetting(scene.settings, Q::Duration)))) return SteadyMethod::Periodic;
+  return ir::findSetting(scene.settings, Q::Record) ? SteadyMethod::Settle : SteadyMethod::FromRest;
+}
+
+bool widenToPeriod(TimePlan& plan, double period) {
+  if (static_cast<double>(plan.samples.size()) * plan.dt >= period * (1 - 1e-9)) return false;
+  long n = std::lround(period / plan.dt);
+  plan.samples.clear();
+  for (long i = 0; i < n; ++i) plan.samples.push_back(static_cast<double>(i) * plan.dt);
+  plan.end = plan.samples.back();
+  return true;
+}
+
+TimePlan periodicPlan(const ir::Scene& scene, double Tz) {
+  int perPeriod = samplesPerPeriod(scene);
   const ir::Setting* rec = ir::findSetting(scene.settings, Q::Record);
   double window = rec && rec->value ? rec->value->toDouble() * (rec->meshPeriods ? Tz : 1.0) : Tz;
   TimePlan p;
@@ -491,12 +508,8 @@ TimePlan timePlan(const ir::Scene& scene, double Tz, std::optional<long> settleP
     if (!s || !s->value) return std::nullopt;
     return s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
   };
-  // The periodic steady state when the scene asks for it, and by default when it neither
-  // settles nor runs from rest (LANGUAGE.md §12).
-  bool written = ir::findSetting(scene.settings, Q::SteadyState) != nullptr;
-  if (!settlePeriods && (written || (!get(Q::Settle) && !get(Q::Duration)))) return periodicPlan(scene, Tz);
-  const ir::Setting* ns = ir::findSetting(scene.settings, Q::Samples);
-  int perPeriod = ns && ns->value ? static_cast<int>(ns->value->toDouble()) : 160;
+  if (steadyMethod(scene, settlePeriods) == SteadyMethod::Periodic) return periodicPlan(scene, Tz);
+  int perPeriod = samplesPerPeriod(scene);
   TimePlan p;
   p.dt = Tz / perPeriod;
   double settle = get(Q::Settle).value_or(0), ramp = get(Q::Ramp).value_or(0);

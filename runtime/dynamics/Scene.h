@@ -2,7 +2,6 @@
 // Runs a `scene` of a solved design: builds the model from the stage and the listed
 // effects, integrates it to the scene's accuracy, and returns its outputs with their
 // cost and an error estimate.
-#include <complex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,7 +53,6 @@ struct SceneResult {
   double period = 0;      // of the excitation, s
   double stability = NAN; // largest Floquet multiplier modulus (periodic only)
   bool unstable = false;  // stability >= 1: no steady outputs
-  std::vector<std::complex<double>> multipliers;
   int newtonIterations = 0;
   double newtonResidual = 0;
   std::vector<double> orbit;  // the orbit's initial state, for a neighbouring sweep point

@@ -70,6 +70,10 @@ double needNumber(const Value& v, const std::string& what);
 TimePlan timePlan(const ir::Scene& scene, double meshPeriod, std::optional<long> settlePeriods = std::nullopt);
 // The plan of a periodic steady state: the record window from t = 0 on the orbit.
 TimePlan periodicPlan(const ir::Scene& scene, double meshPeriod);
+// How the scene reaches its steady state (what timePlan decides, without building a plan).
+SteadyMethod steadyMethod(const ir::Scene& scene, std::optional<long> settlePeriods = std::nullopt);
+// Widens a periodic plan's record window to a whole orbit of the given period; true when it did.
+bool widenToPeriod(TimePlan& plan, double period);
 Drive sceneDrive(const ir::Scene& scene, double nominal, double upstream, double meshPeriod);
 // A setting's SI value; `locals` are the values of the effect's own words (`stiffness`).
 double settingValue(const ir::Setting& s, const std::vector<double>& locals = {});
