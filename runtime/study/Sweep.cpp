@@ -85,12 +85,8 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   }
   if (fxp.scene >= 0 && !scenes.count(fxp.scene)) scenes.insert(fxp.scene);
   if (!scenes.empty()) r.stabilityScene = m.gearbox.scenes[static_cast<size_t>(*scenes.begin())].name;
+  // The checker made sure an arclength study's outputs read exactly one scene (E0225).
   if (arclength) {
-    if (scenes.size() != 1) {
-      r.failure = fmt::format("study `{}`: `continuation = arclength` follows one scene's periodic response; its outputs read {} scenes",
-                              st.name, scenes.size());
-      return r;
-    }
     if (continuation(m, a, st, m.gearbox.scenes[static_cast<size_t>(*scenes.begin())], r)) return r;
     r.continuation = "natural";
     r.notes.push_back("the scene is linear: its response has no turning points, only poles where a Floquet multiplier passes 1, so it "
@@ -139,6 +135,13 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
     }
     r.points.push_back(std::move(p));
   }
+  // Every point's scene estimated its error; the report gives the largest.
+  const SweepStudy::Point* worst = nullptr;
+  for (const auto& p : r.points)
+    if (std::isfinite(p.error) && (!worst || p.error > worst->error)) worst = &p;
+  if (worst)
+    r.notes.push_back(fmt::format("error estimate of scene `{}` at every point, at most {:.2e} (at {} = {:.6g}{})", r.stabilityScene,
+                                  worst->error, st.target, worst->x / r.unit.scale, r.unit.name.empty() ? "" : " " + r.unit.name));
   return r;
 }
 
