@@ -17,6 +17,7 @@ enum class Effect : std::uint8_t {
   HertzContact,
   SpeedFluctuation,
   TorqueFluctuation,
+  LoadedMesh,
 };
 
 struct EffectSpec {
@@ -63,6 +64,12 @@ inline const std::vector<EffectSpec>& effects() {
         {Effect::TorqueFluctuation, "torque_fluctuation", "load torque mean + amplitude sin(frequency t)",
          {required(in("mean", torque, "mean load torque")), required(in("amplitude", torque, "amplitude")),
           freq("angular frequency of the fluctuation")},
+         {}},
+        {Effect::LoadedMesh, "loaded_mesh",
+         "loaded static transmission error and mesh stiffness from the flank geometry (thin slices), force k(t) (x - e(t))",
+         {withDefault(count("slices", "slices across the face width"), num(40)),
+          withDefault(count("positions", "mesh positions per mesh period"), num(64)),
+          count("harmonics", "Fourier harmonics of the tables the dynamics reads (default positions / 4)")},
          {}},
     };
   }();

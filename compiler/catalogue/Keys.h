@@ -109,6 +109,11 @@ namespace gbx::cat {
   X(BranchTorque, "branch_torque")                                                                     \
   X(PreloadDisplacement, "preload_displacement")                                                \
   X(TipDiameter, "tip_diameter")                                                                \
+  X(TipRelief, "tip_relief")                                                                    \
+  X(TipReliefHeight, "tip_relief_height")                                                       \
+  X(LeadCrowning, "lead_crowning")                                                              \
+  X(Slices, "slices")                                                                           \
+  X(Positions, "positions")                                                                     \
   X(ProfileFormDeviation, "profile_form_deviation")                                             \
   X(HelixSlopeDeviation, "helix_slope_deviation")                                               \
   X(BoreDiameter, "bore_diameter")                                                              \

@@ -1112,6 +1112,18 @@ private:
                          fmt::format("{}: `stability` is the largest Floquet multiplier of the periodic steady state, which a scene with "
                                      "`{}` does not compute; write `steady_state = periodic` instead of `{}`",
                                      owner, transient, transient));
+    if (const ir::Effect* lm = out.findEffect(Effect::LoadedMesh)) {
+      for (const char* other : {"varying_stiffness", "transmission_error", "hertz_contact"})
+        if (out.hasEffect(other))
+          diags_.error("E0214", lm->span,
+                       fmt::format("{}: `loaded_mesh` computes the mesh stiffness and the transmission error from the flank geometry, so "
+                                   "it replaces `{}`: list one of the two",
+                                   owner, other));
+      if (stage && stage->kind && stage->kind->kind != ir::StageKind::Spur && stage->kind->kind != ir::StageKind::Helical)
+        diags_.error("E0232", lm->span, fmt::format("{}: `loaded_mesh` models a spur or helical pair; `{}` is {}", owner, target, stage->kind->name));
+      else if (!stage)
+        diags_.error("E0232", lm->span, fmt::format("{}: `loaded_mesh` models one spur or helical pair: run the scene on that stage", owner));
+    }
     if (out.hasEffect("transmission_error") && !out.hasEffect("varying_stiffness"))
       diags_.warning("W0501", nameOr(st),
                      fmt::format("{}: `transmission_error` acts through F = dk(t)·e(t) and does nothing without `varying_stiffness`", owner));
@@ -1539,6 +1551,13 @@ private:
     } else if (const StageModel* st = m.findStage(parts[0]); st && st->kind) {
       std::string rest = p.str().substr(parts[0].size() + 1);
       if (const auto* a = findAttr(*st->kind, rest); a && a->role != AttrRole::Derived && a->value == ValueKind::Number) return a->dim;
+      // A tooth modification of a spur or helical stage (`hs.tip_relief`, `hs.pinion.lead_crowning`):
+      // the sweep's value replaces what the stage's `modify` rules give.
+      std::string what = parts.back();
+      bool gearOk = parts.size() == 2 || (parts.size() == 3 && (parts[1] == "pinion" || parts[1] == "wheel"));
+      if (gearOk && (what == "tip_relief" || what == "tip_relief_height" || what == "lead_crowning") &&
+          (st->kind->kind == ir::StageKind::Spur || st->kind->kind == ir::StageKind::Helical))
+        return units::dims::length;
     } else if (m.findSplit(parts[0])) {
       std::string rest = p.str().substr(parts[0].size() + 1);
       for (const auto& s : splitSettings())

@@ -1,5 +1,6 @@
 #include "units/Unit.h"
 
+#include <cmath>
 #include <map>
 
 namespace gbx::units {
@@ -113,6 +114,11 @@ DisplayUnit displayUnitFor(const Dim& d) {
   for (const auto& [dim, u] : prefs)
     if (dim == d) return u;
   return {d.siUnit(), 1.0};
+}
+
+DisplayUnit displayUnitFor(const Dim& d, double magnitude) {
+  if (d == dims::length && std::isfinite(magnitude) && std::fabs(magnitude) < 1e-4) return {"um", 1e-6};
+  return displayUnitFor(d);
 }
 
 std::string showQuantity(const Number& v, const Dim& d) {

@@ -32,6 +32,8 @@ struct DisplayUnit {
   double scale;
 };
 DisplayUnit displayUnitFor(const Dim& d);
+// The unit for values of this magnitude (SI): a length below 0.1 mm reads in um.
+DisplayUnit displayUnitFor(const Dim& d, double magnitude);
 // A value in its display unit, for messages: "3000 kW", "-3 mm", "0.29".
 std::string showQuantity(const Number& v, const Dim& d);
 

@@ -64,6 +64,16 @@ const std::vector<EffectRow>& kRowsTable() {
        fx.torqueOmega = angularFrequency(*effectParam(&e, Q::Frequency));
      },
      false, true},
+    // The tables need the flank geometry: the scene computes them once the effects are read.
+    {Effect::LoadedMesh,
+     [](const ir::Effect& e, const SceneOverrides& ov, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
+       fx.loadedMesh = true;
+       fx.slices = static_cast<int>(param(e, Q::Slices, 40)) * ov.loadedRefine;
+       fx.positions = static_cast<int>(param(e, Q::Positions, 64)) * ov.loadedRefine;
+       int h = effectParam(&e, Q::Harmonics) ? static_cast<int>(param(e, Q::Harmonics, 16)) : static_cast<int>(param(e, Q::Positions, 64)) / 4;
+       fx.loadedHarmonics = ov.harmonics ? *ov.harmonics : h;
+     },
+     false, false},
   };
   return rows;
 }

@@ -15,7 +15,8 @@ namespace contact {
 inline constexpr int Linear = 0, Backlash = 1, Hertz = 2;
 }
 namespace te {
-inline constexpr int None = 0, Force = 1, Displacement = 2;  // F = dk e, or e inside the contact law
+// F = dk e; e inside the contact law; the loaded mesh's separation u inside the contact law
+inline constexpr int None = 0, Force = 1, Displacement = 2, Loaded = 3;
 }
 namespace drivephase {
 inline constexpr int Constant = 0, ClosedForm = 1, State = 2;
@@ -42,6 +43,7 @@ struct MeshKernel {
     if constexpr (T::varying) rel = relativeStiffness(m.fourier_, ph);
     double x = y[0];
     if constexpr (T::te == te::Displacement) x -= m.teDisplacement(ph);
+    else if constexpr (T::te == te::Loaded) x -= m.e_.loadedSeparation(ph);
     double f = 0, k = 0, kv = 0;
     if constexpr (T::contact == contact::Linear) {
       k = m.p_.meanStiffness * rel;
@@ -107,23 +109,30 @@ struct MeshKernel {
 
 MeshModel::MeshModel(const MeshParameters& p, const MeshEffects& e) : p_(p), e_(e) {
   if (e.varyingStiffness) fourier_ = contactLineSeries(p.epsAlpha, p.epsBeta, e.harmonics);
+  // The loaded mesh's stiffness relative to its mean, the same series form as the contact lines'.
+  if (e.loadedMesh)
+    for (size_t k = 0; k < e.loadedStiffness.f.a.size(); ++k) {
+      fourier_.a.push_back(e.loadedStiffness.f.a[k] / e.loadedStiffness.mean);
+      fourier_.b.push_back(e.loadedStiffness.f.b[k] / e.loadedStiffness.mean);
+    }
   if (e.damping) c_ = e.dampingCoefficient >= 0 ? e.dampingCoefficient : 2.0 * e.dampingRatio * std::sqrt(p.meanStiffness * p.mass);
   b_ = 0.5 * e.clearance;
   int contactKind = e.backlash ? contact::Backlash : e.hertz ? contact::Hertz : contact::Linear;
   // Transmission error: for a mesh always in contact the paper's force F = dk(t) e(t); with
   // contact loss (backlash, Hertz) a displacement inside the contact law, so that the
   // force stays continuous where contact begins and ends.
-  int teKind = !e.transmissionError                          ? te::None
+  int teKind = e.loadedMesh                                  ? te::Loaded
+               : !e.transmissionError                        ? te::None
                : contactKind != contact::Linear              ? te::Displacement
                : e.varyingStiffness                          ? te::Force
                                                              : te::None;
   int phaseKind = p.drive.needsState()                 ? drivephase::State
                   : p.drive.fluctuates || p.drive.ramp > 0 ? drivephase::ClosedForm
                                                            : drivephase::Constant;
-  withBool(e.varyingStiffness, [&](auto V) {
+  withBool(e.varyingStiffness || e.loadedMesh, [&](auto V) {
     withBool(e.damping, [&](auto D) {
       withInt3(contactKind, [&](auto C) {
-        withInt3(teKind, [&](auto TE) {
+        withInt4(teKind, [&](auto TE) {
           withBool(e.torqueFluctuation, [&](auto Q) {
             withInt3(phaseKind, [&](auto P) {
               using K = MeshKernel<Terms<decltype(V)::value, decltype(D)::value, decltype(C)::value, decltype(TE)::value,
@@ -215,13 +224,15 @@ double MeshModel::teDisplacement(double tau) const {
 }
 
 double MeshModel::teDisplacementAt(double t, const double* y) const {
+  if (e_.loadedMesh) return e_.loadedSeparation(phase(t, y));
   return e_.transmissionError ? teDisplacement(phase(t, y)) : 0.0;
 }
 
 std::vector<double> MeshModel::initialState() const {
   // At rest on the mean mesh under the static load.
-  double x0 = e_.hertz ? std::pow(p_.staticLoad / p_.hertzStiffness, 1.0 / e_.hertzExponent)
-                       : p_.staticLoad / p_.meanStiffness + (e_.backlash ? b_ : 0.0);
+  double x0 = e_.hertz        ? std::pow(p_.staticLoad / p_.hertzStiffness, 1.0 / e_.hertzExponent)
+              : e_.loadedMesh ? e_.loadedTe(0.0) + (e_.backlash ? b_ : 0.0)
+                              : p_.staticLoad / p_.meanStiffness + (e_.backlash ? b_ : 0.0);
   std::vector<double> y = {x0, 0.0};
   if (p_.drive.needsState()) y.push_back(0.0);
   return y;
@@ -232,7 +243,7 @@ MeshSignals MeshModel::signals(double t, const double* y) const {
   double d[3];
   sys_.rhs(t, y, d);
   double tau = phase(t, y);
-  double rel = e_.varyingStiffness ? relativeStiffness(fourier_, tau) : 1.0;
+  double rel = e_.varyingStiffness || e_.loadedMesh ? relativeStiffness(fourier_, tau) : 1.0;
   // The load side of the balance m a = load - contact - c v.
   double load = e_.torqueFluctuation
                     ? (e_.torqueMean + e_.torqueAmplitude * std::sin(e_.torqueOmega * t)) / (p_.outputRadius * p_.downstream)
@@ -245,7 +256,9 @@ MeshSignals MeshModel::signals(double t, const double* y) const {
   s.meshForce = meshForce;
   s.contactForce = meshForce - c_ * y[1];
   s.stiffness = p_.meanStiffness * rel;
-  s.transmissionError = e_.transmissionError ? teDisplacement(tau) : 0.0;
+  // With the loaded mesh the transmission error is the dynamic one, the displacement itself.
+  s.transmissionError = e_.loadedMesh ? y[0] : e_.transmissionError ? teDisplacement(tau) : 0.0;
+  s.staticTransmissionError = e_.loadedMesh ? e_.loadedTe(tau) : 0.0;
   s.inputSpeed = p_.drive.speed(t);
   s.outputSpeed = (s.inputSpeed / p_.ratio + y[1] / p_.outputRadius) / p_.downstream;
   return s;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dynamics/Drive.h"
+#include "dynamics/LoadedMesh.h"
 #include "dynamics/Ode.h"
 #include "dynamics/Stiffness.h"
 
@@ -42,12 +43,18 @@ struct MeshEffects {
   double hertzExponent = 1.5, penetrationRamp = 0, hertzDamping = 0;
   bool torqueFluctuation = false;
   double torqueMean = 0, torqueAmplitude = 0, torqueOmega = 0;
+  // loaded_mesh: the thin-slice tables of one mesh period, as Fourier series (built by the
+  // scene from the flank geometry): stiffness k, loaded static transmission error e_s and
+  // the effective separation u = e_s - F0/k, so that the mesh force is k (x - u).
+  bool loadedMesh = false;
+  int slices = 40, positions = 64, loadedHarmonics = 16;
+  PeriodicSeries loadedStiffness, loadedTe, loadedSeparation;
 };
 
 // Quantities of one instant, for outputs.
 struct MeshSignals {
-  double displacement, velocity, acceleration, meshForce, contactForce, stiffness, transmissionError, inputSpeed,
-      outputSpeed;
+  double displacement, velocity, acceleration, meshForce, contactForce, stiffness, transmissionError, staticTransmissionError,
+      inputSpeed, outputSpeed;
 };
 
 class MeshModel {

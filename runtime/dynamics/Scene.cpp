@@ -9,6 +9,8 @@
 #include "catalogue/StageKinds.h"
 #include "dynamics/Effects.h"
 #include "dynamics/MeshModel.h"
+#include "dynamics/LoadedMesh.h"
+#include "dynamics/LoadedMeshInputs.h"
 #include "dynamics/Lumped.h"
 #include "dynamics/Statistics.h"
 #include "model/StageKind.h"
@@ -105,6 +107,29 @@ Accuracy sceneAccuracy(const ir::Scene& scene, const SceneOverrides& ov) {
   return acc;
 }
 
+// The loaded mesh's tables over one mesh period (dynamics/LoadedMesh.h) as the series the
+// right-hand side reads; the mean mesh stiffness becomes the tables' mean.
+void loadMesh(const Evaluator& ev, const Assignment& a, int st, MeshParameters& p, MeshEffects& fx, std::vector<std::string>& prov) {
+  if (fx.hertz) throw Failure{"`loaded_mesh` gives the mesh its stiffness and `hertz_contact` describes it again: list one"};
+  LoadedMeshInput in = loadedMeshInput(ev, a, st, p.staticLoad, fx.slices, fx.positions, prov);
+  LoadedMeshTable tab = loadedMesh(in);
+  if (!tab.failure.empty()) throw Failure{"the loaded mesh: " + tab.failure};
+  std::vector<double> u(tab.te.size());
+  for (size_t i = 0; i < u.size(); ++i) u[i] = tab.te[i] - p.staticLoad / tab.stiffness[i];
+  int H = fx.loadedHarmonics;
+  fx.loadedStiffness = periodicSeries(tab.stiffness, H);
+  fx.loadedTe = periodicSeries(tab.te, H);
+  fx.loadedSeparation = periodicSeries(u, H);
+  double b = in.g.faceWidth;
+  prov.push_back(fmt::format("loaded mesh: static transmission error {:.4g} um mean, {:.4g} um peak to peak; mesh stiffness {:.4g} "
+                             "N/(mm*um) per face width mean ({:.4g} with every pair in contact), {:.4g} to {:.4g}, its mean in place of "
+                             "the mean mesh stiffness above; {} harmonics of the tables; eps_alpha {:.4f}, eps_beta {:.4f}",
+                             tab.meanTe * 1e6, tab.peakToPeakTe * 1e6, tab.meanStiffness / b * 1e-9, tab.lightLoadStiffness / b * 1e-9,
+                             *std::min_element(tab.stiffness.begin(), tab.stiffness.end()) / b * 1e-9,
+                             *std::max_element(tab.stiffness.begin(), tab.stiffness.end()) / b * 1e-9, H, tab.epsAlpha, tab.epsBeta));
+  p.meanStiffness = tab.meanStiffness;
+}
+
 MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov, Accuracy acc,
                       std::vector<std::string>& prov) {
   Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
@@ -161,14 +186,15 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
   MeshEffects fx;
   for (const auto& e : scene.effects)
     if (const EffectRow* row = effectRow(e.kind); row && row->mesh) row->mesh(e, ov, p, fx, prov);
+  if (fx.loadedMesh) loadMesh(ev, a, st, p, fx, prov);
   MeshModel model(p, fx);
   if (fx.damping) prov.push_back(fmt::format("damping coefficient {:.6g} N*s/m", model.dampingCoefficient()));
   prov.push_back(fmt::format("mesh frequency {:.4f} Hz, natural frequency {:.4f} Hz", 1.0 / Tz, 1.0 / model.naturalPeriod()));
   // Steps: at most a quarter period of the highest stiffness harmonic; with contact
   // (backlash, Hertz) also a twentieth of the natural period, the scale of a contact.
-  int harmonics = fx.varyingStiffness ? std::max(1, fx.harmonics) : 1;
+  int harmonics = fx.varyingStiffness ? std::max(1, fx.harmonics) : fx.loadedMesh ? std::max(1, fx.loadedHarmonics) : 1;
   acc.maxStep = Tz / (4.0 * harmonics);
-  std::string rule = fx.varyingStiffness ? fmt::format("Tz/(4 x {} harmonics)", harmonics) : "Tz/4";
+  std::string rule = fx.varyingStiffness || fx.loadedMesh ? fmt::format("Tz/(4 x {} harmonics)", harmonics) : "Tz/4";
   if ((fx.backlash || fx.hertz) && model.naturalPeriod() / 20.0 < acc.maxStep) {
     acc.maxStep = model.naturalPeriod() / 20.0;
     rule = "Tn/20 (natural period, a contact's time scale)";
@@ -190,7 +216,7 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
   out.meshFrequency = 1.0 / Tz;
   out.provenance = prov;
   out.stepRule = fmt::format("max step {} = {:.4g} ms", rule, acc.maxStep * 1e3);
-  out.harmonics = fx.varyingStiffness ? fx.harmonics : 0;
+  out.harmonics = fx.varyingStiffness ? fx.harmonics : fx.loadedMesh ? fx.loadedHarmonics : 0;
   return out;
 }
 
@@ -289,6 +315,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       record(Signal::ContactForce, s.contactForce);
       record(Signal::Stiffness, s.stiffness);
       record(Signal::TransmissionError, s.transmissionError);
+      record(Signal::StaticTransmissionError, s.staticTransmissionError);
       record(Signal::InputSpeed, s.inputSpeed);
       record(Signal::OutputSpeed, s.outputSpeed);
     });
@@ -592,6 +619,18 @@ static void estimateError(const Model& m, const Assignment& a, const ir::Scene& 
     if (h2.failure.empty()) {
       r.referenceStats += h2.stats;
       r.errorParts.push_back({"stiffness series", outputDifference(r, h2), fmt::format("{} against {} harmonics", r.harmonics, 2 * r.harmonics)});
+    }
+  }
+  // The loaded mesh's discretisation: twice the slices and positions.
+  if (scene.findEffect(cat::Effect::LoadedMesh)) {
+    SceneOverrides fine = tight;
+    fine.rtol = ov.rtol;
+    fine.maxStepFactor = ov.maxStepFactor;
+    fine.loadedRefine = 2 * ov.loadedRefine;
+    SceneResult f2 = runOnce(m, a, scene, fine);
+    if (f2.failure.empty()) {
+      r.referenceStats += f2.stats;
+      r.errorParts.push_back({"loaded mesh", outputDifference(r, f2), "against twice the slices and positions"});
     }
   }
   if (r.steady == SteadyMethod::Periodic)

@@ -39,6 +39,7 @@ struct SceneOverrides {
   bool forcePeriodic = false;  // the periodic steady state whatever the scene says (a study's periodic curve)
   std::optional<double> maxStepFactor;  // times the scene's maximum step (an error-estimate rerun)
   bool keepUnstable = false;  // values on an unstable orbit too (a continuation's middle branch)
+  int loadedRefine = 1;       // the loaded mesh's slices and positions times this (an error-estimate rerun)
 };
 
 // How a scene reaches its steady state (LANGUAGE.md §12).

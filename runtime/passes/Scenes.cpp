@@ -36,11 +36,13 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
   s.model = r.model;
   s.warnings = r.warnings;
   for (const auto& n : r.numbers) {
-    auto u = units::displayUnitFor(n.dim);
+    auto u = units::displayUnitFor(n.dim, n.value);
     s.outputs.push_back({n.key, u.name, n.value, n.value / u.scale});
   }
   for (const auto& ser : r.series) {
-    auto u = units::displayUnitFor(ser.dim);
+    double largest = 0;
+    for (double v : ser.isSpectrum ? std::vector<double>{} : ser.v) largest = std::max(largest, std::fabs(v));
+    auto u = ser.isSpectrum ? units::displayUnitFor(ser.dim) : units::displayUnitFor(ser.dim, largest);
     if (ser.isSpectrum) {
       SceneReport::SpectrumRow row{ser.key, u.name, u.scale, {}};
       for (const auto& p : ser.spectrum.peaks) row.peaks.push_back({p.frequency, p.amplitude, p.harmonic});

@@ -40,6 +40,17 @@ ir::Scene withEffectParam(const ir::Scene& scene, const ir::Study::EffectParam& 
   return s;
 }
 
+// A length output whose every value lies below 0.1 mm reads in um (a transmission error).
+void smallLengths(SweepStudy& r, const ir::Study& st) {
+  for (size_t i = 0; i < r.outputs.size() && i < st.outputs.size(); ++i) {
+    if (st.outputs[i]->op == ir::Op::Quantity && st.outputs[i]->ref.key == Q::Imbalance) continue;
+    double largest = 0;
+    for (const auto& p : r.points)
+      if (i < p.y.size() && std::isfinite(p.y[i])) largest = std::max(largest, std::fabs(p.y[i]));
+    if (!r.points.empty()) r.outputs[i].unit = units::displayUnitFor(st.outputs[i]->type.dim, largest);
+  }
+}
+
 void scenesOf(const ir::Expr& e, std::set<int>& out) {
   if (e.op == ir::Op::SceneOutput && e.output.scene >= 0) out.insert(e.output.scene);
   for (const auto& x : e.args)
@@ -61,9 +72,9 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   r.name = st.name;
   r.target = st.target;
   r.plot = st.plot;
-  r.unit = units::displayUnitFor(st.dim.value_or(units::Dim{}));
-  for (size_t i = 0; i < st.outputs.size(); ++i) r.outputs.push_back({st.outputTexts[i], unitFor(*st.outputs[i])});
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
+  r.unit = units::displayUnitFor(st.dim.value_or(units::Dim{}), std::max(std::fabs(lo), std::fabs(hi)));
+  for (size_t i = 0; i < st.outputs.size(); ++i) r.outputs.push_back({st.outputTexts[i], unitFor(*st.outputs[i])});
   long n = static_cast<long>(std::floor(std::fabs(hi - lo) / step * (1 + 1e-12))) + 1;
   if (hi < lo) step = -step;  // a down-sweep
   std::set<int> scenes;
@@ -87,7 +98,10 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   if (!scenes.empty()) r.stabilityScene = m.gearbox.scenes[static_cast<size_t>(*scenes.begin())].name;
   // The checker made sure an arclength study's outputs read exactly one scene (E0225).
   if (arclength) {
-    if (continuation(m, a, st, m.gearbox.scenes[static_cast<size_t>(*scenes.begin())], r)) return r;
+    if (continuation(m, a, st, m.gearbox.scenes[static_cast<size_t>(*scenes.begin())], r)) {
+      smallLengths(r, st);
+      return r;
+    }
     r.continuation = "natural";
     r.notes.push_back("the scene is linear: its response has no turning points, only poles where a Floquet multiplier passes 1, so it "
                       "is followed point by point");
@@ -135,6 +149,7 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
     }
     r.points.push_back(std::move(p));
   }
+  smallLengths(r, st);
   // Every point's scene estimated its error; the report gives the largest.
   const SweepStudy::Point* worst = nullptr;
   for (const auto& p : r.points)

@@ -1,0 +1,189 @@
+#include "dynamics/LoadedMeshInputs.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "catalogue/Settings.h"
+#include "catalogue/StageKinds.h"
+#include "dynamics/SceneSupport.h"
+#include "model/Standards.h"
+
+namespace gbx::rt::dyn {
+
+namespace {
+
+using cat::gear::Pinion;
+using cat::gear::Wheel;
+
+std::string um(double v) { return fmt::format("{:.4g} um", v * 1e6); }
+
+// The stage's modifications as its `modify` rules give them, a sweep's value first.
+struct Mods {
+  double tipRelief[2] = {0, 0}, height[2] = {-1, -1}, crowning[2] = {0, 0};
+  bool heightGiven[2] = {false, false};
+  std::vector<std::string> ignored;
+};
+
+Mods modifications(const Evaluator& ev, const Assignment& a, int st, std::vector<std::string>& prov) {
+  Mods m;
+  const Model& model = ev.model();
+  for (const auto& md : model.gearbox.modifies) {
+    if (md.stageIndex != st) continue;
+    for (const auto& r : md.rules) {
+      if (!r.value) continue;
+      if (r.when) {
+        Value w = ev.eval(*r.when, a);
+        if (w.kind != Value::Bool || w.truth != Truth::True) continue;
+      }
+      Value v = ev.eval(*r.value, a);
+      if (!v.isNumber()) throw SceneFailure{fmt::format("the loaded mesh needs the modification `{}`, which cannot be computed for this design", r.target)};
+      auto each = [&](double* slot) {
+        for (int g = 0; g < 2; ++g)
+          if (r.gear < 0 || r.gear == g) slot[g] = v.mid();
+      };
+      switch (static_cast<cat::Mod>(r.modTarget)) {
+      case cat::Mod::TipRelief: each(m.tipRelief); break;
+      case cat::Mod::TipReliefHeight:
+        each(m.height);
+        for (int g = 0; g < 2; ++g)
+          if (r.gear < 0 || r.gear == g) m.heightGiven[g] = true;
+        break;
+      case cat::Mod::LeadCrowning: each(m.crowning); break;
+      case cat::Mod::ThermalLeadRelief:
+        prov.push_back(fmt::format("loaded mesh: `{}` compensates the thermal distortion of the running gear, which the loaded mesh "
+                                   "does not model: neither is a separation",
+                                   r.target));
+        break;
+      default: m.ignored.push_back(r.target); break;
+      }
+    }
+  }
+  // A sweep of a modification (`sweep hs.tip_relief …`) replaces the rule.
+  auto swept = [&](int gear, Q key, double* slot, bool* given) {
+    if (!ev.overrides(st, gear, key)) return;
+    ir::QuantityRef ref;
+    ref.owner = ir::QuantityRef::Stage;
+    ref.index = static_cast<std::int16_t>(st);
+    ref.gear = static_cast<std::int8_t>(gear);
+    ref.key = key;
+    Value v = ev.quantity(ref, a);
+    for (int g = 0; g < 2; ++g)
+      if (gear < 0 || gear == g) {
+        slot[g] = v.mid();
+        if (given) given[g] = true;
+      }
+  };
+  for (int gear : {-1, Pinion, Wheel}) {
+    swept(gear, Q::TipRelief, m.tipRelief, nullptr);
+    swept(gear, Q::TipReliefHeight, m.height, m.heightGiven);
+    swept(gear, Q::LeadCrowning, m.crowning, nullptr);
+  }
+  return m;
+}
+
+} // namespace
+
+LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int st, double load, int slices, int positions,
+                                std::vector<std::string>& prov) {
+  auto q = [&](int gear, Q key, const char* what) {
+    ir::QuantityRef ref;
+    ref.owner = ir::QuantityRef::Stage;
+    ref.index = static_cast<std::int16_t>(st);
+    ref.gear = static_cast<std::int8_t>(gear);
+    ref.key = key;
+    return needNumber(ev.quantity(ref, a), what);
+  };
+  auto optional = [&](int gear, Q key) {
+    ir::QuantityRef ref;
+    ref.owner = ir::QuantityRef::Stage;
+    ref.index = static_cast<std::int16_t>(st);
+    ref.gear = static_cast<std::int8_t>(gear);
+    ref.key = key;
+    Value v = ev.quantity(ref, a);
+    return v.isNumber() && std::isfinite(v.lo) ? v.mid() : NAN;
+  };
+  const ir::Stage& stage = *ev.model().stages[static_cast<size_t>(st)].ir;
+  bool helical = stage.kind == ir::StageKind::Helical;
+  LoadedMeshInput in;
+  in.load = load;
+  in.slices = slices;
+  in.positions = positions;
+  FlankGeometry& g = in.g;
+  g.rb1 = q(Pinion, Q::BaseRadius, "the pinion base radius");
+  g.rb2 = q(Wheel, Q::BaseRadius, "the wheel base radius");
+  g.ra1 = q(Pinion, Q::TipRadius, "the pinion tip radius");
+  g.ra2 = q(Wheel, Q::TipRadius, "the wheel tip radius");
+  g.centerDistance = q(-1, Q::CenterDistance, "the centre distance");
+  g.workingPressureAngle = q(-1, Q::WorkingPressureAngle, "the working pressure angle");
+  g.faceWidth = q(-1, Q::FaceWidth, "`face_width`");
+  double mn = q(-1, Q::NormalModule, "`normal_module`"), alphaN = q(-1, Q::PressureAngle, "the pressure angle");
+  double beta = helical ? q(-1, Q::HelixAngle, "the helix angle") : 0.0;
+  double alphaT = std::atan(std::tan(alphaN) / std::cos(beta));
+  g.basePitch = M_PI * mn * std::cos(alphaT) / std::cos(beta);
+  g.baseHelix = std::atan(std::tan(beta) * std::cos(alphaT));
+  double roll1 = std::sqrt(g.ra1 * g.ra1 - g.rb1 * g.rb1), roll2 = std::sqrt(g.ra2 * g.ra2 - g.rb2 * g.rb2);
+  double path = roll1 + roll2 - g.centerDistance * std::sin(g.workingPressureAngle);
+  double epsAlpha = path / g.basePitch;
+
+  // c' from ISO 6336-1 method B, or from the given c_gamma through c_gamma = c' (0.75 eps_alpha + 0.25).
+  double cgamma;
+  const ir::Attribute* given = ev.model().attribute(st, Q::MeshStiffness);
+  if (given || ev.overrides(st, -1, Q::MeshStiffness)) {
+    cgamma = q(-1, Q::MeshStiffness, "`mesh_stiffness`");
+  } else {
+    double x1 = optional(Pinion, Q::Shift), x2 = optional(Wheel, Q::Shift);
+    cgamma = iso::meshStiffness(q(Pinion, Q::Z, "pinion.z"), q(Wheel, Q::Z, "wheel.z"), std::isfinite(x1) ? x1 : 0.0,
+                                std::isfinite(x2) ? x2 : 0.0, beta, epsAlpha);
+  }
+  in.singleStiffness = cgamma / (0.75 * epsAlpha + 0.25);
+  prov.push_back(fmt::format("loaded mesh: {} slices x {} positions; single-pair stiffness c' {:.4g} N/(mm*um) ({}c_gamma {:.4g} / (0.75 "
+                             "eps_alpha + 0.25)), distributed along the path as c' (0.7 + 1.2 xi (1 - xi))",
+                             slices, positions, in.singleStiffness * 1e-9, given ? "given " : "ISO 6336-1 method B ", cgamma * 1e-9));
+
+  // Profile and lead modifications.
+  FlankSeparations& sep = in.sep;
+  Mods mods = modifications(ev, a, st, prov);
+  double rolls[2] = {roll1, roll2}, ra[2] = {g.ra1, g.ra2}, rb[2] = {g.rb1, g.rb2};
+  const char* names[2] = {"pinion", "wheel"};
+  for (int k = 0; k < 2; ++k) {
+    sep.tipRelief[k] = mods.tipRelief[k];
+    if (sep.tipRelief[k] <= 0) continue;
+    if (mods.heightGiven[k]) {
+      double rs = ra[k] - mods.height[k];
+      sep.reliefLength[k] = rolls[k] - (rs > rb[k] ? std::sqrt(rs * rs - rb[k] * rb[k]) : 0.0);
+      prov.push_back(fmt::format("loaded mesh: {} tip relief {} over {:.3f} mm of height ({:.3f} mm of roll), linear", names[k],
+                                 um(sep.tipRelief[k]), mods.height[k] * 1e3, sep.reliefLength[k] * 1e3));
+    } else {
+      // A long relief: from the tip down to the point of single-pair contact nearest it.
+      sep.reliefLength[k] = std::max(0.0, path - g.basePitch);
+      prov.push_back(fmt::format("loaded mesh: {} tip relief {}, linear, long (from the tip to the point of single-pair contact, {:.3f} "
+                                 "mm of roll: no `tip_relief_height`)",
+                                 names[k], um(sep.tipRelief[k]), sep.reliefLength[k] * 1e3));
+    }
+  }
+  sep.leadCrowning = mods.crowning[0] + mods.crowning[1];
+  if (sep.leadCrowning > 0) prov.push_back(fmt::format("loaded mesh: lead crowning {} (both gears), parabolic across the face", um(sep.leadCrowning)));
+  for (const auto& t : mods.ignored) prov.push_back(fmt::format("loaded mesh: `{}` is not one of the separations it models", t));
+  // The pinion's wind-up and bending under the load tilt its flank across the face.
+  double bend = optional(Pinion, Q::BendingDeflection), twist = optional(Pinion, Q::TorsionDeflection);
+  if (std::isfinite(bend) || std::isfinite(twist)) {
+    sep.leadSlope = (std::isfinite(bend) ? bend : 0.0) + (std::isfinite(twist) ? twist : 0.0);
+    prov.push_back(fmt::format("loaded mesh: pinion bending and torsion deflection {} as a linear separation across the face",
+                               um(sep.leadSlope)));
+  }
+  // Deviations, in their adverse forms, each the mean of the two gears' (what seed 003's relief
+  // rule allows for): the incoming pair early by the base pitch deviation, the ends of the
+  // path proud by the profile form deviation.
+  double fp1 = optional(Pinion, Q::PitchDeviation), fp2 = optional(Wheel, Q::PitchDeviation);
+  double ff1 = optional(Pinion, Q::ProfileDeviation), ff2 = optional(Wheel, Q::ProfileDeviation);
+  if (std::isfinite(fp1) && std::isfinite(fp2)) sep.basePitch = 0.5 * (fp1 + fp2);
+  if (std::isfinite(ff1) && std::isfinite(ff2)) sep.profileForm = 0.5 * (ff1 + ff2);
+  auto dev = [](double v) { return std::isfinite(v) ? um(v) : std::string("none"); };
+  prov.push_back(fmt::format("loaded mesh: base pitch deviation {} (mean of {} and {}), each incoming pair early by it; profile form "
+                             "deviation {} (mean of {} and {}), the ends of the path proud by it",
+                             um(sep.basePitch), dev(fp1), dev(fp2), um(sep.profileForm), dev(ff1), dev(ff2)));
+  return in;
+}
+
+} // namespace gbx::rt::dyn

@@ -1,0 +1,173 @@
+// The thin-slice loaded mesh (DOMAIN.md §8) with asserted answers: the light-load square
+// wave of a spur pair, the collapse of the stiffness variation at eps_alpha = 2, agreement
+// with ISO 6336-1 c_gamma_alpha, the relief of minimum transmission error moving up with
+// the load, and an independent reference (tests/reference/ltca_reference.py).
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "dynamics/LoadedMesh.h"
+
+using namespace gbx::rt::dyn;
+
+namespace {
+
+// A pair on standard centre distance with tips d + 2 mn (no shift), SI.
+LoadedMeshInput pair(double z1, double z2, double mn, double betaDeg, double b, double cPrime, double load, double alphaDeg = 20) {
+  LoadedMeshInput in;
+  double beta = betaDeg * M_PI / 180, alphaN = alphaDeg * M_PI / 180;
+  double alphaT = std::atan(std::tan(alphaN) / std::cos(beta));
+  double d1 = z1 * mn / std::cos(beta), d2 = z2 * mn / std::cos(beta);
+  in.g.rb1 = 0.5 * d1 * std::cos(alphaT);
+  in.g.rb2 = 0.5 * d2 * std::cos(alphaT);
+  in.g.ra1 = 0.5 * d1 + mn;
+  in.g.ra2 = 0.5 * d2 + mn;
+  in.g.centerDistance = 0.5 * (d1 + d2);
+  in.g.workingPressureAngle = alphaT;
+  in.g.basePitch = M_PI * mn * std::cos(alphaT) / std::cos(beta);
+  in.g.baseHelix = std::atan(std::tan(beta) * std::cos(alphaT));
+  in.g.faceWidth = b;
+  in.singleStiffness = cPrime;
+  in.load = load;
+  return in;
+}
+
+constexpr double kCPrime = 14e9;  // 14 N/(mm*um)
+
+// The seed 003 turbine pair (DOMAIN.md §4): 33/103, mn 6.5 mm, beta 10.82 deg, b 225 mm, 7500 kW at 9364 rpm.
+LoadedMeshInput turbine(double relief, double loadFactor) {
+  double T1 = 7500e3 / (9364 * M_PI / 30);
+  LoadedMeshInput in = pair(33, 103, 6.5e-3, 10.81986667, 0.225, 1.0, 0.0);
+  double path = std::sqrt(in.g.ra1 * in.g.ra1 - in.g.rb1 * in.g.rb1) + std::sqrt(in.g.ra2 * in.g.ra2 - in.g.rb2 * in.g.rb2) -
+                in.g.centerDistance * std::sin(in.g.workingPressureAngle);
+  in.singleStiffness = 16.35e9 / (0.9 * path / in.g.basePitch);  // mean mesh stiffness c' 0.9 eps_alpha = the given 16.35
+  in.load = loadFactor * T1 / in.g.rb1;
+  double ra[2] = {in.g.ra1, in.g.ra2}, rb[2] = {in.g.rb1, in.g.rb2};
+  for (int k = 0; k < 2; ++k) {
+    double rs = ra[k] - 3.2e-3;
+    in.sep.tipRelief[k] = relief;
+    in.sep.reliefLength[k] = std::sqrt(ra[k] * ra[k] - rb[k] * rb[k]) - std::sqrt(rs * rs - rb[k] * rb[k]);
+  }
+  in.sep.leadCrowning = 13e-6;
+  in.sep.basePitch = 6e-6;
+  in.slices = 200;  // converged: the least relief moves by less than its 2.5 um step at twice these
+  in.positions = 256;
+  return in;
+}
+
+} // namespace
+
+// At light load an unmodified spur pair's transmission error is F / k(tau): the rigid
+// contact-ratio square wave, two pairs for eps_alpha - 1 of the period and one for the rest.
+TEST(LoadedMesh, LightLoadSpurIsTheContactRatioSquareWave) {
+  LoadedMeshInput in = pair(20, 40, 4e-3, 0, 0.040, kCPrime, 1.0);
+  in.slices = 1;
+  in.positions = 400;
+  LoadedMeshTable t = loadedMesh(in);
+  ASSERT_TRUE(t.failure.empty()) << t.failure;
+  // Every pair in contact at light load, no separations: TE k = F exactly.
+  for (size_t i = 0; i < t.te.size(); ++i) EXPECT_NEAR(t.te[i] * t.stiffness[i], 1.0, 1e-12);
+  // Two levels: every double-contact position below every single-contact one.
+  double split = 1.5 * kCPrime * in.g.faceWidth;  // one pair at most 1.0 c' b, two at least 1.4 c' b
+  int doubles = 0;
+  double maxDouble = 0, minSingle = INFINITY;
+  for (size_t i = 0; i < t.te.size(); ++i) {
+    if (t.stiffness[i] > split) {
+      ++doubles;
+      maxDouble = std::max(maxDouble, t.te[i]);
+    } else {
+      minSingle = std::min(minSingle, t.te[i]);
+    }
+  }
+  EXPECT_LT(maxDouble, minSingle);
+  EXPECT_NEAR(doubles / 400.0, t.epsAlpha - 1.0, 1.0 / 400 + 1e-12);
+  // 20/40, mn 4: (sqrt(44^2 - 37.588^2) + sqrt(84^2 - 75.175^2) - 120 sin 20) / (4 pi cos 20) mm.
+  EXPECT_NEAR(t.epsAlpha, 1.6352, 1e-4);
+  // The light-load stiffness is the rigid sum at every position.
+  EXPECT_NEAR(t.meanStiffness, t.lightLoadStiffness, 1e-9 * t.meanStiffness);
+}
+
+// With eps_alpha = 2 exactly two pairs are always in contact: the jump between one and two
+// pairs is gone, and what is left is the single-pair stiffness shape, 1.4 + 1.2 (xi (1 - xi)
+// + (xi + 1/2)(1/2 - xi)) c' b for xi in [0, 1/2]: from 1.7 to 1.85.
+TEST(LoadedMesh, StiffnessVariationCollapsesAtContactRatioTwo) {
+  LoadedMeshInput in = pair(40, 40, 4e-3, 0, 0.040, kCPrime, 1000.0);
+  // Tip radii that make the path exactly two base pitches long (both gears alike).
+  double rb = in.g.rb1, a = in.g.centerDistance, pb = in.g.basePitch;
+  double roll = 0.5 * (2.0 * pb + a * std::sin(in.g.workingPressureAngle));
+  in.g.ra1 = in.g.ra2 = std::sqrt(roll * roll + rb * rb);
+  in.slices = 1;
+  in.positions = 400;
+  LoadedMeshTable t = loadedMesh(in);
+  ASSERT_TRUE(t.failure.empty()) << t.failure;
+  EXPECT_NEAR(t.epsAlpha, 2.0, 1e-12);
+  double cb = kCPrime * in.g.faceWidth;
+  auto [lo, hi] = std::minmax_element(t.stiffness.begin(), t.stiffness.end());
+  EXPECT_NEAR(*hi / cb, 1.85, 1e-4);
+  EXPECT_NEAR(*lo / cb, 1.70, 1e-9);
+  double varTwo = (*hi - *lo) / t.meanStiffness;
+  // The same pair at its standard tips (eps_alpha 1.76) varies by one whole pair.
+  LoadedMeshInput std = pair(40, 40, 4e-3, 0, 0.040, kCPrime, 1000.0);
+  std.slices = 1;
+  std.positions = 400;
+  LoadedMeshTable s = loadedMesh(std);
+  auto [slo, shi] = std::minmax_element(s.stiffness.begin(), s.stiffness.end());
+  double varStd = (*shi - *slo) / s.meanStiffness;
+  EXPECT_GT(varStd, 0.4);
+  EXPECT_LT(varTwo, 0.1);
+  EXPECT_LT(varTwo, varStd / 5);
+}
+
+// The thin-slice mean mesh stiffness of unmodified pairs against ISO 6336-1 method B's
+// c_gamma_alpha = c' (0.75 eps_alpha + 0.25), spur and helical, eps_alpha 1.35 to 1.9.
+TEST(LoadedMesh, MeanStiffnessAgreesWithIsoCGammaAlpha) {
+  struct Case {
+    double z1, z2, mn, beta;
+  };
+  for (Case c : {Case{17, 40, 5e-3, 0}, Case{25, 50, 3e-3, 0}, Case{40, 90, 2e-3, 0}, Case{21, 83, 16e-3, 8}, Case{33, 103, 6.5e-3, 10.82},
+                 Case{30, 60, 4e-3, 25}}) {
+    LoadedMeshInput in = pair(c.z1, c.z2, c.mn, c.beta, 0.1, kCPrime, 1.0);
+    in.slices = 100;
+    in.positions = 200;
+    LoadedMeshTable t = loadedMesh(in);
+    ASSERT_TRUE(t.failure.empty()) << t.failure;
+    double iso = kCPrime * (0.75 * t.epsAlpha + 0.25);
+    double thin = t.lightLoadStiffness / in.g.faceWidth;
+    EXPECT_GT(t.epsAlpha, 1.35);
+    EXPECT_LT(t.epsAlpha, 1.95);
+    EXPECT_NEAR(thin / iso, 1.0, 0.05) << c.z1 << "/" << c.z2 << " eps_alpha " << t.epsAlpha;
+  }
+}
+
+// A relieved pair: the relief of least peak-to-peak transmission error sits near the load
+// deflection and moves up when the load doubles (the turbine pair of seed 003).
+TEST(LoadedMesh, MinimumTransmissionErrorReliefRisesWithTheLoad) {
+  auto best = [](double loadFactor) {
+    double at = 0, least = INFINITY;
+    for (int k = 0; k <= 24; ++k) {
+      double relief = k * 2.5e-6;
+      LoadedMeshTable t = loadedMesh(turbine(relief, loadFactor));
+      EXPECT_TRUE(t.failure.empty());
+      if (t.peakToPeakTe < least) {
+        least = t.peakToPeakTe;
+        at = relief;
+      }
+    }
+    return at;
+  };
+  double one = best(1.0), two = best(2.0);
+  // The load deflection w_t / c_gamma is 19.04 um (DOMAIN.md §4).
+  EXPECT_GE(one, 7.5e-6);
+  EXPECT_LE(one, 25e-6);
+  EXPECT_GE(two, one + 15e-6);
+}
+
+// Fourier series of a table: the trigonometric interpolant reproduces it at its own points.
+TEST(LoadedMesh, PeriodicSeriesInterpolatesItsTable) {
+  std::vector<double> v;
+  for (int i = 0; i < 64; ++i) v.push_back(3.0 + std::sin(2 * M_PI * i / 64.0) - 0.5 * std::cos(6 * M_PI * i / 64.0));
+  PeriodicSeries s = periodicSeries(v, 31);
+  for (int i = 0; i < 64; ++i) EXPECT_NEAR(s(i / 64.0), v[static_cast<size_t>(i)], 1e-12);
+  EXPECT_NEAR(s.mean, 3.0, 1e-14);
+}
