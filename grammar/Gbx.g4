@@ -56,6 +56,7 @@ stmt
   | COLUMNS expr (',' expr)* ';'                   # columnsStmt
   | path '=' expr (WHEN expr)? ';'                 # assignStmt
   | path IN domain ';'                             # domainStmt
+  | path PLUSMINUS addExpr ';'                     # scatterStmt  // in `tolerances`
   | ID block                                       # blockStmt
   | ID ';'                                         # flagStmt
   ;

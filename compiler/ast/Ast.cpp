@@ -58,6 +58,7 @@ const char* stmtKindName(StmtKind k) {
   case StmtKind::Columns: return "columns";
   case StmtKind::Assign: return "assignment";
   case StmtKind::Domain: return "domain";
+  case StmtKind::Scatter: return "tolerance";
   case StmtKind::Block: return "block";
   case StmtKind::Flag: return "flag";
   }
@@ -188,6 +189,7 @@ void printStmt(std::string& out, const Stmt& s, int depth) {
     head += fmt::format(" {} = {}", s.path.str(), opt(s.value));
     if (s.when) head += " when " + opt(s.when);
     break;
+  case StmtKind::Scatter: head += fmt::format(" {} +- {}", s.path.str(), opt(s.value)); break;
   case StmtKind::Domain:
     if (s.domain == DomainKind::Range)
       head += fmt::format(" {} in {}..{}", s.path.str(), opt(s.lo), opt(s.hi));

@@ -78,6 +78,7 @@ enum class StmtKind {
   Import, Const, Preset, Gearbox, Named,  // file level (Named: `material X { }` and strays)
   Stage, Like, Let, Require, Interchangeable, Minimize, Maximize, Operating, Scene, Effects,
   Modify, Split, Study, Report, Output, Sweep, Of, Top, Sort, Columns, Assign, Domain,
+  Scatter,  // `main.face_width +- 1 mm;` in `tolerances`
   Block, Flag,
 };
 

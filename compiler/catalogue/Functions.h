@@ -11,7 +11,7 @@ namespace gbx::cat {
 
 enum class Fn : std::uint8_t {
   Abs, Sqrt, Sin, Cos, Tan, Asin, Acos, Atan, Atan2, Exp, Log,
-  Min, Max, Mean, Round, Floor, Ceil, Coprime, Gcd, Relative,
+  Min, Max, Mean, Round, Floor, Ceil, Coprime, Gcd, Relative, Worst,
 };
 
 enum class ArgRule : std::uint8_t {
@@ -22,6 +22,7 @@ enum class ArgRule : std::uint8_t {
   WholePlain,    // whole plain numbers (tooth counts)
   Reduction,     // two or more numbers of one dimension, or one per-gear quantity
   Baseline,      // one number, divided by its value in the baseline gearbox
+  Scatter,       // one number, evaluated over the gearbox's `tolerances`
 };
 
 enum class ResultRule : std::uint8_t {
@@ -64,6 +65,9 @@ inline constexpr FunctionSpec kFunctions[] = {
     {Fn::Coprime, "coprime", 2, 2, ArgRule::WholePlain, ResultRule::Condition},
     {Fn::Gcd, "gcd", 2, 2, ArgRule::WholePlain, ResultRule::Whole},
     {Fn::Relative, "relative", 1, 1, ArgRule::Baseline, ResultRule::Plain},
+    // worst(q): q at the corner of the tolerance box that is worst where q stands (mean(q), one
+    // number, is the mean over the box: a Reduction row that the checker tells apart).
+    {Fn::Worst, "worst", 1, 1, ArgRule::Scatter, ResultRule::Like},
 };
 
 inline constexpr int kFunctionCount = static_cast<int>(sizeof(kFunctions) / sizeof(kFunctions[0]));

@@ -75,6 +75,7 @@ ExprPtr Expr::clone() const {
   e->marker = marker;
   e->relative = relative;
   e->output = output;
+  e->sense = sense;
   if (inBaseline) e->inBaseline = inBaseline->clone();
   for (const auto& a : args) e->args.push_back(a ? a->clone() : nullptr);
   return e;

@@ -54,6 +54,7 @@ enum class Op {
   Forall,       // name: variable, detail in type: collection; args: one instance per element
   SceneOutput,  // name: "scene.fn(signal)"
   Relative,     // args[0] divided by its value in the baseline gearbox (`inBaseline`)
+  Scatter,      // fn Worst or Mean: args[0] over the gearbox's `tolerances` (LANGUAGE.md §13)
 };
 
 struct Expr;
@@ -99,6 +100,9 @@ struct Expr {
   bool relative = false;     // Tol: the tolerance is a fraction of the centre
   SceneOutputRef output;     // SceneOutput
   ExprPtr inBaseline;        // Relative: args[0] resolved in the baseline gearbox (its ids, not ours)
+  // Scatter with fn Worst: +1 the largest value is the worst (minimised, or below a bound), -1
+  // the smallest, 0 the one farthest from the nominal (a report column).
+  std::int8_t sense = 0;
 
   ExprPtr clone() const;
   bool isConst() const { return op == Op::Const; }
@@ -266,6 +270,15 @@ struct Report {
   Span span;
 };
 
+// One line of `tolerances { main.face_width +- 1 mm; }`: a stage attribute's scatter.
+struct Tolerance {
+  std::string target;  // "main.face_width"
+  QuantityRef ref;     // resolved by lowering
+  Dim dim;
+  double amount = 0;   // SI, >= 0
+  Span span;
+};
+
 struct Gearbox {
   std::string name;
   std::string baseline;  // the gearbox it extends, or ""
@@ -279,6 +292,7 @@ struct Gearbox {
   std::vector<Modify> modifies;
   std::vector<Split> splits;
   std::vector<Study> studies;
+  std::vector<Tolerance> tolerances;
   std::optional<Report> report;
   Span span;
   const Stage* findStage(const std::string& name) const;

@@ -85,6 +85,7 @@ std::string print(const Expr& e) {
   case Op::Tol: return "(" + a(0) + " +- " + a(1) + (e.relative ? " relative" : "") + ")";
   case Op::Call: return e.name + "(" + join(e.args, 0, ", ") + ")";
   case Op::Relative: return "relative(" + a(0) + ")";
+  case Op::Scatter: return std::string(e.fn == cat::Fn::Worst ? "worst(" : "mean(") + a(0) + ")";
   case Op::Forall: return "forall " + e.name + " in " + e.type.detail + " [" + join(e.args, 0, "; ") + "]";
   default: return "(" + a(0) + " " + opText(e.op) + " " + a(1) + ")";
   }
@@ -164,6 +165,7 @@ std::string print(const Program& p) {
       for (const auto& s : st.settings) o += "    " + setting(s) + "\n";
       for (const auto& out : st.outputs) o += "    output " + (out ? print(*out) : std::string("<error>")) + "\n";
     }
+    for (const auto& t : g.tolerances) o += fmt::format("  tolerance {} +- {:.6g} (SI)\n", t.target, t.amount);
     if (g.report) {
       o += "  report\n";
       if (g.report->top) o += fmt::format("    top {}\n", *g.report->top);

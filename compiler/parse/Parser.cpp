@@ -353,6 +353,10 @@ private:
       s.kind = K::Domain;
       s.path = path(c->path());
       domain(s, c->domain());
+    } else if (auto* c = dynamic_cast<GbxParser::ScatterStmtContext*>(ctx)) {
+      s.kind = K::Scatter;
+      s.path = path(c->path());
+      s.value = addExpr(c->addExpr());
     } else if (auto* c = dynamic_cast<GbxParser::BlockStmtContext*>(ctx)) {
       s.kind = K::Block;
       setName(s, c->ID());

@@ -753,8 +753,27 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
     n->args = std::move(args);
     return n;
   }
+  case ArgRule::Scatter: {
+    if (!arity() || !numbers()) return error(e.span);
+    if (!s.hasTolerances) {
+      diags_.error("E0237", e.span,
+                   fmt::format("`{}(q)` evaluates q over the gearbox's manufacturing scatter, but this gearbox has no `tolerances` block", fn));
+      return error(e.span);
+    }
+    auto n = make(Op::Scatter, args[0]->type, e.span, fn);
+    n->fn = spec->id;
+    n->args = std::move(args);
+    return n;
+  }
   case ArgRule::Reduction: {
     if (!arity()) return error(e.span);
+    // `mean(q)` of one number in a gearbox with `tolerances`: its mean over the tolerance box.
+    if (spec->id == Fn::Mean && args.size() == 1 && args[0]->type.isNumber() && s.hasTolerances) {
+      auto n = make(Op::Scatter, Type::number(args[0]->type.dim), e.span, fn);
+      n->fn = Fn::Mean;
+      n->args = std::move(args);
+      return n;
+    }
     if (args.size() == 1 && args[0]->type.kind == Type::PerGear) {
       auto n = make(Op::Call, Type::number(args[0]->type.dim), e.span, fn);
       n->fn = spec->id;

@@ -22,6 +22,7 @@ struct Scope {
   std::string modifyGear;                  // "pinion" in a rule targeting one gear
   std::vector<std::string> effectLocals;   // `stiffness` inside hertz_contact
   bool hasBaseline = false;                // `relative(x)` allowed
+  bool hasTolerances = false;              // `worst(q)` and `mean(q)` over `tolerances` allowed
   bool meshPeriodsAllowed = false;
 };
 

@@ -53,6 +53,7 @@ struct GearboxModel {
   std::vector<const ast::Stmt*> splits;
   std::map<std::string, std::vector<std::pair<std::string, Binding>>> splitOverrides;
   std::vector<const ast::Stmt*> studies;
+  std::vector<const ast::Stmt*> tolerances;  // the lines of `tolerances { … }`, a variant's replacing by target
   const ast::Stmt* report = nullptr;
 
   const StageModel* findStage(const std::string& n) const;

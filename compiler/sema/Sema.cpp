@@ -588,6 +588,22 @@ private:
         break;
       case StmtKind::Assign:
       case StmtKind::Domain: override(*model, st, origin); break;
+      case StmtKind::Block:
+        if (st.name != "tolerances") {
+          notAllowed(st, fmt::format("gearbox `{}`", name));
+          break;
+        }
+        if (seen.count("tolerances")) diags_.error("E0202", st.span, "duplicate declaration: this gearbox already has a `tolerances` block");
+        seen["tolerances"] = &st;
+        // A variant's line replaces the baseline's line for the same quantity.
+        for (const auto& t : st.body) {
+          if (t.kind != StmtKind::Scatter) {
+            notAllowed(t, "`tolerances` (it lists `stage.attribute +- amount;`)");
+            continue;
+          }
+          replaceOrAdd(model->tolerances, &t, [](const Stmt* x) { return x->path.str(); });
+        }
+        break;
       default: notAllowed(st, fmt::format("gearbox `{}`", name));
       }
     }
@@ -813,10 +829,88 @@ private:
                    fmt::format("a `require` needs a condition (a comparison, `coprime(…)`, `and`/`or`), but this is {}",
                                describe(r.expr->type)));
     }
+    if (r.expr) worstSense(*r.expr, 0, true);
     r.text = st.value ? ast::print(*st.value) : "";
     r.scope = scopeName;
     r.span = st.span;
     return r;
+  }
+
+  // Which end of the tolerance box is the worst for each `worst(q)`: where q is minimised or
+  // bounded from above its largest value, where maximised or bounded from below its smallest;
+  // a minus sign or a divisor turns it round. `sense` 0: not known (a report column).
+  void worstSense(ir::Expr& e, int sense, bool condition = false) {
+    using ir::Op;
+    if (e.op == Op::Scatter) e.sense = static_cast<std::int8_t>(sense);
+    auto arg = [&](size_t i, int sg) {
+      if (i < e.args.size() && e.args[i]) worstSense(*e.args[i], sg, condition);
+    };
+    switch (e.op) {
+    case Op::Le:
+    case Op::Lt: arg(0, condition ? 1 : 0); arg(1, condition ? -1 : 0); return;
+    case Op::Ge:
+    case Op::Gt: arg(0, condition ? -1 : 0); arg(1, condition ? 1 : 0); return;
+    case Op::And:
+    case Op::Forall:
+      for (size_t i = 0; i < e.args.size(); ++i) arg(i, 0);
+      return;
+    case Op::Neg: arg(0, -sense); return;
+    case Op::Sub: arg(0, sense); arg(1, -sense); return;
+    case Op::Div: arg(0, sense); arg(1, -sense); return;
+    case Op::Add:
+    case Op::Mul:
+    case Op::Relative:
+    case Op::Scatter:
+      for (size_t i = 0; i < e.args.size(); ++i) arg(i, sense);
+      return;
+    default:
+      for (size_t i = 0; i < e.args.size(); ++i) arg(i, 0);
+    }
+  }
+
+  // `tolerances { stage.attribute +- amount; }`: a number attribute of a stage, a constant
+  // non-negative amount of its unit.
+  std::vector<ir::Tolerance> tolerances(const GearboxModel& m, const Scope& gs) {
+    std::vector<ir::Tolerance> out;
+    for (const Stmt* t : m.tolerances) {
+      ir::Tolerance tol;
+      tol.target = t->path.str();
+      tol.span = t->span;
+      const auto& parts = t->path.parts;
+      const StageModel* st = parts.size() >= 2 ? m.findStage(parts[0]) : nullptr;
+      const AttrSpec* a = st && st->kind ? findAttr(*st->kind, tol.target.substr(parts[0].size() + 1)) : nullptr;
+      if (!a || a->role == AttrRole::Derived || a->value != ValueKind::Number || a->integer) {
+        diags_.error("E0237", t->path.span,
+                     fmt::format("`{}` cannot scatter: a tolerance belongs to a continuous attribute of a stage, as in "
+                                 "`{}.face_width +- 1 mm`",
+                                 tol.target, st ? st->name : (m.stages.empty() ? std::string("main") : m.stages[0].name)));
+        continue;
+      }
+      tol.dim = a->dim;
+      auto x = checker_.check(t->value.get(), gs);
+      if (x->type.isError()) continue;
+      if (!x->isConst() || !x->type.isNumber()) {
+        diags_.error("E0410", x->span, "a tolerance must be a constant");
+        continue;
+      }
+      if (x->type.dim != a->dim) {
+        diags_.error("E0302", x->span,
+                     fmt::format("unit mismatch: `{}` is {}, its tolerance is {}", tol.target, describe(Type::number(a->dim)), describe(x->type)));
+        continue;
+      }
+      if (x->value.sign() < 0) {
+        diags_.error("E0409", x->span, "a tolerance cannot be negative");
+        continue;
+      }
+      tol.amount = x->value.toDouble();
+      out.push_back(std::move(tol));
+    }
+    if (out.size() > 6 && !m.tolerances.empty())
+      diags_.error("E0237", m.tolerances[6]->span,
+                   fmt::format("gearbox `{}` lists {} tolerances; `worst` and `mean` visit every corner of their box, so at most 6 "
+                               "(64 corners) are taken",
+                               m.name, out.size()));
+    return out;
   }
 
   ir::Gearbox lowerGearbox(const GearboxModel& m) {
@@ -827,6 +921,8 @@ private:
     Scope gs;
     gs.gearbox = &m;
     gs.hasBaseline = !m.base.empty();
+    gs.hasTolerances = !m.tolerances.empty();
+    g.tolerances = tolerances(m, gs);
 
     std::map<std::string, Type> letTypes;
     std::set<std::string> letBusy;
@@ -892,6 +988,7 @@ private:
       ir::Objective o;
       o.minimize = st->kind == StmtKind::Minimize;
       o.expr = checker_.check(st->value.get(), gs);
+      worstSense(*o.expr, o.minimize ? 1 : -1);
       if (!o.expr->type.isError() && !o.expr->type.isNumber())
         diags_.error("E0306", o.expr->span,
                      fmt::format("an objective must be a number to {}, but this is {}", o.minimize ? "minimize" : "maximize",

@@ -140,6 +140,19 @@ const std::vector<BuiltinRow>& kRowsTable() {
     {Fn::Gcd, [](const V& v) { return gcdOf(v, false); }},
     // relative(x): x over its value in the baseline gearbox, given as the second argument.
     {Fn::Relative, [](const V& v) { return arith::div(v[0], v[1]); }},
+    // worst(q) over the tolerance box: v[0] the sense (+1 the largest is worst, -1 the
+    // smallest, 0 the farthest from the nominal), v[1] the nominal value, then the corners.
+    {Fn::Worst,
+     [](const V& v) {
+       double sense = v[0].mid(), nominal = v[1].mid();
+       size_t pick = 1;
+       for (size_t i = 2; i < v.size(); ++i) {
+         double x = v[i].mid(), y = v[pick].mid();
+         bool worse = sense > 0 ? x > y : sense < 0 ? x < y : std::fabs(x - nominal) > std::fabs(y - nominal);
+         if (worse) pick = i;
+       }
+       return v[pick];
+     }},
   };
   return rows;
 }

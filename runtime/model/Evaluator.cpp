@@ -202,7 +202,8 @@ Value Evaluator::eval(const ir::Expr& e, const Assignment& a) const {
     return Value::boolean(x.kind == Value::Bool ? arith::lnot(x.truth) : Truth::Unknown);
   }
   case Op::Call: return call(e, a);
-  case Op::SceneOutput: return sceneOutput ? sceneOutput(e, a) : Value::invalid();
+  case Op::SceneOutput: return sceneOutput ? sceneOutput(e, a, *this) : Value::invalid();
+  case Op::Scatter: return scatter(e, a);
   case Op::Relative: {
     // The baseline evaluates the argument as lowering resolved it in the baseline gearbox.
     if (!baseline || !e.inBaseline) return Value::invalid();
@@ -231,6 +232,41 @@ void Evaluator::setOverride(const ir::QuantityRef& r, Value v) {
       return;
     }
   overrides_.emplace_back(r, v);
+}
+
+void Evaluator::addOffset(const ir::QuantityRef& r, double delta) {
+  for (auto& [k, x] : offsets_)
+    if (k == r) {
+      x += delta;
+      return;
+    }
+  offsets_.emplace_back(r, delta);
+}
+
+Value Evaluator::withOffset(int stage, int gear, Q key, Value v) const {
+  for (const auto& [k, d] : offsets_)
+    if (k.owner == ir::QuantityRef::Stage && k.index == stage && k.gear == gear && k.key == key && v.isNumber())
+      return arith::add(v, Value::number(d));
+  return v;
+}
+
+// q at the nominal design and at every corner of the tolerance box (2^n corners, n <= 6 by
+// the checker): the worst of them where q stands, or their mean.
+Value Evaluator::scatter(const ir::Expr& e, const Assignment& a) const {
+  const auto& tol = m_.gearbox.tolerances;
+  Value nominal = eval(*e.args[0], a);
+  if (nominalOnly || tol.empty() || !nominal.isNumber()) return nominal;
+  std::vector<Value> v;
+  if (e.fn == cat::Fn::Worst) v.push_back(Value::number(e.sense));
+  v.push_back(nominal);
+  for (unsigned corner = 0; corner < (1u << tol.size()); ++corner) {
+    Evaluator at(*this);
+    for (size_t i = 0; i < tol.size(); ++i) at.addOffset(tol[i].ref, (corner >> i) & 1u ? tol[i].amount : -tol[i].amount);
+    Value x = at.eval(*e.args[0], a);
+    if (!x.isNumber()) return Value::invalid();
+    v.push_back(x);
+  }
+  return builtin(e.fn)(v);
 }
 
 const Value* Evaluator::overridden(const ir::QuantityRef& r) const {
@@ -266,7 +302,7 @@ Value Evaluator::quantity(const ir::QuantityRef& r, const Assignment& a) const {
   case ir::QuantityRef::Stage: {
     if (!m_.hasStage(r.index)) return Value::invalid();
     const StageInfo::Entry& en = m_.info(r.index).entry(r.gear, r.key);
-    if (en.attr || en.slot >= 0) return attribute(r.index, r.gear, r.key, a);
+    if (en.attr || en.slot >= 0 || !offsets_.empty()) return attribute(r.index, r.gear, r.key, a);
     return derived(r.index, r.gear, r.key, a);
   }
   default: return Value::invalid();  // materials and collections: not search quantities
@@ -290,6 +326,16 @@ Value Evaluator::splitQuantity(int split, Q key, const Assignment& a) const {
 }
 
 Value Evaluator::attribute(int stage, int gear, Q key, const Assignment& a) const {
+  if (!offsets_.empty()) {
+    // The deviation on top of the value the design gives (its own offsets not applied twice).
+    for (const auto& [k, d] : offsets_)
+      if (k.owner == ir::QuantityRef::Stage && k.index == stage && k.gear == gear && k.key == key) {
+        Evaluator plain(*this);
+        plain.offsets_.erase(std::remove_if(plain.offsets_.begin(), plain.offsets_.end(), [&](const auto& o) { return o.first == k; }),
+                             plain.offsets_.end());
+        return withOffset(stage, gear, key, plain.attribute(stage, gear, key, a));
+      }
+  }
   if (!overrides_.empty()) {
     ir::QuantityRef r;
     r.owner = ir::QuantityRef::Stage;

@@ -46,19 +46,30 @@ public:
   // Whether a sweep gives this stage attribute a value (which then counts as given).
   bool overrides(int stage, int gear, Q key) const;
 
+  // A manufacturing deviation added to a stage attribute (a corner of the `tolerances` box).
+  void addOffset(const ir::QuantityRef& r, double delta);
+  const std::vector<std::pair<ir::QuantityRef, double>>& offsets() const { return offsets_; }
+  // `worst(q)` and `mean(q)` read q at the nominal design only (the optimiser's sensitivity
+  // evaluates q at each tolerance itself).
+  bool nominalOnly = false;
+
   // Scene results (`vibration.rms(acceleration)`) and `relative(x)` need the dynamics
-  // and the baseline gearbox: the optimiser provides them.
-  std::function<Value(const ir::Expr&, const Assignment&)> sceneOutput;
+  // and the baseline gearbox: the optimiser provides them. The scene is built with the
+  // evaluator that asks (its overrides and offsets).
+  std::function<Value(const ir::Expr&, const Assignment&, const Evaluator&)> sceneOutput;
   std::function<Value(const ir::Expr&)> baseline;
 
 private:
   const Value* overridden(const ir::QuantityRef& r) const;
   const Value* overridden(Q gearboxKey) const;
+  Value withOffset(int stage, int gear, Q key, Value v) const;
+  Value scatter(const ir::Expr& e, const Assignment& a) const;
   Value perGear(const ir::Expr& e, int gear, const Assignment& a) const;
   Value perGearReduce(const ir::Expr& call, const Assignment& a) const;
   Value call(const ir::Expr& e, const Assignment& a) const;
   const Model& m_;
   std::vector<std::pair<ir::QuantityRef, Value>> overrides_;
+  std::vector<std::pair<ir::QuantityRef, double>> offsets_;
   mutable int depth_ = 0;
 };
 

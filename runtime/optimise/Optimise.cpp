@@ -113,26 +113,36 @@ double objectiveAt(const gsl_vector* u, void* p) {
 } // namespace
 
 void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const Assignment* baseDesign, double rtol) {
-  // One scene run per design point: outputs of one scene share it.
-  auto cache = std::make_shared<std::map<int, dyn::SceneResult>>();
-  auto key = std::make_shared<std::vector<double>>();
-  ev.sceneOutput = [&m, rtol, cache, key](const ir::Expr& e, const Assignment& a) -> Value {
-    std::vector<double> k;
-    for (int c : a.choice) k.push_back(c);
-    for (const auto& b : a.box) k.push_back(b.first);
-    if (k != *key) {
+  // One scene run per design point (and tolerance corner): outputs of one scene share it.
+  // The cache holds the points of the design being evaluated, so a `worst(…)` read twice
+  // (itself and inside `relative`) runs each corner once.
+  using Key = std::pair<int, std::vector<double>>;
+  auto cache = std::make_shared<std::map<Key, dyn::SceneResult>>();
+  auto design = std::make_shared<std::vector<double>>();
+  ev.sceneOutput = [&m, rtol, cache, design](const ir::Expr& e, const Assignment& a, const Evaluator& asking) -> Value {
+    std::vector<double> point;
+    for (int c : a.choice) point.push_back(c);
+    for (const auto& b : a.box) point.push_back(b.first);
+    if (point != *design) {
       cache->clear();
-      *key = k;
+      *design = point;
+    }
+    std::vector<double> corner;
+    for (const auto& [r, d] : asking.offsets()) {
+      corner.push_back(static_cast<double>(r.index) * 1e6 + static_cast<double>(r.gear) * 1e3 + static_cast<double>(r.key));
+      corner.push_back(d);
     }
     int scene = e.output.scene;
     if (scene < 0 || static_cast<size_t>(scene) >= m.gearbox.scenes.size()) return Value::invalid();
-    auto it = cache->find(scene);
+    Key k{scene, corner};
+    auto it = cache->find(k);
     if (it == cache->end()) {
       dyn::SceneOverrides ov;
       ov.rtol = rtol;
       ov.estimateError = false;
       ov.keepSeries = false;
-      it = cache->emplace(scene, dyn::runScene(m, a, m.gearbox.scenes[static_cast<size_t>(scene)], ov)).first;
+      if (!asking.offsets().empty()) ov.evaluator = &asking;
+      it = cache->emplace(k, dyn::runScene(m, a, m.gearbox.scenes[static_cast<size_t>(scene)], ov)).first;
     }
     const auto* n = it->second.find(e.output.fn, e.output.signal);
     return n ? Value::number(n->value) : Value::invalid();

@@ -48,6 +48,68 @@ std::vector<OptimisationSummary::Optimum::Margin> margins(const Model& m, const 
   return out;
 }
 
+// Each objective at the optimum with every tolerance at -amount and +amount alone, and over
+// the corners of the tolerance box: how much manufacturing scatter moves the optimum's merit.
+std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& m, const Model* baseline, const Assignment* baseDesign,
+                                                                   const std::vector<int>& choice, const std::vector<double>& freedoms,
+                                                                   double rtol) {
+  std::vector<OptimisationSummary::Optimum::Sensitivity> out;
+  const auto& tol = m.gearbox.tolerances;
+  if (tol.empty()) return out;
+  Evaluator ev(m);
+  installHooks(ev, m, baseline, baseDesign, rtol);
+  ev.nominalOnly = true;
+  Assignment a(m);
+  a.choice = choice;
+  for (size_t f = 0; f < freedoms.size() && f < a.box.size(); ++f) a.box[f] = {freedoms[f], freedoms[f]};
+  auto at = [&](const ir::Expr& e, const std::vector<double>& deltas) {
+    Evaluator x(ev);
+    for (size_t i = 0; i < tol.size(); ++i)
+      if (deltas[i] != 0) x.addOffset(tol[i].ref, deltas[i]);
+    Value v = x.eval(e, a);
+    return v.isNumber() ? v.mid() : NAN;
+  };
+  // Each objective, and each quantity it compares with the baseline: a term near zero (a
+  // vibration that vanishes) may swing far more than the sum it sits in.
+  std::vector<std::pair<std::string, const ir::Expr*>> items;
+  std::function<void(const ir::Expr&)> terms = [&](const ir::Expr& e) {
+    if (e.op == ir::Op::Relative && e.args[0]) items.emplace_back(ir::print(*e.args[0]), e.args[0].get());
+    for (const auto& x : e.args)
+      if (x) terms(*x);
+  };
+  for (const auto& o : m.gearbox.objectives)
+    if (o.expr) {
+      items.emplace_back(o.text, o.expr.get());
+      terms(*o.expr);
+    }
+  for (const auto& [text, expr] : items) {
+    const ir::Expr& e = *expr;
+    OptimisationSummary::Optimum::Sensitivity s;
+    s.objective = text;
+    std::vector<double> zero(tol.size(), 0.0);
+    s.nominal = s.lo = s.hi = at(e, zero);
+    for (size_t i = 0; i < tol.size(); ++i) {
+      auto u = units::displayUnitFor(tol[i].dim);
+      OptimisationSummary::Optimum::Sensitivity::Line line{tol[i].target, tol[i].amount / u.scale, u.name, 0, 0};
+      std::vector<double> d = zero;
+      d[i] = -tol[i].amount;
+      line.minus = at(e, d);
+      d[i] = tol[i].amount;
+      line.plus = at(e, d);
+      s.lines.push_back(line);
+    }
+    for (unsigned corner = 0; corner < (1u << tol.size()); ++corner) {
+      std::vector<double> d(tol.size());
+      for (size_t i = 0; i < tol.size(); ++i) d[i] = (corner >> i) & 1u ? tol[i].amount : -tol[i].amount;
+      double f = at(e, d);
+      s.lo = std::min(s.lo, f);
+      s.hi = std::max(s.hi, f);
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
 } // namespace
 
 Optimised optimise(const ir::Program& program, const Model& m, SearchResult found, int jobs, std::function<void(double)> progress) {
@@ -120,6 +182,7 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
     b.objective = best.objective;
     b.terms = best.terms;
     b.margins = margins(m, best.choice, best.freedoms);
+    b.sensitivity = sensitivity(m, out.baseline.get(), out.baselineDesign.get(), best.choice, best.freedoms, oo.sceneRtol);
   }
   s.rankCheck = opt.rankCheck;
   s.cloud = opt.cloud;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 
 #include "dynamics/Scene.h"
+#include "model/Evaluator.h"
 #include "units/Unit.h"
 
 namespace gbx::rt::passes {
@@ -73,6 +75,13 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
   return s;
 }
 
+bool hasRelative(const ir::Expr& e) {
+  if (e.op == ir::Op::Relative) return true;
+  for (const auto& x : e.args)
+    if (x && hasRelative(*x)) return true;
+  return false;
+}
+
 } // namespace
 
 SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns) {
@@ -84,10 +93,46 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns)
     out.scenes.push_back(sceneReport(res, sc));
     results.push_back(std::move(res));
   }
+  // Columns over scene results: read from the runs above; at a corner of the tolerance box
+  // (`worst(…)`, `mean(…)`) the scene runs again with that corner's deviations.
+  std::map<std::pair<int, std::vector<double>>, dyn::SceneResult> corners;
+  Evaluator ev(m);
+  ev.sceneOutput = [&](const ir::Expr& e, const Assignment& a, const Evaluator& asking) -> Value {
+    int sc = e.output.scene;
+    if (sc < 0 || static_cast<size_t>(sc) >= results.size()) return Value::invalid();
+    const dyn::SceneResult* r = &results[static_cast<size_t>(sc)];
+    if (!asking.offsets().empty()) {
+      std::vector<double> key;
+      for (const auto& [q, d] : asking.offsets()) key.push_back(d);
+      auto it = corners.find({sc, key});
+      if (it == corners.end()) {
+        dyn::SceneOverrides ov;
+        ov.evaluator = &asking;
+        ov.estimateError = false;
+        ov.keepSeries = false;
+        it = corners.emplace(std::make_pair(sc, key), dyn::runScene(m, a, m.gearbox.scenes[static_cast<size_t>(sc)], ov)).first;
+      }
+      r = &it->second;
+    }
+    const auto* n = r->find(e.output.fn, e.output.signal);
+    return n && std::isfinite(n->value) ? Value::number(n->value) : Value::invalid();
+  };
+  std::function<bool(const ir::Expr&)> readsScene = [&](const ir::Expr& e) {
+    if (e.op == ir::Op::SceneOutput) return true;
+    for (const auto& x : e.args)
+      if (x && readsScene(*x)) return true;
+    return false;
+  };
   for (size_t i = 0; i < columns.exprs.size(); ++i) {
     const ir::Expr& c = *columns.exprs[i];
-    if (c.op != ir::Op::SceneOutput || c.output.scene < 0) continue;
-    if (const auto* n = results[static_cast<size_t>(c.output.scene)].find(c.output.fn, c.output.signal)) out.columns.push_back({i, n->value});
+    if (c.op == ir::Op::SceneOutput) {
+      if (c.output.scene < 0) continue;
+      if (const auto* n = results[static_cast<size_t>(c.output.scene)].find(c.output.fn, c.output.signal)) out.columns.push_back({i, n->value});
+      continue;
+    }
+    if (!readsScene(c) || hasRelative(c)) continue;  // `relative(…)` columns: the optimiser's pass
+    Value v = ev.eval(c, best);
+    if (v.isNumber()) out.columns.push_back({i, v.mid()});
   }
   return out;
 }

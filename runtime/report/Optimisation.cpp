@@ -1,6 +1,7 @@
 #include "report/Optimisation.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -37,6 +38,20 @@ std::vector<std::string> optimisationLines(const OptimisationSummary& s, bool fi
       lines.push_back(fmt::format("    {}: {}{} against {}, margin {:+.1f} %", mg.rule, formatNumber(mg.value), mg.unit.empty() ? "" : " " + mg.unit,
                                   formatNumber(mg.bound), mg.margin * 100));
   }
+  if (s.best)
+    for (const auto& sv : s.best->sensitivity) {
+      lines.push_back(fmt::format("  over the tolerances, `{}` (worst/mean read at the nominal design): {} at the optimum", sv.objective,
+                                  formatNumber(sv.nominal)));
+      for (const auto& l : sv.lines)
+        lines.push_back(fmt::format("    {} -{} {}: {}   +{} {}: {}", l.target, formatNumber(l.amount), l.unit, formatNumber(l.minus),
+                                    formatNumber(l.amount), l.unit, formatNumber(l.plus)));
+      lines.push_back(fmt::format("    over the tolerance box: {} .. {} ({:.1f} % of the value at the optimum)", formatNumber(sv.lo),
+                                  formatNumber(sv.hi), 100 * (sv.hi - sv.lo) / std::max(std::fabs(sv.nominal), 1e-300)));
+      if (sv.singular())
+        lines.push_back(fmt::format("  warning: `{}` changes by more than its own value over the tolerance box: the optimum sits on a "
+                                    "singularity of the model, and a manufactured gearbox will not show it",
+                                    sv.objective));
+    }
   if (!s.rankCheck.empty()) lines.push_back("  ranking: " + s.rankCheck);
   if (s.termNames.size() == 2) {
     lines.push_back(fmt::format("  Pareto front of ({}, {}) relative to the baseline, {} points:", s.termNames[0], s.termNames[1], s.pareto.size()));
@@ -67,6 +82,16 @@ std::string optimisationJson(const OptimisationSummary& s) {
     for (size_t i = 0; i < best.margins.size(); ++i)
       json += fmt::format("{}{{\"rule\": \"{}\", \"margin\": {}, \"binds\": {}}}", i ? ", " : "", best.margins[i].rule, best.margins[i].margin,
                           best.margins[i].margin <= 1e-3 ? "true" : "false");
+    json += "], \"sensitivity\": [";
+    for (size_t i = 0; i < best.sensitivity.size(); ++i) {
+      const auto& sv = best.sensitivity[i];
+      json += fmt::format("{}{{\"objective\": \"{}\", \"nominal\": {}, \"box\": [{}, {}], \"singular\": {}, \"tolerances\": [", i ? ", " : "",
+                          sv.objective, sv.nominal, sv.lo, sv.hi, sv.singular() ? "true" : "false");
+      for (size_t j = 0; j < sv.lines.size(); ++j)
+        json += fmt::format("{}{{\"target\": \"{}\", \"amount\": {}, \"unit\": \"{}\", \"minus\": {}, \"plus\": {}}}", j ? ", " : "",
+                            sv.lines[j].target, sv.lines[j].amount, sv.lines[j].unit, sv.lines[j].minus, sv.lines[j].plus);
+      json += "]}";
+    }
     json += "], ";
   }
   json += fmt::format(R"("rank_check": "{}", "pareto": [)", s.rankCheck);

@@ -2,6 +2,7 @@
 // Reports of solved gearboxes: text tables, JSON (keys of LANGUAGE.md §10), CSV,
 // Markdown and HTML. Numbers are printed in a fixed format so that reports are byte-stable.
 #include <optional>
+#include <cmath>
 #include <string>
 #include <variant>
 #include <vector>
@@ -115,6 +116,21 @@ struct OptimisationSummary {
       double margin = 0;                  // (q - bound) / |bound|, positive on the allowed side
     };
     std::vector<Margin> margins;          // the inequality rules at the optimum, nearest first
+    // Each objective at the optimum over the gearbox's `tolerances` (`worst`/`mean` read at the
+    // nominal design here): one tolerance at a time, then the whole box.
+    struct Sensitivity {
+      std::string objective;              // as written
+      double nominal = 0, lo = 0, hi = 0; // at the nominal design; least and largest over the box's corners
+      struct Line {
+        std::string target;               // "main.face_width"
+        double amount = 0;                // in the display unit
+        std::string unit;
+        double minus = 0, plus = 0;       // the objective at -amount and +amount
+      };
+      std::vector<Line> lines;
+      bool singular() const { return hi - lo > std::fabs(nominal); }
+    };
+    std::vector<Sensitivity> sensitivity;
   };
   std::optional<Optimum> best;
   std::string rankCheck;

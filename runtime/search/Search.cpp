@@ -65,6 +65,7 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth = 0)
       dependencies(m, *m.gearbox.lets[static_cast<size_t>(e.let)].expr, c, depth + 1);
     break;
   case Op::SceneOutput:
+  case Op::Scatter:
   case Op::Relative: c.unsupported = true; break;
   default: break;
   }
@@ -758,7 +759,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   // Objectives that read nothing but the gearbox ratio are evaluated from it alone.
   bool ratioOnly = true;
   std::function<void(const ir::Expr&)> scan = [&](const ir::Expr& e) {
-    if ((e.op == Op::Quantity && !isGearboxRatio(e.ref)) || e.op == Op::Let || e.op == Op::SceneOutput || e.op == Op::Relative)
+    if ((e.op == Op::Quantity && !isGearboxRatio(e.ref)) || e.op == Op::Let || e.op == Op::SceneOutput || e.op == Op::Relative ||
+        e.op == Op::Scatter)
       ratioOnly = false;
     for (const auto& x : e.args)
       if (x) scan(*x);

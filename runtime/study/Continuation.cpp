@@ -173,7 +173,7 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
       if (out.points.empty()) resonanceMarks(out, st, x, res.meshFrequency, res.naturalFrequency);
       p.stability = res.stability;
       p.branch = branch;
-      ev.sceneOutput = [&](const ir::Expr& e, const Assignment&) {
+      ev.sceneOutput = [&](const ir::Expr& e, const Assignment&, const Evaluator&) {
         const dyn::SceneNumber* num = res.find(e.output);
         return num && std::isfinite(num->value) ? Value::number(num->value) : Value::invalid();
       };

@@ -135,7 +135,7 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
       results.emplace(s, std::move(res));
     }
     if (r.scene)
-      ev.sceneOutput = [&](const ir::Expr& e, const Assignment&) {
+      ev.sceneOutput = [&](const ir::Expr& e, const Assignment&, const Evaluator&) {
         auto it = results.find(e.output.scene);
         const dyn::SceneNumber* num = it == results.end() ? nullptr : it->second.find(e.output);
         return num && std::isfinite(num->value) ? Value::number(num->value) : Value::invalid();

@@ -370,9 +370,9 @@ struct SceneFixture {
   std::unique_ptr<rt::Assignment> design;
 };
 
-SceneFixture fixture(const std::string& file, const std::string& gearbox) {
+SceneFixture fixtureText(const std::string& file, const std::string& text, const std::string& gearbox) {
   SceneFixture f;
-  f.c = driver::compileText(file, spec(file));
+  f.c = driver::compileText(file, text);
   for (const auto& g : f.c->program.gearboxes)
     if (g.name == gearbox) {
       f.model = std::make_unique<rt::Model>(f.c->program, g);
@@ -382,6 +382,8 @@ SceneFixture fixture(const std::string& file, const std::string& gearbox) {
   return f;
 }
 
+SceneFixture fixture(const std::string& file, const std::string& gearbox) { return fixtureText(file, spec(file), gearbox); }
+
 const ir::Scene& sceneOf(const SceneFixture& f, const std::string& name) {
   for (const auto& s : f.model->gearbox.scenes)
     if (s.name == name) return s;
@@ -389,8 +391,9 @@ const ir::Scene& sceneOf(const SceneFixture& f, const std::string& name) {
 }
 } // namespace
 
+// The corpus's marine scene: contact-line stiffness and a sinusoidal transmission error.
 TEST(Scenes, MarineVibrationIsAccurateAndOnlyComputesItsEffects) {
-  auto f = fixture("marine_reducer.gbx", "MarineReducer");
+  auto f = fixtureText("marine_reducer.gbx", readCorpusSpec("marine_reducer.gbx"), "MarineReducer");
   auto r = runScene(*f.model, *f.design, sceneOf(f, "vibration"));
   ASSERT_TRUE(r.failure.empty()) << r.failure;
   ASSERT_TRUE(r.find("rms(acceleration)"));

@@ -8,6 +8,8 @@
 
 #include "driver/Driver.h"
 #include "optimise/Optimise.h"
+#include "passes/Optimise.h"
+#include "passes/Search.h"
 #include "model/Evaluator.h"
 
 using namespace gbx;
@@ -50,34 +52,67 @@ Setup setup(bool rated = false) {
 
 } // namespace
 
-TEST(Optimise, MarineOptimumIsLighterAndQuieterThanTheBaseline) {
-  auto s = setup();
-  ASSERT_GE(s.candidates.size(), 5u) << "tooth counts in the ratio window with feasible freedoms";
-  rt::OptimiseOptions o;
-  o.jobs = 2;
-  auto r = rt::optimise(*s.model, s.base.get(), s.baseDesign.get(), s.candidates, o);
-  ASSERT_FALSE(r.ranked.empty());
-  ASSERT_EQ(r.termNames.size(), 2u);
-  const auto& best = r.ranked[0];
-  EXPECT_LT(best.terms[0] / r.baselineTerms[0], 1.0) << "quieter";
-  EXPECT_LT(best.terms[1] / r.baselineTerms[1], 1.0) << "lighter";
-  EXPECT_NEAR(r.baselineTerms[1], 4603.4, 0.5) << "the baseline's mass by the paper's formula";
+// The acceptance corpus's marine model (varying contact-line stiffness, F = dk e): its optimum
+// lands on an overlap ratio of exactly 1, where the contact-line length is constant and the
+// excitation vanishes. It is lighter and "quieter", and the optimiser says why not to trust
+// it: over a 1 mm / 0.05 deg tolerance box the vibration swings far beyond its own value.
+TEST(Optimise, MarineOptimumOfTheContactLineModelIsFlaggedSingular) {
+  std::string text = corpus("marine_reducer.gbx");
+  size_t at = text.find('\n', text.find("  operating"));
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 1, "  tolerances { main.face_width +- 1 mm; main.helix_angle +- 0.05 deg; }\n");
+  auto c = driver::compileText("marine_reducer.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::Model m(c->program, c->program.gearboxes[1]);
+  auto o = rt::passes::optimise(c->program, m, rt::passes::search(m, 2, {}), 2, {});
+  ASSERT_TRUE(o.summary && o.summary->best);
+  const auto& best = *o.summary->best;
+  ASSERT_EQ(best.terms.size(), 2u);
+  EXPECT_LT(best.terms[0] / o.summary->baselineTerms[0], 0.01) << "the vibration all but vanishes";
+  EXPECT_LT(best.terms[1] / o.summary->baselineTerms[1], 1.0) << "lighter";
+  rt::Evaluator ev(m);
+  rt::Assignment a(m);
+  a.choice = o.designs.designs.at(0).choice;
+  for (size_t f = 0; f < o.freedoms[0].size(); ++f) a.box[f] = {o.freedoms[0][f], o.freedoms[0][f]};
+  EXPECT_NEAR(ev.quantity("main.eps_beta", a).mid(), 1.0, 2e-3) << "on the singularity";
+  bool vibrationSingular = false, massSingular = false;
+  for (const auto& sv : best.sensitivity) {
+    if (sv.objective == "vibration.rms(acceleration)") vibrationSingular = sv.singular();
+    if (sv.objective == "main.mass") massSingular = sv.singular();
+  }
+  EXPECT_TRUE(vibrationSingular);
+  EXPECT_FALSE(massSingular);
+}
+
+// The project's marine model: the mesh excited by its loaded flanks, the objective the worst
+// vibration over the tolerance box. Its optimum is quieter than the baseline at the worst
+// corner, keeps a real excitation, and moves little over the box (not a singular optimum).
+TEST(Optimise, MarineOptimumOfTheLoadedMeshIsRobust) {
+  auto c = driver::compileText("marine_reducer.gbx", readSpec("marine_reducer.gbx"));
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::Model m(c->program, c->program.gearboxes[1]);
+  auto o = rt::passes::optimise(c->program, m, rt::passes::search(m, 2, {}), 2, {});
+  ASSERT_TRUE(o.summary && o.summary->best);
+  const auto& best = *o.summary->best;
+  ASSERT_EQ(o.summary->termNames.size(), 2u);
+  EXPECT_EQ(o.summary->termNames[0], "worst(vibration.rms(acceleration))");
+  double quieter = best.terms[0] / o.summary->baselineTerms[0];
+  EXPECT_LT(quieter, 0.5) << "quieter at the worst corner";
+  EXPECT_GT(quieter, 0.1) << "a real excitation remains";
+  EXPECT_NEAR(o.summary->baselineTerms[1], 4603.4, 0.5) << "the baseline's mass by the paper's formula";
+  ASSERT_FALSE(best.sensitivity.empty());
+  for (const auto& sv : best.sensitivity) EXPECT_FALSE(sv.singular()) << sv.objective;
   // The optimum satisfies every rule at its freedoms.
-  rt::Evaluator ev(*s.model);
-  rt::Assignment a(*s.model);
-  a.choice = best.choice;
-  for (size_t f = 0; f < best.freedoms.size(); ++f) a.box[f] = {best.freedoms[f], best.freedoms[f]};
-  for (const auto& rule : s.model->gearbox.rules) {
-    auto v = ev.eval(*rule.expr, a);
-    EXPECT_EQ(v.truth, rt::Truth::True) << rule.text;
+  rt::Evaluator ev(m);
+  rt::Assignment a(m);
+  a.choice = o.designs.designs.at(0).choice;
+  for (size_t f = 0; f < o.freedoms[0].size(); ++f) a.box[f] = {o.freedoms[0][f], o.freedoms[0][f]};
+  for (const auto& rule : m.gearbox.rules) EXPECT_EQ(ev.eval(*rule.expr, a).truth, rt::Truth::True) << rule.text;
+  for (size_t i = 1; i < o.summary->pareto.size(); ++i) {
+    EXPECT_GE(o.summary->pareto[i].first, o.summary->pareto[i - 1].first);
+    EXPECT_LT(o.summary->pareto[i].second, o.summary->pareto[i - 1].second);
   }
-  EXPECT_LE(ev.quantity("main.sliding_balance", a).lo, 0.001);
-  // The Pareto front is non-dominated.
-  for (size_t i = 1; i < r.pareto.size(); ++i) {
-    EXPECT_GE(r.pareto[i].first, r.pareto[i - 1].first);
-    EXPECT_LT(r.pareto[i].second, r.pareto[i - 1].second);
-  }
-  EXPECT_NE(r.rankCheck.find("keep their ranks"), std::string::npos) << r.rankCheck;
+  EXPECT_NE(o.summary->rankCheck.find("keep their ranks"), std::string::npos) << o.summary->rankCheck;
 }
 
 // Without strength rules the optimum (18/71 at x 0.6077/0.2508, beta 8.63 deg) overloads

@@ -201,7 +201,9 @@ TEST(Registry, EverySignalIsRecordedBySingleMeshAndPlanetaryScenes) {
     EXPECT_EQ(r.numbers.size(), n);
   }
   for (const auto& s : cat::sceneSignals()) {
-    if (!s.scalar) EXPECT_TRUE(recorded.count(s.id)) << "`" << s.name << "` is recorded by no scene model";
+    if (!s.scalar) {
+      EXPECT_TRUE(recorded.count(s.id)) << "`" << s.name << "` is recorded by no scene model";
+    }
   }
 }
 
