@@ -197,7 +197,11 @@ struct SceneOutput {
   bool bare = true;                       // resolved by lowering: no function
   cat::SignalFn fn = cat::SignalFn::Rms;  // when not bare
   cat::Signal id = cat::Signal::Displacement;
-  std::string key() const { return function.empty() ? signal : function + "(" + signal + ")"; }
+  std::string mesh;  // a whole-gearbox scene's mesh, "stage.mesh" or "stage" (LANGUAGE.md §14)
+  std::string key() const {
+    std::string s = mesh.empty() ? signal : signal + "(" + mesh + ")";
+    return function.empty() ? s : function + "(" + s + ")";
+  }
   Span span;
 };
 

@@ -1179,7 +1179,7 @@ private:
         else diags_.error("E0224", nameOr(b), fmt::format("{} has no block `{}` (it takes `effects` and `accuracy`)", owner, b.name));
         break;
       case StmtKind::Output:
-        for (const auto& e : b.exprs) sceneOutput(e.get(), out, stage);
+        for (const auto& e : b.exprs) sceneOutput(e.get(), out, stage, m, !stage && target == m.name);
         break;
       default: notAllowed(b, owner);
       }
@@ -1279,12 +1279,72 @@ private:
     }
   }
 
-  void sceneOutput(const ast::Expr* e, ir::Scene& out, const StageModel* stage) {
+  // `a.b.c` of a name or member chain; "" for anything else.
+  static std::string dotted(const ast::Expr* e) {
+    if (!e) return "";
+    if (e->kind == ast::ExprKind::Name) return e->text;
+    if (e->kind == ast::ExprKind::Member && !e->args.empty()) {
+      std::string head = dotted(e->args[0].get());
+      return head.empty() ? "" : head + "." + e->text;
+    }
+    return "";
+  }
+
+  // The meshes a whole-gearbox scene names by stage (LANGUAGE.md §14).
+  static std::vector<std::string> meshNames(const StageModel& st) {
+    if (!st.kind) return {};
+    switch (st.kind->kind) {
+    case ir::StageKind::Planetary: return {st.name + ".sun_planet", st.name + ".ring_planet"};
+    case ir::StageKind::Idler: return {st.name + ".driver_idler", st.name + ".idler_driven"};
+    case ir::StageKind::Spur:
+    case ir::StageKind::Helical: return {st.name};
+    default: return {};
+    }
+  }
+
+  void sceneOutput(const ast::Expr* e, ir::Scene& out, const StageModel* stage, const GearboxModel& m, bool whole) {
     if (!e) return;
     ir::SceneOutput o;
     o.span = e->span;
+    const ast::Expr* inner = e->kind == ast::ExprKind::Call && e->args.size() == 2 ? e->args[1].get() : nullptr;
     if (e->kind == ast::ExprKind::Name) {
       o.signal = e->text;
+    } else if (inner && e->args[0] && e->args[0]->kind == ast::ExprKind::Name && inner->kind == ast::ExprKind::Call &&
+               inner->args.size() == 2 && inner->args[0] && inner->args[0]->kind == ast::ExprKind::Name) {
+      // `peak(contact_force(planet_stage.sun_planet))`: a signal of one mesh of the gearbox.
+      o.function = e->args[0]->text;
+      o.signal = inner->args[0]->text;
+      o.mesh = dotted(inner->args[1].get());
+      if (!findSignalFn(o.function)) {
+        diags_.error("E0220", e->args[0]->span, fmt::format("`{}` is not a scene result function ({})", o.function, signalFnList()));
+        return;
+      }
+      if (o.mesh.empty()) {
+        diags_.error("E0306", inner->args[1]->span, "a mesh is named by its stage, and its mesh on a planetary or idler stage, as in `transfer.driver_idler`");
+        return;
+      }
+      if (!whole) {
+        if (!stage) return;  // the scene's target is already an error
+        diags_.error("E0232", inner->span,
+                     fmt::format("scene `{}` runs on stage `{}`, whose signals are its own mesh's (a planetary stage's first planet): write "
+                                 "`{}({})`, or run the scene on the gearbox to name a mesh",
+                                 out.name, stage->name, o.function, o.signal));
+        return;
+      }
+      if (o.signal != "contact_force" && o.signal != "mesh_force") {
+        diags_.error("E0232", inner->args[0]->span,
+                     fmt::format("a mesh of the gearbox has `contact_force` and `mesh_force`; `{}` is not a signal of one mesh", o.signal));
+        return;
+      }
+      std::vector<std::string> names;
+      for (const auto& st : m.stages)
+        for (const auto& n : meshNames(st)) names.push_back(n);
+      if (std::find(names.begin(), names.end(), o.mesh) == names.end()) {
+        std::string hint = closest(o.mesh, names);
+        diags_.error("E0219", inner->args[1]->span,
+                     fmt::format("gearbox `{}` has no mesh `{}`{} (meshes: {})", m.name, o.mesh, suggestion(hint), fmt::join(names, ", ")));
+        return;
+      }
     } else if (e->kind == ast::ExprKind::Call && e->args.size() == 2 && e->args[0] &&
                e->args[0]->kind == ast::ExprKind::Name && e->args[1] && e->args[1]->kind == ast::ExprKind::Name) {
       o.function = e->args[0]->text;
@@ -1315,6 +1375,21 @@ private:
                                : fmt::format("`{}` is a time signal; say what to take of it, as in `rms({})`", o.signal, o.signal));
       return;
     }
+    if (whole && o.mesh.empty() && (sig->id == Signal::MeshForce || sig->id == Signal::ContactForce))
+      diags_.error("E0232", e->span,
+                   fmt::format("scene `{}` runs on the whole gearbox: say which mesh, as in `{}({}({}))`", out.name,
+                               o.function.empty() ? "peak" : o.function, o.signal,
+                               [&] {
+                                 for (const auto& st : m.stages)
+                                   if (!meshNames(st).empty()) return meshNames(st)[0];
+                                 return std::string("stage");
+                               }()));
+    else if (whole && sig->id != Signal::Modes && sig->id != Signal::MeshForce && sig->id != Signal::ContactForce && sig->id != Signal::OutputSpeed &&
+             sig->id != Signal::InputSpeed)
+      diags_.error("E0232", e->span,
+                   fmt::format("scene `{}` runs on the whole gearbox, whose signals are `contact_force` and `mesh_force` of a mesh, "
+                               "`input_speed`, `output_speed` and `modes`; `{}` belongs to a scene on one stage",
+                               out.name, o.signal));
     if (sig->id == Signal::Modes && stage && stage->kind && stage->kind->kind != ir::StageKind::Planetary)
       diags_.error("E0232", e->span, "`modes` needs a lumped model: a scene on a planetary stage or on the whole gearbox");
     if (!sig->needsAnyEffect.empty() &&

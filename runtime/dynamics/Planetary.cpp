@@ -352,11 +352,13 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
     fourier = contactLineSeries(eSp, 0.0, harmonics);
     prov.push_back(fmt::format("contact-line stiffness variation, {} harmonics, eps_alpha {:.4f} (sun-planet)", harmonics, eSp));
   }
-  // Meshes: sun-planet i and ring-planet i, phased by the planets' positions.
+  // Meshes: sun-planet i and ring-planet i, phased by the planets' positions psi_i = 2 pi i/N:
+  // zs psi_i / 2 pi on the sun, -zr psi_i / 2 pi on the ring (Parker and Lin's mesh phasing),
+  // equal modulo one by the assembly condition, so every planet meets the same mesh cycle.
   std::vector<Mesh> meshes;
   for (int i = 0; i < N; ++i) {
     meshes.push_back({Ksp, std::fmod(zs * i / static_cast<double>(N), 1.0), false, i});
-    meshes.push_back({Krp, std::fmod(zr * i / static_cast<double>(N), 1.0), true, i});
+    meshes.push_back({Krp, 1.0 - std::fmod(zr * i / static_cast<double>(N), 1.0), true, i});
   }
   double halfClearance = backlash ? 0.5 * settingValue(*effectParam(backlash, Q::Clearance)) : 0.0;
   double teMean = 0, teAmp = 0, tePhase = 0;

@@ -11,6 +11,7 @@
 #include "dynamics/MeshModel.h"
 #include "dynamics/LoadedMesh.h"
 #include "dynamics/LoadedMeshInputs.h"
+#include "dynamics/Gearbox.h"
 #include "dynamics/Lumped.h"
 #include "dynamics/Statistics.h"
 #include "model/StageKind.h"
@@ -69,24 +70,6 @@ double inertiaOf(const Evaluator& ev, int st, const Assignment& a, int g, double
   return J;
 }
 
-struct Elastic {
-  double E = 206e9, nu = 0.3, density = 7850;
-  bool assumed = true;
-};
-
-Elastic materialOf(const Model& m, int st) {
-  Elastic e;
-  const ir::Material* x = m.material(st);
-  if (!x) return e;
-  auto get = [&](Q key, double& out) {
-    if (const auto* s = ir::findSetting(x->properties, key); s && s->value) out = s->value->toDouble();
-  };
-  get(Q::YoungsModulus, e.E);
-  get(Q::Poisson, e.nu);
-  get(Q::Density, e.density);
-  e.assumed = false;
-  return e;
-}
 
 struct Samples {
   std::vector<double> t;
@@ -220,6 +203,70 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
   return out;
 }
 
+// A whole-gearbox scene in time (LANGUAGE.md §14): the outputs of its meshes by name.
+SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov,
+                            SceneResult r) {
+  Accuracy acc = sceneAccuracy(scene, ov);
+  r.method = std::string(cat::methodSpec(acc.method).name);
+  r.rtol = acc.rtol;
+  r.atol = acc.atol > 0 ? acc.atol : acc.rtol;
+  GearboxRun g = runGearbox(m, ev, a, scene, acc, ov);
+  r.model = g.provenance;
+  r.stats = g.stats;
+  r.stepRule = g.stepRule;
+  r.harmonics = g.harmonics;
+  r.meshFrequency = g.meshFrequency;
+  r.steady = g.plan.steady;
+  if (!g.failure.empty()) {
+    r.failure = fmt::format("scene `{}`: {}", scene.name, g.failure);
+    return r;
+  }
+  r.gearbox.members = g.members;
+  r.gearbox.kinematic = g.kinematic;
+  r.gearbox.driveWork = g.driveWork;
+  r.gearbox.loadWork = g.loadWork;
+  r.gearbox.dissipated = g.dissipated;
+  r.gearbox.energyGained = g.energyGained;
+  size_t first = static_cast<size_t>(std::lower_bound(g.t.begin(), g.t.end(), g.plan.statsFrom - 1e-12) - g.t.begin());
+  auto window = [&](const std::vector<double>& v) { return std::vector<double>(v.begin() + static_cast<long>(std::min(first, v.size())), v.end()); };
+  for (const auto& o : scene.outputs) {
+    Dim dim = cat::signalSpec(o.id).dim;
+    if (o.id == Signal::Modes) {
+      for (size_t i = 0; i < g.modes.size(); ++i) r.numbers.push_back({fmt::format("mode {}", i + 1), g.modes[i], units::dims::frequency});
+      continue;
+    }
+    const std::vector<double>* v = nullptr;
+    double fz = g.meshFrequency;
+    if (o.id == Signal::InputSpeed) v = &g.inputSpeed;
+    else if (o.id == Signal::OutputSpeed) v = &g.outputSpeed;
+    else
+      for (const auto& ms : g.meshes)
+        if (ms.name == o.mesh) {
+          v = o.id == Signal::ContactForce ? &ms.contactForce : &ms.meshForce;
+          fz = ms.meshFrequency;
+        }
+    if (!v) throw Failure{fmt::format("`{}` is not an output of the whole-gearbox model", o.key())};
+    std::vector<double> w = window(*v);
+    if (!cat::signalFnSpec(o.fn).number) {
+      if (!ov.keepSeries) continue;
+      SceneSeries s;
+      s.key = o.key();
+      s.signal = o.mesh.empty() ? o.signal : o.signal + "(" + o.mesh + ")";
+      s.dim = dim;
+      s.t.assign(g.t.begin() + static_cast<long>(std::min(first, g.t.size())), g.t.end());
+      s.v = std::move(w);
+      if (o.fn == cat::SignalFn::Spectrum) {
+        s.isSpectrum = true;
+        s.spectrum = spectrum(s.v, g.plan.dt, fz);
+      }
+      r.series.push_back(std::move(s));
+      continue;
+    }
+    r.numbers.push_back({o.key(), w.empty() ? NAN : statistic(o.fn)(w), dim, o.fn, o.id});
+  }
+  return r;
+}
+
 SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
   SceneResult r;
   r.name = scene.name;
@@ -227,10 +274,9 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
   Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
   int st = scene.stage;
   if (st < 0) {
+    bool timeDomain = std::any_of(scene.outputs.begin(), scene.outputs.end(), [](const ir::SceneOutput& o) { return o.id != Signal::Modes; });
+    if (timeDomain) return runWholeGearbox(m, ev, a, scene, ov, std::move(r));
     // The whole gearbox: its lumped torsional model, for its modes.
-    for (const auto& o : scene.outputs)
-      if (o.id != Signal::Modes)
-        throw Failure{fmt::format("`{}`: on the whole gearbox only `modes` are computed; run time-domain outputs on a stage", o.key())};
     LumpedModes lm = gearboxModes(m, a);
     r.model = lm.provenance;
     for (size_t i = 0; i < lm.frequencies.size(); ++i) {
@@ -454,6 +500,21 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
 
 
 // ---- shared by the scene models --------------------------------------------------------
+
+Elastic materialOf(const Model& m, int st) {
+  Elastic e;
+  const ir::Material* x = m.material(st);
+  if (!x) return e;
+  auto get = [&](Q key, double& out) {
+    if (const auto* s = ir::findSetting(x->properties, key); s && s->value) out = s->value->toDouble();
+  };
+  get(Q::YoungsModulus, e.E);
+  get(Q::Poisson, e.nu);
+  get(Q::Density, e.density);
+  e.assumed = false;
+  return e;
+}
+
 
 double needNumber(const Value& v, const std::string& what) {
   if (!v.isNumber() || !std::isfinite(v.lo)) throw SceneFailure{fmt::format("the scene needs {}, which this design does not give", what)};

@@ -69,6 +69,13 @@ struct SceneResult {
   const SceneNumber* find(const std::string& key) const;  // by the report's key, for tests
   const SceneNumber* find(const ir::SceneOutputRef& ref) const;
   SceneNumber stabilityNumber;  // `scene.stability` read where the scene does not list it
+  // A whole-gearbox scene's members, their kinematic speeds per unit input speed, and its
+  // energy balance when SceneOverrides::energyAudit asks for it (dynamics/Gearbox.h).
+  struct WholeGearbox {
+    std::vector<std::string> members;
+    std::vector<double> kinematic;
+    double driveWork = 0, loadWork = 0, dissipated = 0, energyGained = 0;
+  } gearbox;
 };
 
 // The single-mesh model of a scene on a spur or helical stage, as runScene builds it.

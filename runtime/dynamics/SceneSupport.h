@@ -14,6 +14,7 @@
 
 namespace gbx::rt {
 class Evaluator;
+class Model;
 }
 
 namespace gbx::rt::dyn {
@@ -40,6 +41,7 @@ struct SceneOverrides {
   std::optional<double> maxStepFactor;  // times the scene's maximum step (an error-estimate rerun)
   bool keepUnstable = false;  // values on an unstable orbit too (a continuation's middle branch)
   int loadedRefine = 1;       // the loaded mesh's slices and positions times this (an error-estimate rerun)
+  bool energyAudit = false;   // a whole-gearbox scene also integrates its energy balance (tests)
 };
 
 // How a scene reaches its steady state (LANGUAGE.md §12).
@@ -57,6 +59,13 @@ inline std::vector<double>& series(SignalSeries& s, cat::Signal id) { return s[s
 struct SceneFailure {
   std::string what;
 };
+
+// A stage's elastic constants and density: its material's, or steel's (assumed = true).
+struct Elastic {
+  double E = 206e9, nu = 0.3, density = 7850;
+  bool assumed = true;
+};
+Elastic materialOf(const Model& m, int stage);
 
 struct TimePlan {
   double end = 0, statsFrom = 0, dt = 0;

@@ -1,0 +1,651 @@
+#include "dynamics/Gearbox.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "catalogue/StageKinds.h"
+#include "dynamics/Dispatch.h"
+#include "dynamics/Drive.h"
+#include "dynamics/Stiffness.h"
+
+namespace gbx::rt::dyn {
+
+namespace {
+
+using cat::Effect;
+
+// One mesh: its deflection along the line of action is sum coef[k] q[dof[k]] over at most
+// three members (dof -1: the driven input, whose angle is prescribed).
+struct GMesh {
+  std::string name;
+  bool reported = false;  // a planetary stage reports its first planet's meshes
+  int stage = 0;
+  int n = 0;
+  std::array<int, 3> dof{};
+  std::array<double, 3> coef{};
+  double K = 0;             // Hertz stiffness (N/m^e), or linear stiffness
+  double kLinear = 0;       // the linear stiffness at the static load (modes, damping ratio)
+  double hertzDamping = 0;  // the contact law's damping, N*s/m
+  double c = 0;             // `damping`, N*s/m
+  double normal = 1;        // contact force / mesh force (1 / cos beta_b)
+  int fourier = -1;         // its stiffness series
+  int phaseDof = -1;        // the member whose angle counts its mesh periods (-1: the input)
+  double phaseGain = 0;     // mesh periods per radian of that member
+  double phase0 = 0;        // planet phasing, mesh periods
+  double meshFrequency = 0;
+};
+
+struct Params {
+  size_t nq = 0;                  // members besides the input
+  std::vector<double> J;          // their inertias
+  std::vector<GMesh> meshes;
+  std::vector<Fourier> fouriers;
+  double e = 1.5, ramp = 0, halfClearance = 0;
+  int output = 0;                 // the loaded member
+  double outSign = 1;             // its kinematic sense
+  double tMean = 0, tAmp = 0, tOmega = 0;
+  Drive drive;
+  bool audit = false;             // three more states: drive work, load work, dissipation
+};
+
+namespace contact {
+inline constexpr int Linear = 0, Backlash = 1, Hertz = 2;
+}
+namespace drivephase {
+inline constexpr int Closed = 0, State = 1;
+}
+
+// The right-hand side compiled per combination of listed effects (as in MeshModel.cpp): an
+// effect the scene does not list is absent from it, not tested for.
+template <bool Varying, bool Damped, int Contact, bool TorqueFl, int Phase>
+struct Kernel {
+  static double inputAngle(const Params& p, double t, const double* y) {
+    if constexpr (Phase == drivephase::State) return y[2 * p.nq];
+    else return p.drive.angle(t);
+  }
+  static double deflection(const Params& p, const GMesh& me, double tin, double win, const double* y, double& rate) {
+    double d = 0;
+    rate = 0;
+    for (int k = 0; k < me.n; ++k) {
+      int j = me.dof[static_cast<size_t>(k)];
+      double c = me.coef[static_cast<size_t>(k)];
+      if (j < 0) {
+        d += c * tin;
+        rate += c * win;
+      } else {
+        d += c * y[j];
+        rate += c * y[p.nq + static_cast<size_t>(j)];
+      }
+    }
+    return d;
+  }
+  // The mesh force and its elastic part (the energy audit's dissipation is the difference);
+  // with Slopes also its partial derivatives in the deflection, its rate and the mesh phase.
+  template <bool Slopes = false>
+  static double force(const Params& p, const GMesh& me, double tin, const double* y, double d, double rate, double& elastic,
+                      double* fd = nullptr, double* fv = nullptr, double* ft = nullptr) {
+    double K = me.K;
+    [[maybe_unused]] double rel = 1.0, drel = 0.0;
+    if constexpr (Varying) {
+      double phi = me.phaseDof < 0 ? tin : y[me.phaseDof];
+      const Fourier& f = p.fouriers[static_cast<size_t>(me.fourier)];
+      double tau = me.phaseGain * phi + me.phase0;
+      rel = relativeStiffness(f, tau);
+      if constexpr (Slopes) drel = relativeStiffnessSlope(f, tau);
+      K *= rel;
+    }
+    [[maybe_unused]] double c = 0;
+    if constexpr (Damped) c = me.c;
+    if constexpr (Slopes) *fd = *fv = *ft = 0;
+    if constexpr (Contact == contact::Backlash) {
+      double hc = p.halfClearance;
+      double e2 = d > hc ? d - hc : d < -hc ? d + hc : 0.0;
+      elastic = K * e2;
+      if (e2 == 0) return 0.0;
+      if constexpr (Slopes) {
+        *fd = K;
+        *fv = c;
+        *ft = me.K * drel * e2;
+      }
+      return K * e2 + c * rate;
+    } else if constexpr (Contact == contact::Hertz) {
+      elastic = 0;
+      if (d <= 0) return 0.0;
+      double s = p.ramp > 0 ? std::min(1.0, d / p.ramp) : 1.0;
+      double C = me.hertzDamping * s * s * (3.0 - 2.0 * s) + c;
+      double de = p.e == 1.5 ? d * std::sqrt(d) : std::pow(d, p.e);
+      elastic = K * de;
+      double f = elastic + C * rate;
+      if (f <= 0) return 0.0;  // a contact pushes, never pulls
+      if constexpr (Slopes) {
+        double dstep = p.ramp > 0 && s < 1.0 ? 6.0 * s * (1.0 - s) / p.ramp : 0.0;
+        *fd = p.e * K * de / d + me.hertzDamping * dstep * rate;
+        *fv = C;
+        *ft = me.K * drel * de;
+      }
+      return f;
+    } else {
+      elastic = K * d;
+      if constexpr (Slopes) {
+        *fd = K;
+        *fv = c;
+        *ft = me.K * drel * d;
+      }
+      return K * d + c * rate;
+    }
+  }
+  // The state Jacobian, row-major (the implicit method needs it: the contact damping of the
+  // source paper makes the light idler stiff). The energy audit's rows are left out.
+  static void dfdy(const Params& p, double t, const double* y, double* Jm) {
+    size_t nq = p.nq, n = 2 * nq + (Phase == drivephase::State ? 1 : 0) + (p.audit ? 3 : 0);
+    std::fill(Jm, Jm + n * n, 0.0);
+    for (size_t i = 0; i < nq; ++i) Jm[i * n + nq + i] = 1.0;
+    double tin = inputAngle(p, t, y), win = p.drive.speed(t);
+    for (const auto& me : p.meshes) {
+      double rate, elastic, fd, fv, ft;
+      double d = deflection(p, me, tin, win, y, rate);
+      force<true>(p, me, tin, y, d, rate, elastic, &fd, &fv, &ft);
+      for (int r = 0; r < me.n; ++r) {
+        int j = me.dof[static_cast<size_t>(r)];
+        if (j < 0) continue;
+        double* row = Jm + (nq + static_cast<size_t>(j)) * n;
+        double w = -me.coef[static_cast<size_t>(r)] / p.J[static_cast<size_t>(j)];
+        for (int k = 0; k < me.n; ++k) {
+          int col = me.dof[static_cast<size_t>(k)];
+          double ck = me.coef[static_cast<size_t>(k)];
+          if (col >= 0) {
+            row[col] += w * fd * ck;
+            row[nq + static_cast<size_t>(col)] += w * fv * ck;
+          } else if constexpr (Phase == drivephase::State) {
+            row[2 * nq] += w * fd * ck;
+          }
+        }
+        if constexpr (Varying) {
+          if (me.phaseDof >= 0) row[me.phaseDof] += w * ft * me.phaseGain;
+          else if constexpr (Phase == drivephase::State) row[2 * nq] += w * ft * me.phaseGain;
+        }
+      }
+    }
+  }
+  static double loadTorque(const Params& p, double t) {
+    if constexpr (TorqueFl) return p.tMean + p.tAmp * std::sin(p.tOmega * t);
+    else return p.tMean;
+  }
+  static void rhs(const Params& p, double t, const double* y, double* dy) {
+    size_t nq = p.nq;
+    for (size_t i = 0; i < nq; ++i) {
+      dy[i] = y[nq + i];
+      dy[nq + i] = 0;
+    }
+    double tin = inputAngle(p, t, y), win = p.drive.speed(t);
+    double T = loadTorque(p, t);
+    dy[nq + static_cast<size_t>(p.output)] -= p.outSign * T;
+    double driveTorque = 0, dissipation = 0;
+    for (const auto& me : p.meshes) {
+      double rate, elastic;
+      double d = deflection(p, me, tin, win, y, rate);
+      double f = force(p, me, tin, y, d, rate, elastic);
+      for (int k = 0; k < me.n; ++k) {
+        int j = me.dof[static_cast<size_t>(k)];
+        if (j < 0) driveTorque += f * me.coef[static_cast<size_t>(k)];
+        else dy[nq + static_cast<size_t>(j)] -= f * me.coef[static_cast<size_t>(k)];
+      }
+      dissipation += (f - elastic) * rate;
+    }
+    for (size_t i = 0; i < nq; ++i) dy[nq + i] /= p.J[i];
+    size_t at = 2 * nq;
+    if constexpr (Phase == drivephase::State) dy[at++] = win;
+    if (p.audit) {
+      dy[at] = driveTorque * win;
+      dy[at + 1] = p.outSign * T * y[nq + static_cast<size_t>(p.output)];
+      dy[at + 2] = dissipation;
+    }
+  }
+  static double meshForce(const Params& p, const GMesh& me, double t, const double* y) {
+    double rate, elastic, tin = inputAngle(p, t, y);
+    double d = deflection(p, me, tin, p.drive.speed(t), y, rate);
+    return force(p, me, tin, y, d, rate, elastic);
+  }
+  static double meshDeflection(const Params& p, const GMesh& me, double t, const double* y) {
+    double rate;
+    return deflection(p, me, inputAngle(p, t, y), p.drive.speed(t), y, rate);
+  }
+};
+
+struct Compiled {
+  std::function<void(double, const double*, double*)> rhs, dfdy;
+  std::function<double(const GMesh&, double, const double*)> force, deflection;
+};
+
+Compiled compile(const Params& p, bool varying, bool damped, int contactKind, bool torqueFl, int phase) {
+  Compiled c;
+  withBool(varying, [&](auto V) {
+    withBool(damped, [&](auto D) {
+      withInt3(contactKind, [&](auto C) {
+        withBool(torqueFl, [&](auto Q) {
+          withBool(phase == drivephase::State, [&](auto P) {
+            using K = Kernel<decltype(V)::value, decltype(D)::value, decltype(C)::value, decltype(Q)::value,
+                             decltype(P)::value ? drivephase::State : drivephase::Closed>;
+            const Params* pp = &p;
+            c.rhs = [pp](double t, const double* y, double* dy) { K::rhs(*pp, t, y, dy); };
+            c.dfdy = [pp](double t, const double* y, double* J) { K::dfdy(*pp, t, y, J); };
+            c.force = [pp](const GMesh& me, double t, const double* y) { return K::meshForce(*pp, me, t, y); };
+            c.deflection = [pp](const GMesh& me, double t, const double* y) { return K::meshDeflection(*pp, me, t, y); };
+          });
+        });
+      });
+    });
+  });
+  return c;
+}
+
+double need(const Value& v, const std::string& what) { return needNumber(v, what); }
+
+// Transverse contact ratio of a standard spur pair (no shift), external or internal.
+double epsAlphaStandard(double z1, double z2, double mod, double alpha, bool internal) {
+  double ra1 = 0.5 * z1 * mod + mod, rb1 = 0.5 * z1 * mod * std::cos(alpha);
+  double ra2 = internal ? 0.5 * z2 * mod - mod : 0.5 * z2 * mod + mod, rb2 = 0.5 * z2 * mod * std::cos(alpha);
+  double a0 = internal ? 0.5 * (z2 - z1) * mod : 0.5 * (z1 + z2) * mod;
+  double path = std::sqrt(ra1 * ra1 - rb1 * rb1) + (internal ? -1.0 : 1.0) * std::sqrt(ra2 * ra2 - rb2 * rb2) +
+                (internal ? 1.0 : -1.0) * a0 * std::sin(alpha);
+  return path / (M_PI * mod * std::cos(alpha));
+}
+
+} // namespace
+
+GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ir::Scene& scene, Accuracy acc,
+                      const SceneOverrides& ov) {
+  GearboxRun run;
+  auto& prov = run.provenance;
+  using namespace cat::gear;
+  for (const auto& fx : scene.effects)
+    if (fx.kind != Effect::HertzContact && fx.kind != Effect::Backlash && fx.kind != Effect::VaryingStiffness && fx.kind != Effect::Damping &&
+        fx.kind != Effect::SpeedFluctuation && fx.kind != Effect::TorqueFluctuation)
+      throw SceneFailure{fmt::format("effect `{}` is not modelled in a whole-gearbox scene (it takes hertz_contact, backlash, "
+                                     "varying_stiffness, damping, speed_fluctuation and torque_fluctuation)",
+                                     fx.name)};
+  if (!m.gearbox.splits.empty()) throw SceneFailure{"a whole-gearbox scene of a power split is not modelled: run the scene on a stage"};
+  const ir::Effect* hertz = scene.findEffect(Effect::HertzContact);
+  const ir::Effect* varying = scene.findEffect(Effect::VaryingStiffness);
+  const ir::Effect* damping = scene.findEffect(Effect::Damping);
+  const ir::Effect* torqueFx = scene.findEffect(Effect::TorqueFluctuation);
+  const ir::Effect* backlash = scene.findEffect(Effect::Backlash);
+  if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
+
+  Params P;
+  if (hertz) {
+    if (const auto* s = effectParam(hertz, Q::Exponent)) P.e = settingValue(*s);
+    if (const auto* s = effectParam(hertz, Q::PenetrationRamp)) P.ramp = settingValue(*s);
+  }
+  if (backlash) P.halfClearance = 0.5 * settingValue(*effectParam(backlash, Q::Clearance));
+  int harmonics = varying ? (ov.harmonics ? *ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)))) : 0;
+  run.harmonics = harmonics;
+
+  // Members: the driven input shaft first (prescribed), then one per shaft, carrier, planet, idler.
+  std::vector<std::string> names = {"input shaft"};
+  std::vector<double> J = {0.0};
+  auto add = [&](const std::string& n, double inertia) {
+    names.push_back(n);
+    J.push_back(inertia);
+    return static_cast<int>(names.size()) - 1;
+  };
+  // A member index as the state sees it: the input is -1, the others one lower.
+  auto dofOf = [](int member) { return member - 1; };
+  int shaft = 0;
+  // The sense the current shaft turns in: every mesh is written so that a positive deflection
+  // carries the load (the driving flank), whichever way its stage's input turns.
+  double sense = 1.0;
+  double fastest = 0;
+  std::vector<std::string> hertzLines;
+  for (int st = 0; st < static_cast<int>(m.stages.size()); ++st) {
+    const ir::Stage& s = *m.stages[static_cast<size_t>(st)].ir;
+    Elastic mat = materialOf(m, st);
+    double Estar = mat.E / (2.0 * (1.0 - mat.nu * mat.nu));
+    double alpha = need(ev.attribute(st, Q::PressureAngle, a), "a pressure angle");
+    double fz = need(ev.derived(st, Q::MeshFrequency, a), fmt::format("the mesh frequency of stage `{}`", s.name));
+    fastest = std::max(fastest, fz);
+    if (mat.assumed) prov.push_back(fmt::format("stage `{}`: density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)", s.name));
+    auto hertzK = [&](double rho1, double rho2, bool internal) {
+      double R = 1.0 / (1.0 / rho1 + (internal ? -1.0 : 1.0) / rho2);
+      return 4.0 / 3.0 * std::sqrt(R) * Estar;
+    };
+    // Linear stiffness without a contact law: c_gamma x b, given or assumed.
+    auto linearK = [&](double b) {
+      Value cg = ev.attribute(st, Q::MeshStiffness, a);
+      return (cg.isNumber() ? cg.mid() : 16e9) * b;
+    };
+    auto mesh = [&](const std::string& n, bool reported, std::vector<std::pair<int, double>> coupling, double K, double kLin, double normal,
+                    int fourier, int phaseMember, double gain, double phase0) {
+      GMesh me;
+      me.name = n;
+      me.reported = reported;
+      me.stage = st;
+      me.n = static_cast<int>(coupling.size());
+      for (size_t k = 0; k < coupling.size(); ++k) {
+        me.dof[k] = dofOf(coupling[k].first);
+        me.coef[k] = sense * coupling[k].second;
+      }
+      me.K = hertz ? K : kLin;
+      me.kLinear = kLin;
+      me.normal = normal;
+      me.fourier = fourier;
+      me.phaseDof = dofOf(phaseMember);
+      me.phaseGain = sense * gain;
+      me.phase0 = phase0;
+      me.meshFrequency = fz;
+      if (hertz)
+        if (const auto* hd = effectParam(hertz, Q::Damping)) me.hertzDamping = settingValue(*hd, {adamsStiffness(K, P.e)});
+      P.meshes.push_back(me);
+    };
+    auto width = [&](double mod) {
+      Value bw = ev.attribute(st, Q::FaceWidth, a);
+      if (bw.isNumber()) return bw.mid();
+      prov.push_back(fmt::format("stage `{}`: face width {:.2f} mm assumed (10 x module): not given", s.name, 10.0 * mod * 1e3));
+      return 10.0 * mod;
+    };
+    auto solid = [&](int gear, double r, double b) {
+      Value given = ev.attribute(st, gear, Q::Inertia, a);
+      return given.isNumber() ? given.mid() : 0.5 * mat.density * M_PI * b * r * r * r * r;
+    };
+    switch (s.kind) {
+    case ir::StageKind::Planetary: {
+      double zs = need(ev.attribute(st, Sun, Q::Z, a), "sun.z"), zp = need(ev.attribute(st, Planet, Q::Z, a), "planet.z"),
+             zr = need(ev.attribute(st, Ring, Q::Z, a), "ring.z"), mod = need(ev.attribute(st, Q::Module, a), "`module`");
+      int N = static_cast<int>(need(ev.attribute(st, Q::Planets, a), "planets"));
+      if (N < 1 || N > 32) throw SceneFailure{fmt::format("a planetary stage is modelled with 1 to 32 planets, not {}", N)};
+      double rbs = 0.5 * zs * mod * std::cos(alpha), rbp = 0.5 * zp * mod * std::cos(alpha), rbr = 0.5 * zr * mod * std::cos(alpha);
+      double rc = 0.5 * (zs + zp) * mod, rp = 0.5 * zp * mod, b = width(mod);
+      double mp = mat.density * M_PI * rp * rp * b;
+      double Jp = solid(Planet, rp, b);
+      Value jcGiven = ev.attribute(st, Q::CarrierInertia, a);
+      double Rcar = rc + rp;
+      double Jc = jcGiven.isNumber() ? jcGiven.mid() : 0.5 * mat.density * M_PI * Rcar * Rcar * b * Rcar * Rcar;
+      J[static_cast<size_t>(shaft)] += solid(Sun, 0.5 * zs * mod, b);
+      int carrier = add(s.name + " carrier", Jc + N * mp * rc * rc);
+      double tanA = std::tan(alpha);
+      double Ksp = hertzK(rbs * tanA, rbp * tanA, false), Krp = hertzK(rbp * tanA, rbr * tanA, true);
+      if (hertz) hertzLines.push_back(fmt::format("`{}` sun-planet {:.4g}, ring-planet {:.4g} N/m^{} (internal curvature subtracted)", s.name, Ksp, Krp, P.e));
+      int fourier = -1;
+      if (varying) {
+        double eps = epsAlphaStandard(zs, zp, mod, alpha, false);
+        P.fouriers.push_back(contactLineSeries(eps, 0.0, harmonics));
+        fourier = static_cast<int>(P.fouriers.size()) - 1;
+        prov.push_back(fmt::format("stage `{}`: contact-line stiffness variation, {} harmonics, eps_alpha {:.4f} (sun-planet, on both meshes)",
+                                   s.name, harmonics, eps));
+      }
+      double kLin = linearK(b);
+      for (int i = 0; i < N; ++i) {
+        int p = add(fmt::format("{} planet {}", s.name, i + 1), Jp);
+        // Sun-planet: rbs (theta_sun - theta_c) + rbp phi; ring-planet: -rbp phi - rbr theta_c.
+        mesh(s.name + ".sun_planet", i == 0, {{shaft, rbs}, {carrier, -rbs}, {p, rbp}}, Ksp, kLin, 1.0, fourier, carrier, zr / (2.0 * M_PI),
+             std::fmod(zs * i / static_cast<double>(N), 1.0));
+        mesh(s.name + ".ring_planet", i == 0, {{p, -rbp}, {carrier, -rbr}}, Krp, kLin, 1.0, fourier, carrier, zr / (2.0 * M_PI),
+             1.0 - std::fmod(zr * i / static_cast<double>(N), 1.0));  // Parker and Lin's phasing, as in Planetary.cpp
+      }
+      prov.push_back(fmt::format("stage `{}`: carrier {:.4g} kg*m^2 with {} planets at r = {:.2f} mm, planet spin {:.4g} kg*m^2 ({})", s.name,
+                                 Jc + N * mp * rc * rc, N, rc * 1e3, Jp, "solid discs unless given"));
+      shaft = carrier;
+      break;
+    }
+    case ir::StageKind::Idler: {
+      double z1 = need(ev.attribute(st, Driver, Q::Z, a), "driver.z"), z2 = need(ev.attribute(st, Idler, Q::Z, a), "idler.z"),
+             z3 = need(ev.attribute(st, Driven, Q::Z, a), "driven.z"), mod = need(ev.attribute(st, Q::Module, a), "`module`");
+      double rb1 = 0.5 * z1 * mod * std::cos(alpha), rb2 = 0.5 * z2 * mod * std::cos(alpha), rb3 = 0.5 * z3 * mod * std::cos(alpha);
+      double b = width(mod), tanA = std::tan(alpha);
+      J[static_cast<size_t>(shaft)] += solid(Driver, 0.5 * z1 * mod, b);
+      int idler = add(s.name + " idler", solid(Idler, 0.5 * z2 * mod, b));
+      int driven = add(s.name + " driven", solid(Driven, 0.5 * z3 * mod, b));
+      double K1 = hertzK(rb1 * tanA, rb2 * tanA, false), K2 = hertzK(rb2 * tanA, rb3 * tanA, false);
+      if (hertz) hertzLines.push_back(fmt::format("`{}` driver-idler {:.4g}, idler-driven {:.4g} N/m^{}", s.name, K1, K2, P.e));
+      int f1 = -1, f2 = -1;
+      if (varying) {
+        double e1 = epsAlphaStandard(z1, z2, mod, alpha, false), e2 = epsAlphaStandard(z2, z3, mod, alpha, false);
+        P.fouriers.push_back(contactLineSeries(e1, 0.0, harmonics));
+        f1 = static_cast<int>(P.fouriers.size()) - 1;
+        P.fouriers.push_back(contactLineSeries(e2, 0.0, harmonics));
+        f2 = f1 + 1;
+        prov.push_back(fmt::format("stage `{}`: contact-line stiffness variation, {} harmonics, eps_alpha {:.4f} and {:.4f}; the two meshes "
+                                   "in phase (the idler's angle between its centre lines is not modelled)",
+                                   s.name, harmonics, e1, e2));
+      }
+      double kLin = linearK(b);
+      // Driver-idler: rb1 theta_1 + rb2 theta_2; idler-driven: -rb2 theta_2 - rb3 theta_3.
+      mesh(s.name + ".driver_idler", true, {{shaft, rb1}, {idler, rb2}}, K1, kLin, 1.0, f1, shaft, z1 / (2.0 * M_PI), 0.0);
+      mesh(s.name + ".idler_driven", true, {{idler, -rb2}, {driven, -rb3}}, K2, kLin, 1.0, f2, shaft, z1 / (2.0 * M_PI), 0.0);
+      shaft = driven;
+      break;
+    }
+    case ir::StageKind::Spur:
+    case ir::StageKind::Helical: {
+      double z1 = need(ev.attribute(st, Pinion, Q::Z, a), "pinion.z");
+      double d1 = need(ev.derived(st, Pinion, Q::D, a), "the pinion's pitch diameter"), d2 = need(ev.derived(st, Wheel, Q::D, a), "the wheel's pitch diameter");
+      double beta = s.kind == ir::StageKind::Helical ? need(ev.attribute(st, Q::HelixAngle, a), "the helix angle") : 0.0;
+      double at = std::atan(std::tan(alpha) / std::cos(beta));
+      double rb1 = 0.5 * d1 * std::cos(at), rb2 = 0.5 * d2 * std::cos(at);
+      Value bw = ev.attribute(st, Q::FaceWidth, a);
+      double b = need(bw, fmt::format("the `face_width` of stage `{}`", s.name));
+      J[static_cast<size_t>(shaft)] += solid(Pinion, 0.5 * d1, b);
+      int wheel = add(s.name + " wheel", solid(Wheel, 0.5 * d2, b));
+      double betab = std::atan(std::tan(beta) * std::cos(at));
+      // Hertz along the face: the transverse curvatures over the face width's line contact is
+      // not a point contact; the ISO mesh stiffness stands in for it as a linear law.
+      double kLin = linearK(b);
+      double K = hertzK(rb1 * std::tan(at), rb2 * std::tan(at), false);
+      if (hertz) hertzLines.push_back(fmt::format("`{}` {:.4g} N/m^{}", s.name, K, P.e));
+      int f = -1;
+      if (varying) {
+        double ea = need(ev.derived(st, Q::EpsAlpha, a), "eps_alpha"), eb = s.kind == ir::StageKind::Helical ? need(ev.derived(st, Q::EpsBeta, a), "eps_beta") : 0.0;
+        P.fouriers.push_back(contactLineSeries(ea, eb, harmonics));
+        f = static_cast<int>(P.fouriers.size()) - 1;
+      }
+      mesh(s.name, true, {{shaft, rb1}, {wheel, rb2}}, K, kLin, 1.0 / std::cos(betab), f, shaft, z1 / (2.0 * M_PI), 0.0);
+      shaft = wheel;
+      sense = -sense;  // the wheel turns against the pinion
+      break;
+    }
+    default: throw SceneFailure{fmt::format("a whole-gearbox scene does not model {} stages (`{}`)", ir::stageKindName(s.kind), s.name)};
+    }
+  }
+  if (!hertzLines.empty()) prov.push_back("Hertz stiffness K = 4/3 sqrt(R) E*: " + fmt::format("{}", fmt::join(hertzLines, "; ")));
+  size_t nMembers = names.size(), nq = nMembers - 1;
+  P.nq = nq;
+  P.J.assign(J.begin() + 1, J.end());
+  for (size_t i = 0; i < nq; ++i)
+    if (!(P.J[i] > 0)) throw SceneFailure{fmt::format("`{}` has no inertia", names[i + 1])};
+  P.output = dofOf(shaft);
+  run.members = names;
+
+  // Kinematics: the member speeds that leave every mesh undeflected, per unit input speed.
+  long nm = static_cast<long>(P.meshes.size());
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nm, static_cast<long>(nq));
+  Eigen::VectorXd gin = Eigen::VectorXd::Zero(nm);
+  for (long i = 0; i < nm; ++i) {
+    const GMesh& me = P.meshes[static_cast<size_t>(i)];
+    for (int k = 0; k < me.n; ++k) {
+      if (me.dof[static_cast<size_t>(k)] < 0) gin(i) += me.coef[static_cast<size_t>(k)];
+      else G(i, me.dof[static_cast<size_t>(k)]) += me.coef[static_cast<size_t>(k)];
+    }
+  }
+  Eigen::VectorXd v = G.colPivHouseholderQr().solve(-gin);
+  run.kinematic = {1.0};
+  for (long i = 0; i < v.size(); ++i) run.kinematic.push_back(v(i));
+  P.outSign = v(P.output) >= 0 ? 1.0 : -1.0;
+
+  // The load: the gearbox output torque (or its fluctuation) on the last member, against its sense.
+  P.tMean = need(ev.gearboxQuantity(Q::OutputTorque, a), "an output torque (`operating`)");
+  if (torqueFx) {
+    P.tMean = settingValue(*effectParam(torqueFx, Q::Mean));
+    P.tAmp = settingValue(*effectParam(torqueFx, Q::Amplitude));
+    P.tOmega = angularFrequency(*effectParam(torqueFx, Q::Frequency));
+    prov.push_back("load torque mean + amplitude sin(frequency t) on the output");
+  }
+  double speed = need(ev.gearboxQuantity(Q::InputSpeed, a), "an input speed (`operating`)");
+  double Tz = 1.0 / fastest;
+  run.meshFrequency = fastest;
+  P.drive = sceneDrive(scene, speed, 1.0, Tz);
+  P.audit = ov.energyAudit;
+
+  // Static load: the linear model (input held) under the output torque gives each mesh's force.
+  Eigen::MatrixXd Klin = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq));
+  for (long i = 0; i < nm; ++i) Klin += P.meshes[static_cast<size_t>(i)].kLinear * G.row(i).transpose() * G.row(i);
+  Eigen::VectorXd load = Eigen::VectorXd::Zero(static_cast<long>(nq));
+  load(P.output) = -P.outSign * P.tMean;
+  Eigen::VectorXd q0 = Klin.ldlt().solve(load);
+  std::vector<double> F0(static_cast<size_t>(nm)), target(static_cast<size_t>(nm));
+  for (long i = 0; i < nm; ++i) {
+    GMesh& me = P.meshes[static_cast<size_t>(i)];
+    double F = me.kLinear * G.row(i).dot(q0);
+    F0[static_cast<size_t>(i)] = F;
+    double Fp = std::max(std::fabs(F), 1e-9);
+    if (hertz) {
+      target[static_cast<size_t>(i)] = std::pow(Fp / me.K, 1.0 / P.e);
+      me.kLinear = P.e * me.K * std::pow(Fp / me.K, (P.e - 1.0) / P.e);  // the contact's slope at the static load
+    } else {
+      target[static_cast<size_t>(i)] = F / me.kLinear + (backlash ? P.halfClearance : 0.0);
+    }
+  }
+  // Damping: a coefficient, or a ratio of each mesh's critical damping with the effective mass
+  // along its line of action.
+  if (damping)
+    for (auto& me : P.meshes) {
+      if (const auto* s = effectParam(damping, Q::Coefficient)) {
+        me.c = settingValue(*s);
+        continue;
+      }
+      double inv = 0;
+      for (int k = 0; k < me.n; ++k)
+        if (me.dof[static_cast<size_t>(k)] >= 0) inv += me.coef[static_cast<size_t>(k)] * me.coef[static_cast<size_t>(k)] / P.J[static_cast<size_t>(me.dof[static_cast<size_t>(k)])];
+      me.c = 2.0 * settingValue(*effectParam(damping, Q::DampingRatio)) * std::sqrt(me.kLinear / inv);
+    }
+  // Modes of the model linearised at the static load (the input held).
+  Klin.setZero();
+  for (long i = 0; i < nm; ++i) Klin += P.meshes[static_cast<size_t>(i)].kLinear * G.row(i).transpose() * G.row(i);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq));
+  for (size_t i = 0; i < nq; ++i) M(static_cast<long>(i), static_cast<long>(i)) = P.J[i];
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Klin, M);
+  double fmax = 0;
+  for (long i = 0; i < eig.eigenvalues().size(); ++i) {
+    double lam = eig.eigenvalues()(i);
+    double f = lam > 0 ? std::sqrt(lam) / (2.0 * M_PI) : 0.0;
+    run.modes.push_back(f);
+    fmax = std::max(fmax, f);
+  }
+  prov.push_back(fmt::format("{} members (the driven input, one rotation per shaft, carrier, planet and idler), {} meshes; modes at the "
+                             "static load {} Hz",
+                             nMembers, nm, [&] {
+                               std::string s;
+                               for (double f : run.modes) s += (s.empty() ? "" : ", ") + fmt::format("{:.1f}", f);
+                               return s;
+                             }()));
+  double Tn = fmax > 0 ? 1.0 / fmax : Tz;
+  acc.maxStep = std::min(Tz, Tn) / 20.0;
+  std::string rule = Tn < Tz ? "Tn/20 (the highest linearised mode)" : "Tz/20 (the fastest mesh)";
+  if (ov.maxStepFactor) {
+    acc.maxStep *= *ov.maxStepFactor;
+    rule += fmt::format(" x {:g}", *ov.maxStepFactor);
+  }
+  run.stepRule = fmt::format("max step {} = {:.4g} ms", rule, acc.maxStep * 1e3);
+  run.plan = timePlan(scene, Tz, ov.settlePeriods);
+
+  int contactKind = backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
+  int phaseKind = P.drive.needsState() ? drivephase::State : drivephase::Closed;
+  Compiled model = compile(P, varying != nullptr, damping != nullptr, contactKind, torqueFx != nullptr, phaseKind);
+  System sys;
+  size_t extra = (phaseKind == drivephase::State ? 1 : 0) + (P.audit ? 3 : 0);
+  sys.dim = 2 * nq + extra;
+  sys.rhs = model.rhs;
+  sys.dfdy = model.dfdy;
+  // The implicit method's Jacobian: dfdy, and dfdt by a central difference (the terms depend on
+  // t only through the drive and the load, both smooth).
+  sys.jacobian = [&sys, Tz](double t, const double* y, double* dfdy, double* dfdt) {
+    size_t n = sys.dim;
+    sys.dfdy(t, y, dfdy);
+    double h = 1e-7 * Tz;
+    std::vector<double> a(n), b(n);
+    sys.rhs(t + h, y, a.data());
+    sys.rhs(t - h, y, b.data());
+    for (size_t i = 0; i < n; ++i) dfdt[i] = (a[i] - b[i]) / (2 * h);
+  };
+  if (hertz || backlash)
+    for (const auto& me : P.meshes)
+      for (double side : backlash ? std::vector<double>{1.0, -1.0} : std::vector<double>{0.0})
+        sys.events.push_back([&model, me, side, hc = P.halfClearance](double t, const double* y) { return model.deflection(me, t, y) - side * hc; });
+
+  // Initial state: each mesh at its static deflection (least squares where the planets share),
+  // every member at its kinematic speed.
+  std::vector<double> y(sys.dim, 0.0);
+  double tin0 = P.drive.angle(0.0), win0 = P.drive.speed(0.0);
+  Eigen::VectorXd rhsv(nm);
+  for (long i = 0; i < nm; ++i) rhsv(i) = target[static_cast<size_t>(i)] - gin(i) * tin0;
+  Eigen::VectorXd qs = G.colPivHouseholderQr().solve(rhsv);
+  for (size_t i = 0; i < nq; ++i) {
+    y[i] = qs(static_cast<long>(i));
+    y[nq + i] = v(static_cast<long>(i)) * win0;
+  }
+  if (phaseKind == drivephase::State) y[2 * nq] = tin0;
+  double dRef = 0;
+  for (double d : target) dRef = std::max(dRef, std::fabs(d));
+  sys.scale.assign(sys.dim, 1.0);
+  for (size_t i = 0; i < nq; ++i) {
+    double r = 0;
+    for (long k = 0; k < nm; ++k) r = std::max(r, std::fabs(G(k, static_cast<long>(i))));
+    sys.scale[i] = std::max(dRef, 1e-9) / std::max(r, 1e-9);
+    sys.scale[nq + i] = std::max(speed * std::fabs(v(static_cast<long>(i))), sys.scale[i] / Tn);
+  }
+  if (P.audit) {
+    double Pref = std::fabs(P.tMean) * speed * std::fabs(v(P.output)) * Tz;
+    for (size_t k = sys.dim - 3; k < sys.dim; ++k) sys.scale[k] = std::max(Pref, 1e-12);
+  }
+
+  for (const auto& me : P.meshes)
+    if (me.reported) run.meshes.push_back({me.name, me.meshFrequency, {}, {}});
+  auto sample = [&](double ts, const double* ys) {
+    run.t.push_back(ts);
+    size_t k = 0;
+    for (const auto& me : P.meshes) {
+      if (!me.reported) continue;
+      double f = model.force(me, ts, ys);
+      run.meshes[k].meshForce.push_back(f);
+      run.meshes[k].contactForce.push_back(f * me.normal);
+      ++k;
+    }
+    run.inputSpeed.push_back(P.drive.speed(ts));
+    run.outputSpeed.push_back(P.outSign * ys[nq + static_cast<size_t>(P.output)]);
+  };
+  // The energy stored at a state: kinetic and elastic.
+  auto energy = [&](double t, const double* ys) {
+    double E = 0;
+    for (size_t i = 0; i < nq; ++i) E += 0.5 * P.J[i] * ys[nq + i] * ys[nq + i];
+    for (const auto& me : P.meshes) {
+      double d = model.deflection(me, t, ys);
+      if (hertz) E += d > 0 ? me.K * std::pow(d, P.e + 1.0) / (P.e + 1.0) : 0.0;
+      else if (backlash) {
+        double e2 = d > P.halfClearance ? d - P.halfClearance : d < -P.halfClearance ? d + P.halfClearance : 0.0;
+        E += 0.5 * me.K * e2 * e2;
+      } else E += 0.5 * me.K * d * d;
+    }
+    return E;
+  };
+  if (P.audit && varying) throw SceneFailure{"the energy audit needs a constant mesh stiffness (leave out varying_stiffness)"};
+  double E0 = P.audit ? energy(0.0, y.data()) : 0.0;
+  Integrator integ(sys, acc);
+  double t = 0;
+  bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, sample);
+  run.stats = integ.stats();
+  if (!ok) run.failure = integ.error();
+  if (P.audit) {
+    size_t at = sys.dim - 3;
+    run.driveWork = y[at];
+    run.loadWork = y[at + 1];
+    run.dissipated = y[at + 2];
+    run.energyGained = energy(t, y.data()) - E0;
+  }
+  return run;
+}
+
+} // namespace gbx::rt::dyn
