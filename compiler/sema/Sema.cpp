@@ -1218,8 +1218,15 @@ private:
                                    owner, other));
       if (stage && stage->kind && stage->kind->kind != ir::StageKind::Spur && stage->kind->kind != ir::StageKind::Helical)
         diags_.error("E0232", lm->span, fmt::format("{}: `loaded_mesh` models a spur or helical pair; `{}` is {}", owner, target, stage->kind->name));
-      else if (!stage)
-        diags_.error("E0232", lm->span, fmt::format("{}: `loaded_mesh` models one spur or helical pair: run the scene on that stage", owner));
+      else if (!stage && target == m.name)
+        for (const auto& x : m.stages)
+          if (x.kind && x.kind->kind != ir::StageKind::Spur && x.kind->kind != ir::StageKind::Helical) {
+            diags_.error("E0232", lm->span,
+                         fmt::format("{}: `loaded_mesh` models spur and helical pairs, and stage `{}` of the gearbox is {}; run the scene "
+                                     "on a spur or helical stage",
+                                     owner, x.name, x.kind->name));
+            break;
+          }
     }
     if (out.hasEffect("transmission_error") && !out.hasEffect("varying_stiffness"))
       diags_.warning("W0501", nameOr(st),

@@ -11,6 +11,8 @@
 #include "catalogue/StageKinds.h"
 #include "dynamics/Dispatch.h"
 #include "dynamics/Drive.h"
+#include "dynamics/LoadedMesh.h"
+#include "dynamics/LoadedMeshInputs.h"
 #include "dynamics/Stiffness.h"
 
 namespace gbx::rt::dyn {
@@ -34,6 +36,7 @@ struct GMesh {
   double c = 0;             // `damping`, N*s/m
   double normal = 1;        // contact force / mesh force (1 / cos beta_b)
   int fourier = -1;         // its stiffness series
+  int loaded = -1;          // its loaded-mesh tables (loaded_mesh)
   int phaseDof = -1;        // the member whose angle counts its mesh periods (-1: the input)
   double phaseGain = 0;     // mesh periods per radian of that member
   double phase0 = 0;        // planet phasing, mesh periods
@@ -45,6 +48,10 @@ struct Params {
   std::vector<double> J;          // their inertias
   std::vector<GMesh> meshes;
   std::vector<Fourier> fouriers;
+  struct Loaded {
+    PeriodicSeries k, u;  // mesh stiffness and the separation u = e_s - F0/k over a mesh period
+  };
+  std::vector<Loaded> loaded;
   double e = 1.5, ramp = 0, halfClearance = 0;
   int output = 0;                 // the loaded member
   double outSign = 1;             // its kinematic sense
@@ -54,7 +61,7 @@ struct Params {
 };
 
 namespace contact {
-inline constexpr int Linear = 0, Backlash = 1, Hertz = 2;
+inline constexpr int Linear = 0, Backlash = 1, Hertz = 2, Loaded = 3;
 }
 namespace drivephase {
 inline constexpr int Closed = 0, State = 1;
@@ -102,7 +109,20 @@ struct Kernel {
     [[maybe_unused]] double c = 0;
     if constexpr (Damped) c = me.c;
     if constexpr (Slopes) *fd = *fv = *ft = 0;
-    if constexpr (Contact == contact::Backlash) {
+    if constexpr (Contact == contact::Loaded) {
+      // k(t) (x - u(t)): the loaded tooth contact of the flanks (DOMAIN.md §8).
+      double phi = me.phaseDof < 0 ? tin : y[me.phaseDof];
+      double tau = me.phaseGain * phi + me.phase0;
+      const auto& L = p.loaded[static_cast<size_t>(me.loaded)];
+      double k = L.k(tau), u = L.u(tau);
+      elastic = k * (d - u);
+      if constexpr (Slopes) {
+        *fd = k;
+        *fv = c;
+        *ft = relativeStiffnessSlope(L.k.f, tau) * (d - u) - k * relativeStiffnessSlope(L.u.f, tau);
+      }
+      return elastic + c * rate;
+    } else if constexpr (Contact == contact::Backlash) {
       double hc = p.halfClearance;
       double e2 = d > hc ? d - hc : d < -hc ? d + hc : 0.0;
       elastic = K * e2;
@@ -165,7 +185,7 @@ struct Kernel {
             row[2 * nq] += w * fd * ck;
           }
         }
-        if constexpr (Varying) {
+        if constexpr (Varying || Contact == contact::Loaded) {
           if (me.phaseDof >= 0) row[me.phaseDof] += w * ft * me.phaseGain;
           else if constexpr (Phase == drivephase::State) row[2 * nq] += w * ft * me.phaseGain;
         }
@@ -226,7 +246,7 @@ Compiled compile(const Params& p, bool varying, bool damped, int contactKind, bo
   Compiled c;
   withBool(varying, [&](auto V) {
     withBool(damped, [&](auto D) {
-      withInt3(contactKind, [&](auto C) {
+      withInt4(contactKind, [&](auto C) {
         withBool(torqueFl, [&](auto Q) {
           withBool(phase == drivephase::State, [&](auto P) {
             using K = Kernel<decltype(V)::value, decltype(D)::value, decltype(C)::value, decltype(Q)::value,
@@ -265,9 +285,9 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
   using namespace cat::gear;
   for (const auto& fx : scene.effects)
     if (fx.kind != Effect::HertzContact && fx.kind != Effect::Backlash && fx.kind != Effect::VaryingStiffness && fx.kind != Effect::Damping &&
-        fx.kind != Effect::SpeedFluctuation && fx.kind != Effect::TorqueFluctuation)
+        fx.kind != Effect::SpeedFluctuation && fx.kind != Effect::TorqueFluctuation && fx.kind != Effect::LoadedMesh)
       throw SceneFailure{fmt::format("effect `{}` is not modelled in a whole-gearbox scene (it takes hertz_contact, backlash, "
-                                     "varying_stiffness, damping, speed_fluctuation and torque_fluctuation)",
+                                     "varying_stiffness, loaded_mesh, damping, speed_fluctuation and torque_fluctuation)",
                                      fx.name)};
   if (!m.gearbox.splits.empty()) throw SceneFailure{"a whole-gearbox scene of a power split is not modelled: run the scene on a stage"};
   const ir::Effect* hertz = scene.findEffect(Effect::HertzContact);
@@ -275,7 +295,15 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
   const ir::Effect* damping = scene.findEffect(Effect::Damping);
   const ir::Effect* torqueFx = scene.findEffect(Effect::TorqueFluctuation);
   const ir::Effect* backlash = scene.findEffect(Effect::Backlash);
+  const ir::Effect* loadedFx = scene.findEffect(Effect::LoadedMesh);
   if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
+  if (loadedFx && (hertz || backlash || varying))
+    throw SceneFailure{"`loaded_mesh` gives every mesh its stiffness and separation from the flanks: list it without hertz_contact, backlash "
+                       "and varying_stiffness"};
+  if (loadedFx)
+    for (const auto& st : m.stages)
+      if (st.ir->kind != ir::StageKind::Spur && st.ir->kind != ir::StageKind::Helical)
+        throw SceneFailure{fmt::format("`loaded_mesh` models spur and helical pairs; stage `{}` is {}", st.ir->name, ir::stageKindName(st.ir->kind))};
 
   Params P;
   if (hertz) {
@@ -509,6 +537,33 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
       target[static_cast<size_t>(i)] = F / me.kLinear + (backlash ? P.halfClearance : 0.0);
     }
   }
+  // loaded_mesh: each pair's thin-slice tables at its static load; the mesh force k (x - u).
+  if (loadedFx) {
+    auto param = [&](Q key, int dflt) {
+      const auto* s = effectParam(loadedFx, key);
+      return s ? static_cast<int>(settingValue(*s)) : dflt;
+    };
+    int slices = param(Q::Slices, 40) * ov.loadedRefine, positions = param(Q::Positions, 64) * ov.loadedRefine;
+    int H = ov.harmonics ? *ov.harmonics : param(Q::Harmonics, param(Q::Positions, 64) / 4);
+    run.harmonics = H;
+    for (long i = 0; i < nm; ++i) {
+      GMesh& me = P.meshes[static_cast<size_t>(i)];
+      double F = std::fabs(F0[static_cast<size_t>(i)]);
+      std::vector<std::string> lines;
+      LoadedMeshTable tab = loadedMesh(loadedMeshInput(ev, a, me.stage, F, slices, positions, lines));
+      if (!tab.failure.empty()) throw SceneFailure{fmt::format("the loaded mesh of `{}`: {}", me.name, tab.failure)};
+      for (const auto& l : lines) prov.push_back(fmt::format("`{}` loaded mesh: {}", me.name, l));
+      std::vector<double> u(tab.te.size());
+      for (size_t k = 0; k < u.size(); ++k) u[k] = tab.te[k] - F / tab.stiffness[k];
+      P.loaded.push_back({periodicSeries(tab.stiffness, H), periodicSeries(u, H)});
+      me.loaded = static_cast<int>(P.loaded.size()) - 1;
+      me.K = me.kLinear = tab.meanStiffness;
+      target[static_cast<size_t>(i)] = F / tab.meanStiffness + P.loaded.back().u.mean;
+      prov.push_back(fmt::format("`{}` loaded mesh: {} slices x {} positions, {} harmonics; static transmission error {:.4g} um peak to "
+                                 "peak, mesh stiffness {:.4g} N/m mean",
+                                 me.name, slices, positions, H, tab.peakToPeakTe * 1e6, tab.meanStiffness));
+    }
+  }
   // Damping: a coefficient, or a ratio of each mesh's critical damping with the effective mass
   // along its line of action.
   if (damping)
@@ -552,7 +607,7 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
   run.stepRule = fmt::format("max step {} = {:.4g} ms", rule, acc.maxStep * 1e3);
   run.plan = timePlan(scene, Tz, ov.settlePeriods);
 
-  int contactKind = backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
+  int contactKind = loadedFx ? contact::Loaded : backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
   int phaseKind = P.drive.needsState() ? drivephase::State : drivephase::Closed;
   Compiled model = compile(P, varying != nullptr, damping != nullptr, contactKind, torqueFx != nullptr, phaseKind);
   System sys;
@@ -631,7 +686,7 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
     }
     return E;
   };
-  if (P.audit && varying) throw SceneFailure{"the energy audit needs a constant mesh stiffness (leave out varying_stiffness)"};
+  if (P.audit && (varying || loadedFx)) throw SceneFailure{"the energy audit needs a constant mesh stiffness (leave out varying_stiffness and loaded_mesh)"};
   double E0 = P.audit ? energy(0.0, y.data()) : 0.0;
   Integrator integ(sys, acc);
   double t = 0;
