@@ -13,6 +13,7 @@
 #include "dynamics/Drive.h"
 #include "dynamics/LoadedMesh.h"
 #include "dynamics/LoadedMeshInputs.h"
+#include "dynamics/Lumped.h"
 #include "dynamics/Stiffness.h"
 
 namespace gbx::rt::dyn {
@@ -582,29 +583,13 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
   for (long i = 0; i < nm; ++i) Klin += P.meshes[static_cast<size_t>(i)].kLinear * G.row(i).transpose() * G.row(i);
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq));
   for (size_t i = 0; i < nq; ++i) M(static_cast<long>(i), static_cast<long>(i)) = P.J[i];
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Klin, M);
-  double fmax = 0;
-  for (long i = 0; i < eig.eigenvalues().size(); ++i) {
-    double lam = eig.eigenvalues()(i);
-    double f = lam > 0 ? std::sqrt(lam) / (2.0 * M_PI) : 0.0;
-    run.modes.push_back(f);
-    fmax = std::max(fmax, f);
-  }
+  run.modes = naturalFrequencies(Klin, M);
+  double fmax = run.modes.empty() ? 0.0 : *std::max_element(run.modes.begin(), run.modes.end());
   prov.push_back(fmt::format("{} members (the driven input, one rotation per shaft, carrier, planet and idler), {} meshes; modes at the "
                              "static load {} Hz",
-                             nMembers, nm, [&] {
-                               std::string s;
-                               for (double f : run.modes) s += (s.empty() ? "" : ", ") + fmt::format("{:.1f}", f);
-                               return s;
-                             }()));
+                             nMembers, nm, frequencyList(run.modes)));
   double Tn = fmax > 0 ? 1.0 / fmax : Tz;
-  acc.maxStep = std::min(Tz, Tn) / 20.0;
-  std::string rule = Tn < Tz ? "Tn/20 (the highest linearised mode)" : "Tz/20 (the fastest mesh)";
-  if (ov.maxStepFactor) {
-    acc.maxStep *= *ov.maxStepFactor;
-    rule += fmt::format(" x {:g}", *ov.maxStepFactor);
-  }
-  run.stepRule = fmt::format("max step {} = {:.4g} ms", rule, acc.maxStep * 1e3);
+  run.stepRule = lumpedMaxStep(acc.maxStep, Tz, fmax, ov.maxStepFactor, "Tz/20 (the fastest mesh)");
   run.plan = timePlan(scene, Tz, ov.settlePeriods);
 
   int contactKind = loadedFx ? contact::Loaded : backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;

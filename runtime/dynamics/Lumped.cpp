@@ -184,4 +184,31 @@ LumpedModes gearboxModes(const Model& m, const Assignment& a) {
   return out;
 }
 
+std::vector<double> naturalFrequencies(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M) {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
+  std::vector<double> out;
+  for (long i = 0; i < eig.eigenvalues().size(); ++i) {
+    double lam = eig.eigenvalues()(i);
+    out.push_back(lam > 0 ? std::sqrt(lam) / (2.0 * M_PI) : 0.0);
+  }
+  return out;
+}
+
+std::string frequencyList(const std::vector<double>& f) {
+  std::string s;
+  for (double x : f) s += (s.empty() ? "" : ", ") + fmt::format("{:.1f}", x);
+  return s;
+}
+
+std::string lumpedMaxStep(double& maxStep, double Tz, double fmax, std::optional<double> factor, const char* meshRule) {
+  double Tn = fmax > 0 ? 1.0 / fmax : Tz;
+  maxStep = std::min(Tz, Tn) / 20.0;
+  std::string rule = Tn < Tz ? "Tn/20 (the highest linearised mode)" : meshRule;
+  if (factor) {
+    maxStep *= *factor;
+    rule += fmt::format(" x {:g}", *factor);
+  }
+  return fmt::format("max step {} = {:.4g} ms", rule, maxStep * 1e3);
+}
+
 } // namespace gbx::rt::dyn

@@ -12,6 +12,7 @@
 #include "catalogue/StageKinds.h"
 #include "dynamics/Dispatch.h"
 #include "dynamics/Effects.h"
+#include "dynamics/Lumped.h"
 #include "dynamics/Periodic.h"
 #include "dynamics/Scene.h"
 #include "dynamics/Stiffness.h"
@@ -445,31 +446,17 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
     g(1 + me.planet) = me.ring ? -rbp : rbp;
     Km += (me.ring ? kLinRp : kLinSp) * g * g.transpose();
   }
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Km, M);
+  run.modes = naturalFrequencies(Km, M);
   double fmax = 0;
-  for (long i = 0; i < eig.eigenvalues().size(); ++i) {
-    double lam = eig.eigenvalues()(i);
-    double f = lam > 0 ? std::sqrt(lam) / (2.0 * M_PI) : 0.0;
-    run.modes.push_back(f);
+  for (double f : run.modes) {
     fmax = std::max(fmax, f);
     for (int k = 1; k <= 10 && f > 0; ++k)
       if (std::fabs(k * run.meshFrequency - f) <= 0.1 * f)
         prov.push_back(fmt::format("warning: mesh harmonic {} x {:.2f} Hz lies within 10 % of the mode at {:.2f} Hz", k, run.meshFrequency, f));
   }
-  prov.push_back(fmt::format("mesh frequency {:.4f} Hz; linearised modes {} Hz", run.meshFrequency,
-                             [&] {
-                               std::string s;
-                               for (double f : run.modes) s += (s.empty() ? "" : ", ") + fmt::format("{:.1f}", f);
-                               return s;
-                             }()));
+  prov.push_back(fmt::format("mesh frequency {:.4f} Hz; linearised modes {} Hz", run.meshFrequency, frequencyList(run.modes)));
   double Tn = fmax > 0 ? 1.0 / fmax : Tz;
-  acc.maxStep = std::min(Tz, Tn) / 20.0;
-  std::string rule = Tn < Tz ? "Tn/20 (the highest linearised mode)" : "Tz/20";
-  if (ov.maxStepFactor) {
-    acc.maxStep *= *ov.maxStepFactor;
-    rule += fmt::format(" x {:g}", *ov.maxStepFactor);
-  }
-  run.stepRule = fmt::format("max step {} = {:.4g} ms", rule, acc.maxStep * 1e3);
+  run.stepRule = lumpedMaxStep(acc.maxStep, Tz, fmax, ov.maxStepFactor, "Tz/20");
   // With `periodic` the record window starts at t = 0 on the orbit.
   run.plan = periodic ? periodicPlan(scene, Tz) : timePlan(scene, Tz, ov.settlePeriods);
   // Initial state: the static deflection on every mesh, at the kinematic speeds.
