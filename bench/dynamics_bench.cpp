@@ -1,4 +1,6 @@
-// Dynamics benchmark: the marine-reducer vibration scene (specs/marine_reducer.gbx).
+// Dynamics benchmark: the marine-reducer vibration scene of the acceptance corpus
+// (tests/golden/ir/marine_reducer.gbx: contact-line stiffness and a sinusoidal transmission
+// error, the equations bench/scipy_mesh.py integrates too).
 //   dynamics_bench params FILE   write the scene's equations' parameters (for scipy_mesh.py)
 //   dynamics_bench wp            work-precision of gbxc: "method rtol error cpu_s rhs" lines
 //   dynamics_bench rhs           cost of one right-hand side with and without each effect, and of a
@@ -32,7 +34,7 @@ struct Fixture {
 };
 
 Fixture load() {
-  std::ifstream in(std::string(GBX_SOURCE_DIR) + "/specs/marine_reducer.gbx");
+  std::ifstream in(std::string(GBX_SOURCE_DIR) + "/tests/golden/ir/marine_reducer.gbx");
   std::stringstream ss;
   ss << in.rdbuf();
   Fixture f;

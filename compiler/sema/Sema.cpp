@@ -857,8 +857,16 @@ private:
     case Op::Neg: arg(0, -sense); return;
     case Op::Sub: arg(0, sense); arg(1, -sense); return;
     case Op::Div: arg(0, sense); arg(1, -sense); return;
-    case Op::Add:
     case Op::Mul:
+      // A constant factor's sign turns the sense round (`-2 * worst(q)`).
+      for (size_t i = 0; i < e.args.size(); ++i) {
+        int sg = sense;
+        for (size_t j = 0; j < e.args.size(); ++j)
+          if (j != i && e.args[j] && e.args[j]->isConst() && e.args[j]->type.isNumber() && e.args[j]->value.sign() < 0) sg = -sg;
+        arg(i, sg);
+      }
+      return;
+    case Op::Add:
     case Op::Relative:
     case Op::Scatter:
       for (size_t i = 0; i < e.args.size(); ++i) arg(i, sense);
@@ -1196,8 +1204,8 @@ private:
       if (!ir::findSetting(out.settings, "record"))
         diags_.error("E0225", nameOr(st), fmt::format("{} needs `record` (the steady-state window) with `steady_state = periodic`", owner));
       if (!stage)
-        diags_.error("E0232", nameOr(st), fmt::format("{}: `steady_state = periodic` needs a scene on a stage; on the whole gearbox only "
-                                                     "`modes` are computed", owner));
+        diags_.error("E0232", nameOr(st), fmt::format("{}: `steady_state = periodic` needs a scene on a stage; a whole-gearbox scene runs "
+                                                     "from rest (`duration`) or settles (`settle`)", owner));
     }
     if (!ir::findSetting(out.settings, "duration") && !ir::findSetting(out.settings, "record"))
       diags_.error("E0225", nameOr(st), fmt::format("{} needs `duration` (a run from rest) or `record` (a steady-state window)", owner));

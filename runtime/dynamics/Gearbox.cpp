@@ -461,8 +461,8 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
       J[static_cast<size_t>(shaft)] += solid(Pinion, 0.5 * d1, b);
       int wheel = add(s.name + " wheel", solid(Wheel, 0.5 * d2, b));
       double betab = std::atan(std::tan(beta) * std::cos(at));
-      // Hertz along the face: the transverse curvatures over the face width's line contact is
-      // not a point contact; the ISO mesh stiffness stands in for it as a linear law.
+      // Under hertz_contact the same point-contact law as the planetary and idler meshes (the
+      // source paper's multibody contact): it ignores the face width of a line contact.
       double kLin = linearK(b);
       double K = hertzK(rb1 * std::tan(at), rb2 * std::tan(at), false);
       if (hertz) hertzLines.push_back(fmt::format("`{}` {:.4g} N/m^{}", s.name, K, P.e));
@@ -480,6 +480,7 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
     default: throw SceneFailure{fmt::format("a whole-gearbox scene does not model {} stages (`{}`)", ir::stageKindName(s.kind), s.name)};
     }
   }
+  if (P.meshes.empty()) throw SceneFailure{"the gearbox has no mesh to integrate"};
   if (!hertzLines.empty()) prov.push_back("Hertz stiffness K = 4/3 sqrt(R) E*: " + fmt::format("{}", fmt::join(hertzLines, "; ")));
   size_t nMembers = names.size(), nq = nMembers - 1;
   P.nq = nq;

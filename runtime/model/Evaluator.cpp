@@ -255,7 +255,9 @@ Value Evaluator::withOffset(int stage, int gear, Q key, Value v) const {
 Value Evaluator::scatter(const ir::Expr& e, const Assignment& a) const {
   const auto& tol = m_.gearbox.tolerances;
   Value nominal = eval(*e.args[0], a);
-  if (nominalOnly || tol.empty() || !nominal.isNumber()) return nominal;
+  // Already at a corner (a `worst` inside a `mean`, or through a `let`): q there, not a box
+  // around the corner.
+  if (nominalOnly || tol.empty() || !offsets_.empty() || !nominal.isNumber()) return nominal;
   std::vector<Value> v;
   if (e.fn == cat::Fn::Worst) v.push_back(Value::number(e.sense));
   v.push_back(nominal);
@@ -293,7 +295,7 @@ Value Evaluator::quantity(const std::string& path, const Assignment& a) const {
 
 Value Evaluator::quantity(const ir::QuantityRef& r, const Assignment& a) const {
   if (!overrides_.empty())
-    if (const Value* v = overridden(r)) return *v;
+    if (const Value* v = overridden(r)) return r.owner == ir::QuantityRef::Stage ? withOffset(r.index, r.gear, r.key, *v) : *v;
   switch (r.owner) {
   case ir::QuantityRef::Gearbox: return gearboxQuantity(r.key, a);
   case ir::QuantityRef::Split:

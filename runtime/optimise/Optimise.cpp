@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -154,7 +155,14 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
     auto mutex = std::make_shared<std::mutex>();
     ev.baseline = [baseEval, baseDesign, values, mutex](const ir::Expr& e) -> Value {
       std::lock_guard<std::mutex> lock(*mutex);
+      // The printed expression, and the sense of each `worst` in it (printing does not show it).
       std::string k = ir::print(e);
+      std::function<void(const ir::Expr&)> senses = [&](const ir::Expr& x) {
+        if (x.op == ir::Op::Scatter) k += static_cast<char>('1' + x.sense);
+        for (const auto& y : x.args)
+          if (y) senses(*y);
+      };
+      senses(e);
       auto it = values->find(k);
       if (it != values->end()) return it->second;
       Value v = baseEval->eval(e, *baseDesign);

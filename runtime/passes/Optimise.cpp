@@ -62,7 +62,7 @@ std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& 
   Assignment a(m);
   a.choice = choice;
   for (size_t f = 0; f < freedoms.size() && f < a.box.size(); ++f) a.box[f] = {freedoms[f], freedoms[f]};
-  auto at = [&](const ir::Expr& e, const std::vector<double>& deltas) {
+  auto atSI = [&](const ir::Expr& e, const std::vector<double>& deltas) {
     Evaluator x(ev);
     for (size_t i = 0; i < tol.size(); ++i)
       if (deltas[i] != 0) x.addOffset(tol[i].ref, deltas[i]);
@@ -86,24 +86,32 @@ std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& 
     const ir::Expr& e = *expr;
     OptimisationSummary::Optimum::Sensitivity s;
     s.objective = text;
+    auto du = units::displayUnitFor(e.type.dim);
+    s.unit = du.name;
+    auto at = [&](const std::vector<double>& deltas) {
+      double v = atSI(e, deltas) / du.scale;
+      if (!std::isfinite(v)) ++s.failed;
+      return v;
+    };
     std::vector<double> zero(tol.size(), 0.0);
-    s.nominal = s.lo = s.hi = at(e, zero);
+    s.nominal = s.lo = s.hi = at(zero);
     for (size_t i = 0; i < tol.size(); ++i) {
       auto u = units::displayUnitFor(tol[i].dim);
       OptimisationSummary::Optimum::Sensitivity::Line line{tol[i].target, tol[i].amount / u.scale, u.name, 0, 0};
       std::vector<double> d = zero;
       d[i] = -tol[i].amount;
-      line.minus = at(e, d);
+      line.minus = at(d);
       d[i] = tol[i].amount;
-      line.plus = at(e, d);
+      line.plus = at(d);
       s.lines.push_back(line);
     }
     for (unsigned corner = 0; corner < (1u << tol.size()); ++corner) {
       std::vector<double> d(tol.size());
       for (size_t i = 0; i < tol.size(); ++i) d[i] = (corner >> i) & 1u ? tol[i].amount : -tol[i].amount;
-      double f = at(e, d);
-      s.lo = std::min(s.lo, f);
-      s.hi = std::max(s.hi, f);
+      double f = at(d);
+      if (!std::isfinite(f)) continue;
+      s.lo = std::isfinite(s.lo) ? std::min(s.lo, f) : f;
+      s.hi = std::isfinite(s.hi) ? std::max(s.hi, f) : f;
     }
     out.push_back(std::move(s));
   }

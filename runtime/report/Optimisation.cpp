@@ -40,13 +40,18 @@ std::vector<std::string> optimisationLines(const OptimisationSummary& s, bool fi
   }
   if (s.best)
     for (const auto& sv : s.best->sensitivity) {
-      lines.push_back(fmt::format("  over the tolerances, `{}` (worst/mean read at the nominal design): {} at the optimum", sv.objective,
-                                  formatNumber(sv.nominal)));
+      std::string u = sv.unit.empty() ? "" : " " + sv.unit;
+      lines.push_back(fmt::format("  over the tolerances, `{}` (worst/mean read at the nominal design): {}{} at the optimum", sv.objective,
+                                  formatNumber(sv.nominal), u));
       for (const auto& l : sv.lines)
-        lines.push_back(fmt::format("    {} -{} {}: {}   +{} {}: {}", l.target, formatNumber(l.amount), l.unit, formatNumber(l.minus),
-                                    formatNumber(l.amount), l.unit, formatNumber(l.plus)));
-      lines.push_back(fmt::format("    over the tolerance box: {} .. {} ({:.1f} % of the value at the optimum)", formatNumber(sv.lo),
-                                  formatNumber(sv.hi), 100 * (sv.hi - sv.lo) / std::max(std::fabs(sv.nominal), 1e-300)));
+        lines.push_back(fmt::format("    {} -{} {}: {}{}   +{} {}: {}{}", l.target, formatNumber(l.amount), l.unit, formatNumber(l.minus), u,
+                                    formatNumber(l.amount), l.unit, formatNumber(l.plus), u));
+      lines.push_back(fmt::format("    over the tolerance box: {} .. {}{} ({:.1f} % of the value at the optimum)", formatNumber(sv.lo),
+                                  formatNumber(sv.hi), u, 100 * (sv.hi - sv.lo) / std::max(std::fabs(sv.nominal), 1e-300)));
+      if (sv.failed > 0)
+        lines.push_back(fmt::format("  warning: `{}` gave no number at {} of its evaluations over the box (a failed scene); the range "
+                                    "covers the others",
+                                    sv.objective, sv.failed));
       if (sv.singular())
         lines.push_back(fmt::format("  warning: `{}` changes by more than its own value over the tolerance box: the optimum sits on a "
                                     "singularity of the model, and a manufactured gearbox will not show it",
@@ -85,11 +90,13 @@ std::string optimisationJson(const OptimisationSummary& s) {
     json += "], \"sensitivity\": [";
     for (size_t i = 0; i < best.sensitivity.size(); ++i) {
       const auto& sv = best.sensitivity[i];
-      json += fmt::format("{}{{\"objective\": \"{}\", \"nominal\": {}, \"box\": [{}, {}], \"singular\": {}, \"tolerances\": [", i ? ", " : "",
-                          sv.objective, sv.nominal, sv.lo, sv.hi, sv.singular() ? "true" : "false");
+      auto num = [](double x) { return std::isfinite(x) ? fmt::format("{}", x) : std::string("null"); };
+      json += fmt::format("{}{{\"objective\": \"{}\", \"unit\": \"{}\", \"nominal\": {}, \"box\": [{}, {}], \"singular\": {}, \"failed\": {}, "
+                          "\"tolerances\": [",
+                          i ? ", " : "", sv.objective, sv.unit, num(sv.nominal), num(sv.lo), num(sv.hi), sv.singular() ? "true" : "false", sv.failed);
       for (size_t j = 0; j < sv.lines.size(); ++j)
         json += fmt::format("{}{{\"target\": \"{}\", \"amount\": {}, \"unit\": \"{}\", \"minus\": {}, \"plus\": {}}}", j ? ", " : "",
-                            sv.lines[j].target, sv.lines[j].amount, sv.lines[j].unit, sv.lines[j].minus, sv.lines[j].plus);
+                            sv.lines[j].target, sv.lines[j].amount, sv.lines[j].unit, num(sv.lines[j].minus), num(sv.lines[j].plus));
       json += "]}";
     }
     json += "], ";

@@ -128,7 +128,9 @@ struct OptimisationSummary {
         double minus = 0, plus = 0;       // the objective at -amount and +amount
       };
       std::vector<Line> lines;
-      bool singular() const { return hi - lo > std::fabs(nominal); }
+      std::string unit;                   // the values are in this display unit
+      int failed = 0;                     // evaluations that gave no number (a failed scene)
+      bool singular() const { return std::isfinite(nominal) && hi - lo > std::fabs(nominal); }
     };
     std::vector<Sensitivity> sensitivity;
   };

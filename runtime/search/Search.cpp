@@ -550,7 +550,7 @@ HalfList buildHalf(const std::vector<StageResult>& stages, const std::vector<std
 bool needsOptimiser(const ir::Gearbox& g) {
   bool found = false;
   std::function<void(const ir::Expr&)> walk = [&](const ir::Expr& e) {
-    if (e.op == Op::SceneOutput || e.op == Op::Relative) found = true;
+    if (e.op == Op::SceneOutput || e.op == Op::Relative || e.op == Op::Scatter) found = true;
     for (const auto& x : e.args)
       if (x) walk(*x);
   };

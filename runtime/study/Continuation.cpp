@@ -173,8 +173,19 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
       if (out.points.empty()) resonanceMarks(out, st, x, res.meshFrequency, res.naturalFrequency);
       p.stability = res.stability;
       p.branch = branch;
-      ev.sceneOutput = [&](const ir::Expr& e, const Assignment&, const Evaluator&) {
-        const dyn::SceneNumber* num = res.find(e.output);
+      ev.sceneOutput = [&](const ir::Expr& e, const Assignment& aa, const Evaluator& asking) {
+        // At a corner of the tolerance box (`worst`, `mean`) the scene runs again there, from
+        // this point's orbit.
+        dyn::SceneResult corner;
+        const dyn::SceneResult* r = &res;
+        if (!asking.offsets().empty()) {
+          dyn::SceneOverrides co = ov;
+          co.evaluator = &asking;
+          co.keepUnstable = false;
+          corner = dyn::runScene(m, aa, scene, co);
+          r = &corner;
+        }
+        const dyn::SceneNumber* num = r->find(e.output);
         return num && std::isfinite(num->value) ? Value::number(num->value) : Value::invalid();
       };
       for (const auto& o2 : st.outputs) {

@@ -10,6 +10,7 @@
 #include "optimise/Optimise.h"
 #include "passes/Optimise.h"
 #include "passes/Search.h"
+#include "lower/Lower.h"
 #include "model/Evaluator.h"
 
 using namespace gbx;
@@ -190,4 +191,38 @@ gearbox A extends B {
   rt::Value v = ev.eval(*a->objectives[0].expr, da);
   ASSERT_TRUE(v.isNumber());
   EXPECT_NEAR(v.mid(), 120.0 / 80.0, 1e-12);  // centre distance 120 mm in A, 80 mm in B
+}
+
+// worst(q) takes the corner that is worst where q stands: the largest under `minimize`, the
+// smallest under a negative factor or on the large side of `>=`; mean(q) averages the nominal
+// design and the corners; a deviation adds to the attribute the design gives.
+TEST(Tolerances, WorstTakesTheCornerWhereTheQuantityStands) {
+  auto c = driver::compileText("tol.gbx", R"(gearbox H {
+  stage main: helical { pinion.z = 21; wheel.z = 83; normal_module = 16 mm; helix_angle = 8 deg; face_width = 300 mm; }
+  operating { input_speed = 800 rpm; input_torque = 91670 N*m; }
+  tolerances { main.helix_angle +- 1 deg; }
+  require worst(main.eps_beta) >= 0.1;
+  minimize worst(main.eps_beta);
+  minimize -2 * worst(main.eps_beta);
+  minimize mean(main.eps_beta);
+})");
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::Model m(c->program, c->program.gearboxes[0]);
+  rt::Assignment a(m);
+  rt::Evaluator ev(m);
+  auto epsAt = [&](double deg) {
+    rt::Evaluator x(m);
+    ir::QuantityRef r = lower::quantityRef(c->program, m.gearbox, "main.helix_angle");
+    x.addOffset(r, (deg - 8.0) * M_PI / 180.0);
+    return x.quantity("main.eps_beta", a).mid();
+  };
+  double lo = epsAt(7.0), mid = epsAt(8.0), hi = epsAt(9.0);
+  ASSERT_LT(lo, mid);
+  ASSERT_LT(mid, hi);
+  EXPECT_NEAR(ev.eval(*m.gearbox.objectives[0].expr, a).mid(), hi, 1e-12);
+  EXPECT_NEAR(ev.eval(*m.gearbox.objectives[1].expr, a).mid(), -2 * lo, 1e-12);
+  EXPECT_NEAR(ev.eval(*m.gearbox.objectives[2].expr, a).mid(), (lo + mid + hi) / 3, 1e-12);
+  // The rule's `worst` is on the large side of `>=`: the smallest value.
+  const ir::Expr& rule = *m.gearbox.rules[0].expr;
+  EXPECT_NEAR(ev.eval(*rule.args[0], a).mid(), lo, 1e-12);
 }
