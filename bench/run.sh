@@ -158,8 +158,8 @@ lines += ["", "The corpus's marine optimisation (`MarineReducerOptimised` of `te
           f"| ratio | {ms_/mp_:.1f}x (target: at least 5x) |", ""]
 robust = float(open(sys.argv[8]).read().split()[0])
 evals = next((l.split(";")[1].split()[0] for l in open(sys.argv[9]) if "objective evaluations" in l), "?")
-lines += ["The project's marine optimisation (`specs/marine_reducer.gbx`: `loaded_mesh` with 60 slices x",
-          "128 positions and 32 harmonics, the objective `worst(…)` over a box of two tolerances, so",
+lines += ["The project's marine optimisation (`specs/marine_reducer.gbx`: `loaded_mesh` with 240 slices x",
+          "512 positions and 32 harmonics, the objective `worst(…)` over a box of two tolerances, so",
           "five scene runs per evaluation), one run with `--jobs 1`, user CPU:", "",
           "| measure | value |", "| --- | ---: |",
           f"| whole process | {robust:.2f} s |", f"| objective evaluations | {evals} |",

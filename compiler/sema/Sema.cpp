@@ -1236,6 +1236,12 @@ private:
             break;
           }
     }
+    if (!stage && target == m.name && out.hasEffect("transmission_error") &&
+        std::any_of(out.outputs.begin(), out.outputs.end(), [](const ir::SceneOutput& o) { return o.signal != "modes"; }))
+      diags_.error("E0232", out.findEffect(Effect::TransmissionError)->span,
+                   fmt::format("{}: a whole-gearbox scene does not model `transmission_error`; list `loaded_mesh` (spur and helical "
+                               "gearboxes), or run the scene on a stage",
+                               owner));
     if (out.hasEffect("transmission_error") && !out.hasEffect("varying_stiffness"))
       diags_.warning("W0501", nameOr(st),
                      fmt::format("{}: `transmission_error` acts through F = dk(t)·e(t) and does nothing without `varying_stiffness`", owner));

@@ -554,7 +554,7 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
       std::vector<std::string> lines;
       LoadedMeshTable tab = loadedMesh(loadedMeshInput(ev, a, me.stage, F, slices, positions, lines));
       if (!tab.failure.empty()) throw SceneFailure{fmt::format("the loaded mesh of `{}`: {}", me.name, tab.failure)};
-      for (const auto& l : lines) prov.push_back(fmt::format("`{}` loaded mesh: {}", me.name, l));
+      for (const auto& l : lines) prov.push_back(fmt::format("`{}` {}", me.name, l));
       std::vector<double> u(tab.te.size());
       for (size_t k = 0; k < u.size(); ++k) u[k] = tab.te[k] - F / tab.stiffness[k];
       P.loaded.push_back({periodicSeries(tab.stiffness, H), periodicSeries(u, H)});
@@ -586,9 +586,8 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
   for (size_t i = 0; i < nq; ++i) M(static_cast<long>(i), static_cast<long>(i)) = P.J[i];
   run.modes = naturalFrequencies(Klin, M);
   double fmax = run.modes.empty() ? 0.0 : *std::max_element(run.modes.begin(), run.modes.end());
-  prov.push_back(fmt::format("{} members (the driven input, one rotation per shaft, carrier, planet and idler), {} meshes; modes at the "
-                             "static load {} Hz",
-                             nMembers, nm, frequencyList(run.modes)));
+  prov.push_back(fmt::format("{} members, one rotation each (the driven input first: {}), {} mesh{}; modes at the static load {} Hz",
+                             nMembers, fmt::join(names, ", "), nm, nm == 1 ? "" : "es", frequencyList(run.modes)));
   double Tn = fmax > 0 ? 1.0 / fmax : Tz;
   run.stepRule = lumpedMaxStep(acc.maxStep, Tz, fmax, ov.maxStepFactor, "Tz/20 (the fastest mesh)");
   run.plan = timePlan(scene, Tz, ov.settlePeriods);

@@ -254,7 +254,10 @@ Value Evaluator::withOffset(int stage, int gear, Q key, Value v) const {
 // the checker): the worst of them where q stands, or their mean.
 Value Evaluator::scatter(const ir::Expr& e, const Assignment& a) const {
   const auto& tol = m_.gearbox.tolerances;
-  Value nominal = eval(*e.args[0], a);
+  // The nominal value reads a nested `worst`/`mean` at the nominal design too.
+  Evaluator atNominal(*this);
+  atNominal.nominalOnly = true;
+  Value nominal = nominalOnly ? eval(*e.args[0], a) : atNominal.eval(*e.args[0], a);
   // Already at a corner (a `worst` inside a `mean`, or through a `let`): q there, not a box
   // around the corner.
   if (nominalOnly || tol.empty() || !offsets_.empty() || !nominal.isNumber()) return nominal;

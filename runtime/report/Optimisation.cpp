@@ -20,7 +20,7 @@ std::vector<std::string> optimisationLines(const OptimisationSummary& s, bool fi
     for (const auto& f : best.freedoms)
       vars += fmt::format("{}{} = {}{}", vars.empty() ? "" : ", ", f.path, formatNumber(f.value / f.unit.scale),
                           f.unit.name.empty() ? "" : " " + f.unit.name);
-    lines.push_back(fmt::format("  optimum: ratio {}, {}; objective {}", best.ratio.str(), vars, formatNumber(best.objective)));
+    lines.push_back(fmt::format("  optimum: ratio {}{}; objective {}", best.ratio.str(), vars.empty() ? "" : ", " + vars, formatNumber(best.objective)));
     for (size_t t = 0; t < s.termNames.size() && t < best.terms.size(); ++t) {
       double rel = best.terms[t] / s.baselineTerms[t];
       lines.push_back(fmt::format("  {}: {} against the baseline's {}: {:+.1f} %", s.termNames[t], formatNumber(best.terms[t]),
@@ -44,8 +44,8 @@ std::vector<std::string> optimisationLines(const OptimisationSummary& s, bool fi
       lines.push_back(fmt::format("  over the tolerances, `{}` (worst/mean read at the nominal design): {}{} at the optimum", sv.objective,
                                   formatNumber(sv.nominal), u));
       for (const auto& l : sv.lines)
-        lines.push_back(fmt::format("    {} -{} {}: {}{}   +{} {}: {}{}", l.target, formatNumber(l.amount), l.unit, formatNumber(l.minus), u,
-                                    formatNumber(l.amount), l.unit, formatNumber(l.plus), u));
+        lines.push_back(fmt::format("    {} -{}{}: {}{}   +{}{}: {}{}", l.target, formatNumber(l.amount), l.unit.empty() ? "" : " " + l.unit,
+                                    formatNumber(l.minus), u, formatNumber(l.amount), l.unit.empty() ? "" : " " + l.unit, formatNumber(l.plus), u));
       lines.push_back(fmt::format("    over the tolerance box: {} .. {}{} ({:.1f} % of the value at the optimum)", formatNumber(sv.lo),
                                   formatNumber(sv.hi), u, 100 * (sv.hi - sv.lo) / std::max(std::fabs(sv.nominal), 1e-300)));
       if (sv.failed > 0)
