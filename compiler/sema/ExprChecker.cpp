@@ -651,6 +651,13 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
                    fmt::format("`{}` is not a scene result function ({})", fn, signalFnList()));
       return error(e.span);
     }
+    if (argAst.size() == 1 && argAst[0] && argAst[0]->kind == ast::ExprKind::Call) {
+      diags_.error("E0232", e.span,
+                   fmt::format("`{}.{}({})`: a mesh's result of a whole-gearbox scene is reported, but cannot yet be read in an "
+                               "expression; run a scene on that stage to use its result in a rule, an objective or a column",
+                               obj->name, fn, ast::print(*argAst[0])));
+      return error(e.span);
+    }
     if (argAst.size() != 1 || !argAst[0] || argAst[0]->kind != ast::ExprKind::Name) {
       diags_.error("E0221", e.span, fmt::format("`{}` takes one signal, as in `{}.{}(acceleration)`", fn, obj->name, fn));
       return error(e.span);
