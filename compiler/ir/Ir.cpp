@@ -81,6 +81,15 @@ ExprPtr Expr::clone() const {
   return e;
 }
 
+bool uses(const Expr* e, std::initializer_list<Op> ops) {
+  if (!e) return false;
+  for (Op op : ops)
+    if (e->op == op) return true;
+  for (const auto& a : e->args)
+    if (uses(a.get(), ops)) return true;
+  return false;
+}
+
 ExprPtr makeConst(Number v, Dim d, bool integer, Span span) {
   auto e = std::make_unique<Expr>();
   e->op = Op::Const;

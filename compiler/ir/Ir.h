@@ -3,6 +3,7 @@
 // quantity path, every literal in SI and exact where it can be, every expression typed.
 // The runtime never sees the AST; this header is the whole contract between them.
 #include <map>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
@@ -109,6 +110,9 @@ struct Expr {
 };
 
 ExprPtr makeConst(Number v, Dim d, bool integer, Span span = {});
+
+// Whether e (or anything inside it) is one of these operations; false for no expression.
+bool uses(const Expr* e, std::initializer_list<Op> ops);
 
 enum class StageKind { Spur, Helical, Bevel, Planetary, Idler };
 const char* stageKindName(StageKind k);

@@ -521,8 +521,13 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
   P.audit = ov.energyAudit;
 
   // Static load: the linear model (input held) under the output torque gives each mesh's force.
-  Eigen::MatrixXd Klin = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq));
-  for (long i = 0; i < nm; ++i) Klin += P.meshes[static_cast<size_t>(i)].kLinear * G.row(i).transpose() * G.row(i);
+  // K = sum k G_i^T G_i with each mesh's current linear stiffness.
+  auto stiffness = [&] {
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq));
+    for (long i = 0; i < nm; ++i) K += P.meshes[static_cast<size_t>(i)].kLinear * G.row(i).transpose() * G.row(i);
+    return K;
+  };
+  Eigen::MatrixXd Klin = stiffness();
   Eigen::VectorXd load = Eigen::VectorXd::Zero(static_cast<long>(nq));
   load(P.output) = -P.outSign * P.tMean;
   Eigen::VectorXd q0 = Klin.ldlt().solve(load);
@@ -580,8 +585,7 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
       me.c = 2.0 * settingValue(*effectParam(damping, Q::DampingRatio)) * std::sqrt(me.kLinear / inv);
     }
   // Modes of the model linearised at the static load (the input held).
-  Klin.setZero();
-  for (long i = 0; i < nm; ++i) Klin += P.meshes[static_cast<size_t>(i)].kLinear * G.row(i).transpose() * G.row(i);
+  Klin = stiffness();  // the contacts' slopes at the static load
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq));
   for (size_t i = 0; i < nq; ++i) M(static_cast<long>(i), static_cast<long>(i)) = P.J[i];
   run.modes = naturalFrequencies(Klin, M);

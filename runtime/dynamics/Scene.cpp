@@ -213,6 +213,23 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
   return out;
 }
 
+// An output series (`plot`, `spectrum`) over the statistics window from sample `first`;
+// a spectrum names its peaks as harmonics of the mesh frequency fz.
+SceneSeries recorded(const ir::SceneOutput& o, Dim dim, const std::vector<double>& t, size_t first, std::vector<double> v, double dt,
+                     double fz) {
+  SceneSeries s;
+  s.key = o.key();
+  s.signal = o.mesh.empty() ? o.signal : o.signal + "(" + o.mesh + ")";
+  s.dim = dim;
+  s.t.assign(t.begin() + static_cast<long>(std::min(first, t.size())), t.end());
+  s.v = std::move(v);
+  if (o.fn == cat::SignalFn::Spectrum) {
+    s.isSpectrum = true;
+    s.spectrum = spectrum(s.v, dt, fz);
+  }
+  return s;
+}
+
 // A whole-gearbox scene in time (LANGUAGE.md §14): the outputs of its meshes by name.
 SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov,
                             SceneResult r) {
@@ -259,17 +276,7 @@ SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignmen
     std::vector<double> w = window(*v);
     if (!cat::signalFnSpec(o.fn).number) {
       if (!ov.keepSeries) continue;
-      SceneSeries s;
-      s.key = o.key();
-      s.signal = o.mesh.empty() ? o.signal : o.signal + "(" + o.mesh + ")";
-      s.dim = dim;
-      s.t.assign(g.t.begin() + static_cast<long>(std::min(first, g.t.size())), g.t.end());
-      s.v = std::move(w);
-      if (o.fn == cat::SignalFn::Spectrum) {
-        s.isSpectrum = true;
-        s.spectrum = spectrum(s.v, g.plan.dt, fz);
-      }
-      r.series.push_back(std::move(s));
+      r.series.push_back(recorded(o, dim, g.t, first, std::move(w), g.plan.dt, fz));
       continue;
     }
     r.numbers.push_back({o.key(), w.empty() ? NAN : statistic(o.fn)(w), dim, o.fn, o.id});
@@ -488,17 +495,7 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     }
     if (!cat::signalFnSpec(o.fn).number) {
       if (!ov.keepSeries) continue;
-      SceneSeries s;
-      s.key = o.key();
-      s.signal = o.signal;
-      s.dim = dim;
-      s.t.assign(samples.t.begin() + static_cast<long>(std::min(first, samples.t.size())), samples.t.end());
-      s.v = window(o.id);
-      if (o.fn == cat::SignalFn::Spectrum) {
-        s.isSpectrum = true;
-        s.spectrum = spectrum(s.v, tp.dt, r.meshFrequency);
-      }
-      r.series.push_back(std::move(s));
+      r.series.push_back(recorded(o, dim, samples.t, first, window(o.id), tp.dt, r.meshFrequency));
       continue;
     }
     r.numbers.push_back({o.key(), over(o.fn, window(o.id)), dim, o.fn, o.id});

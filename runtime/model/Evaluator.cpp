@@ -234,6 +234,15 @@ void Evaluator::setOverride(const ir::QuantityRef& r, Value v) {
   overrides_.emplace_back(r, v);
 }
 
+std::vector<double> Evaluator::offsetKey() const {
+  std::vector<double> k;
+  for (const auto& [r, d] : offsets_) {
+    k.push_back(static_cast<double>(r.index) * 1e6 + static_cast<double>(r.gear) * 1e3 + static_cast<double>(r.key));
+    k.push_back(d);
+  }
+  return k;
+}
+
 void Evaluator::addOffset(const ir::QuantityRef& r, double delta) {
   for (auto& [k, x] : offsets_)
     if (k == r) {
@@ -331,16 +340,12 @@ Value Evaluator::splitQuantity(int split, Q key, const Assignment& a) const {
 }
 
 Value Evaluator::attribute(int stage, int gear, Q key, const Assignment& a) const {
-  if (!offsets_.empty()) {
-    // The deviation on top of the value the design gives (its own offsets not applied twice).
-    for (const auto& [k, d] : offsets_)
-      if (k.owner == ir::QuantityRef::Stage && k.index == stage && k.gear == gear && k.key == key) {
-        Evaluator plain(*this);
-        plain.offsets_.erase(std::remove_if(plain.offsets_.begin(), plain.offsets_.end(), [&](const auto& o) { return o.first == k; }),
-                             plain.offsets_.end());
-        return withOffset(stage, gear, key, plain.attribute(stage, gear, key, a));
-      }
-  }
+  // A tolerance corner's deviation on top of the value the design gives.
+  Value v = givenAttribute(stage, gear, key, a);
+  return offsets_.empty() ? v : withOffset(stage, gear, key, v);
+}
+
+Value Evaluator::givenAttribute(int stage, int gear, Q key, const Assignment& a) const {
   if (!overrides_.empty()) {
     ir::QuantityRef r;
     r.owner = ir::QuantityRef::Stage;

@@ -49,6 +49,8 @@ public:
   // A manufacturing deviation added to a stage attribute (a corner of the `tolerances` box).
   void addOffset(const ir::QuantityRef& r, double delta);
   const std::vector<std::pair<ir::QuantityRef, double>>& offsets() const { return offsets_; }
+  // The deviations as a cache key (empty at the nominal design).
+  std::vector<double> offsetKey() const;
   // `worst(q)` and `mean(q)` read q at the nominal design only (the optimiser's sensitivity
   // evaluates q at each tolerance itself).
   bool nominalOnly = false;
@@ -63,6 +65,7 @@ private:
   const Value* overridden(const ir::QuantityRef& r) const;
   const Value* overridden(Q gearboxKey) const;
   Value withOffset(int stage, int gear, Q key, Value v) const;
+  Value givenAttribute(int stage, int gear, Q key, const Assignment& a) const;
   Value scatter(const ir::Expr& e, const Assignment& a) const;
   Value perGear(const ir::Expr& e, int gear, const Assignment& a) const;
   Value perGearReduce(const ir::Expr& call, const Assignment& a) const;

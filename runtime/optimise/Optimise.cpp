@@ -128,14 +128,9 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
       cache->clear();
       *design = point;
     }
-    std::vector<double> corner;
-    for (const auto& [r, d] : asking.offsets()) {
-      corner.push_back(static_cast<double>(r.index) * 1e6 + static_cast<double>(r.gear) * 1e3 + static_cast<double>(r.key));
-      corner.push_back(d);
-    }
     int scene = e.output.scene;
     if (scene < 0 || static_cast<size_t>(scene) >= m.gearbox.scenes.size()) return Value::invalid();
-    Key k{scene, corner};
+    Key k{scene, asking.offsetKey()};
     auto it = cache->find(k);
     if (it == cache->end()) {
       dyn::SceneOverrides ov;

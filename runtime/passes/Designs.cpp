@@ -129,12 +129,7 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
   std::vector<std::string> errors;
   if (table.rows.empty()) return errors;
   // Needs scenes or a baseline: evaluated by the optimiser and the scene pass, not here.
-  std::function<bool(const ir::Expr&)> dynamic = [&](const ir::Expr& e) {
-    if (e.op == ir::Op::SceneOutput || e.op == ir::Op::Relative) return true;
-    for (const auto& a : e.args)
-      if (a && dynamic(*a)) return true;
-    return false;
-  };
+  auto dynamic = [](const ir::Expr& e) { return ir::uses(&e, {ir::Op::SceneOutput, ir::Op::Relative}); };
   Evaluator ev(m);
   auto check = [&](const ir::Expr& e, const std::string& what) {
     if (dynamic(e)) return;

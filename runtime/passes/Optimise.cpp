@@ -125,13 +125,7 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
   Optimised out;
   out.designs = std::move(found);
   // `relative(x)` in the report needs the baseline's design even when nothing is optimised.
-  std::function<bool(const ir::Expr*)> relative = [&](const ir::Expr* e) {
-    if (!e) return false;
-    if (e->op == ir::Op::Relative) return true;
-    for (const auto& a : e->args)
-      if (relative(a.get())) return true;
-    return false;
-  };
+  auto relative = [](const ir::Expr* e) { return ir::uses(e, {ir::Op::Relative}); };
   bool reportsRelative = false;
   if (gb.report) {
     reportsRelative = relative(gb.report->sortBy.get());

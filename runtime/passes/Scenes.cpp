@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <map>
 
 #include "dynamics/Scene.h"
@@ -75,13 +74,6 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
   return s;
 }
 
-bool hasRelative(const ir::Expr& e) {
-  if (e.op == ir::Op::Relative) return true;
-  for (const auto& x : e.args)
-    if (x && hasRelative(*x)) return true;
-  return false;
-}
-
 } // namespace
 
 SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns) {
@@ -102,8 +94,7 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns)
     if (sc < 0 || static_cast<size_t>(sc) >= results.size()) return Value::invalid();
     const dyn::SceneResult* r = &results[static_cast<size_t>(sc)];
     if (!asking.offsets().empty()) {
-      std::vector<double> key;
-      for (const auto& [q, d] : asking.offsets()) key.push_back(d);
+      std::vector<double> key = asking.offsetKey();
       auto it = corners.find({sc, key});
       if (it == corners.end()) {
         dyn::SceneOverrides ov;
@@ -117,12 +108,6 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns)
     const auto* n = r->find(e.output.fn, e.output.signal);
     return n && std::isfinite(n->value) ? Value::number(n->value) : Value::invalid();
   };
-  std::function<bool(const ir::Expr&)> readsScene = [&](const ir::Expr& e) {
-    if (e.op == ir::Op::SceneOutput) return true;
-    for (const auto& x : e.args)
-      if (x && readsScene(*x)) return true;
-    return false;
-  };
   for (size_t i = 0; i < columns.exprs.size(); ++i) {
     const ir::Expr& c = *columns.exprs[i];
     if (c.op == ir::Op::SceneOutput) {
@@ -130,7 +115,8 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns)
       if (const auto* n = results[static_cast<size_t>(c.output.scene)].find(c.output.fn, c.output.signal)) out.columns.push_back({i, n->value});
       continue;
     }
-    if (!readsScene(c) || hasRelative(c)) continue;  // `relative(…)` columns: the optimiser's pass
+    // `relative(…)` columns: the optimiser's pass.
+    if (!ir::uses(&c, {ir::Op::SceneOutput}) || ir::uses(&c, {ir::Op::Relative})) continue;
     Value v = ev.eval(c, best);
     if (v.isNumber()) out.columns.push_back({i, v.mid()});
   }

@@ -548,17 +548,9 @@ HalfList buildHalf(const std::vector<StageResult>& stages, const std::vector<std
 } // namespace
 
 bool needsOptimiser(const ir::Gearbox& g) {
-  bool found = false;
-  std::function<void(const ir::Expr&)> walk = [&](const ir::Expr& e) {
-    if (e.op == Op::SceneOutput || e.op == Op::Relative || e.op == Op::Scatter) found = true;
-    for (const auto& x : e.args)
-      if (x) walk(*x);
-  };
-  for (const auto& r : g.rules)
-    if (r.expr) walk(*r.expr);
-  for (const auto& o : g.objectives)
-    if (o.expr) walk(*o.expr);
-  return found;
+  auto walk = [](const ir::ExprPtr& e) { return ir::uses(e.get(), {Op::SceneOutput, Op::Relative, Op::Scatter}); };
+  return std::any_of(g.rules.begin(), g.rules.end(), [&](const ir::Rule& r) { return walk(r.expr); }) ||
+         std::any_of(g.objectives.begin(), g.objectives.end(), [&](const ir::Objective& o) { return walk(o.expr); });
 }
 
 SearchResult search(const Model& m, const SearchOptions& opt) {

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "SceneFixture.h"
 #include "Specs.h"
 #include "driver/Driver.h"
 #include "dynamics/Scene.h"
@@ -17,29 +18,9 @@ using namespace gbx::rt::dyn;
 
 namespace {
 
-struct Fixture {
-  std::unique_ptr<driver::Compilation> c;
-  std::unique_ptr<rt::Model> model;
-  std::unique_ptr<rt::Assignment> design;
-  const ir::Scene& scene(const std::string& name) const {
-    for (const auto& s : model->gearbox.scenes)
-      if (s.name == name) return s;
-    throw std::runtime_error(name);
-  }
-};
+using test::Fixture;
 
-Fixture compile(const std::string& text, const std::string& gearbox) {
-  Fixture f;
-  f.c = driver::compileText("g.gbx", text);
-  EXPECT_TRUE(f.c->ok()) << f.c->diags.renderText(f.c->sources);
-  for (const auto& g : f.c->program.gearboxes)
-    if (g.name == gearbox) {
-      f.model = std::make_unique<rt::Model>(f.c->program, g);
-      f.design = std::make_unique<rt::Assignment>(*f.model);
-      for (size_t i = 0; i < f.model->slots.size(); ++i) f.design->choice[i] = 0;
-    }
-  return f;
-}
+Fixture compile(const std::string& text, const std::string& gearbox) { return test::compile("g.gbx", text, gearbox); }
 
 double value(const SceneResult& r, const std::string& key) {
   const SceneNumber* n = r.find(key);
