@@ -12,6 +12,8 @@
 #include <fmt/format.h>
 
 #include "catalogue/Settings.h"
+#include "search/FastKey.h"
+#include "search/HalfList.h"
 #include "catalogue/StageKinds.h"
 #include "model/StageKind.h"
 
@@ -435,116 +437,6 @@ std::vector<Perm> closeGroup(const std::vector<Perm>& gens, size_t n) {
   return group;
 }
 
-// One half of the train: every tuple of candidates of stages [from, to), canonical
-// within interchangeable blocks, sorted by ratio product. Compact: a double and the
-// candidate indices per tuple; exact ratios are recomputed only where they decide.
-struct HalfList {
-  int from = 0, to = 0, width = 0;
-  std::vector<double> r;
-  std::vector<std::uint32_t> idx;
-};
-
-HalfList buildHalf(const std::vector<StageResult>& stages, const std::vector<std::pair<int, int>>& ordered, int from, int to) {
-  HalfList H;
-  H.from = from;
-  H.to = to;
-  H.width = to - from;
-  size_t w = static_cast<size_t>(H.width);
-  if (w == 0) {
-    H.r.push_back(1.0);
-    return H;
-  }
-  for (int s = from; s < to; ++s)
-    if (stages[static_cast<size_t>(s)].candidates.empty()) return H;
-  std::vector<std::uint64_t> key;
-  std::vector<std::uint32_t> idx;
-  auto push = [&](double r, const std::uint32_t* cur) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &r, sizeof bits);
-    key.push_back(bits);
-    idx.insert(idx.end(), cur, cur + w);
-  };
-  auto linked = [&](int a, int b) { return std::find(ordered.begin(), ordered.end(), std::make_pair(a, b)) != ordered.end(); };
-  if (w == 1) {
-    const auto& l0 = stages[static_cast<size_t>(from)].candidates;
-    key.reserve(l0.size());
-    for (std::uint32_t i = 0; i < l0.size(); ++i) push(l0[i].r, &i);
-  } else if (w == 2) {
-    const auto& l0 = stages[static_cast<size_t>(from)].candidates;
-    const auto& l1 = stages[static_cast<size_t>(from + 1)].candidates;
-    bool canon = linked(from, from + 1);
-    key.reserve(canon ? l0.size() * (l1.size() + 1) / 2 : l0.size() * l1.size());
-    idx.reserve(2 * key.capacity());
-    std::uint32_t cur[2];
-    for (cur[0] = 0; cur[0] < l0.size(); ++cur[0])
-      for (cur[1] = canon ? cur[0] : 0; cur[1] < l1.size(); ++cur[1]) push(l0[cur[0]].r * l1[cur[1]].r, cur);
-  } else {
-    std::vector<std::uint32_t> cur(w, 0);
-    auto start = [&](int s) {
-      std::uint32_t lo = 0;
-      for (const auto& [a, b] : ordered)
-        if (b == s && a >= from && a < s) lo = std::max(lo, cur[static_cast<size_t>(a - from)]);
-      return lo;
-    };
-    for (int s = from; s < to; ++s) cur[static_cast<size_t>(s - from)] = start(s);
-    for (;;) {
-      bool valid = true;
-      double prod = 1;
-      for (int s = from; s < to && valid; ++s) {
-        const auto& list = stages[static_cast<size_t>(s)].candidates;
-        std::uint32_t i = cur[static_cast<size_t>(s - from)];
-        if (i >= list.size()) valid = false;
-        else prod *= list[i].r;
-      }
-      if (valid) push(prod, cur.data());
-      // Odometer, last stage fastest; a stage restarts at its canonical lower bound.
-      int s = to - 1;
-      for (; s >= from; --s) {
-        auto& c = cur[static_cast<size_t>(s - from)];
-        ++c;
-        if (c < stages[static_cast<size_t>(s)].candidates.size()) break;
-      }
-      if (s < from) break;
-      for (int t = s + 1; t < to; ++t) cur[static_cast<size_t>(t - from)] = start(t);
-    }
-  }
-  // LSD radix sort on the bits of the (positive) ratios, whose order is the ratios'
-  // order. The lowest 16 bits are left unsorted: entries out of order by less than
-  // 2^-36 (1.5e-11) of their value lie well inside the sweep's margin of 1e-9, and every
-  // match near a bound is confirmed exactly.
-  size_t n = key.size();
-  std::vector<std::uint64_t> key2(n);
-  std::vector<std::uint32_t> pos(n), pos2(n);
-  for (size_t i = 0; i < n; ++i) pos[i] = static_cast<std::uint32_t>(i);
-  // Short lists: a comparison sort beats three passes over 65536 buckets.
-  if (n < 65536) {
-    std::stable_sort(pos.begin(), pos.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
-    for (size_t i = 0; i < n; ++i) key2[i] = key[pos[i]];
-    key.swap(key2);
-  }
-  std::vector<size_t> countOf(n < 65536 ? 0 : 65537);
-  for (int pass = 1; pass < 4 && n >= 65536; ++pass) {
-    int shift = pass * 16;
-    std::fill(countOf.begin(), countOf.end(), 0);
-    for (size_t i = 0; i < n; ++i) ++countOf[((key[i] >> shift) & 0xFFFF) + 1];
-    for (size_t b = 0; b < 65536; ++b) countOf[b + 1] += countOf[b];
-    for (size_t i = 0; i < n; ++i) {
-      size_t d = countOf[(key[i] >> shift) & 0xFFFF]++;
-      key2[d] = key[i];
-      pos2[d] = pos[i];
-    }
-    key.swap(key2);
-    pos.swap(pos2);
-  }
-  H.r.resize(n);
-  H.idx.resize(n * w);
-  for (size_t i = 0; i < n; ++i) {
-    std::memcpy(&H.r[i], &key[i], sizeof(double));
-    for (size_t j = 0; j < w; ++j) H.idx[i * w + j] = idx[static_cast<size_t>(pos[i]) * w + j];
-  }
-  return H;
-}
-
 } // namespace
 
 bool needsOptimiser(const ir::Gearbox& g) {
@@ -689,6 +581,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   }
   if (!fast) ordered.clear();
 
+
   // Meet in the middle over sorted stage ratios: left stages [0, h), right [h, k). Each
   // half is a compact list sorted by its ratio product; one two-pointer sweep joins them.
   // Three stages: the first two are walked row by row (the second stage's index runs
@@ -713,69 +606,107 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     if (inLeft && !has(a + h, b + h)) sameHalves = false;
     if (inRight && !has(a - h, b - h)) sameHalves = false;
   }
-  HalfList left;
-  if (!rows) left = buildHalf(stages, ordered, 0, h);
-  HalfList right = sameHalves ? left : buildHalf(stages, ordered, h, k);
-  right.from = h;
-  right.to = k;
-  left.from = 0;
-  left.to = h;
-  left.width = h;
+  std::vector<std::vector<double>> ratios(static_cast<size_t>(k));
+  for (int s = 0; s < k; ++s)
+    for (const auto& c : stages[static_cast<size_t>(s)].candidates) ratios[static_cast<size_t>(s)].push_back(c.r);
+  HalfList leftList, rightList;
+  if (!rows) leftList = HalfList::build(ratios, ordered, 0, h);
+  if (!sameHalves) rightList = HalfList::build(ratios, ordered, h, k);
+  for (const HalfList* H : {&leftList, &rightList})
+    if (!H->error().empty()) res.errors.push_back(H->error());
+  if (!res.errors.empty()) return res;
+  const HalfList& right = sameHalves ? leftList : rightList;
   // Rows: left entries are (i, j) packed as i * n1 + j.
   const size_t n1 = rows ? stages[1].candidates.size() : 0;
   auto leftIndex = [&](size_t le, int s) -> std::uint32_t {
     if (rows) return static_cast<std::uint32_t>(s == 0 ? le / n1 : le % n1);
-    return left.idx[le * static_cast<size_t>(left.width) + static_cast<size_t>(s)];
+    return leftList.index(le, s);
   };
-  auto rightIndex = [&](size_t re, int s) -> std::uint32_t {
-    return right.idx[re * static_cast<size_t>(right.width) + static_cast<size_t>(s - h)];
+  auto rightIndex = [&](size_t re, int s) -> std::uint32_t { return right.index(re, s - h); };
+  // Links of the canonical order from a left stage to a right one: a floor on a one-stage
+  // right half (its entries are its sorted candidates), a test per entry otherwise.
+  std::vector<std::pair<int, int>> crossing;
+  for (const auto& [sa, sb] : ordered)
+    if (sa < h && sb >= h) crossing.emplace_back(sa, sb);
+  const bool floorOnly = right.width() <= 1;
+  auto rightFloor = [&](size_t le) -> size_t {
+    size_t lo = 0;
+    if (floorOnly)
+      for (const auto& [sa, sb] : crossing) lo = std::max<size_t>(lo, leftIndex(le, sa));
+    return lo;
   };
-  auto candidateOf = [&](size_t le, size_t re, int s) -> const Candidate& {
-    return stages[static_cast<size_t>(s)].candidates[s < h ? leftIndex(le, s) : rightIndex(re, s)];
+  auto candidate = [&](int s, const std::uint32_t* cand) -> const Candidate& {
+    return stages[static_cast<size_t>(s)].candidates[cand[s]];
   };
-  auto exactRatio = [&](size_t le, size_t re) {
+  auto exactRatio = [&](const std::uint32_t* cand) {
     Rational q(1);
     for (int s = 0; s < k; ++s) {
-      auto n = q.mul(candidateOf(le, re, s).ratio);
+      auto n = q.mul(candidate(s, cand).ratio);
       if (n) q = *n;
     }
     return q;
   };
-  auto fill = [&](Assignment& a, size_t le, size_t re) {
-    for (int s = 0; s < k; ++s) {
-      const Candidate& c = candidateOf(le, re, s);
-      const auto& slots = m.stages[static_cast<size_t>(s)].slots;
-      for (size_t j = 0; j < slots.size(); ++j) a.choice[static_cast<size_t>(slots[j])] = c.idx[j];
-    }
+  auto place = [&](Assignment& a, int s, size_t c) {
+    const auto& slots = m.stages[static_cast<size_t>(s)].slots;
+    const auto& idx = stages[static_cast<size_t>(s)].candidates[c].idx;
+    for (size_t j = 0; j < slots.size(); ++j) a.choice[static_cast<size_t>(slots[j])] = idx[j];
   };
-  // Objectives that read nothing but the gearbox ratio are evaluated from it alone.
-  bool ratioOnly = true;
-  std::function<void(const ir::Expr&)> scan = [&](const ir::Expr& e) {
-    if ((e.op == Op::Quantity && !isGearboxRatio(e.ref)) || e.op == Op::Let || e.op == Op::SceneOutput || e.op == Op::Relative ||
-        e.op == Op::Scatter)
-      ratioOnly = false;
-    for (const auto& x : e.args)
-      if (x) scan(*x);
+  auto fill = [&](Assignment& a, const std::uint32_t* cand) {
+    for (int s = 0; s < k; ++s) place(a, s, cand[s]);
   };
-  if (!opt.deferDynamics)
-    for (const auto& o : m.gearbox.objectives)
-      if (o.expr) scan(*o.expr);
-  if (opt.sortBy) scan(*opt.sortBy);
 
-  auto keysOf = [&](const Assignment& a) {
-    std::vector<double> keys;
+  // Ranking keys: `sort by`, then the objectives (minimised; maximised ones negated).
+  const size_t nk = (opt.sortBy ? 1 : 0) + (opt.deferDynamics ? 0 : m.gearbox.objectives.size());
+  auto keysInto = [&](const Assignment& a, double* out) {
+    size_t i = 0;
     if (opt.sortBy) {
       Value v = ev.eval(*opt.sortBy, a);
-      keys.push_back(v.isNumber() ? rankingKey(v.lo) : INFINITY);
+      out[i++] = v.isNumber() ? rankingKey(v.lo) : INFINITY;
     }
+    if (opt.deferDynamics) return;  // ranked by the optimiser
     for (const auto& o : m.gearbox.objectives) {
-      if (opt.deferDynamics) break;  // ranked by the optimiser
       Value v = o.expr ? ev.eval(*o.expr, a) : Value::invalid();
       // Over a freedom the best attainable value counts: the design may choose it.
-      keys.push_back(v.isNumber() ? rankingKey(o.minimize ? v.lo : -v.hi) : INFINITY);
+      out[i++] = v.isNumber() ? rankingKey(o.minimize ? v.lo : -v.hi) : INFINITY;
     }
-    return keys;
   };
+  const size_t keep = opt.top ? static_cast<size_t>(std::max(0LL, *opt.top)) : SIZE_MAX;
+
+  // The first key in doubles, when it is a sum of one-stage terms and functions of the
+  // ratio: a screen before the evaluator, and bounds that skip whole windows. Checked
+  // against the evaluator on sample designs before it is trusted.
+  std::optional<FastKey> fastKey;
+  if (!opt.exhaustive && nk > 0 && keep > 0 && keep != SIZE_MAX && k > 0) {
+    const ir::Expr* e = opt.sortBy ? opt.sortBy : m.gearbox.objectives[0].expr.get();
+    bool maximise = !opt.sortBy && !m.gearbox.objectives[0].minimize;
+    std::vector<size_t> sizes;
+    for (const auto& st : stages) sizes.push_back(st.candidates.size());
+    bool any = std::all_of(sizes.begin(), sizes.end(), [](size_t x) { return x > 0; });
+    auto reads = [&](const ir::Expr& x) {
+      Conjunct c;
+      dependencies(m, x, c);
+      return FastKey::Reads{c.stages, c.freedom || c.unsupported};
+    };
+    if (e && any) fastKey = FastKey::build(ev, *e, maximise, sizes, reads, place);
+    std::vector<double> want(nk);
+    std::vector<std::uint32_t> cand(static_cast<size_t>(k));
+    Assignment a(m);
+    for (std::uint64_t t = 0; fastKey && t < 16; ++t) {
+      double r = 1;
+      for (int s = 0; s < k; ++s) {
+        cand[static_cast<size_t>(s)] = static_cast<std::uint32_t>((t * 2654435761u + static_cast<std::uint64_t>(s) * 40503u) % sizes[static_cast<size_t>(s)]);
+        r *= candidate(s, cand.data()).r;
+      }
+      fill(a, cand.data());
+      a.ratio = exactRatio(cand.data());
+      keysInto(a, want.data());
+      double got = fastKey->value(cand.data(), r);
+      bool same = std::isinf(want[0]) ? got == want[0] : std::fabs(got - want[0]) <= 1e-10 * (1 + std::fabs(want[0]));
+      if (!same) fastKey.reset();
+    }
+  }
+  RangeMin rowMin;  // rows: the third stage's table, by candidate (= position in the right list)
+  if (fastKey && rows && fastKey->table(2)) rowMin = RangeMin(*fastKey->table(2));
 
   // Per-stage membership, for checking the images of a design under the group.
   bool orbitCheck = !fast && group.size() > 1;
@@ -832,162 +763,242 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     return false;
   };
 
-  struct Hit {
-    std::vector<double> keys;
-    std::vector<std::uint32_t> cand;  // candidate index per stage: the tie-break order
-    size_t le = 0;
-    std::uint32_t re = 0;
-    bool operator<(const Hit& o) const { return keys != o.keys ? keys < o.keys : cand < o.cand; }
-  };
-  const double eps = 1e-9;  // see buildHalf: larger than the sort's 2^-36
+
+  const double eps = 1e-9;  // larger than the rounding of a ratio product
   const double wlo = window.lo ? window.lo->toDouble() : -INFINITY, whi = window.hi ? window.hi->toDouble() : INFINITY;
-  size_t n = rows ? stages[0].candidates.size() : left.r.size(), rn = right.r.size();
+  const double sureLo = wlo * (1 + 4 * eps), sureHi = whi * (1 - 4 * eps);
+  size_t n = rows ? stages[0].candidates.size() : leftList.size(), rn = right.size();
   int threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(n / 64) + 1));
-  size_t keep = opt.top ? static_cast<size_t>(*opt.top) : SIZE_MAX;
+  bool undecidedAny = false;
+  for (const auto& st : stages)
+    for (const auto& c : st.candidates) undecidedAny = undecidedAny || c.undecided;
+  // Counted by arithmetic (the window's length, its borders confirmed exactly) when every
+  // design in a window counts: no rule across stages, no orbit test, no undecided freedom,
+  // and the canonical order at most a floor.
+  const bool arith = !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny && (floorOnly || crossing.empty());
   struct Local {
-    std::vector<Hit> heap;  // max-heap of the best `keep`
+    std::vector<double> keys;          // nk per kept design
+    std::vector<std::uint32_t> cand;   // k per kept design: candidate index per stage
+    std::vector<std::uint32_t> heap;   // kept designs, a max-heap when `top` limits them
     unsigned long long count = 0, undecided = 0;
     double inWindow = 0, duplicates = 0;
     std::vector<double> crossRemoved;
   };
   std::vector<Local> locals(static_cast<size_t>(threads));
-  // Both bounds of the right window fall as the left ratio rises.
-  auto wantLo = [&](double x) { return wlo / x * (1 - eps); };
-  auto wantHi = [&](double x) { return whi / x * (1 + eps); };
-  // Lowest right entry the canonical order allows for this left entry (rows mode: the
-  // third stage's index, which is its position in the sorted list).
-  auto rightFloor = [&](size_t le) -> size_t {
-    size_t lo = 0;
-    if (rows)
-      for (const auto& [sa, sb] : ordered)
-        if (sa < h && sb == 2) lo = std::max<size_t>(lo, leftIndex(le, sa));
-    return lo;
+  const size_t kk = static_cast<size_t>(k);
+  auto lessRaw = [&](const double* ka, const std::uint32_t* ca, const double* kb, const std::uint32_t* cb) {
+    for (size_t i = 0; i < nk; ++i)
+      if (ka[i] != kb[i]) return ka[i] < kb[i];
+    for (size_t s = 0; s < kk; ++s)
+      if (ca[s] != cb[s]) return ca[s] < cb[s];
+    return false;
   };
-  auto visit = [&](Local& lo, Assignment& a, Hit& hit, size_t le, double x, size_t from, size_t to) {
+  auto full = [&](const Local& lo) { return keep != SIZE_MAX && lo.heap.size() >= keep; };
+  auto worst0 = [&](const Local& lo) { return lo.keys[static_cast<size_t>(lo.heap.front()) * nk]; };
+  auto slack = [](double w) { return 1e-9 * (1 + std::fabs(w)); };
+  auto keepHit = [&](Local& lo, const double* keys, const std::uint32_t* cand) {
+    auto cmp = [&](std::uint32_t x, std::uint32_t y) {
+      return lessRaw(&lo.keys[x * nk], &lo.cand[x * kk], &lo.keys[y * nk], &lo.cand[y * kk]);
+    };
+    if (keep == SIZE_MAX || lo.heap.size() < keep) {
+      auto id = static_cast<std::uint32_t>(lo.cand.size() / std::max<size_t>(kk, 1));
+      lo.keys.insert(lo.keys.end(), keys, keys + nk);
+      lo.cand.insert(lo.cand.end(), cand, cand + kk);
+      lo.heap.push_back(id);
+      if (keep != SIZE_MAX) std::push_heap(lo.heap.begin(), lo.heap.end(), cmp);
+      return;
+    }
+    std::uint32_t w = lo.heap.front();
+    if (!lessRaw(keys, cand, &lo.keys[w * nk], &lo.cand[w * kk])) return;
+    std::pop_heap(lo.heap.begin(), lo.heap.end(), cmp);
+    std::copy(keys, keys + nk, lo.keys.begin() + static_cast<std::ptrdiff_t>(w * nk));
+    std::copy(cand, cand + kk, lo.cand.begin() + static_cast<std::ptrdiff_t>(w * kk));
+    std::push_heap(lo.heap.begin(), lo.heap.end(), cmp);
+  };
+  // Both bounds of the right window fall as the left ratio rises.
+  const double wantLoC = wlo * (1 - eps), wantHiC = whi * (1 + eps);
+  // Designs of the window [from, to) whose ratio is exactly inside; only entries within
+  // the rounding margin of a bound are confirmed exactly.
+  auto exactCount = [&](std::uint32_t* cand, double x, size_t from, size_t to) {
+    size_t a = from, b = to, rejected = 0;
+    auto outside = [&](size_t re) {
+      for (int s = h; s < k; ++s) cand[s] = rightIndex(re, s);
+      return !window.contains(exactRatio(cand));
+    };
+    for (; a < b && x * right.ratio(a) < sureLo; ++a) rejected += outside(a);
+    for (; b > a && x * right.ratio(b - 1) > sureHi; --b) rejected += outside(b - 1);
+    return static_cast<unsigned long long>(to - from - rejected);
+  };
+  auto visit = [&](Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from, size_t to,
+                   bool counted) {
     for (size_t re = from; re < to && re < rn; ++re) {
-      bool canonical = true;
-      if (!rows)
-        for (const auto& [sa, sb] : ordered)
-          if (sa < h && sb >= h && leftIndex(le, sa) > rightIndex(re, sb)) canonical = false;
-      if (!canonical) continue;
-      double p = x * right.r[re];
+      if (!floorOnly && !crossing.empty()) {
+        bool canonical = true;
+        for (const auto& [sa, sb] : crossing)
+          if (leftIndex(le, sa) > rightIndex(re, sb)) canonical = false;
+        if (!canonical) continue;
+      }
+      for (int s = h; s < k; ++s) cand[s] = rightIndex(re, s);
+      double p = x * right.ratio(re);
       std::optional<Rational> q;
-      if (p < wlo * (1 + 4 * eps) || p > whi * (1 - 4 * eps)) {
-        q = exactRatio(le, re);
+      if (p < sureLo || p > sureHi) {
+        q = exactRatio(cand);
         if (!window.contains(*q)) continue;
       }
-      lo.inWindow += 1;
-      bool filled = false;
-      if (!cross.empty() || orbitCheck) {
-        fill(a, le, re);
-        filled = true;
-        bool ok = true;
-        for (size_t c = 0; c < cross.size() && ok; ++c)
-          if (truthOf(ev.eval(*cross[c]->expr, a)) == Truth::False) {
-            lo.crossRemoved[c] += 1;
-            ok = false;
-          }
-        if (!ok) continue;
-        if (orbitCheck) {
-          bool rep = true;
-          for (size_t g = 1; g < group.size() && rep; ++g) {
-            auto img = image(a.choice, group[g]);
-            if (img != a.choice && feasibleDesign(img) && less(img, a.choice)) rep = false;
-          }
-          if (!rep) {
-            lo.duplicates += 1;
-            continue;
+      if (!counted) {
+        lo.inWindow += 1;
+        if (!cross.empty() || orbitCheck) {
+          fill(a, cand);
+          bool ok = true;
+          for (size_t c = 0; c < cross.size() && ok; ++c)
+            if (truthOf(ev.eval(*cross[c]->expr, a)) == Truth::False) {
+              lo.crossRemoved[c] += 1;
+              ok = false;
+            }
+          if (!ok) continue;
+          if (orbitCheck) {
+            bool rep = true;
+            for (size_t g = 1; g < group.size() && rep; ++g) {
+              auto img = image(a.choice, group[g]);
+              if (img != a.choice && feasibleDesign(img) && less(img, a.choice)) rep = false;
+            }
+            if (!rep) {
+              lo.duplicates += 1;
+              continue;
+            }
           }
         }
+        lo.count += 1;
+        bool undecided = false;
+        for (int s = 0; s < k; ++s) undecided = undecided || candidate(s, cand).undecided;
+        lo.undecided += undecided;
       }
-      lo.count += 1;
-      bool undecided = false;
-      for (int s = 0; s < k; ++s) {
-        undecided = undecided || candidateOf(le, re, s).undecided;
-        hit.cand[static_cast<size_t>(s)] = s < h ? leftIndex(le, s) : rightIndex(re, s);
-      }
-      lo.undecided += undecided;
       if (keep == 0) continue;
-      if (!ratioOnly && !filled) fill(a, le, re);
-      if (ratioOnly && lo.heap.size() >= keep) {
-        // Screen in doubles: only a design that may beat the worst kept one is ranked exactly.
-        a.ratioApprox = p;
-        auto approx = keysOf(a);
-        a.ratioApprox.reset();
-        const auto& worst = lo.heap.front().keys;
-        bool maybe = true;  // all keys too close to call in doubles: rank exactly
-        for (size_t i = 0; i < approx.size() && i < worst.size(); ++i) {
-          double slack = 1e-9 * (1 + std::fabs(worst[i]));
-          if (approx[i] < worst[i] - slack) break;
-          if (approx[i] > worst[i] + slack) {
-            maybe = false;
-            break;
-          }
-        }
-        if (!maybe) continue;
+      if (fastKey && full(lo)) {
+        // Screen in doubles: only a design that may beat the worst kept one is keyed exactly.
+        double w = worst0(lo);
+        if (fastKey->value(cand, p) > w + slack(w)) continue;
       }
-      if (!q) q = exactRatio(le, re);
+      fill(a, cand);
+      if (!q) q = exactRatio(cand);
       a.ratio = *q;
-      hit.keys = keysOf(a);
+      keysInto(a, scratch);
       a.ratio.reset();
-      hit.le = le;
-      hit.re = static_cast<std::uint32_t>(re);
-      if (lo.heap.size() < keep) {
-        lo.heap.push_back(hit);
-        std::push_heap(lo.heap.begin(), lo.heap.end());
-      } else if (hit < lo.heap.front()) {
-        std::pop_heap(lo.heap.begin(), lo.heap.end());
-        lo.heap.back() = hit;
-        std::push_heap(lo.heap.begin(), lo.heap.end());
-      }
+      keepHit(lo, scratch, cand);
     }
+  };
+  // Whether no design of the window can enter the kept ones (the window's ratios span [rlo, rhi]).
+  auto bounded = [&](const Local& lo, double partial, double rlo, double rhi) {
+    if (!fastKey || !full(lo)) return false;
+    double w = worst0(lo);
+    double lb = partial + fastKey->ratioLower(rlo * (1 - 1e-12), rhi * (1 + 1e-12));
+    return lb > w + slack(w);
   };
   auto sweep = [&](int t) {
     Local& lo = locals[static_cast<size_t>(t)];
     lo.crossRemoved.assign(cross.size(), 0);
     Assignment a(m);
-    Hit hit;
-    hit.cand.resize(static_cast<size_t>(k));
+    std::vector<std::uint32_t> cand(kk + 1, 0);
+    std::vector<double> scratch(nk + 1, 0);
     size_t begin = n * static_cast<size_t>(t) / static_cast<size_t>(threads);
     size_t end = n * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
-    if (begin >= end) return;
-    auto lower = [&](double v) { return static_cast<size_t>(std::lower_bound(right.r.begin(), right.r.end(), v) - right.r.begin()); };
-    auto upper = [&](double v) { return static_cast<size_t>(std::upper_bound(right.r.begin(), right.r.end(), v) - right.r.begin()); };
+    if (begin >= end || rn == 0) return;
+    auto lower = [&](double v) {
+      size_t lo = 0, hi = rn;
+      while (lo < hi) {
+        size_t mid = (lo + hi) / 2;
+        if (right.ratio(mid) < v) lo = mid + 1;
+        else hi = mid;
+      }
+      return lo;
+    };
+    auto upper = [&](double v) {
+      size_t lo = 0, hi = rn;
+      while (lo < hi) {
+        size_t mid = (lo + hi) / 2;
+        if (right.ratio(mid) <= v) lo = mid + 1;
+        else hi = mid;
+      }
+      return lo;
+    };
+    // One left entry against its window of right entries [loP, hiP), from `floor` on.
+    auto join = [&](size_t le, double x, size_t from, size_t to, double partial) {
+      if (from >= to) return;
+      if (!arith) {
+        visit(lo, a, cand.data(), scratch.data(), le, x, from, to, false);
+        return;
+      }
+      unsigned long long c = exactCount(cand.data(), x, from, to);
+      lo.count += c;
+      lo.inWindow += static_cast<double>(c);
+      if (c == 0 || keep == 0) return;
+      if (bounded(lo, partial, x * right.ratio(from), x * right.ratio(to - 1))) return;
+      visit(lo, a, cand.data(), scratch.data(), le, x, from, to, true);
+    };
     bool report = t == 0 && opt.progress && (rows ? n * n1 : n) > 1000000;
     if (rows) {
-      const auto& first = stages[0].candidates;
-      const auto& second = stages[1].candidates;
+      // The tight loop of the three-stage join: raw ratio arrays, the floor from flags.
+      const double* r0 = ratios[0].data();
+      const double* r1 = ratios[1].data();
+      const double* r2 = ratios[2].data();
+      const size_t m1 = ratios[1].size();
+      bool j0FromI = false, floorI = false, floorJ = false;
+      for (const auto& [sa, sb] : ordered) {
+        j0FromI = j0FromI || (sa == 0 && sb == 1);
+        floorI = floorI || (sa == 0 && sb == 2);
+        floorJ = floorJ || (sa == 1 && sb == 2);
+      }
+      const double base = fastKey ? fastKey->constant() : 0;
       for (size_t i = begin; i < end; ++i) {
         if (report && (i - begin) % 64 == 0) opt.progress(static_cast<double>(i - begin) / static_cast<double>(end - begin));
-        size_t j0 = 0;
-        for (const auto& [sa, sb] : ordered)
-          if (sa == 0 && sb == 1) j0 = i;
-        if (j0 >= second.size()) continue;
-        double x0 = first[i].r * second[j0].r;
-        size_t loP = lower(wantLo(x0)), hiP = upper(wantHi(x0));
-        for (size_t j = j0; j < second.size(); ++j) {
-          size_t le = i * n1 + j;
-          double x = first[i].r * second[j].r;
-          double wl = wantLo(x), wh = wantHi(x);
-          while (loP > 0 && right.r[loP - 1] >= wl) --loP;
-          while (hiP > 0 && right.r[hiP - 1] > wh) --hiP;
-          size_t floor = rightFloor(le);
+        size_t j0 = j0FromI ? i : 0;
+        if (j0 >= m1) continue;
+        cand[0] = static_cast<std::uint32_t>(i);
+        double x0 = r0[i] * r1[j0];
+        size_t loP = lower(wantLoC / x0), hiP = upper(wantHiC / x0);
+        double rowPart = fastKey ? base + fastKey->entry(0, cand[0]) : 0;
+        for (size_t j = j0; j < m1; ++j) {
+          double x = r0[i] * r1[j];
+          double inv = 1 / x;
+          double wl = wantLoC * inv, wh = wantHiC * inv;
+          while (loP > 0 && r2[loP - 1] >= wl) --loP;
+          while (hiP > 0 && r2[hiP - 1] > wh) --hiP;
           // The window only falls and the floor only rises along a row.
+          size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
           if (hiP <= floor) break;
-          visit(lo, a, hit, le, x, std::max(loP, floor), hiP);
+          size_t from = std::max(loP, floor);
+          if (from >= hiP) continue;
+          cand[1] = static_cast<std::uint32_t>(j);
+          double partial = 0;
+          if (fastKey && full(lo))
+            partial = rowPart + fastKey->entry(1, cand[1]) + (rowMin.empty() ? fastKey->least(2) : rowMin.least(from, hiP));
+          join(i * n1 + j, x, from, hiP, partial);
         }
       }
       if (report) opt.progress(1.0);
       return;
     }
-    size_t loP = lower(wantLo(left.r[begin])), hiP = upper(wantHi(left.r[begin]));
+    double rightLeast = 0;
+    if (fastKey) {
+      rightLeast = fastKey->constant();
+      for (int s = h; s < k; ++s) rightLeast += fastKey->least(s);
+    }
+    size_t loP = lower(wantLoC / leftList.ratio(begin)), hiP = upper(wantHiC / leftList.ratio(begin));
     for (size_t le = begin; le < end; ++le) {
       if (report && (le - begin) % 65536 == 0) opt.progress(static_cast<double>(le - begin) / static_cast<double>(end - begin));
-      double x = left.r[le];
-      double wl = wantLo(x), wh = wantHi(x);
-      while (loP > 0 && right.r[loP - 1] >= wl) --loP;
-      while (hiP > 0 && right.r[hiP - 1] > wh) --hiP;
-      visit(lo, a, hit, le, x, loP, hiP);
+      double x = leftList.ratio(le);
+      double inv = 1 / x;
+      double wl = wantLoC * inv, wh = wantHiC * inv;
+      while (loP > 0 && right.ratio(loP - 1) >= wl) --loP;
+      while (hiP > 0 && right.ratio(hiP - 1) > wh) --hiP;
+      size_t from = std::max(loP, rightFloor(le));
+      if (from >= hiP) continue;
+      double partial = rightLeast;
+      for (int s = 0; s < h; ++s) {
+        cand[static_cast<size_t>(s)] = leftIndex(le, s);
+        if (fastKey) partial += fastKey->entry(s, cand[static_cast<size_t>(s)]);
+      }
+      join(le, x, from, hiP, partial);
     }
     if (report) opt.progress(1.0);
   };
@@ -998,27 +1009,39 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   std::vector<double> crossRemoved(cross.size(), 0);
   double inWindow = 0, duplicates = 0;
   unsigned long long count = 0, undecided = 0;
-  std::vector<Hit> hits;
-  for (auto& lo : locals) {
+  struct Ref {
+    const Local* lo;
+    std::uint32_t id;
+  };
+  std::vector<Ref> hits;
+  for (const auto& lo : locals) {
     count += lo.count;
     undecided += lo.undecided;
     inWindow += lo.inWindow;
     duplicates += lo.duplicates;
     for (size_t c = 0; c < cross.size(); ++c) crossRemoved[c] += lo.crossRemoved[c];
-    for (auto& x : lo.heap) hits.push_back(std::move(x));
+    for (std::uint32_t id : lo.heap) hits.push_back({&lo, id});
   }
-  std::sort(hits.begin(), hits.end());
-  if (hits.size() > keep) hits.resize(keep);
+  auto refLess = [&](const Ref& x, const Ref& y) {
+    return lessRaw(&x.lo->keys[x.id * nk], &x.lo->cand[x.id * kk], &y.lo->keys[y.id * nk], &y.lo->cand[y.id * kk]);
+  };
+  if (hits.size() > keep) {
+    std::partial_sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(keep), hits.end(), refLess);
+    hits.resize(keep);
+  } else {
+    std::sort(hits.begin(), hits.end(), refLess);
+  }
   std::vector<Design> designs;
+  designs.reserve(hits.size());
   for (const auto& x : hits) {
     Design d;
+    const std::uint32_t* cand = &x.lo->cand[x.id * kk];
     Assignment a(m);
-    fill(a, x.le, x.re);
-    d.choice = a.choice;
-    d.ratio = exactRatio(x.le, x.re);
-    d.keys = x.keys;
-    for (int s = 0; s < k; ++s)
-      d.undecided = d.undecided || stages[static_cast<size_t>(s)].candidates[x.cand[static_cast<size_t>(s)]].undecided;
+    fill(a, cand);
+    d.choice = std::move(a.choice);
+    d.ratio = exactRatio(cand);
+    d.keys.assign(x.lo->keys.begin() + static_cast<std::ptrdiff_t>(x.id * nk), x.lo->keys.begin() + static_cast<std::ptrdiff_t>((x.id + 1) * nk));
+    for (int s = 0; s < k; ++s) d.undecided = d.undecided || candidate(s, cand).undecided;
     designs.push_back(std::move(d));
   }
 

@@ -39,6 +39,9 @@ struct SearchOptions {
   // Rules and objectives that need scenes or a baseline are left to the optimiser: the
   // search then lists every design that satisfies the others, unranked.
   bool deferDynamics = false;
+  // Every design visited and keyed by the evaluator: no counting by arithmetic, no screen,
+  // no bounds (what the pruned search is tested and benchmarked against).
+  bool exhaustive = false;
 };
 
 struct SearchResult {

@@ -394,3 +394,76 @@ TEST(Search, RoundingLevelTiesRankByStageRatio) {
   for (size_t i = 1; i < s.result.designs.size(); ++i)
     EXPECT_LT(s.result.designs[i - 1].ratio, s.result.designs[i].ratio) << "rank " << i + 1;
 }
+
+// The pruned search (objective screen, bounds over windows, counting by arithmetic)
+// keeps exactly the designs an exhaustive ranking keeps: random specs of one to four
+// stages, objectives that decompose over stages or the ratio and one that does not.
+TEST(Search, PrunedTopNAgreesWithTheExhaustiveRanking) {
+  std::mt19937 rng(20261125);
+  int pruned = 0;
+  for (int trial = 0; trial < 48; ++trial) {
+    int k = 1 + trial % 4;
+    bool like = rng() % 2 == 0, swap = like && k >= 2 && rng() % 2 == 0;
+    int pSpan = k == 4 ? 1 : k == 3 ? 3 : 4, wSpan = k == 4 ? 3 : k == 3 ? 6 : 10;
+    std::string text = "import materials;\ngearbox T {\n";
+    double target = 1;
+    int p0 = 0, w0 = 0;
+    for (int i = 0; i < k; ++i) {
+      if (i > 0 && like) {
+        text += fmt::format("  stage s{} like s0;\n", i);
+      } else {
+        p0 = 14 + static_cast<int>(rng() % 6);
+        w0 = p0 + 3 + static_cast<int>(rng() % 20);
+        bool three = rng() % 2 == 0;
+        text += fmt::format("  stage s{}: helical {{ pinion.z in {}..{}; wheel.z in {}..{}; normal_module in {{2 mm, 2.5 mm{}}}; "
+                            "helix_angle = 12 deg; face_width = 30 mm; material = steel_20CrMnMo; }}\n",
+                            i, p0, p0 + pSpan, w0, w0 + wSpan, three ? ", 3 mm" : "");
+      }
+      // A target near a design's ratio, so that windows are seldom empty.
+      target *= static_cast<double>(w0 + static_cast<int>(rng() % static_cast<unsigned>(wSpan + 1))) /
+                static_cast<double>(p0 + static_cast<int>(rng() % static_cast<unsigned>(pSpan + 1)));
+    }
+    if (swap) {
+      text += "  interchangeable s0";
+      for (int i = 1; i < k; ++i) text += fmt::format(", s{}", i);
+      text += ";\n";
+    }
+    text += fmt::format("  require ratio == {:.3f} +- {}%;\n", target, 1 + rng() % 4);
+    std::string mass = "s0.mass", last = fmt::format("s{}", k - 1);
+    for (int i = 1; i < k; ++i) mass += fmt::format(" + s{}.mass", i);
+    switch (trial % 6) {
+    case 0: text += fmt::format("  minimize {};\n", mass); break;
+    case 1: text += fmt::format("  minimize abs(ratio - {:.3f});\n", target); break;
+    case 2: text += fmt::format("  minimize s0.center_distance / 1 mm + 2 * (ratio - {:.3f})^2;\n  minimize {};\n", target, mass); break;
+    case 3: text += fmt::format("  maximize s0.pinion.z - {}.wheel.z;\n", last); break;
+    case 4: text += fmt::format("  minimize s0.pinion.z * {}.wheel.z;\n", last); break;  // not a sum over stages
+    default: text += fmt::format("  minimize abs(ratio - {:.3f});\n  report {{ sort by {}; }}\n", target, mass); break;
+    }
+    text += "}\n";
+    auto c = driver::compileText("t.gbx", text);
+    ASSERT_TRUE(c->ok()) << text << c->diags.renderText(c->sources);
+    rt::Model m(c->program, c->program.gearboxes[0]);
+    const ir::Expr* sortBy = c->program.gearboxes[0].report && c->program.gearboxes[0].report->sortBy
+                                 ? c->program.gearboxes[0].report->sortBy.get()
+                                 : nullptr;
+    rt::SearchOptions all;
+    all.exhaustive = true;
+    all.sortBy = sortBy;
+    auto want = rt::search(m, all);
+    rt::SearchOptions top;
+    top.top = 1 + static_cast<long long>(rng() % 12);
+    top.jobs = 1 + trial % 2;
+    top.sortBy = sortBy;
+    auto got = rt::search(m, top);
+    ASSERT_TRUE(got.errors.empty()) << text;
+    EXPECT_EQ(got.count, want.count) << text;
+    size_t n = std::min<size_t>(static_cast<size_t>(*top.top), want.designs.size());
+    ASSERT_EQ(got.designs.size(), n) << text;
+    for (size_t i = 0; i < n; ++i) {
+      EXPECT_EQ(got.designs[i].choice, want.designs[i].choice) << "rank " << i + 1 << "\n" << text;
+      EXPECT_EQ(got.designs[i].keys, want.designs[i].keys) << "rank " << i + 1 << "\n" << text;
+    }
+    pruned += want.count > static_cast<unsigned long long>(*top.top);
+  }
+  EXPECT_GT(pruned, 30) << "most trials should have more designs than they keep";
+}

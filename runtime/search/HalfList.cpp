@@ -1,0 +1,188 @@
+#include "search/HalfList.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <fmt/format.h>
+
+namespace gbx::rt {
+
+namespace {
+
+// The order of positive doubles is the order of their bits; this map extends it to all.
+std::uint64_t orderKey(double r) {
+  std::uint64_t u;
+  std::memcpy(&u, &r, sizeof u);
+  return (u >> 63) ? ~u : u | (std::uint64_t{1} << 63);
+}
+
+int bitsFor(size_t n) {
+  int b = 1;
+  while (b < 63 && (std::uint64_t{1} << b) < n)
+    ++b;
+  return b;
+}
+
+} // namespace
+
+template <class F> void HalfList::forEach(const std::vector<std::pair<int, int>>& ordered, F&& f) const {
+  const auto& R = *ratios_;
+  const int from = from_, to = from_ + width_;
+  if (width_ == 2) {
+    const auto &r0 = R[static_cast<size_t>(from)], &r1 = R[static_cast<size_t>(from + 1)];
+    bool canon = std::find(ordered.begin(), ordered.end(), std::make_pair(from, from + 1)) != ordered.end();
+    const int s1 = shift_[1];
+    for (std::uint64_t i = 0; i < r0.size(); ++i)
+      for (std::uint64_t j = canon ? i : 0; j < r1.size(); ++j)
+        f(i | (j << s1), r0[i] * r1[j]);
+    return;
+  }
+  const size_t w = static_cast<size_t>(width_);
+  std::vector<std::uint64_t> cur(w, 0);
+  auto start = [&](int s) {
+    std::uint64_t lo = 0;
+    for (const auto& [a, b] : ordered)
+      if (b == s && a >= from && a < s) lo = std::max(lo, cur[static_cast<size_t>(a - from)]);
+    return lo;
+  };
+  for (int s = from; s < to; ++s)
+    cur[static_cast<size_t>(s - from)] = start(s);
+  for (;;) {
+    bool valid = true;
+    double prod = 1;
+    std::uint64_t code = 0;
+    for (size_t s = 0; s < w && valid; ++s) {
+      const auto& list = R[static_cast<size_t>(from) + s];
+      if (cur[s] >= list.size())
+        valid = false;
+      else {
+        prod *= list[cur[s]];
+        code |= cur[s] << shift_[s];
+      }
+    }
+    if (valid) f(code, prod);
+    // Odometer, last stage fastest; a stage restarts at its canonical lower bound.
+    int s = to - 1;
+    for (; s >= from; --s) {
+      auto& c = cur[static_cast<size_t>(s - from)];
+      ++c;
+      if (c < R[static_cast<size_t>(s)].size()) break;
+    }
+    if (s < from) break;
+    for (int t = s + 1; t < to; ++t)
+      cur[static_cast<size_t>(t - from)] = start(t);
+  }
+}
+
+template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>& ordered, std::vector<Code>& out) {
+  const auto& R = *ratios_;
+  // Bucket bounds from the stages' extreme ratios (positive ratios: the product of the
+  // least is the least product); entries outside are clamped, which keeps the order.
+  double lo = 1, hi = 1;
+  bool positive = true;
+  double upper = 1; // tuples before the canonical order removes any
+  for (int s = 0; s < width_; ++s) {
+    const auto& r = R[static_cast<size_t>(from_ + s)];
+    positive = positive && r.front() > 0 && std::isfinite(r.back());
+    lo *= r.front();
+    hi *= r.back();
+    upper *= static_cast<double>(r.size());
+  }
+  size_t buckets = static_cast<size_t>(std::clamp(upper / 4, 1.0, static_cast<double>(1 << 22)));
+  std::uint64_t k0 = orderKey(lo), span = positive ? orderKey(hi) - k0 : 0;
+  int shift = 0;
+  while (shift < 64 && (span >> shift) >= buckets)
+    ++shift;
+  buckets = positive ? static_cast<size_t>(span >> shift) + 1 : 1;
+  auto bucketOf = [&](double r) -> size_t {
+    std::uint64_t k = orderKey(r);
+    if (k <= k0) return 0;
+    return std::min<size_t>(static_cast<size_t>((k - k0) >> shift), buckets - 1);
+  };
+  std::vector<std::uint32_t> start(buckets + 1, 0);
+  size_t n = 0;
+  forEach(ordered, [&](std::uint64_t, double r) {
+    ++start[bucketOf(r) + 1];
+    ++n;
+  });
+  for (size_t b = 0; b < buckets; ++b)
+    start[b + 1] += start[b];
+  out.resize(n);
+  std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+  forEach(ordered, [&](std::uint64_t code, double r) { out[next[bucketOf(r)]++] = static_cast<Code>(code); });
+  next.clear();
+  next.shrink_to_fit();
+  n_ = n;
+  // Within a bucket, by ratio and then by code (a fixed order for equal ratios).
+  auto less = [&](Code a, Code b) {
+    double ra = codeRatio(a), rb = codeRatio(b);
+    return ra != rb ? ra < rb : a < b;
+  };
+  for (size_t b = 0; b < buckets; ++b) {
+    auto first = out.begin() + start[b], last = out.begin() + start[b + 1];
+    if (last - first < 2) continue;
+    if (last - first <= 16) {
+      for (auto it = first + 1; it != last; ++it)
+        for (auto jt = it; jt != first && less(*jt, *(jt - 1)); --jt)
+          std::iter_swap(jt, jt - 1);
+    } else {
+      std::sort(first, last, less);
+    }
+  }
+}
+
+HalfList HalfList::build(const std::vector<std::vector<double>>& ratios,
+                         const std::vector<std::pair<int, int>>& ordered, int from, int to) {
+  HalfList H;
+  H.ratios_ = &ratios;
+  H.from_ = from;
+  H.width_ = to - from;
+  for (int s = from; s < to; ++s)
+    if (ratios[static_cast<size_t>(s)].empty()) {
+      H.width_ = 0; // no tuple at all
+      return H;
+    }
+  if (H.width_ == 0) {
+    H.n_ = 1; // the empty tuple, ratio 1
+    H.identity_ = true;
+    return H;
+  }
+  int bits = 0;
+  for (int s = from; s < to; ++s) {
+    int b = bitsFor(ratios[static_cast<size_t>(s)].size());
+    H.shift_.push_back(bits);
+    H.mask_.push_back(b >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << b) - 1);
+    bits += b;
+  }
+  if (H.width_ == 1) {
+    H.identity_ = true;
+    H.n_ = ratios[static_cast<size_t>(from)].size();
+    H.mask_[0] = ~std::uint64_t{0};
+    return H;
+  }
+  if (bits > 64) {
+    H.error_ = fmt::format("the join's half over {} stages needs {} bits per entry (more than 64): narrow the tooth "
+                           "ranges or split the gearbox",
+                           H.width_, bits);
+    H.width_ = 0;
+    return H;
+  }
+  double tuples = 1;
+  for (int s = from; s < to; ++s)
+    tuples *= static_cast<double>(ratios[static_cast<size_t>(s)].size());
+  if (tuples >= 4294967295.0) {
+    H.error_ = fmt::format(
+        "the join's half over {} stages would hold up to {:.3g} entries (more than 2^32): narrow the tooth ranges",
+        H.width_, tuples);
+    H.width_ = 0;
+    return H;
+  }
+  if (bits <= 32)
+    H.fill(ordered, H.codes_);
+  else
+    H.fill(ordered, H.wide_);
+  return H;
+}
+
+} // namespace gbx::rt

@@ -1,0 +1,58 @@
+#pragma once
+// One half of the meet-in-the-middle join: every tuple of candidates of stages [from, to),
+// canonical within interchangeable blocks, in ascending order of its ratio product. An
+// entry is the tuple's candidate indices packed into one integer (4 bytes when they fit);
+// the ratio is recomputed from the stages' candidate ratios when the sweep reads it, so
+// the list costs no more than its codes. Sorted by a counting sort over buckets of the
+// ratio's bits (monotone in the ratio, about uniform in its logarithm), then within each
+// bucket: no per-entry allocation, no copies of keys.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace gbx::rt {
+
+class HalfList {
+public:
+  HalfList() = default;
+  // ratios[s]: the candidate ratios of stage s, ascending. ordered: pairs (a, b) of stages
+  // whose candidate indices must not decrease (interchangeable stages, enumerated once).
+  static HalfList build(const std::vector<std::vector<double>>& ratios, const std::vector<std::pair<int, int>>& ordered,
+                        int from, int to);
+
+  size_t size() const { return n_; }
+  int width() const { return width_; }
+  // Candidate index of the half's s-th stage (0-based within the half) for entry e.
+  std::uint32_t index(size_t e, int s) const { return field(code(e), s); }
+  double ratio(size_t e) const { return codeRatio(code(e)); }
+  // Why the list could not be built (the tuples do not fit a 64-bit code), or empty.
+  const std::string& error() const { return error_; }
+  size_t bytes() const { return codes_.capacity() * sizeof(std::uint32_t) + wide_.capacity() * sizeof(std::uint64_t); }
+
+private:
+  std::uint64_t code(size_t e) const { return identity_ ? e : (wide_.empty() ? codes_[e] : wide_[e]); }
+  std::uint32_t field(std::uint64_t c, int s) const {
+    return static_cast<std::uint32_t>((c >> shift_[static_cast<size_t>(s)]) & mask_[static_cast<size_t>(s)]);
+  }
+  double codeRatio(std::uint64_t c) const {
+    double r = 1;
+    for (int s = 0; s < width_; ++s)
+      r *= (*ratios_)[static_cast<size_t>(from_ + s)][field(c, s)];
+    return r;
+  }
+  template <class Code> void fill(const std::vector<std::pair<int, int>>& ordered, std::vector<Code>& out);
+  template <class F> void forEach(const std::vector<std::pair<int, int>>& ordered, F&& f) const;
+
+  const std::vector<std::vector<double>>* ratios_ = nullptr;
+  int from_ = 0, width_ = 0;
+  size_t n_ = 0;
+  bool identity_ = false; // one stage: entry e is candidate e (the candidates are sorted)
+  std::vector<std::uint32_t> codes_;
+  std::vector<std::uint64_t> wide_;
+  std::vector<int> shift_;
+  std::vector<std::uint64_t> mask_;
+  std::string error_;
+};
+
+} // namespace gbx::rt
