@@ -1,15 +1,29 @@
-// Search benchmark: gbxc's search against a brute-force reference in the same process.
+// Search benchmark: gbxc's search against references in the same process.
 //   search_bench CASE [jobs]
 // CASE: paper2 | spur3 | spur4 | spur3-40 | spur3-60 | spur4-30 | spur4-40
-// Prints one line: case, jobs, designs, median search seconds, reference seconds (or
-// "-" when the reference is not run at that size), peak RSS in MiB.
+//   one line: case, jobs, designs, median search seconds, brute-force reference seconds
+//   (or "-" when it is not run at that size), peak RSS in MiB.
+// mitm3 | mitm4: gbxc's search (top 100) and the meet-in-the-middle reference
+//   (mitm_reference.h), alternating in this process, both checked to give the same count
+//   and the same best 100: case, designs, gbxc median s, reference median s.
+// ref3 | ref4: the reference alone, for its peak memory: case, designs, seconds, MiB.
+// list4: every design of the 4-stage case listed as CSV, `gbxc solve --format csv`
+//   in-process against the reference writing its lines: case, designs, gbxc s, reference
+//   s, gbxc bytes, reference bytes. list4-gbxc | list4-ref: one side alone, for memory.
+// helical: three helical stages, ratio 40 +- 0.5 %, pinions 17..30, wheels 65..120, three
+//   modules, minimize the total mass, top 10: the pruned search against an exhaustive
+//   one (every design keyed by the evaluator, `jobs` threads), same top 10 required:
+//   case, designs, pruned s, exhaustive s, peak MiB.
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <memory>
+#include <streambuf>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -18,6 +32,7 @@
 #include <fmt/format.h>
 
 #include "driver/Driver.h"
+#include "mitm_reference.h"
 #include "search/Search.h"
 
 using namespace gbx;
@@ -72,6 +87,190 @@ unsigned long long bruteForce(int stages, int maxTeeth) {
   return count;
 }
 
+double peakMiB();
+
+std::string helicalSpec() {
+  return "import materials;\n"
+         "gearbox Helical3 {\n"
+         "  stage s1: helical {\n"
+         "    pinion.z in 17..30; wheel.z in 65..120;\n"
+         "    normal_module in {2 mm, 2.5 mm, 3 mm};\n"
+         "    helix_angle = 12 deg; pressure_angle = 20 deg; face_width = 40 mm;\n"
+         "    material = steel_20CrMnMo;\n"
+         "  }\n"
+         "  stage s2 like s1;\n  stage s3 like s1;\n"
+         "  require ratio == 40 +- 0.5%;\n"
+         "  minimize s1.mass + s2.mass + s3.mass;\n"
+         "  report { top 10; }\n}\n";
+}
+
+// Counts what a report writes, keeps none of it.
+class CountingBuf : public std::streambuf {
+public:
+  size_t bytes = 0;
+
+protected:
+  int overflow(int c) override {
+    ++bytes;
+    return c;
+  }
+  std::streamsize xsputn(const char*, std::streamsize n) override {
+    bytes += static_cast<size_t>(n);
+    return n;
+  }
+};
+
+double seconds(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Compiled {
+  std::unique_ptr<driver::Compilation> c;
+  std::unique_ptr<rt::Model> model;
+};
+
+Compiled compileSpec(const std::string& text, const std::string& gearbox) {
+  Compiled out;
+  out.c = driver::compileText("bench.gbx", text);
+  if (!out.c->ok()) {
+    std::fputs(out.c->diags.renderText(out.c->sources).c_str(), stderr);
+    std::exit(1);
+  }
+  for (const auto& x : out.c->program.gearboxes)
+    if (x.name == gearbox) out.model = std::make_unique<rt::Model>(out.c->program, x);
+  return out;
+}
+
+// gbxc's search against the reference, alternating A B A B.
+int mitm(int stages) {
+  Compiled c = compileSpec(spurSpec(stages, 100), "Bench");
+  rt::SearchOptions opt;
+  opt.top = 100;
+  std::vector<double> a, b;
+  rt::SearchResult got;
+  bench::MitmResult want;
+  double budget = 0;
+  for (int rep = 0; rep < 100 && (rep < 5 || budget < 4.0); ++rep) {
+    auto t0 = Clock::now();
+    got = rt::search(*c.model, opt);
+    a.push_back(seconds(t0));
+    t0 = Clock::now();
+    want = bench::mitmReference(stages, 100, 100);
+    b.push_back(seconds(t0));
+    budget += a.back() + b.back();
+  }
+  if (got.count != want.count || got.designs.size() != want.best.size()) {
+    std::fprintf(stderr, "MISMATCH: search %llu designs, reference %llu\n", got.count, want.count);
+    return 1;
+  }
+  for (size_t i = 0; i < want.best.size(); ++i)
+    if (std::fabs(got.designs[i].keys[0] - want.best[i]) > 1e-9 * (1 + want.best[i])) {
+      std::fprintf(stderr, "MISMATCH at rank %zu: search %.17g, reference %.17g\n", i + 1, got.designs[i].keys[0], want.best[i]);
+      return 1;
+    }
+  std::printf("mitm%d %llu %.6f %.6f\n", stages, got.count, median(a), median(b));
+  return 0;
+}
+
+std::string writeTemp(const std::string& text) {
+  char path[] = "/tmp/gbxc-bench-XXXXXX.gbx";
+  int fd = mkstemps(path, 4);
+  if (fd < 0) std::exit(1);
+  ::close(fd);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Every design of the 4-stage case as CSV: gbxc solve in-process, the reference's lines.
+int listing(const std::string& side) {
+  std::string spec = spurSpec(4, 100);
+  spec.replace(spec.find("top 100"), 7, "top 1000000");
+  std::string path = writeTemp(spec);
+  auto gbxc = [&](size_t& bytes) {
+    CountingBuf buf;
+    std::ostream out(&buf);
+    std::ostringstream err;
+    auto t0 = Clock::now();
+    int rc = driver::run({"solve", path, "--format", "csv", "--no-timings", "--quiet"}, out, err);
+    if (rc != 0) {
+      std::fputs(err.str().c_str(), stderr);
+      std::exit(1);
+    }
+    bytes = buf.bytes;
+    return seconds(t0);
+  };
+  auto reference = [&](size_t& bytes, unsigned long long& count) {
+    std::FILE* f = std::fopen("/dev/null", "w");
+    auto t0 = Clock::now();
+    count = bench::mitmReference(4, 100, 0, f).count;
+    double dt = seconds(t0);
+    bytes = static_cast<size_t>(std::ftell(f));
+    std::fclose(f);
+    return dt;
+  };
+  size_t gb = 0, rb = 0;
+  unsigned long long count = 0;
+  if (side == "gbxc") {
+    double t = gbxc(gb);
+    std::printf("list4-gbxc %.3f %zu %.1f\n", t, gb, peakMiB());
+  } else if (side == "ref") {
+    double t = reference(rb, count);
+    std::printf("list4-ref %llu %.3f %zu %.1f\n", count, t, rb, peakMiB());
+  } else {
+    std::vector<double> a, b;
+    for (int rep = 0; rep < 3; ++rep) {
+      a.push_back(gbxc(gb));
+      b.push_back(reference(rb, count));
+    }
+    std::printf("list4 %llu %.3f %.3f %zu %zu\n", count, median(a), median(b), gb, rb);
+  }
+  std::remove(path.c_str());
+  return 0;
+}
+
+// The helical top 10: pruned against exhaustive.
+int helical(int jobs) {
+  Compiled c = compileSpec(helicalSpec(), "Helical3");
+  rt::SearchOptions opt;
+  opt.top = 10;
+  std::vector<double> a;
+  rt::SearchResult pruned;
+  for (int rep = 0; rep < 3; ++rep) {
+    auto t0 = Clock::now();
+    pruned = rt::search(*c.model, opt);
+    a.push_back(seconds(t0));
+  }
+  rt::SearchOptions all = opt;
+  all.exhaustive = true;
+  all.jobs = jobs;
+  auto t0 = Clock::now();
+  auto full = rt::search(*c.model, all);
+  double te = seconds(t0);
+  bool same = full.count == pruned.count && full.designs.size() == pruned.designs.size();
+  for (size_t i = 0; same && i < full.designs.size(); ++i)
+    same = full.designs[i].choice == pruned.designs[i].choice && full.designs[i].keys == pruned.designs[i].keys;
+  if (!same) {
+    std::fprintf(stderr, "MISMATCH: the pruned top 10 differs from the exhaustive one (%llu, %llu designs)\n", pruned.count, full.count);
+    for (size_t i = 0; i < std::max(full.designs.size(), pruned.designs.size()); ++i) {
+      auto show = [&](const rt::SearchResult& r) {
+        std::string t;
+        if (i < r.designs.size()) {
+          for (int v : r.designs[i].choice) t += fmt::format("{} ", v);
+          t += fmt::format("{:.17g}", r.designs[i].keys.empty() ? 0.0 : r.designs[i].keys[0]);
+        }
+        return t;
+      };
+      std::fprintf(stderr, "%2zu  %s  |  %s\n", i + 1, show(pruned).c_str(), show(full).c_str());
+    }
+    return 1;
+  }
+  std::printf("helical %llu %.3f %.3f %.1f\n", pruned.count, median(a), te, peakMiB());
+  return 0;
+}
+
 double peakMiB() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -87,6 +286,17 @@ int main(int argc, char** argv) {
   }
   std::string which = argv[1];
   int jobs = argc > 2 ? std::atoi(argv[2]) : 1;
+  if (which == "mitm3" || which == "mitm4") return mitm(which[4] - '0');
+  if (which == "ref3" || which == "ref4") {
+    auto t0 = Clock::now();
+    auto r = bench::mitmReference(which[3] - '0', 100, 100);
+    std::printf("%s %llu %.4f %.1f\n", which.c_str(), r.count, seconds(t0), peakMiB());
+    return 0;
+  }
+  if (which == "list4") return listing("both");
+  if (which == "list4-gbxc") return listing("gbxc");
+  if (which == "list4-ref") return listing("ref");
+  if (which == "helical") return helical(jobs);
   std::string text, gearbox = "Bench";
   int stages = 0, teeth = 100;
   bool reference = false;

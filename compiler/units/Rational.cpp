@@ -96,7 +96,12 @@ std::optional<Rational> Rational::parseDecimal(const std::string& text) {
 }
 
 double Rational::toDouble() const {
-  // Long division keeps full double precision even for 120-bit parts.
+  // Long division keeps full double precision even for 120-bit parts. Parts that fit 64
+  // bits convert in hardware (exactly, as the 128-bit conversion would).
+  const i128 lim = static_cast<i128>(1) << 62;
+  if (num_ < lim && num_ > -lim && den_ < lim)
+    return static_cast<double>(static_cast<long double>(static_cast<std::int64_t>(num_)) /
+                               static_cast<long double>(static_cast<std::int64_t>(den_)));
   return static_cast<double>(static_cast<long double>(num_) / static_cast<long double>(den_));
 }
 

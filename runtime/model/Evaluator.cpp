@@ -12,6 +12,11 @@
 
 namespace gbx::rt {
 
+// The guard against cyclic definitions counts the nesting of this thread's evaluations:
+// threads of one search share an evaluator.
+thread_local int evalDepth = 0;
+
+
 namespace arith {
 
 namespace {
@@ -137,12 +142,12 @@ Value Evaluator::eval(const ir::Expr& e, const Assignment& a) const {
   case Op::Let: {
     if (e.let < 0 || static_cast<size_t>(e.let) >= m_.gearbox.lets.size()) return Value::invalid();
     const auto& l = m_.gearbox.lets[static_cast<size_t>(e.let)];
-    if (!l.expr || ++depth_ > 64) {
-      if (l.expr) --depth_;
+    if (!l.expr || ++evalDepth > 64) {
+      if (l.expr) --evalDepth;
       return Value::invalid();
     }
     Value v = eval(*l.expr, a);
-    --depth_;
+    --evalDepth;
     return v;
   }
   case Op::Symbol: return Value::invalid();
@@ -365,12 +370,12 @@ Value Evaluator::givenAttribute(int stage, int gear, Q key, const Assignment& a)
     return lo == hi ? Value::number(lo) : Value::range(lo, hi);
   }
   if (!en.attr || !en.attr->value) return derived(stage, gear, key, a);
-  if (++depth_ > 64) {
-    --depth_;
+  if (++evalDepth > 64) {
+    --evalDepth;
     return Value::invalid();
   }
   Value v = eval(*en.attr->value, a);
-  --depth_;
+  --evalDepth;
   return v;
 }
 

@@ -73,7 +73,6 @@ private:
   const Model& m_;
   std::vector<std::pair<ir::QuantityRef, Value>> overrides_;
   std::vector<std::pair<ir::QuantityRef, double>> offsets_;
-  mutable int depth_ = 0;
 };
 
 // Interval and exact arithmetic used by the evaluator (exposed for tests).

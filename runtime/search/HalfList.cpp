@@ -100,36 +100,73 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
     if (k <= k0) return 0;
     return std::min<size_t>(static_cast<size_t>((k - k0) >> shift), buckets - 1);
   };
-  std::vector<std::uint32_t> start(buckets + 1, 0);
+  (void)positive;
+  // Counting sort: counts into start[b + 2], their prefix sums, then start[b + 1] runs as
+  // bucket b's write position and ends as its end, so start[b] is its beginning.
+  std::vector<std::uint32_t> start(buckets + 2, 0);
   size_t n = 0;
   forEach(ordered, [&](std::uint64_t, double r) {
-    ++start[bucketOf(r) + 1];
+    ++start[bucketOf(r) + 2];
     ++n;
   });
-  for (size_t b = 0; b < buckets; ++b)
-    start[b + 1] += start[b];
+  for (size_t b = 0; b + 2 < start.size(); ++b)
+    start[b + 2] += start[b + 1];
   out.resize(n);
-  std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-  forEach(ordered, [&](std::uint64_t code, double r) { out[next[bucketOf(r)]++] = static_cast<Code>(code); });
-  next.clear();
-  next.shrink_to_fit();
+  forEach(ordered, [&](std::uint64_t code, double r) { out[start[bucketOf(r) + 1]++] = static_cast<Code>(code); });
   n_ = n;
-  // Within a bucket, by ratio and then by code (a fixed order for equal ratios).
-  auto less = [&](Code a, Code b) {
-    double ra = codeRatio(a), rb = codeRatio(b);
-    return ra != rb ? ra < rb : a < b;
-  };
+  // Within a bucket, by ratio and then by code (a fixed order for equal ratios); each
+  // entry's ratio computed once, into a scratch the size of the bucket.
+  std::vector<std::pair<double, Code>> scratch;
   for (size_t b = 0; b < buckets; ++b) {
     auto first = out.begin() + start[b], last = out.begin() + start[b + 1];
     if (last - first < 2) continue;
-    if (last - first <= 16) {
-      for (auto it = first + 1; it != last; ++it)
-        for (auto jt = it; jt != first && less(*jt, *(jt - 1)); --jt)
-          std::iter_swap(jt, jt - 1);
+    scratch.clear();
+    for (auto it = first; it != last; ++it)
+      scratch.emplace_back(codeRatio(*it), *it);
+    if (scratch.size() == 2) {
+      if (scratch[1] < scratch[0]) std::swap(scratch[0], scratch[1]);
     } else {
-      std::sort(first, last, less);
+      std::sort(scratch.begin(), scratch.end());
     }
+    for (size_t i = 0; i < scratch.size(); ++i)
+      first[static_cast<std::ptrdiff_t>(i)] = scratch[i].second;
   }
+  // The coarse index: every 2^d fine buckets, about four entries each.
+  int d = 0;
+  while ((buckets >> d) > std::max<size_t>(1, n / 4))
+    ++d;
+  key0_ = k0;
+  keyShift_ = shift + d;
+  size_t coarse = ((buckets - 1) >> d) + 1;
+  index_.resize(coarse + 1);
+  for (size_t b = 0; b < coarse; ++b)
+    index_[b] = start[b << d];
+  index_[coarse] = static_cast<std::uint32_t>(n);
+}
+
+size_t HalfList::bucketOf(double r) const {
+  std::uint64_t k = orderKey(r);
+  if (k <= key0_) return 0;
+  std::uint64_t b = keyShift_ >= 64 ? 0 : (k - key0_) >> keyShift_;
+  return static_cast<size_t>(std::min<std::uint64_t>(b, index_.size() - 2));
+}
+
+size_t HalfList::bound(double v, bool strict) const {
+  size_t lo = 0, hi = n_;
+  if (!index_.empty() && !std::isnan(v)) {
+    size_t b = bucketOf(v);
+    lo = index_[b];
+    hi = index_[b + 1];
+  }
+  while (lo < hi) {
+    size_t mid = (lo + hi) / 2;
+    double r = ratio(mid);
+    if (strict ? r <= v : r < v)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
 }
 
 HalfList HalfList::build(const std::vector<std::vector<double>>& ratios,

@@ -26,6 +26,18 @@ public:
   // Candidate index of the half's s-th stage (0-based within the half) for entry e.
   std::uint32_t index(size_t e, int s) const { return field(code(e), s); }
   double ratio(size_t e) const { return codeRatio(code(e)); }
+  // First entry whose ratio is >= v (lowerBound) or > v (upperBound): a jump through a
+  // coarse index of the ratio buckets, then a binary search inside one bucket.
+  size_t lowerBound(double v) const { return bound(v, false); }
+  size_t upperBound(double v) const { return bound(v, true); }
+  // Hints for a caller that knows its next queries: the index bucket of v, then (once
+  // that is cached) the entries it points to.
+  void prefetchIndex(double v) const {
+    if (!index_.empty()) __builtin_prefetch(&index_[bucketOf(v)]);
+  }
+  void prefetchEntries(double v) const {
+    if (!index_.empty() && wide_.empty()) __builtin_prefetch(&codes_[index_[bucketOf(v)]]);
+  }
   // Why the list could not be built (the tuples do not fit a 64-bit code), or empty.
   const std::string& error() const { return error_; }
   size_t bytes() const { return codes_.capacity() * sizeof(std::uint32_t) + wide_.capacity() * sizeof(std::uint64_t); }
@@ -41,6 +53,8 @@ private:
       r *= (*ratios_)[static_cast<size_t>(from_ + s)][field(c, s)];
     return r;
   }
+  size_t bound(double v, bool strict) const;
+  size_t bucketOf(double r) const;
   template <class Code> void fill(const std::vector<std::pair<int, int>>& ordered, std::vector<Code>& out);
   template <class F> void forEach(const std::vector<std::pair<int, int>>& ordered, F&& f) const;
 
@@ -53,6 +67,11 @@ private:
   std::vector<int> shift_;
   std::vector<std::uint64_t> mask_;
   std::string error_;
+  // The coarse index: entries [index_[b], index_[b + 1]) lie in bucket b of the map
+  // (orderKey(r) - key0_) >> shift_ (clamped), which is monotone in r.
+  std::vector<std::uint32_t> index_;
+  std::uint64_t key0_ = 0;
+  int keyShift_ = 0;
 };
 
 } // namespace gbx::rt

@@ -584,11 +584,12 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
 
   // Meet in the middle over sorted stage ratios: left stages [0, h), right [h, k). Each
   // half is a compact list sorted by its ratio product; one two-pointer sweep joins them.
-  // Three stages: the first two are walked row by row (the second stage's index runs
-  // fastest, so the left ratio rises along a row) against the sorted third stage, and no
-  // list of pairs is built. Otherwise both halves are built and sorted; when the two
-  // halves are the same block of interchangeable stages, one list serves both.
-  bool rows = k == 3;
+  // Three to five stages: the first two are walked row by row (the second stage's index
+  // runs fastest, so the left ratio rises along a row, and a row ends where no right
+  // entry the canonical order allows can still fit) against the sorted list of the
+  // others, and no list of pairs is built. Otherwise both halves are built and sorted;
+  // when the two halves are the same block of interchangeable stages, one list serves both.
+  bool rows = k >= 3 && k <= 5;
   int h = rows ? 2 : k / 2;
   double combos = 1;
   for (const auto& st : stages) combos *= static_cast<double>(st.candidates.size());
@@ -705,8 +706,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       if (!same) fastKey.reset();
     }
   }
-  RangeMin rowMin;  // rows: the third stage's table, by candidate (= position in the right list)
-  if (fastKey && rows && fastKey->table(2)) rowMin = RangeMin(*fastKey->table(2));
+  RangeMin rowMin;  // three stages: the third stage's table, by candidate (= position in the right list)
+  if (fastKey && k == 3 && fastKey->table(2)) rowMin = RangeMin(*fastKey->table(2));
 
   // Per-stage membership, for checking the images of a design under the group.
   bool orbitCheck = !fast && group.size() > 1;
@@ -783,6 +784,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     unsigned long long count = 0, undecided = 0;
     double inWindow = 0, duplicates = 0;
     std::vector<double> crossRemoved;
+    std::vector<std::uint32_t> leftAt;  // scratch: the left indices the canonical order compares
   };
   std::vector<Local> locals(static_cast<size_t>(threads));
   const size_t kk = static_cast<size_t>(k);
@@ -831,11 +833,15 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   };
   auto visit = [&](Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from, size_t to,
                    bool counted) {
+    // The left indices the canonical order compares, read once.
+    const bool checkCanon = !floorOnly && !crossing.empty();
+    auto& leftAt = lo.leftAt;
+    leftAt.resize(crossing.size());
+    for (size_t c = 0; checkCanon && c < crossing.size(); ++c) leftAt[c] = leftIndex(le, crossing[c].first);
     for (size_t re = from; re < to && re < rn; ++re) {
-      if (!floorOnly && !crossing.empty()) {
+      if (checkCanon) {
         bool canonical = true;
-        for (const auto& [sa, sb] : crossing)
-          if (leftIndex(le, sa) > rightIndex(re, sb)) canonical = false;
+        for (size_t c = 0; c < crossing.size() && canonical; ++c) canonical = leftAt[c] <= rightIndex(re, crossing[c].second);
         if (!canonical) continue;
       }
       for (int s = h; s < k; ++s) cand[s] = rightIndex(re, s);
@@ -869,9 +875,11 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
           }
         }
         lo.count += 1;
-        bool undecided = false;
-        for (int s = 0; s < k; ++s) undecided = undecided || candidate(s, cand).undecided;
-        lo.undecided += undecided;
+        if (undecidedAny) {
+          bool undecided = false;
+          for (int s = 0; s < k; ++s) undecided = undecided || candidate(s, cand).undecided;
+          lo.undecided += undecided;
+        }
       }
       if (keep == 0) continue;
       if (fastKey && full(lo)) {
@@ -903,24 +911,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     size_t begin = n * static_cast<size_t>(t) / static_cast<size_t>(threads);
     size_t end = n * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
     if (begin >= end || rn == 0) return;
-    auto lower = [&](double v) {
-      size_t lo = 0, hi = rn;
-      while (lo < hi) {
-        size_t mid = (lo + hi) / 2;
-        if (right.ratio(mid) < v) lo = mid + 1;
-        else hi = mid;
-      }
-      return lo;
-    };
-    auto upper = [&](double v) {
-      size_t lo = 0, hi = rn;
-      while (lo < hi) {
-        size_t mid = (lo + hi) / 2;
-        if (right.ratio(mid) <= v) lo = mid + 1;
-        else hi = mid;
-      }
-      return lo;
-    };
+    auto lower = [&](double v) { return right.lowerBound(v); };
+    auto upper = [&](double v) { return right.upperBound(v); };
     // One left entry against its window of right entries [loP, hiP), from `floor` on.
     auto join = [&](size_t le, double x, size_t from, size_t to, double partial) {
       if (from >= to) return;
@@ -937,10 +929,10 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     };
     bool report = t == 0 && opt.progress && (rows ? n * n1 : n) > 1000000;
     if (rows) {
-      // The tight loop of the three-stage join: raw ratio arrays, the floor from flags.
+      // The tight loop: raw ratio arrays, the floor of a one-stage right half from flags.
       const double* r0 = ratios[0].data();
       const double* r1 = ratios[1].data();
-      const double* r2 = ratios[2].data();
+      const double* r2 = right.width() == 1 ? ratios[2].data() : nullptr;
       const size_t m1 = ratios[1].size();
       bool j0FromI = false, floorI = false, floorJ = false;
       for (const auto& [sa, sb] : ordered) {
@@ -948,7 +940,26 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
         floorI = floorI || (sa == 0 && sb == 2);
         floorJ = floorJ || (sa == 1 && sb == 2);
       }
+      // A wider right half: the least ratio its canonical entries can have, from the
+      // least index each of its stages may take (ratios ascend with the index).
+      std::vector<size_t> fl(kk, 0);
+      auto leastRight = [&](size_t i, size_t j) {
+        double r = 1;
+        for (int s = 2; s < k; ++s) {
+          size_t f = 0;
+          for (const auto& [sa, sb] : ordered)
+            if (sb == s) f = std::max(f, sa == 0 ? i : sa == 1 ? j : fl[static_cast<size_t>(sa)]);
+          fl[static_cast<size_t>(s)] = f;
+          const auto& list = ratios[static_cast<size_t>(s)];
+          if (f >= list.size()) return static_cast<double>(INFINITY);
+          r *= list[f];
+        }
+        return r;
+      };
       const double base = fastKey ? fastKey->constant() : 0;
+      double rightLeast = 0;
+      if (fastKey)
+        for (int s = 2; s < k; ++s) rightLeast += fastKey->least(s);
       for (size_t i = begin; i < end; ++i) {
         if (report && (i - begin) % 64 == 0) opt.progress(static_cast<double>(i - begin) / static_cast<double>(end - begin));
         size_t j0 = j0FromI ? i : 0;
@@ -961,17 +972,32 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
           double x = r0[i] * r1[j];
           double inv = 1 / x;
           double wl = wantLoC * inv, wh = wantHiC * inv;
-          while (loP > 0 && r2[loP - 1] >= wl) --loP;
-          while (hiP > 0 && r2[hiP - 1] > wh) --hiP;
+          if (r2) {
+            // A short list: the window's bounds walk down it.
+            while (loP > 0 && r2[loP - 1] >= wl) --loP;
+            while (hiP > 0 && r2[hiP - 1] > wh) --hiP;
+          } else {
+            // A long one: its index jumps to them.
+            // The queries two and one rows ahead are known: their memory is fetched now.
+            if (j + 2 < m1) right.prefetchIndex(wantLoC / (r0[i] * r1[j + 2]));
+            if (j + 1 < m1) right.prefetchEntries(wantLoC / (r0[i] * r1[j + 1]));
+            loP = right.lowerBound(wl);
+            for (hiP = loP; hiP < rn && right.ratio(hiP) <= wh;) ++hiP;
+          }
           // The window only falls and the floor only rises along a row.
-          size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
-          if (hiP <= floor) break;
-          size_t from = std::max(loP, floor);
+          size_t from = loP;
+          if (floorOnly) {
+            size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
+            if (hiP <= floor) break;
+            from = std::max(loP, floor);
+          } else if (x * leastRight(i, j) > wantHiC) {
+            break;
+          }
           if (from >= hiP) continue;
           cand[1] = static_cast<std::uint32_t>(j);
           double partial = 0;
           if (fastKey && full(lo))
-            partial = rowPart + fastKey->entry(1, cand[1]) + (rowMin.empty() ? fastKey->least(2) : rowMin.least(from, hiP));
+            partial = rowPart + fastKey->entry(1, cand[1]) + (rowMin.empty() ? rightLeast : rowMin.least(from, hiP));
           join(i * n1 + j, x, from, hiP, partial);
         }
       }
