@@ -1,6 +1,7 @@
 #include "units/Rational.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numeric>
 
@@ -22,12 +23,17 @@ std::string i128ToString(i128 v) {
   bool neg = v < 0;
   // The most negative value never arises: make() keeps magnitudes below 2^127.
   u128 u = neg ? static_cast<u128>(-v) : static_cast<u128>(v);
-  std::string s;
-  while (u > 0) {
-    s.insert(s.begin(), static_cast<char>('0' + static_cast<int>(u % 10)));
+  char buf[48];
+  char* end = buf + sizeof buf;
+  char* p = end;
+  // 64-bit division is done in hardware; 128-bit division only while the value needs it.
+  while (u > static_cast<u128>(UINT64_MAX)) {
+    *--p = static_cast<char>('0' + static_cast<int>(u % 10));
     u /= 10;
   }
-  return neg ? "-" + s : s;
+  for (auto w = static_cast<std::uint64_t>(u); w > 0; w /= 10) *--p = static_cast<char>('0' + static_cast<int>(w % 10));
+  if (neg) *--p = '-';
+  return std::string(p, end);
 }
 
 Rational Rational::make(i128 num, i128 den) {

@@ -53,13 +53,31 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
     c.scale = u.scale;
     g.columns.push_back(c);
   }
+  // What every row repeats, made once: tooth-count names, the shown values of the slots.
+  std::vector<std::vector<std::string>> toothNames(m.stages.size());
+  for (size_t s = 0; s < m.stages.size(); ++s)
+    for (const auto& gear : m.stages[s].ir->gears) toothNames[s].push_back(m.stages[s].ir->name + "." + gear + ".z");
+  struct Shown {
+    std::string text;
+    DesignRow::Value value;
+  };
+  std::vector<std::vector<Shown>> slotShown(m.slots.size());
+  for (size_t sl = 0; sl < m.slots.size(); ++sl) {
+    const Slot& slot = m.slots[sl];
+    const ir::Stage& st = *m.stages[static_cast<size_t>(slot.stage)].ir;
+    auto du = units::displayUnitFor(st.find(slot.attr) ? st.find(slot.attr)->dim : units::Dim{});
+    for (const Value& v : slot.values)
+      slotShown[sl].push_back({formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name), {v.lo / du.scale, du.name}});
+  }
+  const Assignment blank(m);
+  Assignment a(m);
   int rank = 0;
   for (const auto& d : r.designs) {
     DesignRow row;
     row.rank = ++rank;
     row.ratio = d.ratio;
     row.undecided = d.undecided;
-    Assignment a(m);
+    a.box = blank.box;
     a.choice = d.choice;
     size_t ri = static_cast<size_t>(row.rank - 1);
     if (ri < freedoms.size())
@@ -77,17 +95,18 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
       const ir::Stage& st = *m.stages[s].ir;
       for (size_t g = 0; g < st.gears.size(); ++g) {
         Value z = ev.attribute(static_cast<int>(s), static_cast<int>(g), Q::Z, a);
-        if (z.exact && z.exact->isInteger()) row.teeth.emplace_back(st.name + "." + st.gears[g] + ".z", static_cast<long long>(z.exact->num()));
+        if (z.exact && z.exact->isInteger()) row.teeth.emplace_back(toothNames[s][g], static_cast<long long>(z.exact->num()));
       }
       for (int sl : m.stages[s].slots) {
         const Slot& slot = m.slots[static_cast<size_t>(sl)];
         if (slot.key == Q::Z && slot.gear >= 0) continue;
-        const Value& v = slot.values[static_cast<size_t>(d.choice[static_cast<size_t>(sl)])];
+        size_t vi = static_cast<size_t>(d.choice[static_cast<size_t>(sl)]);
+        const Value& v = slot.values[vi];
         if (v.exact && v.exact->isInteger()) row.teeth.emplace_back(slot.path, static_cast<long long>(v.exact->num()));
         else {
-          auto du = units::displayUnitFor(st.find(slot.attr) ? st.find(slot.attr)->dim : units::Dim{});
-          row.choices.emplace_back(slot.path, formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name));
-          row.choiceValues.push_back({v.lo / du.scale, du.name});
+          const Shown& shown = slotShown[static_cast<size_t>(sl)][vi];
+          row.choices.emplace_back(slot.path, shown.text);
+          row.choiceValues.push_back(shown.value);
         }
       }
     }

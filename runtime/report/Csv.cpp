@@ -59,19 +59,33 @@ std::string designs(const std::vector<GearboxReport>& reports) {
     }
     h.push_back("ratio_exact");
     o += row(h);
+    // Rows appended in place: a listing may hold a million of them.
+    const std::string name = field(g.name);
+    auto num = [&](double v) {
+      if (std::isfinite(v)) fmt::format_to(std::back_inserter(o), "{}", v);
+    };
     for (const auto& r : g.rows) {
-      std::vector<std::string> v = {g.name, std::to_string(r.rank)};
-      for (const auto& [_, z] : r.teeth) v.push_back(std::to_string(z));
-      for (const auto& c : r.choiceValues) v.push_back(number(c.shown));
-      v.push_back(number(r.ratio.toDouble()));
+      fmt::format_to(std::back_inserter(o), "{},{}", name, r.rank);
+      for (const auto& [_, z] : r.teeth) fmt::format_to(std::back_inserter(o), ",{}", z);
+      for (const auto& c : r.choiceValues) {
+        o += ',';
+        num(c.shown);
+      }
+      o += ',';
+      num(r.ratio.toDouble());
       for (size_t i = 0; i < r.cells.size(); ++i) {
         const Cell& c = r.cells[i];
-        double s = g.columns[i].scale;
-        v.push_back(c.valid ? number(c.lo / s) : "");
-        if (wide[i]) v.push_back(c.valid ? number(c.hi / s) : "");
+        double sc = g.columns[i].scale;
+        o += ',';
+        if (c.valid) num(c.lo / sc);
+        if (wide[i]) {
+          o += ',';
+          if (c.valid) num(c.hi / sc);
+        }
       }
-      v.push_back(r.ratio.str());
-      o += row(v);
+      o += ',';
+      o += r.ratio.str();
+      o += '\n';
     }
   }
   return o;

@@ -640,6 +640,15 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     return stages[static_cast<size_t>(s)].candidates[cand[s]];
   };
   auto exactRatio = [&](const std::uint32_t* cand) {
+    // Parts multiplied out and reduced once; stage by stage only if they would overflow.
+    units::i128 num = 1, den = 1;
+    bool fits = true;
+    for (int s = 0; s < k && fits; ++s) {
+      const Rational& r = candidate(s, cand).ratio;
+      fits = !__builtin_mul_overflow(num, r.num(), &num) && !__builtin_mul_overflow(den, r.den(), &den) &&
+             num < (units::i128{1} << 120) && num > -(units::i128{1} << 120) && den < (units::i128{1} << 120);
+    }
+    if (fits) return Rational::make(num, den);
     Rational q(1);
     for (int s = 0; s < k; ++s) {
       auto n = q.mul(candidate(s, cand).ratio);
@@ -807,7 +816,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       lo.keys.insert(lo.keys.end(), keys, keys + nk);
       lo.cand.insert(lo.cand.end(), cand, cand + kk);
       lo.heap.push_back(id);
-      if (keep != SIZE_MAX) std::push_heap(lo.heap.begin(), lo.heap.end(), cmp);
+      // A heap only once it is full: until then nothing is evicted.
+      if (lo.heap.size() == keep) std::make_heap(lo.heap.begin(), lo.heap.end(), cmp);
       return;
     }
     std::uint32_t w = lo.heap.front();
