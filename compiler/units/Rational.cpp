@@ -151,7 +151,11 @@ bool addOv(i128 a, i128 b, i128& out) {
 } // namespace
 
 std::optional<Rational> Rational::add(const Rational& o) const {
-  i128 g = gcd128(den_, o.den_);
+  // Denominators are positive; 64-bit ones take the hardware's division.
+  const i128 small = static_cast<i128>(1) << 62;
+  i128 g = den_ < small && o.den_ < small
+               ? static_cast<i128>(std::gcd(static_cast<std::int64_t>(den_), static_cast<std::int64_t>(o.den_)))
+               : gcd128(den_, o.den_);
   i128 a, b, n, d;
   if (mulOv(num_, o.den_ / g, a) || mulOv(o.num_, den_ / g, b) || addOv(a, b, n) ||
       mulOv(den_ / g, o.den_, d))

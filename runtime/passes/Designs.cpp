@@ -7,6 +7,7 @@
 
 #include "optimise/Optimise.h"
 #include "model/Evaluator.h"
+#include "search/FastKey.h"
 #include "units/Unit.h"
 
 namespace gbx::rt::passes {
@@ -69,6 +70,9 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
     for (const Value& v : slot.values)
       slotShown[sl].push_back({formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name), {v.lo / du.scale, du.name}});
   }
+  // Columns that read only the gearbox ratio: from the design's exact ratio directly.
+  std::vector<std::optional<RatioFn>> direct;
+  for (const auto* e : columnExprs) direct.push_back(RatioFn::compile(*e));
   const Assignment blank(m);
   Assignment a(m);
   int rank = 0;
@@ -111,7 +115,8 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
       }
     }
     for (size_t i = 0; i < columnExprs.size(); ++i) {
-      Value v = ev.eval(*columnExprs[i], a);
+      std::optional<Rational> q = direct[i] && !row.undecided && a.box.empty() ? direct[i]->exactAt(d.ratio) : std::nullopt;
+      Value v = q ? Value::rational(*q) : ev.eval(*columnExprs[i], a);
       Cell c;
       if (v.isNumber()) {
         c.valid = true;

@@ -66,7 +66,8 @@ bool RatioFn::emit(const ir::Expr& e) {
   case Op::Const: {
     auto c = constantOf(e);
     if (!c) return false;
-    code_.push_back({K::Const, *c});
+    code_.push_back(
+        {K::Const, *c, 0, e.value.isRational() ? std::optional<Rational>(e.value.rational()) : std::nullopt});
     return true;
   }
   case Op::Quantity:
@@ -124,6 +125,72 @@ double RatioFn::at(double r) const {
     }
   }
   return n == 1 ? st[0] : NAN;
+}
+
+std::optional<Rational> RatioFn::exactAt(const Rational& ratio) const {
+  using units::i128;
+  struct Frac {
+    i128 n, d; // d > 0, not reduced
+  };
+  // Parts below 2^62: a product of two, or a sum of two such products, fits 128 bits.
+  const i128 cap = static_cast<i128>(1) << 62;
+  auto ok = [&](const Frac& f) { return f.n < cap && f.n > -cap && f.d < cap; };
+  auto reduced = [&](Frac& f) {
+    if (ok(f)) return true;
+    Rational r = Rational::make(f.n, f.d);
+    f = {r.num(), r.den()};
+    return ok(f);
+  };
+  std::array<Frac, 64> st;
+  size_t n = 0;
+  auto less = [](const Frac& a, const Frac& b) { return a.n * b.d < b.n * a.d; };
+  for (const Node& x : code_) {
+    if (n + 1 >= st.size()) return std::nullopt;
+    switch (x.k) {
+    case K::Const:
+      if (!x.exact) return std::nullopt;
+      st[n++] = {x.exact->num(), x.exact->den()};
+      break;
+    case K::Ratio: st[n++] = {ratio.num(), ratio.den()}; break;
+    case K::Neg: st[n - 1].n = -st[n - 1].n; break;
+    case K::Abs: st[n - 1].n = st[n - 1].n < 0 ? -st[n - 1].n : st[n - 1].n; break;
+    case K::Sqrt: return std::nullopt;
+    case K::PowI: {
+      Frac b = st[n - 1], r{1, 1};
+      int e = x.n < 0 ? -x.n : x.n;
+      for (int i = 0; i < e; ++i) {
+        r = {r.n * b.n, r.d * b.d};
+        if (!reduced(r)) return std::nullopt;
+      }
+      if (x.n < 0) {
+        if (r.n == 0) return std::nullopt;
+        r = r.n < 0 ? Frac{-r.d, -r.n} : Frac{r.d, r.n};
+      }
+      st[n - 1] = r;
+      break;
+    }
+    case K::Add:
+    case K::Sub: {
+      --n;
+      Frac a = st[n - 1], b = st[n];
+      st[n - 1] = {x.k == K::Add ? a.n * b.d + b.n * a.d : a.n * b.d - b.n * a.d, a.d * b.d};
+      break;
+    }
+    case K::Mul: --n, st[n - 1] = {st[n - 1].n * st[n].n, st[n - 1].d * st[n].d}; break;
+    case K::Div: {
+      --n;
+      Frac a = st[n - 1], b = st[n];
+      if (b.n == 0) return std::nullopt;
+      st[n - 1] = b.n < 0 ? Frac{-a.n * b.d, a.d * -b.n} : Frac{a.n * b.d, a.d * b.n};
+      break;
+    }
+    case K::Min: --n, st[n - 1] = less(st[n], st[n - 1]) ? st[n] : st[n - 1]; break;
+    case K::Max: --n, st[n - 1] = less(st[n - 1], st[n]) ? st[n] : st[n - 1]; break;
+    }
+    if (!reduced(st[n - 1])) return std::nullopt;
+  }
+  if (n != 1) return std::nullopt;
+  return Rational::make(st[0].n, st[0].d);
 }
 
 std::pair<double, double> RatioFn::over(double lo, double hi) const {

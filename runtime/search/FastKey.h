@@ -21,6 +21,10 @@ class RatioFn {
 public:
   static std::optional<RatioFn> compile(const ir::Expr& e);
   double at(double ratio) const;
+  // The exact value at an exact ratio: the rational the evaluator's exact arithmetic gives
+  // (the same number, found without reducing each step); nullopt where that would not be
+  // exact (a constant with pi, a division by zero) or the parts grow past 2^100.
+  std::optional<Rational> exactAt(const Rational& ratio) const;
   // An enclosure of the function over [lo, hi] (not outward rounded: callers add slack).
   std::pair<double, double> over(double lo, double hi) const;
 
@@ -30,6 +34,7 @@ private:
     K k;
     double c = 0;
     int n = 0;
+    std::optional<Rational> exact = std::nullopt; // Const: the literal, when it is a rational
   };
   bool emit(const ir::Expr& e);
   std::vector<Node> code_;

@@ -667,15 +667,29 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
 
   // Ranking keys: `sort by`, then the objectives (minimised; maximised ones negated).
   const size_t nk = (opt.sortBy ? 1 : 0) + (opt.deferDynamics ? 0 : m.gearbox.objectives.size());
+  // A key that reads only the gearbox ratio is computed from the exact ratio directly (the
+  // same rational the evaluator would reach, without its per-step reductions).
+  std::vector<std::optional<RatioFn>> exactKey;
+  if (opt.sortBy) exactKey.push_back(RatioFn::compile(*opt.sortBy));
+  if (!opt.deferDynamics)
+    for (const auto& o : m.gearbox.objectives) exactKey.push_back(o.expr ? RatioFn::compile(*o.expr) : std::nullopt);
+  auto direct = [&](size_t i, const Assignment& a) -> std::optional<double> {
+    if (!a.ratio || !exactKey[i]) return std::nullopt;
+    auto q = exactKey[i]->exactAt(*a.ratio);
+    if (!q) return std::nullopt;
+    return q->toDouble();
+  };
   auto keysInto = [&](const Assignment& a, double* out) {
     size_t i = 0;
     if (opt.sortBy) {
-      Value v = ev.eval(*opt.sortBy, a);
+      auto d = direct(i, a);
+      Value v = d ? Value::number(*d) : ev.eval(*opt.sortBy, a);
       out[i++] = v.isNumber() ? rankingKey(v.lo) : INFINITY;
     }
     if (opt.deferDynamics) return;  // ranked by the optimiser
     for (const auto& o : m.gearbox.objectives) {
-      Value v = o.expr ? ev.eval(*o.expr, a) : Value::invalid();
+      auto d = direct(i, a);
+      Value v = d ? Value::number(*d) : o.expr ? ev.eval(*o.expr, a) : Value::invalid();
       // Over a freedom the best attainable value counts: the design may choose it.
       out[i++] = v.isNumber() ? rankingKey(o.minimize ? v.lo : -v.hi) : INFINITY;
     }
