@@ -1,5 +1,5 @@
 // Search benchmark: gbxc's search against references in the same process.
-//   search_bench CASE [jobs]
+//   search_bench CASE [jobs] [top]
 // CASE: paper2 | spur3 | spur4 | spur3-40 | spur3-60 | spur4-30 | spur4-40
 //   one line: case, jobs, designs, median search seconds, brute-force reference seconds
 //   (or "-" when it is not run at that size), peak RSS in MiB.
@@ -341,7 +341,7 @@ int main(int argc, char** argv) {
   rt::Model model(c->program, *g);
   rt::SearchOptions opt;
   opt.jobs = jobs;
-  opt.top = 100;
+  opt.top = argc > 3 ? std::atoll(argv[3]) : 100;  // a third argument: how many designs to keep
   // Repeat small cases enough to time them; report the median.
   std::vector<double> times;
   unsigned long long count = 0;

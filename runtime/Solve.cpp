@@ -47,18 +47,24 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     return !errors.empty();
   };
   std::vector<GearboxReport> reports;
+  // A CSV listing's rows are made as the report is written, from the gearbox's model.
+  const bool lazyRows = format->name == "csv" && o.outDir.empty();
+  std::vector<std::unique_ptr<Model>> models;
   for (const auto& gb : program.gearboxes) {
     if (!o.gearbox.empty() && gb.name != o.gearbox) continue;
-    Model m(program, gb);
+    models.push_back(std::make_unique<Model>(program, gb));
+    const Model& m = *models.back();
     SearchResult found = passes::search(m, o.jobs, progress(gb.name));
     if (fail(gb.name, found.errors)) continue;
     passes::Optimised designs = passes::optimise(program, m, std::move(found), o.jobs, progress(gb.name + " optimising"));
     passes::Columns columns = passes::reportColumns(gb);
-    GearboxReport rep = passes::designTable(m, designs, columns);
+    std::optional<Assignment> best = passes::bestDesign(m, designs);
+    GearboxReport rep = passes::designTable(m, designs, columns, lazyRows);
     rep.notes = designs.designs.notes;
     fail(gb.name, passes::unevaluated(m, rep, columns));
     rep.optimisation = std::move(designs.summary);
-    std::optional<Assignment> best = passes::bestDesign(m, designs);
+    // The table holds every listed design now; the search's copies are not read again.
+    std::vector<Design>().swap(designs.designs.designs);
     if (best && (!gb.scenes.empty() || !gb.studies.empty() || !gb.modifies.empty())) {
       passes::SceneRuns scenes = passes::scenes(m, *best, columns);
       fail(gb.name, scenes.errors);

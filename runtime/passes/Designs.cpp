@@ -5,8 +5,8 @@
 
 #include <fmt/format.h>
 
-#include "optimise/Optimise.h"
 #include "model/Evaluator.h"
+#include "optimise/Optimise.h"
 #include "search/FastKey.h"
 #include "units/Unit.h"
 
@@ -14,34 +14,202 @@ namespace gbx::rt::passes {
 
 namespace {
 
-GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<const ir::Expr*>& columnExprs,
-                       const std::vector<std::string>& columnNames, const std::vector<std::vector<double>>& freedoms = {},
-                       const Model* baseline = nullptr, const Assignment* baseDesign = nullptr) {
-  Evaluator ev(m);
-  if (!freedoms.empty() || baseline) {
-    // Optimised designs, or `relative(x)` columns: scene results and relative values at the
-    // scenes' own accuracy.
-    const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, Q::Rtol);
-    installHooks(ev, m, baseline, baseDesign, own && own->value ? own->value->toDouble() : 1e-9);
+// The table's rows, one at a time: the materialised table and the CSV listing's rows made
+// on demand come from the same code.
+class DesignRows : public RowSource {
+public:
+  DesignRows(const Model& m, const std::vector<Design>* designs, const std::vector<const ir::Expr*>& columnExprs,
+             const std::vector<Column>& columns, const std::vector<std::vector<double>>& freedoms,
+             const Model* baseline, const Assignment* baseDesign)
+      : m_(m), designs_(designs), exprs_(columnExprs), columns_(columns), freedoms_(freedoms), ev_(m), blank_(m),
+        a_(m) {
+    if (!freedoms.empty() || baseline) {
+      // Optimised designs, or `relative(x)` columns: scene results and relative values at the
+      // scenes' own accuracy.
+      const ir::Setting* own =
+          m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, Q::Rtol);
+      installHooks(ev_, m, baseline, baseDesign, own && own->value ? own->value->toDouble() : 1e-9);
+    }
+    // Rules `q in a..b` with constant bounds: the part of q's interval a design may use.
+    std::function<void(const ir::Expr&)> collect = [&](const ir::Expr& e) {
+      if (e.op == ir::Op::And || e.op == ir::Op::Forall) {
+        for (const auto& x : e.args)
+          collect(*x);
+        return;
+      }
+      if (e.op == ir::Op::Within && e.args[0]->op == ir::Op::Quantity && e.args[1]->isConst() && e.args[2]->isConst())
+        bounds_[e.args[0]->name] = {e.args[1]->value.toDouble(), e.args[2]->value.toDouble()};
+    };
+    for (const auto& rule : m.gearbox.rules)
+      if (rule.expr) collect(*rule.expr);
+    // What every row repeats, made once: tooth-count names, the shown values of the slots.
+    toothNames_.resize(m.stages.size());
+    for (size_t s = 0; s < m.stages.size(); ++s)
+      for (const auto& gear : m.stages[s].ir->gears)
+        toothNames_[s].push_back(m.stages[s].ir->name + "." + gear + ".z");
+    slotShown_.resize(m.slots.size());
+    for (size_t sl = 0; sl < m.slots.size(); ++sl) {
+      const Slot& slot = m.slots[sl];
+      const ir::Stage& st = *m.stages[static_cast<size_t>(slot.stage)].ir;
+      auto du = units::displayUnitFor(st.find(slot.attr) ? st.find(slot.attr)->dim : units::Dim{});
+      for (const Value& v : slot.values)
+        slotShown_[sl].push_back(
+            {formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name), {v.lo / du.scale, du.name}});
+    }
+    // Columns that read only the gearbox ratio: from the design's exact ratio directly.
+    for (const auto* e : columnExprs)
+      direct_.push_back(RatioFn::compile(*e));
   }
+
+  // The designs themselves, when the rows outlive the search's result (a listing).
+  void own(std::vector<Design> designs) {
+    owned_ = std::move(designs);
+    designs_ = &owned_;
+    known_.assign(owned_.size() * exprs_.size(), Known{});
+  }
+
+  size_t size() const override { return designs_->size(); }
+
+  void row(size_t i, DesignRow& row, bool text) const override {
+    const Design& d = (*designs_)[i];
+    const Model& m = m_;
+    row.teeth.clear();
+    row.choices.clear();
+    row.choiceValues.clear();
+    row.cells.clear();
+    row.rank = static_cast<int>(i) + 1;
+    row.ratio = d.ratio;
+    row.undecided = d.undecided;
+    Assignment& a = a_;
+    a.box = blank_.box;
+    a.choice = d.choice;
+    if (i < freedoms_.size())
+      for (size_t f = 0; f < freedoms_[i].size(); ++f) {
+        a.box[f] = {freedoms_[i][f], freedoms_[i][f]};
+        const Freedom& fr = m.freedoms[f];
+        const ir::Attribute* at = m.attribute(fr.stage, fr.gear, fr.key);
+        auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
+        row.choices.emplace_back(m.freedoms[f].path,
+                                 formatNumber(freedoms_[i][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
+        row.choiceValues.push_back({freedoms_[i][f] / u.scale, u.name});
+      }
+    row.choice = a.choice;
+    row.box = a.box;
+    for (size_t s = 0; s < m.stages.size(); ++s) {
+      const ir::Stage& st = *m.stages[s].ir;
+      for (size_t g = 0; g < st.gears.size(); ++g) {
+        // A chosen tooth count is read from its slot; a given one may be a formula.
+        int slot = m.info(static_cast<int>(s)).entry(static_cast<int>(g), Q::Z).slot;
+        const Value& z =
+            slot >= 0
+                ? m.slots[static_cast<size_t>(slot)].values[static_cast<size_t>(d.choice[static_cast<size_t>(slot)])]
+                : (zScratch_ = ev_.attribute(static_cast<int>(s), static_cast<int>(g), Q::Z, a));
+        if (z.exact && z.exact->isInteger())
+          row.teeth.emplace_back(toothNames_[s][g], static_cast<long long>(z.exact->num()));
+      }
+      for (int sl : m.stages[s].slots) {
+        const Slot& slot = m.slots[static_cast<size_t>(sl)];
+        if (slot.key == Q::Z && slot.gear >= 0) continue;
+        size_t vi = static_cast<size_t>(d.choice[static_cast<size_t>(sl)]);
+        const Value& v = slot.values[vi];
+        if (v.exact && v.exact->isInteger())
+          row.teeth.emplace_back(slot.path, static_cast<long long>(v.exact->num()));
+        else {
+          const Shown& shown = slotShown_[static_cast<size_t>(sl)][vi];
+          row.choices.emplace_back(slot.path, shown.text);
+          row.choiceValues.push_back(shown.value);
+        }
+      }
+    }
+    for (size_t c = 0; c < exprs_.size(); ++c) {
+      Value v = value(i, c, a);
+      Cell cell;
+      if (v.isNumber()) {
+        cell.valid = true;
+        cell.lo = v.lo;
+        cell.hi = v.hi;
+        double sc = columns_[c].scale;
+        if (!text) {
+          row.cells.push_back(std::move(cell));
+          continue;
+        }
+        cell.text = v.lo == v.hi ? formatNumber(v.lo / sc)
+                                 : "[" + formatNumber(v.lo / sc) + ", " + formatNumber(v.hi / sc) + "]";
+        auto b = exprs_[c]->op == ir::Op::Quantity ? bounds_.find(exprs_[c]->name) : bounds_.end();
+        if (b != bounds_.end() && v.lo != v.hi) {
+          cell.feasible = true;
+          cell.flo = std::max(v.lo, b->second.first);
+          cell.fhi = std::min(v.hi, b->second.second);
+          cell.text += " feasible [" + formatNumber(cell.flo / sc) + ", " + formatNumber(cell.fhi / sc) + "]";
+        }
+      } else {
+        cell.text = "n/a";
+      }
+      row.cells.push_back(std::move(cell));
+    }
+  }
+
+  bool valid(size_t i, size_t c) const override {
+    const Design& d = (*designs_)[i];
+    a_.box = blank_.box;
+    a_.choice = d.choice;
+    if (i < freedoms_.size())
+      for (size_t f = 0; f < freedoms_[i].size(); ++f)
+        a_.box[f] = {freedoms_[i][f], freedoms_[i][f]};
+    return value(i, c, a_).isNumber();
+  }
+
+private:
+  // Column c of design i at its assignment. A listing's rows are made more than once
+  // (checked, then written): their values are found once.
+  Value value(size_t i, size_t c, const Assignment& a) const {
+    const Design& d = (*designs_)[i];
+    Known* known = known_.empty() ? nullptr : &known_[i * exprs_.size() + c];
+    if (known && known->set) return known->valid ? Value::range(known->lo, known->hi) : Value::invalid();
+    std::optional<Rational> q =
+        direct_[c] && !d.undecided && a.box.empty() ? direct_[c]->exactAt(d.ratio) : std::nullopt;
+    Value v = q ? Value::rational(*q) : ev_.eval(*exprs_[c], a);
+    if (known) *known = {true, v.isNumber(), v.lo, v.hi};
+    return v;
+  }
+
+  struct Shown {
+    std::string text;
+    DesignRow::Value value;
+  };
+  const Model& m_;
+  const std::vector<Design>* designs_;
+  std::vector<Design> owned_;
+  std::vector<const ir::Expr*> exprs_;
+  std::vector<Column> columns_;
+  std::vector<std::vector<double>> freedoms_;
+  Evaluator ev_;
+  Assignment blank_;
+  mutable Assignment a_;
+  mutable Value zScratch_;
+  struct Known {
+    bool set = false, valid = false;
+    double lo = 0, hi = 0;
+  };
+  mutable std::vector<Known> known_; // a listing's column values, by row and column
+  std::map<std::string, std::pair<double, double>> bounds_;
+  std::vector<std::vector<std::string>> toothNames_;
+  std::vector<std::vector<Shown>> slotShown_;
+  std::vector<std::optional<RatioFn>> direct_;
+};
+
+// lazy: the rows are left to be made as the CSV listing is written (the designs move into
+// the table); only for designs without freedoms or baselines, whose values are points.
+GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const ir::Expr*>& columnExprs,
+                       const std::vector<std::string>& columnNames,
+                       const std::vector<std::vector<double>>& freedoms = {}, const Model* baseline = nullptr,
+                       const Assignment* baseDesign = nullptr, bool lazy = false) {
   GearboxReport g;
   g.name = m.gearbox.name;
   g.count = r.count;
   g.undecided = r.undecided;
   g.window = r.window;
   g.funnel = r.funnel;
-  // Rules `q in a..b` with constant bounds: the part of q's interval a design may use.
-  std::map<std::string, std::pair<double, double>> bounds;
-  std::function<void(const ir::Expr&)> collect = [&](const ir::Expr& e) {
-    if (e.op == ir::Op::And || e.op == ir::Op::Forall) {
-      for (const auto& x : e.args) collect(*x);
-      return;
-    }
-    if (e.op == ir::Op::Within && e.args[0]->op == ir::Op::Quantity && e.args[1]->isConst() && e.args[2]->isConst())
-      bounds[e.args[0]->name] = {e.args[1]->value.toDouble(), e.args[2]->value.toDouble()};
-  };
-  for (const auto& rule : m.gearbox.rules)
-    if (rule.expr) collect(*rule.expr);
   for (size_t i = 0; i < columnExprs.size(); ++i) {
     Column c;
     c.name = columnNames[i];
@@ -54,94 +222,29 @@ GearboxReport reportOf(const Model& m, const SearchResult& r, const std::vector<
     c.scale = u.scale;
     g.columns.push_back(c);
   }
-  // What every row repeats, made once: tooth-count names, the shown values of the slots.
-  std::vector<std::vector<std::string>> toothNames(m.stages.size());
-  for (size_t s = 0; s < m.stages.size(); ++s)
-    for (const auto& gear : m.stages[s].ir->gears) toothNames[s].push_back(m.stages[s].ir->name + "." + gear + ".z");
-  struct Shown {
-    std::string text;
-    DesignRow::Value value;
-  };
-  std::vector<std::vector<Shown>> slotShown(m.slots.size());
-  for (size_t sl = 0; sl < m.slots.size(); ++sl) {
-    const Slot& slot = m.slots[sl];
-    const ir::Stage& st = *m.stages[static_cast<size_t>(slot.stage)].ir;
-    auto du = units::displayUnitFor(st.find(slot.attr) ? st.find(slot.attr)->dim : units::Dim{});
-    for (const Value& v : slot.values)
-      slotShown[sl].push_back({formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name), {v.lo / du.scale, du.name}});
+  auto rows = std::make_shared<DesignRows>(m, &r.designs, columnExprs, g.columns, freedoms, baseline, baseDesign);
+  bool points = freedoms.empty() && !baseline && m.freedoms.empty() &&
+                std::none_of(columnExprs.begin(), columnExprs.end(), [](const ir::Expr* e) {
+                  return ir::uses(e, {ir::Op::SceneOutput, ir::Op::Relative, ir::Op::Scatter});
+                });
+  if (lazy && points && !r.designs.empty()) {
+    rows->own(std::move(r.designs));
+    r.designs.clear();
+    g.rows.resize(1);
+    rows->row(0, g.rows[0], true);
+    g.source = rows;
+    for (auto& c : g.columns)
+      c.exact = true; // points: no column shows an interval
+    return g;
   }
-  // Columns that read only the gearbox ratio: from the design's exact ratio directly.
-  std::vector<std::optional<RatioFn>> direct;
-  for (const auto* e : columnExprs) direct.push_back(RatioFn::compile(*e));
-  const Assignment blank(m);
-  Assignment a(m);
-  int rank = 0;
-  for (const auto& d : r.designs) {
-    DesignRow row;
-    row.rank = ++rank;
-    row.ratio = d.ratio;
-    row.undecided = d.undecided;
-    a.box = blank.box;
-    a.choice = d.choice;
-    size_t ri = static_cast<size_t>(row.rank - 1);
-    if (ri < freedoms.size())
-      for (size_t f = 0; f < freedoms[ri].size(); ++f) {
-        a.box[f] = {freedoms[ri][f], freedoms[ri][f]};
-        const Freedom& fr = m.freedoms[f];
-        const ir::Attribute* at = m.attribute(fr.stage, fr.gear, fr.key);
-        auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
-        row.choices.emplace_back(m.freedoms[f].path, formatNumber(freedoms[ri][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
-        row.choiceValues.push_back({freedoms[ri][f] / u.scale, u.name});
-      }
-    row.choice = a.choice;
-    row.box = a.box;
-    for (size_t s = 0; s < m.stages.size(); ++s) {
-      const ir::Stage& st = *m.stages[s].ir;
-      for (size_t g = 0; g < st.gears.size(); ++g) {
-        Value z = ev.attribute(static_cast<int>(s), static_cast<int>(g), Q::Z, a);
-        if (z.exact && z.exact->isInteger()) row.teeth.emplace_back(toothNames[s][g], static_cast<long long>(z.exact->num()));
-      }
-      for (int sl : m.stages[s].slots) {
-        const Slot& slot = m.slots[static_cast<size_t>(sl)];
-        if (slot.key == Q::Z && slot.gear >= 0) continue;
-        size_t vi = static_cast<size_t>(d.choice[static_cast<size_t>(sl)]);
-        const Value& v = slot.values[vi];
-        if (v.exact && v.exact->isInteger()) row.teeth.emplace_back(slot.path, static_cast<long long>(v.exact->num()));
-        else {
-          const Shown& shown = slotShown[static_cast<size_t>(sl)][vi];
-          row.choices.emplace_back(slot.path, shown.text);
-          row.choiceValues.push_back(shown.value);
-        }
-      }
-    }
-    for (size_t i = 0; i < columnExprs.size(); ++i) {
-      std::optional<Rational> q = direct[i] && !row.undecided && a.box.empty() ? direct[i]->exactAt(d.ratio) : std::nullopt;
-      Value v = q ? Value::rational(*q) : ev.eval(*columnExprs[i], a);
-      Cell c;
-      if (v.isNumber()) {
-        c.valid = true;
-        c.lo = v.lo;
-        c.hi = v.hi;
-        double s = g.columns[i].scale;
-        c.text = v.lo == v.hi ? formatNumber(v.lo / s) : "[" + formatNumber(v.lo / s) + ", " + formatNumber(v.hi / s) + "]";
-        auto b = columnExprs[i]->op == ir::Op::Quantity ? bounds.find(columnExprs[i]->name) : bounds.end();
-        if (b != bounds.end() && v.lo != v.hi) {
-          c.feasible = true;
-          c.flo = std::max(v.lo, b->second.first);
-          c.fhi = std::min(v.hi, b->second.second);
-          c.text += " feasible [" + formatNumber(c.flo / s) + ", " + formatNumber(c.fhi / s) + "]";
-        }
-      } else {
-        c.text = "n/a";
-      }
-      row.cells.push_back(c);
-    }
-    g.rows.push_back(std::move(row));
-  }
+  g.rows.resize(rows->size());
+  for (size_t i = 0; i < rows->size(); ++i)
+    rows->row(i, g.rows[i], true);
   // Only a column that shows intervals can show enclosures.
   for (size_t i = 0; i < g.columns.size(); ++i) {
     bool interval = false;
-    for (const auto& row : g.rows) interval = interval || (row.cells[i].valid && row.cells[i].lo != row.cells[i].hi);
+    for (const auto& row : g.rows)
+      interval = interval || (row.cells[i].valid && row.cells[i].lo != row.cells[i].hi);
     if (!interval) g.columns[i].exact = true;
   }
   return g;
@@ -154,14 +257,49 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
   if (table.rows.empty()) return errors;
   // Needs scenes or a baseline: evaluated by the optimiser and the scene pass, not here.
   auto dynamic = [](const ir::Expr& e) { return ir::uses(&e, {ir::Op::SceneOutput, ir::Op::Relative}); };
+  struct Check {
+    const ir::Expr* e;
+    std::string what;
+    int column = -1; // a report column has its value in every row already
+    std::optional<std::string> error;
+  };
+  std::vector<Check> checks;
+  auto add = [&](const ir::Expr* e, const std::string& what) {
+    if (!e || dynamic(*e)) return;
+    Check c{e, what, -1, std::nullopt};
+    for (size_t i = 0; i < columns.exprs.size() && i < table.columns.size(); ++i)
+      if (columns.exprs[i] == e) c.column = static_cast<int>(i);
+    checks.push_back(std::move(c));
+  };
+  for (const auto& o : m.gearbox.objectives)
+    add(o.expr.get(), "objective");
+  for (const auto* c : columns.exprs) {
+    bool objective = false;
+    for (const auto& o : m.gearbox.objectives)
+      objective = objective || o.expr.get() == c;
+    if (!objective) add(c, "report column");
+  }
   Evaluator ev(m);
-  auto check = [&](const ir::Expr& e, const std::string& what) {
-    if (dynamic(e)) return;
-    for (const auto& row : table.rows) {
-      Assignment a(m);
+  Assignment a(m);
+  if (table.source) {
+    // Made rows: a column's values are asked for alone; a row is made only to report it.
+    bool columnsOnly = std::all_of(checks.begin(), checks.end(), [](const Check& c) { return c.column >= 0; });
+    size_t bad = SIZE_MAX;
+    for (size_t i = 0; columnsOnly && i < table.source->size() && bad == SIZE_MAX; ++i)
+      for (const auto& c : checks)
+        if (!table.source->valid(i, static_cast<size_t>(c.column))) bad = i;
+    if (columnsOnly && bad == SIZE_MAX) return errors;
+  }
+  // One pass over the rows (they may be made on demand), each expression reported once.
+  forEachRow(table, [&](const DesignRow& row) {
+    for (auto& c : checks) {
+      if (c.error) continue;
+      if (c.column >= 0 && static_cast<size_t>(c.column) < row.cells.size() &&
+          row.cells[static_cast<size_t>(c.column)].valid)
+        continue;
       a.choice = row.choice;
       a.box = row.box;
-      if (ev.eval(e, a).isNumber()) continue;
+      if (ev.eval(*c.e, a).isNumber()) continue;
       // The first quantity inside that has no value says what is missing.
       std::string missing;
       std::function<void(const ir::Expr&)> find = [&](const ir::Expr& x) {
@@ -170,22 +308,18 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
         for (const auto& y : x.args)
           if (y) find(*y);
       };
-      find(e);
+      find(*c.e);
       std::string teeth;
-      for (const auto& [n, z] : row.teeth) teeth += fmt::format("{}{} = {}", teeth.empty() ? "" : ", ", n, z);
-      errors.push_back(fmt::format("{} `{}` has no value for design {} ({}){}", what, ir::print(e), row.rank, teeth,
-                                   missing.empty() ? std::string()
-                                                   : fmt::format(": `{}` cannot be computed; give it, or what it is computed from", missing)));
-      return;  // once per expression
+      for (const auto& [n, z] : row.teeth)
+        teeth += fmt::format("{}{} = {}", teeth.empty() ? "" : ", ", n, z);
+      c.error = fmt::format(
+          "{} `{}` has no value for design {} ({}){}", c.what, ir::print(*c.e), row.rank, teeth,
+          missing.empty() ? std::string()
+                          : fmt::format(": `{}` cannot be computed; give it, or what it is computed from", missing));
     }
-  };
-  for (const auto& o : m.gearbox.objectives)
-    if (o.expr) check(*o.expr, "objective");
-  for (const auto* c : columns.exprs) {
-    bool objective = false;
-    for (const auto& o : m.gearbox.objectives) objective = objective || o.expr.get() == c;
-    if (c && !objective) check(*c, "report column");
-  }
+  });
+  for (const auto& c : checks)
+    if (c.error) errors.push_back(*c.error);
   return errors;
 }
 
@@ -193,7 +327,7 @@ Columns reportColumns(const ir::Gearbox& gb) {
   Columns c;
   if (gb.report && !gb.report->columns.empty()) {
     for (size_t i = 0; i < gb.report->columns.size(); ++i) {
-      if (gb.report->ratioColumn[i]) continue;  // always shown
+      if (gb.report->ratioColumn[i]) continue; // always shown
       c.exprs.push_back(gb.report->columns[i].get());
       c.names.push_back(gb.report->columnTexts[i]);
     }
@@ -206,8 +340,9 @@ Columns reportColumns(const ir::Gearbox& gb) {
   return c;
 }
 
-GearboxReport designTable(const Model& m, const Optimised& o, const Columns& columns) {
-  return reportOf(m, o.designs, columns.exprs, columns.names, o.freedoms, o.baseline.get(), o.baselineDesign.get());
+GearboxReport designTable(const Model& m, Optimised& o, const Columns& columns, bool lazy) {
+  return reportOf(m, o.designs, columns.exprs, columns.names, o.freedoms, o.baseline.get(), o.baselineDesign.get(),
+                  lazy);
 }
 
 std::optional<Assignment> bestDesign(const Model& m, const Optimised& o) {
@@ -215,7 +350,8 @@ std::optional<Assignment> bestDesign(const Model& m, const Optimised& o) {
   Assignment best(m);
   best.choice = o.designs.designs[0].choice;
   if (!o.freedoms.empty())
-    for (size_t f = 0; f < o.freedoms[0].size(); ++f) best.box[f] = {o.freedoms[0][f], o.freedoms[0][f]};
+    for (size_t f = 0; f < o.freedoms[0].size(); ++f)
+      best.box[f] = {o.freedoms[0][f], o.freedoms[0][f]};
   return best;
 }
 

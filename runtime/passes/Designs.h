@@ -17,7 +17,9 @@ struct Columns {
 };
 Columns reportColumns(const ir::Gearbox& gearbox);
 
-GearboxReport designTable(const Model& m, const Optimised& designs, const Columns& columns);
+// lazy: a CSV listing's rows are made as they are written (the designs move into the
+// table), where every value is a point; otherwise every row is held.
+GearboxReport designTable(const Model& m, Optimised& designs, const Columns& columns, bool lazy = false);
 
 // An objective or a report column with no value for a listed design ranks or reports
 // nothing: one message per such expression, naming the design and the quantity that

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <variant>
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include "report/Ratings.h"
@@ -32,6 +33,7 @@ std::string row(const std::vector<std::string>& cells) {
 // Columns that show an interval in some row get two CSV columns.
 std::vector<bool> intervalColumns(const GearboxReport& g) {
   std::vector<bool> v(g.columns.size(), false);
+  if (g.source) return v;  // made rows are points
   for (const auto& r : g.rows)
     for (size_t i = 0; i < r.cells.size() && i < v.size(); ++i) v[i] = v[i] || (r.cells[i].valid && r.cells[i].lo != r.cells[i].hi);
   return v;
@@ -62,11 +64,23 @@ std::string designs(const std::vector<GearboxReport>& reports) {
     // Rows appended in place: a listing may hold a million of them.
     const std::string name = field(g.name);
     auto num = [&](double v) {
-      if (std::isfinite(v)) fmt::format_to(std::back_inserter(o), "{}", v);
+      if (std::isfinite(v)) fmt::format_to(std::back_inserter(o), FMT_COMPILE("{}"), v);
     };
-    for (const auto& r : g.rows) {
-      fmt::format_to(std::back_inserter(o), "{},{}", name, r.rank);
-      for (const auto& [_, z] : r.teeth) fmt::format_to(std::back_inserter(o), ",{}", z);
+    auto integer = [&](long long v) {
+      fmt::format_int f(v);
+      o.append(f.data(), f.size());
+    };
+    size_t rowsStart = o.size();
+    forEachRow(g, [&](const DesignRow& r) {
+      // A long listing: room for all of it at the size of its first row, once.
+      if (r.rank == 2 && g.source) o.reserve(o.size() + (o.size() - rowsStart) * (g.source->size() + 16) * 21 / 20);
+      o += name;
+      o += ',';
+      integer(r.rank);
+      for (const auto& [_, z] : r.teeth) {
+        o += ',';
+        integer(z);
+      }
       for (const auto& c : r.choiceValues) {
         o += ',';
         num(c.shown);
@@ -86,7 +100,7 @@ std::string designs(const std::vector<GearboxReport>& reports) {
       o += ',';
       o += r.ratio.str();
       o += '\n';
-    }
+    });
   }
   return o;
 }

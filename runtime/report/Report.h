@@ -1,6 +1,7 @@
 #pragma once
 // Reports of solved gearboxes: text tables, JSON (keys of LANGUAGE.md §10), CSV,
 // Markdown and HTML. Numbers are printed in a fixed format so that reports are byte-stable.
+#include <memory>
 #include <optional>
 #include <cmath>
 #include <string>
@@ -184,13 +185,29 @@ struct RatingReport {
   std::string note;       // how the design was rated, when not at a point
 };
 
+// Design rows made one at a time: a listing of a million designs is written as it is made
+// instead of being held.
+class RowSource {
+public:
+  virtual ~RowSource() = default;
+  virtual size_t size() const = 0;
+  // Row i into `out` (its vectors reused); text: the cells' text for the text report too.
+  virtual void row(size_t i, DesignRow& out, bool text) const = 0;
+  // Whether row i has a value in column c (without making the rest of the row).
+  virtual bool valid(size_t i, size_t c) const = 0;
+};
+
 struct GearboxReport {
   std::string name;
   unsigned long long count = 0;
   unsigned long long undecided = 0;
   std::string window;
   std::vector<Column> columns;
+  // The listed designs. With a `source` (a CSV listing), `rows` holds the first only (for
+  // headers and the best design's scene columns) and every row, the first included, is
+  // made by the source; its values are points (no freedoms), so no column is an interval.
   std::vector<DesignRow> rows;
+  std::shared_ptr<const RowSource> source;
   std::vector<FunnelStep> funnel;
   std::vector<std::string> notes;
   std::vector<SceneReport> scenes;
@@ -211,6 +228,21 @@ struct RenderOptions {
   // Charts to draw inside the report itself (HTML: one file that travels alone).
   const std::vector<ChartFile>* inlineCharts = nullptr;
 };
+
+// Every listed row, held or made on demand (made rows carry numbers, not cell text).
+template <class F>
+void forEachRow(const GearboxReport& g, F&& f) {
+  if (!g.source) {
+    for (const auto& r : g.rows) f(r);
+    return;
+  }
+  DesignRow r;
+  for (size_t i = 0; i < g.source->size(); ++i) {
+    g.source->row(i, r, false);
+    f(static_cast<const DesignRow&>(r));
+  }
+}
+inline size_t rowCount(const GearboxReport& g) { return g.source ? g.source->size() : g.rows.size(); }
 
 std::string formatNumber(double v);
 // A length as a gear engineer reads it: um below a millimetre, mm above.

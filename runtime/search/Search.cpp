@@ -1,8 +1,8 @@
 #include "search/Search.h"
 
 #include <algorithm>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <set>
@@ -12,10 +12,10 @@
 #include <fmt/format.h>
 
 #include "catalogue/Settings.h"
-#include "search/FastKey.h"
-#include "search/HalfList.h"
 #include "catalogue/StageKinds.h"
 #include "model/StageKind.h"
+#include "search/FastKey.h"
+#include "search/HalfList.h"
 
 namespace gbx::rt {
 
@@ -29,9 +29,9 @@ struct Conjunct {
   const ir::Expr* expr = nullptr;
   std::string text;
   std::set<int> stages;
-  bool freedom = false;      // depends on a continuous freedom
-  bool unsupported = false;  // needs dynamics, load sharing or a baseline: not a search rule
-  bool strength = false;     // reads a load-capacity rating: costly, so tested after the cheap rules
+  bool freedom = false;     // depends on a continuous freedom
+  bool unsupported = false; // needs dynamics, load sharing or a baseline: not a search rule
+  bool strength = false;    // reads a load-capacity rating: costly, so tested after the cheap rules
 };
 
 bool isGearboxRatio(const ir::QuantityRef& r) { return r.owner == ir::QuantityRef::Gearbox && r.key == Q::Ratio; }
@@ -43,7 +43,8 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth = 0)
   case Op::Quantity: {
     const ir::QuantityRef& r = e.ref;
     if (r.owner == ir::QuantityRef::Gearbox) {
-      for (int s = 0; s < all; ++s) c.stages.insert(s);
+      for (int s = 0; s < all; ++s)
+        c.stages.insert(s);
       if (!m.freedoms.empty() && r.key != Q::Ratio) c.freedom = true;
       break;
     }
@@ -54,7 +55,8 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth = 0)
     int st = r.index;
     if (cat::isRatingQuantity(r.key)) c.strength = true;
     if (cat::dependsOnOperatingPoint(r.key))
-      for (int s = 0; s <= st; ++s) c.stages.insert(s);
+      for (int s = 0; s <= st; ++s)
+        c.stages.insert(s);
     c.stages.insert(st);
     if (m.freedomOf(st, r.gear, r.key) >= 0) c.freedom = true;
     const ir::Attribute* a = m.attribute(st, r.gear, r.key);
@@ -77,7 +79,8 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth = 0)
 
 void split(const ir::Expr& e, std::vector<const ir::Expr*>& out) {
   if (e.op == Op::And || e.op == Op::Forall) {
-    for (const auto& a : e.args) split(*a, out);
+    for (const auto& a : e.args)
+      split(*a, out);
     return;
   }
   out.push_back(&e);
@@ -115,7 +118,8 @@ struct Window {
     return true;
   }
   std::string str() const {
-    return fmt::format("{}{}, {}{}", loStrict ? "(" : "[", lo ? lo->str() : "-inf", hi ? hi->str() : "inf", hiStrict ? ")" : "]");
+    return fmt::format("{}{}, {}{}", loStrict ? "(" : "[", lo ? lo->str() : "-inf", hi ? hi->str() : "inf",
+                       hiStrict ? ")" : "]");
   }
 };
 
@@ -144,8 +148,10 @@ bool asWindow(const ir::Expr& e, Window& w) {
     if (!v || !isRatio(x)) return false;
     bool strict = e.op == Op::Lt || e.op == Op::Gt;
     bool upper = (e.op == Op::Lt || e.op == Op::Le) == ratioLeft;
-    if (upper) w.upper(*v, strict);
-    else w.lower(*v, strict);
+    if (upper)
+      w.upper(*v, strict);
+    else
+      w.lower(*v, strict);
     return true;
   };
   switch (e.op) {
@@ -199,7 +205,8 @@ enum class Verdict { Feasible, Infeasible, Undecided };
 
 Truth truthOf(const Value& v) { return v.kind == Value::Bool ? v.truth : Truth::Unknown; }
 
-Verdict decide(const Evaluator& ev, Assignment& a, const std::vector<const Conjunct*>& rules, const std::vector<int>& freedoms) {
+Verdict decide(const Evaluator& ev, Assignment& a, const std::vector<const Conjunct*>& rules,
+               const std::vector<int>& freedoms) {
   const Model& m = ev.model();
   std::vector<std::pair<double, double>> saved = a.box;
   struct Box {
@@ -233,7 +240,8 @@ Verdict decide(const Evaluator& ev, Assignment& a, const std::vector<const Conju
     // quantities take their extremes.
     std::vector<std::vector<double>> points;
     std::vector<double> mid;
-    for (int f : freedoms) mid.push_back(0.5 * (box.b[static_cast<size_t>(f)].first + box.b[static_cast<size_t>(f)].second));
+    for (int f : freedoms)
+      mid.push_back(0.5 * (box.b[static_cast<size_t>(f)].first + box.b[static_cast<size_t>(f)].second));
     points.push_back(mid);
     if (freedoms.size() <= 4)
       for (size_t mask = 0; mask < (size_t{1} << freedoms.size()); ++mask) {
@@ -246,7 +254,8 @@ Verdict decide(const Evaluator& ev, Assignment& a, const std::vector<const Conju
       }
     bool found = false;
     for (const auto& p : points) {
-      for (size_t k = 0; k < freedoms.size(); ++k) a.box[static_cast<size_t>(freedoms[k])] = {p[k], p[k]};
+      for (size_t k = 0; k < freedoms.size(); ++k)
+        a.box[static_cast<size_t>(freedoms[k])] = {p[k], p[k]};
       Truth pt;
       all(pt);
       if (pt == Truth::True) {
@@ -289,7 +298,7 @@ Verdict decide(const Evaluator& ev, Assignment& a, const std::vector<const Conju
 // ---- per-stage candidates ---------------------------------------------------------------
 
 struct Candidate {
-  std::vector<int> idx;  // value index per slot of the stage
+  std::vector<int> idx; // value index per slot of the stage
   Rational ratio;
   double r = 0;
   bool undecided = false;
@@ -305,7 +314,9 @@ struct StageRule {
 std::vector<StageRule> implicitRules(const Model& m, int s) {
   std::vector<StageRule> rules;
   for (const auto& r : m.info(s).kind->rules)
-    rules.push_back({r.text, [s, test = r.test](const Evaluator& ev, const Assignment& a) { return test(KindContext{ev, s, a}); }});
+    rules.push_back({r.text, [s, test = r.test](const Evaluator& ev, const Assignment& a) {
+                       return test(KindContext{ev, s, a});
+                     }});
   return rules;
 }
 
@@ -319,7 +330,8 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
   const Model& m = ev.model();
   const StageInfo& info = m.stages[static_cast<size_t>(s)];
   auto rules = implicitRules(m, s);
-  for (const auto* c : local) rules.push_back({c->text, nullptr, c});
+  for (const auto* c : local)
+    rules.push_back({c->text, nullptr, c});
   std::vector<size_t> sizes;
   size_t total = 1;
   for (int sl : info.slots) {
@@ -358,9 +370,10 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
           ch.removed[r] += 1;
           dead = true;
         } else if (t == Truth::Unknown) {
-          if (rules[r].conjunct && rules[r].conjunct->freedom) open.push_back(rules[r].conjunct);
+          if (rules[r].conjunct && rules[r].conjunct->freedom)
+            open.push_back(rules[r].conjunct);
           else {
-            ch.removed[r] += 1;  // cannot be evaluated: counted, and said in a note
+            ch.removed[r] += 1; // cannot be evaluated: counted, and said in a note
             ch.unevaluable[r] += 1;
             dead = true;
           }
@@ -383,9 +396,11 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  for (int t = 1; t < threads; ++t)
+    pool.emplace_back(work, t);
   work(0);
-  for (auto& th : pool) th.join();
+  for (auto& th : pool)
+    th.join();
 
   StageResult res;
   double before = static_cast<double>(total);
@@ -399,19 +414,22 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     }
     res.funnel.push_back({rules[r].text, name, before, removed});
     if (unevaluable > 0)
-      res.notes.push_back(fmt::format("stage {}: `{}` could not be evaluated for {:.0f} of its {:.0f} candidates, which it removed "
-                                      "(a rating refuses their geometry, or an input is missing)",
-                                      name, rules[r].text, unevaluable, before));
+      res.notes.push_back(
+          fmt::format("stage {}: `{}` could not be evaluated for {:.0f} of its {:.0f} candidates, which it removed "
+                      "(a rating refuses their geometry, or an input is missing)",
+                      name, rules[r].text, unevaluable, before));
     before -= removed;
   }
   double joint = 0;
-  for (const auto& ch : chunks) joint += ch.jointRemoved;
+  for (const auto& ch : chunks)
+    joint += ch.jointRemoved;
   if (joint > 0) {
     res.funnel.push_back({"no freedom value satisfies the rules together", name, before, joint});
     before -= joint;
   }
   for (auto& ch : chunks)
-    for (auto& c : ch.out) res.candidates.push_back(std::move(c));
+    for (auto& c : ch.out)
+      res.candidates.push_back(std::move(c));
   std::sort(res.candidates.begin(), res.candidates.end(), [](const Candidate& x, const Candidate& y) {
     int c = x.ratio.compare(y.ratio);
     return c != 0 ? c < 0 : x.idx < y.idx;
@@ -421,17 +439,19 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
 
 // ---- symmetry ---------------------------------------------------------------------------
 
-using Perm = std::vector<int>;  // slot -> slot
+using Perm = std::vector<int>; // slot -> slot
 
 std::vector<Perm> closeGroup(const std::vector<Perm>& gens, size_t n) {
   Perm id(n);
-  for (size_t i = 0; i < n; ++i) id[i] = static_cast<int>(i);
+  for (size_t i = 0; i < n; ++i)
+    id[i] = static_cast<int>(i);
   std::vector<Perm> group = {id};
   std::set<Perm> seen = {id};
   for (size_t i = 0; i < group.size() && group.size() < 5040; ++i)
     for (const auto& g : gens) {
       Perm p(n);
-      for (size_t k = 0; k < n; ++k) p[k] = g[static_cast<size_t>(group[i][k])];
+      for (size_t k = 0; k < n; ++k)
+        p[k] = g[static_cast<size_t>(group[i][k])];
       if (seen.insert(p).second) group.push_back(p);
     }
   return group;
@@ -471,28 +491,37 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   std::vector<const Conjunct*> cross, global;
   for (const auto& c : conjuncts) {
     if (c.unsupported) {
-      if (opt.deferDynamics) res.deferred.push_back(c.text);
-      else res.errors.push_back(fmt::format("rule `{}` needs results the search does not compute (scenes, splits, baselines)", c.text));
+      if (opt.deferDynamics)
+        res.deferred.push_back(c.text);
+      else
+        res.errors.push_back(
+            fmt::format("rule `{}` needs results the search does not compute (scenes, splits, baselines)", c.text));
       continue;
     }
     if (asWindow(*c.expr, window)) {
       windowTexts.push_back(c.text);
       continue;
     }
-    if (c.stages.size() == 1) local[static_cast<size_t>(*c.stages.begin())].push_back(&c);
-    else if (c.stages.empty()) global.push_back(&c);
-    else cross.push_back(&c);
+    if (c.stages.size() == 1)
+      local[static_cast<size_t>(*c.stages.begin())].push_back(&c);
+    else if (c.stages.empty())
+      global.push_back(&c);
+    else
+      cross.push_back(&c);
   }
   // A strength rule runs only on the candidates the cheaper rules kept; the funnel then
   // says how many it removed.
   for (auto& l : local)
-    std::stable_sort(l.begin(), l.end(), [](const Conjunct* a, const Conjunct* b) { return !a->strength && b->strength; });
-  std::stable_sort(cross.begin(), cross.end(), [](const Conjunct* a, const Conjunct* b) { return !a->strength && b->strength; });
+    std::stable_sort(l.begin(), l.end(),
+                     [](const Conjunct* a, const Conjunct* b) { return !a->strength && b->strength; });
+  std::stable_sort(cross.begin(), cross.end(),
+                   [](const Conjunct* a, const Conjunct* b) { return !a->strength && b->strength; });
   for (const auto& o : m.gearbox.objectives) {
     Conjunct c;
     if (o.expr) dependencies(m, *o.expr, c);
     if (c.unsupported && !opt.deferDynamics)
-      res.errors.push_back(fmt::format("objective `{}` needs results the search does not compute (scenes, baselines)", o.text));
+      res.errors.push_back(
+          fmt::format("objective `{}` needs results the search does not compute (scenes, baselines)", o.text));
   }
   if (!res.errors.empty()) return res;
   if (window.lo || window.hi) res.window = window.str();
@@ -508,8 +537,10 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   std::vector<StageResult> stages;
   for (int s = 0; s < k; ++s) {
     stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs));
-    for (auto& f : stages.back().funnel) res.funnel.push_back(f);
-    for (auto& n : stages.back().notes) res.notes.push_back(n);
+    for (auto& f : stages.back().funnel)
+      res.funnel.push_back(f);
+    for (auto& n : stages.back().notes)
+      res.notes.push_back(n);
   }
 
   // Interchangeable groups as permutations of slots.
@@ -519,7 +550,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   for (const auto& group : m.gearbox.interchangeable) {
     for (size_t i = 0; i + 1 < group.size(); ++i) {
       Perm p(nslots);
-      for (size_t q = 0; q < nslots; ++q) p[q] = static_cast<int>(q);
+      for (size_t q = 0; q < nslots; ++q)
+        p[q] = static_cast<int>(q);
       const std::string &x = group[i], &y = group[i + 1];
       auto sx = x.substr(0, x.find('.')), sy = y.substr(0, y.find('.'));
       int a = m.stageIndex(sx), b = m.stageIndex(sy);
@@ -537,8 +569,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
         if (sb < 0) {
           std::string px = x.find('.') == std::string::npos ? "" : x.substr(x.find('.') + 1) + ".";
           std::string py = y.find('.') == std::string::npos ? "" : y.substr(y.find('.') + 1) + ".";
-          res.errors.push_back(fmt::format("`interchangeable {}, {}`: `{}` has no decision `{}` to match `{}.{}`", x, y, sy,
-                                           py + slot.attr.substr(px.size()), sx, slot.attr));
+          res.errors.push_back(fmt::format("`interchangeable {}, {}`: `{}` has no decision `{}` to match `{}.{}`", x, y,
+                                           sy, py + slot.attr.substr(px.size()), sx, slot.attr));
           continue;
         }
         p[static_cast<size_t>(sa)] = sb;
@@ -568,7 +600,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       }
     return true;
   };
-  std::vector<std::pair<int, int>> ordered;  // (a, b): index of stage a <= index of stage b
+  std::vector<std::pair<int, int>> ordered; // (a, b): index of stage a <= index of stage b
   bool fast = stageSwapsOnly && cross.empty();
   if (fast && group.size() > 1) {
     for (const auto& gp : m.gearbox.interchangeable) {
@@ -581,7 +613,6 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   }
   if (!fast) ordered.clear();
 
-
   // Meet in the middle over sorted stage ratios: left stages [0, h), right [h, k). Each
   // half is a compact list sorted by its ratio product; one two-pointer sweep joins them.
   // Three to five stages: the first two are walked row by row (the second stage's index
@@ -592,24 +623,33 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   bool rows = k >= 3 && k <= 5;
   int h = rows ? 2 : k / 2;
   double combos = 1;
-  for (const auto& st : stages) combos *= static_cast<double>(st.candidates.size());
+  for (const auto& st : stages)
+    combos *= static_cast<double>(st.candidates.size());
   // Blocks of interchangeable stages (union of the `ordered` links).
   std::vector<int> block(static_cast<size_t>(k));
-  for (int s = 0; s < k; ++s) block[static_cast<size_t>(s)] = s;
-  std::function<int(int)> root = [&](int s) { return block[static_cast<size_t>(s)] == s ? s : root(block[static_cast<size_t>(s)]); };
-  for (const auto& [a, b] : ordered) block[static_cast<size_t>(root(b))] = root(a);
+  for (int s = 0; s < k; ++s)
+    block[static_cast<size_t>(s)] = s;
+  std::function<int(int)> root = [&](int s) {
+    return block[static_cast<size_t>(s)] == s ? s : root(block[static_cast<size_t>(s)]);
+  };
+  for (const auto& [a, b] : ordered)
+    block[static_cast<size_t>(root(b))] = root(a);
   bool sameHalves = !rows && fast && h == k - h && h > 0;
-  for (int a = 0; sameHalves && a < h; ++a) sameHalves = root(a) == root(a + h) && sameList(a, a + h);
+  for (int a = 0; sameHalves && a < h; ++a)
+    sameHalves = root(a) == root(a + h) && sameList(a, a + h);
   for (const auto& [a, b] : ordered) {
     if (!sameHalves) break;
     bool inLeft = b < h, inRight = a >= h;
-    auto has = [&](int x, int y) { return std::find(ordered.begin(), ordered.end(), std::make_pair(x, y)) != ordered.end(); };
+    auto has = [&](int x, int y) {
+      return std::find(ordered.begin(), ordered.end(), std::make_pair(x, y)) != ordered.end();
+    };
     if (inLeft && !has(a + h, b + h)) sameHalves = false;
     if (inRight && !has(a - h, b - h)) sameHalves = false;
   }
   std::vector<std::vector<double>> ratios(static_cast<size_t>(k));
   for (int s = 0; s < k; ++s)
-    for (const auto& c : stages[static_cast<size_t>(s)].candidates) ratios[static_cast<size_t>(s)].push_back(c.r);
+    for (const auto& c : stages[static_cast<size_t>(s)].candidates)
+      ratios[static_cast<size_t>(s)].push_back(c.r);
   HalfList leftList, rightList;
   if (!rows) leftList = HalfList::build(ratios, ordered, 0, h);
   if (!sameHalves) rightList = HalfList::build(ratios, ordered, h, k);
@@ -633,7 +673,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   auto rightFloor = [&](size_t le) -> size_t {
     size_t lo = 0;
     if (floorOnly)
-      for (const auto& [sa, sb] : crossing) lo = std::max<size_t>(lo, leftIndex(le, sa));
+      for (const auto& [sa, sb] : crossing)
+        lo = std::max<size_t>(lo, leftIndex(le, sa));
     return lo;
   };
   auto candidate = [&](int s, const std::uint32_t* cand) -> const Candidate& {
@@ -659,10 +700,12 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   auto place = [&](Assignment& a, int s, size_t c) {
     const auto& slots = m.stages[static_cast<size_t>(s)].slots;
     const auto& idx = stages[static_cast<size_t>(s)].candidates[c].idx;
-    for (size_t j = 0; j < slots.size(); ++j) a.choice[static_cast<size_t>(slots[j])] = idx[j];
+    for (size_t j = 0; j < slots.size(); ++j)
+      a.choice[static_cast<size_t>(slots[j])] = idx[j];
   };
   auto fill = [&](Assignment& a, const std::uint32_t* cand) {
-    for (int s = 0; s < k; ++s) place(a, s, cand[s]);
+    for (int s = 0; s < k; ++s)
+      place(a, s, cand[s]);
   };
 
   // Ranking keys: `sort by`, then the objectives (minimised; maximised ones negated).
@@ -672,7 +715,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   std::vector<std::optional<RatioFn>> exactKey;
   if (opt.sortBy) exactKey.push_back(RatioFn::compile(*opt.sortBy));
   if (!opt.deferDynamics)
-    for (const auto& o : m.gearbox.objectives) exactKey.push_back(o.expr ? RatioFn::compile(*o.expr) : std::nullopt);
+    for (const auto& o : m.gearbox.objectives)
+      exactKey.push_back(o.expr ? RatioFn::compile(*o.expr) : std::nullopt);
   auto direct = [&](size_t i, const Assignment& a) -> std::optional<double> {
     if (!a.ratio || !exactKey[i]) return std::nullopt;
     auto q = exactKey[i]->exactAt(*a.ratio);
@@ -686,7 +730,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       Value v = d ? Value::number(*d) : ev.eval(*opt.sortBy, a);
       out[i++] = v.isNumber() ? rankingKey(v.lo) : INFINITY;
     }
-    if (opt.deferDynamics) return;  // ranked by the optimiser
+    if (opt.deferDynamics) return; // ranked by the optimiser
     for (const auto& o : m.gearbox.objectives) {
       auto d = direct(i, a);
       Value v = d ? Value::number(*d) : o.expr ? ev.eval(*o.expr, a) : Value::invalid();
@@ -704,7 +748,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     const ir::Expr* e = opt.sortBy ? opt.sortBy : m.gearbox.objectives[0].expr.get();
     bool maximise = !opt.sortBy && !m.gearbox.objectives[0].minimize;
     std::vector<size_t> sizes;
-    for (const auto& st : stages) sizes.push_back(st.candidates.size());
+    for (const auto& st : stages)
+      sizes.push_back(st.candidates.size());
     bool any = std::all_of(sizes.begin(), sizes.end(), [](size_t x) { return x > 0; });
     auto reads = [&](const ir::Expr& x) {
       Conjunct c;
@@ -718,7 +763,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     for (std::uint64_t t = 0; fastKey && t < 16; ++t) {
       double r = 1;
       for (int s = 0; s < k; ++s) {
-        cand[static_cast<size_t>(s)] = static_cast<std::uint32_t>((t * 2654435761u + static_cast<std::uint64_t>(s) * 40503u) % sizes[static_cast<size_t>(s)]);
+        cand[static_cast<size_t>(s)] = static_cast<std::uint32_t>(
+            (t * 2654435761u + static_cast<std::uint64_t>(s) * 40503u) % sizes[static_cast<size_t>(s)]);
         r *= candidate(s, cand.data()).r;
       }
       fill(a, cand.data());
@@ -729,7 +775,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       if (!same) fastKey.reset();
     }
   }
-  RangeMin rowMin;  // three stages: the third stage's table, by candidate (= position in the right list)
+  RangeMin rowMin; // three stages: the third stage's table, by candidate (= position in the right list)
   if (fastKey && k == 3 && fastKey->table(2)) rowMin = RangeMin(*fastKey->table(2));
 
   // Per-stage membership, for checking the images of a design under the group.
@@ -737,8 +783,11 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   std::vector<std::set<std::vector<int>>> members(static_cast<size_t>(k));
   if (orbitCheck)
     for (int s = 0; s < k; ++s)
-      for (const auto& c : stages[static_cast<size_t>(s)].candidates) members[static_cast<size_t>(s)].insert(c.idx);
-  auto valueOf = [&](int slot, int c) -> const Value& { return m.slots[static_cast<size_t>(slot)].values[static_cast<size_t>(c)]; };
+      for (const auto& c : stages[static_cast<size_t>(s)].candidates)
+        members[static_cast<size_t>(s)].insert(c.idx);
+  auto valueOf = [&](int slot, int c) -> const Value& {
+    return m.slots[static_cast<size_t>(slot)].values[static_cast<size_t>(c)];
+  };
   // Image of a design under a permutation: slot values moved; -1 where a value is outside
   // the target slot's domain.
   auto image = [&](const std::vector<int>& choice, const Perm& p) {
@@ -748,13 +797,15 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       const Value& v = valueOf(static_cast<int>(sl), choice[sl]);
       const auto& dom = m.slots[static_cast<size_t>(target)].values;
       for (size_t i = 0; i < dom.size(); ++i)
-        if (dom[i].exact && v.exact && *dom[i].exact == *v.exact) out[static_cast<size_t>(target)] = static_cast<int>(i);
+        if (dom[i].exact && v.exact && *dom[i].exact == *v.exact)
+          out[static_cast<size_t>(target)] = static_cast<int>(i);
     }
     return out;
   };
   auto stageTuple = [&](const std::vector<int>& choice, int s) {
     std::vector<int> t;
-    for (int sl : m.stages[static_cast<size_t>(s)].slots) t.push_back(choice[static_cast<size_t>(sl)]);
+    for (int sl : m.stages[static_cast<size_t>(s)].slots)
+      t.push_back(choice[static_cast<size_t>(sl)]);
     return t;
   };
   auto feasibleDesign = [&](const std::vector<int>& choice) {
@@ -787,27 +838,28 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     return false;
   };
 
-
-  const double eps = 1e-9;  // larger than the rounding of a ratio product
+  const double eps = 1e-9; // larger than the rounding of a ratio product
   const double wlo = window.lo ? window.lo->toDouble() : -INFINITY, whi = window.hi ? window.hi->toDouble() : INFINITY;
   const double sureLo = wlo * (1 + 4 * eps), sureHi = whi * (1 - 4 * eps);
   size_t n = rows ? stages[0].candidates.size() : leftList.size(), rn = right.size();
   int threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(n / 64) + 1));
   bool undecidedAny = false;
   for (const auto& st : stages)
-    for (const auto& c : st.candidates) undecidedAny = undecidedAny || c.undecided;
+    for (const auto& c : st.candidates)
+      undecidedAny = undecidedAny || c.undecided;
   // Counted by arithmetic (the window's length, its borders confirmed exactly) when every
   // design in a window counts: no rule across stages, no orbit test, no undecided freedom,
   // and the canonical order at most a floor.
-  const bool arith = !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny && (floorOnly || crossing.empty());
+  const bool arith =
+      !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny && (floorOnly || crossing.empty());
   struct Local {
-    std::vector<double> keys;          // nk per kept design
-    std::vector<std::uint32_t> cand;   // k per kept design: candidate index per stage
-    std::vector<std::uint32_t> heap;   // kept designs, a max-heap when `top` limits them
+    std::vector<double> keys;        // nk per kept design
+    std::vector<std::uint32_t> cand; // k per kept design: candidate index per stage
+    std::vector<std::uint32_t> heap; // kept designs, a max-heap when `top` limits them
     unsigned long long count = 0, undecided = 0;
     double inWindow = 0, duplicates = 0;
     std::vector<double> crossRemoved;
-    std::vector<std::uint32_t> leftAt;  // scratch: the left indices the canonical order compares
+    std::vector<std::uint32_t> leftAt; // scratch: the left indices the canonical order compares
   };
   std::vector<Local> locals(static_cast<size_t>(threads));
   const size_t kk = static_cast<size_t>(k);
@@ -823,10 +875,11 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   auto slack = [](double w) { return 1e-9 * (1 + std::fabs(w)); };
   auto keepHit = [&](Local& lo, const double* keys, const std::uint32_t* cand) {
     auto cmp = [&](std::uint32_t x, std::uint32_t y) {
-      return lessRaw(&lo.keys[x * nk], &lo.cand[x * kk], &lo.keys[y * nk], &lo.cand[y * kk]);
+      return lessRaw(lo.keys.data() + x * nk, lo.cand.data() + x * kk, lo.keys.data() + y * nk,
+                     lo.cand.data() + y * kk);
     };
     if (keep == SIZE_MAX || lo.heap.size() < keep) {
-      auto id = static_cast<std::uint32_t>(lo.cand.size() / std::max<size_t>(kk, 1));
+      auto id = static_cast<std::uint32_t>(lo.heap.size()); // stored in step with the heap until it is full
       lo.keys.insert(lo.keys.end(), keys, keys + nk);
       lo.cand.insert(lo.cand.end(), cand, cand + kk);
       lo.heap.push_back(id);
@@ -835,7 +888,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       return;
     }
     std::uint32_t w = lo.heap.front();
-    if (!lessRaw(keys, cand, &lo.keys[w * nk], &lo.cand[w * kk])) return;
+    if (!lessRaw(keys, cand, lo.keys.data() + w * nk, lo.cand.data() + w * kk)) return;
     std::pop_heap(lo.heap.begin(), lo.heap.end(), cmp);
     std::copy(keys, keys + nk, lo.keys.begin() + static_cast<std::ptrdiff_t>(w * nk));
     std::copy(cand, cand + kk, lo.cand.begin() + static_cast<std::ptrdiff_t>(w * kk));
@@ -848,27 +901,33 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   auto exactCount = [&](std::uint32_t* cand, double x, size_t from, size_t to) {
     size_t a = from, b = to, rejected = 0;
     auto outside = [&](size_t re) {
-      for (int s = h; s < k; ++s) cand[s] = rightIndex(re, s);
+      for (int s = h; s < k; ++s)
+        cand[s] = rightIndex(re, s);
       return !window.contains(exactRatio(cand));
     };
-    for (; a < b && x * right.ratio(a) < sureLo; ++a) rejected += outside(a);
-    for (; b > a && x * right.ratio(b - 1) > sureHi; --b) rejected += outside(b - 1);
+    for (; a < b && x * right.ratio(a) < sureLo; ++a)
+      rejected += outside(a);
+    for (; b > a && x * right.ratio(b - 1) > sureHi; --b)
+      rejected += outside(b - 1);
     return static_cast<unsigned long long>(to - from - rejected);
   };
-  auto visit = [&](Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from, size_t to,
-                   bool counted) {
+  auto visit = [&](Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from,
+                   size_t to, bool counted) {
     // The left indices the canonical order compares, read once.
     const bool checkCanon = !floorOnly && !crossing.empty();
     auto& leftAt = lo.leftAt;
     leftAt.resize(crossing.size());
-    for (size_t c = 0; checkCanon && c < crossing.size(); ++c) leftAt[c] = leftIndex(le, crossing[c].first);
+    for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
+      leftAt[c] = leftIndex(le, crossing[c].first);
     for (size_t re = from; re < to && re < rn; ++re) {
       if (checkCanon) {
         bool canonical = true;
-        for (size_t c = 0; c < crossing.size() && canonical; ++c) canonical = leftAt[c] <= rightIndex(re, crossing[c].second);
+        for (size_t c = 0; c < crossing.size() && canonical; ++c)
+          canonical = leftAt[c] <= rightIndex(re, crossing[c].second);
         if (!canonical) continue;
       }
-      for (int s = h; s < k; ++s) cand[s] = rightIndex(re, s);
+      for (int s = h; s < k; ++s)
+        cand[s] = rightIndex(re, s);
       double p = x * right.ratio(re);
       std::optional<Rational> q;
       if (p < sureLo || p > sureHi) {
@@ -901,7 +960,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
         lo.count += 1;
         if (undecidedAny) {
           bool undecided = false;
-          for (int s = 0; s < k; ++s) undecided = undecided || candidate(s, cand).undecided;
+          for (int s = 0; s < k; ++s)
+            undecided = undecided || candidate(s, cand).undecided;
           lo.undecided += undecided;
         }
       }
@@ -983,9 +1043,11 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       const double base = fastKey ? fastKey->constant() : 0;
       double rightLeast = 0;
       if (fastKey)
-        for (int s = 2; s < k; ++s) rightLeast += fastKey->least(s);
+        for (int s = 2; s < k; ++s)
+          rightLeast += fastKey->least(s);
       for (size_t i = begin; i < end; ++i) {
-        if (report && (i - begin) % 64 == 0) opt.progress(static_cast<double>(i - begin) / static_cast<double>(end - begin));
+        if (report && (i - begin) % 64 == 0)
+          opt.progress(static_cast<double>(i - begin) / static_cast<double>(end - begin));
         size_t j0 = j0FromI ? i : 0;
         if (j0 >= m1) continue;
         cand[0] = static_cast<std::uint32_t>(i);
@@ -998,15 +1060,18 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
           double wl = wantLoC * inv, wh = wantHiC * inv;
           if (r2) {
             // A short list: the window's bounds walk down it.
-            while (loP > 0 && r2[loP - 1] >= wl) --loP;
-            while (hiP > 0 && r2[hiP - 1] > wh) --hiP;
+            while (loP > 0 && r2[loP - 1] >= wl)
+              --loP;
+            while (hiP > 0 && r2[hiP - 1] > wh)
+              --hiP;
           } else {
             // A long one: its index jumps to them.
             // The queries two and one rows ahead are known: their memory is fetched now.
             if (j + 2 < m1) right.prefetchIndex(wantLoC / (r0[i] * r1[j + 2]));
             if (j + 1 < m1) right.prefetchEntries(wantLoC / (r0[i] * r1[j + 1]));
             loP = right.lowerBound(wl);
-            for (hiP = loP; hiP < rn && right.ratio(hiP) <= wh;) ++hiP;
+            for (hiP = loP; hiP < rn && right.ratio(hiP) <= wh;)
+              ++hiP;
           }
           // The window only falls and the floor only rises along a row.
           size_t from = loP;
@@ -1031,16 +1096,20 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     double rightLeast = 0;
     if (fastKey) {
       rightLeast = fastKey->constant();
-      for (int s = h; s < k; ++s) rightLeast += fastKey->least(s);
+      for (int s = h; s < k; ++s)
+        rightLeast += fastKey->least(s);
     }
     size_t loP = lower(wantLoC / leftList.ratio(begin)), hiP = upper(wantHiC / leftList.ratio(begin));
     for (size_t le = begin; le < end; ++le) {
-      if (report && (le - begin) % 65536 == 0) opt.progress(static_cast<double>(le - begin) / static_cast<double>(end - begin));
+      if (report && (le - begin) % 65536 == 0)
+        opt.progress(static_cast<double>(le - begin) / static_cast<double>(end - begin));
       double x = leftList.ratio(le);
       double inv = 1 / x;
       double wl = wantLoC * inv, wh = wantHiC * inv;
-      while (loP > 0 && right.ratio(loP - 1) >= wl) --loP;
-      while (hiP > 0 && right.ratio(hiP - 1) > wh) --hiP;
+      while (loP > 0 && right.ratio(loP - 1) >= wl)
+        --loP;
+      while (hiP > 0 && right.ratio(hiP - 1) > wh)
+        --hiP;
       size_t from = std::max(loP, rightFloor(le));
       if (from >= hiP) continue;
       double partial = rightLeast;
@@ -1053,13 +1122,16 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     if (report) opt.progress(1.0);
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(sweep, t);
+  for (int t = 1; t < threads; ++t)
+    pool.emplace_back(sweep, t);
   sweep(0);
-  for (auto& th : pool) th.join();
+  for (auto& th : pool)
+    th.join();
   std::vector<double> crossRemoved(cross.size(), 0);
   double inWindow = 0, duplicates = 0;
   unsigned long long count = 0, undecided = 0;
   struct Ref {
+    double k0; // the first key, compared before the rest is looked up
     const Local* lo;
     std::uint32_t id;
   };
@@ -1069,33 +1141,77 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     undecided += lo.undecided;
     inWindow += lo.inWindow;
     duplicates += lo.duplicates;
-    for (size_t c = 0; c < cross.size(); ++c) crossRemoved[c] += lo.crossRemoved[c];
-    for (std::uint32_t id : lo.heap) hits.push_back({&lo, id});
+    for (size_t c = 0; c < cross.size(); ++c)
+      crossRemoved[c] += lo.crossRemoved[c];
+    for (std::uint32_t id : lo.heap)
+      hits.push_back({nk ? lo.keys[id * nk] : 0.0, &lo, id});
   }
   auto refLess = [&](const Ref& x, const Ref& y) {
-    return lessRaw(&x.lo->keys[x.id * nk], &x.lo->cand[x.id * kk], &y.lo->keys[y.id * nk], &y.lo->cand[y.id * kk]);
+    if (x.k0 != y.k0) return x.k0 < y.k0;
+    return lessRaw(x.lo->keys.data() + x.id * nk, x.lo->cand.data() + x.id * kk, y.lo->keys.data() + y.id * nk,
+                   y.lo->cand.data() + y.id * kk);
   };
   if (hits.size() > keep) {
     std::partial_sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(keep), hits.end(), refLess);
     hits.resize(keep);
   } else {
-    std::sort(hits.begin(), hits.end(), refLess);
+    // By the first key alone (a plain comparison), then each run of equal first keys by
+    // the rest: most runs are a single design.
+    if (hits.size() < 65536) {
+      std::sort(hits.begin(), hits.end(), [](const Ref& x, const Ref& y) { return x.k0 < y.k0; });
+    } else {
+      // A long listing: radix sort on the bits of the first key, mapped to their order.
+      auto order = [](double v) {
+        std::uint64_t u;
+        std::memcpy(&u, &v, sizeof u);
+        return (u >> 63) ? ~u : u | (std::uint64_t{1} << 63);
+      };
+      std::vector<Ref> other(hits.size());
+      std::vector<size_t> at(65537);
+      for (int shift = 0; shift < 64; shift += 16) {
+        std::fill(at.begin(), at.end(), 0);
+        for (const Ref& h : hits)
+          ++at[((order(h.k0) >> shift) & 0xFFFF) + 1];
+        if (at[1 + ((order(hits[0].k0) >> shift) & 0xFFFF)] == hits.size()) continue; // one digit: already in order
+        for (size_t b = 0; b < 65536; ++b)
+          at[b + 1] += at[b];
+        for (const Ref& h : hits)
+          other[at[(order(h.k0) >> shift) & 0xFFFF]++] = h;
+        hits.swap(other);
+      }
+    }
+    for (size_t i = 0; i < hits.size();) {
+      size_t j = i + 1;
+      while (j < hits.size() && !(hits[i].k0 < hits[j].k0))
+        ++j;
+      if (j - i > 1)
+        std::sort(hits.begin() + static_cast<std::ptrdiff_t>(i), hits.begin() + static_cast<std::ptrdiff_t>(j),
+                  refLess);
+      i = j;
+    }
   }
   std::vector<Design> designs;
   designs.reserve(hits.size());
   for (const auto& x : hits) {
     Design d;
-    const std::uint32_t* cand = &x.lo->cand[x.id * kk];
-    Assignment a(m);
-    fill(a, cand);
-    d.choice = std::move(a.choice);
+    const std::uint32_t* cand = x.lo->cand.data() + x.id * kk;
+    d.choice.assign(m.slots.size(), -1);
+    for (int s = 0; s < k; ++s) {
+      const auto& slots = m.stages[static_cast<size_t>(s)].slots;
+      const auto& idx = candidate(s, cand).idx;
+      for (size_t j = 0; j < slots.size(); ++j)
+        d.choice[static_cast<size_t>(slots[j])] = idx[j];
+    }
     d.ratio = exactRatio(cand);
-    d.keys.assign(x.lo->keys.begin() + static_cast<std::ptrdiff_t>(x.id * nk), x.lo->keys.begin() + static_cast<std::ptrdiff_t>((x.id + 1) * nk));
-    for (int s = 0; s < k; ++s) d.undecided = d.undecided || candidate(s, cand).undecided;
+    d.keys.assign(x.lo->keys.begin() + static_cast<std::ptrdiff_t>(x.id * nk),
+                  x.lo->keys.begin() + static_cast<std::ptrdiff_t>((x.id + 1) * nk));
+    for (int s = 0; s < k; ++s)
+      d.undecided = d.undecided || candidate(s, cand).undecided;
     designs.push_back(std::move(d));
   }
 
-  std::string windowText = windowTexts.empty() ? "ratio (no window)" : fmt::format("{}", fmt::join(windowTexts, " and "));
+  std::string windowText =
+      windowTexts.empty() ? "ratio (no window)" : fmt::format("{}", fmt::join(windowTexts, " and "));
   // With interchangeable stages enumerated canonically, what passes the window is
   // already one design per orbit.
   if (fast && !ordered.empty()) windowText += " (interchangeable stages: one design per orbit)";
@@ -1105,7 +1221,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     res.funnel.push_back({cross[c]->text, "", before, crossRemoved[c]});
     before -= crossRemoved[c];
   }
-  if (group.size() > 1 && !fast) res.funnel.push_back({"interchangeable: one design per orbit", "", before, duplicates});
+  if (group.size() > 1 && !fast)
+    res.funnel.push_back({"interchangeable: one design per orbit", "", before, duplicates});
   res.count = count;
   res.undecided = undecided;
   res.designs = std::move(designs);
