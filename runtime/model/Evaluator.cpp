@@ -16,6 +16,17 @@ namespace gbx::rt {
 // threads of one search share an evaluator.
 thread_local int evalDepth = 0;
 
+namespace {
+// One level of that nesting, given back however the evaluation ends.
+struct Nesting {
+  bool ok;
+  Nesting() : ok(++evalDepth <= 64) {}
+  ~Nesting() { --evalDepth; }
+  Nesting(const Nesting&) = delete;
+  Nesting& operator=(const Nesting&) = delete;
+};
+} // namespace
+
 
 namespace arith {
 
@@ -142,13 +153,9 @@ Value Evaluator::eval(const ir::Expr& e, const Assignment& a) const {
   case Op::Let: {
     if (e.let < 0 || static_cast<size_t>(e.let) >= m_.gearbox.lets.size()) return Value::invalid();
     const auto& l = m_.gearbox.lets[static_cast<size_t>(e.let)];
-    if (!l.expr || ++evalDepth > 64) {
-      if (l.expr) --evalDepth;
-      return Value::invalid();
-    }
-    Value v = eval(*l.expr, a);
-    --evalDepth;
-    return v;
+    if (!l.expr) return Value::invalid();
+    Nesting level;
+    return level.ok ? eval(*l.expr, a) : Value::invalid();
   }
   case Op::Symbol: return Value::invalid();
   case Op::Neg: return arith::neg(arg(0));
@@ -370,13 +377,8 @@ Value Evaluator::givenAttribute(int stage, int gear, Q key, const Assignment& a)
     return lo == hi ? Value::number(lo) : Value::range(lo, hi);
   }
   if (!en.attr || !en.attr->value) return derived(stage, gear, key, a);
-  if (++evalDepth > 64) {
-    --evalDepth;
-    return Value::invalid();
-  }
-  Value v = eval(*en.attr->value, a);
-  --evalDepth;
-  return v;
+  Nesting level;
+  return level.ok ? eval(*en.attr->value, a) : Value::invalid();
 }
 
 Value Evaluator::derived(int stage, int gear, Q key, const Assignment& a) const {

@@ -311,8 +311,15 @@ std::optional<FastKey> FastKey::build(const Evaluator& ev, const ir::Expr& e, bo
       t.g[c] = v.isNumber() && v.lo == v.hi && std::isfinite(t.g[c]) ? t.g[c] + coef * v.lo : INFINITY;
     }
   }
-  for (auto& t : k.tables_)
+  double magnitude = std::fabs(k.constant_);
+  for (auto& t : k.tables_) {
     t.least = t.g.empty() ? 0.0 : *std::min_element(t.g.begin(), t.g.end());
+    double most = 0;
+    for (double x : t.g)
+      if (std::isfinite(x)) most = std::max(most, std::fabs(x));
+    magnitude += most;
+  }
+  k.rounding_ = 1e-12 * magnitude * static_cast<double>(k.tables_.size() + 2);
   return k;
 }
 

@@ -64,6 +64,15 @@ public:
       v += c * f.at(ratio);
     return v;
   }
+  // A lower bound of the key at a ratio computed in doubles: the ratio widened by 1e-12 of
+  // itself, the sum less its rounding.
+  double lowerAt(const std::uint32_t* cand, double ratio) const {
+    double v = constant_;
+    for (const auto& t : tables_) v += t.g[cand[t.stage]];
+    return v + ratioLower(ratio * (1 - 1e-12), ratio * (1 + 1e-12)) - rounding_;
+  }
+  // What summing the terms in doubles may lose, for any design (from their magnitudes).
+  double rounding() const { return rounding_; }
   bool hasTable(int s) const { return tableOf_[static_cast<size_t>(s)] >= 0; }
   double entry(int s, std::uint32_t c) const {
     int t = tableOf_[static_cast<size_t>(s)];
@@ -88,6 +97,7 @@ private:
     double least = 0;
   };
   double constant_ = 0;
+  double rounding_ = 0;
   std::vector<Table> tables_;
   std::vector<int> tableOf_;
   std::vector<std::pair<double, RatioFn>> ratio_;

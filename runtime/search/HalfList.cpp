@@ -209,11 +209,15 @@ HalfList HalfList::build(const std::vector<std::vector<double>>& ratios,
   for (int s = from; s < to; ++s)
     tuples *= static_cast<double>(ratios[static_cast<size_t>(s)].size());
   if (tuples >= 4294967295.0) {
-    H.error_ = fmt::format(
-        "the join's half over {} stages would hold up to {:.3g} entries (more than 2^32): narrow the tooth ranges",
-        H.width_, tuples);
-    H.width_ = 0;
-    return H;
+    // The canonical order (interchangeable stages) may keep far fewer: count them.
+    double kept = 0;
+    H.forEach(ordered, [&](std::uint64_t, double) { kept += 1; });
+    if (kept >= 4294967295.0) {
+      H.error_ = fmt::format("the join's half over {} stages would hold {:.3g} entries (more than 2^32): narrow the tooth ranges",
+                             H.width_, kept);
+      H.width_ = 0;
+      return H;
+    }
   }
   if (bits <= 32)
     H.fill(ordered, H.codes_);

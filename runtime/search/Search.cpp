@@ -604,10 +604,14 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   bool fast = stageSwapsOnly && cross.empty();
   if (fast && group.size() > 1) {
     for (const auto& gp : m.gearbox.interchangeable) {
-      for (size_t i = 0; i + 1 < gp.size(); ++i) {
-        int a = m.stageIndex(gp[i]), b = m.stageIndex(gp[i + 1]);
-        if (!sameList(a, b)) fast = false;
-        ordered.emplace_back(std::min(a, b), std::max(a, b));
+      // Links between neighbours in stage order, whatever order the group is written in
+      // (`c, a, b` links a-b and b-c: a chain, so each orbit is enumerated once).
+      std::vector<int> members;
+      for (const auto& name : gp) members.push_back(m.stageIndex(name));
+      std::sort(members.begin(), members.end());
+      for (size_t i = 0; i + 1 < members.size(); ++i) {
+        if (!sameList(members[i], members[i + 1])) fast = false;
+        ordered.emplace_back(members[i], members[i + 1]);
       }
     }
   }
@@ -728,14 +732,15 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     if (opt.sortBy) {
       auto d = direct(i, a);
       Value v = d ? Value::number(*d) : ev.eval(*opt.sortBy, a);
-      out[i++] = v.isNumber() ? rankingKey(v.lo) : INFINITY;
+      out[i++] = v.isNumber() && !std::isnan(v.lo) ? rankingKey(v.lo) : INFINITY;
     }
     if (opt.deferDynamics) return; // ranked by the optimiser
     for (const auto& o : m.gearbox.objectives) {
       auto d = direct(i, a);
       Value v = d ? Value::number(*d) : o.expr ? ev.eval(*o.expr, a) : Value::invalid();
       // Over a freedom the best attainable value counts: the design may choose it.
-      out[i++] = v.isNumber() ? rankingKey(o.minimize ? v.lo : -v.hi) : INFINITY;
+      double x = o.minimize ? v.lo : -v.hi;
+      out[i++] = v.isNumber() && !std::isnan(x) ? rankingKey(x) : INFINITY; // NaN would break the order
     }
   };
   const size_t keep = opt.top ? static_cast<size_t>(std::max(0LL, *opt.top)) : SIZE_MAX;
@@ -969,7 +974,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       if (fastKey && full(lo)) {
         // Screen in doubles: only a design that may beat the worst kept one is keyed exactly.
         double w = worst0(lo);
-        if (fastKey->value(cand, p) > w + slack(w)) continue;
+        if (fastKey->lowerAt(cand, p) > w + slack(w)) continue;
       }
       fill(a, cand);
       if (!q) q = exactRatio(cand);
@@ -983,7 +988,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   auto bounded = [&](const Local& lo, double partial, double rlo, double rhi) {
     if (!fastKey || !full(lo)) return false;
     double w = worst0(lo);
-    double lb = partial + fastKey->ratioLower(rlo * (1 - 1e-12), rhi * (1 + 1e-12));
+    double lb = partial + fastKey->ratioLower(rlo * (1 - 1e-12), rhi * (1 + 1e-12)) - fastKey->rounding();
     return lb > w + slack(w);
   };
   auto sweep = [&](int t) {

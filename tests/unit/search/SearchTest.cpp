@@ -499,3 +499,45 @@ TEST(Search, PrunedTopNAgreesWithTheExhaustiveRanking) {
   }
   EXPECT_GT(pruned, 30) << "most trials should have more designs than they keep";
 }
+
+// A steep objective whose best designs tie at zero: the screen in doubles must not drop a
+// tied design that the exact ranking keeps (the ratio's rounding, times a million, is
+// larger than the slack of a key near zero).
+TEST(Search, SteepObjectiveTiesAtZeroAreRankedExactly) {
+  std::string text = "gearbox S {\n"
+                     "  stage a: spur { pinion.z in 12..22; wheel.z in 20..48; }\n"
+                     "  stage b: spur { pinion.z in 12..22; wheel.z in 14..48; }\n"
+                     "  stage c like b;\n  stage d like b;\n"
+                     "  require ratio == 13.5 +- 0.00001%;\n"
+                     "  minimize abs(ratio - 13.5) * 1000000;\n}\n";
+  auto c = driver::compileText("s.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::Model m(c->program, c->program.gearboxes[0]);
+  rt::SearchOptions all;
+  all.exhaustive = true;
+  auto want = rt::search(m, all);
+  ASSERT_GT(want.designs.size(), 3u);
+  for (long long n : {1, 3, 20}) {
+    rt::SearchOptions top;
+    top.top = n;
+    auto got = rt::search(m, top);
+    EXPECT_EQ(got.count, want.count);
+    ASSERT_EQ(got.designs.size(), static_cast<size_t>(n));
+    for (size_t i = 0; i < got.designs.size(); ++i) EXPECT_EQ(got.designs[i].choice, want.designs[i].choice) << "top " << n << ", rank " << i + 1;
+  }
+}
+
+// The order a group is written in does not change what is one design.
+TEST(Search, InterchangeableInAnyWrittenOrderCountsEachOrbitOnce) {
+  auto spec = [](const std::string& group) {
+    return "gearbox Three {\n  stage a: spur { pinion.z in 12..20; wheel.z in 20..40; require coprime(pinion.z, wheel.z); }\n"
+           "  stage b like a;\n  stage c like a;\n  interchangeable " +
+           group + ";\n  require ratio == 13.36838 +- 0.05%;\n}\n";
+  };
+  unsigned long long counts[3];
+  const char* groups[] = {"a, b, c", "c, a, b", "a, c, b"};
+  for (int i = 0; i < 3; ++i) counts[i] = solveText(spec(groups[i]), "Three").result.count;
+  EXPECT_EQ(counts[0], 45u);
+  EXPECT_EQ(counts[1], counts[0]);
+  EXPECT_EQ(counts[2], counts[0]);
+}
