@@ -42,6 +42,20 @@ Solved solveText(const std::string& text, const std::string& gearbox, int jobs =
 
 std::string spec(const std::string& name) { return readSpec(name); }
 
+// A spec compiled and its first gearbox's search model (the test owns both).
+struct Compiled {
+  std::unique_ptr<driver::Compilation> c;
+  std::unique_ptr<rt::Model> m;
+};
+
+Compiled compileFirst(const std::string& text) {
+  Compiled out;
+  out.c = driver::compileText("t.gbx", text);
+  if (!out.c->ok()) throw std::runtime_error(text + out.c->diags.renderText(out.c->sources));
+  out.m = std::make_unique<rt::Model>(out.c->program, out.c->program.gearboxes[0]);
+  return out;
+}
+
 std::map<std::string, long long> values(const rt::Model& m, const rt::Design& d) {
   std::map<std::string, long long> v;
   for (size_t i = 0; i < m.slots.size(); ++i)
@@ -398,9 +412,8 @@ TEST(Search, ProgressReachesTheEndOfTheJoin) {
   std::string text = "gearbox Bench {\n  stage s0: spur { pinion.z in 12..100; wheel.z in 12..100; require coprime(pinion.z, wheel.z); }\n"
                      "  stage s1 like s0;\n  stage s2 like s0;\n  interchangeable s0, s1, s2;\n"
                      "  require ratio == 13.36838 +- 0.0001%;\n}\n";
-  auto c = driver::compileText("t.gbx", text);
-  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
-  rt::Model m(c->program, c->program.gearboxes[0]);
+  Compiled spec = compileFirst(text);
+  const rt::Model& m = *spec.m;
   rt::SearchOptions o;
   std::vector<double> seen;
   o.progress = [&](double f) { seen.push_back(f); };
@@ -510,9 +523,8 @@ TEST(Search, SteepObjectiveTiesAtZeroAreRankedExactly) {
                      "  stage c like b;\n  stage d like b;\n"
                      "  require ratio == 13.5 +- 0.00001%;\n"
                      "  minimize abs(ratio - 13.5) * 1000000;\n}\n";
-  auto c = driver::compileText("s.gbx", text);
-  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
-  rt::Model m(c->program, c->program.gearboxes[0]);
+  Compiled spec = compileFirst(text);
+  const rt::Model& m = *spec.m;
   rt::SearchOptions all;
   all.exhaustive = true;
   auto want = rt::search(m, all);
