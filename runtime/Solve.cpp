@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -24,6 +25,34 @@
 namespace gbx::rt {
 
 namespace {
+
+// A file written whole or not at all: into a temporary file beside it, then renamed over
+// it, so a reader (or a second gbxc writing the same folder) sees the old file or the new
+// one, never a part. Returns what went wrong, or nothing.
+std::string writeWhole(const std::filesystem::path& path, const std::string& text) {
+  static std::atomic<unsigned> serial{0};
+  std::filesystem::path tmp = path;
+  tmp += fmt::format(".tmp-{}-{}", static_cast<long>(getpid()), serial++);
+  std::error_code ec;
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (f) {
+      f << text;
+      f.close();
+    }
+    if (!f) {
+      std::filesystem::remove(tmp, ec);
+      return fmt::format("cannot write `{}` (an unwritable folder, or a full disk)", path.string());
+    }
+  }
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    return fmt::format("cannot write `{}`: {}", path.string(), ec.message());
+  }
+  return {};
+}
 
 // A progress bar on stderr, shared by the callback; finished when the last copy goes.
 std::function<void(double)> progressBar(std::ostream& err, std::string label) {
@@ -94,14 +123,22 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
   if (!o.outDir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(o.outDir, ec);
-    for (const auto& c : rendered.charts) std::ofstream(std::filesystem::path(o.outDir) / c.name) << c.svg;
-    for (const auto& t : rendered.tables) std::ofstream(std::filesystem::path(o.outDir) / t.name, std::ios::binary) << t.text;
-    std::ofstream f(std::filesystem::path(o.outDir) / rendered.reportFile, std::ios::binary);
-    if (!f) {
-      err << fmt::format("gbxc: cannot write into `{}`\n", o.outDir);
+    if (ec) {
+      err << fmt::format("gbxc: cannot create the output folder `{}`: {}\n", o.outDir, ec.message());
       return 3;
     }
-    f << rendered.report;
+    const std::filesystem::path dir(o.outDir);
+    std::vector<std::string> failures;
+    auto put = [&](const std::string& name, const std::string& text) {
+      std::string e = writeWhole(dir / name, text);
+      if (!e.empty()) failures.push_back(e);
+    };
+    for (const auto& c : rendered.charts) put(c.name, c.svg);
+    for (const auto& t : rendered.tables) put(t.name, t.text);
+    // The report last: a new report is never beside old plots it does not name.
+    if (failures.empty()) put(rendered.reportFile, rendered.report);
+    for (const auto& f : failures) err << "gbxc: " << f << "\n";
+    if (!failures.empty()) return 3;
   }
   return status;
 }

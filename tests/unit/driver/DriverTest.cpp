@@ -379,3 +379,33 @@ TEST(Cli, CsvListingMadeOnDemandEqualsTheHeldTable) {
   EXPECT_EQ(streamed.err, held.err);
   EXPECT_NE(streamed.err.find("has no value for design"), std::string::npos) << streamed.err;
 }
+
+// Files in -o DIR are written whole (a temporary file renamed over the old one): no
+// temporary is left, a second run replaces them, and a folder that cannot be written is
+// a clear error with exit 3.
+TEST(Cli, OutputFolderIsWrittenWholeOrNotAtAll) {
+  fs::path spec = fs::path(GBX_SOURCE_DIR) / "specs" / "thruster_one_stage.gbx";
+  fs::path d = tempDir("atomic");
+  for (int run = 0; run < 2; ++run) {
+    auto r = gbxc({"solve", spec.string(), "--no-timings", "--format", "html", "-o", (d / "out").string()});
+    EXPECT_EQ(r.status, 0) << r.err;
+  }
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(d / "out")) {
+    ++files;
+    EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+  }
+  EXPECT_GT(files, 0);
+  EXPECT_TRUE(fs::exists(d / "out" / "report.html"));
+  // Under a regular file no folder can be made.
+  write(d / "plain", "x");
+  auto bad = gbxc({"solve", spec.string(), "-o", (d / "plain" / "out").string()});
+  EXPECT_EQ(bad.status, 3);
+  EXPECT_NE(bad.err.find("cannot create the output folder"), std::string::npos) << bad.err;
+  // The report's name taken by a folder: the report cannot replace it.
+  fs::create_directories(d / "taken" / "report.txt");
+  auto taken = gbxc({"solve", spec.string(), "-o", (d / "taken").string()});
+  EXPECT_EQ(taken.status, 3);
+  EXPECT_NE(taken.err.find("cannot write"), std::string::npos) << taken.err;
+  for (const auto& e : fs::directory_iterator(d / "taken")) EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+}
