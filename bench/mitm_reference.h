@@ -23,7 +23,6 @@ __extension__ using i128 = __int128;
 struct MitmResult {
   unsigned long long count = 0;
   std::vector<double> best; // |ratio - target| of the kept designs, ascending
-  size_t bytes = 0;         // the reference's own tables
   size_t written = 0;  // bytes of the CSV lines written
 };
 
@@ -74,7 +73,6 @@ inline MitmResult mitmReference(int stages, int maxTeeth, size_t top, std::FILE*
     forRight([&](std::uint32_t code, double l) { sorted[next[bucketOf(l)]++] = code; });
   }
   MitmResult res;
-  res.bytes = sorted.size() * 4 + start.size() * 4 + pairs.size() * sizeof(Pair);
   std::vector<double> heap; // max-heap of the kept |ratio - target|
   std::string line;
   const double lo = 13.36838 * (1 - 1e-6), hi = 13.36838 * (1 + 1e-6);

@@ -330,15 +330,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "unknown case %s\n", which.c_str());
     return 2;
   }
-  auto c = driver::compileText("bench.gbx", text);
-  if (!c->ok()) {
-    std::fputs(c->diags.renderText(c->sources).c_str(), stderr);
-    return 1;
-  }
-  const ir::Gearbox* g = nullptr;
-  for (const auto& x : c->program.gearboxes)
-    if (x.name == gearbox) g = &x;
-  rt::Model model(c->program, *g);
+  Compiled compiled = compileSpec(text, gearbox);
+  const rt::Model& model = *compiled.model;
   rt::SearchOptions opt;
   opt.jobs = jobs;
   opt.top = argc > 3 ? std::atoll(argv[3]) : 100;  // a third argument: how many designs to keep

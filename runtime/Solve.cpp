@@ -76,7 +76,8 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     return !errors.empty();
   };
   std::vector<GearboxReport> reports;
-  // A CSV listing's rows are made as the report is written, from the gearbox's model.
+  // A CSV listing's rows are made as the report is written, from the gearbox's model (the
+  // one case: the other renderers and the tables of -o DIR read held rows).
   const bool lazyRows = format->name == "csv" && o.outDir.empty();
   std::vector<std::unique_ptr<Model>> models;
   for (const auto& gb : program.gearboxes) {

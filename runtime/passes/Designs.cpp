@@ -80,12 +80,9 @@ public:
     row.rank = static_cast<int>(i) + 1;
     row.ratio = d.ratio;
     row.undecided = d.undecided;
-    Assignment& a = a_;
-    a.box = blank_.box;
-    a.choice = d.choice;
+    const Assignment& a = assign(i);
     if (i < freedoms_.size())
       for (size_t f = 0; f < freedoms_[i].size(); ++f) {
-        a.box[f] = {freedoms_[i][f], freedoms_[i][f]};
         const Freedom& fr = m.freedoms[f];
         const ir::Attribute* at = m.attribute(fr.stage, fr.gear, fr.key);
         auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
@@ -149,17 +146,19 @@ public:
     }
   }
 
-  bool valid(size_t i, size_t c) const override {
-    const Design& d = (*designs_)[i];
+  bool valid(size_t i, size_t c) const override { return value(i, c, assign(i)).isNumber(); }
+
+private:
+  // Design i as the evaluator reads it: its choices, its freedoms at their optimum.
+  const Assignment& assign(size_t i) const {
     a_.box = blank_.box;
-    a_.choice = d.choice;
+    a_.choice = (*designs_)[i].choice;
     if (i < freedoms_.size())
       for (size_t f = 0; f < freedoms_[i].size(); ++f)
         a_.box[f] = {freedoms_[i][f], freedoms_[i][f]};
-    return value(i, c, a_).isNumber();
+    return a_;
   }
 
-private:
   // Column c of design i at its assignment. A listing's rows are made more than once
   // (checked, then written): their values are found once.
   Value value(size_t i, size_t c, const Assignment& a) const {

@@ -4,15 +4,6 @@ namespace gbx::rt::passes {
 
 Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, const RenderOptions& o) {
   Rendered r;
-  // Rows made on demand serve the CSV listing; any other format holds them all.
-  if (format.name != "csv" || o.charts)
-    for (auto& g : reports)
-      if (g.source) {
-        std::vector<DesignRow> rows(g.source->size());
-        for (size_t i = 0; i < rows.size(); ++i) g.source->row(i, rows[i], true);
-        g.rows = std::move(rows);
-        g.source.reset();
-      }
   // Charts first: the report names the files it is drawn beside.
   if (o.charts || format.inlineCharts) r.charts = drawCharts(reports);
   RenderOptions ro = o;

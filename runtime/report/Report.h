@@ -242,7 +242,6 @@ void forEachRow(const GearboxReport& g, F&& f) {
     f(static_cast<const DesignRow&>(r));
   }
 }
-inline size_t rowCount(const GearboxReport& g) { return g.source ? g.source->size() : g.rows.size(); }
 
 std::string formatNumber(double v);
 // A length as a gear engineer reads it: um below a millimetre, mm above.

@@ -68,12 +68,12 @@ public:
   // itself, the sum less its rounding.
   double lowerAt(const std::uint32_t* cand, double ratio) const {
     double v = constant_;
-    for (const auto& t : tables_) v += t.g[cand[t.stage]];
+    for (const auto& t : tables_)
+      v += t.g[cand[t.stage]];
     return v + ratioLower(ratio * (1 - 1e-12), ratio * (1 + 1e-12)) - rounding_;
   }
   // What summing the terms in doubles may lose, for any design (from their magnitudes).
   double rounding() const { return rounding_; }
-  bool hasTable(int s) const { return tableOf_[static_cast<size_t>(s)] >= 0; }
   double entry(int s, std::uint32_t c) const {
     int t = tableOf_[static_cast<size_t>(s)];
     return t < 0 ? 0.0 : tables_[static_cast<size_t>(t)].g[c];

@@ -10,11 +10,12 @@ namespace gbx::rt {
 
 namespace {
 
-// The order of positive doubles is the order of their bits; this map extends it to all.
-std::uint64_t orderKey(double r) {
-  std::uint64_t u;
-  std::memcpy(&u, &r, sizeof u);
-  return (u >> 63) ? ~u : u | (std::uint64_t{1} << 63);
+// The bucket of r: its order key above k0, shifted, clamped to [0, last] (monotone in r).
+size_t bucketIn(double r, std::uint64_t k0, int shift, size_t last) {
+  std::uint64_t k = orderKey(r);
+  if (k <= k0) return 0;
+  std::uint64_t b = shift >= 64 ? 0 : (k - k0) >> shift;
+  return static_cast<size_t>(std::min<std::uint64_t>(b, last));
 }
 
 int bitsFor(size_t n) {
@@ -95,12 +96,7 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
   while (shift < 64 && (span >> shift) >= buckets)
     ++shift;
   buckets = positive ? static_cast<size_t>(span >> shift) + 1 : 1;
-  auto bucketOf = [&](double r) -> size_t {
-    std::uint64_t k = orderKey(r);
-    if (k <= k0) return 0;
-    return std::min<size_t>(static_cast<size_t>((k - k0) >> shift), buckets - 1);
-  };
-  (void)positive;
+  auto bucketOf = [&](double r) { return bucketIn(r, k0, shift, buckets - 1); };
   // Counting sort: counts into start[b + 2], their prefix sums, then start[b + 1] runs as
   // bucket b's write position and ends as its end, so start[b] is its beginning.
   std::vector<std::uint32_t> start(buckets + 2, 0);
@@ -144,12 +140,7 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
   index_[coarse] = static_cast<std::uint32_t>(n);
 }
 
-size_t HalfList::bucketOf(double r) const {
-  std::uint64_t k = orderKey(r);
-  if (k <= key0_) return 0;
-  std::uint64_t b = keyShift_ >= 64 ? 0 : (k - key0_) >> keyShift_;
-  return static_cast<size_t>(std::min<std::uint64_t>(b, index_.size() - 2));
-}
+size_t HalfList::bucketOf(double r) const { return bucketIn(r, key0_, keyShift_, index_.size() - 2); }
 
 size_t HalfList::bound(double v, bool strict) const {
   size_t lo = 0, hi = n_;
@@ -213,8 +204,9 @@ HalfList HalfList::build(const std::vector<std::vector<double>>& ratios,
     double kept = 0;
     H.forEach(ordered, [&](std::uint64_t, double) { kept += 1; });
     if (kept >= 4294967295.0) {
-      H.error_ = fmt::format("the join's half over {} stages would hold {:.3g} entries (more than 2^32): narrow the tooth ranges",
-                             H.width_, kept);
+      H.error_ = fmt::format(
+          "the join's half over {} stages would hold {:.3g} entries (more than 2^32): narrow the tooth ranges",
+          H.width_, kept);
       H.width_ = 0;
       return H;
     }

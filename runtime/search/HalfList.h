@@ -7,11 +7,19 @@
 // ratio's bits (monotone in the ratio, about uniform in its logarithm), then within each
 // bucket: no per-entry allocation, no copies of keys.
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace gbx::rt {
+
+// The order of positive doubles is the order of their bits; this map extends it to all.
+inline std::uint64_t orderKey(double r) {
+  std::uint64_t u;
+  std::memcpy(&u, &r, sizeof u);
+  return (u >> 63) ? ~u : u | (std::uint64_t{1} << 63);
+}
 
 class HalfList {
 public:
@@ -40,7 +48,6 @@ public:
   }
   // Why the list could not be built (the tuples do not fit a 64-bit code), or empty.
   const std::string& error() const { return error_; }
-  size_t bytes() const { return codes_.capacity() * sizeof(std::uint32_t) + wide_.capacity() * sizeof(std::uint64_t); }
 
 private:
   std::uint64_t code(size_t e) const { return identity_ ? e : (wide_.empty() ? codes_[e] : wide_[e]); }

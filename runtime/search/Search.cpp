@@ -1166,22 +1166,17 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       std::sort(hits.begin(), hits.end(), [](const Ref& x, const Ref& y) { return x.k0 < y.k0; });
     } else {
       // A long listing: radix sort on the bits of the first key, mapped to their order.
-      auto order = [](double v) {
-        std::uint64_t u;
-        std::memcpy(&u, &v, sizeof u);
-        return (u >> 63) ? ~u : u | (std::uint64_t{1} << 63);
-      };
       std::vector<Ref> other(hits.size());
       std::vector<size_t> at(65537);
       for (int shift = 0; shift < 64; shift += 16) {
         std::fill(at.begin(), at.end(), 0);
         for (const Ref& h : hits)
-          ++at[((order(h.k0) >> shift) & 0xFFFF) + 1];
-        if (at[1 + ((order(hits[0].k0) >> shift) & 0xFFFF)] == hits.size()) continue; // one digit: already in order
+          ++at[((orderKey(h.k0) >> shift) & 0xFFFF) + 1];
+        if (at[1 + ((orderKey(hits[0].k0) >> shift) & 0xFFFF)] == hits.size()) continue; // one digit: already in order
         for (size_t b = 0; b < 65536; ++b)
           at[b + 1] += at[b];
         for (const Ref& h : hits)
-          other[at[(order(h.k0) >> shift) & 0xFFFF]++] = h;
+          other[at[(orderKey(h.k0) >> shift) & 0xFFFF]++] = h;
         hits.swap(other);
       }
     }
