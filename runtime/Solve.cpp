@@ -1,6 +1,9 @@
 #include "Solve.h"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <atomic>
 #include <filesystem>
@@ -12,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "model/Deadline.h"
 #include "passes/Designs.h"
 #include "report/Progress.h"
 #include "passes/Modifications.h"
@@ -26,14 +30,47 @@ namespace gbx::rt {
 
 namespace {
 
+// The temporary file being written, for the signal handler: Ctrl-C (or a kill) while a
+// report is written removes it, and the old file stays as it was.
+char gPending[4096];
+volatile std::sig_atomic_t gHasPending = 0;
+
+void removePendingAndStop(int sig) {
+  if (gHasPending) ::unlink(gPending);  // async-signal-safe
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+// Installed once, and only over the default action (a host's own handler is kept).
+void installSignalCleanup() {
+  static const bool installed = [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction old {};
+      if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_DFL) std::signal(sig, removePendingAndStop);
+    }
+    return true;
+  }();
+  (void)installed;
+}
+
 // A file written whole or not at all: into a temporary file beside it, then renamed over
 // it, so a reader (or a second gbxc writing the same folder) sees the old file or the new
 // one, never a part. Returns what went wrong, or nothing.
 std::string writeWhole(const std::filesystem::path& path, const std::string& text) {
   static std::atomic<unsigned> serial{0};
+  installSignalCleanup();
   std::filesystem::path tmp = path;
   tmp += fmt::format(".tmp-{}-{}", static_cast<long>(getpid()), serial++);
   std::error_code ec;
+  const std::string& t = tmp.string();
+  if (t.size() < sizeof gPending) {
+    std::copy(t.begin(), t.end(), gPending);
+    gPending[t.size()] = '\0';
+    gHasPending = 1;
+  }
+  struct Done {
+    ~Done() { gHasPending = 0; }
+  } done;
   {
     std::ofstream f(tmp, std::ios::binary);
     if (f) {
@@ -69,11 +106,24 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
   // A progress bar only for a person watching a terminal; reports stay clean.
   bool tty = !o.quiet && isatty(STDERR_FILENO);
   auto progress = [&](const std::string& label) { return tty ? progressBar(err, label) : std::function<void(double)>(); };
+  // The time limit runs from here; it is lifted when the solve returns.
+  Deadline::start(o.timeLimit);
+  struct Lift {
+    ~Lift() { Deadline::clear(); }
+  } lift;
   int status = 0;
   auto fail = [&](const std::string& gearbox, const std::vector<std::string>& errors) {
     for (const auto& e : errors) err << fmt::format("gbxc: gearbox `{}`: {}\n", gearbox, e);
     if (!errors.empty()) status = 3;
     return !errors.empty();
+  };
+  // Past the time limit nothing more is worked out and no report is written: a report
+  // with some of its results missing would read as complete.
+  auto timeUp = [&](const std::string& gearbox, const char* during) {
+    if (!Deadline::expired()) return false;
+    err << fmt::format("gbxc: gearbox `{}`: time limit of {:g} s (--time-limit) reached during {}; no report written\n", gearbox,
+                       Deadline::seconds(), during);
+    return true;
   };
   std::vector<GearboxReport> reports;
   // A CSV listing's rows are made as the report is written, from the gearbox's model (the
@@ -84,9 +134,14 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     if (!o.gearbox.empty() && gb.name != o.gearbox) continue;
     models.push_back(std::make_unique<Model>(program, gb));
     const Model& m = *models.back();
-    SearchResult found = passes::search(m, o.jobs, progress(gb.name));
-    if (fail(gb.name, found.errors)) continue;
+    SearchResult found = passes::search(m, o.jobs, o.maxDesigns, progress(gb.name));
+    if (fail(gb.name, found.errors)) {
+      if (Deadline::expired()) return 3;  // the message says so; nothing more is worked out
+      continue;
+    }
+    if (timeUp(gb.name, "the search")) return 3;
     passes::Optimised designs = passes::optimise(program, m, std::move(found), o.jobs, progress(gb.name + " optimising"));
+    if (timeUp(gb.name, "the optimisation")) return 3;
     passes::Columns columns = passes::reportColumns(gb);
     std::optional<Assignment> best = passes::bestDesign(m, designs);
     GearboxReport rep = passes::designTable(m, designs, columns, lazyRows);
@@ -108,6 +163,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       for (const auto& st : rep.studies)
         if (const auto* s = std::get_if<SweepStudy>(&st.study); s && !s->failure.empty()) studyErrors.push_back(s->failure);
       fail(gb.name, studyErrors);
+      if (timeUp(gb.name, "its scenes and studies")) return 3;
     }
     if (best) {
       passes::Ratings rated = passes::ratings(m, *best);

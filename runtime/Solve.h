@@ -14,6 +14,8 @@ struct SolveOptions {
   int jobs = 1;
   bool quiet = false;
   bool timings = true;  // CPU times in reports (off for golden files)
+  double maxDesigns = 1e9;  // the search budget (`--max-designs`)
+  double timeLimit = 0;     // seconds of wall time (`--time-limit`); 0: none
 };
 
 // Returns the exit status: 0 solved (an empty design list included), 3 a runtime failure.

@@ -2,6 +2,7 @@
 # Installs what a fresh Debian machine lacks, then configures and builds gbxc.
 #   scripts/setup.sh              release build in build/
 #   scripts/setup.sh --sanitize   AddressSanitizer + UBSan build in build-asan/
+#   scripts/setup.sh --fuzz       libFuzzer targets (clang, ASan + UBSan) in build-fuzz/
 # Idempotent: packages already present are not touched; the build is incremental.
 # Works on a bare Debian bookworm (debootstrap --variant=minbase): as root it needs no sudo;
 # as another user it uses sudo, and only when a package is missing.
@@ -10,16 +11,23 @@ cd "$(dirname "$0")/.."
 
 build_dir=build
 cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
+extra_packages=()
 if [[ "${1:-}" == "--sanitize" ]]; then
   build_dir=build-asan
   cmake_args=(-DCMAKE_BUILD_TYPE=Debug -DGBX_SANITIZE=ON)
+elif [[ "${1:-}" == "--fuzz" ]]; then
+  build_dir=build-fuzz
+  # -O1 with assertions kept: fast enough to fuzz, and an assertion is a finding.
+  cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" -DGBX_FUZZ=ON
+              -DCMAKE_CXX_COMPILER=clang++)
+  extra_packages=(clang libclang-rt-dev)
 fi
 
 # uuid-dev: the ANTLR runtime's CMake target links -luuid, and libantlr4-runtime-dev does
 # not depend on it.
 # chromium: the tests render every example's HTML report in a real (headless) browser.
 packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
-          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium)
+          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium ${extra_packages[@]+"${extra_packages[@]}"})
 missing=()
 for p in "${packages[@]}"; do
   # Installed, not merely known to dpkg (a removed package keeps its config-files state).

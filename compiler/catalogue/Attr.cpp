@@ -52,6 +52,11 @@ AttrSpec bounded(AttrSpec a, std::optional<Number> lo, std::optional<Number> hi)
   a.atMost = hi;
   return a;
 }
+AttrSpec budgeted(AttrSpec a, std::int64_t most) {
+  a.atMost = Number::exact(Rational(most));
+  a.budget = true;
+  return a;
+}
 Number deg(std::int64_t d) { return Number::exact(Rational::make(d, 180), 1); }
 Number num(std::int64_t n, std::int64_t d) { return Number::exact(Rational::make(n, d)); }
 

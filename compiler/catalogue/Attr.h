@@ -37,6 +37,7 @@ struct AttrSpec {
   std::optional<units::Number> atLeast, atMost;  // inclusive bounds (SI), where the standard sets them
   std::string unitHint;                // the unit to suggest for a bare number, when not the display unit
   bool meshPeriods = false;            // may be given in mesh periods
+  bool budget = false;                 // atMost is a size budget (E0411), not a physical bound
   std::vector<std::string> symbols;    // accepted words for ValueKind::Symbol
 };
 
@@ -51,6 +52,8 @@ AttrSpec required(AttrSpec a);
 AttrSpec symbol(std::string n, std::vector<std::string> words, std::string meaning);
 AttrSpec keyed(AttrSpec a, Q key);
 AttrSpec bounded(AttrSpec a, std::optional<units::Number> lo, std::optional<units::Number> hi);
+// A count no larger than `most` (catalogue/Budgets.h).
+AttrSpec budgeted(AttrSpec a, std::int64_t most);
 units::Number deg(std::int64_t d);
 units::Number num(std::int64_t n, std::int64_t d = 1);
 } // namespace rows

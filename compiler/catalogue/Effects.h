@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "catalogue/Attr.h"
+#include "catalogue/Budgets.h"
 
 namespace gbx::cat {
 
@@ -39,7 +40,7 @@ inline const std::vector<EffectSpec>& effects() {
     };
     return std::vector<EffectSpec>{
         {Effect::VaryingStiffness, "varying_stiffness", "time-varying mesh stiffness from the contact-line length",
-         {withDefault(count("harmonics", "Fourier harmonics of the contact-line length"), num(5)),
+         {withDefault(budgeted(count("harmonics", "Fourier harmonics of the contact-line length"), budget::kHarmonics), num(5)),
           pos("stiffness", units::dims::stiffness, "mean mesh stiffness (computed from geometry when absent)")},
          {}},
         {Effect::Damping, "damping", "viscous mesh damping",
@@ -67,9 +68,9 @@ inline const std::vector<EffectSpec>& effects() {
          {}},
         {Effect::LoadedMesh, "loaded_mesh",
          "loaded static transmission error and mesh stiffness from the flank geometry (thin slices), force k(t) (x - e(t))",
-         {withDefault(count("slices", "slices across the face width"), num(40)),
-          withDefault(count("positions", "mesh positions per mesh period"), num(64)),
-          count("harmonics", "Fourier harmonics of the tables the dynamics reads (default positions / 4)")},
+         {withDefault(budgeted(count("slices", "slices across the face width"), budget::kSlices), num(40)),
+          withDefault(budgeted(count("positions", "mesh positions per mesh period"), budget::kPositions), num(64)),
+          budgeted(count("harmonics", "Fourier harmonics of the tables the dynamics reads (default positions / 4)"), budget::kHarmonics)},
          {}},
     };
   }();

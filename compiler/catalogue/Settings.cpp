@@ -1,5 +1,6 @@
 #include "catalogue/Settings.h"
 
+#include "catalogue/Budgets.h"
 #include "catalogue/Methods.h"
 
 namespace gbx::cat {
@@ -55,7 +56,7 @@ const std::vector<AttrSpec>& sceneSettings() {
     return std::vector<AttrSpec>{
         t("settle", "transient discarded before recording"),
         t("record", "recorded steady-state window"),
-        withDefault(count("samples", "samples per recorded mesh period"), num(160)),
+        withDefault(budgeted(count("samples", "samples per recorded mesh period"), budget::kSamplesPerPeriod), num(160)),
         t("duration", "simulated time from rest"),
         t("ramp", "smooth start-up time of the drive speed"),
         symbol("steady_state", {"periodic"}, "solve for the periodic response directly (Floquet, shooting with Newton)"),
@@ -76,7 +77,7 @@ const std::vector<AttrSpec>& accuracySettings() {
         pos("atol", none, "absolute tolerance (SI units of the state)"),
         step,
         hmin,
-        count("max_steps", "step limit"),
+        budgeted(count("max_steps", "step limit"), budget::kMaxSteps),
     };
   }();
   return s;
@@ -89,7 +90,7 @@ const std::vector<AttrSpec>& splitSettings() {
     between.required = true;
     return std::vector<AttrSpec>{
         between,
-        withDefault(count("branches", "number of branches"), num(2)),
+        withDefault(budgeted(count("branches", "number of branches"), budget::kBranches), num(2)),
         required(pos("torsion_shaft.length", length, "torsion shaft length")),
         required(pos("torsion_shaft.diameter", length, "torsion shaft diameter")),
         withDefault(pos("torsion_shaft.shear_modulus", pressure, "shear modulus G"), num(80000000000)),
@@ -123,7 +124,7 @@ const std::vector<AttrSpec>& sweepSettings() {
 const std::vector<AttrSpec>& workPrecisionSettings() {
   static const std::vector<AttrSpec> s = {
       pos("rtol", none, "relative tolerances to run"),
-      count("harmonics", "harmonic counts to run"),
+      budgeted(count("harmonics", "harmonic counts to run"), budget::kHarmonics),
       symbol("methods", methodNames(), "methods to compare"),
   };
   return s;

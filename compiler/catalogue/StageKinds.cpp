@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "catalogue/Budgets.h"
+
 namespace gbx::cat {
 
 using namespace units::dims;
@@ -210,7 +212,7 @@ std::vector<KindSpec> buildKinds() {
   }
   {
     std::vector<AttrSpec> a = {
-        required(count("planets", "number of planets, equally spaced")),
+        required(budgeted(count("planets", "number of planets, equally spaced"), budget::kPlanets)),
         pos("module", length, "module"),
         withDefault(pos("pressure_angle", angle, "pressure angle"), deg(20)),
         pos("face_width", length, "face width"),

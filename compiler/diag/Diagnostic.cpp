@@ -52,6 +52,8 @@ const char* severityName(Severity s) {
 }
 
 // Source window: the line, then carets under the span (to the line's end if it spans lines).
+// A long line (a generated file, a line of a thousand tolerances) is cut to a window around
+// the span, marked with `…`, so a diagnostic's size never grows with the line's.
 void renderWindow(std::string& out, const source::SourceManager& sm, const source::Span& span) {
   if (!span.valid() || span.file >= sm.size()) return;
   const auto& f = sm.get(span.file);
@@ -59,13 +61,28 @@ void renderWindow(std::string& out, const source::SourceManager& sm, const sourc
   std::replace(text.begin(), text.end(), '\t', ' ');
   std::string num = std::to_string(span.line);
   std::string pad(num.size(), ' ');
-  out += fmt::format("{} |\n{} | {}\n", pad, num, text);
-  int lineLen = source::codePoints(text);
-  int startCol = std::max(1, span.col);
+  std::vector<size_t> starts;  // byte offset of each code point
+  for (size_t i = 0; i < text.size(); ++i)
+    if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) starts.push_back(i);
+  int lineLen = static_cast<int>(starts.size());
+  int startCol = std::clamp(span.col, 1, lineLen + 1);
   int endCol = span.endLine == span.line ? span.endCol : lineLen;
-  if (endCol < startCol) endCol = startCol;
-  out += fmt::format("{} | {}{}\n", pad, std::string(static_cast<size_t>(startCol - 1), ' '),
-                     std::string(static_cast<size_t>(endCol - startCol + 1), '^'));
+  endCol = std::clamp(endCol, startCol, std::max(startCol, lineLen));
+  constexpr int kWidth = 120, kBefore = 40;
+  int first = 1, last = lineLen;
+  if (lineLen > kWidth) {
+    first = std::max(1, std::min(startCol - kBefore, lineLen - kWidth + 1));
+    last = std::min(lineLen, first + kWidth - 1);
+  }
+  auto byteAt = [&](int col) { return col > lineLen ? text.size() : starts[static_cast<size_t>(col - 1)]; };
+  std::string shown = text.substr(byteAt(first), byteAt(last + 1) - byteAt(first));
+  std::string lead = first > 1 ? "… " : "";
+  std::string tail = last < lineLen ? " …" : "";
+  out += fmt::format("{} |\n{} | {}{}{}\n", pad, num, lead, shown, tail);
+  int caretFrom = startCol - first + (first > 1 ? 2 : 0);
+  int caretLen = std::max(1, std::min(endCol, last) - startCol + 1);
+  out += fmt::format("{} | {}{}\n", pad, std::string(static_cast<size_t>(caretFrom), ' '),
+                     std::string(static_cast<size_t>(caretLen), '^'));
 }
 
 } // namespace

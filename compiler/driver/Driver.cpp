@@ -1,10 +1,12 @@
 #include "driver/Driver.h"
 
 #include <charconv>
+#include <cmath>
 #include <iostream>
 
 #include <fmt/format.h>
 
+#include "catalogue/Budgets.h"
 #include "driver/Golden.h"
 #include "lower/Lower.h"
 #include "report/Formats.h"
@@ -57,6 +59,8 @@ options:
   --gearbox NAME           solve only this gearbox
   -o DIR                   write plots and reports into DIR
   --jobs N                 worker threads (results do not depend on N)
+  --max-designs N          (solve) the search budget (default 1e9)
+  --time-limit S           (solve) stop with exit 3 after S seconds
   --quiet                  no progress output
   --no-timings             leave CPU times out of reports (for golden files)
   --update                 (test) rewrite the expected files
@@ -77,11 +81,15 @@ options:
   --gearbox NAME           solve only this gearbox
   -o DIR                   write the report, plots (SVG) and, for csv, one table per result into DIR
   --jobs N                 worker threads (results do not depend on N)
+  --max-designs N          the search budget: candidates of a stage, and combinations the
+                           join walks, counted before the work starts (default 1e9)
+  --time-limit S           stop with exit 3 after S seconds of wall time, saying how far
+                           the work got and how long the whole would take
   --quiet                  no progress bar
   --no-timings             leave CPU times out of reports
 
 exit status: 0 solved (an empty design list too), 1 the spec has errors, 2 usage,
-3 a runtime failure (a scene that fails, a value that cannot be computed)
+3 a runtime failure (a scene that fails, a value that cannot be computed, a budget reached)
 )";
 
 const char* kTestUsage = R"(usage: gbxc test PATH... [--update] [--timings]
@@ -104,6 +112,8 @@ struct Options {
   std::string gearbox;
   std::string outDir;
   int jobs = 1;
+  double maxDesigns = gbx::cat::budget::kDefaultMaxDesigns;
+  double timeLimit = 0;  // seconds; 0: none
   bool quiet = false;
   bool update = false;
   bool timings = true;
@@ -173,6 +183,8 @@ int solve(const Options& o, std::ostream& out, std::ostream& err) {
   so.jobs = o.jobs;
   so.quiet = o.quiet;
   so.timings = o.timings;
+  so.maxDesigns = o.maxDesigns;
+  so.timeLimit = o.timeLimit;
   return rt::solve(c->program, so, out, err);
 }
 
@@ -241,6 +253,14 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
       if (!v || std::from_chars(v->data(), v->data() + v->size(), n).ec != std::errc{} || n < 1 || n > 256)
         return usage(err, "--jobs needs a whole number from 1 to 256");
       o.jobs = n;
+    } else if (a == "--max-designs" || a == "--time-limit") {
+      auto v = value();
+      double x = 0;
+      // A positive number; 1e12 is as good as 1000000000000.
+      auto parsed = v ? std::from_chars(v->data(), v->data() + v->size(), x) : std::from_chars_result{};
+      if (!v || parsed.ec != std::errc{} || parsed.ptr != v->data() + v->size() || !(x > 0) || !std::isfinite(x))
+        return usage(err, fmt::format("{} needs a positive number{}", a, a == "--time-limit" ? " of seconds" : ""));
+      (a == "--max-designs" ? o.maxDesigns : o.timeLimit) = x;
     } else if (a == "--quiet" || a == "-q") {
       o.quiet = true;
     } else if (a == "--update") {

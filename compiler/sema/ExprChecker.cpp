@@ -67,6 +67,16 @@ ir::ExprPtr ExprChecker::error(const source::Span& span) { return make(Op::Const
 ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOverride) {
   auto r = units::Rational::parseDecimal(e.text);
   Number v = r ? Number::exact(*r) : Number::approx(std::strtod(e.text.c_str(), nullptr));
+  if (!r) {
+    // Beyond a double either way: 1e400 is not infinity, 1e-400 is not zero.
+    double d = v.toDouble();
+    std::string mantissa = e.text.substr(0, e.text.find_first_of("eE"));
+    bool nonzero = mantissa.find_first_of("123456789") != std::string::npos;
+    if (!std::isfinite(d) || (d == 0 && nonzero)) {
+      diags_.error("E0306", e.span, fmt::format("`{}` is beyond the range of a double (magnitudes from about 1e-308 to 1e308)", e.text));
+      return error(e.span);
+    }
+  }
   const ast::UnitExpr* u = e.unit ? &*e.unit : unitOverride;
   units::Unit unit;
   bool ok = true;
@@ -521,6 +531,10 @@ ir::ExprPtr ExprChecker::binary(const ast::Expr& e, const Scope& s) {
       v = intExp ? a->value.pow(static_cast<int>(b->value.rational().num()))
                  : Number::approx(std::pow(a->value.toDouble(), b->value.toDouble()));
     }
+    }
+    if (!v.isRational() && !std::isfinite(v.toDouble())) {
+      diags_.error("E0306", e.span, "this constant is not a finite number: it overflows a double (or is 0 times infinity)");
+      return error(e.span);
     }
     auto c = ir::makeConst(v, t.dim, t.integer && v.isRational() && v.rational().isInteger(), e.span);
     // 2 * 1% is still a percentage; a sum of percentages is not obviously one and stays plain.

@@ -1,12 +1,14 @@
 #include "sema/Sema.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <set>
 
 #include <fmt/format.h>
 
+#include "catalogue/Budgets.h"
 #include "sema/Catalogue.h"
 #include "sema/ExprChecker.h"
 #include "sema/Model.h"
@@ -239,6 +241,13 @@ private:
       if (spec.positive && x->value.sign() <= 0) {
         diags_.error(name == "z" || lastPart(name) == "z" ? "E0402" : "E0405", x->span,
                      fmt::format("`{}` must be positive, got {}", name, units::showQuantity(x->value, x->type.dim)));
+        return out;
+      }
+      if (spec.budget && spec.atMost && x->value.compare(*spec.atMost) > 0) {
+        diags_.error("E0411", x->span,
+                     fmt::format("`{}` = {} is beyond its budget of {} ({}); a larger value cannot be answered in bounded "
+                                 "time and memory",
+                                 name, x->value.str(), spec.atMost->str(), spec.meaning));
         return out;
       }
       if ((spec.atLeast && x->value.compare(*spec.atLeast) < 0) || (spec.atMost && x->value.compare(*spec.atMost) > 0)) {
@@ -718,6 +727,11 @@ private:
                            : fmt::format("`{}` must be positive, got {}", path, units::showQuantity(x->value, x->type.dim)));
         return std::nullopt;
       }
+      if (spec->budget && spec->atMost && x->value.compare(*spec->atMost) > 0) {
+        diags_.error("E0411", x->span,
+                     fmt::format("`{}` = {} is beyond its budget of {} ({})", path, x->value.str(), spec->atMost->str(), spec->meaning));
+        return std::nullopt;
+      }
       return x->value;
     };
     if (s.domain == ast::DomainKind::Range) {
@@ -725,9 +739,19 @@ private:
       Span span = source::cover(lo->span, hi->span);
       a.lo = checkBound(std::move(lo));
       a.hi = checkBound(std::move(hi));
-      if (a.lo && a.hi && a.lo->compare(*a.hi) > 0)
+      if (a.lo && a.hi && a.lo->compare(*a.hi) > 0) {
         diags_.error("E0401", span, fmt::format("empty range for `{}`: {} is above {}", path, units::showQuantity(*a.lo, a.dim),
                                                 units::showQuantity(*a.hi, a.dim)));
+      } else if (a.lo && a.hi && spec->integer) {
+        // Every value of a decision range is listed: its size is a budget.
+        double values = a.hi->toDouble() - a.lo->toDouble() + 1;
+        if (!(values <= static_cast<double>(cat::budget::kDomainValues))) {
+          diags_.error("E0411", span,
+                       fmt::format("`{}` in {}..{} holds {:.0f} values, beyond the budget of {} a search lists per decision; "
+                                   "narrow the range",
+                                   path, a.lo->str(), a.hi->str(), values, cat::budget::kDomainValues));
+        }
+      }
       return a;
     }
     std::vector<ir::ExprPtr> members;
@@ -1194,6 +1218,7 @@ private:
     }
     out.settings = settings(items, sceneSettings(), gs, owner, nameOr(st), "E0225");
     out.accuracy = settings(acc, accuracySettings(), gs, owner + " accuracy", nameOr(st), "E0225");
+    sceneBudgets(out, owner);
     if (ir::findSetting(out.settings, "steady_state")) {
       for (const char* other : {"settle", "duration", "ramp"})
         if (const auto* s = ir::findSetting(out.settings, other))
@@ -1597,6 +1622,15 @@ private:
         if (out.lo && out.hi && out.lo->compare(*out.hi) == 0)
           diags_.error("E0401", b.span, fmt::format("empty sweep: it starts and ends at {}", units::showQuantity(*out.lo, *out.dim)));
         if (out.step && out.step->sign() <= 0) diags_.error("E0407", b.step->span, "the sweep's step must be positive");
+        else if (out.lo && out.hi && out.step) {
+          double points = std::fabs(out.hi->toDouble() - out.lo->toDouble()) / out.step->toDouble() + 1;
+          if (!(points <= static_cast<double>(cat::budget::kSweepPoints)))
+            diags_.error("E0411", b.step->span,
+                         fmt::format("{}: the sweep from {} to {} in steps of {} is {:.3g} points, beyond the budget of {} points "
+                                     "per sweep; take a larger step",
+                                     owner, units::showQuantity(*out.lo, *out.dim), units::showQuantity(*out.hi, *out.dim),
+                                     units::showQuantity(*out.step, *out.dim), points, cat::budget::kSweepPoints));
+        }
         break;
       }
       case StmtKind::Of: {
@@ -1679,7 +1713,44 @@ private:
       }
       out.settings.push_back(domainSetting(*b, *spec, gs));
     }
+    if (wp) {
+      // Every combination of the listed settings is one run of the scene.
+      double runs = 1;
+      for (const auto& set : out.settings) {
+        if (!set.symbol.empty()) runs *= static_cast<double>(std::count(set.symbol.begin(), set.symbol.end(), ',') + 1);
+        else if (!set.members.empty()) runs *= static_cast<double>(set.members.size());
+        else if (set.lo && set.hi) runs *= std::max(1.0, std::floor(set.hi->toDouble() - set.lo->toDouble()) + 1);
+      }
+      if (!(runs <= static_cast<double>(cat::budget::kWorkPrecisionRuns)))
+        diags_.error("E0411", nameOr(st),
+                     fmt::format("{} asks for {:.0f} runs of its scene, beyond the budget of {} runs per work-precision study; "
+                                 "list fewer tolerances, harmonic counts or methods",
+                                 owner, runs, cat::budget::kWorkPrecisionRuns));
+    }
     return out;
+  }
+
+  // Times in mesh periods and the samples they record, against their budgets; times in
+  // seconds are measured against a design's mesh period at run time.
+  void sceneBudgets(const ir::Scene& sc, const std::string& owner) {
+    const ir::Setting* samples = ir::findSetting(sc.settings, "samples");
+    double perPeriod = samples && samples->value ? samples->value->toDouble() : 160;
+    for (const char* name : {"settle", "record", "duration", "ramp"}) {
+      const ir::Setting* t = ir::findSetting(sc.settings, name);
+      if (!t || !t->value || !t->meshPeriods) continue;
+      double periods = t->value->toDouble();
+      if (!(periods <= static_cast<double>(cat::budget::kMeshPeriods))) {
+        diags_.error("E0411", t->span,
+                     fmt::format("{}: `{}` = {} mesh periods is beyond the budget of {} mesh periods", owner, name, t->value->str(),
+                                 cat::budget::kMeshPeriods));
+        continue;
+      }
+      if (std::string(name) == "record" && !(periods * perPeriod <= static_cast<double>(cat::budget::kRecordedSamples)))
+        diags_.error("E0411", t->span,
+                     fmt::format("{}: recording {} mesh periods at {} samples each is {:.3g} samples, beyond the budget of {} "
+                                 "recorded samples; record fewer periods or fewer samples",
+                                 owner, t->value->str(), perPeriod, periods * perPeriod, cat::budget::kRecordedSamples));
+    }
   }
 
   ir::Setting domainSetting(const Stmt& b, const AttrSpec& spec, const Scope& gs) {
@@ -1700,6 +1771,11 @@ private:
       }
       if (spec.positive && x->value.sign() <= 0) {
         diags_.error("E0405", x->span, fmt::format("`{}` must be positive", spec.name));
+        return std::nullopt;
+      }
+      if (spec.budget && spec.atMost && x->value.compare(*spec.atMost) > 0) {
+        diags_.error("E0411", x->span,
+                     fmt::format("`{}` = {} is beyond its budget of {} ({})", spec.name, x->value.str(), spec.atMost->str(), spec.meaning));
         return std::nullopt;
       }
       return x->value;

@@ -1,4 +1,5 @@
 #include "dynamics/Ode.h"
+#include "model/Deadline.h"
 
 #include <time.h>
 
@@ -132,6 +133,11 @@ bool Integrator::advance(double& t, std::vector<double>& y, double t1, const std
   while (t < t1) {
     if (stats_.steps >= acc_.maxSteps) {
       error_ = fmt::format("step limit of {} reached at t = {:.6g} s", acc_.maxSteps, t);
+      ok = false;
+      break;
+    }
+    if ((stats_.steps & 255) == 0 && Deadline::expired()) {
+      error_ = fmt::format("time limit of {:g} s (--time-limit) reached at t = {:.6g} s of {:.6g} s", Deadline::seconds(), t, t1);
       ok = false;
       break;
     }

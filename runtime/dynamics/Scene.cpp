@@ -1,11 +1,13 @@
 #include "dynamics/Scene.h"
 
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 
 #include <fmt/format.h>
 
+#include "catalogue/Budgets.h"
 #include "catalogue/StageKinds.h"
 #include "dynamics/Effects.h"
 #include "dynamics/MeshModel.h"
@@ -572,9 +574,22 @@ SteadyMethod steadyMethod(const ir::Scene& scene, std::optional<long> settlePeri
   return ir::findSetting(scene.settings, Q::Record) ? SteadyMethod::Settle : SteadyMethod::FromRest;
 }
 
+namespace {
+
+// The number of samples a plan records, checked against its budget before any is made.
+long recordedSamples(double n, const char* window) {
+  if (!(n <= static_cast<double>(cat::budget::kRecordedSamples)))
+    throw SceneFailure{fmt::format("{} is {:.3g} samples, beyond the budget of {} recorded samples per run; record a shorter "
+                                   "window or fewer samples per mesh period",
+                                   window, n, cat::budget::kRecordedSamples)};
+  return std::max<long>(1, std::lround(n));
+}
+
+} // namespace
+
 bool widenToPeriod(TimePlan& plan, double period) {
   if (static_cast<double>(plan.samples.size()) * plan.dt >= period * (1 - 1e-9)) return false;
-  long n = std::lround(period / plan.dt);
+  long n = recordedSamples(period / plan.dt, "the orbit's whole period");
   plan.samples.clear();
   for (long i = 0; i < n; ++i) plan.samples.push_back(static_cast<double>(i) * plan.dt);
   plan.end = plan.samples.back();
@@ -587,7 +602,7 @@ TimePlan periodicPlan(const ir::Scene& scene, double Tz) {
   double window = rec && rec->value ? rec->value->toDouble() * (rec->meshPeriods ? Tz : 1.0) : Tz;
   TimePlan p;
   p.dt = Tz / perPeriod;
-  long n = std::max<long>(1, std::lround(window / Tz * perPeriod));
+  long n = recordedSamples(window / Tz * perPeriod, "the recorded window");
   for (long i = 0; i < n; ++i) p.samples.push_back(static_cast<double>(i) * p.dt);
   p.end = p.samples.back();
   p.statsFrom = 0;
@@ -609,14 +624,14 @@ TimePlan timePlan(const ir::Scene& scene, double Tz, std::optional<long> settleP
   p.dt = Tz / perPeriod;
   double settle = get(Q::Settle).value_or(0), ramp = get(Q::Ramp).value_or(0);
   if (auto rec = get(Q::Record)) {
-    long n = std::max<long>(1, std::lround(*rec / Tz * perPeriod));
+    long n = recordedSamples(*rec / Tz * perPeriod, "the recorded window");
     for (long i = 0; i < n; ++i) p.samples.push_back(settle + static_cast<double>(i) * p.dt);
     p.end = p.samples.back();
     p.statsFrom = settle;
     p.steady = SteadyMethod::Settle;
   } else {
     double duration = get(Q::Duration).value_or(0);
-    long n = static_cast<long>(std::floor(duration / p.dt));
+    long n = duration > 0 ? recordedSamples(std::floor(duration / p.dt), "the run from rest") : 0;
     for (long i = 1; i <= n; ++i) p.samples.push_back(static_cast<double>(i) * p.dt);
     p.end = duration;
     // Statistics of a run from rest leave out the start-up.

@@ -1,4 +1,5 @@
 #include "optimise/Optimise.h"
+#include "model/Deadline.h"
 
 #include <algorithm>
 #include <atomic>
@@ -189,6 +190,7 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
     installHooks(ev, m, nullptr, nullptr, opt.sceneRtol);
     ev.baseline = sharedBaseline;
     for (size_t i = next++; i < candidates.size(); i = next++) {
+      if (Deadline::expired()) break;  // the solve stops and says so
       Assignment a(m);
       a.choice = candidates[i].choice;
       Task task{&m, &ev, &a, {}, {}, &terms, {}, 0, INFINITY, {}, {}, false};
@@ -210,7 +212,7 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
         gsl_vector_set_all(step, 0.35);
         gsl_multimin_function fn{&objectiveAt, n, &task};
         gsl_multimin_fminimizer_set(s, &fn, u, step);
-        for (int it = 0; it < opt.maxIterations; ++it) {
+        for (int it = 0; it < opt.maxIterations && !Deadline::expired(); ++it) {
           if (gsl_multimin_fminimizer_iterate(s) != GSL_SUCCESS) break;
           if (gsl_multimin_test_size(gsl_multimin_fminimizer_size(s), 1e-4) == GSL_SUCCESS) break;
         }

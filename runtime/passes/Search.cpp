@@ -6,10 +6,11 @@ namespace {
 constexpr long long kDefaultTop = 50;
 }
 
-SearchResult search(const Model& m, int jobs, std::function<void(double)> progress) {
+SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<void(double)> progress) {
   const ir::Gearbox& gb = m.gearbox;
   SearchOptions so;
   so.jobs = jobs;
+  so.maxDesigns = maxDesigns;
   so.top = gb.report && gb.report->top ? *gb.report->top : kDefaultTop;
   if (gb.report && gb.report->sortBy) so.sortBy = gb.report->sortBy.get();
   so.progress = std::move(progress);

@@ -8,6 +8,6 @@ namespace gbx::rt::passes {
 
 // Ranked and cut as the gearbox's `report` asks; all of them, unranked, when the
 // objectives need the optimiser.
-SearchResult search(const Model& m, int jobs, std::function<void(double)> progress);
+SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<void(double)> progress);
 
 } // namespace gbx::rt::passes

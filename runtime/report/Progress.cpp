@@ -12,8 +12,14 @@ void ProgressBar::draw(double f) {
   if (percent == last_) return;  // redraw only when the figure changes
   last_ = percent;
   int filled = static_cast<int>(f * 30);
-  out_ << fmt::format("\r  {} [{}{}] {:3d}%", label_, std::string(static_cast<size_t>(filled), '#'),
-                      std::string(static_cast<size_t>(30 - filled), '.'), percent)
+  // The time left, from the pace so far, once there is a pace to go by.
+  double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::string left = f >= 0.01 && f < 1 && elapsed >= 2 ? fmt::format(", about {:.0f} s left", elapsed * (1 - f) / f) : "";
+  // Blanks over a longer text drawn before.
+  std::string blank(leftWidth_ > left.size() ? leftWidth_ - left.size() : 0, ' ');
+  leftWidth_ = left.size();
+  out_ << fmt::format("\r  {} [{}{}] {:3d}%{}{}", label_, std::string(static_cast<size_t>(filled), '#'),
+                      std::string(static_cast<size_t>(30 - filled), '.'), percent, left, blank)
        << std::flush;
   drawn_ = true;
 }

@@ -2,6 +2,7 @@
 // A one-line progress bar for a person at a terminal, on stderr: redrawn in place, and
 // finished at 100 % with a newline, so the report never starts on its line. A bar that
 // was drawn is finished when it is destroyed, whatever the work reported last.
+#include <chrono>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -24,6 +25,8 @@ private:
   std::string label_;
   bool drawn_ = false, finished_ = false;
   int last_ = -1;  // the last percentage drawn
+  size_t leftWidth_ = 0;  // of the time-left text drawn last
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 } // namespace gbx::rt

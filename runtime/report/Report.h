@@ -106,6 +106,9 @@ struct OptimisationSummary {
     units::DisplayUnit unit{"", 1};
   };
   struct Optimum {
+    // Declared, so `std::optional<Optimum>` below sees a default constructor while the
+    // enclosing struct is still incomplete (clang asks before the member initializers).
+    Optimum() {}
     Rational ratio;
     std::vector<FreedomValue> freedoms;
     double objective = 0;

@@ -1,6 +1,7 @@
 #include "search/Search.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -13,6 +14,7 @@
 
 #include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
+#include "model/Deadline.h"
 #include "model/StageKind.h"
 #include "search/FastKey.h"
 #include "search/HalfList.h"
@@ -324,7 +326,27 @@ struct StageResult {
   std::vector<Candidate> candidates;
   std::vector<FunnelStep> funnel;
   std::vector<std::string> notes;
+  double timedOutAt = -1;  // the fraction visited when the time limit stopped the filter
 };
+
+// `s1.pinion.z` 1..1000000 (1000000 values) × …: the ranges that make a stage's domain.
+std::string stageRanges(const Model& m, int s) {
+  std::vector<std::string> parts;
+  for (int sl : m.stages[static_cast<size_t>(s)].slots) {
+    const Slot& slot = m.slots[static_cast<size_t>(sl)];
+    if (slot.values.size() < 2) continue;
+    parts.push_back(fmt::format("`{}` {}..{} ({} values)", slot.path, slot.values.front().lo, slot.values.back().lo,
+                                slot.values.size()));
+  }
+  return fmt::format("{}", fmt::join(parts, " x "));
+}
+
+std::string timeLimitMessage(const std::string& doing, double done, double limit, double space) {
+  std::string estimate = done > 0.001 ? fmt::format("; the whole would take about {:.3g} s", limit / done) : "";
+  return fmt::format("time limit of {:g} s (--time-limit) reached while {} ({:.1f} % of {:.3g} done{}); narrow the ranges "
+                     "or raise --time-limit",
+                     limit, doing, 100 * done, space, estimate);
+}
 
 StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conjunct*>& local, int jobs) {
   const Model& m = ev.model();
@@ -333,7 +355,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
   for (const auto* c : local)
     rules.push_back({c->text, nullptr, c});
   std::vector<size_t> sizes;
-  size_t total = 1;
+  size_t total = 1;  // within the budget (checked by the caller), so no overflow
   for (int sl : info.slots) {
     sizes.push_back(m.slots[static_cast<size_t>(sl)].values.size());
     total *= sizes.back();
@@ -342,6 +364,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     std::vector<Candidate> out;
     std::vector<double> removed, unevaluable;
     double jointRemoved = 0;
+    double stoppedAt = -1;
   };
   int threads = std::max(1, std::min<int>(jobs, static_cast<int>(total / 2048) + 1));
   std::vector<Chunk> chunks(static_cast<size_t>(threads));
@@ -354,6 +377,10 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     size_t end = total * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
     std::vector<const Conjunct*> open;
     for (size_t k = begin; k < end; ++k) {
+      if ((k - begin) % 4096 == 0 && Deadline::expired()) {
+        ch.stoppedAt = static_cast<double>(k - begin) / static_cast<double>(end - begin);
+        break;
+      }
       size_t rest = k;
       Candidate c;
       c.idx.resize(info.slots.size());
@@ -403,6 +430,10 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     th.join();
 
   StageResult res;
+  if (chunks.front().stoppedAt >= 0 || std::any_of(chunks.begin(), chunks.end(), [](const Chunk& c) { return c.stoppedAt >= 0; })) {
+    res.timedOutAt = std::max(0.0, chunks.front().stoppedAt);
+    return res;
+  }
   double before = static_cast<double>(total);
   const std::string& name = info.ir->name;
   res.funnel.push_back({"domain", name, 0, -before, true});
@@ -534,9 +565,29 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     if (t != Truth::True) return res;
   }
 
+  // The budget, before any work: each stage's domain, counted before its rules filter it.
+  for (int s = 0; s < k; ++s) {
+    double domain = 1;
+    for (int sl : m.stages[static_cast<size_t>(s)].slots)
+      domain *= static_cast<double>(m.slots[static_cast<size_t>(sl)].values.size());
+    if (domain > opt.maxDesigns) {
+      res.errors.push_back(fmt::format("stage `{}` has {:.3g} candidates ({}), beyond the search budget of {:.3g} (--max-designs); "
+                                       "narrow these ranges, or raise --max-designs",
+                                       m.stages[static_cast<size_t>(s)].ir->name, domain, stageRanges(m, s), opt.maxDesigns));
+      return res;
+    }
+  }
   std::vector<StageResult> stages;
   for (int s = 0; s < k; ++s) {
     stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs));
+    if (stages.back().timedOutAt >= 0) {
+      double domain = 1;
+      for (int sl : m.stages[static_cast<size_t>(s)].slots)
+        domain *= static_cast<double>(m.slots[static_cast<size_t>(sl)].values.size());
+      res.errors.push_back(timeLimitMessage(fmt::format("filtering the candidates of stage `{}`", m.stages[static_cast<size_t>(s)].ir->name),
+                                            stages.back().timedOutAt, Deadline::seconds(), domain));
+      return res;
+    }
     for (auto& f : stages.back().funnel)
       res.funnel.push_back(f);
     for (auto& n : stages.back().notes)
@@ -629,6 +680,28 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   double combos = 1;
   for (const auto& st : stages)
     combos *= static_cast<double>(st.candidates.size());
+  {
+    // The join's budget: with a two-sided ratio window it builds and walks its halves;
+    // without one it visits every combination.
+    double left = 1, right = 1;
+    for (int s = 0; s < k; ++s)
+      (s < h ? left : right) *= static_cast<double>(stages[static_cast<size_t>(s)].candidates.size());
+    bool windowed = window.lo && window.hi && k > 1;
+    double walked = windowed ? std::max(left, right) : combos;
+    if (walked > opt.maxDesigns) {
+      std::vector<std::string> lists;
+      for (int s = 0; s < k; ++s)
+        lists.push_back(fmt::format("`{}` {} candidates ({})", m.stages[static_cast<size_t>(s)].ir->name,
+                                    stages[static_cast<size_t>(s)].candidates.size(), stageRanges(m, s)));
+      res.errors.push_back(fmt::format(
+          "the search space is {:.3g} designs ({}){}, beyond the search budget of {:.3g} (--max-designs); narrow these ranges, "
+          "{}or raise --max-designs",
+          combos, fmt::join(lists, "; "),
+          windowed ? fmt::format(", of which the join walks {:.3g}", walked) : "", opt.maxDesigns,
+          windowed ? "" : "bound the ratio (`require ratio == … +- …`), "));
+      return res;
+    }
+  }
   // Blocks of interchangeable stages (union of the `ordered` links).
   std::vector<int> block(static_cast<size_t>(k));
   for (int s = 0; s < k; ++s)
@@ -991,6 +1064,15 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     double lb = partial + fastKey->ratioLower(rlo * (1 - 1e-12), rhi * (1 + 1e-12)) - fastKey->rounding();
     return lb > w + slack(w);
   };
+  // Set when the time limit stops the join; `joinDone` is the first thread's progress then.
+  std::atomic<bool> timedOut{false};
+  double joinDone = 0;
+  auto stopHere = [&](int t, size_t at, size_t begin, size_t end) {
+    if (!Deadline::expired() && !timedOut.load(std::memory_order_relaxed)) return false;
+    timedOut = true;
+    if (t == 0) joinDone = static_cast<double>(at - begin) / static_cast<double>(std::max<size_t>(1, end - begin));
+    return true;
+  };
   auto sweep = [&](int t) {
     Local& lo = locals[static_cast<size_t>(t)];
     lo.crossRemoved.assign(cross.size(), 0);
@@ -1002,9 +1084,12 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     if (begin >= end || rn == 0) return;
     auto lower = [&](double v) { return right.lowerBound(v); };
     auto upper = [&](double v) { return right.upperBound(v); };
+    // Right entries walked since the time limit was last asked about.
+    size_t sinceCheck = 0;
     // One left entry against its window of right entries [loP, hiP), from `floor` on.
     auto join = [&](size_t le, double x, size_t from, size_t to, double partial) {
       if (from >= to) return;
+      sinceCheck += to - from;
       if (!arith) {
         visit(lo, a, cand.data(), scratch.data(), le, x, from, to, false);
         return;
@@ -1051,6 +1136,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
         for (int s = 2; s < k; ++s)
           rightLeast += fastKey->least(s);
       for (size_t i = begin; i < end; ++i) {
+        if (((i - begin) % 64 == 0 || sinceCheck > (1u << 16)) && stopHere(t, i, begin, end)) return;
+        if (sinceCheck > (1u << 16)) sinceCheck = 0;
         if (report && (i - begin) % 64 == 0)
           opt.progress(static_cast<double>(i - begin) / static_cast<double>(end - begin));
         size_t j0 = j0FromI ? i : 0;
@@ -1060,6 +1147,10 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
         size_t loP = lower(wantLoC / x0), hiP = upper(wantHiC / x0);
         double rowPart = fastKey ? base + fastKey->entry(0, cand[0]) : 0;
         for (size_t j = j0; j < m1; ++j) {
+          if (sinceCheck > (1u << 16)) {
+            sinceCheck = 0;
+            if (stopHere(t, i, begin, end)) return;
+          }
           double x = r0[i] * r1[j];
           double inv = 1 / x;
           double wl = wantLoC * inv, wh = wantHiC * inv;
@@ -1106,6 +1197,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     }
     size_t loP = lower(wantLoC / leftList.ratio(begin)), hiP = upper(wantHiC / leftList.ratio(begin));
     for (size_t le = begin; le < end; ++le) {
+      if (((le - begin) % 4096 == 0 || sinceCheck > (1u << 16)) && stopHere(t, le, begin, end)) return;
+      if (sinceCheck > (1u << 16)) sinceCheck = 0;
       if (report && (le - begin) % 65536 == 0)
         opt.progress(static_cast<double>(le - begin) / static_cast<double>(end - begin));
       double x = leftList.ratio(le);
@@ -1132,6 +1225,11 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   sweep(0);
   for (auto& th : pool)
     th.join();
+  if (timedOut) {
+    double elapsed = Deadline::seconds();
+    res.errors.push_back(timeLimitMessage("joining the stages' candidates", joinDone, elapsed, combos));
+    return res;
+  }
   std::vector<double> crossRemoved(cross.size(), 0);
   double inWindow = 0, duplicates = 0;
   unsigned long long count = 0, undecided = 0;

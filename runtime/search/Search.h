@@ -42,6 +42,9 @@ struct SearchOptions {
   // Every design visited and keyed by the evaluator: no counting by arithmetic, no screen,
   // no bounds (what the pruned search is tested and benchmarked against).
   bool exhaustive = false;
+  // The search budget (`--max-designs`): each stage's domain, and the product of the
+  // stages' candidate lists the join would walk, counted before the work starts.
+  double maxDesigns = 1e9;
 };
 
 struct SearchResult {

@@ -1,6 +1,14 @@
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -408,4 +416,64 @@ TEST(Cli, OutputFolderIsWrittenWholeOrNotAtAll) {
   EXPECT_EQ(taken.status, 3);
   EXPECT_NE(taken.err.find("cannot write"), std::string::npos) << taken.err;
   for (const auto& e : fs::directory_iterator(d / "taken")) EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+namespace {
+
+// Starts the gbxc executable with its output thrown away; returns its pid.
+pid_t startGbxc(const std::vector<std::string>& args) {
+  std::vector<std::string> all = {GBX_GBXC};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  int rc = posix_spawn(&pid, GBX_GBXC, &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+std::string readAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+} // namespace
+
+// Two processes writing one folder, and Ctrl-C in the middle of a long solve: the folder
+// holds whole reports (the old one or a new one, byte for byte) and no temporary file.
+TEST(Cli, ConcurrentWritersAndCtrlCLeaveWholeFiles) {
+  fs::path spec = fs::path(GBX_SOURCE_DIR) / "specs" / "thruster_one_stage.gbx";
+  fs::path d = tempDir("concurrent");
+  std::vector<std::string> args = {"solve", spec.string(), "--no-timings", "--quiet", "--format", "json", "-o", (d / "out").string()};
+  auto first = gbxc(args);
+  ASSERT_EQ(first.status, 0) << first.err;
+  const std::string report = readAll(d / "out" / "report.json");
+  ASSERT_FALSE(report.empty());
+  pid_t a = startGbxc(args), b = startGbxc(args);
+  ASSERT_GT(a, 0);
+  ASSERT_GT(b, 0);
+  for (pid_t p : {a, b}) {
+    int st = 0;
+    waitpid(p, &st, 0);
+    EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
+  }
+  EXPECT_EQ(readAll(d / "out" / "report.json"), report);
+  // A long scene, stopped by SIGINT while it integrates.
+  write(d / "long.gbx", readAll(fs::path(GBX_SOURCE_DIR) / "tests/fuzz/regressions/scene_time_limit.gbx"));
+  pid_t c = startGbxc({"solve", (d / "long.gbx").string(), "--quiet", "--format", "json", "-o", (d / "out").string()});
+  ASSERT_GT(c, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  kill(c, SIGINT);
+  int st = 0;
+  waitpid(c, &st, 0);
+  EXPECT_TRUE(WIFSIGNALED(st) && WTERMSIG(st) == SIGINT) << st;
+  EXPECT_EQ(readAll(d / "out" / "report.json"), report);
+  for (const auto& e : fs::directory_iterator(d / "out")) EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
 }

@@ -84,7 +84,7 @@ TEST(Optimise, MarineOptimumOfTheContactLineModelIsFlaggedSingular) {
   auto c = driver::compileText("marine_reducer.gbx", text);
   ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
   rt::Model m(c->program, c->program.gearboxes[1]);
-  auto o = rt::passes::optimise(c->program, m, rt::passes::search(m, 2, {}), 2, {});
+  auto o = rt::passes::optimise(c->program, m, rt::passes::search(m, 2, 1e9, {}), 2, {});
   ASSERT_TRUE(o.summary && o.summary->best);
   const auto& best = *o.summary->best;
   ASSERT_EQ(best.terms.size(), 2u);
@@ -111,7 +111,7 @@ TEST(Optimise, MarineOptimumOfTheLoadedMeshIsRobust) {
   auto c = driver::compileText("marine_reducer.gbx", readSpec("marine_reducer.gbx"));
   ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
   rt::Model m(c->program, c->program.gearboxes[1]);
-  auto o = rt::passes::optimise(c->program, m, rt::passes::search(m, 2, {}), 2, {});
+  auto o = rt::passes::optimise(c->program, m, rt::passes::search(m, 2, 1e9, {}), 2, {});
   ASSERT_TRUE(o.summary && o.summary->best);
   const auto& best = *o.summary->best;
   ASSERT_EQ(o.summary->termNames.size(), 2u);
