@@ -66,6 +66,7 @@ std::string writeWhole(const std::filesystem::path& path, const std::string& tex
   if (t.size() < sizeof gPending) {
     std::copy(t.begin(), t.end(), gPending);
     gPending[t.size()] = '\0';
+    std::atomic_signal_fence(std::memory_order_seq_cst);  // the path is whole before the flag says so
     gHasPending = 1;
   }
   struct Done {

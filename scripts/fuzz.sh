@@ -25,7 +25,7 @@ for t in "${targets[@]}"; do
   [[ -x $exe ]] || { echo "fuzz: $exe is not built (scripts/setup.sh --fuzz)" >&2; exit 2; }
   work=build-fuzz/corpus/$t
   mkdir -p "$work" "tests/fuzz/corpus/$t"
-  # solve: each input is capped at 2 s of wall time inside the target; 30 s is a hang.
+  # solve: each input is capped at 1 s of wall time inside the target; 30 s is a hang.
   timeout=10
   [[ $t == solve ]] && timeout=30
   echo "== fuzz_$t for ${seconds} s"

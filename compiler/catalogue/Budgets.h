@@ -9,6 +9,7 @@
 namespace gbx::cat::budget {
 
 inline constexpr std::int64_t kDomainValues = 100'000;        // values of one decision range
+inline constexpr std::int64_t kWholeNumber = 1'000'000'000;   // magnitude of a whole-number decision bound
 inline constexpr std::int64_t kSamplesPerPeriod = 100'000;    // a scene's `samples`
 inline constexpr std::int64_t kRecordedSamples = 2'000'000;   // recorded samples of one scene run
 inline constexpr std::int64_t kMeshPeriods = 1'000'000'000;   // settle, record or duration in mesh periods
@@ -21,5 +22,8 @@ inline constexpr std::int64_t kSweepPoints = 10'000;          // points of one s
 inline constexpr std::int64_t kWorkPrecisionRuns = 200;       // runs of one work-precision study
 inline constexpr std::int64_t kBranches = 64;                 // branches of a split
 inline constexpr double kDefaultMaxDesigns = 1e9;             // search space, `--max-designs`
+inline constexpr double kMostMaxDesigns = 4e9;                // the largest `--max-designs` (32-bit indices)
+inline constexpr double kMostTimeLimit = 1e7;                 // the largest `--time-limit`, seconds
+inline constexpr std::int64_t kKeptDesigns = 2'000'000;       // designs a report lists (`top N`)
 
 } // namespace gbx::cat::budget

@@ -82,7 +82,8 @@ options:
   -o DIR                   write the report, plots (SVG) and, for csv, one table per result into DIR
   --jobs N                 worker threads (results do not depend on N)
   --max-designs N          the search budget: candidates of a stage, and combinations the
-                           join walks, counted before the work starts (default 1e9)
+                           join walks, counted before the work starts (default 1e9,
+                           at most 4e9)
   --time-limit S           stop with exit 3 after S seconds of wall time, saying how far
                            the work got and how long the whole would take
   --quiet                  no progress bar
@@ -258,8 +259,9 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
       double x = 0;
       // A positive number; 1e12 is as good as 1000000000000.
       auto parsed = v ? std::from_chars(v->data(), v->data() + v->size(), x) : std::from_chars_result{};
-      if (!v || parsed.ec != std::errc{} || parsed.ptr != v->data() + v->size() || !(x > 0) || !std::isfinite(x))
-        return usage(err, fmt::format("{} needs a positive number{}", a, a == "--time-limit" ? " of seconds" : ""));
+      const double most = a == "--max-designs" ? gbx::cat::budget::kMostMaxDesigns : gbx::cat::budget::kMostTimeLimit;
+      if (!v || parsed.ec != std::errc{} || parsed.ptr != v->data() + v->size() || !(x > 0) || !(x <= most))
+        return usage(err, fmt::format("{} needs a positive number{} up to {:g}", a, a == "--time-limit" ? " of seconds" : "", most));
       (a == "--max-designs" ? o.maxDesigns : o.timeLimit) = x;
     } else if (a == "--quiet" || a == "-q") {
       o.quiet = true;

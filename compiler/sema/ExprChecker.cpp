@@ -67,16 +67,6 @@ ir::ExprPtr ExprChecker::error(const source::Span& span) { return make(Op::Const
 ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOverride) {
   auto r = units::Rational::parseDecimal(e.text);
   Number v = r ? Number::exact(*r) : Number::approx(std::strtod(e.text.c_str(), nullptr));
-  if (!r) {
-    // Beyond a double either way: 1e400 is not infinity, 1e-400 is not zero.
-    double d = v.toDouble();
-    std::string mantissa = e.text.substr(0, e.text.find_first_of("eE"));
-    bool nonzero = mantissa.find_first_of("123456789") != std::string::npos;
-    if (!std::isfinite(d) || (d == 0 && nonzero)) {
-      diags_.error("E0306", e.span, fmt::format("`{}` is beyond the range of a double (magnitudes from about 1e-308 to 1e308)", e.text));
-      return error(e.span);
-    }
-  }
   const ast::UnitExpr* u = e.unit ? &*e.unit : unitOverride;
   units::Unit unit;
   bool ok = true;
@@ -95,7 +85,19 @@ ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOv
   }
   if (!ok) return error(e.span);
   bool integer = !u && r && r->isInteger();
-  auto c = ir::makeConst(v.mul(unit.scale), unit.dim, integer, e.span);
+  Number si = v.mul(unit.scale);
+  if (!si.isRational()) {
+    // Beyond a double either way, in SI: 1e400 is not infinity, 1e-400 (or 1e-320 um) not zero.
+    double d = si.toDouble();
+    std::string mantissa = e.text.substr(0, e.text.find_first_of("eE"));
+    bool nonzero = mantissa.find_first_of("123456789") != std::string::npos;
+    if (!std::isfinite(d) || (d == 0 && nonzero)) {
+      diags_.error("E0306", e.span, fmt::format("`{}{}` is beyond the range of a double in SI units (magnitudes from about 1e-308 to 1e308)",
+                                                e.text, u ? " " + u->text : ""));
+      return error(e.span);
+    }
+  }
+  auto c = ir::makeConst(si, unit.dim, integer, e.span);
   if (unit.meshPeriods) c->marker = ir::Marker::MeshPeriods;
   // A percentage stays marked through consts, so `+- tolerance` with `const tolerance = 1%` is relative.
   if (u && isPercentUnit(*u)) c->marker = ir::Marker::Percent;

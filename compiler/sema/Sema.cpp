@@ -732,6 +732,11 @@ private:
                      fmt::format("`{}` = {} is beyond its budget of {} ({})", path, x->value.str(), spec->atMost->str(), spec->meaning));
         return std::nullopt;
       }
+      if (spec->integer && (x->value.sign() < 0 ? x->value.neg() : x->value).compare(units::Number::exact(units::Rational(cat::budget::kWholeNumber))) > 0) {
+        diags_.error("E0411", x->span,
+                     fmt::format("`{}` = {} is beyond the budget of {} for a whole number", path, x->value.str(), cat::budget::kWholeNumber));
+        return std::nullopt;
+      }
       return x->value;
     };
     if (s.domain == ast::DomainKind::Range) {
@@ -743,9 +748,11 @@ private:
         diags_.error("E0401", span, fmt::format("empty range for `{}`: {} is above {}", path, units::showQuantity(*a.lo, a.dim),
                                                 units::showQuantity(*a.hi, a.dim)));
       } else if (a.lo && a.hi && spec->integer) {
-        // Every value of a decision range is listed: its size is a budget.
-        double values = a.hi->toDouble() - a.lo->toDouble() + 1;
-        if (!(values <= static_cast<double>(cat::budget::kDomainValues))) {
+        // Every value of a decision range is listed: its size is a budget (counted exactly:
+        // bounds near 2^80 are one double apart).
+        units::Number width = a.hi->sub(*a.lo);
+        double values = width.toDouble() + 1;
+        if (width.compare(units::Number::exact(units::Rational(cat::budget::kDomainValues - 1))) > 0) {
           diags_.error("E0411", span,
                        fmt::format("`{}` in {}..{} holds {:.0f} values, beyond the budget of {} a search lists per decision; "
                                    "narrow the range",
@@ -1596,7 +1603,8 @@ private:
         sweep = true;
         out.kind = ir::Study::Sweep;
         out.target = b.path.str();
-        out.dim = sweepTarget(b.path, m);
+        const AttrSpec* swept = nullptr;
+        out.dim = sweepTarget(b.path, m, &swept);
         auto [lo, hi] = checker_.checkRange(b.lo.get(), b.hi.get(), gs);
         auto step = b.step && b.step->kind == ast::ExprKind::Number && !b.step->unit && b.hi && b.hi->unit
                         ? checker_.literal(*b.step, &*b.hi->unit)
@@ -1611,6 +1619,18 @@ private:
             diags_.error("E0302", x->span,
                          fmt::format("unit mismatch: `{}` is {}, but the sweep's {} is {}", out.target, out.dim->describe(), what,
                                      describe(x->type)));
+            return std::nullopt;
+          }
+          // The values a sweep gives take the swept attribute's own limits (its step is its own).
+          if (std::string(what) == "step") return x->value;
+          if (swept && swept->positive && x->value.sign() <= 0) {
+            diags_.error("E0405", x->span, fmt::format("`{}` must be positive, but the sweep's {} is {}", out.target, what,
+                                                       units::showQuantity(x->value, x->type.dim)));
+            return std::nullopt;
+          }
+          if (swept && swept->budget && swept->atMost && x->value.compare(*swept->atMost) > 0) {
+            diags_.error("E0411", x->span, fmt::format("the sweep's {} {} is beyond the budget of {} for `{}` ({})", what, x->value.str(),
+                                                       swept->atMost->str(), out.target, swept->meaning));
             return std::nullopt;
           }
           return x->value;
@@ -1714,13 +1734,17 @@ private:
       out.settings.push_back(domainSetting(*b, *spec, gs));
     }
     if (wp) {
-      // Every combination of the listed settings is one run of the scene.
-      double runs = 1;
+      // Runs as the study makes them: per harmonic count, a reference and its check, then
+      // every method at every tolerance (8 tolerances when none are listed).
+      double harmonics = 1, methods = 1, rtols = 8;
       for (const auto& set : out.settings) {
-        if (!set.symbol.empty()) runs *= static_cast<double>(std::count(set.symbol.begin(), set.symbol.end(), ',') + 1);
-        else if (!set.members.empty()) runs *= static_cast<double>(set.members.size());
-        else if (set.lo && set.hi) runs *= std::max(1.0, std::floor(set.hi->toDouble() - set.lo->toDouble()) + 1);
+        double n = !set.symbol.empty() ? static_cast<double>(std::count(set.symbol.begin(), set.symbol.end(), ',') + 1)
+                   : !set.members.empty() ? static_cast<double>(set.members.size())
+                   : set.lo && set.hi ? std::max(1.0, std::floor(set.hi->toDouble() - set.lo->toDouble()) + 1)
+                                      : 1;
+        (set.name == "harmonics" ? harmonics : set.name == "methods" ? methods : rtols) = n;
       }
+      double runs = harmonics * (2 + methods * rtols);
       if (!(runs <= static_cast<double>(cat::budget::kWorkPrecisionRuns)))
         diags_.error("E0411", nameOr(st),
                      fmt::format("{} asks for {:.0f} runs of its scene, beyond the budget of {} runs per work-precision study; "
@@ -1745,7 +1769,8 @@ private:
                                  cat::budget::kMeshPeriods));
         continue;
       }
-      if (std::string(name) == "record" && !(periods * perPeriod <= static_cast<double>(cat::budget::kRecordedSamples)))
+      bool recorded = std::string(name) == "record" || std::string(name) == "duration";
+      if (recorded && !(periods * perPeriod <= static_cast<double>(cat::budget::kRecordedSamples)))
         diags_.error("E0411", t->span,
                      fmt::format("{}: recording {} mesh periods at {} samples each is {:.3g} samples, beyond the budget of {} "
                                  "recorded samples; record fewer periods or fewer samples",
@@ -1808,18 +1833,22 @@ private:
     return s;
   }
 
-  std::optional<units::Dim> sweepTarget(const ast::Path& p, const GearboxModel& m) {
+  std::optional<units::Dim> sweepTarget(const ast::Path& p, const GearboxModel& m, const AttrSpec** spec = nullptr) {
     const auto& parts = p.parts;
+    auto found = [&](const AttrSpec& a) {
+      if (spec) *spec = &a;
+      return std::optional<units::Dim>(a.dim);
+    };
     if (parts.size() == 1) {
       for (const auto& o : operatingSettings())
         if (o.name == parts[0]) {
           if (!m.hasOperating)
             diags_.error("E0231", p.span, fmt::format("sweeping `{}` needs an `operating` block to vary", parts[0]));
-          return o.dim;
+          return found(o);
         }
     } else if (const StageModel* st = m.findStage(parts[0]); st && st->kind) {
       std::string rest = p.str().substr(parts[0].size() + 1);
-      if (const auto* a = findAttr(*st->kind, rest); a && a->role != AttrRole::Derived && a->value == ValueKind::Number) return a->dim;
+      if (const auto* a = findAttr(*st->kind, rest); a && a->role != AttrRole::Derived && a->value == ValueKind::Number) return found(*a);
       // A tooth modification of a spur or helical stage (`hs.tip_relief`, `hs.pinion.lead_crowning`):
       // the sweep's value replaces what the stage's `modify` rules give.
       std::string what = parts.back();
@@ -1830,7 +1859,7 @@ private:
     } else if (m.findSplit(parts[0])) {
       std::string rest = p.str().substr(parts[0].size() + 1);
       for (const auto& s : splitSettings())
-        if (s.name == rest && s.value == ValueKind::Number) return s.dim;
+        if (s.name == rest && s.value == ValueKind::Number) return found(s);
     } else if (const ast::Stmt* sc = m.findScene(parts[0]); sc && parts.size() == 3) {
       // An effect parameter of a scene: `vibration.damping.ratio`.
       bool listed = false;
@@ -1844,7 +1873,7 @@ private:
       }
       if (fx)
         for (const auto& prm : fx->params)
-          if (prm.name == parts[2] && prm.value == ValueKind::Number) return prm.dim;
+          if (prm.name == parts[2] && prm.value == ValueKind::Number) return found(prm);
     }
     diags_.error("E0219", p.span,
                  fmt::format("cannot sweep `{}`: a sweep varies an operating value, a stage attribute or a split setting",

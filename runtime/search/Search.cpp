@@ -430,8 +430,9 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     th.join();
 
   StageResult res;
-  if (chunks.front().stoppedAt >= 0 || std::any_of(chunks.begin(), chunks.end(), [](const Chunk& c) { return c.stoppedAt >= 0; })) {
-    res.timedOutAt = std::max(0.0, chunks.front().stoppedAt);
+  if (std::any_of(chunks.begin(), chunks.end(), [](const Chunk& c) { return c.stoppedAt >= 0; })) {
+    res.timedOutAt = 0;
+    for (const auto& c : chunks) res.timedOutAt += (c.stoppedAt >= 0 ? c.stoppedAt : 1.0) / static_cast<double>(chunks.size());
     return res;
   }
   double before = static_cast<double>(total);
@@ -938,6 +939,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     double inWindow = 0, duplicates = 0;
     std::vector<double> crossRemoved;
     std::vector<std::uint32_t> leftAt; // scratch: the left indices the canonical order compares
+    bool overKept = false;             // an unlimited listing reached opt.maxKept
   };
   std::vector<Local> locals(static_cast<size_t>(threads));
   const size_t kk = static_cast<size_t>(k);
@@ -956,6 +958,10 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       return lessRaw(lo.keys.data() + x * nk, lo.cand.data() + x * kk, lo.keys.data() + y * nk,
                      lo.cand.data() + y * kk);
     };
+    if (keep == SIZE_MAX && lo.heap.size() >= opt.maxKept) {
+      lo.overKept = true;  // memory stays bounded; the caller says how many were found
+      return;
+    }
     if (keep == SIZE_MAX || lo.heap.size() < keep) {
       auto id = static_cast<std::uint32_t>(lo.heap.size()); // stored in step with the heap until it is full
       lo.keys.insert(lo.keys.end(), keys, keys + nk);
@@ -1064,13 +1070,14 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     double lb = partial + fastKey->ratioLower(rlo * (1 - 1e-12), rhi * (1 + 1e-12)) - fastKey->rounding();
     return lb > w + slack(w);
   };
-  // Set when the time limit stops the join; `joinDone` is the first thread's progress then.
+  // Set when the time limit stops the join, with each thread's share of its range done
+  // (a thread that finished first keeps 1).
   std::atomic<bool> timedOut{false};
-  double joinDone = 0;
+  std::vector<double> joinDone(static_cast<size_t>(threads), 1.0);
   auto stopHere = [&](int t, size_t at, size_t begin, size_t end) {
     if (!Deadline::expired() && !timedOut.load(std::memory_order_relaxed)) return false;
     timedOut = true;
-    if (t == 0) joinDone = static_cast<double>(at - begin) / static_cast<double>(std::max<size_t>(1, end - begin));
+    joinDone[static_cast<size_t>(t)] = static_cast<double>(at - begin) / static_cast<double>(std::max<size_t>(1, end - begin));
     return true;
   };
   auto sweep = [&](int t) {
@@ -1225,9 +1232,19 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   sweep(0);
   for (auto& th : pool)
     th.join();
+  if (std::any_of(locals.begin(), locals.end(), [](const Local& lo) { return lo.overKept; })) {
+    unsigned long long found = 0;
+    for (const auto& lo : locals) found += lo.count;
+    res.errors.push_back(fmt::format("{} designs satisfy the rules, more than the {} a report can list (the budget of kept "
+                                     "designs); ask for fewer with `report {{ top N; }}`, or narrow the ranges",
+                                     found, opt.maxKept));
+    return res;
+  }
   if (timedOut) {
     double elapsed = Deadline::seconds();
-    res.errors.push_back(timeLimitMessage("joining the stages' candidates", joinDone, elapsed, combos));
+    double done = 0;
+    for (double d : joinDone) done += d / static_cast<double>(joinDone.size());
+    res.errors.push_back(timeLimitMessage("joining the stages' candidates", done, elapsed, combos));
     return res;
   }
   std::vector<double> crossRemoved(cross.size(), 0);

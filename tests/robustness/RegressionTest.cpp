@@ -50,9 +50,16 @@ Expectation expectationOf(const std::string& text) {
   return x;
 }
 
-// An unquoted nan or inf after `:`, `[` or `,` of a JSON report.
+// An unquoted nan or inf after `:`, `[` or `,` of a JSON report, outside its strings.
 bool jsonHasNonFinite(const std::string& r) {
+  bool inString = false;
   for (size_t i = 0; i < r.size(); ++i) {
+    if (inString) {
+      if (r[i] == '\\') ++i;
+      else if (r[i] == '"') inString = false;
+      continue;
+    }
+    if (r[i] == '"') inString = true;
     if (r[i] != ':' && r[i] != '[' && r[i] != ',') continue;
     size_t j = r.find_first_not_of(" \n-", i + 1);
     if (j != std::string::npos && (r.compare(j, 3, "nan") == 0 || r.compare(j, 3, "inf") == 0)) return true;
