@@ -8,6 +8,8 @@
 # copy it into tests/fuzz/regressions/ with what it must give, once fixed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Absolute paths: the targets run each input in an empty folder of their own.
+root=$PWD
 
 seconds=${1:-120}
 shift || true
@@ -36,9 +38,9 @@ for t in "${targets[@]}"; do
     for f in "$d"/*.gbx; do [[ -f $f ]] && cp "$f" "$seed_dir/$(echo "$f" | tr '/' '_')"; done
   done
   if ! ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-      "$exe" "$work" "tests/fuzz/corpus/$t" "$seed_dir" -dict=tests/fuzz/gbx.dict \
+      "$exe" "$root/$work" "$root/tests/fuzz/corpus/$t" "$root/$seed_dir" -dict="$root/tests/fuzz/gbx.dict" \
       -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2560 -max_len=16384 \
-      -artifact_prefix="build-fuzz/artifacts/$t-" -print_final_stats=1 2> "build-fuzz/fuzz_$t.log"; then
+      -artifact_prefix="$root/build-fuzz/artifacts/$t-" -print_final_stats=1 2> "build-fuzz/fuzz_$t.log"; then
     status=1
     echo "fuzz_$t FAILED: reproducer in build-fuzz/artifacts/; log in build-fuzz/fuzz_$t.log" >&2
     grep -E "ERROR|SUMMARY|Test unit written" "build-fuzz/fuzz_$t.log" >&2 || true
