@@ -940,6 +940,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     std::vector<double> crossRemoved;
     std::vector<std::uint32_t> leftAt; // scratch: the left indices the canonical order compares
     bool overKept = false;             // an unlimited listing reached opt.maxKept
+    double walked = 0;                 // designs visited one by one (not counted by arithmetic)
   };
   std::vector<Local> locals(static_cast<size_t>(threads));
   const size_t kk = static_cast<size_t>(k);
@@ -1073,10 +1074,17 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   // Set when the time limit stops the join, with each thread's share of its range done
   // (a thread that finished first keeps 1).
   std::atomic<bool> timedOut{false};
+  // Set when the designs checked one by one (rules across stages) pass their share of the
+  // search budget: each costs an evaluation of the rules, some fifty times a counted one,
+  // and a wide ratio window hides how many there are from the estimate before the join.
+  std::atomic<bool> overWalked{false};
+  constexpr double kCheckedShare = 0.02;
+  const double walkBudget = opt.maxDesigns * kCheckedShare / static_cast<double>(threads);
   std::vector<double> joinDone(static_cast<size_t>(threads), 1.0);
   auto stopHere = [&](int t, size_t at, size_t begin, size_t end) {
-    if (!Deadline::expired() && !timedOut.load(std::memory_order_relaxed)) return false;
-    timedOut = true;
+    if (!Deadline::expired() && !timedOut.load(std::memory_order_relaxed) && !overWalked.load(std::memory_order_relaxed))
+      return false;
+    if (!overWalked) timedOut = true;
     joinDone[static_cast<size_t>(t)] = static_cast<double>(at - begin) / static_cast<double>(std::max<size_t>(1, end - begin));
     return true;
   };
@@ -1098,6 +1106,9 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       if (from >= to) return;
       sinceCheck += to - from;
       if (!arith) {
+        lo.walked += static_cast<double>(to - from);
+        // The exhaustive reference (tests, benchmarks) visits everything by design.
+        if (lo.walked > walkBudget && !opt.exhaustive) overWalked = true;
         visit(lo, a, cand.data(), scratch.data(), le, x, from, to, false);
         return;
       }
@@ -1232,6 +1243,13 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   sweep(0);
   for (auto& th : pool)
     th.join();
+  if (overWalked) {
+    res.errors.push_back(fmt::format("the rules across stages are checked design by design, and more than {:.3g} designs (a fiftieth "
+                                     "of the search budget, --max-designs {:.3g}) of the {:.3g} combinations need it; narrow the "
+                                     "ranges or the ratio window, or raise --max-designs",
+                                     opt.maxDesigns * kCheckedShare, opt.maxDesigns, combos));
+    return res;
+  }
   if (std::any_of(locals.begin(), locals.end(), [](const Local& lo) { return lo.overKept; })) {
     unsigned long long found = 0;
     for (const auto& lo : locals) found += lo.count;
