@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../fuzz/FuzzSupport.h"
 #include "driver/Driver.h"
 
 namespace fs = std::filesystem;
@@ -50,23 +51,6 @@ Expectation expectationOf(const std::string& text) {
   return x;
 }
 
-// An unquoted nan or inf after `:`, `[` or `,` of a JSON report, outside its strings.
-bool jsonHasNonFinite(const std::string& r) {
-  bool inString = false;
-  for (size_t i = 0; i < r.size(); ++i) {
-    if (inString) {
-      if (r[i] == '\\') ++i;
-      else if (r[i] == '"') inString = false;
-      continue;
-    }
-    if (r[i] == '"') inString = true;
-    if (r[i] != ':' && r[i] != '[' && r[i] != ',') continue;
-    size_t j = r.find_first_not_of(" \n-", i + 1);
-    if (j != std::string::npos && (r.compare(j, 3, "nan") == 0 || r.compare(j, 3, "inf") == 0)) return true;
-  }
-  return false;
-}
-
 class Regression : public testing::TestWithParam<std::string> {};
 
 } // namespace
@@ -91,7 +75,7 @@ TEST_P(Regression, AnswersWithADiagnosticOrABudgetFailure) {
   if (status != 0) {
     EXPECT_FALSE(all.empty()) << "a failure must say what failed";
   }
-  EXPECT_FALSE(jsonHasNonFinite(out.str())) << out.str();
+  EXPECT_FALSE(gbx::fuzz::jsonHasNonFinite(out.str())) << out.str();
 }
 
 INSTANTIATE_TEST_SUITE_P(Inputs, Regression, testing::ValuesIn(regressionFiles()),
