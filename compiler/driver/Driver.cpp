@@ -9,6 +9,7 @@
 #include "catalogue/Budgets.h"
 #include "driver/Golden.h"
 #include "lower/Lower.h"
+#include "lsp/Server.h"
 #include "report/Formats.h"
 #include "sema/Sema.h"
 #include "Solve.h"
@@ -53,6 +54,7 @@ commands:
   dump ir FILE             print the checked, lowered program
   solve FILE               solve every gearbox of the spec (or --gearbox NAME)
   test PATH... [--update]  golden regression tests: each x.gbx against x.expected
+  lsp                      a Language Server Protocol server on stdin/stdout (diagnostics)
 
 options:
   --format FORMAT          text or json (solve also: md, html, csv)
@@ -298,6 +300,10 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   if (o.command == "test") {
     if (o.files.empty()) return usage(err, "`test` needs at least one file or folder");
     return test(o, out, err);
+  }
+  if (o.command == "lsp") {
+    if (!o.files.empty()) return usage(err, "`lsp` takes no file: it serves the editor's documents on stdin/stdout");
+    return lsp::serve(std::cin, out);
   }
   if (o.command != "check" && o.command != "dump" && o.command != "solve")
     return usage(err, fmt::format("unknown command `{}`", o.command));
