@@ -1,14 +1,19 @@
 #include "lsp/Server.h"
 
+#include <functional>
 #include <istream>
+#include <memory>
 #include <map>
 #include <ostream>
 #include <string>
 
 #include <fmt/format.h>
 
+#include "catalogue/Effects.h"
+#include "catalogue/StageKinds.h"
 #include "driver/Driver.h"
 #include "lsp/Json.h"
+#include "units/Unit.h"
 
 namespace gbx::lsp {
 
@@ -93,6 +98,43 @@ int utf16Column(const std::string& line, int col) {
   return units + std::max(0, col - 1 - points);  // past the end: one unit a column
 }
 
+// The code point column (1-based) of a UTF-16 `character` offset in `line`.
+int codePointColumn(const std::string& line, int character) {
+  int units = 0, col = 1;
+  for (size_t i = 0; i < line.size() && units < character;) {
+    unsigned char c = static_cast<unsigned char>(line[i]);
+    size_t len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 1;
+    units += len == 4 ? 2 : 1;
+    ++col;
+    i += len;
+  }
+  return col + std::max(0, character - units);
+}
+
+bool contains(const source::Span& s, int line, int col) {
+  if (!s.valid()) return false;
+  int endLine = s.endLine > 0 ? s.endLine : s.line, endCol = s.endLine > 0 ? s.endCol : s.col;
+  return (line > s.line || (line == s.line && col >= s.col)) && (line < endLine || (line == endLine && col <= endCol + 1));
+}
+
+Json position(const source::SourceManager& sm, int file, int line, int col) {
+  return Json::Object{{"line", line - 1}, {"character", utf16Column(sm.get(file).line(line), col)}};
+}
+
+Json rangeOf(const source::SourceManager& sm, const source::Span& s) {
+  int endLine = s.endLine > 0 ? s.endLine : s.line, endCol = s.endLine > 0 ? s.endCol : s.col;
+  return Json::Object{{"start", position(sm, s.file, s.line, s.col)}, {"end", position(sm, s.file, endLine, endCol + 1)}};
+}
+
+std::string uriOf(const std::string& path) { return path.rfind("file://", 0) == 0 ? path : "file://" + path; }
+
+// What an attribute is, for a hover: meaning, dimension and the unit reports use.
+std::string describeAttr(const std::string& path, const cat::AttrSpec& a) {
+  std::string unit = units::displayUnitFor(a.dim).name;
+  return fmt::format("**{}** — {}\n\n{}{}{}", path, a.meaning, a.dim.describe(), unit.empty() ? "" : fmt::format(", in {}", unit),
+                     a.role == cat::AttrRole::Derived ? " (computed)" : "");
+}
+
 class Server {
 public:
   explicit Server(std::ostream& out) : out_(out) {}
@@ -104,7 +146,11 @@ public:
     bool request = !id.isNull();
     const Json& params = msg["params"];
     if (method == "initialize") {
-      Json::Object caps{{"textDocumentSync", Json::Object{{"openClose", true}, {"change", 1}}}};
+      Json::Object caps{{"textDocumentSync", Json::Object{{"openClose", true}, {"change", 1}}},
+                        {"hoverProvider", true},
+                        {"completionProvider", Json::Object{{"triggerCharacters", Json::Array{"."}}}},
+                        {"definitionProvider", true},
+                        {"documentSymbolProvider", true}};
       send(out_, response(id, Json::Object{{"capabilities", caps},
                                            {"serverInfo", Json::Object{{"name", "gbxc"}, {"version", GBX_VERSION}}}}));
     } else if (method == "shutdown") {
@@ -128,6 +174,14 @@ public:
       const std::string& uri = params["textDocument"]["uri"].string();
       docs_.erase(uri);
       send(out_, notification("textDocument/publishDiagnostics", Json::Object{{"uri", uri}, {"diagnostics", Json::Array{}}}));
+    } else if (method == "textDocument/hover") {
+      send(out_, response(id, hover(params)));
+    } else if (method == "textDocument/completion") {
+      send(out_, response(id, completion(params)));
+    } else if (method == "textDocument/definition") {
+      send(out_, response(id, definition(params)));
+    } else if (method == "textDocument/documentSymbol") {
+      send(out_, response(id, symbols(params)));
     } else if (request) {
       send(out_, error(id, -32601, fmt::format("method `{}` is not served", method)));
     }
@@ -167,6 +221,163 @@ private:
       list.push_back(Json::Object{{"range", range}, {"severity", severity}, {"code", d.code}, {"source", "gbxc"}, {"message", message}});
     }
     send(out_, notification("textDocument/publishDiagnostics", Json::Object{{"uri", uri}, {"diagnostics", std::move(list)}}));
+  }
+
+  // The document compiled, and the 1-based line and code point column of a request's position.
+  struct At {
+    std::unique_ptr<driver::Compilation> c;
+    int line = 0, col = 0;
+  };
+  At at(const Json& params) {
+    At a;
+    const std::string& uri = params["textDocument"]["uri"].string();
+    a.c = driver::compileText(pathOf(uri), docs_[uri]);
+    a.line = static_cast<int>(params["position"]["line"].number()) + 1;
+    int character = static_cast<int>(params["position"]["character"].number());
+    a.col = a.c->sources.size() > 0 ? codePointColumn(a.c->sources.get(0).line(a.line), character) : character + 1;
+    return a;
+  }
+
+  // The statements from the outermost to the innermost that hold the position.
+  static void chain(const std::vector<ast::Stmt>& body, int line, int col, std::vector<const ast::Stmt*>& out) {
+    for (const auto& st : body)
+      if (contains(st.span, line, col)) {
+        out.push_back(&st);
+        chain(st.body, line, col, out);
+        return;
+      }
+  }
+
+  static const cat::KindSpec* stageKind(const std::vector<const ast::Stmt*>& ch) {
+    for (auto it = ch.rbegin(); it != ch.rend(); ++it)
+      if ((*it)->kind == ast::StmtKind::Stage) return cat::findKind((*it)->word);
+    return nullptr;
+  }
+
+  Json hover(const Json& params) {
+    At a = at(params);
+    if (a.c->loaded.files.empty()) return Json();
+    std::vector<const ast::Stmt*> ch;
+    chain(a.c->loaded.files[0].decls, a.line, a.col, ch);
+    if (ch.empty()) return Json();
+    const ast::Stmt& st = *ch.back();
+    std::string text;
+    if ((st.kind == ast::StmtKind::Assign || st.kind == ast::StmtKind::Domain) && contains(st.path.span, a.line, a.col)) {
+      if (const cat::KindSpec* k = stageKind(ch))
+        if (const cat::AttrSpec* attr = cat::findAttr(*k, st.path.str())) text = describeAttr(st.path.str(), *attr);
+      // An effect's parameter: the block around it names the effect.
+      if (text.empty() && ch.size() >= 2)
+        if (const cat::EffectSpec* fx = cat::findEffect(ch[ch.size() - 2]->name))
+          for (const auto& prm : fx->params)
+            if (prm.name == st.path.str()) text = describeAttr(fx->name + "." + prm.name, prm);
+    } else if (st.kind == ast::StmtKind::Stage && contains(st.wordSpan, a.line, a.col)) {
+      if (const cat::KindSpec* k = cat::findKind(st.word))
+        text = fmt::format("**{}** stage — gears: {}", k->name, fmt::join(k->gears, ", "));
+    } else if (const cat::EffectSpec* fx = cat::findEffect(st.name); fx && contains(st.nameSpan, a.line, a.col)) {
+      text = fmt::format("**{}** — {}", fx->name, fx->meaning);
+    }
+    if (text.empty()) return Json();
+    return Json::Object{{"contents", Json::Object{{"kind", "markdown"}, {"value", text}}}};
+  }
+
+  Json completion(const Json& params) {
+    At a = at(params);
+    Json::Array items;
+    auto item = [&](const std::string& label, int kind, const std::string& detail) {
+      items.push_back(Json::Object{{"label", label}, {"kind", kind}, {"detail", detail}});
+    };
+    std::vector<const ast::Stmt*> ch;
+    if (!a.c->loaded.files.empty()) chain(a.c->loaded.files[0].decls, a.line, a.col, ch);
+    bool inEffects = false;
+    for (const auto* st : ch) inEffects = inEffects || st->kind == ast::StmtKind::Effects;
+    if (inEffects) {
+      const cat::EffectSpec* fx = ch.back()->kind == ast::StmtKind::Effects ? nullptr : cat::findEffect(ch.back()->name);
+      if (fx)
+        for (const auto& prm : fx->params) item(prm.name, 10, prm.meaning);
+      else
+        for (const auto& e : cat::effects()) item(e.name, 3, e.meaning);
+    } else if (const cat::KindSpec* k = stageKind(ch)) {
+      for (const auto& attr : k->stage)
+        if (attr.role != cat::AttrRole::Derived) item(attr.name, 10, attr.meaning);
+      for (const auto& g : k->gears)
+        for (const auto& attr : k->gear)
+          if (attr.role != cat::AttrRole::Derived) item(g + "." + attr.name, 10, attr.meaning);
+    } else {
+      for (const char* kw : {"gearbox", "stage", "const", "let", "require", "minimize", "maximize", "operating", "scene",
+                             "modify", "split", "study", "report", "import", "preset", "interchangeable", "tolerances"})
+        item(kw, 14, "");
+      for (const char* m : {"materials", "modules", "gleason", "klingelnberg"}) item(m, 9, "stdlib module");
+      for (const auto& k : cat::stageKinds()) item(k.name, 7, "stage kind");
+    }
+    return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
+  }
+
+  Json definition(const Json& params) {
+    At a = at(params);
+    if (a.c->sources.size() == 0) return Json();
+    // The word under the cursor.
+    std::string line = a.c->sources.get(0).line(a.line);
+    size_t pos = 0;
+    for (int col = 1; pos < line.size() && col < a.col; ++col) {
+      unsigned char c = static_cast<unsigned char>(line[pos]);
+      pos += c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 1;
+    }
+    auto wordChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    size_t b = pos, e = pos;
+    while (b > 0 && wordChar(line[b - 1])) --b;
+    while (e < line.size() && wordChar(line[e])) ++e;
+    if (b == e) return Json();
+    std::string word = line.substr(b, e - b);
+    // Declarations with that name, in the main file first, then imports.
+    std::function<const ast::Stmt*(const std::vector<ast::Stmt>&)> find = [&](const std::vector<ast::Stmt>& body) -> const ast::Stmt* {
+      for (const auto& st : body) {
+        bool declares = st.kind == ast::StmtKind::Gearbox || st.kind == ast::StmtKind::Stage || st.kind == ast::StmtKind::Const ||
+                        st.kind == ast::StmtKind::Let || st.kind == ast::StmtKind::Scene || st.kind == ast::StmtKind::Study ||
+                        st.kind == ast::StmtKind::Split || st.kind == ast::StmtKind::Preset || st.kind == ast::StmtKind::Named ||
+                        st.kind == ast::StmtKind::Like;
+        if (declares && st.name == word && st.nameSpan.valid() && !contains(st.nameSpan, a.line, a.col)) return &st;
+        if (const auto* inner = find(st.body)) return inner;
+      }
+      return nullptr;
+    };
+    for (const auto& f : a.c->loaded.files)
+      if (const ast::Stmt* st = find(f.decls)) {
+        const auto& src = a.c->sources.get(st->nameSpan.file);
+        std::string path = src.absPath().empty() ? src.displayPath() : src.absPath();
+        return Json::Object{{"uri", st->nameSpan.file == 0 ? params["textDocument"]["uri"].string() : uriOf(path)},
+                            {"range", rangeOf(a.c->sources, st->nameSpan)}};
+      }
+    return Json();
+  }
+
+  Json symbols(const Json& params) {
+    const std::string& uri = params["textDocument"]["uri"].string();
+    auto c = driver::compileText(pathOf(uri), docs_[uri]);
+    std::function<Json::Array(const std::vector<ast::Stmt>&)> walk = [&](const std::vector<ast::Stmt>& body) {
+      Json::Array out;
+      for (const auto& st : body) {
+        int kind = st.kind == ast::StmtKind::Gearbox   ? 5    // class
+                   : st.kind == ast::StmtKind::Stage   ? 23   // struct
+                   : st.kind == ast::StmtKind::Like    ? 23
+                   : st.kind == ast::StmtKind::Scene   ? 24   // event
+                   : st.kind == ast::StmtKind::Study   ? 12   // function
+                   : st.kind == ast::StmtKind::Split   ? 12
+                   : st.kind == ast::StmtKind::Const   ? 14   // constant
+                   : st.kind == ast::StmtKind::Named   ? 19   // object (a material)
+                   : st.kind == ast::StmtKind::Preset  ? 19
+                                                       : 0;
+        if (kind == 0 || st.name.empty() || !st.span.valid() || !st.nameSpan.valid()) continue;
+        Json::Object sym{{"name", st.name}, {"kind", kind}, {"range", rangeOf(c->sources, st.span)},
+                         {"selectionRange", rangeOf(c->sources, st.nameSpan)}};
+        if (!st.word.empty()) sym["detail"] = st.word;
+        Json::Array children = walk(st.body);
+        if (!children.empty()) sym["children"] = std::move(children);
+        out.push_back(std::move(sym));
+      }
+      return out;
+    };
+    if (c->loaded.files.empty()) return Json::Array{};
+    return walk(c->loaded.files[0].decls);
   }
 
   std::ostream& out_;

@@ -1,9 +1,16 @@
 // The language server driven through a scripted session, as an editor would, on streams.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
+
+// GCC 12 at -O2 warns of a maybe-uninitialized std::string inside copies of std::variant
+// built from initializer lists (a known false positive); the sanitizers run this file too.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 #include "lsp/Json.h"
 #include "lsp/Server.h"
@@ -44,9 +51,15 @@ Json open(const std::string& uri, const std::string& text) {
                 Json::Object{{"textDocument", Json::Object{{"uri", uri}, {"languageId", "gbx"}, {"version", 1}, {"text", text}}}});
 }
 Json change(const std::string& uri, const std::string& text, int version) {
-  return notify("textDocument/didChange",
-                Json::Object{{"textDocument", Json::Object{{"uri", uri}, {"version", version}}},
-                             {"contentChanges", Json::Array{Json::Object{{"text", text}}}}});
+  Json::Object whole, doc, params;
+  whole["text"] = text;
+  doc["uri"] = uri;
+  doc["version"] = version;
+  params["textDocument"] = Json(std::move(doc));
+  Json::Array changes;
+  changes.push_back(Json(std::move(whole)));
+  params["contentChanges"] = Json(std::move(changes));
+  return notify("textDocument/didChange", Json(std::move(params)));
 }
 
 } // namespace
@@ -123,4 +136,58 @@ TEST(Lsp, SurvivesEveryTruncatedSpec) {
   auto m = messagesOf(out.str());
   EXPECT_EQ(m.size(), static_cast<size_t>(changes) + 1);
   for (size_t i = 1; i < m.size(); ++i) EXPECT_EQ(m[i]["method"].string(), "textDocument/publishDiagnostics");
+}
+
+// Hover, completion, definition and document symbols on a spec of the repository.
+TEST(Lsp, HoverCompletionDefinitionAndSymbols) {
+  std::ifstream f(fs::path(GBX_SOURCE_DIR) / "specs" / "spur_resonance.gbx", std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string text = ss.str();
+  // The 0-based position of `what` (plus `k` characters) in the text.
+  auto at = [&](const std::string& what, int k) {
+    size_t i = text.find(what);
+    EXPECT_NE(i, std::string::npos) << what;
+    int line = static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(i), '\n'));
+    size_t start = text.rfind('\n', i);
+    int character = static_cast<int>(i - (start == std::string::npos ? 0 : start + 1)) + k;
+    return Json::Object{{"line", line}, {"character", character}};
+  };
+  const std::string uri = "file://" + (fs::path(GBX_SOURCE_DIR) / "specs" / "spur_resonance.gbx").string();
+  Json doc = Json::Object{{"uri", uri}};
+  auto req = [&](int id, const char* method, Json position) {
+    return frame(request(id, method, Json::Object{{"textDocument", doc}, {"position", std::move(position)}}));
+  };
+  std::string script = frame(request(1, "initialize")) + frame(open(uri, text)) + req(2, "textDocument/hover", at("normal_module", 2)) +
+                       req(3, "textDocument/hover", at("harmonics = 10", 2)) + req(4, "textDocument/completion", at("face_width", 0)) +
+                       req(5, "textDocument/definition", at("mesh on s1", 9)) +
+                       req(6, "textDocument/definition", at("steel_42CrMo4", 3)) +
+                       frame(request(7, "textDocument/documentSymbol", Json::Object{{"textDocument", doc}})) +
+                       frame(request(8, "shutdown")) + frame(notify("exit"));
+  std::istringstream in(script);
+  std::ostringstream out;
+  EXPECT_EQ(gbx::lsp::serve(in, out), 0);
+  std::map<int, Json> byId;
+  for (const auto& m : messagesOf(out.str()))
+    if (!m["id"].isNull()) byId[static_cast<int>(m["id"].number())] = m["result"];
+  EXPECT_TRUE(byId[1]["capabilities"]["hoverProvider"].boolean());
+  EXPECT_EQ(byId[2]["contents"]["value"].string(), "**normal_module** — normal module\n\na length, in mm");
+  EXPECT_NE(byId[3]["contents"]["value"].string().find("varying_stiffness.harmonics"), std::string::npos);
+  // Inside a spur stage: its attributes, the per-gear ones by gear.
+  std::set<std::string> labels;
+  for (size_t i = 0; i < byId[4]["items"].size(); ++i) labels.insert(byId[4]["items"].at(i)["label"].string());
+  for (const char* want : {"normal_module", "face_width", "pinion.z", "wheel.shift", "material"})
+    EXPECT_TRUE(labels.count(want)) << want;
+  EXPECT_FALSE(labels.count("ratio")) << "a derived quantity cannot be written";
+  // `on s1` goes to the stage's name; a material to its declaration in the stdlib.
+  EXPECT_EQ(byId[5]["uri"].string(), uri);
+  EXPECT_EQ(byId[5]["range"]["start"]["line"].number(), 8);
+  EXPECT_NE(byId[6]["uri"].string().find("stdlib/materials.gbx"), std::string::npos) << byId[6].dump();
+  // Symbols: the gearbox, with its stage, scene and study inside.
+  const Json& sym = byId[7];
+  ASSERT_EQ(sym.size(), 1u) << sym.dump();
+  EXPECT_EQ(sym.at(0)["name"].string(), "SpurResonance");
+  std::vector<std::string> children;
+  for (size_t i = 0; i < sym.at(0)["children"].size(); ++i) children.push_back(sym.at(0)["children"].at(i)["name"].string());
+  EXPECT_EQ(children, (std::vector<std::string>{"s1", "mesh", "resonance"}));
 }
