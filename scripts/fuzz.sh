@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets of tests/fuzz (build them with scripts/setup.sh --fuzz).
-#   scripts/fuzz.sh [SECONDS] [front_end|solve]...   each target for SECONDS (default 120)
+#   scripts/fuzz.sh [SECONDS] [front_end|solve|lsp]...   each target for SECONDS (default 120)
 # Seeds: the committed corpus (tests/fuzz/corpus/<target>), specs/, the golden inputs and
 # the regression folder, with the language's dictionary. New inputs go to
 # build-fuzz/corpus/<target> (never into the tree). A crash, leak, timeout or sanitizer
@@ -14,7 +14,7 @@ root=$PWD
 seconds=${1:-120}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(front_end solve)
+((${#targets[@]})) || targets=(front_end solve lsp)
 
 mkdir -p build-fuzz/artifacts
 seeds=(specs tests/fuzz/regressions)
