@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "diag/Diagnostic.h"
+
 namespace gbx::lsp {
 
 namespace {
@@ -14,18 +16,7 @@ const std::string kEmpty;
 
 void dumpString(const std::string& s, std::string& out) {
   out += '"';
-  for (unsigned char c : s) {
-    switch (c) {
-    case '"': out += "\\\""; break;
-    case '\\': out += "\\\\"; break;
-    case '\n': out += "\\n"; break;
-    case '\r': out += "\\r"; break;
-    case '\t': out += "\\t"; break;
-    default:
-      if (c < 0x20) out += fmt::format("\\u{:04x}", c);
-      else out += static_cast<char>(c);
-    }
-  }
+  out += diag::jsonEscape(s);
   out += '"';
 }
 
