@@ -314,9 +314,18 @@ struct Material {
   Span span;
 };
 
+// A `const` as checked: its value in SI (an editor's hover shows it; `dump ir` does not).
+struct ConstValue {
+  std::string name;
+  units::Number value;
+  units::Dim dim;
+  bool isSet = false;  // a set of values, not one number
+};
+
 struct Program {
   std::vector<Material> materials;
   std::vector<Gearbox> gearboxes;
+  std::vector<ConstValue> consts;
   const Material* findMaterial(const std::string& name) const;
   int materialIndex(const std::string& name) const;
 };

@@ -238,6 +238,22 @@ private:
     return a;
   }
 
+  // The identifier under the position ("" when none).
+  static std::string wordAt(const At& a) {
+    if (a.c->sources.size() == 0) return "";
+    std::string line = a.c->sources.get(0).line(a.line);
+    size_t pos = 0;
+    for (int col = 1; pos < line.size() && col < a.col; ++col) {
+      unsigned char c = static_cast<unsigned char>(line[pos]);
+      pos += c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 1;
+    }
+    auto wordChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    size_t b = std::min(pos, line.size()), e = b;
+    while (b > 0 && wordChar(line[b - 1])) --b;
+    while (e < line.size() && wordChar(line[e])) ++e;
+    return line.substr(b, e - b);
+  }
+
   // The statements from the outermost to the innermost that hold the position.
   static void chain(const std::vector<ast::Stmt>& body, int line, int col, std::vector<const ast::Stmt*>& out) {
     for (const auto& st : body)
@@ -275,6 +291,14 @@ private:
         text = fmt::format("**{}** stage — gears: {}", k->name, fmt::join(k->gears, ", "));
     } else if (const cat::EffectSpec* fx = cat::findEffect(st.name); fx && contains(st.nameSpan, a.line, a.col)) {
       text = fmt::format("**{}** — {}", fx->name, fx->meaning);
+    }
+    // A const, where it is declared or used: its value in SI.
+    if (text.empty()) {
+      std::string word = wordAt(a);
+      for (const auto& k : a.c->program.consts)
+        if (k.name == word && !k.isSet)
+          text = fmt::format("**const {}** = {} ({}{})", k.name, units::showQuantity(k.value, k.dim), k.value.str(),
+                             k.dim.dimensionless() ? "" : " in SI");
     }
     if (text.empty()) return Json();
     return Json::Object{{"contents", Json::Object{{"kind", "markdown"}, {"value", text}}}};
@@ -314,20 +338,8 @@ private:
 
   Json definition(const Json& params) {
     At a = at(params);
-    if (a.c->sources.size() == 0) return Json();
-    // The word under the cursor.
-    std::string line = a.c->sources.get(0).line(a.line);
-    size_t pos = 0;
-    for (int col = 1; pos < line.size() && col < a.col; ++col) {
-      unsigned char c = static_cast<unsigned char>(line[pos]);
-      pos += c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 1;
-    }
-    auto wordChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-    size_t b = pos, e = pos;
-    while (b > 0 && wordChar(line[b - 1])) --b;
-    while (e < line.size() && wordChar(line[e])) ++e;
-    if (b == e) return Json();
-    std::string word = line.substr(b, e - b);
+    std::string word = wordAt(a);
+    if (word.empty()) return Json();
     // Declarations with that name, in the main file first, then imports.
     std::function<const ast::Stmt*(const std::vector<ast::Stmt>&)> find = [&](const std::vector<ast::Stmt>& body) -> const ast::Stmt* {
       for (const auto& st : body) {

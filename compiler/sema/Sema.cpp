@@ -53,6 +53,9 @@ public:
     collect(prog);
     checkConsts();
     ir::Program out;
+    for (const auto& [name, x] : globals_.constValues)
+      if (x && !x->type.isError())
+        out.consts.push_back({name, x->value, x->type.dim, x->op == ir::Op::Set});
     for (const auto& [name, decl] : globals_.materials) out.materials.push_back(material(*decl));
     for (const auto& [name, decl] : globals_.presets) checkPreset(*decl);
     // Gearboxes in declaration order of the main file, then of imports.

@@ -191,3 +191,21 @@ TEST(Lsp, HoverCompletionDefinitionAndSymbols) {
   for (size_t i = 0; i < sym.at(0)["children"].size(); ++i) children.push_back(sym.at(0)["children"].at(i)["name"].string());
   EXPECT_EQ(children, (std::vector<std::string>{"s1", "mesh", "resonance"}));
 }
+
+// Hover on a const, where it is used: its value, as written and in SI.
+TEST(Lsp, HoverShowsAConstsValue) {
+  const std::string uri = "file:///tmp/lsp-const.gbx";
+  const std::string text =
+      "const m = 3 mm;\ngearbox G { stage s: spur { pinion.z = 20; wheel.z = 40; normal_module = m; face_width = 30 mm; } }\n";
+  Json where = Json::Object{{"line", 1}, {"character", static_cast<int>(text.find("= m;") - text.find('\n') - 1 + 2)}};
+  std::string script = frame(request(1, "initialize")) + frame(open(uri, text)) +
+                       frame(request(2, "textDocument/hover",
+                                     Json::Object{{"textDocument", Json::Object{{"uri", uri}}}, {"position", where}})) +
+                       frame(request(3, "shutdown")) + frame(notify("exit"));
+  std::istringstream in(script);
+  std::ostringstream out;
+  EXPECT_EQ(gbx::lsp::serve(in, out), 0);
+  auto m = messagesOf(out.str());
+  ASSERT_GE(m.size(), 3u);
+  EXPECT_EQ(m[2]["result"]["contents"]["value"].string(), "**const m** = 3 mm (0.003 in SI)") << m[2].dump();
+}
