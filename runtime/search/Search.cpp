@@ -341,6 +341,14 @@ std::string stageRanges(const Model& m, int s) {
   return fmt::format("{}", fmt::join(parts, " x "));
 }
 
+// The candidates of stage s before its rules: the product of its decisions' value counts.
+double stageDomain(const Model& m, int s) {
+  double domain = 1;
+  for (int sl : m.stages[static_cast<size_t>(s)].slots)
+    domain *= static_cast<double>(m.slots[static_cast<size_t>(sl)].values.size());
+  return domain;
+}
+
 std::string timeLimitMessage(const std::string& doing, double done, double limit, double space) {
   std::string estimate = done > 0.001 ? fmt::format("; the whole would take about {:.3g} s", limit / done) : "";
   return fmt::format("time limit of {:g} s (--time-limit) reached while {} ({:.1f} % of {:.3g} done{}); narrow the ranges "
@@ -568,9 +576,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
 
   // The budget, before any work: each stage's domain, counted before its rules filter it.
   for (int s = 0; s < k; ++s) {
-    double domain = 1;
-    for (int sl : m.stages[static_cast<size_t>(s)].slots)
-      domain *= static_cast<double>(m.slots[static_cast<size_t>(sl)].values.size());
+    double domain = stageDomain(m, s);
     if (domain > opt.maxDesigns) {
       res.errors.push_back(fmt::format("stage `{}` has {:.3g} candidates ({}), beyond the search budget of {:.3g} (--max-designs); "
                                        "narrow these ranges, or raise --max-designs",
@@ -582,11 +588,8 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
   for (int s = 0; s < k; ++s) {
     stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs));
     if (stages.back().timedOutAt >= 0) {
-      double domain = 1;
-      for (int sl : m.stages[static_cast<size_t>(s)].slots)
-        domain *= static_cast<double>(m.slots[static_cast<size_t>(sl)].values.size());
       res.errors.push_back(timeLimitMessage(fmt::format("filtering the candidates of stage `{}`", m.stages[static_cast<size_t>(s)].ir->name),
-                                            stages.back().timedOutAt, Deadline::seconds(), domain));
+                                            stages.back().timedOutAt, Deadline::seconds(), stageDomain(m, s)));
       return res;
     }
     for (auto& f : stages.back().funnel)
@@ -817,7 +820,11 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       out[i++] = v.isNumber() && !std::isnan(x) ? rankingKey(x) : INFINITY; // NaN would break the order
     }
   };
-  const size_t keep = opt.top ? static_cast<size_t>(std::max(0LL, *opt.top)) : SIZE_MAX;
+  // At most one design more than opt.maxKept is kept, whatever `top` says: finding more is
+  // a failure, not memory spent.
+  const size_t top = opt.top ? static_cast<size_t>(std::max(0LL, *opt.top)) : SIZE_MAX;
+  const bool capped = opt.top && top > opt.maxKept;
+  const size_t keep = capped ? opt.maxKept + 1 : top;
 
   // The first key in doubles, when it is a sum of one-stage terms and functions of the
   // ratio: a screen before the evaluator, and bounds that skip whole windows. Checked
@@ -1099,8 +1106,14 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     if (begin >= end || rn == 0) return;
     auto lower = [&](double v) { return right.lowerBound(v); };
     auto upper = [&](double v) { return right.upperBound(v); };
-    // Right entries walked since the time limit was last asked about.
+    // Right entries walked since the time limit was last asked about; `due` says when to ask
+    // again: at a loop's own interval, or after enough work inside it.
     size_t sinceCheck = 0;
+    auto due = [&](bool interval) {
+      if (!interval && sinceCheck <= (1u << 16)) return false;
+      sinceCheck = 0;
+      return true;
+    };
     // One left entry against its window of right entries [loP, hiP), from `floor` on.
     auto join = [&](size_t le, double x, size_t from, size_t to, double partial) {
       if (from >= to) return;
@@ -1154,8 +1167,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
         for (int s = 2; s < k; ++s)
           rightLeast += fastKey->least(s);
       for (size_t i = begin; i < end; ++i) {
-        if (((i - begin) % 64 == 0 || sinceCheck > (1u << 16)) && stopHere(t, i, begin, end)) return;
-        if (sinceCheck > (1u << 16)) sinceCheck = 0;
+        if (due((i - begin) % 64 == 0) && stopHere(t, i, begin, end)) return;
         if (report && (i - begin) % 64 == 0)
           opt.progress(static_cast<double>(i - begin) / static_cast<double>(end - begin));
         size_t j0 = j0FromI ? i : 0;
@@ -1165,10 +1177,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
         size_t loP = lower(wantLoC / x0), hiP = upper(wantHiC / x0);
         double rowPart = fastKey ? base + fastKey->entry(0, cand[0]) : 0;
         for (size_t j = j0; j < m1; ++j) {
-          if (sinceCheck > (1u << 16)) {
-            sinceCheck = 0;
-            if (stopHere(t, i, begin, end)) return;
-          }
+          if (due(false) && stopHere(t, i, begin, end)) return;
           double x = r0[i] * r1[j];
           double inv = 1 / x;
           double wl = wantLoC * inv, wh = wantHiC * inv;
@@ -1215,8 +1224,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     }
     size_t loP = lower(wantLoC / leftList.ratio(begin)), hiP = upper(wantHiC / leftList.ratio(begin));
     for (size_t le = begin; le < end; ++le) {
-      if (((le - begin) % 4096 == 0 || sinceCheck > (1u << 16)) && stopHere(t, le, begin, end)) return;
-      if (sinceCheck > (1u << 16)) sinceCheck = 0;
+      if (due((le - begin) % 4096 == 0) && stopHere(t, le, begin, end)) return;
       if (report && (le - begin) % 65536 == 0)
         opt.progress(static_cast<double>(le - begin) / static_cast<double>(end - begin));
       double x = leftList.ratio(le);
@@ -1250,14 +1258,6 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
                                      opt.maxDesigns * kCheckedShare, opt.maxDesigns, combos));
     return res;
   }
-  if (std::any_of(locals.begin(), locals.end(), [](const Local& lo) { return lo.overKept; })) {
-    unsigned long long found = 0;
-    for (const auto& lo : locals) found += lo.count;
-    res.errors.push_back(fmt::format("{} designs satisfy the rules, more than the {} a report can list (the budget of kept "
-                                     "designs); ask for fewer with `report {{ top N; }}`, or narrow the ranges",
-                                     found, opt.maxKept));
-    return res;
-  }
   if (timedOut) {
     double elapsed = Deadline::seconds();
     double done = 0;
@@ -1283,6 +1283,12 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       crossRemoved[c] += lo.crossRemoved[c];
     for (std::uint32_t id : lo.heap)
       hits.push_back({nk ? lo.keys[id * nk] : 0.0, &lo, id});
+  }
+  if ((capped && count > opt.maxKept) || std::any_of(locals.begin(), locals.end(), [](const Local& lo) { return lo.overKept; })) {
+    res.errors.push_back(fmt::format("{} designs satisfy the rules, more than the {} a report can list (the budget of kept "
+                                     "designs); ask for fewer with `report {{ top N; }}`, or narrow the ranges",
+                                     count, opt.maxKept));
+    return res;
   }
   auto refLess = [&](const Ref& x, const Ref& y) {
     if (x.k0 != y.k0) return x.k0 < y.k0;

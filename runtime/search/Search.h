@@ -45,7 +45,8 @@ struct SearchOptions {
   // The search budget (`--max-designs`): each stage's domain, and the product of the
   // stages' candidate lists the join would walk, counted before the work starts.
   double maxDesigns = 1e9;
-  // Designs an unlimited listing (no `top`) may keep; beyond it the search fails.
+  // Designs a search may keep for its report, with or without `top`; finding more is a
+  // failure (a `top` beyond it is cut to it, so memory stays bounded).
   size_t maxKept = SIZE_MAX;
 };
 
