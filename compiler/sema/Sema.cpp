@@ -246,13 +246,7 @@ private:
                      fmt::format("`{}` must be positive, got {}", name, units::showQuantity(x->value, x->type.dim)));
         return out;
       }
-      if (spec.budget && spec.atMost && x->value.compare(*spec.atMost) > 0) {
-        diags_.error("E0411", x->span,
-                     fmt::format("`{}` = {} is beyond its budget of {} ({}); a larger value cannot be answered in bounded "
-                                 "time and memory",
-                                 name, x->value.str(), spec.atMost->str(), spec.meaning));
-        return out;
-      }
+      if (beyondBudget(spec, name, *x)) return out;
       if ((spec.atLeast && x->value.compare(*spec.atLeast) < 0) || (spec.atMost && x->value.compare(*spec.atMost) > 0)) {
         std::string range = spec.atLeast && spec.atMost ? fmt::format("between {} and {}", units::showQuantity(*spec.atLeast, spec.dim),
                                                                       units::showQuantity(*spec.atMost, spec.dim))
@@ -730,11 +724,7 @@ private:
                            : fmt::format("`{}` must be positive, got {}", path, units::showQuantity(x->value, x->type.dim)));
         return std::nullopt;
       }
-      if (spec->budget && spec->atMost && x->value.compare(*spec->atMost) > 0) {
-        diags_.error("E0411", x->span,
-                     fmt::format("`{}` = {} is beyond its budget of {} ({})", path, x->value.str(), spec->atMost->str(), spec->meaning));
-        return std::nullopt;
-      }
+      if (beyondBudget(*spec, path, *x)) return std::nullopt;
       if (spec->integer && (x->value.sign() < 0 ? x->value.neg() : x->value).compare(units::Number::exact(units::Rational(cat::budget::kWholeNumber))) > 0) {
         diags_.error("E0411", x->span,
                      fmt::format("`{}` = {} is beyond the budget of {} for a whole number", path, x->value.str(), cat::budget::kWholeNumber));
@@ -1757,6 +1747,15 @@ private:
     return out;
   }
 
+  // E0411 when a constant is beyond its row's size budget (catalogue/Budgets.h).
+  bool beyondBudget(const AttrSpec& spec, const std::string& name, const ir::Expr& x) {
+    if (!spec.budget || !spec.atMost || x.value.compare(*spec.atMost) <= 0) return false;
+    diags_.error("E0411", x.span,
+                 fmt::format("`{}` = {} is beyond its budget of {} ({}); a larger value cannot be answered in bounded time and memory",
+                             name, x.value.str(), spec.atMost->str(), spec.meaning));
+    return true;
+  }
+
   // Times in mesh periods and the samples they record, against their budgets; times in
   // seconds are measured against a design's mesh period at run time.
   void sceneBudgets(const ir::Scene& sc, const std::string& owner) {
@@ -1801,11 +1800,7 @@ private:
         diags_.error("E0405", x->span, fmt::format("`{}` must be positive", spec.name));
         return std::nullopt;
       }
-      if (spec.budget && spec.atMost && x->value.compare(*spec.atMost) > 0) {
-        diags_.error("E0411", x->span,
-                     fmt::format("`{}` = {} is beyond its budget of {} ({})", spec.name, x->value.str(), spec.atMost->str(), spec.meaning));
-        return std::nullopt;
-      }
+      if (beyondBudget(spec, spec.name, *x)) return std::nullopt;
       return x->value;
     };
     if (spec.value == ValueKind::Symbol) {
