@@ -89,8 +89,7 @@ std::string pathOf(const std::string& uri) {
 int utf16Column(const std::string& line, int col) {
   int units = 0, points = 0;
   for (size_t i = 0; i < line.size() && points < col - 1;) {
-    unsigned char c = static_cast<unsigned char>(line[i]);
-    size_t len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 1;
+    size_t len = source::utf8Length(static_cast<unsigned char>(line[i]));
     units += len == 4 ? 2 : 1;
     ++points;
     i += len;
@@ -102,8 +101,7 @@ int utf16Column(const std::string& line, int col) {
 int codePointColumn(const std::string& line, int character) {
   int units = 0, col = 1;
   for (size_t i = 0; i < line.size() && units < character;) {
-    unsigned char c = static_cast<unsigned char>(line[i]);
-    size_t len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 1;
+    size_t len = source::utf8Length(static_cast<unsigned char>(line[i]));
     units += len == 4 ? 2 : 1;
     ++col;
     i += len;
@@ -202,18 +200,10 @@ private:
     Json::Array list;
     for (const auto& d : c->diags.all()) {
       bool here = d.span.valid() && d.span.file < c->sources.size() && c->sources.get(d.span.file).displayPath() == path;
-      Json range;
-      if (here) {
-        const auto& f = c->sources.get(d.span.file);
-        int endLine = d.span.endLine > 0 ? d.span.endLine : d.span.line;
-        int endCol = d.span.endLine > 0 ? d.span.endCol : d.span.col;
-        range = Json::Object{
-            {"start", Json::Object{{"line", d.span.line - 1}, {"character", utf16Column(f.line(d.span.line), d.span.col)}}},
-            {"end", Json::Object{{"line", endLine - 1}, {"character", utf16Column(f.line(endLine), endCol + 1)}}}};
-      } else {
-        // In an imported file, or with no place: shown at the top of this one.
-        range = Json::Object{{"start", Json::Object{{"line", 0}, {"character", 0}}}, {"end", Json::Object{{"line", 0}, {"character", 0}}}};
-      }
+      // In an imported file, or with no place: shown at the top of this one.
+      Json range = here ? rangeOf(c->sources, d.span)
+                        : Json(Json::Object{{"start", Json::Object{{"line", 0}, {"character", 0}}},
+                                            {"end", Json::Object{{"line", 0}, {"character", 0}}}});
       int severity = d.severity == diag::Severity::Error ? 1 : d.severity == diag::Severity::Warning ? 2 : 3;
       std::string message = d.message;
       if (!here && d.span.valid() && d.span.file < c->sources.size())
@@ -243,10 +233,7 @@ private:
     if (a.c->sources.size() == 0) return "";
     std::string line = a.c->sources.get(0).line(a.line);
     size_t pos = 0;
-    for (int col = 1; pos < line.size() && col < a.col; ++col) {
-      unsigned char c = static_cast<unsigned char>(line[pos]);
-      pos += c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 1;
-    }
+    for (int col = 1; pos < line.size() && col < a.col; ++col) pos += source::utf8Length(static_cast<unsigned char>(line[pos]));
     auto wordChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
     size_t b = std::min(pos, line.size()), e = b;
     while (b > 0 && wordChar(line[b - 1])) --b;

@@ -1,6 +1,7 @@
 #pragma once
 // Source files and positions. Columns count Unicode code points, 1-based, as the
 // parser sees them, so a caret under `35°` lands where the reader expects.
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,5 +47,9 @@ private:
 
 // Number of code points in a UTF-8 string.
 int codePoints(const std::string& utf8);
+// Bytes of the UTF-8 sequence a lead byte starts (1 for a stray continuation byte).
+inline size_t utf8Length(unsigned char lead) {
+  return lead < 0x80 ? 1 : (lead >> 5) == 6 ? 2 : (lead >> 4) == 14 ? 3 : (lead >> 3) == 30 ? 4 : 1;
+}
 
 } // namespace gbx::source
