@@ -1,18 +1,25 @@
 #include "driver/Driver.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
+#include <sstream>
 
 #include <fmt/format.h>
 
 #include "catalogue/Budgets.h"
 #include "driver/Golden.h"
+#include "format/Formatter.h"
 #include "lower/Lower.h"
 #include "lsp/Server.h"
 #include "report/Formats.h"
 #include "sema/Sema.h"
 #include "Solve.h"
+#include "WriteWhole.h"
 
 #ifndef GBX_VERSION
 #define GBX_VERSION "0.0.0"
@@ -54,6 +61,7 @@ commands:
   dump ir FILE             print the checked, lowered program
   solve FILE               solve every gearbox of the spec (or --gearbox NAME)
   test PATH... [--update]  golden regression tests: each x.gbx against x.expected
+  fmt PATH... [--check]    lay files out the one way (docs/formatting.md); - for stdin
   lsp                      a Language Server Protocol server on stdin/stdout (diagnostics)
 
 options:
@@ -67,6 +75,7 @@ options:
   --no-timings             leave CPU times out of reports (for golden files)
   --update                 (test) rewrite the expected files
   --timings                (test) compare CPU times too (left out by default: they vary)
+  --check                  (fmt) change nothing: show a diff of each file not laid out
   --help                   this text
   --version                the version
 
@@ -107,6 +116,21 @@ A leading `// ARGS: check` runs another command; `// TOLERANCE: 1e-9` compares n
 within that relative tolerance.
 )";
 
+const char* kFmtUsage = R"(usage: gbxc fmt PATH... [--check]
+
+Lays every .gbx file out the one way (docs/formatting.md): indentation, blanks around
+operators and units, line breaks of blocks, aligned `=`/`in` and trailing comments.
+Line breaks, comments and tokens stay as written. A folder means every .gbx file below
+it; `-` reads standard input and writes the result to standard output.
+
+options:
+  --check                  change nothing; print a diff of each file that is not laid
+                           out and exit 1 if any is not
+
+exit status: 0 laid out (or, with --check, already laid out), 1 a file does not parse or
+(--check) is not laid out, 2 usage, 3 a file cannot be read or written
+)";
+
 struct Options {
   std::string command;
   std::string sub;  // ast|ir for dump
@@ -121,6 +145,7 @@ struct Options {
   bool update = false;
   bool timings = true;
   bool testTimings = false;  // test: keep CPU times in the compared output
+  bool check = false;        // fmt: change nothing, show what would change
 };
 
 int usage(std::ostream& err, const std::string& msg) {
@@ -219,6 +244,80 @@ int test(const Options& o, std::ostream& out, std::ostream& err) {
   return failed == 0 ? 0 : 1;
 }
 
+// The .gbx files a path names: itself, or those below a folder, in name order.
+std::vector<std::string> gbxFiles(const std::string& path, std::string& problem) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) return {path};
+  std::vector<std::string> out;
+  for (fs::recursive_directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".gbx" && it->is_regular_file(ec)) out.push_back(it->path().string());
+  if (ec) problem = fmt::format("cannot read the folder `{}`: {}", path, ec.message());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+int formatFiles(const Options& o, std::ostream& out, std::ostream& err) {
+  int status = 0;
+  auto raise = [&](int s) { status = std::max(status, s); };
+  for (const auto& arg : o.files) {
+    std::string problem;
+    std::vector<std::string> files = arg == "-" ? std::vector<std::string>{"-"} : gbxFiles(arg, problem);
+    if (!problem.empty()) {
+      err << "gbxc fmt: " << problem << "\n";
+      raise(3);
+    }
+    for (const auto& path : files) {
+      std::string text;
+      if (path == "-") {
+        text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+      } else {
+        std::ifstream f(path, std::ios::binary);
+        if (!f) {
+          err << fmt::format("gbxc fmt: cannot read `{}`\n", path);
+          raise(3);
+          continue;
+        }
+        text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+      }
+      source::SourceManager sm;
+      diag::DiagnosticEngine diags;
+      std::optional<std::string> formatted;
+      try {
+        formatted = format::formatText(path == "-" ? "<stdin>" : path, text, sm, diags);
+      } catch (const std::logic_error& e) {
+        err << "gbxc fmt: " << e.what() << "\n";
+        raise(3);
+        continue;
+      }
+      if (!formatted) {
+        err << diags.renderText(sm);
+        raise(1);
+        continue;
+      }
+      if (path == "-") {
+        if (o.check && *formatted != text) {
+          out << unifiedDiff(text, *formatted, "<stdin>", "<stdin> (formatted)");
+          raise(1);
+        } else if (!o.check) {
+          out << *formatted;
+        }
+      } else if (*formatted != text) {
+        if (o.check) {
+          out << unifiedDiff(text, *formatted, path, path + " (formatted)");
+          raise(1);
+        } else if (std::string e = rt::writeWhole(path, *formatted); !e.empty()) {
+          err << "gbxc fmt: " << e << "\n";
+          raise(3);
+        } else {
+          out << "formatted " << path << "\n";
+        }
+      }
+    }
+  }
+  return status;
+}
+
 } // namespace
 
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -230,8 +329,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
     if (a == "--help" || a == "-h") {
       // After a command, that command's options.
-      bool solveHelp = !positional.empty() && positional[0] == "solve", testHelp = !positional.empty() && positional[0] == "test";
-      out << (solveHelp ? kSolveUsage : testHelp ? kTestUsage : kUsage);
+      std::string command = positional.empty() ? "" : positional[0];
+      out << (command == "solve" ? kSolveUsage : command == "test" ? kTestUsage : command == "fmt" ? kFmtUsage : kUsage);
       return 0;
     }
     if (a == "--version") {
@@ -273,6 +372,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
       o.timings = false;
     } else if (a == "--timings") {
       o.testTimings = true;
+    } else if (a == "--check") {
+      o.check = true;
     } else if (a.size() > 1 && a[0] == '-') {
       return usage(err, fmt::format("unknown option `{}`", a));
     } else {
@@ -300,6 +401,13 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   if (o.command == "test") {
     if (o.files.empty()) return usage(err, "`test` needs at least one file or folder");
     return test(o, out, err);
+  }
+  if (o.check && o.command != "fmt") return usage(err, "--check goes with `fmt`");
+  if (o.command == "fmt") {
+    if (o.files.empty()) return usage(err, "`fmt` needs at least one file or folder (or - for standard input)");
+    if (o.update || o.testTimings || !o.outDir.empty() || !o.gearbox.empty() || o.format != "text")
+      return usage(err, "`fmt` takes only files, folders and --check");
+    return formatFiles(o, out, err);
   }
   if (o.command == "lsp") {
     if (!o.files.empty()) return usage(err, "`lsp` takes no file: it serves the editor's documents on stdin/stdout");

@@ -190,28 +190,39 @@ std::vector<std::string> lines(const std::string& s) {
 std::string unifiedDiff(const std::string& expected, const std::string& actual, const std::string& expectedName,
                         const std::string& actualName) {
   auto a = lines(expected), b = lines(actual);
-  size_t n = a.size(), m = b.size();
-  // LCS table; golden outputs are small enough for the quadratic form.
-  std::vector<std::vector<unsigned>> L(n + 1, std::vector<unsigned>(m + 1, 0));
-  for (size_t i = n; i-- > 0;)
-    for (size_t j = m; j-- > 0;) L[i][j] = a[i] == b[j] ? L[i + 1][j + 1] + 1 : std::max(L[i + 1][j], L[i][j + 1]);
   struct Op {
     char kind;
-    std::string text;
+    size_t ai, bi;  // the line's index in `a` (for ' ' and '-') and in `b` (for ' ' and '+')
   };
   std::vector<Op> ops;
-  size_t i = 0, j = 0;
-  while (i < n || j < m) {
-    if (i < n && j < m && a[i] == b[j]) {
-      ops.push_back({' ', a[i]});
-      ++i;
-      ++j;
-    } else if (i < n && (j == m || L[i + 1][j] >= L[i][j + 1])) {
-      ops.push_back({'-', a[i++]});
-    } else {
-      ops.push_back({'+', b[j++]});
+  // The lines both share at the start and the end need no table.
+  size_t pre = 0, suf = 0;
+  while (pre < a.size() && pre < b.size() && a[pre] == b[pre]) ++pre;
+  while (suf < a.size() - pre && suf < b.size() - pre && a[a.size() - 1 - suf] == b[b.size() - 1 - suf]) ++suf;
+  for (size_t k = 0; k < pre; ++k) ops.push_back({' ', k, k});
+  size_t n = a.size() - pre - suf, m = b.size() - pre - suf;
+  if (n * m <= 4'000'000) {
+    // LCS table of what lies between; bounded, so a long file costs at most 16 MB here.
+    std::vector<std::vector<unsigned>> L(n + 1, std::vector<unsigned>(m + 1, 0));
+    for (size_t i = n; i-- > 0;)
+      for (size_t j = m; j-- > 0;)
+        L[i][j] = a[pre + i] == b[pre + j] ? L[i + 1][j + 1] + 1 : std::max(L[i + 1][j], L[i][j + 1]);
+    size_t i = 0, j = 0;
+    while (i < n || j < m) {
+      if (i < n && j < m && a[pre + i] == b[pre + j]) {
+        ops.push_back({' ', pre + i++, pre + j++});
+      } else if (i < n && (j == m || L[i + 1][j] >= L[i][j + 1])) {
+        ops.push_back({'-', pre + i++, pre + j});
+      } else {
+        ops.push_back({'+', pre + i, pre + j++});
+      }
     }
+  } else {
+    for (size_t i = 0; i < n; ++i) ops.push_back({'-', pre + i, pre});
+    for (size_t j = 0; j < m; ++j) ops.push_back({'+', pre + n, pre + j});
   }
+  for (size_t k = 0; k < suf; ++k) ops.push_back({' ', pre + n + k, pre + m + k});
+
   std::string out = fmt::format("--- {}\n+++ {}\n", expectedName, actualName);
   const size_t ctx = 3;
   size_t k = 0;
@@ -234,8 +245,15 @@ std::string unifiedDiff(const std::string& expected, const std::string& actual, 
       }
       end = run;
     }
-    out += "@@\n";
-    for (size_t x = start; x < end; ++x) out += std::string(1, ops[x].kind) + ops[x].text + "\n";
+    size_t na = 0, nb = 0;
+    for (size_t x = start; x < end; ++x) {
+      na += ops[x].kind != '+';
+      nb += ops[x].kind != '-';
+    }
+    // Line numbers as patch(1) reads them: an empty side names the line before it.
+    out += fmt::format("@@ -{},{} +{},{} @@\n", na ? ops[start].ai + 1 : ops[start].ai, na, nb ? ops[start].bi + 1 : ops[start].bi, nb);
+    for (size_t x = start; x < end; ++x)
+      out += std::string(1, ops[x].kind) + (ops[x].kind == '+' ? b[ops[x].bi] : a[ops[x].ai]) + "\n";
     k = end;
   }
   return out;

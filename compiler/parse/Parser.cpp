@@ -9,8 +9,7 @@
 #include <antlr4-runtime.h>
 #include <fmt/format.h>
 
-#include "GbxLexer.h"
-#include "GbxParser.h"
+#include "parse/Tree.h"
 
 namespace gbx::parse {
 
@@ -21,6 +20,8 @@ using source::Span;
 namespace {
 
 constexpr int kMaxNesting = 100;
+
+} // namespace
 
 Span tokenSpan(int file, antlr4::Token* t) {
   Span s;
@@ -33,6 +34,8 @@ Span tokenSpan(int file, antlr4::Token* t) {
   s.endCol = s.col + len - 1;
   return s;
 }
+
+namespace {
 
 std::string describeToken(const antlr4::dfa::Vocabulary& voc, size_t type) {
   if (type == antlr4::Token::EOF) return "end of file";
@@ -696,21 +699,18 @@ bool validUtf8(const std::string& t, int file, diag::DiagnosticEngine& diags) {
   return true;
 }
 
-ast::File parseFile(const source::SourceManager& sm, int fileId, diag::DiagnosticEngine& diags) {
+ParsedTree parseTree(const source::SourceManager& sm, int fileId, diag::DiagnosticEngine& diags) {
+  ParsedTree p;
   const auto& src = sm.get(fileId);
-  if (!validUtf8(src.text(), fileId, diags)) {
-    ast::File f;
-    f.fileId = fileId;
-    return f;
-  }
-  antlr4::ANTLRInputStream input(src.text());
-  GbxLexer lexer(&input);
-  lexer.removeErrorListeners();
-  antlr4::CommonTokenStream tokens(&lexer);
-  tokens.fill();
+  if (!validUtf8(src.text(), fileId, diags)) return p;
+  p.input = std::make_unique<antlr4::ANTLRInputStream>(src.text());
+  p.lexer = std::make_unique<GbxLexer>(p.input.get());
+  p.lexer->removeErrorListeners();
+  p.tokens = std::make_unique<antlr4::CommonTokenStream>(p.lexer.get());
+  p.tokens->fill();
 
   int cutoff = 0;
-  for (auto* t : tokens.getTokens()) {
+  for (auto* t : p.tokens->getTokens()) {
     switch (t->getType()) {
     case GbxLexer::BAD_CHAR:
       diags.error("E0101", tokenSpan(fileId, t), fmt::format("unexpected character `{}`", t->getText()));
@@ -728,11 +728,10 @@ ast::File parseFile(const source::SourceManager& sm, int fileId, diag::Diagnosti
     default: break;
     }
   }
-  ast::File empty;
-  empty.fileId = fileId;
-  if (tooDeep(tokens.getTokens(), fileId, diags)) return empty;
+  if (tooDeep(p.tokens->getTokens(), fileId, diags)) return p;
 
-  GbxParser parser(&tokens);
+  p.parser = std::make_unique<GbxParser>(p.tokens.get());
+  auto& parser = *p.parser;
   parser.removeErrorListeners();
   ErrorCollector collector(fileId, diags, cutoff);
   // Two stages: SLL prediction, bailing out at the first error, parses a valid file at a
@@ -741,19 +740,29 @@ ast::File parseFile(const source::SourceManager& sm, int fileId, diag::Diagnosti
   auto* atn = parser.getInterpreter<antlr4::atn::ParserATNSimulator>();
   atn->setPredictionMode(antlr4::atn::PredictionMode::SLL);
   parser.setErrorHandler(std::make_shared<antlr4::BailErrorStrategy>());
-  GbxParser::FileContext* tree = nullptr;
   try {
-    tree = parser.file();
+    p.tree = parser.file();
   } catch (const antlr4::ParseCancellationException&) {
-    tokens.seek(0);
+    p.tokens->seek(0);
     parser.reset();
     atn->setPredictionMode(antlr4::atn::PredictionMode::LL);
     parser.setErrorHandler(std::make_shared<antlr4::DefaultErrorStrategy>());
     parser.addErrorListener(&collector);
-    tree = parser.file();
+    p.tree = parser.file();
+    parser.removeErrorListeners();  // the collector goes out of scope here
+  }
+  return p;
+}
+
+ast::File parseFile(const source::SourceManager& sm, int fileId, diag::DiagnosticEngine& diags) {
+  ParsedTree p = parseTree(sm, fileId, diags);
+  if (!p.tree) {
+    ast::File empty;
+    empty.fileId = fileId;
+    return empty;
   }
   Builder builder(fileId, diags);
-  return builder.file(tree);
+  return builder.file(p.tree);
 }
 
 } // namespace gbx::parse

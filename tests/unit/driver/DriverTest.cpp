@@ -15,6 +15,7 @@
 
 #include "driver/Driver.h"
 #include "driver/Golden.h"
+#include "format/Formatter.h"
 #include "report/Formats.h"
 
 using namespace gbx;
@@ -184,9 +185,9 @@ TEST(Golden, ToleranceComparesNumbersRelativelyAndTextExactly) {
   fs::remove_all(d);
 }
 
-// The acceptance corpus is kept unchanged as the IR golden inputs; specs/ holds the
-// project's versions, which may add to an example (a rating, a variant) but keep every
-// gearbox it names.
+// The acceptance corpus is kept as the IR golden inputs, laid out by `gbxc fmt` and
+// otherwise unchanged; specs/ holds the project's versions, which may add to an example
+// (a rating, a variant) but keep every gearbox it names.
 TEST(Specs, KeepTheSharedAcceptanceCorpus) {
   fs::path shared(GBX_SHARED_EXAMPLES);
   if (!fs::exists(shared)) GTEST_SKIP() << "no " << shared;
@@ -201,7 +202,11 @@ TEST(Specs, KeepTheSharedAcceptanceCorpus) {
     if (e.path().extension() != ".gbx") continue;
     ++n;
     fs::path golden = fs::path(GBX_GOLDEN_DIR) / "ir" / e.path().filename();
-    EXPECT_EQ(read(golden), read(e.path())) << golden;
+    source::SourceManager sm;
+    diag::DiagnosticEngine diags;
+    auto laidOut = format::formatText(e.path().string(), read(e.path()), sm, diags);
+    ASSERT_TRUE(laidOut) << diags.renderText(sm);
+    EXPECT_EQ(read(golden), *laidOut) << golden;
     fs::path mine = fs::path(GBX_SOURCE_DIR) / "specs" / e.path().filename();
     ASSERT_TRUE(fs::exists(mine)) << mine;
     std::string text = read(mine), theirs = read(e.path());
