@@ -1,18 +1,25 @@
 #include "lsp/Server.h"
 
+#include <algorithm>
 #include <functional>
 #include <istream>
 #include <memory>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "catalogue/Effects.h"
+#include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
 #include "driver/Driver.h"
+#include "format/Formatter.h"
+#include "lower/Lower.h"
+#include "lsp/DesignValue.h"
 #include "lsp/Json.h"
+#include "lsp/UnitCompletion.h"
 #include "units/Unit.h"
 
 namespace gbx::lsp {
@@ -124,6 +131,25 @@ Json rangeOf(const source::SourceManager& sm, const source::Span& s) {
   return Json::Object{{"start", position(sm, s.file, s.line, s.col)}, {"end", position(sm, s.file, endLine, endCol + 1)}};
 }
 
+// A request's 0-based line or UTF-16 character: negative or absurd numbers are clamped.
+int coordinate(const Json& n) { return static_cast<int>(std::clamp(n.number(), 0.0, 1e9)); }
+
+// The byte offset of a 0-based line and UTF-16 character in `text`, within that line.
+size_t byteOffset(const std::string& text, int line, int character) {
+  size_t i = 0;
+  for (int l = 0; l < line; ++l) {
+    size_t nl = text.find('\n', i);
+    if (nl == std::string::npos) return text.size();
+    i = nl + 1;
+  }
+  for (int units = 0; i < text.size() && text[i] != '\n' && units < character;) {
+    size_t len = source::utf8Length(static_cast<unsigned char>(text[i]));
+    units += len == 4 ? 2 : 1;
+    i += len;
+  }
+  return std::min(i, text.size());
+}
+
 std::string uriOf(const std::string& path) { return path.rfind("file://", 0) == 0 ? path : "file://" + path; }
 
 // What an attribute is, for a hover: meaning, dimension and the unit reports use.
@@ -148,7 +174,8 @@ public:
                         {"hoverProvider", true},
                         {"completionProvider", Json::Object{{"triggerCharacters", Json::Array{"."}}}},
                         {"definitionProvider", true},
-                        {"documentSymbolProvider", true}};
+                        {"documentSymbolProvider", true},
+                        {"documentFormattingProvider", true}};
       send(out_, response(id, Json::Object{{"capabilities", caps},
                                            {"serverInfo", Json::Object{{"name", "gbxc"}, {"version", GBX_VERSION}}}}));
     } else if (method == "shutdown") {
@@ -180,6 +207,8 @@ public:
       send(out_, response(id, definition(params)));
     } else if (method == "textDocument/documentSymbol") {
       send(out_, response(id, symbols(params)));
+    } else if (method == "textDocument/formatting") {
+      send(out_, formatting(id, params));
     } else if (request) {
       send(out_, error(id, -32601, fmt::format("method `{}` is not served", method)));
     }
@@ -287,11 +316,76 @@ private:
           text = fmt::format("**const {}** = {} ({}{})", k.name, units::showQuantity(k.value, k.dim), k.value.str(),
                              k.dim.dimensionless() ? "" : " in SI");
     }
+    // In a gearbox with one candidate design: the quantity's value there.
+    if (auto v = designValueAt(a, ch)) text = (text.empty() ? v->first : text) + "\n\n" + v->second;
     if (text.empty()) return Json();
     return Json::Object{{"contents", Json::Object{{"kind", "markdown"}, {"value", text}}}};
   }
 
+  // The value, for the design of a gearbox whose design is fixed, of the quantity at the
+  // position, with what the quantity is: an assignment's target in a stage or the gearbox
+  // (where it is computed, not written as a number), or a quantity in an expression. Only an
+  // error-free program is evaluated.
+  static std::optional<std::pair<std::string, std::string>> designValueAt(const At& a, const std::vector<const ast::Stmt*>& ch) {
+    if (!a.c->analysed || a.c->diags.hasErrors() || ch.empty() || ch.front()->kind != ast::StmtKind::Gearbox) return std::nullopt;
+    const ir::Program& program = a.c->program;
+    const ir::Gearbox* g = nullptr;
+    for (const auto& gb : program.gearboxes)
+      if (gb.name == ch.front()->name) g = &gb;
+    if (!g) return std::nullopt;
+    const ast::Stmt& st = *ch.back();
+    ir::QuantityRef ref;
+    units::Dim dim;
+    std::string path;
+    if ((st.kind == ast::StmtKind::Assign || st.kind == ast::StmtKind::Domain) && contains(st.path.span, a.line, a.col)) {
+      const ast::Stmt* owner = ch.size() >= 2 ? ch[ch.size() - 2] : nullptr;
+      if (owner && owner->kind == ast::StmtKind::Stage) path = owner->name + "." + st.path.str();
+      else if (owner == ch.front()) path = st.path.str();
+      else return std::nullopt;
+      ref = lower::quantityRef(program, *g, path);
+      if (ref.owner != ir::QuantityRef::Stage || ref.key == cat::Q::None) return std::nullopt;
+      const ir::Attribute* attr = nullptr;
+      for (const auto& x : g->stages[static_cast<size_t>(ref.index)].attributes)
+        if (x.key == ref.key && x.gear == ref.gear) attr = &x;
+      // A number as written needs no value beside it.
+      if (!attr || attr->role != ir::Attribute::Fixed || !attr->value || attr->value->isConst()) return std::nullopt;
+      dim = attr->dim;
+    } else {
+      const ir::Expr* e = quantityAt(*g, [&](const source::Span& s) { return s.file == 0 && contains(s, a.line, a.col); });
+      if (!e) return std::nullopt;
+      ref = e->ref;
+      dim = e->type.dim;
+      path = e->name;
+    }
+    auto value = designValue(program, *g, ref, dim);
+    if (!value) return std::nullopt;
+    const cat::AttrSpec* spec = nullptr;
+    if (ref.owner == ir::QuantityRef::Stage && ref.index >= 0 && static_cast<size_t>(ref.index) < g->stages.size()) {
+      size_t dot = path.find('.');
+      spec = cat::findAttr(cat::kindSpec(g->stages[static_cast<size_t>(ref.index)].kind), path.substr(dot + 1));
+    } else if (ref.owner == ir::QuantityRef::Gearbox) {
+      for (const auto& q : cat::gearboxQuantities())
+        if (q.key == ref.key) spec = &q;
+    }
+    return std::pair{spec ? describeAttr(path, *spec) : fmt::format("**{}**", path), *value};
+  }
+
   Json completion(const Json& params) {
+    // After a number: units, those of the dimension of what the statement sets first.
+    const std::string& text = docs_[params["textDocument"]["uri"].string()];
+    int line = coordinate(params["position"]["line"]), character = coordinate(params["position"]["character"]);
+    if (auto units = unitCompletion(text, byteOffset(text, line, character))) {
+      int typed = 0;  // UTF-16 units of the unit word being typed, which an item replaces
+      for (size_t i = 0; i < units->typed.size(); i += source::utf8Length(static_cast<unsigned char>(units->typed[i])))
+        typed += source::utf8Length(static_cast<unsigned char>(units->typed[i])) == 4 ? 2 : 1;
+      Json range = Json::Object{{"start", Json::Object{{"line", line}, {"character", std::max(0, character - typed)}}},
+                                {"end", Json::Object{{"line", line}, {"character", character}}}};
+      Json::Array items;
+      for (const auto& u : units->items)
+        items.push_back(Json::Object{{"label", u.label}, {"kind", 11}, {"detail", u.detail}, {"sortText", u.sortText},
+                                     {"textEdit", Json::Object{{"range", range}, {"newText", u.label}}}});
+      return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
+    }
     At a = at(params);
     Json::Array items;
     auto item = [&](const std::string& label, int kind, const std::string& detail) {
@@ -377,6 +471,58 @@ private:
     };
     if (c->loaded.files.empty()) return Json::Array{};
     return walk(c->loaded.files[0].decls);
+  }
+
+  // `gbxc fmt` on the document: one edit replacing the lines that change (the lines both
+  // share at the start and the end are left alone, so the editor keeps its place); none when
+  // it is laid out. A document that does not parse is left as it is: its diagnostics say why,
+  // and the log says that formatting waits for them.
+  Json formatting(const Json& id, const Json& params) {
+    const std::string& uri = params["textDocument"]["uri"].string();
+    const std::string& text = docs_[uri];
+    source::SourceManager sm;
+    diag::DiagnosticEngine diags;
+    std::optional<std::string> laidOut;
+    try {
+      laidOut = format::formatText(pathOf(uri), text, sm, diags);
+    } catch (const std::logic_error& e) {
+      return error(id, -32603, e.what());
+    }
+    if (!laidOut) {
+      send(out_, notification("window/logMessage",
+                              Json::Object{{"type", 3}, {"message", fmt::format("{}: not formatted: it has syntax errors ({} in all)",
+                                                                                pathOf(uri), diags.errorCount())}}));
+      return response(id, Json());
+    }
+    if (*laidOut == text) return response(id, Json::Array{});
+    auto lines = [](const std::string& t) {
+      std::vector<std::string> v;
+      size_t from = 0;
+      for (size_t e; (e = t.find('\n', from)) != std::string::npos; from = e + 1) v.push_back(t.substr(from, e - from + 1));
+      v.push_back(t.substr(from));  // the last line, without a line break (maybe empty)
+      return v;
+    };
+    std::vector<std::string> a = lines(text), b = lines(*laidOut);
+    size_t pre = 0, suf = 0;
+    while (pre + 1 < a.size() && pre + 1 < b.size() && a[pre] == b[pre]) ++pre;
+    while (suf + pre + 1 < a.size() && suf + pre + 1 < b.size() && a[a.size() - 1 - suf] == b[b.size() - 1 - suf]) ++suf;
+    std::string newText;
+    for (size_t i = pre; i < b.size() - suf; ++i) newText += b[i];
+    // From the start of the first changed line to the start of the first shared line after
+    // them (or the end of the document). Built a member at a time: GCC 12 warns, falsely, of
+    // nested initializer lists of variants.
+    Json::Object start, end, range, edit;
+    start["line"] = static_cast<double>(pre);
+    start["character"] = 0;
+    end["line"] = static_cast<double>(suf > 0 ? a.size() - suf : a.size() - 1);
+    end["character"] = suf > 0 ? 0 : utf16Column(a.back(), source::codePoints(a.back()) + 1);
+    range["start"] = Json(std::move(start));
+    range["end"] = Json(std::move(end));
+    edit["range"] = Json(std::move(range));
+    edit["newText"] = newText;
+    Json::Array edits;
+    edits.push_back(Json(std::move(edit)));
+    return response(id, Json(std::move(edits)));
   }
 
   std::ostream& out_;

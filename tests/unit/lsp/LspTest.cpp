@@ -6,12 +6,14 @@
 #include <set>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 // GCC 12 at -O2 warns of a maybe-uninitialized std::string inside copies of std::variant
 // built from initializer lists (a known false positive); the sanitizers run this file too.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
+#include "driver/Driver.h"
 #include "lsp/Json.h"
 #include "lsp/Server.h"
 
@@ -82,25 +84,63 @@ TEST(Json, ParsesWritesAndRefusesWhatIsNotJson) {
 TEST(Lsp, ScriptedSessionFromErrorsToAFixAndShutdown) {
   const std::string uri = "file:///tmp/lsp-session.gbx";
   const std::string broken = "gearbox G {\n  stage s: spur { pinion.z = 0; wheel.z = 40; normal_module = 3 mm; face_width = 30 mm; }\n}\n";
-  const std::string fixed = "gearbox G {\n  stage s: spur { pinion.z = 20; wheel.z = 40; normal_module = 3 mm; face_width = 30 mm; }\n}\n";
+  // The fix, laid out by hand (and not as `gbxc fmt` would).
+  const std::string fixed = "const m = 3 mm;\n"
+                            "gearbox G {\n"
+                            "  stage s: spur {\n"
+                            "      pinion.z = 20;\n"
+                            "    wheel.z = 40;\n"
+                            "    normal_module = m;  face_width = 30 mm;\n"
+                            "  }\n"
+                            "  report { columns s.center_distance; }\n"
+                            "}\n";
+  const std::string laidOut = "const m = 3 mm;\n"
+                              "gearbox G {\n"
+                              "  stage s: spur {\n"
+                              "    pinion.z = 20;\n"
+                              "    wheel.z  = 40;\n"
+                              "    normal_module = m;  face_width = 30 mm;\n"
+                              "  }\n"
+                              "  report { columns s.center_distance; }\n"
+                              "}\n";
+  auto pos = [](int line, int character) { return Json::Object{{"line", line}, {"character", character}}; };
+  auto at = [&](int id, const char* method, Json position) {
+    return frame(request(id, method, Json::Object{{"textDocument", Json::Object{{"uri", uri}}}, {"position", std::move(position)}}));
+  };
+  Json formatParams = Json::Object{{"textDocument", Json::Object{{"uri", uri}}},
+                                   {"options", Json::Object{{"tabSize", 4}, {"insertSpaces", true}}}};
   std::string script = frame(request(1, "initialize", Json::Object{{"capabilities", Json::Object{}}})) +
                        frame(notify("initialized")) + frame(open(uri, broken)) + frame(change(uri, fixed, 2)) +
+                       at(10, "textDocument/hover", pos(7, 21)) +              // s.center_distance in the report
+                       at(11, "textDocument/definition", pos(5, 20)) +         // the `m` of normal_module = m
+                       at(12, "textDocument/completion", pos(5, 39)) +         // after `face_width = 30 `
+                       frame(request(13, "textDocument/formatting", formatParams)) +
+                       frame(change(uri, laidOut, 3)) + frame(request(14, "textDocument/formatting", formatParams)) +
+                       frame(change(uri, "gearbox G { require ratio = 2; }\n", 4)) +
+                       frame(request(15, "textDocument/formatting", formatParams)) +
                        frame(request(2, "textDocument/unknownThing")) + "Content-Length: 7\r\n\r\n{nope!}" +
                        frame(request(3, "shutdown")) + frame(notify("exit"));
   std::istringstream in(script);
   std::ostringstream out;
   EXPECT_EQ(gbx::lsp::serve(in, out), 0);
   auto m = messagesOf(out.str());
-  ASSERT_EQ(m.size(), 6u) << out.str();
-  // initialize: full text synchronisation on open and change.
-  EXPECT_EQ(m[0]["id"].number(), 1);
-  EXPECT_EQ(m[0]["result"]["capabilities"]["textDocumentSync"]["change"].number(), 1);
-  EXPECT_TRUE(m[0]["result"]["capabilities"]["textDocumentSync"]["openClose"].boolean());
+  std::map<int, Json> byId;
+  std::vector<Json> published, logged;
+  for (const auto& x : m) {
+    if (!x["id"].isNull()) byId[static_cast<int>(x["id"].number())] = x;
+    if (x["method"].string() == "textDocument/publishDiagnostics") published.push_back(x["params"]);
+    if (x["method"].string() == "window/logMessage") logged.push_back(x["params"]);
+  }
+  // initialize: full text synchronisation on open and change, and formatting.
+  const Json& caps = byId[1]["result"]["capabilities"];
+  EXPECT_EQ(caps["textDocumentSync"]["change"].number(), 1);
+  EXPECT_TRUE(caps["textDocumentSync"]["openClose"].boolean());
+  EXPECT_TRUE(caps["documentFormattingProvider"].boolean());
   // didOpen: the CLI's code and sentence, at the `0` (line 2, column 29 1-based).
-  EXPECT_EQ(m[1]["method"].string(), "textDocument/publishDiagnostics");
-  EXPECT_EQ(m[1]["params"]["uri"].string(), uri);
-  const Json& d = m[1]["params"]["diagnostics"];
-  ASSERT_EQ(d.size(), 1u) << m[1].dump();
+  ASSERT_EQ(published.size(), 4u) << out.str();
+  EXPECT_EQ(published[0]["uri"].string(), uri);
+  const Json& d = published[0]["diagnostics"];
+  ASSERT_EQ(d.size(), 1u) << published[0].dump();
   EXPECT_EQ(d.at(0)["code"].string(), "E0402");
   EXPECT_EQ(d.at(0)["severity"].number(), 1);
   EXPECT_EQ(d.at(0)["message"].string(), "`pinion.z` must be positive, got 0");
@@ -108,12 +148,49 @@ TEST(Lsp, ScriptedSessionFromErrorsToAFixAndShutdown) {
   EXPECT_EQ(d.at(0)["range"]["start"]["character"].number(), 29);
   EXPECT_EQ(d.at(0)["range"]["end"]["character"].number(), 30);
   // didChange to the fix: no diagnostics left.
-  EXPECT_EQ(m[2]["params"]["diagnostics"].size(), 0u) << m[2].dump();
+  EXPECT_EQ(published[1]["diagnostics"].size(), 0u) << published[1].dump();
+  // hover: what the centre distance is, and its value for the one design, m (z1 + z2) / 2.
+  const std::string hover = byId[10]["result"]["contents"]["value"].string();
+  EXPECT_NE(hover.find("center_distance"), std::string::npos) << hover;
+  EXPECT_NE(hover.find("= 90.0000 mm"), std::string::npos) << hover;
+  // definition: the const on line 0.
+  EXPECT_EQ(byId[11]["result"]["uri"].string(), uri);
+  EXPECT_EQ(byId[11]["result"]["range"]["start"]["line"].number(), 0);
+  EXPECT_EQ(byId[11]["result"]["range"]["start"]["character"].number(), 6);
+  // completion after a face width's number: lengths, millimetres first.
+  const Json& items = byId[12]["result"]["items"];
+  ASSERT_GT(items.size(), 2u) << byId[12].dump();
+  std::vector<std::pair<std::string, std::string>> units;
+  for (size_t i = 0; i < items.size(); ++i) units.push_back({items.at(i)["sortText"].string(), items.at(i)["label"].string()});
+  std::sort(units.begin(), units.end());
+  EXPECT_EQ(units.front().second, "mm");
+  for (const auto& u : units) EXPECT_NE(u.second, "rad");
+  // formatting: one edit from line 3 to the start of line 5; applied, it gives the layout.
+  const Json& edits = byId[13]["result"];
+  ASSERT_EQ(edits.size(), 1u) << byId[13].dump();
+  EXPECT_EQ(edits.at(0)["range"]["start"]["line"].number(), 3);
+  EXPECT_EQ(edits.at(0)["range"]["start"]["character"].number(), 0);
+  EXPECT_EQ(edits.at(0)["range"]["end"]["line"].number(), 5);
+  EXPECT_EQ(edits.at(0)["range"]["end"]["character"].number(), 0);
+  size_t from = 0;
+  for (int l = 0; l < 3; ++l) from = fixed.find('\n', from) + 1;
+  size_t to = from;
+  for (int l = 3; l < 5; ++l) to = fixed.find('\n', to) + 1;
+  EXPECT_EQ(fixed.substr(0, from) + edits.at(0)["newText"].string() + fixed.substr(to), laidOut);
+  // Laid out already: no edit. Syntax errors: no formatting, and the log says why.
+  EXPECT_TRUE(byId[14]["result"].isArray());
+  EXPECT_EQ(byId[14]["result"].size(), 0u);
+  EXPECT_TRUE(byId[15]["result"].isNull());
+  EXPECT_TRUE(byId[15]["error"].isNull());
+  ASSERT_EQ(logged.size(), 1u);
+  EXPECT_NE(logged[0]["message"].string().find("syntax errors"), std::string::npos);
   // An unknown request and a malformed message are answered; the server goes on.
-  EXPECT_EQ(m[3]["error"]["code"].number(), -32601);
-  EXPECT_EQ(m[4]["error"]["code"].number(), -32700);
-  EXPECT_EQ(m[5]["id"].number(), 3);
-  EXPECT_TRUE(m[5]["result"].isNull());
+  EXPECT_EQ(byId[2]["error"]["code"].number(), -32601);
+  bool parseError = false;
+  for (const auto& x : m) parseError = parseError || x["error"]["code"].number() == -32700;
+  EXPECT_TRUE(parseError);
+  EXPECT_TRUE(byId[3]["result"].isNull());
+  EXPECT_TRUE(byId[3]["error"].isNull());
 }
 
 // Every spec, cut at a hundred places, sent as changes: the server answers each with
@@ -208,4 +285,242 @@ TEST(Lsp, HoverShowsAConstsValue) {
   auto m = messagesOf(out.str());
   ASSERT_GE(m.size(), 3u);
   EXPECT_EQ(m[2]["result"]["contents"]["value"].string(), "**const m** = 3 mm (0.003 in SI)") << m[2].dump();
+}
+
+namespace {
+
+// The answers to a session on one document: the requests' results by id.
+std::map<int, Json> answers(const std::string& uri, const std::string& text, const std::vector<std::pair<const char*, Json>>& requests) {
+  std::string script = frame(request(1, "initialize")) + frame(open(uri, text));
+  for (size_t i = 0; i < requests.size(); ++i)
+    script += frame(request(static_cast<int>(i) + 2, requests[i].first,
+                            Json::Object{{"textDocument", Json::Object{{"uri", uri}}}, {"position", requests[i].second}}));
+  script += frame(request(1000, "shutdown")) + frame(notify("exit"));
+  std::istringstream in(script);
+  std::ostringstream out;
+  EXPECT_EQ(gbx::lsp::serve(in, out), 0);
+  std::map<int, Json> byId;
+  for (const auto& m : messagesOf(out.str()))
+    if (!m["id"].isNull()) byId[static_cast<int>(m["id"].number())] = m["result"];
+  return byId;
+}
+
+// The 0-based position just after `what` (its n-th occurrence, from 0) in `text`, less `back` characters.
+Json after(const std::string& text, const std::string& what, int back = 0, int n = 0) {
+  size_t i = text.find(what);
+  for (int k = 0; k < n && i != std::string::npos; ++k) i = text.find(what, i + 1);
+  EXPECT_NE(i, std::string::npos) << what;
+  if (i == std::string::npos) return Json::Object{{"line", 0}, {"character", 0}};
+  i += what.size() - static_cast<size_t>(back);
+  int line = static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(i), '\n'));
+  size_t start = text.rfind('\n', i - 1);
+  return Json::Object{{"line", line}, {"character", static_cast<int>(i - (start == std::string::npos ? 0 : start + 1))}};
+}
+
+// A completion's labels, in the order of their sortText.
+std::vector<std::string> sortedLabels(const Json& result) {
+  std::vector<std::pair<std::string, std::string>> v;
+  for (size_t i = 0; i < result["items"].size(); ++i)
+    v.emplace_back(result["items"].at(i)["sortText"].string(), result["items"].at(i)["label"].string());
+  std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> labels;
+  for (const auto& [_, l] : v) labels.push_back(l);
+  return labels;
+}
+
+bool has(const std::vector<std::string>& v, const std::string& x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+
+std::string readSpec(const char* name) {
+  std::ifstream f(fs::path(GBX_SOURCE_DIR) / "specs" / name, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+} // namespace
+
+// After a number, units: those of the dimension of what the statement sets (a stage
+// attribute, an effect parameter, a scene setting), the display unit first; all units where
+// that is unknown; none for a count; and no unit where none can stand.
+TEST(Lsp, CompletesUnitsAfterANumber) {
+  const std::string uri = "file:///tmp/lsp-units.gbx";
+  const std::string text =
+      "gearbox G {\n"
+      "  stage s: helical {\n"
+      "    pinion.z = 20; wheel.z = 40;\n"
+      "    normal_module = 16 m\n"
+      "    helix_angle = 8 deg;\n"
+      "    face_width in 80..120 mm;  // about 16 mm\n"
+      "    rating { life = 20000 h; }\n"
+      "  }\n"
+      "  operating { input_speed = 1500 rpm; input_torque = 2 kN*m; }\n"
+      "  scene v on s {\n"
+      "    effects { damping { ratio = 0.07; } backlash { clearance = 100 um; } }\n"
+      "    ramp = 0.1 s;\n"
+      "  }\n"
+      "  require s.center_distance < 400 mm;\n"
+      "}\n";
+  auto r = answers(uri, text,
+                   {{"textDocument/completion", after(text, "normal_module = 16 m")},
+                    {"textDocument/completion", after(text, "helix_angle = 8 ")},
+                    {"textDocument/completion", after(text, "80..120 ")},
+                    {"textDocument/completion", after(text, "ramp = 0.1 ")},
+                    {"textDocument/completion", after(text, "clearance = 100 ")},
+                    {"textDocument/completion", after(text, "pinion.z = 20")},
+                    {"textDocument/completion", after(text, "< 400 ")},
+                    {"textDocument/completion", after(text, "input_torque = 2 kN*")},
+                    {"textDocument/completion", after(text, "    face_width", 10)},
+                    {"textDocument/completion", after(text, "about 16 ")},
+                    {"textDocument/completion", after(text, "life = 20000 ")}});
+  // `16 m|`: lengths, mm first, the typed `m` replaced.
+  auto length = sortedLabels(r[2]);
+  ASSERT_FALSE(length.empty()) << r[2].dump();
+  EXPECT_EQ(length.front(), "mm");
+  for (const char* want : {"m", "um", "cm"}) EXPECT_TRUE(has(length, want)) << want;
+  for (const char* not_ : {"rad", "deg", "s", "N", "%"}) EXPECT_FALSE(has(length, not_)) << not_;
+  const Json& mm = r[2]["items"].at(0);
+  EXPECT_EQ(mm["kind"].number(), 11);
+  EXPECT_EQ(mm["detail"].string(), "a length");
+  EXPECT_EQ(mm["textEdit"]["range"]["start"]["character"].number(), after(text, "normal_module = 16 m", 1)["character"].number());
+  EXPECT_EQ(mm["textEdit"]["range"]["end"]["character"].number(), after(text, "normal_module = 16 m")["character"].number());
+  // An angle, a domain's bound, a scene's time (in mesh periods too), an effect's length.
+  auto angle = sortedLabels(r[3]);
+  ASSERT_FALSE(angle.empty()) << r[3].dump();
+  EXPECT_EQ(angle.front(), "deg");
+  EXPECT_TRUE(has(angle, "rad"));
+  EXPECT_FALSE(has(angle, "mm"));
+  EXPECT_EQ(sortedLabels(r[4]).front(), "mm");
+  auto time = sortedLabels(r[5]);
+  ASSERT_FALSE(time.empty()) << r[5].dump();
+  EXPECT_EQ(time.front(), "s");
+  EXPECT_TRUE(has(time, "mesh_periods") && has(time, "ms"));
+  EXPECT_FALSE(has(time, "mm"));
+  auto clearance = sortedLabels(r[6]);
+  EXPECT_TRUE(has(clearance, "um") && !has(clearance, "rpm")) << r[6].dump();
+  // A tooth count takes no unit.
+  EXPECT_EQ(r[7]["items"].size(), 0u) << r[7].dump();
+  // A rule's bound, or after `kN*`: any unit.
+  for (int id : {8, 9}) {
+    auto any = sortedLabels(r[id]);
+    EXPECT_TRUE(has(any, "mm") && has(any, "rad") && has(any, "kW") && has(any, "mesh_periods")) << r[id].dump();
+  }
+  // The start of a statement, and a comment: no units, the attributes as before.
+  for (int id : {10, 11}) {
+    auto labels = sortedLabels(r[id]);
+    EXPECT_FALSE(has(labels, "mm")) << r[id].dump();
+  }
+  EXPECT_TRUE(has(sortedLabels(r[10]), "normal_module")) << r[10].dump();
+  // A block's setting (`rating.life`): hours are its hint, second after seconds.
+  auto life = sortedLabels(r[12]);
+  ASSERT_GE(life.size(), 2u) << r[12].dump();
+  EXPECT_EQ(life[0], "s");
+  EXPECT_EQ(life[1], "h");
+}
+
+// Hover on a quantity of MarineReducer (its design fixed: one candidate) shows its value
+// there, the value `gbxc solve` reports for the same stage; not in MarineReducerOptimised,
+// whose ranges leave the design to the search, nor beside a number as written.
+TEST(Lsp, HoverShowsAQuantitysValueForAFixedDesign) {
+  const std::string text = readSpec("marine_reducer.gbx");
+  // The solve of MarineReducer's own stage and operating point, with no scene.
+  auto block = [&](const std::string& head) {
+    size_t b = text.find(head);
+    EXPECT_NE(b, std::string::npos) << head;
+    if (b == std::string::npos) return std::string();
+    size_t e = text.find('{', b);
+    for (int depth = 0; e < text.size(); ++e) {
+      depth += text[e] == '{' ? 1 : text[e] == '}' ? -1 : 0;
+      if (depth == 0) break;
+    }
+    return text.substr(b, e + 1 - b);
+  };
+  fs::path dir = fs::temp_directory_path() / "gbxc-lsp-value";
+  fs::create_directories(dir);
+  {
+    std::ofstream f(dir / "marine.gbx");
+    f << "import materials;\ngearbox MarineReducer {\n" << block("stage main") << "\n" << block("operating")
+      << "\nreport { columns main.center_distance, main.mass, main.eps_beta, main.face_width; }\n}\n";
+  }
+  std::ostringstream solved, err;
+  ASSERT_EQ(gbx::driver::run({"solve", (dir / "marine.gbx").string(), "--format", "json", "--quiet", "--no-timings"}, solved, err), 0)
+      << err.str();
+  auto json = Json::parse(solved.str());
+  ASSERT_TRUE(json) << solved.str();
+  const Json& values = (*json)["gearboxes"].at(0)["candidates"].at(0)["values"];
+  double centerDistance = values["main.center_distance"].number(), mass = values["main.mass"].number();
+  EXPECT_NEAR(centerDistance, 0.855, 0.001);  // about 855 mm, 4.6 t (the spec's expectation)
+  EXPECT_NEAR(mass, 4600, 100);
+
+  const std::string uri = "file://" + (fs::path(GBX_SOURCE_DIR) / "specs" / "marine_reducer.gbx").string();
+  auto r = answers(uri, text,
+                   {{"textDocument/hover", after(text, "main.center_distance", 3)},
+                    {"textDocument/hover", after(text, "main.mass,", 3)},
+                    {"textDocument/hover", after(text, "main.eps_beta", 3)},
+                    {"textDocument/hover", after(text, "    face_width", 3)},
+                    {"textDocument/hover", after(text, "relative(main.mass", 3)},
+                    {"textDocument/hover", after(text, "normal_module", 3)},
+                    {"textDocument/hover", after(text, "require main.ratio", 3)}});
+  auto hover = [&](int id) { return r[id]["contents"]["value"].string(); };
+  auto shows = [&](int id, const std::string& what) {
+    EXPECT_NE(hover(id).find(what), std::string::npos) << "want `" << what << "` in:\n" << hover(id);
+  };
+  shows(2, fmt::format("= {:.4f} mm (", centerDistance * 1e3));
+  shows(2, "for the design of MarineReducer");
+  shows(2, "**main.center_distance** — centre distance");
+  shows(3, fmt::format("= {:.4f} kg for the design of MarineReducer", mass));
+  shows(4, fmt::format("= {:.4f} for the design of MarineReducer", values["main.eps_beta"].number()));
+  // A stage attribute computed from others, on the left of its assignment.
+  shows(5, "**face_width** — face width");
+  shows(5, fmt::format("= {:.4f} mm", values["main.face_width"].number() * 1e3));
+  // The optimised gearbox searches: its quantities have no one value, the hover is as before.
+  EXPECT_TRUE(r[6].isNull()) << r[6].dump();
+  EXPECT_TRUE(r[8].isNull()) << r[8].dump();
+  // A number as written: its meaning only.
+  EXPECT_EQ(hover(7), "**normal_module** — normal module\n\na length, in mm");
+  fs::remove_all(dir);
+}
+
+// Hover and completion on every prefix of a spec of a fixed design: an answer each time,
+// whether the text parses or not.
+TEST(Lsp, HoverAndCompletionAnswerOnAHalfTypedSpec) {
+  const std::string full = readSpec("marine_reducer.gbx");
+  const std::string uri = "file:///tmp/lsp-half-typed.gbx";
+  std::string script = frame(request(1, "initialize"));
+  int id = 1;
+  for (int k = 1; k <= 40; ++k) {
+    std::string text = full.substr(0, full.size() * static_cast<size_t>(k) / 40);
+    script += frame(change(uri, text, k));
+    for (const char* at : {"main.center_distance", "16 mm", "face_width", "1.15"}) {
+      Json where = text.find(at) == std::string::npos ? Json(Json::Object{{"line", 1000}, {"character", 1000}}) : after(text, at, 1);
+      for (const char* method : {"textDocument/hover", "textDocument/completion"})
+        script += frame(request(++id, method, Json::Object{{"textDocument", Json::Object{{"uri", uri}}}, {"position", where}}));
+    }
+  }
+  script += frame(request(++id, "shutdown")) + frame(notify("exit"));
+  std::istringstream in(script);
+  std::ostringstream out;
+  EXPECT_EQ(gbx::lsp::serve(in, out), 0);
+  std::set<int> answered;
+  for (const auto& m : messagesOf(out.str()))
+    if (!m["id"].isNull()) answered.insert(static_cast<int>(m["id"].number()));
+  EXPECT_EQ(answered.size(), static_cast<size_t>(id));
+}
+
+// An attribute that needs itself twice over (sema lets it through) has no value, and asking
+// for one answers at once instead of recursing ever wider; what does not depend on it still
+// has its value.
+TEST(Lsp, HoverOnASelfReferringAttributeAnswers) {
+  const std::string uri = "file:///tmp/lsp-self.gbx";
+  const std::string text =
+      "gearbox G {\n"
+      "  stage s: spur { pinion.z = 20; wheel.z = 40; normal_module = 3 mm; face_width = face_width + face_width; }\n"
+      "  report { columns s.face_width, s.center_distance; }\n"
+      "}\n";
+  auto r = answers(uri, text,
+                   {{"textDocument/hover", after(text, "columns s.face_width", 2)},
+                    {"textDocument/hover", after(text, "s.center_distance", 2)},
+                    {"textDocument/hover", after(text, "; face_width", 2)}});
+  EXPECT_TRUE(r[2].isNull()) << r[2].dump();
+  EXPECT_NE(r[3]["contents"]["value"].string().find("= 90.0000 mm (0.09 in SI) for the design of G"), std::string::npos) << r[3].dump();
+  EXPECT_EQ(r[4]["contents"]["value"].string(), "**face_width** — face width\n\na length, in mm");
 }

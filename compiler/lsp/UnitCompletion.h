@@ -1,0 +1,28 @@
+#pragma once
+// Completion of units (LANGUAGE.md §1): where one may be written, and which fit there. Read
+// from the text itself, so that the half-typed statement being edited (which does not parse)
+// is understood.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gbx::lsp {
+
+struct UnitItem {
+  std::string label;   // the unit as written (`mm`, `N*m`)
+  std::string detail;  // its dimension (`a length`)
+  std::string sortText;
+};
+
+struct UnitCompletion {
+  std::string typed;  // the part of a unit word already typed before the cursor ("" for none)
+  std::vector<UnitItem> items;
+};
+
+// The units to offer at byte `offset` of `text`: after a number on its line (`16 |`, `16 m|`,
+// `16 N*|`). When the statement sets a catalogue row (a stage attribute, an effect parameter,
+// an operating, scene, accuracy, split or material setting), only units of its dimension,
+// the display unit first; otherwise all. nullopt where no unit can stand.
+std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t offset);
+
+} // namespace gbx::lsp
