@@ -13,15 +13,23 @@
 namespace gbx::rt {
 
 // The guard against cyclic definitions counts the nesting of this thread's evaluations:
-// threads of one search share an evaluator.
+// threads of one search share an evaluator. Once a definition nests too deep, the rest of
+// that evaluation gives up at once: `face_width = face_width + face_width` would otherwise
+// try 2^64 ways before it fails.
 thread_local int evalDepth = 0;
+thread_local bool evalTooDeep = false;
 
 namespace {
 // One level of that nesting, given back however the evaluation ends.
 struct Nesting {
   bool ok;
-  Nesting() : ok(++evalDepth <= 64) {}
-  ~Nesting() { --evalDepth; }
+  Nesting() {
+    if (++evalDepth > 64) evalTooDeep = true;
+    ok = !evalTooDeep;
+  }
+  ~Nesting() {
+    if (--evalDepth == 0) evalTooDeep = false;
+  }
   Nesting(const Nesting&) = delete;
   Nesting& operator=(const Nesting&) = delete;
 };
