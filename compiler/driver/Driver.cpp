@@ -1,7 +1,11 @@
 #include "driver/Driver.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -244,75 +248,85 @@ int test(const Options& o, std::ostream& out, std::ostream& err) {
   return failed == 0 ? 0 : 1;
 }
 
-// The .gbx files a path names: itself, or those below a folder, in name order.
+// The .gbx files a path names: itself, or those below a folder, in name order. A folder
+// that cannot be read is named in `problem`.
 std::vector<std::string> gbxFiles(const std::string& path, std::string& problem) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_directory(path, ec)) return {path};
   std::vector<std::string> out;
-  for (fs::recursive_directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec))
-    if (it->path().extension() == ".gbx" && it->is_regular_file(ec)) out.push_back(it->path().string());
-  if (ec) problem = fmt::format("cannot read the folder `{}`: {}", path, ec.message());
+  fs::path at = path;  // the folder being entered when a step fails
+  for (fs::recursive_directory_iterator it(path, ec), end; !ec && it != end;) {
+    at = it->path();
+    if (at.extension() == ".gbx" && it->is_regular_file(ec)) out.push_back(at.string());
+    it.increment(ec);
+  }
+  std::error_code ignored;
+  if (ec) problem = fmt::format("cannot read the folder `{}`: {}", fs::is_directory(at, ignored) ? at.string() : path, ec.message());
   std::sort(out.begin(), out.end());
   return out;
 }
 
 int formatFiles(const Options& o, std::ostream& out, std::ostream& err) {
-  int status = 0;
-  auto raise = [&](int s) { status = std::max(status, s); };
+  // Every file named first: a folder that cannot be read stops the run before any file
+  // is changed.
+  std::vector<std::string> files;
   for (const auto& arg : o.files) {
     std::string problem;
-    std::vector<std::string> files = arg == "-" ? std::vector<std::string>{"-"} : gbxFiles(arg, problem);
+    for (auto& f : arg == "-" ? std::vector<std::string>{"-"} : gbxFiles(arg, problem)) files.push_back(std::move(f));
     if (!problem.empty()) {
-      err << "gbxc fmt: " << problem << "\n";
-      raise(3);
+      err << "gbxc fmt: " << problem << "; nothing was changed\n";
+      return 3;
     }
-    for (const auto& path : files) {
-      std::string text;
-      if (path == "-") {
-        text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-      } else {
-        std::ifstream f(path, std::ios::binary);
-        if (!f) {
-          err << fmt::format("gbxc fmt: cannot read `{}`\n", path);
-          raise(3);
-          continue;
-        }
-        text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-      }
-      source::SourceManager sm;
-      diag::DiagnosticEngine diags;
-      std::optional<std::string> formatted;
-      try {
-        formatted = format::formatText(path == "-" ? "<stdin>" : path, text, sm, diags);
-      } catch (const std::logic_error& e) {
-        err << "gbxc fmt: " << e.what() << "\n";
+  }
+  int status = 0;
+  auto raise = [&](int s) { status = std::max(status, s); };
+  for (const auto& path : files) {
+    std::string text;
+    if (path == "-") {
+      text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+    } else {
+      errno = 0;
+      std::ifstream f(path, std::ios::binary);
+      if (!f) {
+        err << fmt::format("gbxc fmt: cannot read `{}`: {}\n", path, errno ? std::strerror(errno) : "unreadable");
         raise(3);
         continue;
       }
-      if (!formatted) {
-        err << diags.renderText(sm);
-        raise(1);
-        continue;
-      }
-      if (path == "-") {
-        if (o.check && *formatted != text) {
-          out << unifiedDiff(text, *formatted, "<stdin>", "<stdin> (formatted)");
-          raise(1);
-        } else if (!o.check) {
-          out << *formatted;
-        }
-      } else if (*formatted != text) {
-        if (o.check) {
-          out << unifiedDiff(text, *formatted, path, path + " (formatted)");
-          raise(1);
-        } else if (std::string e = rt::writeWhole(path, *formatted); !e.empty()) {
-          err << "gbxc fmt: " << e << "\n";
-          raise(3);
-        } else {
-          out << "formatted " << path << "\n";
-        }
-      }
+      text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    }
+    source::SourceManager sm;
+    diag::DiagnosticEngine diags;
+    std::optional<std::string> formatted;
+    try {
+      formatted = format::formatText(path == "-" ? "<stdin>" : path, text, sm, diags);
+    } catch (const std::logic_error& e) {
+      err << "gbxc fmt: " << e.what() << "\n";
+      raise(3);
+      continue;
+    }
+    if (!formatted) {
+      err << diags.renderText(sm);
+      raise(1);
+      continue;
+    }
+    const std::string name = path == "-" ? "<stdin>" : path;
+    if (*formatted == text) {
+      if (path == "-" && !o.check) out << *formatted;
+    } else if (o.check) {
+      out << unifiedDiff(text, *formatted, name, name + " (formatted)");
+      raise(1);
+    } else if (path == "-") {
+      out << *formatted;
+    } else if (::access(path.c_str(), W_OK) != 0) {
+      // Renaming over a file the user may not write would change it all the same.
+      err << fmt::format("gbxc fmt: `{}` is not laid out, but it is read-only: left as it was\n", path);
+      raise(3);
+    } else if (std::string e = rt::writeWhole(path, *formatted); !e.empty()) {
+      err << "gbxc fmt: " << e << "\n";
+      raise(3);
+    } else {
+      out << "formatted " << path << "\n";
     }
   }
   return status;

@@ -178,11 +178,14 @@ GoldenOutcome runGolden(const GoldenCase& c, const GoldenOptions& o) {
 }
 
 namespace {
+// The lines of a text; a last line without a line break carries patch(1)'s marker, so that
+// it differs from the same line with one and the diff says so.
 std::vector<std::string> lines(const std::string& s) {
   std::vector<std::string> v;
   std::istringstream in(s);
   std::string l;
   while (std::getline(in, l)) v.push_back(l);
+  if (!s.empty() && s.back() != '\n') v.back() += "\n\\ No newline at end of file";
   return v;
 }
 } // namespace

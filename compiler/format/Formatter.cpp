@@ -127,7 +127,8 @@ private:
     int stmtTok = -1, stmtCol = 0, prevCode = -1;
     for (Line& l : lines_) {
       const int first = l.toks.front();
-      const bool cont = prevCode >= 0 && !at(prevCode).stmtEnd && !isOpen(prevCode);
+      // A block's `{` on a line of its own stands where its statement does.
+      const bool cont = prevCode >= 0 && !at(prevCode).stmtEnd && !isOpen(prevCode) && !isOpen(first);
       l.depth = isClose(first) && spansLines(first) ? depth - 1 : depth;
       int indent = 2 * l.depth;
       if (cont) {
@@ -205,8 +206,8 @@ private:
     }
   }
 
-  // Runs of lines with trailing comments start them in one column, two blanks after the
-  // longest code.
+  // Runs of lines at one depth with trailing comments start them in one column, two blanks
+  // after the longest code.
   void alignComments() {
     for (size_t a = 0; a < lines_.size();) {
       if (lines_[a].comment.empty()) {
@@ -214,7 +215,7 @@ private:
         continue;
       }
       size_t b = a + 1;
-      while (b < lines_.size() && !lines_[b].comment.empty() && !lines_[b].blankBefore)
+      while (b < lines_.size() && !lines_[b].comment.empty() && !lines_[b].blankBefore && lines_[b].depth == lines_[a].depth)
         ++b;
       int col = 0;
       for (size_t k = a; k < b; ++k)

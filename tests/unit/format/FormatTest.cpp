@@ -132,6 +132,17 @@ TEST(Format, CommentsStayWhereTheyWere) {
   EXPECT_EQ(fmtText(*out).value_or(""), *out);
 }
 
+TEST(Format, BracesOnLinesOfTheirOwnAndCommentRunsByDepth) {
+  const std::string in = "gearbox X\n{\nstage s: spur\n      {\n  pinion.z = 14;  // a\n wheel.z = 31;   // b\n  }\n"
+                         "  require ratio > 1;                         // c\n}\n";
+  const std::string want = "gearbox X\n{\n  stage s: spur\n  {\n    pinion.z = 14;  // a\n    wheel.z  = 31;  // b\n  }\n"
+                           "  require ratio > 1;  // c\n}\n";
+  auto out = fmtText(in);
+  ASSERT_TRUE(out);
+  EXPECT_EQ(*out, want);
+  EXPECT_EQ(fmtText(*out).value_or(""), *out);
+}
+
 TEST(Format, LineEndingsOfAnyKind) {
   // CRLF becomes LF; a lone CR does not end a line for the lexer, but a line comment stops
   // at it, so the code after it must start a line of its own.
@@ -247,6 +258,12 @@ TEST(Format, CommandLine) {
   EXPECT_EQ(write.out.find("b.gbx"), std::string::npos) << write.out; // already laid out: untouched
 
   EXPECT_EQ(gbxc({"fmt", "--check", (d / "a.gbx").string()}).status, 0);
+  // No line break at the end: the diff says so, as patch(1) reads it.
+  { std::ofstream(d / "c.gbx") << "const a = 1;"; }
+  Result last = gbxc({"fmt", "--check", (d / "c.gbx").string()});
+  EXPECT_EQ(last.status, 1);
+  EXPECT_NE(last.out.find("@@ -1,1 +1,1 @@\n-const a = 1;\n\\ No newline at end of file\n+const a = 1;\n"), std::string::npos)
+      << last.out;
   EXPECT_EQ(gbxc({"fmt", (d / "missing.gbx").string()}).status, 3);
   EXPECT_EQ(gbxc({"fmt"}).status, 2);
   EXPECT_EQ(gbxc({"check", "--check", (d / "a.gbx").string()}).status, 2);
