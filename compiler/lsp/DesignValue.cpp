@@ -97,7 +97,7 @@ std::optional<std::string> designValue(const ir::Program& p, const ir::Gearbox& 
   if (!u.name.empty()) shown += " " + u.name;
   // A ratio reads as the reports write it, with its exact fraction.
   if (r.key == cat::Q::Ratio && v.exact && !v.exact->isInteger()) shown += " (" + v.exact->str() + ")";
-  if (u.scale != 1) shown += fmt::format(" ({:.6g} in SI)", v.lo);
+  if (u.scale != 1) shown += fmt::format(" ({:.6g} {} in SI)", v.lo, dim.siUnit());
   return fmt::format("= {} for the design of {}", shown, g.name);
 }
 

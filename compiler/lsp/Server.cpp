@@ -286,40 +286,140 @@ private:
     return nullptr;
   }
 
+  // The catalogue row an assignment, range or scatter sets, found through the blocks around
+  // it: a stage's attribute (nested blocks prefix it: `rating { lubricant { … } }`), an
+  // effect's parameter, an operating, scene, accuracy, split or material setting, or a
+  // stage's attribute named from the gearbox (`main.helix_angle in 8..15 deg;`, also in
+  // `tolerances`), the stage perhaps inherited. Returns the row and the name to show.
+  static std::pair<const cat::AttrSpec*, std::string> targetRow(const At& a, const std::vector<const ast::Stmt*>& ch) {
+    const ast::Stmt& st = *ch.back();
+    std::string name = st.path.str();
+    auto in = [&](const std::vector<cat::AttrSpec>& rows) -> const cat::AttrSpec* {
+      for (const auto& r : rows)
+        if (r.name == name) return &r;
+      return nullptr;
+    };
+    for (size_t k = ch.size() - 1; k-- > 0;) {
+      const ast::Stmt& b = *ch[k];
+      switch (b.kind) {
+      case ast::StmtKind::Stage:
+        if (const cat::KindSpec* kind = cat::findKind(b.word)) return {cat::findAttr(*kind, name), name};
+        return {nullptr, name};
+      case ast::StmtKind::Operating: return {in(cat::operatingSettings()), "operating." + name};
+      case ast::StmtKind::Scene: return {in(cat::sceneSettings()), name};
+      case ast::StmtKind::Split: return {in(cat::splitSettings()), name};
+      case ast::StmtKind::Study: return {in(cat::workPrecisionSettings()), name};
+      case ast::StmtKind::Named: return {in(cat::materialProperties()), name};
+      case ast::StmtKind::Block:
+        if (b.name == "accuracy") return {in(cat::accuracySettings()), "accuracy." + name};
+        if (const cat::EffectSpec* fx = cat::findEffect(b.name); fx && k > 0 && ch[k - 1]->kind == ast::StmtKind::Effects) {
+          for (const auto& prm : fx->params)
+            if (prm.name == name) return {&prm, fx->name + "." + prm.name};
+          return {nullptr, name};
+        }
+        if (b.name == "tolerances") continue;
+        name = b.name + "." + name;  // `rating`, `lubricant`, `torsion_shaft`: part of the name
+        continue;
+      case ast::StmtKind::Gearbox: {
+        // `stage.attribute` from the gearbox: the stage's kind from the checked program,
+        // which holds the stages a gearbox inherits.
+        size_t dot = name.find('.');
+        if (dot == std::string::npos || !a.c->analysed) return {nullptr, name};
+        for (const auto& g : a.c->program.gearboxes)
+          if (g.name == b.name)
+            for (const auto& stage : g.stages)
+              if (stage.name == name.substr(0, dot)) return {cat::findAttr(cat::kindSpec(stage.kind), name.substr(dot + 1)), name};
+        return {nullptr, name};
+      }
+      default: return {nullptr, name};
+      }
+    }
+    return {nullptr, name};
+  }
+
+  // The source text of a span, as written.
+  static std::string written(const source::SourceManager& sm, const source::Span& s) {
+    if (!s.valid()) return "";
+    const auto& f = sm.get(s.file);
+    std::string out;
+    int endLine = s.endLine > 0 ? s.endLine : s.line;
+    for (int l = s.line; l <= endLine; ++l) {
+      std::string line = f.line(l);
+      size_t from = 0, to = line.size();
+      auto byteOf = [&](int col) {
+        size_t b = 0;
+        for (int c = 1; b < line.size() && c < col; ++c) b += source::utf8Length(static_cast<unsigned char>(line[b]));
+        return b;
+      };
+      if (l == s.line) from = byteOf(s.col);
+      if (l == endLine) to = byteOf(s.endCol + 1);
+      out += (l == s.line ? "" : " ") + line.substr(from, to > from ? to - from : 0);
+    }
+    return out;
+  }
+
   Json hover(const Json& params) {
     At a = at(params);
     if (a.c->loaded.files.empty()) return Json();
     std::vector<const ast::Stmt*> ch;
     chain(a.c->loaded.files[0].decls, a.line, a.col, ch);
-    if (ch.empty()) return Json();
-    const ast::Stmt& st = *ch.back();
     std::string text;
-    if ((st.kind == ast::StmtKind::Assign || st.kind == ast::StmtKind::Domain) && contains(st.path.span, a.line, a.col)) {
-      if (const cat::KindSpec* k = stageKind(ch))
-        if (const cat::AttrSpec* attr = cat::findAttr(*k, st.path.str())) text = describeAttr(st.path.str(), *attr);
-      // An effect's parameter: the block around it names the effect.
-      if (text.empty() && ch.size() >= 2)
-        if (const cat::EffectSpec* fx = cat::findEffect(ch[ch.size() - 2]->name))
-          for (const auto& prm : fx->params)
-            if (prm.name == st.path.str()) text = describeAttr(fx->name + "." + prm.name, prm);
-    } else if (st.kind == ast::StmtKind::Stage && contains(st.wordSpan, a.line, a.col)) {
-      if (const cat::KindSpec* k = cat::findKind(st.word))
+    const ast::Stmt* st = ch.empty() ? nullptr : ch.back();
+    bool onTarget = st && (st->kind == ast::StmtKind::Assign || st->kind == ast::StmtKind::Domain || st->kind == ast::StmtKind::Scatter) &&
+                    contains(st->path.span, a.line, a.col);
+    if (onTarget) {
+      auto [row, name] = targetRow(a, ch);
+      if (row) text = describeAttr(name, *row);
+    } else if (st && st->kind == ast::StmtKind::Stage && contains(st->wordSpan, a.line, a.col)) {
+      if (const cat::KindSpec* k = cat::findKind(st->word))
         text = fmt::format("**{}** stage — gears: {}", k->name, fmt::join(k->gears, ", "));
-    } else if (const cat::EffectSpec* fx = cat::findEffect(st.name); fx && contains(st.nameSpan, a.line, a.col)) {
+    } else if (const cat::EffectSpec* fx = st ? cat::findEffect(st->name) : nullptr; fx && contains(st->nameSpan, a.line, a.col)) {
       text = fmt::format("**{}** — {}", fx->name, fx->meaning);
     }
-    // A const, where it is declared or used: its value in SI.
+    // A const, where it is declared or used: its value as written, and in SI.
     if (text.empty()) {
       std::string word = wordAt(a);
       for (const auto& k : a.c->program.consts)
-        if (k.name == word && !k.isSet)
-          text = fmt::format("**const {}** = {} ({}{})", k.name, units::showQuantity(k.value, k.dim), k.value.str(),
-                             k.dim.dimensionless() ? "" : " in SI");
+        if (k.name == word && !k.isSet) {
+          std::string asWritten;
+          for (const auto& f : a.c->loaded.files)
+            for (const auto& d : f.decls)
+              if (d.kind == ast::StmtKind::Const && d.name == word && d.value) asWritten = written(a.c->sources, d.value->span);
+          std::string si = k.value.str() + (k.dim.dimensionless() ? "" : " " + k.dim.siUnit());
+          text = fmt::format("**const {}** = {}", k.name, asWritten.empty() ? si : asWritten);
+          if (asWritten != si) text += fmt::format(" ({} in SI)", si);
+        }
     }
-    // In a gearbox with one candidate design: the quantity's value there.
-    if (auto v = designValueAt(a, ch)) text = (text.empty() ? v->first : text) + "\n\n" + v->second;
+    // A quantity in an expression, and in a gearbox with one candidate design its value there.
+    auto value = designValueAt(a, ch);
+    if (text.empty() && !onTarget && !ch.empty() && a.c->analysed) text = quantityDescription(a, ch);
+    if (value) text = (text.empty() ? value->first : text) + "\n\n" + value->second;
     if (text.empty()) return Json();
     return Json::Object{{"contents", Json::Object{{"kind", "markdown"}, {"value", text}}}};
+  }
+
+  // What the stage or gearbox quantity at the position is, from the checked program.
+  static std::string quantityDescription(const At& a, const std::vector<const ast::Stmt*>& ch) {
+    if (ch.front()->kind != ast::StmtKind::Gearbox) return "";
+    for (const auto& g : a.c->program.gearboxes) {
+      if (g.name != ch.front()->name) continue;
+      const ir::Expr* e = quantityAt(g, [&](const source::Span& s) { return s.file == 0 && contains(s, a.line, a.col); });
+      if (!e) return "";
+      if (const cat::AttrSpec* spec = specOf(g, e->ref, e->name)) return describeAttr(e->name, *spec);
+    }
+    return "";
+  }
+
+  // The catalogue row of a resolved stage or gearbox quantity.
+  static const cat::AttrSpec* specOf(const ir::Gearbox& g, const ir::QuantityRef& ref, const std::string& path) {
+    if (ref.owner == ir::QuantityRef::Stage && ref.index >= 0 && static_cast<size_t>(ref.index) < g.stages.size()) {
+      size_t dot = path.find('.');
+      return cat::findAttr(cat::kindSpec(g.stages[static_cast<size_t>(ref.index)].kind), path.substr(dot + 1));
+    }
+    if (ref.owner == ir::QuantityRef::Gearbox)
+      for (const auto& q : cat::gearboxQuantities())
+        if (q.key == ref.key) return &q;
+    return nullptr;
   }
 
   // The value, for the design of a gearbox whose design is fixed, of the quantity at the
@@ -359,14 +459,7 @@ private:
     }
     auto value = designValue(program, *g, ref, dim);
     if (!value) return std::nullopt;
-    const cat::AttrSpec* spec = nullptr;
-    if (ref.owner == ir::QuantityRef::Stage && ref.index >= 0 && static_cast<size_t>(ref.index) < g->stages.size()) {
-      size_t dot = path.find('.');
-      spec = cat::findAttr(cat::kindSpec(g->stages[static_cast<size_t>(ref.index)].kind), path.substr(dot + 1));
-    } else if (ref.owner == ir::QuantityRef::Gearbox) {
-      for (const auto& q : cat::gearboxQuantities())
-        if (q.key == ref.key) spec = &q;
-    }
+    const cat::AttrSpec* spec = specOf(*g, ref, path);
     return std::pair{spec ? describeAttr(path, *spec) : fmt::format("**{}**", path), *value};
   }
 
