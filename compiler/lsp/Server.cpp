@@ -6,6 +6,7 @@
 #include <memory>
 #include <map>
 #include <optional>
+#include <regex>
 #include <ostream>
 #include <string>
 
@@ -280,6 +281,22 @@ private:
       }
   }
 
+  // The kind of stage `stage` of gearbox `gearbox` as written: declared there, `like`
+  // another, or inherited through `extends`.
+  static const cat::KindSpec* stageKindIn(const At& a, const std::string& gearbox, const std::string& stage, int depth) {
+    if (depth > 16) return nullptr;  // an `extends` cycle, reported elsewhere
+    for (const auto& f : a.c->loaded.files)
+      for (const auto& g : f.decls) {
+        if (g.kind != ast::StmtKind::Gearbox || g.name != gearbox) continue;
+        for (const auto& st : g.body) {
+          if (st.kind == ast::StmtKind::Stage && st.name == stage) return cat::findKind(st.word);
+          if (st.kind == ast::StmtKind::Like && st.name == stage) return stageKindIn(a, gearbox, st.path.str(), depth + 1);
+        }
+        if (!g.base.empty()) return stageKindIn(a, g.base, stage, depth + 1);
+      }
+    return nullptr;
+  }
+
   static const cat::KindSpec* stageKind(const std::vector<const ast::Stmt*>& ch) {
     for (auto it = ch.rbegin(); it != ch.rend(); ++it)
       if ((*it)->kind == ast::StmtKind::Stage) return cat::findKind((*it)->word);
@@ -486,6 +503,45 @@ private:
     };
     std::vector<const ast::Stmt*> ch;
     if (!a.c->loaded.files.empty()) chain(a.c->loaded.files[0].decls, a.line, a.col, ch);
+    // What the line says before the cursor narrows the choice: a module after `import`, a
+    // kind after `stage x:`, what a dotted name holds after its dot.
+    size_t offset = byteOffset(text, line, character);
+    size_t lineStart = offset == 0 ? std::string::npos : text.rfind('\n', offset - 1);
+    lineStart = lineStart == std::string::npos ? 0 : lineStart + 1;
+    size_t from = std::max(lineStart, offset > 200 ? offset - 200 : size_t{0});  // a long line: its end is enough
+    std::string before = text.substr(from, offset - from);
+    static const std::regex importAt(R"(^\s*import\s+[A-Za-z_]*$)"), kindAt(R"(\bstage\s+[A-Za-z_]\w*\s*:\s*[A-Za-z_]*$)"),
+        dottedAt(R"(([A-Za-z_]\w*(?:\.[A-Za-z_]\w*)*)\.\w*$)");
+    std::smatch m;
+    if (std::regex_search(before, importAt)) {
+      for (const char* mod : {"materials", "modules", "gleason", "klingelnberg"}) item(mod, 9, "stdlib module");
+      return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
+    }
+    if (std::regex_search(before, kindAt)) {
+      for (const auto& k : cat::stageKinds()) item(k.name, 7, fmt::format("stage kind — gears: {}", fmt::join(k.gears, ", ")));
+      return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
+    }
+    if (std::regex_search(before, m, dottedAt)) {
+      // Inside a stage the path starts at its attributes; elsewhere in a gearbox at a stage.
+      std::string prefix = m[1].str();
+      const cat::KindSpec* kind = stageKind(ch);
+      if (!kind && !ch.empty() && ch.front()->kind == ast::StmtKind::Gearbox) {
+        size_t dot = prefix.find('.');
+        kind = stageKindIn(a, ch.front()->name, prefix.substr(0, dot), 0);
+        prefix = dot == std::string::npos ? "" : prefix.substr(dot + 1);
+      }
+      if (kind) {
+        auto offer = [&](const std::string& name, const cat::AttrSpec& attr) {
+          if (!prefix.empty() && name.rfind(prefix + ".", 0) != 0) return;
+          item(prefix.empty() ? name : name.substr(prefix.size() + 1), 10,
+               attr.meaning + (attr.role == cat::AttrRole::Derived ? " (computed)" : ""));
+        };
+        for (const auto& attr : kind->stage) offer(attr.name, attr);
+        for (const auto& g : kind->gears)
+          for (const auto& attr : kind->gear) offer(g + "." + attr.name, attr);
+        return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
+      }
+    }
     bool inEffects = false;
     for (const auto* st : ch) inEffects = inEffects || st->kind == ast::StmtKind::Effects;
     if (inEffects) {

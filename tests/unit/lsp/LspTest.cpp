@@ -565,3 +565,41 @@ TEST(Lsp, HoverSaysWhatEveryTargetIs) {
   EXPECT_EQ(value(7).find("for the design of"), std::string::npos) << value(7);  // B searches
   EXPECT_EQ(value(8), "**const life_h** = 20000 h (72000000 s in SI)");
 }
+
+// Completion after `import`, after `stage x:` and after a dot offers what can stand there:
+// modules, kinds, what the dotted name holds (a gear's attributes, a nested block's, an
+// inherited stage's from the gearbox).
+TEST(Lsp, CompletesWhatCanStandThere) {
+  const std::string uri = "file:///tmp/lsp-complete.gbx";
+  // A spec with one place being typed, as an editor sends it.
+  auto labels = [&](const std::string& typing, const std::string& where) {
+    std::string text = "import materials;\n" + std::string(where == "import" ? "import \n" : "") +
+                       "gearbox A {\n"
+                       "  stage main: helical {\n"
+                       "    pinion.z = 21;  wheel.z = 83;  normal_module = 16 mm;  face_width = 200 mm;\n" +
+                       std::string(where == "stage" ? "    " + typing + "\n" : "") +
+                       "  }\n"
+                       "}\n"
+                       "gearbox B extends A {\n" +
+                       std::string(where == "gearbox" ? "  " + typing + "\n" : "") + "}\n";
+    std::string at = where == "import" ? "import " : typing;
+    auto r = answers(uri, text, {{"textDocument/completion", after(text, at, 0, where == "import" ? 1 : 0)}});
+    std::set<std::string> out;
+    for (size_t i = 0; i < r[2]["items"].size(); ++i) out.insert(r[2]["items"].at(i)["label"].string());
+    return out;
+  };
+  EXPECT_EQ(labels("", "import"), (std::set<std::string>{"gleason", "klingelnberg", "materials", "modules"}));
+  auto gear = labels("pinion.", "stage");
+  EXPECT_TRUE(gear.count("z") && gear.count("shift"));
+  EXPECT_FALSE(gear.count("pinion.z") || gear.count("normal_module"));
+  EXPECT_EQ(labels("rating.lubricant.", "stage"), (std::set<std::string>{"viscosity_40"}));
+  auto kinds = labels("stage extra: ", "gearbox");
+  EXPECT_TRUE(kinds.count("spur") && kinds.count("planetary") && kinds.count("helical"));
+  EXPECT_FALSE(kinds.count("gearbox"));
+  auto inherited = labels("require main.", "gearbox");
+  EXPECT_TRUE(inherited.count("ratio") && inherited.count("center_distance") && inherited.count("pinion.z"));
+  EXPECT_FALSE(inherited.count("gearbox"));
+  auto wheel = labels("require main.wheel.", "gearbox");
+  EXPECT_TRUE(wheel.count("z") && wheel.count("shift"));
+  EXPECT_FALSE(wheel.count("normal_module"));
+}
