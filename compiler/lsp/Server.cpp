@@ -283,16 +283,17 @@ private:
 
   // The kind of stage `stage` of gearbox `gearbox` as written: declared there, `like`
   // another, or inherited through `extends`.
-  static const cat::KindSpec* stageKindIn(const At& a, const std::string& gearbox, const std::string& stage, int depth) {
+  static const cat::KindSpec* stageKindIn(const std::vector<ast::File>& files, const std::string& gearbox, const std::string& stage,
+                                          int depth = 0) {
     if (depth > 16) return nullptr;  // an `extends` cycle, reported elsewhere
-    for (const auto& f : a.c->loaded.files)
+    for (const auto& f : files)
       for (const auto& g : f.decls) {
         if (g.kind != ast::StmtKind::Gearbox || g.name != gearbox) continue;
         for (const auto& st : g.body) {
           if (st.kind == ast::StmtKind::Stage && st.name == stage) return cat::findKind(st.word);
-          if (st.kind == ast::StmtKind::Like && st.name == stage) return stageKindIn(a, gearbox, st.path.str(), depth + 1);
+          if (st.kind == ast::StmtKind::Like && st.name == stage) return stageKindIn(files, gearbox, st.path.str(), depth + 1);
         }
-        if (!g.base.empty()) return stageKindIn(a, g.base, stage, depth + 1);
+        if (!g.base.empty()) return stageKindIn(files, g.base, stage, depth + 1);
       }
     return nullptr;
   }
@@ -484,7 +485,14 @@ private:
     // After a number: units, those of the dimension of what the statement sets first.
     const std::string& text = docs_[params["textDocument"]["uri"].string()];
     int line = coordinate(params["position"]["line"]), character = coordinate(params["position"]["character"]);
-    if (auto units = unitCompletion(text, byteOffset(text, line, character))) {
+    // A stage the gearbox inherits, from the document as parsed (recovering from the
+    // statement being typed), asked only when the text alone does not tell.
+    std::unique_ptr<driver::Compilation> parsed;
+    auto inherited = [&](const std::string& gearbox, const std::string& stage) -> const cat::KindSpec* {
+      if (!parsed) parsed = driver::compileText(pathOf(params["textDocument"]["uri"].string()), text);
+      return stageKindIn(parsed->loaded.files, gearbox, stage);
+    };
+    if (auto units = unitCompletion(text, byteOffset(text, line, character), inherited)) {
       int typed = 0;  // UTF-16 units of the unit word being typed, which an item replaces
       for (size_t i = 0; i < units->typed.size(); i += source::utf8Length(static_cast<unsigned char>(units->typed[i])))
         typed += source::utf8Length(static_cast<unsigned char>(units->typed[i])) == 4 ? 2 : 1;
@@ -527,7 +535,7 @@ private:
       const cat::KindSpec* kind = stageKind(ch);
       if (!kind && !ch.empty() && ch.front()->kind == ast::StmtKind::Gearbox) {
         size_t dot = prefix.find('.');
-        kind = stageKindIn(a, ch.front()->name, prefix.substr(0, dot), 0);
+        kind = stageKindIn(a.c->loaded.files, ch.front()->name, prefix.substr(0, dot));
         prefix = dot == std::string::npos ? "" : prefix.substr(dot + 1);
       }
       if (kind) {

@@ -187,7 +187,7 @@ std::vector<UnitItem> allUnits() {
 
 } // namespace
 
-std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t offset) {
+std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t offset, const StageKindOf& stageKindOf) {
   offset = std::min(offset, text.size());
   bool hidden = false;
   std::vector<Tok> toks = lex(text, offset, hidden);
@@ -321,6 +321,10 @@ std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t off
             break;
           }
       }
+      // Not declared here: a stage the gearbox inherits (`extends`), as the caller knows it.
+      std::vector<std::string> g = header(blocks[0]);
+      if (!target.found && stageKindOf && g.size() >= 2)
+        if (const cat::KindSpec* kind = stageKindOf(g[1], path[0])) target = {cat::findAttr(*kind, joined(path, 1)), true};
       break;
     } else if (h.size() == 1 && toks[static_cast<size_t>(blocks[static_cast<size_t>(r)].tok - 1)].kind == Tok::Word) {
       name.insert(name.begin(), w);

@@ -2,9 +2,14 @@
 // Completion of units (LANGUAGE.md §1): where one may be written, and which fit there. Read
 // from the text itself, so that the half-typed statement being edited (which does not parse)
 // is understood.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace gbx::cat {
+struct KindSpec;
+}
 
 namespace gbx::lsp {
 
@@ -23,6 +28,9 @@ struct UnitCompletion {
 // `16 N*|`). When the statement sets a catalogue row (a stage attribute, an effect parameter,
 // an operating, scene, accuracy, split or material setting), only units of its dimension,
 // the display unit first; otherwise all. nullopt where no unit can stand.
-std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t offset);
+// `stageKindOf(gearbox, stage)` finds a stage the text of the gearbox does not declare
+// (one it inherits); it may be empty.
+using StageKindOf = std::function<const cat::KindSpec*(const std::string& gearbox, const std::string& stage)>;
+std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t offset, const StageKindOf& stageKindOf = {});
 
 } // namespace gbx::lsp

@@ -603,3 +603,20 @@ TEST(Lsp, CompletesWhatCanStandThere) {
   EXPECT_TRUE(wheel.count("z") && wheel.count("shift"));
   EXPECT_FALSE(wheel.count("normal_module"));
 }
+
+// Units after a number at gearbox level for a stage the gearbox inherits: the stage's kind
+// comes from the gearbox it extends.
+TEST(Lsp, CompletesUnitsForAnInheritedStage) {
+  const std::string uri = "file:///tmp/lsp-units-inherited.gbx";
+  const std::string text = "gearbox A {\n"
+                           "  stage main: helical { pinion.z = 21; wheel.z = 83; normal_module = 16 mm; face_width = 200 mm; }\n"
+                           "}\n"
+                           "gearbox B extends A {\n"
+                           "  main.helix_angle in 8..15 \n"
+                           "}\n";
+  auto r = answers(uri, text, {{"textDocument/completion", after(text, "8..15 ")}});
+  auto labels = sortedLabels(r[2]);
+  ASSERT_FALSE(labels.empty());
+  EXPECT_EQ(labels.front(), "deg");
+  EXPECT_EQ(std::find(labels.begin(), labels.end(), "mm"), labels.end());
+}
