@@ -1,6 +1,7 @@
 #include "WriteWhole.h"
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -38,9 +39,17 @@ void installSignalCleanup() {
 
 } // namespace
 
-std::string writeWhole(const std::filesystem::path& path, const std::string& text) {
+std::string writeWhole(const std::filesystem::path& written, const std::string& text) {
   static std::atomic<unsigned> serial{0};
   installSignalCleanup();
+  // Through a symbolic link to the file it names: renaming over the link would replace the
+  // link, and leave the file as it was.
+  std::filesystem::path path = written;
+  {
+    std::error_code ec;
+    if (std::filesystem::is_symlink(written, ec))
+      if (auto real = std::filesystem::canonical(written, ec); !ec) path = real;
+  }
   std::filesystem::path tmp = path;
   tmp += fmt::format(".tmp-{}-{}", static_cast<long>(getpid()), serial++);
   std::error_code ec;
@@ -65,9 +74,15 @@ std::string writeWhole(const std::filesystem::path& path, const std::string& tex
       return fmt::format("cannot write `{}` (an unwritable folder, or a full disk)", path.string());
     }
   }
-  // A file rewritten in place (`gbxc fmt`) keeps its permissions.
-  if (auto st = std::filesystem::status(path, ec); !ec && std::filesystem::is_regular_file(st))
+  // A file rewritten in place (`gbxc fmt`) keeps its permissions, and its owner where the
+  // writer may give it (as root).
+  if (auto st = std::filesystem::status(path, ec); !ec && std::filesystem::is_regular_file(st)) {
     std::filesystem::permissions(tmp, st.permissions(), ec);
+    struct stat old {};
+    if (::stat(path.c_str(), &old) == 0 && ::chown(tmp.c_str(), old.st_uid, old.st_gid) != 0) {
+      // Another owner is not ours to give: the file becomes the writer's, as any editor's would.
+    }
+  }
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
     std::error_code ignored;

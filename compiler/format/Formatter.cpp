@@ -14,6 +14,13 @@ namespace {
 using parse::LayoutToken;
 using Kind = LayoutToken::Kind;
 
+std::string lf(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (!(s[i] == '\r' && i + 1 < s.size() && s[i + 1] == '\n')) out += s[i];
+  return out;
+}
+
 std::string rtrim(std::string s) {
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
     s.pop_back();
@@ -116,9 +123,16 @@ private:
     if (B.unit) return B.unitStart && B.text != "%" && B.text != "\u00B0" ? 1 : 0;
     if (A.prefix) return 0;
     // `x^2`, but `2 mm ^ 2`: glued to a unit, the power would join the unit.
-    if (B.power) return at(a).unit ? 1 : 0;
-    if (A.power) return a > 0 && at(a - 1).unit ? 1 : 0;
+    if (B.power) return afterUnit(b) ? 1 : 0;
+    if (A.power) return afterUnit(a) ? 1 : 0;
     return 1;
+  }
+
+  // Whether the code token before token i is part of a unit.
+  bool afterUnit(int i) const {
+    for (int k = i - 1; k >= 0; --k)
+      if (!at(k).comment()) return at(k).unit;
+    return false;
   }
 
   void emit() {
@@ -170,7 +184,8 @@ private:
         }
         if (!x.comment() && !x.blockBrace && x.text == "(") brackets.push_back(col);
         if (!x.comment() && !x.blockBrace && x.kind == Kind::Punct && x.text == "{") brackets.push_back(col);
-        l.code += x.text;
+        // A block comment's inner line ends are LF like the file's; its text is not code.
+        l.code += x.kind == Kind::BlockComment ? lf(x.text) : x.text;
         col = x.text.find('\n') == std::string::npos ? col + source::codePoints(x.text) : widthAfterBreak(x.text);
         if (!x.comment() && !x.blockBrace && (x.text == ")" || (x.kind == Kind::Punct && x.text == "}")) &&
             !brackets.empty())
@@ -238,8 +253,10 @@ bool sameReading(const std::vector<LayoutToken>& a, const std::vector<LayoutToke
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i) {
     const LayoutToken &x = a[i], &y = b[i];
-    std::string tx = x.kind == Kind::LineComment ? rtrim(x.text) : x.text;
-    std::string ty = y.kind == Kind::LineComment ? rtrim(y.text) : y.text;
+    auto text = [](const LayoutToken& t) {
+      return t.kind == Kind::LineComment ? rtrim(t.text) : t.kind == Kind::BlockComment ? lf(t.text) : t.text;
+    };
+    std::string tx = text(x), ty = text(y);
     if (x.kind != y.kind || tx != ty || x.unit != y.unit || x.unitStart != y.unitStart || x.prefix != y.prefix ||
         x.call != y.call || x.power != y.power || x.blockBrace != y.blockBrace || x.stmtStart != y.stmtStart ||
         x.stmtEnd != y.stmtEnd || x.aligned != y.aligned || x.match != y.match)

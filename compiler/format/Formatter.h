@@ -11,7 +11,8 @@
 namespace gbx::format {
 
 // The formatted text of a loaded file; nullopt, with the reasons in `diags`, when the file
-// does not parse (syntax errors) or formatting would change what it says.
+// does not parse (syntax errors). Throws std::logic_error, leaving the file to the caller
+// as it was, when the layout would not read as the input did (a defect of the formatter).
 std::optional<std::string> formatFile(const source::SourceManager& sm, int fileId, diag::DiagnosticEngine& diags);
 
 // The same for a text, named `displayPath` in diagnostics.

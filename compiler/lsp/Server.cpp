@@ -6,7 +6,6 @@
 #include <memory>
 #include <map>
 #include <optional>
-#include <regex>
 #include <ostream>
 #include <string>
 
@@ -158,6 +157,52 @@ std::string describeAttr(const std::string& path, const cat::AttrSpec& a) {
   std::string unit = units::displayUnitFor(a.dim).name;
   return fmt::format("**{}** — {}\n\n{}{}{}", path, a.meaning, a.dim.describe(), unit.empty() ? "" : fmt::format(", in {}", unit),
                      a.role == cat::AttrRole::Derived ? " (computed)" : "");
+}
+
+// What the line says before the cursor, for completion. A name's characters:
+bool nameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool nameStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
+
+// Back from `end` over a partly typed name, then blanks: where they start.
+size_t backOverName(const std::string& s, size_t end) {
+  while (end > 0 && nameChar(s[end - 1])) --end;
+  return end;
+}
+size_t backOverBlanks(const std::string& s, size_t end) {
+  while (end > 0 && (s[end - 1] == ' ' || s[end - 1] == '\t')) --end;
+  return end;
+}
+
+// `import ma|`
+bool afterImport(const std::string& before) {
+  size_t i = backOverName(before, before.size());
+  size_t j = backOverBlanks(before, i);
+  return j < i && j >= 6 && before.compare(j - 6, 6, "import") == 0 && backOverBlanks(before, j - 6) == 0;
+}
+
+// `stage main: he|`
+bool afterStageColon(const std::string& before) {
+  size_t i = backOverBlanks(before, backOverName(before, before.size()));
+  if (i == 0 || before[i - 1] != ':') return false;
+  size_t nameEnd = backOverBlanks(before, i - 1), nameBegin = backOverName(before, nameEnd);
+  if (nameBegin == nameEnd || !nameStart(before[nameBegin])) return false;
+  size_t k = backOverBlanks(before, nameBegin);
+  return k < nameBegin && k >= 5 && before.compare(k - 5, 5, "stage") == 0 && (k == 5 || !nameChar(before[k - 6]));
+}
+
+// `main.pinion.|` or `main.pinion.s|`: the dotted name before the last dot ("" when none).
+std::string dottedBefore(const std::string& before) {
+  size_t i = backOverName(before, before.size());
+  if (i == 0 || before[i - 1] != '.') return "";
+  size_t end = i - 1, begin = end;
+  while (true) {
+    size_t b = backOverName(before, begin);
+    if (b == begin || !nameStart(before[b])) return "";  // `1.` is a number, `..` a range
+    begin = b;
+    if (begin == 0 || before[begin - 1] != '.') break;
+    --begin;
+  }
+  return before.substr(begin, end - begin);
 }
 
 class Server {
@@ -518,20 +563,17 @@ private:
     lineStart = lineStart == std::string::npos ? 0 : lineStart + 1;
     size_t from = std::max(lineStart, offset > 200 ? offset - 200 : size_t{0});  // a long line: its end is enough
     std::string before = text.substr(from, offset - from);
-    static const std::regex importAt(R"(^\s*import\s+[A-Za-z_]*$)"), kindAt(R"(\bstage\s+[A-Za-z_]\w*\s*:\s*[A-Za-z_]*$)"),
-        dottedAt(R"(([A-Za-z_]\w*(?:\.[A-Za-z_]\w*)*)\.\w*$)");
-    std::smatch m;
-    if (std::regex_search(before, importAt)) {
+    if (afterImport(before)) {
       for (const char* mod : {"materials", "modules", "gleason", "klingelnberg"}) item(mod, 9, "stdlib module");
       return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
     }
-    if (std::regex_search(before, kindAt)) {
+    if (afterStageColon(before)) {
       for (const auto& k : cat::stageKinds()) item(k.name, 7, fmt::format("stage kind — gears: {}", fmt::join(k.gears, ", ")));
       return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
     }
-    if (std::regex_search(before, m, dottedAt)) {
+    if (std::string dotted = dottedBefore(before); !dotted.empty()) {
       // Inside a stage the path starts at its attributes; elsewhere in a gearbox at a stage.
-      std::string prefix = m[1].str();
+      std::string prefix = dotted;
       const cat::KindSpec* kind = stageKind(ch);
       if (!kind && !ch.empty() && ch.front()->kind == ast::StmtKind::Gearbox) {
         size_t dot = prefix.find('.');
@@ -651,20 +693,34 @@ private:
                                                                                 pathOf(uri), diags.errorCount())}}));
       return response(id, Json());
     }
-    if (*laidOut == text) return response(id, Json::Array{});
+    // Lines as LSP counts them (LF, CRLF or a lone CR ends one), without their ends: a CRLF
+    // document laid out already needs no edit, and the editor writes its own line ends.
     auto lines = [](const std::string& t) {
       std::vector<std::string> v;
       size_t from = 0;
-      for (size_t e; (e = t.find('\n', from)) != std::string::npos; from = e + 1) v.push_back(t.substr(from, e - from + 1));
-      v.push_back(t.substr(from));  // the last line, without a line break (maybe empty)
+      for (size_t i = 0; i < t.size(); ++i)
+        if (t[i] == '\n' || t[i] == '\r') {
+          v.push_back(t.substr(from, i - from));
+          if (t[i] == '\r' && i + 1 < t.size() && t[i + 1] == '\n') ++i;
+          from = i + 1;
+        }
+      v.push_back(t.substr(from));  // after the last line end (maybe empty)
       return v;
     };
     std::vector<std::string> a = lines(text), b = lines(*laidOut);
+    if (a == b) return response(id, Json::Array{});
     size_t pre = 0, suf = 0;
-    while (pre + 1 < a.size() && pre + 1 < b.size() && a[pre] == b[pre]) ++pre;
-    while (suf + pre + 1 < a.size() && suf + pre + 1 < b.size() && a[a.size() - 1 - suf] == b[b.size() - 1 - suf]) ++suf;
+    // A lone CR ends a line for the editor but not for the language: one edit over the
+    // whole document then, as line numbers of the two need not agree.
+    bool loneCr = false;
+    for (size_t i = 0; i < text.size(); ++i) loneCr = loneCr || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'));
+    if (!loneCr) {
+      while (pre + 1 < a.size() && pre + 1 < b.size() && a[pre] == b[pre]) ++pre;
+      while (suf + pre + 1 < a.size() && suf + pre + 1 < b.size() && a[a.size() - 1 - suf] == b[b.size() - 1 - suf]) ++suf;
+    }
     std::string newText;
-    for (size_t i = pre; i < b.size() - suf; ++i) newText += b[i];
+    for (size_t i = pre; i < b.size() - suf; ++i) newText += (i > pre ? "\n" : "") + b[i];
+    if (suf > 0) newText += "\n";
     // From the start of the first changed line to the start of the first shared line after
     // them (or the end of the document). Built a member at a time: GCC 12 warns, falsely, of
     // nested initializer lists of variants.

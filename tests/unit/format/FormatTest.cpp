@@ -102,6 +102,7 @@ TEST(Format, KeepsWhatTouchingWouldChange) {
   // A power after a unit: glued it would join the unit (2 mm^2 is not (2 mm)^2).
   EXPECT_EQ(fmtText("const a = 2 mm ^ 2;\n").value_or(""), "const a = 2 mm ^ 2;\n");
   EXPECT_EQ(fmtText("const a = 2 mm^2;\n").value_or(""), "const a = 2 mm^2;\n");
+  EXPECT_EQ(fmtText("const a = 2 mm /*c*/ ^ 2;\n").value_or(""), "const a = 2 mm /*c*/ ^ 2;\n");
   EXPECT_EQ(fmtText("const a = 2  kg/m^3;\n").value_or(""), "const a = 2 kg/m^3;\n");
   EXPECT_EQ(fmtText("const a = 22%  *  b;\n").value_or(""), "const a = 22% * b;\n");
   EXPECT_EQ(fmtText("const a = 22%*b;\n").value_or(""), "const a = 22%*b;\n"); // the unit `%*b`
@@ -150,6 +151,7 @@ TEST(Format, LineEndingsOfAnyKind) {
   auto out = fmtText("const a = 1; // c\rconst b = 2;\r");
   ASSERT_TRUE(out);
   EXPECT_EQ(*out, "const a = 1;  // c\nconst b = 2;\n");
+  EXPECT_EQ(fmtText("/* a\r\n b */\r\nconst a = 1;\r\n").value_or(""), "/* a\n b */\nconst a = 1;\n");
   EXPECT_EQ(fmtText("").value_or("x"), "");
   EXPECT_EQ(fmtText("\n\n// only\n\n").value_or(""), "// only\n");
 }
@@ -264,6 +266,12 @@ TEST(Format, CommandLine) {
   EXPECT_EQ(last.status, 1);
   EXPECT_NE(last.out.find("@@ -1,1 +1,1 @@\n-const a = 1;\n\\ No newline at end of file\n+const a = 1;\n"), std::string::npos)
       << last.out;
+  // Through a symbolic link: the file it names is laid out, the link stays a link.
+  { std::ofstream(d / "sub" / "real.gbx") << messy; }
+  fs::create_symlink("sub/real.gbx", d / "link.gbx");
+  EXPECT_EQ(gbxc({"fmt", (d / "link.gbx").string()}).status, 0);
+  EXPECT_TRUE(fs::is_symlink(d / "link.gbx"));
+  EXPECT_EQ(read(d / "sub" / "real.gbx"), tidy);
   EXPECT_EQ(gbxc({"fmt", (d / "missing.gbx").string()}).status, 3);
   EXPECT_EQ(gbxc({"fmt"}).status, 2);
   EXPECT_EQ(gbxc({"check", "--check", (d / "a.gbx").string()}).status, 2);

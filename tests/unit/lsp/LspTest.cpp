@@ -620,3 +620,29 @@ TEST(Lsp, CompletesUnitsForAnInheritedStage) {
   EXPECT_EQ(labels.front(), "deg");
   EXPECT_EQ(std::find(labels.begin(), labels.end(), "mm"), labels.end());
 }
+
+// Formatting counts lines as the editor does: a CRLF document laid out needs no edit, a
+// CRLF document that is not gets an edit over its changed line only, and one with a lone CR
+// (a line end for the editor, not for the language) is replaced whole.
+TEST(Lsp, FormattingCountsLinesAsTheEditorDoes) {
+  auto edits = [](const std::string& text) {
+    return answers("file:///tmp/lsp-eol.gbx", text, {{"textDocument/formatting", Json::Object{}}})[2];
+  };
+  Json same = edits("const a = 1;\r\nconst b = 2;\r\n");
+  EXPECT_TRUE(same.isArray() && same.size() == 0u) << same.dump();
+
+  Json one = edits("const a=1;\r\nconst b = 2;\r\n");
+  ASSERT_EQ(one.size(), 1u) << one.dump();
+  EXPECT_EQ(one.at(0)["range"]["start"]["line"].number(), 0);
+  EXPECT_EQ(one.at(0)["range"]["end"]["line"].number(), 1);
+  EXPECT_EQ(one.at(0)["range"]["end"]["character"].number(), 0);
+  EXPECT_EQ(one.at(0)["newText"].string(), "const a = 1;\n");
+
+  Json whole = edits("const a=1;\rconst b = 2;\nconst c=3;\n");
+  ASSERT_EQ(whole.size(), 1u) << whole.dump();
+  EXPECT_EQ(whole.at(0)["range"]["start"]["line"].number(), 0);
+  EXPECT_EQ(whole.at(0)["range"]["start"]["character"].number(), 0);
+  EXPECT_EQ(whole.at(0)["range"]["end"]["line"].number(), 3);
+  EXPECT_EQ(whole.at(0)["range"]["end"]["character"].number(), 0);
+  EXPECT_EQ(whole.at(0)["newText"].string(), "const a = 1;  const b = 2;\nconst c = 3;\n");
+}
