@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "catalogue/Effects.h"
+#include "parse/Layout.h"
 #include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
 #include "source/Source.h"
@@ -25,73 +26,23 @@ struct Tok {
   int line;
 };
 
-bool digit(char c) { return c >= '0' && c <= '9'; }
-bool wordChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-
-// Bytes of the identifier start at i (a letter, `_`, `µ` or `μ`), 0 when none.
-size_t wordStart(const std::string& t, size_t i) {
-  char c = t[i];
-  if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') return 1;
-  if (t.compare(i, 2, "\u00B5") == 0 || t.compare(i, 2, "\u03BC") == 0) return 2;
-  return 0;
-}
-
-// The tokens of the whole text; `hidden` is set when `offset` lies inside a comment or a
-// string, where no unit is written.
+// The tokens of the whole text, as the grammar's lexer makes them; `hidden` is set when
+// `offset` lies inside a comment or a string, where no unit is written.
 std::vector<Tok> lex(const std::string& t, size_t offset, bool& hidden) {
   std::vector<Tok> out;
-  int line = 1;
-  size_t i = 0, n = t.size();
-  auto skip = [&](size_t end, bool closed) {
-    if (i < offset && (closed ? offset < end : offset <= end)) hidden = true;
-    line += static_cast<int>(std::count(t.begin() + static_cast<long>(i), t.begin() + static_cast<long>(end), '\n'));
-    i = end;
-  };
-  while (i < n) {
-    char c = t[i];
-    if (c == '\n' || c == ' ' || c == '\t' || c == '\r') {
-      line += c == '\n';
-      ++i;
-    } else if (t.compare(i, 2, "//") == 0) {
-      size_t e = t.find('\n', i);
-      skip(e == std::string::npos ? n : e, false);
-    } else if (t.compare(i, 2, "/*") == 0) {
-      size_t e = t.find("*/", i + 2);
-      skip(e == std::string::npos ? n : e + 2, e != std::string::npos);
-    } else if (c == '"') {
-      size_t e = i + 1;
-      while (e < n && t[e] != '"' && t[e] != '\n') e += t[e] == '\\' && e + 1 < n && t[e + 1] != '\n' ? 2 : 1;
-      bool closed = e < n && t[e] == '"';
-      skip(closed ? e + 1 : e, closed);
-    } else if (digit(c)) {
-      // [0-9]+ ('.' [0-9]+)? ([eE] [+-]? [0-9]+)?
-      size_t e = i;
-      while (e < n && digit(t[e])) ++e;
-      if (e + 1 < n && t[e] == '.' && digit(t[e + 1]))
-        for (++e; e < n && digit(t[e]);) ++e;
-      if (e < n && (t[e] == 'e' || t[e] == 'E')) {
-        size_t x = e + 1 + (e + 1 < n && (t[e + 1] == '+' || t[e + 1] == '-'));
-        if (x < n && digit(t[x]))
-          for (e = x; e < n && digit(t[e]);) ++e;
-      }
-      out.push_back({Tok::Number, i, e, line});
-      i = e;
-    } else if (size_t w = wordStart(t, i)) {
-      size_t e = i + w;
-      while (e < n && wordChar(t[e])) ++e;
-      out.push_back({Tok::Word, i, e, line});
-      i = e;
-    } else if (c == '%' || t.compare(i, 2, "\u00B0") == 0) {
-      size_t e = i + (c == '%' ? 1 : 2);
-      out.push_back({Tok::Symbol, i, e, line});
-      i = e;
-    } else {
-      size_t e = i + source::utf8Length(static_cast<unsigned char>(c));
-      for (const char* two : {"..", "+-", "==", "!=", "<=", ">="})
-        if (t.compare(i, 2, two) == 0) e = i + 2;
-      out.push_back({Tok::Punct, i, std::min(e, n), line});
-      i = std::min(e, n);
+  for (const auto& k : parse::lex(t)) {
+    using K = parse::LexToken::Kind;
+    if (k.kind == K::Comment || k.kind == K::String || k.kind == K::Unterminated) {
+      // Inside, or at the end of one that runs to the line's end (`// …|`, an open string).
+      bool open = k.kind == K::Unterminated || t.compare(k.begin, 2, "//") == 0;
+      if (k.begin < offset && (open ? offset <= k.end : offset < k.end)) hidden = true;
+      continue;
     }
+    Tok::Kind kind = k.kind == K::Word ? Tok::Word : k.kind == K::Number ? Tok::Number : Tok::Punct;
+    // `%` and `°`: unit atoms that are no word.
+    if (kind == Tok::Punct && (t.compare(k.begin, k.end - k.begin, "%") == 0 || t.compare(k.begin, k.end - k.begin, "\u00B0") == 0))
+      kind = Tok::Symbol;
+    out.push_back({kind, k.begin, k.end, k.line});
   }
   return out;
 }

@@ -122,4 +122,40 @@ std::optional<std::vector<LayoutToken>> layout(const source::SourceManager& sm, 
   return out;
 }
 
+std::vector<LexToken> lex(const std::string& text) {
+  diag::DiagnosticEngine ignored;
+  if (!validUtf8(text, 0, ignored)) return {};
+  // The lexer counts code points; the reader wants bytes.
+  std::vector<size_t> byteAt;
+  for (size_t i = 0; i < text.size(); i += source::utf8Length(static_cast<unsigned char>(text[i]))) byteAt.push_back(i);
+  byteAt.push_back(text.size());
+  antlr4::ANTLRInputStream input(text);
+  GbxLexer lexer(&input);
+  lexer.removeErrorListeners();
+  std::vector<LexToken> out;
+  for (auto t = lexer.nextToken(); t->getType() != antlr4::Token::EOF; t = lexer.nextToken()) {
+    size_t type = t->getType();
+    if (type == GbxLexer::WS) continue;
+    LexToken k;
+    k.begin = byteAt[std::min(t->getStartIndex(), byteAt.size() - 1)];
+    k.end = byteAt[std::min(t->getStopIndex() + 1, byteAt.size() - 1)];
+    k.line = static_cast<int>(t->getLine());
+    switch (type) {
+    case GbxLexer::ID: k.kind = LexToken::Kind::Word; break;
+    case GbxLexer::NUMBER: k.kind = LexToken::Kind::Number; break;
+    case GbxLexer::STRING: k.kind = LexToken::Kind::String; break;
+    case GbxLexer::LINE_COMMENT:
+    case GbxLexer::BLOCK_COMMENT: k.kind = LexToken::Kind::Comment; break;
+    case GbxLexer::UNTERMINATED_STRING:
+    case GbxLexer::UNTERMINATED_COMMENT: k.kind = LexToken::Kind::Unterminated; break;
+    default: {
+      std::string literal = lexer.getVocabulary().getLiteralName(type);
+      k.kind = literal.size() > 2 && std::isalpha(static_cast<unsigned char>(literal[1])) ? LexToken::Kind::Word : LexToken::Kind::Punct;
+    }
+    }
+    out.push_back(k);
+  }
+  return out;
+}
+
 } // namespace gbx::parse

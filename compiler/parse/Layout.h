@@ -34,4 +34,15 @@ struct LayoutToken {
 std::optional<std::vector<LayoutToken>> layout(const source::SourceManager& sm, int fileId,
                                                diag::DiagnosticEngine& diags);
 
+// Every token of a text as the grammar's lexer makes it, whatever a parser would say of
+// them: for readers of a half-typed file (completion). Offsets are bytes. Empty when the
+// text is not UTF-8.
+struct LexToken {
+  enum class Kind : unsigned char { Word, Number, String, Punct, Comment, Unterminated };
+  Kind kind = Kind::Punct;  // Word: a name or keyword; Unterminated: a string or comment left open
+  size_t begin = 0, end = 0;
+  int line = 1;  // as the parser counts lines (LF)
+};
+std::vector<LexToken> lex(const std::string& text);
+
 } // namespace gbx::parse

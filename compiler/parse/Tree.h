@@ -23,6 +23,10 @@ struct ParsedTree {
 // Lexes and parses one loaded file, reporting lexical and syntax errors to `diags`.
 ParsedTree parseTree(const source::SourceManager& sm, int fileId, diag::DiagnosticEngine& diags);
 
+// Whether a text is UTF-8 (the runtime's decoder throws on anything else); the first bad
+// byte is reported to `diags` as in file `file`.
+bool validUtf8(const std::string& t, int file, diag::DiagnosticEngine& diags);
+
 // The span of one token (columns in code points, 1-based).
 source::Span tokenSpan(int file, antlr4::Token* t);
 
