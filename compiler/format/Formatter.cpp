@@ -230,7 +230,8 @@ private:
         continue;
       }
       size_t b = a + 1;
-      while (b < lines_.size() && !lines_[b].comment.empty() && !lines_[b].blankBefore && lines_[b].depth == lines_[a].depth)
+      while (b < lines_.size() && !lines_[b].comment.empty() && !lines_[b].blankBefore &&
+             lines_[b].depth == lines_[a].depth)
         ++b;
       int col = 0;
       for (size_t k = a; k < b; ++k)

@@ -16,7 +16,8 @@ namespace gbx::lsp {
 bool fixedDesign(const ir::Gearbox& g) {
   for (const auto& st : g.stages)
     for (const auto& a : st.attributes)
-      if ((a.role == ir::Attribute::Decision || a.role == ir::Attribute::Freedom) && a.members.size() != 1) return false;
+      if ((a.role == ir::Attribute::Decision || a.role == ir::Attribute::Freedom) && a.members.size() != 1)
+        return false;
   return true;
 }
 
@@ -40,20 +41,22 @@ double expandedSize(const ir::Expr* e, const ir::Gearbox& g, std::vector<double>
     }
     n += memo[i];
   }
-  for (const auto& x : e->args) n += expandedSize(x.get(), g, memo, state);
+  for (const auto& x : e->args)
+    n += expandedSize(x.get(), g, memo, state);
   return n;
 }
 
 } // namespace
 
-std::optional<std::string> designValue(const ir::Program& p, const ir::Gearbox& g, const ir::QuantityRef& r, const units::Dim& dim) {
+std::optional<std::string> designValue(const ir::Program& p, const ir::Gearbox& g, const ir::QuantityRef& r,
+                                       const units::Dim& dim) {
   if ((r.owner != ir::QuantityRef::Stage && r.owner != ir::QuantityRef::Gearbox) || r.perGear || !fixedDesign(g))
     return std::nullopt;
   rt::Value v;
   try {
     rt::Model m(p, g);
     rt::Assignment a(m);
-    std::fill(a.choice.begin(), a.choice.end(), 0);  // every slot holds one value
+    std::fill(a.choice.begin(), a.choice.end(), 0); // every slot holds one value
     rt::Evaluator ev(m);
     // Attributes given by expressions, each evaluated once and then read as a sweep's value,
     // in rounds until none gains a value: one that needs itself (`face_width = face_width +
@@ -89,11 +92,12 @@ std::optional<std::string> designValue(const ir::Program& p, const ir::Gearbox& 
     }
     v = ev.quantity(r, a);
   } catch (const std::exception&) {
-    return std::nullopt;  // a spec the runtime cannot evaluate: the hover goes without
+    return std::nullopt; // a spec the runtime cannot evaluate: the hover goes without
   }
   if (!v.isPoint() || !std::isfinite(v.lo)) return std::nullopt;
   units::DisplayUnit u = units::displayUnitFor(dim, v.lo);
-  std::string shown = dim.dimensionless() && v.exact && v.exact->isInteger() ? v.exact->str() : rt::formatNumber(v.lo / u.scale);
+  std::string shown =
+      dim.dimensionless() && v.exact && v.exact->isInteger() ? v.exact->str() : rt::formatNumber(v.lo / u.scale);
   if (!u.name.empty()) shown += " " + u.name;
   // A ratio reads as the reports write it, with its exact fraction.
   if (r.key == cat::Q::Ratio && v.exact && !v.exact->isInteger()) shown += " (" + v.exact->str() + ")";
@@ -107,11 +111,13 @@ void walk(const ir::Expr* e, const std::function<void(const ir::Expr&)>& f) {
   if (!e) return;
   f(*e);
   // `inBaseline` is resolved in another gearbox: its ids are not this one's.
-  for (const auto& x : e->args) walk(x.get(), f);
+  for (const auto& x : e->args)
+    walk(x.get(), f);
 }
 
 void walk(const std::vector<ir::Setting>& settings, const std::function<void(const ir::Expr&)>& f) {
-  for (const auto& s : settings) walk(s.expr.get(), f);
+  for (const auto& s : settings)
+    walk(s.expr.get(), f);
 }
 
 } // namespace
@@ -134,28 +140,36 @@ const ir::Expr* quantityAt(const ir::Gearbox& g, const std::function<bool(const 
     }
   };
   for (const auto& st : g.stages)
-    for (const auto& a : st.attributes) walk(a.value.get(), visit);
-  for (const auto& l : g.lets) walk(l.expr.get(), visit);
-  for (const auto& r : g.rules) walk(r.expr.get(), visit);
-  for (const auto& o : g.objectives) walk(o.expr.get(), visit);
+    for (const auto& a : st.attributes)
+      walk(a.value.get(), visit);
+  for (const auto& l : g.lets)
+    walk(l.expr.get(), visit);
+  for (const auto& r : g.rules)
+    walk(r.expr.get(), visit);
+  for (const auto& o : g.objectives)
+    walk(o.expr.get(), visit);
   walk(g.operating, visit);
   for (const auto& sc : g.scenes) {
     walk(sc.settings, visit);
     walk(sc.accuracy, visit);
-    for (const auto& fx : sc.effects) walk(fx.params, visit);
+    for (const auto& fx : sc.effects)
+      walk(fx.params, visit);
   }
   for (const auto& m : g.modifies)
     for (const auto& rule : m.rules) {
       walk(rule.value.get(), visit);
       walk(rule.when.get(), visit);
     }
-  for (const auto& sp : g.splits) walk(sp.settings, visit);
+  for (const auto& sp : g.splits)
+    walk(sp.settings, visit);
   for (const auto& st : g.studies) {
-    for (const auto& o : st.outputs) walk(o.get(), visit);
+    for (const auto& o : st.outputs)
+      walk(o.get(), visit);
     walk(st.settings, visit);
   }
   if (g.report) {
-    for (const auto& c : g.report->columns) walk(c.get(), visit);
+    for (const auto& c : g.report->columns)
+      walk(c.get(), visit);
     walk(g.report->sortBy.get(), visit);
   }
   return ambiguous ? nullptr : best;

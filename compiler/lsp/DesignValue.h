@@ -17,7 +17,8 @@ bool fixedDesign(const ir::Gearbox& g);
 // "= 855.0000 mm (0.855 in SI) for the design of MarineReducer": a stage or gearbox
 // quantity in its display unit, as the reports show it. nullopt when the design is not
 // fixed or the quantity has no value there.
-std::optional<std::string> designValue(const ir::Program& p, const ir::Gearbox& g, const ir::QuantityRef& r, const units::Dim& dim);
+std::optional<std::string> designValue(const ir::Program& p, const ir::Gearbox& g, const ir::QuantityRef& r,
+                                       const units::Dim& dim);
 
 // The stage or gearbox quantity that an expression of the gearbox names where `at` holds:
 // the innermost one; nullptr when there is none, or several that differ (a `forall`'s

@@ -6,9 +6,9 @@
 #include <fmt/format.h>
 
 #include "catalogue/Effects.h"
-#include "parse/Layout.h"
 #include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
+#include "parse/Layout.h"
 #include "source/Source.h"
 #include "units/Unit.h"
 
@@ -20,7 +20,7 @@ constexpr size_t kMaxPath = 6;
 
 // A token as the grammar's lexer makes it (grammar/Gbx.g4), with its byte range.
 struct Tok {
-  enum Kind { Number, Word, Symbol, Punct };  // Symbol: `%` or `°`, a unit atom that is no word
+  enum Kind { Number, Word, Symbol, Punct }; // Symbol: `%` or `°`, a unit atom that is no word
   Kind kind;
   size_t b, e;
   int line;
@@ -40,7 +40,8 @@ std::vector<Tok> lex(const std::string& t, size_t offset, bool& hidden) {
     }
     Tok::Kind kind = k.kind == K::Word ? Tok::Word : k.kind == K::Number ? Tok::Number : Tok::Punct;
     // `%` and `°`: unit atoms that are no word.
-    if (kind == Tok::Punct && (t.compare(k.begin, k.end - k.begin, "%") == 0 || t.compare(k.begin, k.end - k.begin, "\u00B0") == 0))
+    if (kind == Tok::Punct &&
+        (t.compare(k.begin, k.end - k.begin, "%") == 0 || t.compare(k.begin, k.end - k.begin, "\u00B0") == 0))
       kind = Tok::Symbol;
     out.push_back({kind, k.begin, k.end, k.line});
   }
@@ -59,7 +60,9 @@ struct Reader {
     const Tok& k = toks[static_cast<size_t>(i)];
     return text.compare(k.b, k.e - k.b, s) == 0;
   }
-  bool glued(long left, long right) const { return toks[static_cast<size_t>(left)].e == toks[static_cast<size_t>(right)].b; }
+  bool glued(long left, long right) const {
+    return toks[static_cast<size_t>(left)].e == toks[static_cast<size_t>(right)].b;
+  }
 
   // The first token of the unit atom that ends at token i (`mm`, `°`, `m^2`, `s^-1`), or -1.
   long atomStart(long i) const {
@@ -78,7 +81,7 @@ struct Reader {
 // What the statement at the cursor sets, as the catalogue describes it.
 struct Target {
   const cat::AttrSpec* row = nullptr;
-  bool found = false;  // the block that owns the row was found (without the row: any unit)
+  bool found = false; // the block that owns the row was found (without the row: any unit)
 };
 
 const cat::AttrSpec* findRow(const std::vector<cat::AttrSpec>& rows, const std::string& name) {
@@ -89,7 +92,8 @@ const cat::AttrSpec* findRow(const std::vector<cat::AttrSpec>& rows, const std::
 
 std::string joined(const std::vector<std::string>& parts, size_t from = 0) {
   std::string s;
-  for (size_t i = from; i < parts.size(); ++i) s += (s.empty() ? "" : ".") + parts[i];
+  for (size_t i = from; i < parts.size(); ++i)
+    s += (s.empty() ? "" : ".") + parts[i];
   return s;
 }
 
@@ -97,7 +101,8 @@ std::string joined(const std::vector<std::string>& parts, size_t from = 0) {
 // the same and is typed as easily.
 bool alternativeSpelling(size_t i) {
   const auto& names = units::atomNames();
-  if (std::all_of(names[i].begin(), names[i].end(), [](char c) { return static_cast<unsigned char>(c) < 0x80; })) return false;
+  if (std::all_of(names[i].begin(), names[i].end(), [](char c) { return static_cast<unsigned char>(c) < 0x80; }))
+    return false;
   auto u = units::lookupAtom(names[i]);
   for (size_t j = 0; j < i; ++j) {
     auto v = units::lookupAtom(names[j]);
@@ -148,14 +153,14 @@ std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t off
   if (n == 0) return std::nullopt;
   UnitCompletion out;
   long i = n - 1;
-  size_t glue = offset;  // where the piece after token i starts
+  size_t glue = offset; // where the piece after token i starts
   const Tok& last = toks[static_cast<size_t>(i)];
   if (last.e >= offset && last.kind == Tok::Word) {
-    out.typed = text.substr(last.b, offset - last.b);  // a unit word being typed
+    out.typed = text.substr(last.b, offset - last.b); // a unit word being typed
     glue = last.b;
     --i;
   } else if (last.e > offset || (last.e == offset && last.kind == Tok::Symbol)) {
-    return std::nullopt;  // inside a number, or right after a written `%`
+    return std::nullopt; // inside a number, or right after a written `%`
   }
   // Back over the unit written so far (`N*`, `kg/m^3*`) to the number it follows.
   bool compound = false;
@@ -193,7 +198,8 @@ std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t off
   for (long j = 0; j < base; ++j) {
     if (rd.is(j, "{")) {
       const Tok* prev = j > 0 ? &toks[static_cast<size_t>(j - 1)] : nullptr;
-      bool set = prev && ((prev->kind == Tok::Word && rd.is(j - 1, "in")) || (prev->kind == Tok::Punct && !rd.is(j - 1, ")")));
+      bool set =
+          prev && ((prev->kind == Tok::Word && rd.is(j - 1, "in")) || (prev->kind == Tok::Punct && !rd.is(j - 1, ")")));
       stack.push_back({j, boundary, set});
       if (!set) boundary = j;
     } else if (rd.is(j, "}")) {
@@ -208,13 +214,16 @@ std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t off
   for (const auto& o : stack)
     if (!o.set) blocks.push_back(o);
   // A statement being typed has no `;` yet: what follows it on a later line starts anew.
-  auto lineStart = [&](long j) { return j > 0 && toks[static_cast<size_t>(j)].line > toks[static_cast<size_t>(j - 1)].line; };
+  auto lineStart = [&](long j) {
+    return j > 0 && toks[static_cast<size_t>(j)].line > toks[static_cast<size_t>(j - 1)].line;
+  };
   auto header = [&](const Open& o) {
     long from = o.headerFrom + 1;
     for (long j = from + 1; j < o.tok; ++j)
       if (lineStart(j)) from = j;
     std::vector<std::string> h;
-    for (long j = from; j < o.tok; ++j) h.push_back(rd.str(j));
+    for (long j = from; j < o.tok; ++j)
+      h.push_back(rd.str(j));
     return h;
   };
 
@@ -226,7 +235,8 @@ std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t off
     if (toks[static_cast<size_t>(k)].kind != Tok::Word) continue;
     path.push_back(rd.str(k++));
     // Paths are short (`rating.lubricant.viscosity_40`): a longer chain is no target.
-    while (k + 1 < base && path.size() <= kMaxPath && rd.is(k, ".") && toks[static_cast<size_t>(k + 1)].kind == Tok::Word) {
+    while (k + 1 < base && path.size() <= kMaxPath && rd.is(k, ".") &&
+           toks[static_cast<size_t>(k + 1)].kind == Tok::Word) {
       path.push_back(rd.str(k + 1));
       k += 2;
     }
@@ -245,8 +255,9 @@ std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t off
     if (w == "stage") {
       const cat::KindSpec* kind = h.size() >= 4 && h[2] == ":" ? cat::findKind(h[3]) : nullptr;
       target = {kind ? cat::findAttr(*kind, joined(name)) : nullptr, kind != nullptr};
-    } else if (const cat::EffectSpec* fx = cat::findEffect(w); fx && h.size() == 1 && r > 0 &&
-                                                                header(blocks[static_cast<size_t>(r - 1)]) == std::vector<std::string>{"effects"}) {
+    } else if (const cat::EffectSpec* fx = cat::findEffect(w);
+               fx && h.size() == 1 && r > 0 &&
+               header(blocks[static_cast<size_t>(r - 1)]) == std::vector<std::string>{"effects"}) {
       inRows(fx->params);
     } else if (w == "operating") {
       inRows(cat::operatingSettings());
@@ -258,15 +269,16 @@ std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t off
       inRows(cat::splitSettings());
     } else if (w == "material") {
       inRows(cat::materialProperties());
-    } else if ((w == "gearbox" || w == "tolerances") && name.size() >= 2 && name == path && !header(blocks[0]).empty() &&
-               header(blocks[0])[0] == "gearbox") {
+    } else if ((w == "gearbox" || w == "tolerances") && name.size() >= 2 && name == path &&
+               !header(blocks[0]).empty() && header(blocks[0])[0] == "gearbox") {
       // `main.helix_angle in 8..15 deg;`: the stage of that name in this gearbox.
       int depth = 0;
       for (size_t j = static_cast<size_t>(blocks[0].tok); j < toks.size(); ++j) {
         depth += rd.is(static_cast<long>(j), "{") - rd.is(static_cast<long>(j), "}");
         if (depth == 0) break;
         long s = static_cast<long>(j);
-        if (rd.is(s, "stage") && rd.is(s + 1, path[0].c_str()) && rd.is(s + 2, ":") && s + 3 < static_cast<long>(toks.size()))
+        if (rd.is(s, "stage") && rd.is(s + 1, path[0].c_str()) && rd.is(s + 2, ":") &&
+            s + 3 < static_cast<long>(toks.size()))
           if (const cat::KindSpec* kind = cat::findKind(rd.str(s + 3))) {
             target = {cat::findAttr(*kind, joined(path, 1)), true};
             break;
@@ -275,7 +287,8 @@ std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t off
       // Not declared here: a stage the gearbox inherits (`extends`), as the caller knows it.
       std::vector<std::string> g = header(blocks[0]);
       if (!target.found && stageKindOf && g.size() >= 2)
-        if (const cat::KindSpec* kind = stageKindOf(g[1], path[0])) target = {cat::findAttr(*kind, joined(path, 1)), true};
+        if (const cat::KindSpec* kind = stageKindOf(g[1], path[0]))
+          target = {cat::findAttr(*kind, joined(path, 1)), true};
       break;
     } else if (h.size() == 1 && toks[static_cast<size_t>(blocks[static_cast<size_t>(r)].tok - 1)].kind == Tok::Word) {
       name.insert(name.begin(), w);

@@ -14,13 +14,13 @@ struct KindSpec;
 namespace gbx::lsp {
 
 struct UnitItem {
-  std::string label;   // the unit as written (`mm`, `N*m`)
-  std::string detail;  // its dimension (`a length`)
+  std::string label;  // the unit as written (`mm`, `N*m`)
+  std::string detail; // its dimension (`a length`)
   std::string sortText;
 };
 
 struct UnitCompletion {
-  std::string typed;  // the part of a unit word already typed before the cursor ("" for none)
+  std::string typed; // the part of a unit word already typed before the cursor ("" for none)
   std::vector<UnitItem> items;
 };
 
@@ -31,6 +31,7 @@ struct UnitCompletion {
 // `stageKindOf(gearbox, stage)` finds a stage the text of the gearbox does not declare
 // (one it inherits); it may be empty.
 using StageKindOf = std::function<const cat::KindSpec*(const std::string& gearbox, const std::string& stage)>;
-std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t offset, const StageKindOf& stageKindOf = {});
+std::optional<UnitCompletion> unitCompletion(const std::string& text, size_t offset,
+                                             const StageKindOf& stageKindOf = {});
 
 } // namespace gbx::lsp

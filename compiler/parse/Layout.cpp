@@ -127,7 +127,8 @@ std::vector<LexToken> lex(const std::string& text) {
   if (!validUtf8(text, 0, ignored)) return {};
   // The lexer counts code points; the reader wants bytes.
   std::vector<size_t> byteAt;
-  for (size_t i = 0; i < text.size(); i += source::utf8Length(static_cast<unsigned char>(text[i]))) byteAt.push_back(i);
+  for (size_t i = 0; i < text.size(); i += source::utf8Length(static_cast<unsigned char>(text[i])))
+    byteAt.push_back(i);
   byteAt.push_back(text.size());
   antlr4::ANTLRInputStream input(text);
   GbxLexer lexer(&input);
@@ -150,7 +151,8 @@ std::vector<LexToken> lex(const std::string& text) {
     case GbxLexer::UNTERMINATED_COMMENT: k.kind = LexToken::Kind::Unterminated; break;
     default: {
       std::string literal = lexer.getVocabulary().getLiteralName(type);
-      k.kind = literal.size() > 2 && std::isalpha(static_cast<unsigned char>(literal[1])) ? LexToken::Kind::Word : LexToken::Kind::Punct;
+      k.kind = literal.size() > 2 && std::isalpha(static_cast<unsigned char>(literal[1])) ? LexToken::Kind::Word
+                                                                                          : LexToken::Kind::Punct;
     }
     }
     out.push_back(k);

@@ -39,9 +39,9 @@ std::optional<std::vector<LayoutToken>> layout(const source::SourceManager& sm, 
 // text is not UTF-8.
 struct LexToken {
   enum class Kind : unsigned char { Word, Number, String, Punct, Comment, Unterminated };
-  Kind kind = Kind::Punct;  // Word: a name or keyword; Unterminated: a string or comment left open
+  Kind kind = Kind::Punct; // Word: a name or keyword; Unterminated: a string or comment left open
   size_t begin = 0, end = 0;
-  int line = 1;  // as the parser counts lines (LF)
+  int line = 1; // as the parser counts lines (LF)
 };
 std::vector<LexToken> lex(const std::string& text);
 

@@ -136,8 +136,9 @@ TEST(Format, CommentsStayWhereTheyWere) {
 TEST(Format, BracesOnLinesOfTheirOwnAndCommentRunsByDepth) {
   const std::string in = "gearbox X\n{\nstage s: spur\n      {\n  pinion.z = 14;  // a\n wheel.z = 31;   // b\n  }\n"
                          "  require ratio > 1;                         // c\n}\n";
-  const std::string want = "gearbox X\n{\n  stage s: spur\n  {\n    pinion.z = 14;  // a\n    wheel.z  = 31;  // b\n  }\n"
-                           "  require ratio > 1;  // c\n}\n";
+  const std::string want =
+      "gearbox X\n{\n  stage s: spur\n  {\n    pinion.z = 14;  // a\n    wheel.z  = 31;  // b\n  }\n"
+      "  require ratio > 1;  // c\n}\n";
   auto out = fmtText(in);
   ASSERT_TRUE(out);
   EXPECT_EQ(*out, want);
@@ -264,7 +265,8 @@ TEST(Format, CommandLine) {
   { std::ofstream(d / "c.gbx") << "const a = 1;"; }
   Result last = gbxc({"fmt", "--check", (d / "c.gbx").string()});
   EXPECT_EQ(last.status, 1);
-  EXPECT_NE(last.out.find("@@ -1,1 +1,1 @@\n-const a = 1;\n\\ No newline at end of file\n+const a = 1;\n"), std::string::npos)
+  EXPECT_NE(last.out.find("@@ -1,1 +1,1 @@\n-const a = 1;\n\\ No newline at end of file\n+const a = 1;\n"),
+            std::string::npos)
       << last.out;
   // Through a symbolic link: the file it names is laid out, the link stays a link.
   { std::ofstream(d / "sub" / "real.gbx") << messy; }
