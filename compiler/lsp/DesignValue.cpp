@@ -59,8 +59,8 @@ std::optional<std::string> designValue(const ir::Program& p, const ir::Gearbox& 
     std::fill(a.choice.begin(), a.choice.end(), 0); // every slot holds one value
     rt::Evaluator ev(m);
     // Attributes given by expressions, each evaluated once and then read as a sweep's value,
-    // in rounds until none gains a value: one that needs itself (`face_width = face_width +
-    // face_width`, which sema lets through) stays without one instead of recursing ever wider.
+    // in rounds until none gains a value: one that needs itself through a computed quantity
+    // (`face_width = (mass + mass) * 1 mm/kg`, a cycle sema cannot see) stays without one.
     struct Given {
       ir::QuantityRef ref;
       const ir::Expr* expr;

@@ -945,6 +945,33 @@ private:
     return out;
   }
 
+  // Attributes given by expressions that need themselves, through one another
+  // (`face_width = face_width + 1 mm`, or `a = b` and `b = a`): no value can come of them.
+  // One through a computed quantity (`face_width = 0.1 * mass`) is the runtime's to find.
+  void selfDefined(const ir::Gearbox& g) {
+    std::map<std::string, const ir::Attribute*> given;
+    for (const auto& st : g.stages)
+      for (const auto& a : st.attributes)
+        if (a.role == ir::Attribute::Fixed && a.value && !a.value->isConst()) given[st.name + "." + a.name] = &a;
+    std::map<std::string, int> state;  // 1 on the path being followed, 2 done
+    std::set<std::string> reported;
+    std::function<void(const std::string&)> visit = [&](const std::string& name) {
+      state[name] = 1;
+      walk(*given[name]->value, [&](const ir::Expr& e) {
+        if (e.op != Op::Quantity || !given.count(e.name)) return;
+        if (state[e.name] == 1) {
+          if (reported.insert(e.name).second)
+            diags_.error("E0228", given[e.name]->span, fmt::format("`{}` is defined in terms of itself", e.name));
+        } else if (state[e.name] == 0) {
+          visit(e.name);
+        }
+      });
+      state[name] = 2;
+    };
+    for (const auto& [name, a] : given)
+      if (state[name] == 0) visit(name);
+  }
+
   ir::Gearbox lowerGearbox(const GearboxModel& m) {
     ir::Gearbox g;
     g.name = m.name;
@@ -987,6 +1014,7 @@ private:
     });
 
     for (const auto& st : m.stages) g.stages.push_back(stage(st, gs));
+    selfDefined(g);
     for (const auto& st : m.stages) {
       Scope s = gs;
       s.stage = &st;
