@@ -1,6 +1,7 @@
 #include "lsp/Server.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <functional>
 #include <istream>
 #include <memory>
@@ -618,6 +619,26 @@ private:
 
   Json definition(const Json& params) {
     At a = at(params);
+    // An import's target: the file it loaded (a path from the document's folder, or a
+    // module by name).
+    if (!a.c->loaded.files.empty())
+      for (const auto& st : a.c->loaded.files[0].decls) {
+        if (st.kind != ast::StmtKind::Import || !contains(st.wordSpan, a.line, a.col)) continue;
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        fs::path wanted = st.importIsPath ? fs::weakly_canonical(fs::path(pathOf(params["textDocument"]["uri"].string())).parent_path() / st.word, ec)
+                                          : fs::path();
+        for (int id = 1; id < a.c->sources.size(); ++id) {
+          const auto& src = a.c->sources.get(id);
+          fs::path loaded = src.absPath().empty() ? fs::path(src.displayPath()) : fs::path(src.absPath());
+          bool same = st.importIsPath ? fs::weakly_canonical(loaded, ec) == wanted : loaded.stem() == st.word;
+          if (same) {
+            Json::Object start{{"line", 0}, {"character", 0}};
+            return Json::Object{{"uri", uriOf(loaded.string())}, {"range", Json::Object{{"start", start}, {"end", start}}}};
+          }
+        }
+        return Json();
+      }
     std::string word = wordAt(a);
     if (word.empty()) return Json();
     // Declarations with that name, in the main file first, then imports.

@@ -649,3 +649,18 @@ TEST(Lsp, FormattingCountsLinesAsTheEditorDoes) {
   EXPECT_EQ(whole.at(0)["range"]["end"]["character"].number(), 0);
   EXPECT_EQ(whole.at(0)["newText"].string(), "const a = 1;  const b = 2;\nconst c = 3;\n");
 }
+
+// Go to definition on an import: the file it loaded, a stdlib module or a path from the
+// document's folder.
+TEST(Lsp, DefinitionOfAnImportIsItsFile) {
+  const fs::path doc = fs::path(GBX_GOLDEN_DIR) / "imports" / "relative_import.gbx";
+  std::ifstream f(doc, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string text = ss.str();
+  auto r = answers("file://" + doc.string(), text,
+                   {{"textDocument/definition", after(text, "\"lib/sh")}, {"textDocument/definition", after(text, "import mat")}});
+  EXPECT_EQ(fs::weakly_canonical(r[2]["uri"].string().substr(7)), fs::weakly_canonical(doc.parent_path() / "lib" / "shop.gbx")) << r[2].dump();
+  EXPECT_EQ(r[2]["range"]["start"]["line"].number(), 0);
+  EXPECT_EQ(fs::path(r[3]["uri"].string()).filename(), "materials.gbx") << r[3].dump();
+}
