@@ -1,4 +1,6 @@
 // The language server driven through a scripted session, as an editor would, on streams.
+#include <unistd.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -434,7 +436,7 @@ TEST(Lsp, HoverShowsAQuantitysValueForAFixedDesign) {
     }
     return text.substr(b, e + 1 - b);
   };
-  fs::path dir = fs::temp_directory_path() / "gbxc-lsp-value";
+  fs::path dir = fs::temp_directory_path() / ("gbxc-lsp-value-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   {
     std::ofstream f(dir / "marine.gbx");
