@@ -9,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
+#include <utility>
 
 namespace gbx::rt {
 
@@ -18,13 +19,14 @@ namespace gbx::rt {
 // try 2^64 ways before it fails.
 thread_local int evalDepth = 0;
 thread_local bool evalTooDeep = false;
+thread_local bool evalCycled = false;  // since Evaluator::tookCycle() was last asked
 
 namespace {
 // One level of that nesting, given back however the evaluation ends.
 struct Nesting {
   bool ok;
   Nesting() {
-    if (++evalDepth > 64) evalTooDeep = true;
+    if (++evalDepth > 64) evalTooDeep = evalCycled = true;
     ok = !evalTooDeep;
   }
   ~Nesting() {
@@ -35,6 +37,8 @@ struct Nesting {
 };
 } // namespace
 
+
+bool Evaluator::tookCycle() { return std::exchange(evalCycled, false); }
 
 namespace arith {
 

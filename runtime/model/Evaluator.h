@@ -40,6 +40,11 @@ public:
 
   const Model& model() const { return m_; }
 
+  // Whether an evaluation on this thread gave up since the last call because a definition
+  // nested deeper than any acyclic one can: it needs itself (`face_width = 0.1 mm/kg * mass`,
+  // where the mass reads the face width). Reading it clears it.
+  static bool tookCycle();
+
   // A sweep's value for a fixed quantity: an operating value (`power`), a stage attribute
   // (`main.face_width`) or a split setting (`sharing.torsion_shaft.diameter`).
   void setOverride(const ir::QuantityRef& r, Value v);

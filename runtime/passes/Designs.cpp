@@ -300,10 +300,17 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
       a.box = row.box;
       if (ev.eval(*c.e, a).isNumber()) continue;
       // The first quantity inside that has no value says what is missing.
+      // A definition that needs itself (through a computed quantity; sema refuses the rest)
+      // is said as such: it is given, and giving it again would not help.
       std::string missing;
+      bool cyclic = false;
       std::function<void(const ir::Expr&)> find = [&](const ir::Expr& x) {
         if (!missing.empty()) return;
-        if (x.op == ir::Op::Quantity && x.type.isNumber() && !ev.eval(x, a).isNumber()) missing = x.name;
+        (void)Evaluator::tookCycle();
+        if (x.op == ir::Op::Quantity && x.type.isNumber() && !ev.eval(x, a).isNumber()) {
+          missing = x.name;
+          cyclic = Evaluator::tookCycle();
+        }
         for (const auto& y : x.args)
           if (y) find(*y);
       };
@@ -314,6 +321,7 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
       c.error = fmt::format(
           "{} `{}` has no value for design {} ({}){}", c.what, ir::print(*c.e), row.rank, teeth,
           missing.empty() ? std::string()
+          : cyclic        ? fmt::format(": `{}` is defined in terms of itself, through what it is computed from", missing)
                           : fmt::format(": `{}` cannot be computed; give it, or what it is computed from", missing));
     }
   });
