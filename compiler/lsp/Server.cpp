@@ -1,7 +1,6 @@
 #include "lsp/Server.h"
 
 #include <algorithm>
-#include <filesystem>
 #include <functional>
 #include <istream>
 #include <memory>
@@ -103,6 +102,13 @@ int utf16Column(const std::string& line, int col) {
     i += len;
   }
   return units + std::max(0, col - 1 - points);  // past the end: one unit a column
+}
+
+// The byte where the code point at `col` (1-based) of `line` starts (its size past the end).
+size_t byteAtColumn(const std::string& line, int col) {
+  size_t b = 0;
+  for (int c = 1; b < line.size() && c < col; ++c) b += source::utf8Length(static_cast<unsigned char>(line[b]));
+  return std::min(b, line.size());
 }
 
 // The code point column (1-based) of a UTF-16 `character` offset in `line`.
@@ -308,12 +314,9 @@ private:
   static std::string wordAt(const At& a) {
     if (a.c->sources.size() == 0) return "";
     std::string line = a.c->sources.get(0).line(a.line);
-    size_t pos = 0;
-    for (int col = 1; pos < line.size() && col < a.col; ++col) pos += source::utf8Length(static_cast<unsigned char>(line[pos]));
-    auto wordChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-    size_t b = std::min(pos, line.size()), e = b;
-    while (b > 0 && wordChar(line[b - 1])) --b;
-    while (e < line.size() && wordChar(line[e])) ++e;
+    size_t b = byteAtColumn(line, a.col), e = b;
+    while (b > 0 && nameChar(line[b - 1])) --b;
+    while (e < line.size() && nameChar(line[e])) ++e;
     return line.substr(b, e - b);
   }
 
@@ -385,15 +388,10 @@ private:
         name = b.name + "." + name;  // `rating`, `lubricant`, `torsion_shaft`: part of the name
         continue;
       case ast::StmtKind::Gearbox: {
-        // `stage.attribute` from the gearbox: the stage's kind from the checked program,
-        // which holds the stages a gearbox inherits.
+        // `stage.attribute` from the gearbox, the stage perhaps inherited.
         size_t dot = name.find('.');
-        if (dot == std::string::npos || !a.c->analysed) return {nullptr, name};
-        for (const auto& g : a.c->program.gearboxes)
-          if (g.name == b.name)
-            for (const auto& stage : g.stages)
-              if (stage.name == name.substr(0, dot)) return {cat::findAttr(cat::kindSpec(stage.kind), name.substr(dot + 1)), name};
-        return {nullptr, name};
+        const cat::KindSpec* kind = dot == std::string::npos ? nullptr : stageKindIn(a.c->loaded.files, b.name, name.substr(0, dot));
+        return {kind ? cat::findAttr(*kind, name.substr(dot + 1)) : nullptr, name};
       }
       default: return {nullptr, name};
       }
@@ -409,14 +407,8 @@ private:
     int endLine = s.endLine > 0 ? s.endLine : s.line;
     for (int l = s.line; l <= endLine; ++l) {
       std::string line = f.line(l);
-      size_t from = 0, to = line.size();
-      auto byteOf = [&](int col) {
-        size_t b = 0;
-        for (int c = 1; b < line.size() && c < col; ++c) b += source::utf8Length(static_cast<unsigned char>(line[b]));
-        return b;
-      };
-      if (l == s.line) from = byteOf(s.col);
-      if (l == endLine) to = byteOf(s.endCol + 1);
+      size_t from = l == s.line ? byteAtColumn(line, s.col) : 0;
+      size_t to = l == endLine ? byteAtColumn(line, s.endCol + 1) : line.size();
       out += (l == s.line ? "" : " ") + line.substr(from, to > from ? to - from : 0);
     }
     return out;
@@ -456,8 +448,9 @@ private:
     }
     // A quantity in an expression, and in a gearbox with one candidate design its value there.
     auto value = designValueAt(a, ch);
-    if (text.empty() && !onTarget && !ch.empty() && a.c->analysed) text = quantityDescription(a, ch);
-    if (value) text = (text.empty() ? value->first : text) + "\n\n" + value->second;
+    if (text.empty() && value) text = value->first;
+    else if (text.empty() && !onTarget && !ch.empty() && a.c->analysed) text = quantityDescription(a, ch);
+    if (value) text += "\n\n" + value->second;
     if (text.empty()) return Json();
     return Json::Object{{"contents", Json::Object{{"kind", "markdown"}, {"value", text}}}};
   }
@@ -539,9 +532,8 @@ private:
       return stageKindIn(parsed->loaded.files, gearbox, stage);
     };
     if (auto units = unitCompletion(text, byteOffset(text, line, character), inherited)) {
-      int typed = 0;  // UTF-16 units of the unit word being typed, which an item replaces
-      for (size_t i = 0; i < units->typed.size(); i += source::utf8Length(static_cast<unsigned char>(units->typed[i])))
-        typed += source::utf8Length(static_cast<unsigned char>(units->typed[i])) == 4 ? 2 : 1;
+      // UTF-16 units of the unit word being typed, which an item replaces.
+      int typed = utf16Column(units->typed, source::codePoints(units->typed) + 1);
       Json range = Json::Object{{"start", Json::Object{{"line", line}, {"character", std::max(0, character - typed)}}},
                                 {"end", Json::Object{{"line", line}, {"character", character}}}};
       Json::Array items;
@@ -565,7 +557,7 @@ private:
     size_t from = std::max(lineStart, offset > 200 ? offset - 200 : size_t{0});  // a long line: its end is enough
     std::string before = text.substr(from, offset - from);
     if (afterImport(before)) {
-      for (const char* mod : {"materials", "modules", "gleason", "klingelnberg"}) item(mod, 9, "stdlib module");
+      for (const auto& mod : sema::stdlibModules()) item(mod, 9, "stdlib module");
       return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
     }
     if (afterStageColon(before)) {
@@ -611,7 +603,7 @@ private:
       for (const char* kw : {"gearbox", "stage", "const", "let", "require", "minimize", "maximize", "operating", "scene",
                              "modify", "split", "study", "report", "import", "preset", "interchangeable", "tolerances"})
         item(kw, 14, "");
-      for (const char* m : {"materials", "modules", "gleason", "klingelnberg"}) item(m, 9, "stdlib module");
+      for (const auto& m : sema::stdlibModules()) item(m, 9, "stdlib module");
       for (const auto& k : cat::stageKinds()) item(k.name, 7, "stage kind");
     }
     return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
@@ -619,26 +611,14 @@ private:
 
   Json definition(const Json& params) {
     At a = at(params);
-    // An import's target: the file it loaded (a path from the document's folder, or a
-    // module by name).
-    if (!a.c->loaded.files.empty())
-      for (const auto& st : a.c->loaded.files[0].decls) {
-        if (st.kind != ast::StmtKind::Import || !contains(st.wordSpan, a.line, a.col)) continue;
-        namespace fs = std::filesystem;
-        std::error_code ec;
-        fs::path wanted = st.importIsPath ? fs::weakly_canonical(fs::path(pathOf(params["textDocument"]["uri"].string())).parent_path() / st.word, ec)
-                                          : fs::path();
-        for (int id = 1; id < a.c->sources.size(); ++id) {
-          const auto& src = a.c->sources.get(id);
-          fs::path loaded = src.absPath().empty() ? fs::path(src.displayPath()) : fs::path(src.absPath());
-          bool same = st.importIsPath ? fs::weakly_canonical(loaded, ec) == wanted : loaded.stem() == st.word;
-          if (same) {
-            Json::Object start{{"line", 0}, {"character", 0}};
-            return Json::Object{{"uri", uriOf(loaded.string())}, {"range", Json::Object{{"start", start}, {"end", start}}}};
-          }
-        }
-        return Json();
-      }
+    // An import's target: the file the loader loaded for it.
+    for (const auto& imp : a.c->loaded.imports) {
+      if (imp.word.file != 0 || !contains(imp.word, a.line, a.col)) continue;
+      const auto& src = a.c->sources.get(imp.target);
+      Json::Object start{{"line", 0}, {"character", 0}};
+      return Json::Object{{"uri", uriOf(src.absPath().empty() ? src.displayPath() : src.absPath())},
+                          {"range", Json::Object{{"start", start}, {"end", start}}}};
+    }
     std::string word = wordAt(a);
     if (word.empty()) return Json();
     // Declarations with that name, in the main file first, then imports.

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -28,6 +29,16 @@ std::vector<std::string> stdlibSearchPath() {
   }
   dirs.push_back(GBX_STDLIB_DIR);
   return dirs;
+}
+
+std::vector<std::string> stdlibModules() {
+  std::set<std::string> names;
+  for (const auto& dir : stdlibSearchPath()) {
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      if (it->path().extension() == ".gbx") names.insert(it->path().stem().string());
+  }
+  return {names.begin(), names.end()};
 }
 
 namespace {
@@ -65,7 +76,10 @@ public:
     // Imports recovered from a broken file are guesses: follow none of them.
     for (const auto& d : result.files.back().decls)
       if (!broken && d.kind == ast::StmtKind::Import)
-        if (int t = resolve(d, fileId); t >= 0) targets.emplace_back(t, d.span);
+        if (int t = resolve(d, fileId); t >= 0) {
+          targets.emplace_back(t, d.span);
+          result.imports.push_back({d.wordSpan.valid() ? d.wordSpan : d.span, t});
+        }
     for (const auto& [target, span] : targets) {
       auto st = state_.find(target);
       if (st != state_.end() && st->second == 1) {
@@ -105,9 +119,8 @@ public:
       looked.push_back(dir);
     }
     diags_.error("E0203", d.wordSpan.valid() ? d.wordSpan : d.span,
-                 fmt::format("cannot import `{}`: no stdlib module of that name (modules: gleason, klingelnberg, "
-                             "materials, modules)",
-                             d.word));
+                 fmt::format("cannot import `{}`: no stdlib module of that name (modules: {})", d.word,
+                             fmt::join(stdlibModules(), ", ")));
     return -1;
   }
 

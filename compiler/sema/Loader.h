@@ -11,8 +11,15 @@
 
 namespace gbx::sema {
 
+// An import that found its file: where it is written and what it loaded.
+struct ResolvedImport {
+  source::Span word;  // the module name or path, in the importing file
+  int target = -1;    // the loaded file's id
+};
+
 struct LoadedProgram {
   std::vector<ast::File> files;  // the main file first, then imports in first-seen order
+  std::vector<ResolvedImport> imports;
   bool parseErrors = false;
   bool mainMissing = false;
 };
@@ -20,6 +27,8 @@ struct LoadedProgram {
 // Directories searched for stdlib modules: $GBX_STDLIB_PATH (colon-separated), then the
 // stdlib the compiler was built with.
 std::vector<std::string> stdlibSearchPath();
+// The stdlib modules found there, by name, sorted.
+std::vector<std::string> stdlibModules();
 
 LoadedProgram load(const std::string& mainPath, source::SourceManager& sm, diag::DiagnosticEngine& diags);
 // The same for text already in memory (tests).
