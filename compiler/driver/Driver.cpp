@@ -248,32 +248,15 @@ int test(const Options& o, std::ostream& out, std::ostream& err) {
   return failed == 0 ? 0 : 1;
 }
 
-// The .gbx files a path names: itself, or those below a folder, in name order. A folder
-// that cannot be read is named in `problem`.
-std::vector<std::string> gbxFiles(const std::string& path, std::string& problem) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::is_directory(path, ec)) return {path};
-  std::vector<std::string> out;
-  fs::path at = path;  // the folder being entered when a step fails
-  for (fs::recursive_directory_iterator it(path, ec), end; !ec && it != end;) {
-    at = it->path();
-    if (at.extension() == ".gbx" && it->is_regular_file(ec)) out.push_back(at.string());
-    it.increment(ec);
-  }
-  std::error_code ignored;
-  if (ec) problem = fmt::format("cannot read the folder `{}`: {}", fs::is_directory(at, ignored) ? at.string() : path, ec.message());
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 int formatFiles(const Options& o, std::ostream& out, std::ostream& err) {
   // Every file named first: a folder that cannot be read stops the run before any file
   // is changed.
   std::vector<std::string> files;
   for (const auto& arg : o.files) {
     std::string problem;
-    for (auto& f : arg == "-" ? std::vector<std::string>{"-"} : gbxFiles(arg, problem)) files.push_back(std::move(f));
+    std::error_code ec;
+    bool folder = arg != "-" && std::filesystem::is_directory(arg, ec);
+    for (auto& f : folder ? gbxFilesBelow(arg, problem) : std::vector<std::string>{arg}) files.push_back(std::move(f));
     if (!problem.empty()) {
       err << "gbxc fmt: " << problem << "; nothing was changed\n";
       return 3;

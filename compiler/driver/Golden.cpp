@@ -98,16 +98,28 @@ Split splitNumbers(const std::string& line) {
 
 } // namespace
 
+std::vector<std::string> gbxFilesBelow(const std::string& folder, std::string& problem) {
+  std::error_code ec;
+  std::vector<std::string> out;
+  fs::path at = folder;  // the folder being entered when a step fails
+  for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end;) {
+    at = it->path();
+    if (at.extension() == ".gbx" && it->is_regular_file(ec)) out.push_back(at.string());
+    it.increment(ec);
+  }
+  std::error_code ignored;
+  if (ec) problem = fmt::format("cannot read the folder `{}`: {}", fs::is_directory(at, ignored) ? at.string() : folder, ec.message());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 std::vector<GoldenCase> discoverGolden(const std::vector<std::string>& paths, std::vector<std::string>& problems) {
   std::vector<GoldenCase> out;
   for (const auto& p : paths) {
     std::error_code ec;
     if (fs::is_directory(p, ec)) {
-      std::vector<fs::path> found;
-      for (auto it = fs::recursive_directory_iterator(p, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-        if (it->is_regular_file() && it->path().extension() == ".gbx") found.push_back(it->path());
-      std::sort(found.begin(), found.end());
-      for (const auto& f : found) addCase(f, out);
+      std::string unreadable;  // a folder that cannot be read holds no cases, as before
+      for (const auto& f : gbxFilesBelow(p, unreadable)) addCase(f, out);
     } else if (fs::is_regular_file(p, ec) && fs::path(p).extension() == ".gbx") {
       addCase(p, out);
     } else {

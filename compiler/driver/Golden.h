@@ -21,6 +21,10 @@ struct GoldenOptions {
   bool timings = false;  // keep CPU times in the output (a person reading it; never for golden files)
 };
 
+// The .gbx files below a folder, in name order; a folder that cannot be read is named in
+// `problem` (what was found before it is returned).
+std::vector<std::string> gbxFilesBelow(const std::string& folder, std::string& problem);
+
 std::vector<GoldenCase> discoverGolden(const std::vector<std::string>& paths, std::vector<std::string>& problems);
 
 // Runs the case in-process from its own folder (so paths in the output are relative

@@ -182,14 +182,13 @@ private:
           opAt = col;
           opOffset = l.code.size();
         }
-        if (!x.comment() && !x.blockBrace && x.text == "(") brackets.push_back(col);
-        if (!x.comment() && !x.blockBrace && x.kind == Kind::Punct && x.text == "{") brackets.push_back(col);
+        // `(` and a set's `{` (a block's braces and a comment's text are not brackets here).
+        const bool bracket = x.kind == Kind::Punct && !x.blockBrace;
+        if (bracket && (x.text == "(" || x.text == "{")) brackets.push_back(col);
         // A block comment's inner line ends are LF like the file's; its text is not code.
         l.code += x.kind == Kind::BlockComment ? lf(x.text) : x.text;
         col = x.text.find('\n') == std::string::npos ? col + source::codePoints(x.text) : widthAfterBreak(x.text);
-        if (!x.comment() && !x.blockBrace && (x.text == ")" || (x.kind == Kind::Punct && x.text == "}")) &&
-            !brackets.empty())
-          brackets.pop_back();
+        if (bracket && (x.text == ")" || x.text == "}") && !brackets.empty()) brackets.pop_back();
         if (isOpen(i)) spansLines(i) ? ++depth : ++inBlock;
         if (isClose(i)) spansLines(i) ? --depth : --inBlock;
         if (!x.comment()) prevCode = i;
@@ -202,47 +201,48 @@ private:
     }
   }
 
-  // Runs of such statements line their `=` and `in` up.
-  void alignOperators() {
+  // Each run of consecutive lines at one depth, with no blank line between, that all pass
+  // `in`: given to `align` as [a, b).
+  template <class In, class Align> void runs(In in, Align align) {
     for (size_t a = 0; a < lines_.size();) {
-      if (!lines_[a].alignable) {
+      if (!in(lines_[a])) {
         ++a;
         continue;
       }
       size_t b = a + 1;
-      while (b < lines_.size() && lines_[b].alignable && !lines_[b].blankBefore && lines_[b].depth == lines_[a].depth)
+      while (b < lines_.size() && in(lines_[b]) && !lines_[b].blankBefore && lines_[b].depth == lines_[a].depth)
         ++b;
-      int col = 0;
-      for (size_t k = a; k < b; ++k)
-        col = std::max(col, lines_[k].opCol);
-      for (size_t k = a; k < b; ++k)
-        lines_[k].code.insert(lines_[k].opOffset, static_cast<size_t>(col - lines_[k].opCol), ' ');
+      align(a, b);
       a = b;
     }
   }
 
-  // Runs of lines at one depth with trailing comments start them in one column, two blanks
-  // after the longest code.
+  // Runs of such statements line their `=` and `in` up.
+  void alignOperators() {
+    runs([](const Line& l) { return l.alignable; },
+         [&](size_t a, size_t b) {
+           int col = 0;
+           for (size_t k = a; k < b; ++k)
+             col = std::max(col, lines_[k].opCol);
+           for (size_t k = a; k < b; ++k)
+             lines_[k].code.insert(lines_[k].opOffset, static_cast<size_t>(col - lines_[k].opCol), ' ');
+         });
+  }
+
+  // Runs of lines with trailing comments start them in one column, two blanks after the
+  // longest code.
   void alignComments() {
-    for (size_t a = 0; a < lines_.size();) {
-      if (lines_[a].comment.empty()) {
-        ++a;
-        continue;
-      }
-      size_t b = a + 1;
-      while (b < lines_.size() && !lines_[b].comment.empty() && !lines_[b].blankBefore &&
-             lines_[b].depth == lines_[a].depth)
-        ++b;
-      int col = 0;
-      for (size_t k = a; k < b; ++k)
-        col = std::max(col, widthAfterBreak(rtrim(lines_[k].code)));
-      for (size_t k = a; k < b; ++k) {
-        Line& l = lines_[k];
-        l.code = rtrim(l.code);
-        l.code.append(static_cast<size_t>(col + 2 - widthAfterBreak(l.code)), ' ');
-      }
-      a = b;
-    }
+    runs([](const Line& l) { return !l.comment.empty(); },
+         [&](size_t a, size_t b) {
+           int col = 0;
+           for (size_t k = a; k < b; ++k)
+             col = std::max(col, widthAfterBreak(rtrim(lines_[k].code)));
+           for (size_t k = a; k < b; ++k) {
+             Line& l = lines_[k];
+             l.code = rtrim(l.code);
+             l.code.append(static_cast<size_t>(col + 2 - widthAfterBreak(l.code)), ' ');
+           }
+         });
   }
 
   const std::vector<LayoutToken>& t_;

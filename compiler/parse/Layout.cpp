@@ -26,14 +26,11 @@ public:
     if (auto* b = dynamic_cast<GbxParser::BlockContext*>(ctx)) {
       if (auto* t = at(b->getStart())) t->blockBrace = true;
       if (auto* t = at(b->getStop())) t->blockBrace = true;
-    } else if (auto* a = dynamic_cast<GbxParser::AssignStmtContext*>(ctx)) {
-      markTerminal(a, "=", &LayoutToken::aligned);
-    } else if (auto* d = dynamic_cast<GbxParser::DomainStmtContext*>(ctx)) {
-      markTerminal(d, "in", &LayoutToken::aligned);
-    } else if (auto* l = dynamic_cast<GbxParser::LetStmtContext*>(ctx)) {
-      markTerminal(l, "=", &LayoutToken::aligned);
-    } else if (auto* c = dynamic_cast<GbxParser::ConstDeclContext*>(ctx)) {
-      markTerminal(c, "=", &LayoutToken::aligned);
+    } else if (dynamic_cast<GbxParser::AssignStmtContext*>(ctx) || dynamic_cast<GbxParser::LetStmtContext*>(ctx) ||
+               dynamic_cast<GbxParser::ConstDeclContext*>(ctx)) {
+      markTerminal(ctx, "=", &LayoutToken::aligned);
+    } else if (dynamic_cast<GbxParser::DomainStmtContext*>(ctx)) {
+      markTerminal(ctx, "in", &LayoutToken::aligned);
     } else if (auto* u = dynamic_cast<GbxParser::UnaryExprContext*>(ctx)) {
       markTerminal(u, "-", &LayoutToken::prefix);
     } else if (auto* p = dynamic_cast<GbxParser::PowExprContext*>(ctx)) {
