@@ -42,4 +42,26 @@ std::optional<Q> keyOf(std::string_view name) {
   return it->second;
 }
 
+Better betterOf(Q q) {
+  switch (q) {
+  case Q::ContactSafety:
+  case Q::BendingSafety:
+  case Q::PermissibleContactStress:
+  case Q::PermissibleBendingStress: return Better::Larger;
+  case Q::ContactStress:
+  case Q::BendingStress:
+  case Q::Mass:
+  case Q::LoadDeflection:
+  case Q::BendingDeflection:
+  case Q::TorsionDeflection:
+  case Q::SlidingBalance:
+  case Q::Imbalance:
+  case Q::PitchDeviation:
+  case Q::ProfileDeviation:
+  case Q::ProfileFormDeviation:
+  case Q::HelixSlopeDeviation: return Better::Smaller;
+  default: return Better::Unknown;
+  }
+}
+
 } // namespace gbx::cat

@@ -181,6 +181,12 @@ inline constexpr int kKeyCount = static_cast<int>(Q::None);
 
 // The word as the language writes it.
 std::string_view keyName(Q q);
+
+// Which way a quantity is better (LANGUAGE.md §15): safeties and permissible stresses
+// larger; stresses, mass, deflections, sliding and errors smaller. `worst(q)` reads the
+// other end; Unknown where neither is better (a contact ratio, a factor).
+enum class Better : std::int8_t { Unknown, Larger, Smaller };
+Better betterOf(Q q);
 // The id of a word; `ratio` is the quantity (the damping ratio is resolved by its effect).
 std::optional<Q> keyOf(std::string_view name);
 

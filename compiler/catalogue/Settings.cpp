@@ -181,4 +181,18 @@ bool isRatingQuantity(Q key) {
   return k >= static_cast<int>(Q::ContactSafety) && k <= static_cast<int>(Q::YM);
 }
 
+const std::vector<FlagSpec>& flags() {
+  static const std::vector<FlagSpec> rows = {
+      {Flag::Plot, "plot", "draw the study's outputs against the swept quantity (with -o DIR)"},
+      {Flag::Ranges, "ranges", "show each column's attainable interval over the design's freedoms"},
+  };
+  return rows;
+}
+
+const FlagSpec* findFlag(const std::string& word) {
+  for (const auto& f : flags())
+    if (word == f.word) return &f;
+  return nullptr;
+}
+
 } // namespace gbx::cat

@@ -24,6 +24,17 @@ namespace continuation {
 inline constexpr int Natural = 0, Arclength = 1;
 }
 
+// Words that stand alone as a statement of a block (`plot;` in a study, `ranges;` in a
+// report), resolved once by the checker.
+enum class Flag { Plot, Ranges };
+struct FlagSpec {
+  Flag id;
+  const char* word;
+  const char* meaning;
+};
+const std::vector<FlagSpec>& flags();
+const FlagSpec* findFlag(const std::string& word);
+
 // Tooth modification: targets (lengths, per gear or both) and built-in quantities.
 const std::vector<std::string>& modificationTargets();
 struct BuiltinSpec {

@@ -240,7 +240,7 @@ std::vector<KindSpec> buildKinds() {
         pos("face_width", length, "face width"),
         material(),
         accuracyRow(),
-        derived("center_distance", length, "driver-to-driven distance (z1/2 + z2 + z3/2) m"),
+        derived("center_distance", length, "driver-to-driven distance: the sum of both meshes' working centre distances (with shifts; (z1/2 + z2 + z3/2) m without)"),
     };
     for (auto& d : commonDerived()) a.push_back(d);
     // Rated as two spur meshes; a stage factor is that of the governing mesh.

@@ -138,7 +138,9 @@ private:
     }
     const auto& voc = parser.getVocabulary();
     if (offending.getText() == "=" && !stmt.empty() && voc.getSymbolicName(stmt.front()->getType()) == "REQUIRE") {
-      diags_.error("E0102", span, "syntax error: a rule compares values: write `==`, not `=` (which sets a value)");
+      diags_.error("E0102", span,
+                   "syntax error: a rule compares values: write `==` for equal, or `>=`/`<=` for a bound (a minimum "
+                   "safety: `>=`), not `=` (which sets a value)");
       return true;
     }
     // A word where a statement starts, then something no statement has after a name: a

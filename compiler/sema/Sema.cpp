@@ -243,7 +243,7 @@ private:
       }
       if (spec.positive && x->value.sign() <= 0) {
         diags_.error(name == "z" || lastPart(name) == "z" ? "E0402" : "E0405", x->span,
-                     fmt::format("`{}` must be positive, got {}", name, units::showQuantity(x->value, x->type.dim)));
+                     fmt::format("`{}` must be positive, got {}", name, asWritten(v, *x)));
         return out;
       }
       if (beyondBudget(spec, name, *x)) return out;
@@ -253,7 +253,7 @@ private:
                             : spec.atLeast ? fmt::format("at least {}", units::showQuantity(*spec.atLeast, spec.dim))
                                            : fmt::format("at most {}", units::showQuantity(*spec.atMost, spec.dim));
         diags_.error("E0405", x->span,
-                     fmt::format("`{}` must be {} ({}), got {}", name, range, spec.meaning, units::showQuantity(x->value, x->type.dim)));
+                     fmt::format("`{}` must be {} ({}), got {}", name, range, spec.meaning, asWritten(v, *x)));
         return out;
       }
       out.value = x->value;
@@ -437,6 +437,13 @@ private:
     v.push_back(std::move(item));
   }
 
+  // A value as the user wrote it (`0 um`), for messages; an expression by its value in the
+  // display unit.
+  static std::string asWritten(const ast::Expr* v, const ir::Expr& x) {
+    if (v && v->kind == ast::ExprKind::Number) return ast::print(*v);
+    return units::showQuantity(x.value, x.type.dim);
+  }
+
   void dupInBlock(std::map<std::string, const Stmt*>& seen, const Stmt& st, const char* what) {
     auto key = std::string(what) + ":" + st.name;
     if (auto it = seen.find(key); it != seen.end()) {
@@ -586,7 +593,20 @@ private:
         dupInBlock(seen, st, "study");
         replaceOrAdd(model->studies, &st, [](const Stmt* s) { return s->name; });
         break;
-      case StmtKind::Modify: model->modifies.push_back(&st); break;
+      case StmtKind::Modify: {
+        // One block per stage in a gearbox; a variant's block adds to or replaces the rules
+        // of its baseline's (merged where the rules are built).
+        auto key = "modify:" + st.path.str();
+        if (auto it = seen.find(key); it != seen.end()) {
+          auto& d = diags_.error("E0202", st.path.span,
+                                 fmt::format("duplicate declaration: gearbox `{}` already has a `modify {}` block; put its rules in one block",
+                                             name, st.path.str()));
+          d.notes.push_back({it->second->path.span, "first declared here"});
+        }
+        seen[key] = &st;
+        model->modifies.push_back(&st);
+        break;
+      }
       case StmtKind::Report:
         if (seen.count("report")) diags_.error("E0202", st.span, "duplicate declaration: this gearbox already has a `report` block");
         seen["report"] = &st;
@@ -862,19 +882,60 @@ private:
 
   // Which end of the tolerance box is the worst for each `worst(q)`: where q is minimised or
   // bounded from above its largest value, where maximised or bounded from below its smallest;
-  // a minus sign or a divisor turns it round. `sense` 0: not known (a report column).
-  void worstSense(ir::Expr& e, int sense, bool condition = false) {
+  // a minus sign, a divisor or a `not` turns it round. `sense` 0: not known here (a report
+  // column, where q's own better direction decides). In a rule, a two-sided bound on a
+  // `worst` (`in a..b`, `== c +- t`) holds when both ends of q hold it, so it is checked at
+  // both: the comparison is kept twice, once at each end; and a `let` that reads `worst` is
+  // read in place, so that it takes the rule's direction.
+  void worstSense(ir::Expr& e, int sense, bool condition = false, bool negated = false) {
     using ir::Op;
+    if ((condition || sense != 0) && e.op == Op::Let && lets_)
+      if (auto it = lets_->find(e.name); it != lets_->end() && it->second && ir::uses(it->second.get(), {Op::Scatter})) {
+        ir::ExprPtr inlined = it->second->clone();
+        inlined->span = e.span;
+        e = std::move(*inlined);
+      }
     if (e.op == Op::Scatter) e.sense = static_cast<std::int8_t>(sense);
     auto arg = [&](size_t i, int sg) {
-      if (i < e.args.size() && e.args[i]) worstSense(*e.args[i], sg, condition);
+      if (i < e.args.size() && e.args[i]) worstSense(*e.args[i], sg, condition, negated);
     };
+    int up = negated ? -1 : 1;  // `not (q < c)` bounds q from below
     switch (e.op) {
     case Op::Le:
-    case Op::Lt: arg(0, condition ? 1 : 0); arg(1, condition ? -1 : 0); return;
+    case Op::Lt: arg(0, condition ? up : 0); arg(1, condition ? -up : 0); return;
     case Op::Ge:
-    case Op::Gt: arg(0, condition ? -1 : 0); arg(1, condition ? 1 : 0); return;
+    case Op::Gt: arg(0, condition ? -up : 0); arg(1, condition ? up : 0); return;
+    case Op::Not:
+      if (!e.args.empty() && e.args[0]) worstSense(*e.args[0], 0, condition, !negated);
+      return;
+    case Op::Within:
+    case Op::Eq:
+    case Op::Ne:
+      if (condition && !e.args.empty() && e.args[0] && ir::uses(e.args[0].get(), {Op::Scatter}) &&
+          (e.op == Op::Within || (e.args.size() == 2 && e.args[1] && e.args[1]->op == Op::Tol))) {
+        // q within bounds at both of its ends: (q at its largest) and (q at its smallest).
+        auto high = std::make_unique<ir::Expr>();
+        high->op = e.op;
+        high->type = e.type;
+        high->span = e.span;
+        high->args = std::move(e.args);
+        auto low = high->clone();
+        worstSense(*high->args[0], 1, condition, negated);
+        worstSense(*low->args[0], -1, condition, negated);
+        for (size_t i = 1; i < high->args.size(); ++i) {
+          worstSense(*high->args[i], 0, condition, negated);
+          worstSense(*low->args[i], 0, condition, negated);
+        }
+        e.op = Op::And;
+        e.args.clear();
+        e.args.push_back(std::move(high));
+        e.args.push_back(std::move(low));
+        return;
+      }
+      for (size_t i = 0; i < e.args.size(); ++i) arg(i, 0);
+      return;
     case Op::And:
+    case Op::Or:
     case Op::Forall:
       for (size_t i = 0; i < e.args.size(); ++i) arg(i, 0);
       return;
@@ -986,6 +1047,11 @@ private:
     std::map<std::string, Type> letTypes;
     std::set<std::string> letBusy;
     std::map<std::string, ir::ExprPtr> letExprs;
+    lets_ = &letExprs;
+    struct ForgetLets {
+      const std::map<std::string, ir::ExprPtr>*& p;
+      ~ForgetLets() { p = nullptr; }
+    } forgetLets{lets_};
     checker_.setLetResolver([&](const std::string& n, const StageModel* st) -> Type {
       std::string key = st ? st->name + "." + n : n;
       if (auto it = letTypes.find(key); it != letTypes.end()) return it->second;
@@ -1064,7 +1130,21 @@ private:
       checkOperating(m, g.operating, opDecl);
     }
     for (const auto* sc : m.scenes) g.scenes.push_back(scene(*sc, m, gs));
-    for (const auto* md : m.modifies) g.modifies.push_back(modify(*md, m, gs));
+    // A stage's rules from its baseline's block and its own, one rule per target: a later
+    // rule for a target replaces the earlier one (as a `tolerances` line does).
+    for (const auto* md : m.modifies) {
+      ir::Modify built = modify(*md, m, gs);
+      auto same = std::find_if(g.modifies.begin(), g.modifies.end(), [&](const ir::Modify& x) { return x.stage == built.stage; });
+      if (same == g.modifies.end()) {
+        g.modifies.push_back(std::move(built));
+        continue;
+      }
+      for (auto& r : built.rules) {
+        auto old = std::find_if(same->rules.begin(), same->rules.end(), [&](const ir::ModRule& x) { return x.target == r.target; });
+        if (old != same->rules.end()) *old = std::move(r);
+        else same->rules.push_back(std::move(r));
+      }
+    }
     for (const auto* sp : m.splits) g.splits.push_back(split(*sp, m, gs));
     for (const auto* sd : m.studies) g.studies.push_back(study(*sd, m, gs));
     if (m.report) g.report = report(*m.report, gs);
@@ -1707,7 +1787,7 @@ private:
         }
         break;
       case StmtKind::Flag:
-        if (b.name == "plot") out.plot = true;
+        if (const auto* f = cat::findFlag(b.name); f && f->id == cat::Flag::Plot) out.plot = true;
         else diags_.error("E0224", nameOr(b), fmt::format("{} has no option `{}` (it takes `plot;`)", owner, b.name));
         break;
       default: notAllowed(b, owner);
@@ -1929,6 +2009,10 @@ private:
         r.sortBy = std::move(x);
         break;
       }
+      case StmtKind::Flag:
+        if (const auto* f = cat::findFlag(b.name); f && f->id == cat::Flag::Ranges) r.ranges = true;
+        else diags_.error("E0224", nameOr(b), fmt::format("`report` has no option `{}` (it takes `ranges;`)", b.name));
+        break;
       case StmtKind::Columns:
         for (const auto& e : b.exprs) {
           auto x = checker_.check(e.get(), gs);
@@ -1944,6 +2028,7 @@ private:
     return r;
   }
 
+  const std::map<std::string, ir::ExprPtr>* lets_ = nullptr;  // the lets being built, by key
   std::set<std::pair<std::string, std::string>> misspelt_;  // (stage, attribute) a reported misspelling meant
   diag::DiagnosticEngine& diags_;
   Globals globals_;

@@ -107,7 +107,12 @@ LumpedModes gearboxModes(const Model& m, const Assignment& a) {
     default: {
       double k = meshStiffness(st);
       double dp = d(Pinion), dw = d(Wheel);
-      double rb1 = 0.5 * dp * std::cos(alpha), rb2 = 0.5 * dw * std::cos(alpha);
+      // Base radii in the transverse section (cos a_t), as the stage's own quantity has them.
+      auto baseRadius = [&](int g, double dg) {
+        Value rb = ev.derived(st, g, Q::BaseRadius, a);
+        return rb.isNumber() ? rb.mid() : 0.5 * dg * std::cos(alpha);
+      };
+      double rb1 = baseRadius(Pinion, dp), rb2 = baseRadius(Wheel, dw);
       bool branching = st == splitStage;
       bool merging = shaft.size() > 1;
       std::vector<int> next;

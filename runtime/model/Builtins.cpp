@@ -141,17 +141,19 @@ const std::vector<BuiltinRow>& kRowsTable() {
     // relative(x): x over its value in the baseline gearbox, given as the second argument.
     {Fn::Relative, [](const V& v) { return arith::div(v[0], v[1]); }},
     // worst(q) over the tolerance box: v[0] the sense (+1 the largest is worst, -1 the
-    // smallest, 0 the farthest from the nominal), v[1] the nominal value, then the corners.
+    // smallest, 0 not known: both ends, as an interval), v[1] the nominal value, then the
+    // corners.
     {Fn::Worst,
      [](const V& v) {
-       double sense = v[0].mid(), nominal = v[1].mid();
-       size_t pick = 1;
+       double sense = v[0].mid();
+       size_t lo = 1, hi = 1;
        for (size_t i = 2; i < v.size(); ++i) {
-         double x = v[i].mid(), y = v[pick].mid();
-         bool worse = sense > 0 ? x > y : sense < 0 ? x < y : std::fabs(x - nominal) > std::fabs(y - nominal);
-         if (worse) pick = i;
+         if (v[i].mid() < v[lo].mid()) lo = i;
+         if (v[i].mid() > v[hi].mid()) hi = i;
        }
-       return v[pick];
+       if (sense > 0) return v[hi];
+       if (sense < 0) return v[lo];
+       return Value::range(v[lo].lo, v[hi].hi);
      }},
   };
   return rows;

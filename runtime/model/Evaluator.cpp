@@ -283,6 +283,19 @@ Value Evaluator::withOffset(int stage, int gear, Q key, Value v) const {
   return v;
 }
 
+// Where the context of a `worst(q)` gives no direction (a report column): q's own. A
+// catalogue quantity's better direction, every scene output smaller; 0 where none is known
+// (then both ends are reported).
+static int betterSense(const ir::Expr& q) {
+  if (q.op == ir::Op::SceneOutput) return 1;
+  if (q.op != ir::Op::Quantity) return 0;
+  switch (cat::betterOf(q.ref.key)) {
+  case cat::Better::Larger: return -1;
+  case cat::Better::Smaller: return 1;
+  default: return 0;
+  }
+}
+
 // q at the nominal design and at every corner of the tolerance box (2^n corners, n <= 6 by
 // the checker): the worst of them where q stands, or their mean.
 Value Evaluator::scatter(const ir::Expr& e, const Assignment& a) const {
@@ -295,7 +308,7 @@ Value Evaluator::scatter(const ir::Expr& e, const Assignment& a) const {
   // around the corner.
   if (nominalOnly || tol.empty() || !offsets_.empty() || !nominal.isNumber()) return nominal;
   std::vector<Value> v;
-  if (e.fn == cat::Fn::Worst) v.push_back(Value::number(e.sense));
+  if (e.fn == cat::Fn::Worst) v.push_back(Value::number(e.sense != 0 ? e.sense : betterSense(*e.args[0])));
   v.push_back(nominal);
   for (unsigned corner = 0; corner < (1u << tol.size()); ++corner) {
     Evaluator at(*this);

@@ -15,45 +15,11 @@
 
 #include "dynamics/Scene.h"
 #include "model/Evaluator.h"
+#include "optimise/Violation.h"
 
 namespace gbx::rt {
 
 namespace {
-
-// How far a rule is from holding (0 when it holds), relative to its scale.
-double violation(const Evaluator& ev, const ir::Expr& e, const Assignment& a) {
-  auto rel = [](double over, double scale) { return over > 0 ? over / std::max(std::fabs(scale), 1e-12) : 0.0; };
-  auto num = [&](const ir::Expr& x) { return ev.eval(x, a); };
-  switch (e.op) {
-  case ir::Op::And:
-  case ir::Op::Forall: {
-    double s = 0;
-    for (const auto& x : e.args) s += violation(ev, *x, a);
-    return s;
-  }
-  case ir::Op::Or: {
-    double s = INFINITY;
-    for (const auto& x : e.args) s = std::min(s, violation(ev, *x, a));
-    return s;
-  }
-  case ir::Op::Le:
-  case ir::Op::Lt: {
-    Value x = num(*e.args[0]), y = num(*e.args[1]);
-    if (!x.isNumber() || !y.isNumber()) return 1.0;
-    return rel(x.mid() - y.mid(), std::max(std::fabs(y.mid()), std::fabs(x.mid())));
-  }
-  case ir::Op::Ge:
-  case ir::Op::Gt: {
-    Value x = num(*e.args[0]), y = num(*e.args[1]);
-    if (!x.isNumber() || !y.isNumber()) return 1.0;
-    return rel(y.mid() - x.mid(), std::max(std::fabs(y.mid()), std::fabs(x.mid())));
-  }
-  default: {
-    Value t = ev.eval(e, a);
-    return t.kind == Value::Bool && t.truth == Truth::True ? 0.0 : 1.0;
-  }
-  }
-}
 
 // The quantities under `relative(…)` in the objectives, in order.
 // The arguments of `relative(…)`: as the gearbox resolves them, and as its baseline does.

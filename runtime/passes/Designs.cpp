@@ -1,5 +1,7 @@
 #include "passes/Designs.h"
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 
@@ -22,7 +24,7 @@ public:
              const std::vector<Column>& columns, const std::vector<std::vector<double>>& freedoms,
              const Model* baseline, const Assignment* baseDesign)
       : m_(m), designs_(designs), exprs_(columnExprs), columns_(columns), freedoms_(freedoms), ev_(m), blank_(m),
-        a_(m) {
+        a_(m), b_(m), ranges_(m.gearbox.report && m.gearbox.report->ranges) {
     if (!freedoms.empty() || baseline) {
       // Optimised designs, or `relative(x)` columns: scene results and relative values at the
       // scenes' own accuracy.
@@ -118,8 +120,10 @@ public:
         }
       }
     }
+    // `report { ranges; }`: each column over the design's whole box of freedoms.
+    const Assignment& at = ranges_ ? wholeBox(i) : a;
     for (size_t c = 0; c < exprs_.size(); ++c) {
-      Value v = value(i, c, a);
+      Value v = value(i, c, at);
       Cell cell;
       if (v.isNumber()) {
         cell.valid = true;
@@ -159,6 +163,12 @@ private:
     return a_;
   }
 
+  const Assignment& wholeBox(size_t i) const {
+    b_.box = blank_.box;
+    b_.choice = (*designs_)[i].choice;
+    return b_;
+  }
+
   // Column c of design i at its assignment. A listing's rows are made more than once
   // (checked, then written): their values are found once.
   Value value(size_t i, size_t c, const Assignment& a) const {
@@ -184,7 +194,8 @@ private:
   std::vector<std::vector<double>> freedoms_;
   Evaluator ev_;
   Assignment blank_;
-  mutable Assignment a_;
+  mutable Assignment a_, b_;
+  bool ranges_ = false;
   mutable Value zScratch_;
   struct Known {
     bool set = false, valid = false;
@@ -213,7 +224,8 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
     Column c;
     c.name = columnNames[i];
     // A catalogue quantity is monotone in each freedom: its corners give its exact image.
-    c.exact = columnExprs[i]->op == ir::Op::Quantity || columnExprs[i]->isConst();
+    // So are both ends of a `worst` over the tolerance corners.
+    c.exact = columnExprs[i]->op == ir::Op::Quantity || columnExprs[i]->isConst() || columnExprs[i]->op == ir::Op::Scatter;
     auto u = units::displayUnitFor(columnExprs[i]->type.dim);
     // Imbalances read best in percent.
     if (columnExprs[i]->op == ir::Op::Quantity && columnExprs[i]->ref.key == Q::Imbalance) u = {"%", 0.01};
@@ -239,6 +251,29 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
   g.rows.resize(rows->size());
   for (size_t i = 0; i < rows->size(); ++i)
     rows->row(i, g.rows[i], true);
+  // A length column whose every value is below 0.1 mm reads in um (1.1602 um, not 0.0012 mm).
+  bool rescaled = false;
+  for (size_t i = 0; i < g.columns.size(); ++i) {
+    if (columnExprs[i]->type.dim != units::dims::length || g.rows.empty()) continue;
+    double most = 0;
+    bool any = false;
+    for (const auto& row : g.rows)
+      if (row.cells[i].valid) {
+        most = std::max({most, std::fabs(row.cells[i].lo), std::fabs(row.cells[i].hi)});
+        any = true;
+      }
+    auto u = units::displayUnitFor(units::dims::length, most);
+    if (any && u.name != g.columns[i].unit) {
+      g.columns[i].unit = u.name;
+      g.columns[i].scale = u.scale;
+      rescaled = true;
+    }
+  }
+  if (rescaled) {
+    rows = std::make_shared<DesignRows>(m, &r.designs, columnExprs, g.columns, freedoms, baseline, baseDesign);
+    for (size_t i = 0; i < rows->size(); ++i)
+      rows->row(i, g.rows[i], true);
+  }
   // Only a column that shows intervals can show enclosures.
   for (size_t i = 0; i < g.columns.size(); ++i) {
     bool interval = false;

@@ -8,11 +8,15 @@
 
 #include "model/Evaluator.h"
 #include "optimise/Optimise.h"
+#include "passes/Search.h"
 #include "units/Unit.h"
 
 namespace gbx::rt::passes {
 
 namespace {
+
+// The search budget of a baseline solved for `relative(…)`: that of a solve.
+constexpr double kBaselineDesigns = 1e9;
 
 // How far each inequality rule `q >= c` / `q <= c` stands from its bound at the optimum:
 // the rule with no margin is the one that binds.
@@ -132,17 +136,34 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
     for (const auto& c : gb.report->columns) reportsRelative = reportsRelative || relative(c.get());
   }
   bool optimised = needsOptimiser(gb);
+  // Freedoms the search pass decided: the design table, scenes and ratings read them.
+  if (!optimised)
+    for (const auto& d : out.designs.designs)
+      if (!d.freedoms.empty()) {
+        out.freedoms.clear();
+        for (const auto& e : out.designs.designs) out.freedoms.push_back(e.freedoms);
+        break;
+      }
   if (!optimised && !reportsRelative) return out;
+  // The baseline's design is its design 1, as solving the baseline alone reports it: ranked
+  // by its own objectives, its freedoms decided or optimised.
   for (const auto& other : program.gearboxes)
     if (other.name == gb.baseline) {
       out.baseline = std::make_unique<Model>(program, other);
-      SearchOptions bo;
-      bo.top = 1;
-      bo.deferDynamics = true;
-      auto br = rt::search(*out.baseline, bo);
+      SearchResult br = passes::search(*out.baseline, jobs, kBaselineDesigns, nullptr);
+      std::vector<double> freedoms;
+      if (needsOptimiser(other) && br.errors.empty()) {
+        Optimised bo = optimise(program, *out.baseline, std::move(br), jobs, nullptr);
+        br = std::move(bo.designs);
+        if (!bo.freedoms.empty()) freedoms = bo.freedoms[0];
+      } else if (!br.designs.empty()) {
+        freedoms = br.designs[0].freedoms;
+      }
       if (!br.designs.empty()) {
         out.baselineDesign = std::make_unique<Assignment>(*out.baseline);
         out.baselineDesign->choice = br.designs[0].choice;
+        for (size_t f = 0; f < freedoms.size() && f < out.baselineDesign->box.size(); ++f)
+          out.baselineDesign->box[f] = {freedoms[f], freedoms[f]};
       }
     }
   if (!optimised) return out;

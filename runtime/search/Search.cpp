@@ -130,17 +130,6 @@ std::optional<Rational> rationalConst(const ir::Expr& e) {
   return std::nullopt;
 }
 
-// An objective's value as the ranking compares it: to 12 significant digits, so values
-// equal but for the rounding of their formulas (a centre distance summed in another order)
-// tie, and the documented rule orders them (stage ratios, then values).
-double rankingKey(double v) {
-  if (v == 0 || !std::isfinite(v)) return v;
-  int e = static_cast<int>(std::floor(std::log10(std::fabs(v))));
-  double scale = std::pow(10.0, 11 - e);
-  double snapped = std::round(v * scale) / scale;
-  return std::isfinite(snapped) ? snapped : v;
-}
-
 bool isRatio(const ir::Expr& e) { return e.op == Op::Quantity && isGearboxRatio(e.ref); }
 
 // Recognises `ratio == t +- tol`, `ratio in a..b` and one-sided bounds on the gearbox ratio.
@@ -498,6 +487,18 @@ std::vector<Perm> closeGroup(const std::vector<Perm>& gens, size_t n) {
 }
 
 } // namespace
+
+// An objective's value as the ranking compares it: to 12 significant digits, so values
+// equal but for the rounding of their formulas (a centre distance summed in another order)
+// tie, and the documented rule orders them (stage ratios, then values).
+double rankingKey(double v) {
+  if (v == 0 || !std::isfinite(v)) return v;
+  int e = static_cast<int>(std::floor(std::log10(std::fabs(v))));
+  double scale = std::pow(10.0, 11 - e);
+  double snapped = std::round(v * scale) / scale;
+  return std::isfinite(snapped) ? snapped : v;
+}
+
 
 bool needsOptimiser(const ir::Gearbox& g) {
   auto walk = [](const ir::ExprPtr& e) { return ir::uses(e.get(), {Op::SceneOutput, Op::Relative, Op::Scatter}); };

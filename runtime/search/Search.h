@@ -27,6 +27,9 @@ struct Design {
   Rational ratio;
   bool undecided = false;   // freedoms: neither a witness nor a refutation within the budget
   std::vector<double> keys; // objective values, minimised (maximised ones negated)
+  // The continuous freedoms as decided (SI, model order): where every rule holds, best by
+  // the objectives. Empty before deciding, or without freedoms.
+  std::vector<double> freedoms;
 };
 
 struct SearchOptions {
@@ -60,6 +63,10 @@ struct SearchResult {
   std::vector<std::string> deferred; // rules left to the optimiser (deferDynamics)
   std::vector<std::string> notes;    // candidates removed because a rule could not be evaluated for them
 };
+
+// An objective's value as the ranking compares it: to 12 significant digits, so values
+// equal but for the rounding of their formulas tie.
+double rankingKey(double v);
 
 // True when a rule or objective of the gearbox needs a scene result or `relative(…)`.
 bool needsOptimiser(const ir::Gearbox& g);

@@ -21,11 +21,15 @@ template <bool Helical>
 struct Cyl {
   static Value beta(const KindContext& c) { return Helical ? c.at(Q::HelixAngle) : Value::number(0.0); }
   static Value mn(const KindContext& c) { return c.at(Q::NormalModule); }
-  // The seven inputs of the pair's geometry.
+  // The eight inputs of the pair's geometry: teeth, module, helix, pressure angle, shifts,
+  // and the centre distance where the design gives it (0: without backlash).
   static std::vector<Value> pair(const KindContext& c) {
+    const auto& en = c.ev.model().info(c.stage).entry(-1, Q::CenterDistance);
+    bool given = en.attr || en.slot >= 0 || en.freedom >= 0 || c.ev.overrides(c.stage, -1, Q::CenterDistance);
     return {c.at(Pinion, Q::Z), c.at(Wheel, Q::Z), mn(c), beta(c), c.at(Q::PressureAngle), c.orZero(Pinion, Q::Shift),
-            c.orZero(Wheel, Q::Shift)};
+            c.orZero(Wheel, Q::Shift), given ? c.at(Q::CenterDistance) : Value::number(0.0)};
   }
+  static geometry::CylPair geometryOf(const V& x) { return cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6], 1.0, x[7]); }
   // The same with the tip geometry: the basic rack's addendum (the rating's, else 1) and
   // each gear's tip diameter when given (0: from the rack), so that eps_alpha and the tip
   // radii are those the rating uses.
@@ -41,9 +45,9 @@ struct Cyl {
     return v;
   }
   static geometry::CylPair tipped(const V& x) {
-    auto p = cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7]);
-    if (x[8] > 0) p.ra1 = 0.5 * x[8];
-    if (x[9] > 0) p.ra2 = 0.5 * x[9];
+    auto p = cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[8], x[7]);
+    if (x[9] > 0) p.ra1 = 0.5 * x[9];
+    if (x[10] > 0) p.ra2 = 0.5 * x[10];
     return p;
   }
 
@@ -52,12 +56,12 @@ struct Cyl {
     std::vector<DerivedRow> own = {
         {Q::CenterDistance, false,
          [](const KindContext& c, int) {
-           return arith::corners(pair(c), [](const V& x) { return cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6]).a; });
+           return arith::corners(pair(c), [](const V& x) { return geometryOf(x).a; });
          }},
         {Q::WholeDepth, false, [](const KindContext& c, int) { return arith::mul(Value::rational(Rational::make(9, 4)), mn(c)); }},
         {Q::WorkingPressureAngle, false,
          [](const KindContext& c, int) {
-           return arith::corners(pair(c), [](const V& x) { return cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6]).alphaWt; });
+           return arith::corners(pair(c), [](const V& x) { return geometryOf(x).alphaWt; });
          }},
         {Q::PitchLineVelocity, false,
          [](const KindContext& c, int) {
@@ -105,7 +109,7 @@ struct Cyl {
         {Q::SlidingBalance, false,
          [](const KindContext& c, int) {
            return arith::corners(pair(c), [](const V& x) {
-             auto p = cylPair(x[0], x[1], x[2], x[3], x[4], x[5], x[6]);
+             auto p = geometryOf(x);
              double u = x[1] / x[0];
              double c6 = (p.rb1 + p.rb2) * std::tan(p.alphaWt);
              double c5 = std::sqrt(p.ra1 * p.ra1 - p.rb1 * p.rb1);

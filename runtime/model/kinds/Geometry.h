@@ -1,5 +1,6 @@
 #pragma once
 // Involute geometry shared by the cylindrical kinds (DOMAIN.md §3).
+#include <algorithm>
 #include <cmath>
 
 namespace gbx::rt::geometry {
@@ -19,22 +20,37 @@ inline double inverseInvolute(double t) {
   return a;
 }
 
+// The working pressure angle of a pair without backlash: inv(a_w) = inv(a) + 2 tan(a_n) (x_a + x_b) / (z_a + z_b)
+// (an internal pair: the ring's shift and teeth count negative, the planet's positive).
+inline double workingPressureAngle(double alphaT, double alphaN, double zSum, double xSum) {
+  return xSum == 0 ? alphaT : inverseInvolute(involute(alphaT) + 2.0 * xSum * std::tan(alphaN) / zSum);
+}
+
 // Helical/spur pair with profile shifts: working centre distance, working pressure angle
-// and tip radii with the tip shortening.
+// and tip radii with the tip shortening. A given centre distance aw (> 0) sets the working
+// pressure angle (cos a_wt = a cos a_t / a_w); otherwise the pair meshes without backlash.
+// The tips are shortened by the amount the centre distance falls short of a + (x1 + x2) m_n,
+// never lengthened (ISO 21771).
 struct CylPair {
   double alphaT, alphaWt, a0, a, d1, d2, rb1, rb2, ra1, ra2;
 };
 
-inline CylPair cylPair(double z1, double z2, double mn, double beta, double alphaN, double x1, double x2, double haP = 1.0) {
+inline CylPair cylPair(double z1, double z2, double mn, double beta, double alphaN, double x1, double x2, double haP = 1.0,
+                       double aw = 0) {
   CylPair p{};
   p.alphaT = std::atan(std::tan(alphaN) / std::cos(beta));
-  double invWt = involute(p.alphaT) + 2.0 * (x1 + x2) * std::tan(alphaN) / (z1 + z2);
-  p.alphaWt = (x1 + x2) == 0 ? p.alphaT : inverseInvolute(invWt);
   p.d1 = z1 * mn / std::cos(beta);
   p.d2 = z2 * mn / std::cos(beta);
   p.a0 = 0.5 * (p.d1 + p.d2);
-  p.a = p.a0 * std::cos(p.alphaT) / std::cos(p.alphaWt);
-  double dy = (x1 + x2) - (p.a - p.a0) / mn;
+  if (aw > 0) {
+    p.a = aw;
+    double c = p.a0 * std::cos(p.alphaT) / aw;
+    p.alphaWt = c <= 1 ? std::acos(c) : NAN;  // closer than the base circles allow: no mesh
+  } else {
+    p.alphaWt = workingPressureAngle(p.alphaT, alphaN, z1 + z2, x1 + x2);
+    p.a = p.a0 * std::cos(p.alphaT) / std::cos(p.alphaWt);
+  }
+  double dy = std::max(0.0, (x1 + x2) - (p.a - p.a0) / mn);
   p.rb1 = 0.5 * p.d1 * std::cos(p.alphaT);
   p.rb2 = 0.5 * p.d2 * std::cos(p.alphaT);
   p.ra1 = 0.5 * p.d1 + mn * (haP + x1 - dy);

@@ -4,6 +4,7 @@
 #include "catalogue/StageKinds.h"
 #include "model/Evaluator.h"
 #include "model/StageKind.h"
+#include "model/kinds/Geometry.h"
 #include "model/RatingRows.h"
 
 namespace gbx::rt::kinds {
@@ -19,11 +20,23 @@ std::vector<DerivedRow> rows() {
   std::vector<DerivedRow> own = {
       {Q::Ratio, false, [](const KindContext& c, int) { return arith::div(c.at(Driven, Q::Z), c.at(Driver, Q::Z)); }},
       {Q::MeshFrequency, false, [](const KindContext& c, int) { return meshFrequency(c, Q::InputSpeed, Driver); }},
+      // Driver to driven along the line of centres: the sum of both meshes' working centre
+      // distances, each from its shifts (the meshes run without backlash).
       {Q::CenterDistance, false,
        [](const KindContext& c, int) {
          Value half = Value::rational(Rational::make(1, 2));
          Value teeth = arith::add(arith::add(arith::mul(c.at(Driver, Q::Z), half), c.at(Idler, Q::Z)), arith::mul(c.at(Driven, Q::Z), half));
-         return arith::mul(teeth, c.at(Q::Module));
+         Value unshifted = arith::mul(teeth, c.at(Q::Module));
+         Value x1 = c.orZero(Driver, Q::Shift), x2 = c.orZero(Idler, Q::Shift), x3 = c.orZero(Driven, Q::Shift);
+         if (x1.isPoint() && x2.isPoint() && x3.isPoint() && x1.lo == 0 && x2.lo == 0 && x3.lo == 0) return unshifted;  // exact
+         return arith::corners({c.at(Driver, Q::Z), c.at(Idler, Q::Z), c.at(Driven, Q::Z), c.at(Q::Module), c.at(Q::PressureAngle), x1, x2, x3},
+                               [](const std::vector<double>& x) {
+                                 auto mesh = [&](double za, double zb, double xa, double xb) {
+                                   double aw = geometry::workingPressureAngle(x[4], x[4], za + zb, xa + xb);
+                                   return 0.5 * x[3] * (za + zb) * std::cos(x[4]) / std::cos(aw);
+                                 };
+                                 return mesh(x[0], x[1], x[5], x[6]) + mesh(x[1], x[2], x[6], x[7]);
+                               });
        }},
       {Q::Speed, true,
        [](const KindContext& c, int g) {

@@ -1,0 +1,504 @@
+// LANGUAGE.md §15, one meaning everywhere: a reported design holds at the values printed,
+// `worst` reads the worse end wherever it stands, and a quantity that depends on the centre
+// distance or the shifts agrees with its closed form and with the rating's geometry.
+#include <cmath>
+#include <random>
+#include <regex>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "Solve.h"
+#include "driver/Driver.h"
+#include "driver/Golden.h"
+#include "model/Evaluator.h"
+#include "passes/Designs.h"
+#include "passes/Optimise.h"
+#include "passes/Search.h"
+#include "report/Report.h"
+
+using namespace gbx;
+
+namespace {
+
+struct Solved {
+  std::unique_ptr<driver::Compilation> c;
+  std::unique_ptr<rt::Model> model;
+  rt::SearchResult result;
+  std::unique_ptr<rt::Evaluator> ev;
+  // Design i as the reports read it: its choices and its decided freedoms.
+  rt::Assignment at(size_t i) const {
+    rt::Assignment a(*model);
+    const auto& d = result.designs.at(i);
+    a.choice = d.choice;
+    for (size_t f = 0; f < d.freedoms.size(); ++f)
+      a.box[f] = {d.freedoms[f], d.freedoms[f]};
+    return a;
+  }
+  double value(const std::string& path, size_t i = 0) const {
+    rt::Value v = ev->quantity(path, at(i));
+    EXPECT_TRUE(v.isPoint()) << path << " is not a point: [" << v.lo << ", " << v.hi << "]";
+    return v.mid();
+  }
+};
+
+Solved solve(const std::string& text, size_t gearbox = 0) {
+  Solved s;
+  s.c = driver::compileText("t.gbx", text);
+  EXPECT_TRUE(s.c->ok()) << s.c->diags.renderText(s.c->sources);
+  if (!s.c->ok()) throw std::runtime_error("spec has errors");
+  s.model = std::make_unique<rt::Model>(s.c->program, s.c->program.gearboxes.at(gearbox));
+  // The search, then the optimiser where the rules or objectives need it (as `gbxc solve`).
+  auto designs =
+      rt::passes::optimise(s.c->program, *s.model, rt::passes::search(*s.model, 1, 1e9, nullptr), 1, nullptr);
+  s.result = std::move(designs.designs);
+  for (size_t i = 0; i < designs.freedoms.size() && i < s.result.designs.size(); ++i)
+    s.result.designs[i].freedoms = designs.freedoms[i];
+  s.ev = std::make_unique<rt::Evaluator>(*s.model);
+  return s;
+}
+
+std::string replaced(std::string t, const std::string& from, const std::string& to) {
+  size_t at = t.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) t.replace(at, from.size(), to);
+  return t;
+}
+
+std::string report(const std::string& text, const std::string& format = "text") {
+  auto c = driver::compileText("t.gbx", text);
+  EXPECT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::SolveOptions o;
+  o.format = format;
+  o.timings = false;
+  std::ostringstream out, err;
+  rt::solve(c->program, o, out, err);
+  return out.str() + err.str();
+}
+
+// The 250 kW, 1480 rpm helical reducer of the trial: modules and face widths as sets, the
+// helix angle a continuous range, both gears' safeties required, mass minimised.
+const char* kReducer = R"(import materials;
+gearbox Reducer {
+  stage main: helical {
+    pinion.z in 25..40;  wheel.z in 90..160;
+    normal_module in {3 mm, 3.5 mm, 4 mm, 4.5 mm, 5 mm};
+    helix_angle in 8..15 deg;
+    face_width in {30 mm, 40 mm, 50 mm, 60 mm};
+    material = steel_18CrNiMo7_6;
+    accuracy = 6;
+    rating {
+      application_factor = 1.25;
+      life = 20000 h;
+      lubricant { viscosity_40 = 150 mm^2/s; }
+      roughness { flank = 0.6 um; root = 3.0 um; }
+      min_safety { contact = 1.25; bending = 1.5; }
+    }
+  }
+  operating { input_speed = 1480 rpm; power = 250 kW; }
+  require main.ratio == 4.06 +- 1%;
+  require main.pinion.contact_safety >= 1.25;  require main.wheel.contact_safety >= 1.25;
+  require main.pinion.bending_safety >= 1.5;  require main.wheel.bending_safety >= 1.5;
+  minimize main.mass;
+  report { top 5; columns main.mass, main.pinion.contact_safety, main.wheel.contact_safety; }
+}
+)";
+
+const char* kSafeties[] = {"main.pinion.contact_safety", "main.wheel.contact_safety", "main.pinion.bending_safety",
+                           "main.wheel.bending_safety"};
+
+} // namespace
+
+// The design ranked first holds every rule at the point printed, and no design of the same
+// teeth, module and face width is lighter at a helix angle where the rules hold.
+TEST(Freedoms, RankedFirstHoldsEveryRuleAtItsPrintedPoint) {
+  Solved s = solve(kReducer);
+  ASSERT_FALSE(s.result.designs.empty());
+  const auto& d = s.result.designs[0];
+  ASSERT_EQ(d.freedoms.size(), 1u);
+  double beta = d.freedoms[0] * 180 / M_PI;
+  EXPECT_GE(s.value("main.pinion.contact_safety"), 1.25);
+  EXPECT_GE(s.value("main.wheel.contact_safety"), 1.25);
+  EXPECT_GE(s.value("main.pinion.bending_safety"), 1.5);
+  EXPECT_GE(s.value("main.wheel.bending_safety"), 1.5);
+  // The decided angle is printed to 4 decimals and is that value exactly.
+  EXPECT_EQ(rt::formatNumber(beta), fmt::format("{:.4f}", std::round(beta * 1e4) / 1e4));
+  // A scan of the same design's helix angle in 0.001 deg steps finds no lighter feasible point.
+  double best = s.value("main.mass");
+  rt::Assignment a = s.at(0);
+  for (double b = 8; b <= 15; b += 0.001) {
+    a.box[0] = {b * M_PI / 180, b * M_PI / 180};
+    bool ok = true;
+    for (const char* q : kSafeties)
+      ok = ok && s.ev->quantity(q, a).mid() >= (std::string(q).find("contact") != std::string::npos ? 1.25 : 1.5);
+    if (ok) {
+      EXPECT_GE(s.ev->quantity("main.mass", a).mid(), best * (1 - 1e-9)) << "lighter at " << b << " deg";
+    }
+  }
+  // The ranking is by the mass at the decided point, ascending.
+  for (size_t i = 1; i < s.result.designs.size(); ++i)
+    EXPECT_LE(s.value("main.mass", i - 1), s.value("main.mass", i));
+}
+
+// The same design with its decided helix angle written into the spec (teeth, module and face
+// width pinned too) reports the same numbers, to the last printed digit.
+TEST(Freedoms, PinningThePrintedPointReproducesEveryNumber) {
+  Solved s = solve(kReducer);
+  ASSERT_FALSE(s.result.designs.empty());
+  rt::Assignment a = s.at(0);
+  auto slotValue = [&](const std::string& path) -> double {
+    for (size_t i = 0; i < s.model->slots.size(); ++i)
+      if (s.model->slots[i].path == path) return s.model->slots[i].values[static_cast<size_t>(a.choice[i])].lo;
+    return NAN;
+  };
+  std::string pinned = kReducer;
+  pinned = replaced(pinned, "pinion.z in 25..40;", fmt::format("pinion.z = {};", slotValue("main.pinion.z")));
+  pinned = replaced(pinned, "wheel.z in 90..160;", fmt::format("wheel.z = {};", slotValue("main.wheel.z")));
+  pinned = replaced(pinned, "normal_module in {3 mm, 3.5 mm, 4 mm, 4.5 mm, 5 mm};",
+                    fmt::format("normal_module = {} mm;", slotValue("main.normal_module") * 1e3));
+  pinned = replaced(pinned, "face_width in {30 mm, 40 mm, 50 mm, 60 mm};",
+                    fmt::format("face_width = {} mm;", slotValue("main.face_width") * 1e3));
+  pinned =
+      replaced(pinned, "helix_angle in 8..15 deg;",
+               fmt::format("helix_angle = {} deg;", rt::formatNumber(s.result.designs[0].freedoms[0] * 180 / M_PI)));
+  Solved p = solve(pinned);
+  ASSERT_EQ(p.result.designs.size(), 1u);
+  for (const char* q :
+       {"main.mass", "main.pinion.contact_safety", "main.wheel.contact_safety", "main.pinion.bending_safety",
+        "main.wheel.bending_safety", "main.center_distance", "main.eps_beta"})
+    EXPECT_EQ(s.value(q), p.value(q)) << q;
+  // And the two reports print the same row and the same rating table.
+  std::string r1 = report(kReducer), r2 = report(pinned);
+  auto rating = [](const std::string& r) { return r.substr(r.find("  rating main")); };
+  EXPECT_EQ(rating(r1), rating(r2));
+}
+
+// A freedom feasible only at the end of its range is decided at that end, exactly.
+TEST(Freedoms, FeasibleOnlyAtOneEndIsDecidedAtThatEnd) {
+  const std::string base = R"(import materials;
+gearbox G {
+  stage main: helical {
+    pinion.z = 21;  wheel.z = 83;  normal_module = 4 mm;  face_width = 50 mm;
+    helix_angle in 8..15 deg;  material = steel_18CrNiMo7_6;
+  }
+  operating { input_speed = 1000 rpm; power = 100 kW; }
+  require main.eps_beta >= LIMIT;
+  minimize main.mass;
+}
+)";
+  double at15 = 0.050 * std::sin(15 * M_PI / 180) / (M_PI * 0.004);
+  Solved s = solve(replaced(base, "LIMIT", fmt::format("{:.15f}", at15 * (1 - 1e-12))));
+  ASSERT_EQ(s.result.designs.size(), 1u);
+  EXPECT_EQ(s.result.designs[0].freedoms.at(0), s.model->freedoms[0].hi);
+}
+
+// A design whose rules hold nowhere in its range is eliminated, and the funnel names the rule.
+TEST(Freedoms, FeasibleNowhereIsEliminatedAndTheFunnelNamesTheRule) {
+  // Each rule alone holds somewhere in the box and their enclosures straddle their bounds,
+  // so the search keeps the design, undecided; together they hold nowhere.
+  const std::string text = R"(import materials;
+gearbox G {
+  stage a: helical {
+    pinion.z = 21;  wheel.z = 83;  normal_module = 4 mm;  face_width = 50 mm;
+    helix_angle in 8..15 deg;  material = steel_18CrNiMo7_6;
+  }
+  stage b: helical {
+    pinion.z = 21;  wheel.z = 83;  normal_module = 4 mm;  face_width = 50 mm;
+    helix_angle in 8..15 deg;  material = steel_18CrNiMo7_6;
+  }
+  require a.helix_angle - b.helix_angle >= 5 deg;
+  require b.helix_angle - a.helix_angle >= 5 deg;
+}
+)";
+  Solved s = solve(text);
+  EXPECT_EQ(s.result.count, 0u);
+  EXPECT_EQ(s.result.undecided, 0u);
+  EXPECT_TRUE(s.result.designs.empty());
+  int named = 0;
+  for (const auto& f : s.result.funnel)
+    if (f.scope == "freedoms" && f.removed == 1 && f.before == 1 && f.rule.find("helix_angle") != std::string::npos)
+      ++named;
+  EXPECT_EQ(named, 1);
+  std::string r = report(text);
+  EXPECT_NE(r.find("    freedoms: ((b.helix_angle - a.helix_angle) >= 5 deg): 1 of 1 removed"), std::string::npos) << r;
+  // Without the second rule the same design is kept, at a decided point 5 deg apart or more.
+  Solved one = solve(replaced(text, "require b.helix_angle - a.helix_angle >= 5 deg;", ""));
+  ASSERT_EQ(one.result.designs.size(), 1u);
+  EXPECT_GE(one.result.designs[0].freedoms[0] - one.result.designs[0].freedoms[1], 5 * M_PI / 180 - 1e-15);
+}
+
+// With no objective the decided point is the feasible one nearest the middle of the range.
+TEST(Freedoms, WithoutObjectiveTheMiddleWhereItHolds) {
+  const std::string text = R"(import materials;
+gearbox G {
+  stage main: helical {
+    pinion.z = 21;  wheel.z = 83;  normal_module = 4 mm;  face_width = 50 mm;
+    helix_angle in 8..16 deg;  material = steel_18CrNiMo7_6;
+  }
+  require main.helix_angle <= 10 deg;
+}
+)";
+  Solved s = solve(text);
+  ASSERT_EQ(s.result.designs.size(), 1u);
+  EXPECT_NEAR(s.result.designs[0].freedoms.at(0) * 180 / M_PI, 10.0, 1e-12);
+  Solved free = solve(replaced(text, "require main.helix_angle <= 10 deg;", ""));
+  EXPECT_NEAR(free.result.designs.at(0).freedoms.at(0) * 180 / M_PI, 12.0, 1e-12);
+}
+
+// A bounded top N over a continuous freedom keeps the designs an exhaustive decision keeps:
+// every design decided, then ranked.
+TEST(Freedoms, BoundedTopEqualsTheExhaustiveDecision) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 6; ++trial) {
+    double limit = std::uniform_real_distribution<double>(0.6, 1.3)(rng);
+    int top = std::uniform_int_distribution<int>(1, 4)(rng);
+    std::string text = fmt::format(R"(import materials;
+gearbox G {{
+  stage main: helical {{
+    pinion.z in 18..26;  wheel.z in 60..90;  normal_module in {{3 mm, 4 mm}};
+    face_width in {{30 mm, 45 mm, 60 mm}};  helix_angle in 8..20 deg;  material = steel_18CrNiMo7_6;
+  }}
+  require main.ratio == 3.5 +- 3%;
+  require main.eps_beta >= {:.4f};
+  minimize main.mass;
+  report {{ top TOP; }}
+}}
+)",
+                                   limit);
+    Solved few = solve(replaced(text, "TOP", std::to_string(top)));
+    Solved all = solve(replaced(text, "TOP", "100000"));
+    ASSERT_GE(all.result.designs.size(), static_cast<size_t>(top)) << "trial " << trial;
+    ASSERT_EQ(few.result.designs.size(), static_cast<size_t>(top)) << "trial " << trial;
+    for (int i = 0; i < top; ++i) {
+      EXPECT_EQ(few.result.designs[static_cast<size_t>(i)].choice, all.result.designs[static_cast<size_t>(i)].choice)
+          << "trial " << trial << " rank " << i + 1;
+      EXPECT_EQ(few.result.designs[static_cast<size_t>(i)].keys, all.result.designs[static_cast<size_t>(i)].keys);
+    }
+    EXPECT_EQ(few.result.count, all.result.count);
+  }
+}
+
+namespace {
+
+// One helical stage with a tolerance box of face width and helix angle (four corners).
+const char* kToleranced = R"(import materials;
+gearbox H {
+  stage hs: helical {
+    pinion.z = 23;  wheel.z = 91;  normal_module = 4 mm;  helix_angle = 12 deg;
+    face_width = 45 mm;  material = steel_18CrNiMo7_6;  accuracy = 6;
+    rating {
+      application_factor = 1.25;  life = 20000 h;
+      lubricant { viscosity_40 = 150 mm^2/s; }
+      roughness { flank = 0.6 um; root = 3.0 um; }
+    }
+  }
+  operating { input_speed = 1480 rpm; power = 150 kW; }
+  tolerances { hs.face_width +- 0.5 mm; hs.helix_angle +- 0.1 deg; }
+  RULES
+  report { columns COLUMNS; }
+}
+)";
+
+// q at each corner of the box, computed one corner at a time.
+std::vector<double> corners(const Solved& s, const std::string& q) {
+  std::vector<double> out;
+  for (int fw : {-1, 1})
+    for (int hb : {-1, 1}) {
+      rt::Evaluator ev(*s.model);
+      ev.addOffset(s.model->gearbox.tolerances[0].ref, fw * 0.5e-3);
+      ev.addOffset(s.model->gearbox.tolerances[1].ref, hb * 0.1 * M_PI / 180);
+      out.push_back(ev.quantity(q, s.at(0)).mid());
+    }
+  return out;
+}
+
+std::string spec(const std::string& rules, const std::string& columns) {
+  return replaced(replaced(kToleranced, "RULES", rules), "COLUMNS", columns);
+}
+
+} // namespace
+
+// `worst(q)` in a report column is the worse end by q's own direction: the smallest safety,
+// the largest stress; a rule on the same `worst(q)` reads the same number.
+TEST(Worst, AColumnReadsTheWorseEndAsARuleDoes) {
+  Solved s = solve(spec("", "worst(hs.pinion.contact_safety), worst(hs.pinion.contact_stress), worst(hs.mass)"));
+  ASSERT_EQ(s.result.designs.size(), 1u);
+  auto sh = corners(s, "hs.pinion.contact_safety"), stress = corners(s, "hs.pinion.contact_stress"),
+       mass = corners(s, "hs.mass");
+  double nominalSh = s.value("hs.pinion.contact_safety");
+  double minSh = std::min(nominalSh, *std::min_element(sh.begin(), sh.end()));
+  const auto& cols = s.model->gearbox.report->columns;
+  EXPECT_DOUBLE_EQ(s.ev->eval(*cols[0], s.at(0)).mid(), minSh);
+  EXPECT_DOUBLE_EQ(s.ev->eval(*cols[1], s.at(0)).mid(),
+                   std::max(s.value("hs.pinion.contact_stress"), *std::max_element(stress.begin(), stress.end())));
+  EXPECT_DOUBLE_EQ(s.ev->eval(*cols[2], s.at(0)).mid(),
+                   std::max(s.value("hs.mass"), *std::max_element(mass.begin(), mass.end())));
+  EXPECT_LT(minSh, nominalSh); // the box does reach below the nominal safety
+  // A rule just above the smallest corner removes the design; one just below keeps it.
+  for (double off : {-1e-6, 1e-6}) {
+    Solved r = solve(spec(fmt::format("require worst(hs.pinion.contact_safety) >= {:.9f};", minSh + off), "hs.mass"));
+    EXPECT_EQ(r.result.count, off < 0 ? 1u : 0u) << off;
+  }
+}
+
+// Two-sided and negated rules on a `worst` hold only when every corner holds them.
+TEST(Worst, TwoSidedAndNegatedRulesCheckEveryCorner) {
+  Solved s = solve(spec("", "hs.mass"));
+  auto eb = corners(s, "hs.eps_beta");
+  double lo = *std::min_element(eb.begin(), eb.end()), hi = *std::max_element(eb.begin(), eb.end());
+  double nominal = s.value("hs.eps_beta");
+  ASSERT_LT(lo, nominal);
+  ASSERT_GT(hi, nominal);
+  // A bound between the nominal value and the lower corner: the lower corner violates it.
+  double mid = 0.5 * (lo + nominal);
+  for (const std::string& rule :
+       {fmt::format("require worst(hs.eps_beta) in {:.9f}..5;", mid),
+        fmt::format("require worst(hs.eps_beta) == {:.9f} +- {:.9f};", (mid + 5) / 2, (5 - mid) / 2),
+        fmt::format("require not (worst(hs.eps_beta) < {:.9f});", mid)}) {
+    Solved r = solve(spec(rule, "hs.mass"));
+    EXPECT_EQ(r.result.count, 0u) << rule;
+  }
+  // And above it from the other side: the upper corner violates `<=`-like bounds.
+  double up = 0.5 * (hi + nominal);
+  for (const std::string& rule : {fmt::format("require worst(hs.eps_beta) in 0..{:.9f};", up),
+                                  fmt::format("require not (worst(hs.eps_beta) > {:.9f});", up)}) {
+    Solved r = solve(spec(rule, "hs.mass"));
+    EXPECT_EQ(r.result.count, 0u) << rule;
+  }
+  // Bounds that every corner meets keep the design.
+  Solved ok =
+      solve(spec(fmt::format("require worst(hs.eps_beta) in {:.9f}..{:.9f};", lo * 0.999, hi * 1.001), "hs.mass"));
+  EXPECT_EQ(ok.result.count, 1u);
+}
+
+// A `let` that reads `worst` takes the direction of the rule it is used in.
+TEST(Worst, ALetTakesTheDirectionOfItsRule) {
+  Solved s = solve(spec("", "hs.mass"));
+  auto sh = corners(s, "hs.pinion.contact_safety");
+  double minSh = std::min(s.value("hs.pinion.contact_safety"), *std::min_element(sh.begin(), sh.end()));
+  for (double off : {-1e-6, 1e-6}) {
+    Solved r = solve(
+        spec(fmt::format("let margin = worst(hs.pinion.contact_safety) - {:.9f}; require margin >= 0;", minSh + off),
+             "hs.mass"));
+    EXPECT_EQ(r.result.count, off < 0 ? 1u : 0u) << off;
+  }
+}
+
+// A column of `worst` of an expression with no direction prints both ends.
+TEST(Worst, AColumnWithNoDirectionPrintsBothEnds) {
+  Solved s = solve(spec("", "worst(hs.eps_beta)"));
+  auto eb = corners(s, "hs.eps_beta");
+  rt::Value v = s.ev->eval(*s.model->gearbox.report->columns[0], s.at(0));
+  EXPECT_DOUBLE_EQ(v.lo, *std::min_element(eb.begin(), eb.end()));
+  EXPECT_DOUBLE_EQ(v.hi, *std::max_element(eb.begin(), eb.end()));
+}
+
+// Independent values (involute geometry written from ISO 21771, not from this code):
+// z 20/61, m_n 3 mm, beta 15 deg, alpha_n 20 deg.
+TEST(Geometry, GivenCentreDistanceSetsTheWorkingPressureAngle) {
+  const std::string text = R"(import materials;
+gearbox G {
+  stage h: helical {
+    pinion.z = 20;  wheel.z = 61;  normal_module = 3 mm;  helix_angle = 15 deg;
+    face_width = 30 mm;  center_distance = 128 mm;  material = steel_18CrNiMo7_6;  accuracy = 6;
+    SHIFTS
+    rating {
+      application_factor = 1.0;  life = 20000 h;
+      lubricant { viscosity_40 = 150 mm^2/s; }
+      roughness { flank = 0.6 um; root = 3.0 um; }
+    }
+  }
+  operating { input_speed = 1000 rpm; power = 20 kW; }
+}
+)";
+  Solved plain = solve(replaced(text, "SHIFTS", ""));
+  EXPECT_NEAR(plain.value("h.working_pressure_angle") * 180 / M_PI, 23.1344064, 1e-6);
+  EXPECT_NEAR(plain.value("h.eps_alpha"), 0.943312025, 1e-8);
+  Solved shifted = solve(replaced(text, "SHIFTS", "pinion.shift = 0.4;  wheel.shift = 0.3;"));
+  EXPECT_NEAR(shifted.value("h.working_pressure_angle") * 180 / M_PI, 23.1344064, 1e-6);
+  EXPECT_NEAR(shifted.value("h.eps_alpha"), 1.41420122, 1e-7);
+  // The rating's table reads the same transverse contact ratio.
+  std::string r = report(replaced(text, "SHIFTS", "pinion.shift = 0.4;  wheel.shift = 0.3;"));
+  EXPECT_NE(r.find("1.4142"), std::string::npos) << r;
+  std::string refused = report(replaced(text, "SHIFTS", ""));
+  EXPECT_NE(refused.find("0.943"), std::string::npos) << refused;
+}
+
+// An idler train with shifts: each mesh at its own working centre distance.
+TEST(Geometry, IdlerLayoutFromTheWorkingPressureAngles) {
+  Solved s = solve(R"(gearbox T {
+  stage t: idler {
+    driver.z = 20;  idler.z = 30;  driven.z = 50;  module = 2 mm;  face_width = 20 mm;
+    driver.shift = 0.5;  idler.shift = 0.3;
+  }
+}
+)");
+  EXPECT_NEAR(s.value("t.center_distance") * 1e3, 51.454362 + 80.584290, 1e-5);
+  Solved plain = solve(R"(gearbox T {
+  stage t: idler { driver.z = 20;  idler.z = 30;  driven.z = 50;  module = 2 mm;  face_width = 20 mm; }
+}
+)");
+  EXPECT_EQ(plain.value("t.center_distance"), 0.130);
+}
+
+// `gbxc test` with a tolerance: a whole number (a count, teeth) is exact under any tolerance.
+TEST(GoldenTolerance, WholeNumbersAreExact) {
+  EXPECT_FALSE(driver::equalWithin("gearbox A: 497844 designs\n", "gearbox A: 497843 designs\n", 1e-5));
+  EXPECT_FALSE(driver::equalWithin("  1 33 134\n", "  1 33 135\n", 0.5));
+  EXPECT_TRUE(driver::equalWithin("  mass 76.6312 kg\n", "  mass 76.6313 kg\n", 1e-5));
+  EXPECT_FALSE(driver::equalWithin("  mass 76 kg\n", "  mass 76.0000 kg\n", 1e-5));
+}
+
+// `relative(x)` of a variant that changes nothing is 1: the baseline's design is its own
+// design 1, ranked by its own objective, at its decided freedoms.
+TEST(Relative, AnUnchangedVariantIsOne) {
+  const std::string text = R"(import materials;
+gearbox A {
+  stage h: helical {
+    pinion.z in 15..25;  wheel.z in 40..80;  normal_module = 2.5 mm;  helix_angle in 10..14 deg;
+    face_width = 30 mm;  material = steel_18CrNiMo7_6;
+  }
+  require h.ratio == 3 +- 5%;
+  require h.eps_beta >= 0.9;
+  minimize h.mass;
+}
+gearbox B extends A {
+  report { columns relative(h.center_distance), relative(h.mass); }
+}
+)";
+  auto c = driver::compileText("t.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::Model m(c->program, c->program.gearboxes.at(1));
+  auto found = rt::passes::search(m, 1, 1e9, nullptr);
+  auto designs = rt::passes::optimise(c->program, m, std::move(found), 1, nullptr);
+  auto table = rt::passes::designTable(m, designs, rt::passes::reportColumns(m.gearbox));
+  ASSERT_FALSE(table.rows.empty());
+  EXPECT_EQ(table.rows[0].cells.at(0).lo, 1.0);
+  EXPECT_EQ(table.rows[0].cells.at(0).hi, 1.0);
+  EXPECT_EQ(table.rows[0].cells.at(1).lo, 1.0);
+}
+
+// A whole-gearbox modes scene of one helical stage at beta = 30 deg: the mesh acts on the
+// base radii of the transverse section, r_b = d/2 cos(alpha_t), as the stage's own quantity
+// and the time-domain model have them (cos alpha_n would raise the frequency by 1.9 %).
+TEST(Geometry, ModesUseTheTransverseBaseRadius) {
+  const std::string text = R"(gearbox G {
+  stage main: helical {
+    pinion.z = 20;  wheel.z = 61;  normal_module = 3 mm;  helix_angle = 30 deg;  face_width = 30 mm;
+    mesh_stiffness = 20 N/mm/um;  pinion.inertia = 0.002 kg*m^2;  wheel.inertia = 0.05 kg*m^2;
+  }
+  operating { input_speed = 1500 rpm; input_torque = 100 N*m; }
+  scene torsion on G { effects {} duration = 1 s; output modes; }
+}
+)";
+  std::string r = report(text);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r, m, std::regex("mode 1 = ([0-9.]+) Hz"))) << r;
+  double alphaT = std::atan(std::tan(20 * M_PI / 180) / std::cos(30 * M_PI / 180));
+  double d1 = 20 * 0.003 / std::cos(30 * M_PI / 180), d2 = 61 * 0.003 / std::cos(30 * M_PI / 180);
+  double rb1 = 0.5 * d1 * std::cos(alphaT), rb2 = 0.5 * d2 * std::cos(alphaT);
+  double k = 20e9 * 0.030;
+  double f = std::sqrt(k * (rb1 * rb1 / 0.002 + rb2 * rb2 / 0.05)) / (2 * M_PI);
+  EXPECT_NEAR(std::stod(m[1]), f, 1e-4 * f) << r;
+}
