@@ -88,11 +88,13 @@ void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<st
       part.colour = 0;
       part.dashed = u;
       size_t j = k;
-      for (; j < s.points.size() && unstable(j) == u; ++j) {
+      // A part ends where the stability changes or a gap begins: no line is drawn across a
+      // stretch the continuation did not follow.
+      for (; j < s.points.size() && unstable(j) == u && (j == k || !s.points[j].afterGap); ++j) {
         part.x.push_back(s.points[j].x / s.unit.scale);
         part.y.push_back(s.points[j].y[i] / s.outputs[i].unit.scale);
       }
-      if (j < s.points.size()) {
+      if (j < s.points.size() && !s.points[j].afterGap) {
         part.x.push_back(s.points[j].x / s.unit.scale);
         part.y.push_back(s.points[j].y[i] / s.outputs[i].unit.scale);
       }

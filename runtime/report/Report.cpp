@@ -165,6 +165,7 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
         o += line + "\n";
       }
       for (const auto& n : st.notes) o += "    note: " + n + "\n";
+      for (const auto& w : st.warnings) o += "    warning: " + w + "\n";
       for (const auto& f : study.files) o += "    wrote " + f + "\n";
     }
   }
@@ -422,6 +423,11 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       o += heading(3, "Study " + st.name);
       o += table(st.header, st.rows);
       if (!st.notes.empty()) o += list(st.notes);
+      if (!st.warnings.empty()) {
+        std::vector<std::string> w;
+        for (const auto& x : st.warnings) w.push_back("warning: " + x);
+        o += list(w);
+      }
       for (const auto& f : study.files) o += image(f);
     }
   }

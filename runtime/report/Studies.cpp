@@ -31,6 +31,9 @@ StudyTable table(const SweepStudy& s) {
     t.rows.push_back(std::move(row));
   }
   for (double f : s.folds) t.notes.push_back(fmt::format("turning point (jump) at {} = {:.6g} {}", s.target, f / s.unit.scale, s.unit.name));
+  for (const auto& [from, to] : s.gaps)
+    t.warnings.push_back(fmt::format("the continuation did not follow {} from {:.6g} to {:.6g} {} (a gap; no line is drawn across it)", s.target,
+                                     from / s.unit.scale, to / s.unit.scale, s.unit.name));
   for (const auto& [x, label] : s.marks)
     t.notes.push_back(fmt::format("{}: {} = {:.6g} {}", label, s.target, x / s.unit.scale, s.unit.name));
   for (const auto& n : s.notes) t.notes.push_back(n);
@@ -91,14 +94,15 @@ std::string json(const SweepStudy& s) {
     // The swept quantity under its own name too (LANGUAGE.md §12).
     points += fmt::format("{}{{\"x\": {}, \"{}\": {}{}, \"outputs\": {{{}}}}}", k ? ", " : "", p.x, s.target, p.x, extra, outs);
   }
-  std::string folds, marks, notes;
+  std::string folds, marks, notes, gaps;
   for (size_t i = 0; i < s.folds.size(); ++i) folds += fmt::format("{}{}", i ? ", " : "", s.folds[i]);
+  for (size_t i = 0; i < s.gaps.size(); ++i) gaps += fmt::format("{}[{}, {}]", i ? ", " : "", s.gaps[i].first, s.gaps[i].second);
   for (size_t i = 0; i < s.marks.size(); ++i)
     marks += fmt::format("{}{{\"at\": {}, \"label\": \"{}\"}}", i ? ", " : "", s.marks[i].first, diag::jsonEscape(s.marks[i].second));
   for (size_t i = 0; i < s.notes.size(); ++i) notes += fmt::format("{}\"{}\"", i ? ", " : "", diag::jsonEscape(s.notes[i]));
   return fmt::format("{{\"sweep\": \"{}\", \"unit\": \"SI\"{}, \"points\": [{}]}}", s.target,
-                     s.scene ? fmt::format(", \"continuation\": \"{}\", \"stability_of\": \"{}\", \"folds\": [{}], \"marks\": [{}], \"notes\": [{}]",
-                                           s.continuation, diag::jsonEscape(s.stabilityScene), folds, marks, notes)
+                     s.scene ? fmt::format(", \"continuation\": \"{}\", \"stability_of\": \"{}\", \"folds\": [{}], \"gaps\": [{}], \"marks\": [{}], \"notes\": [{}]",
+                                           s.continuation, diag::jsonEscape(s.stabilityScene), folds, gaps, marks, notes)
                              : "",
                      points);
 }

@@ -12,6 +12,7 @@ struct StudyTable {
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> notes;
+  std::vector<std::string> warnings;  // a stretch a continuation did not follow
 };
 
 std::string studyName(const StudyReport& study);

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
 #include "dynamics/MeshModel.h"
@@ -152,8 +153,10 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
     // sweep's own steps: where the response changes fast the points come denser.
     double ds = dLambda, dsMax = 4.0 * dLambda, dsMin = 1e-4 * dLambda;
     int branch = 1;
+    bool afterGap = false;
     long maxPoints = 40 * static_cast<long>(std::ceil(1.0 / dLambda)) + 400;
-    auto record = [&](const VectorXd& zz) {
+    // The point at zz: the scene's outputs and stability there (not yet kept).
+    auto measure = [&](const VectorXd& zz) {
       double x = sh.x(zz(n));
       Evaluator ev(m);
       ev.setOverride(st.swept, Value::number(x));
@@ -172,7 +175,6 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
       p.x = x;
       if (out.points.empty()) resonanceMarks(out, st, x, res.meshFrequency, res.naturalFrequency);
       p.stability = res.stability;
-      p.branch = branch;
       ev.sceneOutput = [&](const ir::Expr& e, const Assignment& aa, const Evaluator& asking) {
         // At a corner of the tolerance box (`worst`, `mean`) the scene runs again there, from
         // this point's orbit.
@@ -193,10 +195,76 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
         p.y.push_back(v.isNumber() ? v.mid() : NAN);
         p.unstable.push_back(res.unstable);
       }
+      return p;
+    };
+    auto keep = [&](SweepStudy::Point p) {
+      p.branch = branch;
+      p.afterGap = afterGap;
+      afterGap = false;
       out.points.push_back(std::move(p));
     };
-    record(z);
+    // A step's outputs may change by at most a quarter of their size: more, and the corrector
+    // has likely landed on another branch.
+    auto smooth = [&](const SweepStudy::Point& p) {
+      if (out.points.empty()) return true;
+      const auto& q = out.points.back();
+      for (size_t i = 0; i < p.y.size() && i < q.y.size(); ++i) {
+        if (!std::isfinite(p.y[i]) || !std::isfinite(q.y[i])) continue;
+        double scale = std::max(std::fabs(p.y[i]), std::fabs(q.y[i]));
+        if (scale > 0 && std::fabs(p.y[i] - q.y[i]) > 0.25 * scale) return false;
+      }
+      return true;
+    };
+    // Real Floquet multipliers above 1: their count changes by one where the branch turns
+    // (a fold), and not where a step merely reverses by error.
+    auto above = [&](const MatrixXd& Jz) {
+      MatrixXd M = Jz.topLeftCorner(n, n) + MatrixXd::Identity(n, n);
+      Eigen::EigenSolver<MatrixXd> es(M, false);
+      int c = 0;
+      for (long i = 0; i < es.eigenvalues().size(); ++i) {
+        auto mu = es.eigenvalues()(i);
+        if (std::fabs(mu.imag()) <= 1e-9 * std::max(1.0, std::abs(mu)) && mu.real() > 1.0) ++c;
+      }
+      return c;
+    };
+    int aboveHere = above(J);
+    double reached = 0.0;  // the farthest lambda followed
+    keep(measure(z));
     long points = 1;
+    // Where the branch cannot be followed (the step fell below its minimum, or the branch
+    // leaves the range at its start), the stretch to the next sweep step past the farthest
+    // point followed is a gap; the response there is found afresh by shooting from the last
+    // orbit, and followed on as a new branch.
+    auto gapFrom = [&](const VectorXd& from, const std::string& why) -> bool {
+      double resume = std::max(from(n), reached) + dLambda;
+      if (resume >= 1.0 - 1e-12) resume = 1.0;
+      auto at = sh.build(resume);
+      dyn::PeriodicOptions po2;
+      po2.period = at.period;
+      std::vector<double> guess(static_cast<size_t>(n));
+      for (long i = 0; i < n; ++i) guess[static_cast<size_t>(i)] = s[static_cast<size_t>(i)] * from(i);
+      dyn::PeriodicOrbit o2 = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po2, guess);
+      sh.stats += o2.stats;
+      if (!o2.converged) throw dyn::SceneFailure{fmt::format("the periodic response at {} = {:.6g} was not found after a gap: {}", st.target, sh.x(resume), o2.failure)};
+      out.gaps.emplace_back(sh.x(std::max(from(n), reached)), sh.x(resume));
+      out.notes.push_back(fmt::format("gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh",
+                                      st.target, sh.x(std::max(from(n), reached)) / out.unit.scale, sh.x(resume) / out.unit.scale,
+                                      out.unit.name, why));
+      for (long i = 0; i < n; ++i) z(i) = o2.y0[static_cast<size_t>(i)] / s[static_cast<size_t>(i)];
+      z(n) = resume;
+      reached = resume;
+      ++branch;
+      afterGap = true;
+      keep(measure(z));
+      ++points;
+      if (resume >= 1.0) return false;
+      jacobian(z, R, J);
+      aboveHere = above(J);
+      t = tangent(J, start);
+      ds = dLambda;
+      return true;
+    };
+    const double edge = 0.5 * dLambda;  // how far a corrector may stray outside the range
     while (points < maxPoints) {
       VectorXd pred = z + ds * t, zz = pred;
       bool ok = false;
@@ -209,41 +277,70 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
         rhs(n) = -t.dot(zz - pred);
         VectorXd d = J.fullPivLu().solve(rhs);
         zz += d;
-        if (!std::isfinite(d.norm())) break;
+        if (!std::isfinite(d.norm()) || zz(n) < -edge || zz(n) > 1.0 + dsMax + edge) break;
         if (d.lpNorm<Eigen::Infinity>() < tol) {
           ok = true;
           break;
         }
       }
+      // A corrector that lands far from its predictor, or turns the branch sharply, may have
+      // jumped to another branch: the step is retried smaller.
+      VectorXd tn;
+      int aboveThere = aboveHere;
+      bool turned = false;
+      if (ok) ok = (zz - pred).norm() <= 0.5 * ds + tol;
+      if (ok) {
+        jacobian(zz, R, J);
+        tn = tangent(J, t);
+        ok = t.dot(tn) >= 0.8;
+      }
+      if (ok && (tn(n) > 0) != (t(n) > 0)) {
+        aboveThere = above(J);
+        turned = aboveThere != aboveHere;
+        ok = turned;  // a reversal without a multiplier crossing +1 is an error of the step
+      }
+      SweepStudy::Point candidate;
+      if (ok && zz(n) <= 1.0 + 1e-12 && zz(n) >= 0.0) {
+        candidate = measure(zz);
+        ok = smooth(candidate) || ds <= 4 * dsMin;
+      }
       if (!ok) {
         ds *= 0.5;
-        if (ds < dsMin) throw dyn::SceneFailure{fmt::format("the continuation could not pass {} = {:.6g} (the step fell below {:.2g} of the range)",
-                                                           st.target, sh.x(z(n)), dsMin)};
+        if (ds < dsMin) {
+          if (!gapFrom(z, "the step fell below 1e-4 of the sweep step")) break;
+        }
         continue;
       }
-      jacobian(zz, R, J);
-      VectorXd tn = tangent(J, t);
-      if ((tn(n) > 0) != (t(n) > 0)) {
-        out.folds.push_back(sh.x(zz(n)));
+      if (turned) {
+        // The turning point between the two: where lambda(s), the quadratic through lambda and
+        // its slope at the last point and lambda at this one, is extreme.
+        double lz = z(n), lzz = zz(n), slope = t(n);
+        double c = (lzz - lz - slope * ds) / (ds * ds);
+        double sStar = c != 0 ? -slope / (2 * c) : -1;
+        double fold = sStar >= 0 && sStar <= ds ? lz - slope * slope / (4 * c) : (slope > 0 ? std::max(lz, lzz) : std::min(lz, lzz));
+        out.folds.push_back(sh.x(fold));
         ++branch;
       }
-      if (zz(n) < -1e-12)
-        throw dyn::SceneFailure{fmt::format("the response turned back at {} turning point{} and left the range at its start; the rest of "
-                                            "the range (above {} = {:.6g}) was not reached: start the sweep where the response is unique",
-                                            out.folds.size(), out.folds.size() == 1 ? "" : "s", st.target,
-                                            out.folds.empty() ? sh.x(z(n)) : out.folds.back())};
+      if (zz(n) < 0.0) {
+        // The branch turns back out of the range at its start: the rest of the range lies
+        // beyond the farthest turning point.
+        if (!gapFrom(z, "the branch turned back out of the range at its start")) break;
+        continue;
+      }
       if (zz(n) > 1.0 + 1e-12) {
         // Leaving the range: the last point at its end, from the state interpolated there
         // (the scene's own Newton solves it exactly).
         double end = 1.0, w = (end - z(n)) / (zz(n) - z(n));
         VectorXd last = z + w * (zz - z);
         last(n) = end;
-        record(last);
+        keep(measure(last));
         break;
       }
       z = zz;
       t = tn;
-      record(z);
+      aboveHere = aboveThere;
+      reached = std::max(reached, z(n));
+      keep(std::move(candidate));
       ++points;
       if (iterations <= 2) ds = std::min(dsMax, 1.5 * ds);
     }
@@ -251,9 +348,10 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
       throw dyn::SceneFailure{fmt::format("the continuation stopped after {} points at {} = {:.6g} before the end of the range (a "
                                           "Floquet multiplier near 1 there: the response grows without bound)",
                                           points, st.target, sh.x(z(n)))};
-    out.notes.push_back(fmt::format("pseudo-arclength continuation of the shooting equations: {} points, {} turning point{}, {} RHS "
+    out.notes.push_back(fmt::format("pseudo-arclength continuation of the shooting equations: {} points, {} turning point{}, {} gap{}, {} RHS "
                                     "evaluations",
-                                    out.points.size(), out.folds.size(), out.folds.size() == 1 ? "" : "s", sh.stats.rhsEvaluations));
+                                    out.points.size(), out.folds.size(), out.folds.size() == 1 ? "" : "s", out.gaps.size(),
+                                    out.gaps.size() == 1 ? "" : "s", sh.stats.rhsEvaluations));
   } catch (const dyn::SceneFailure& f) {
     out.failure = fmt::format("study `{}`: scene `{}`: {}", st.name, scene.name, f.what);
   }

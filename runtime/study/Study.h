@@ -2,6 +2,7 @@
 // What a study returns: plain data in SI. report/ turns it into tables, JSON and charts.
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "units/Unit.h"
@@ -27,6 +28,7 @@ struct SweepStudy {
     int branch = 0;
     double error = NAN;                 // the scene's error estimate at this point
     std::vector<bool> unstable;         // per output: it reads a scene whose orbit is unstable here
+    bool afterGap = false;              // continuation: the first point after a stretch not followed
   };
   std::vector<Point> points;
   bool plot = false;                    // `plot;`: one chart per output
@@ -34,6 +36,7 @@ struct SweepStudy {
   std::string stabilityScene;           // whose stability the points carry (the first scene read)
   std::string continuation;             // "", "natural" or "arclength"
   std::vector<double> folds;            // turning points of the continuation, in SI of X
+  std::vector<std::pair<double, double>> gaps;  // stretches the continuation could not follow, SI of X
   // Where an order of the mesh frequency meets the mesh's natural frequency (f_mesh = f_n / k),
   // in SI of X: the resonance speeds of a speed sweep.
   std::vector<std::pair<double, std::string>> marks;
