@@ -887,10 +887,25 @@ private:
   // `worst` (`in a..b`, `== c +- t`) holds when both ends of q hold it, so it is checked at
   // both: the comparison is kept twice, once at each end; and a `let` that reads `worst` is
   // read in place, so that it takes the rule's direction.
+  // Whether an expression reads `worst` or `mean` over the tolerances, itself or through lets.
+  bool readsWorst(const ir::Expr& e, int depth = 0) const {
+    if (e.op == Op::Scatter) return true;
+    if (depth > 64) return false;
+    if (e.op == Op::Let && lets_)
+      if (auto it = lets_->find(e.name); it != lets_->end() && it->second && readsWorst(*it->second, depth + 1)) return true;
+    for (const auto& x : e.args)
+      if (x && readsWorst(*x, depth + 1)) return true;
+    return false;
+  }
+
   void worstSense(ir::Expr& e, int sense, bool condition = false, bool negated = false) {
     using ir::Op;
     if ((condition || sense != 0) && e.op == Op::Let && lets_)
-      if (auto it = lets_->find(e.name); it != lets_->end() && it->second && ir::uses(it->second.get(), {Op::Scatter})) {
+      if (auto it = lets_->find(e.name); it != lets_->end() && it->second && readsWorst(*it->second)) {
+        // The let takes this direction: its column then reads the same end (unless another
+        // use gives it the other one).
+        auto [dir, added] = letSense_.emplace(e.name, sense);
+        if (!added && dir->second != sense) dir->second = 0;
         ir::ExprPtr inlined = it->second->clone();
         inlined->span = e.span;
         e = std::move(*inlined);
@@ -926,7 +941,8 @@ private:
           worstSense(*high->args[i], 0, condition, negated);
           worstSense(*low->args[i], 0, condition, negated);
         }
-        e.op = Op::And;
+        // Not every corner outside the bounds: both ends outside (Or under a `not`).
+        e.op = negated ? Op::Or : Op::And;
         e.args.clear();
         e.args.push_back(std::move(high));
         e.args.push_back(std::move(low));
@@ -1123,6 +1139,11 @@ private:
       o.span = st->span;
       g.objectives.push_back(std::move(o));
     }
+    // A let read in one direction by the rules and objectives takes it where it stands alone
+    // too (a report column of it reads the same number as the rule).
+    for (auto& l : g.lets)
+      if (auto it = letSense_.find(l.name); it != letSense_.end() && it->second != 0 && l.expr) worstSense(*l.expr, it->second);
+    letSense_.clear();
     if (m.hasOperating) {
       const Stmt* opDecl = nullptr;
       for (const auto& [n, b] : m.operating) opDecl = b.stmt;
@@ -2029,6 +2050,7 @@ private:
   }
 
   const std::map<std::string, ir::ExprPtr>* lets_ = nullptr;  // the lets being built, by key
+  std::map<std::string, int> letSense_;  // the direction each let reading `worst` was used in (0: both)
   std::set<std::pair<std::string, std::string>> misspelt_;  // (stage, attribute) a reported misspelling meant
   diag::DiagnosticEngine& diags_;
   Globals globals_;

@@ -281,7 +281,7 @@ SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignmen
       r.series.push_back(recorded(o, dim, g.t, first, std::move(w), g.plan.dt, fz));
       continue;
     }
-    r.numbers.push_back({o.key(), w.empty() ? NAN : statistic(o.fn)(w), dim, o.fn, o.id});
+    r.numbers.push_back({o.key(), w.empty() ? NAN : statistic(o.fn)(w), dim, o.fn, o.id, w.empty() ? 0.0 : statistic(cat::SignalFn::Rms)(w)});
   }
   return r;
 }
@@ -500,7 +500,11 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
       r.series.push_back(recorded(o, dim, samples.t, first, window(o.id), tp.dt, r.meshFrequency));
       continue;
     }
-    r.numbers.push_back({o.key(), over(o.fn, window(o.id)), dim, o.fn, o.id});
+    // An output's error is measured against its signal's size, a force against at least the
+    // static load: a minimum near zero does not turn a small error into a large relative one.
+    double scale = over(cat::SignalFn::Rms, window(o.id));
+    if (dim == units::dims::force && std::isfinite(samples.staticLoad)) scale = std::max(scale, std::fabs(samples.staticLoad));
+    r.numbers.push_back({o.key(), over(o.fn, window(o.id)), dim, o.fn, o.id, std::isfinite(scale) ? scale : 0.0});
   }
   return r;
 }
@@ -663,15 +667,24 @@ MeshScene meshScene(const Model& m, const Assignment& a, const ir::Scene& scene,
 
 namespace {
 
-// The largest relative difference of the steady outputs of two runs of one scene (the
-// same outputs, so the numbers come in the same order); stability is not an output value.
-double outputDifference(const SceneResult& r, const SceneResult& ref) {
-  double worst = 0;
+// Each steady output's difference between two runs of one scene (the same outputs, so the
+// numbers come in the same order), relative to the output's own scale; stability is not an
+// output value. NaN where an output has no number in either run.
+std::vector<double> outputDifferences(const SceneResult& r, const SceneResult& ref) {
+  std::vector<double> d(r.numbers.size(), NAN);
   for (size_t i = 0; i < r.numbers.size() && i < ref.numbers.size(); ++i) {
     const auto &n = r.numbers[i], &x = ref.numbers[i];
     if (n.signal == Signal::Stability || !std::isfinite(n.value) || !std::isfinite(x.value)) continue;
-    worst = std::max(worst, std::fabs(n.value - x.value) / std::max(std::fabs(x.value), 1e-300));
+    double scale = std::max({std::fabs(x.value), x.scale, n.scale, 1e-300});
+    d[i] = std::fabs(n.value - x.value) / scale;
   }
+  return d;
+}
+
+double largest(const std::vector<double>& d) {
+  double worst = 0;
+  for (double x : d)
+    if (std::isfinite(x)) worst = std::max(worst, x);
   return worst;
 }
 
@@ -691,7 +704,14 @@ static void estimateError(const Model& m, const Assignment& a, const ir::Scene& 
   SceneResult ref = runOnce(m, a, scene, tight);
   if (!ref.failure.empty()) return;
   r.referenceStats = ref.stats;
-  r.errorParts.push_back({"integration", outputDifference(r, ref),
+  std::vector<double> perOutput(r.numbers.size(), 0.0);
+  auto part = [&](const SceneResult& other) {
+    auto d = outputDifferences(r, other);
+    for (size_t i = 0; i < d.size(); ++i)
+      if (std::isfinite(d[i])) perOutput[i] += d[i];
+    return largest(d);
+  };
+  r.errorParts.push_back({"integration", part(ref),
                           fmt::format("against a rerun at rtol {:.0e} with half the maximum step", tight.rtol.value())});
   if (r.harmonics > 0) {
     SceneOverrides twice = tight;
@@ -701,7 +721,7 @@ static void estimateError(const Model& m, const Assignment& a, const ir::Scene& 
     SceneResult h2 = runOnce(m, a, scene, twice);
     if (h2.failure.empty()) {
       r.referenceStats += h2.stats;
-      r.errorParts.push_back({"stiffness series", outputDifference(r, h2), fmt::format("{} against {} harmonics", r.harmonics, 2 * r.harmonics)});
+      r.errorParts.push_back({"stiffness series", part(h2), fmt::format("{} against {} harmonics", r.harmonics, 2 * r.harmonics)});
     }
   }
   // The loaded mesh's discretisation: twice the slices and positions.
@@ -713,12 +733,16 @@ static void estimateError(const Model& m, const Assignment& a, const ir::Scene& 
     SceneResult f2 = runOnce(m, a, scene, fine);
     if (f2.failure.empty()) {
       r.referenceStats += f2.stats;
-      r.errorParts.push_back({"loaded mesh", outputDifference(r, f2), "against twice the slices and positions"});
+      r.errorParts.push_back({"loaded mesh", part(f2), "against twice the slices and positions"});
     }
   }
   if (r.steady == SteadyMethod::Periodic)
     r.errorParts.push_back({"Newton residual", r.newtonResidual, fmt::format("of the state scale, after {} iteration{}", r.newtonIterations,
                                                                              r.newtonIterations == 1 ? "" : "s")});
+  // Each output's own estimate: the parts that differ per output, and the residual all share.
+  double shared = r.steady == SteadyMethod::Periodic ? r.newtonResidual : 0.0;
+  for (size_t i = 0; i < r.numbers.size(); ++i)
+    if (r.numbers[i].signal != Signal::Stability && std::isfinite(r.numbers[i].value)) r.numbers[i].error = perOutput[i] + shared;
   r.errorEstimate = 0;
   std::string text;
   for (const auto& p : r.errorParts) {

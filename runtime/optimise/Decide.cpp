@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
+#include "catalogue/Settings.h"
 #include "optimise/Violation.h"
 #include "search/Search.h"
 #include "units/Unit.h"
@@ -32,11 +34,12 @@ bool better(const Point& p, const Point& q) {
 
 class Decider {
 public:
-  Decider(const Evaluator& ev, const std::vector<int>& choice) : ev_(ev), m_(ev.model()), a_(m_) {
+  Decider(const Evaluator& ev, const std::vector<int>& choice, const FreedomGroup& g)
+      : ev_(ev), m_(ev.model()), a_(m_), g_(g) {
     a_.choice = choice;
-    for (const auto& f : m_.freedoms) {
-      lo_.push_back(f.lo);
-      hi_.push_back(f.hi);
+    for (int f : g.freedoms) {
+      lo_.push_back(m_.freedoms[static_cast<size_t>(f)].lo);
+      hi_.push_back(m_.freedoms[static_cast<size_t>(f)].hi);
     }
   }
 
@@ -80,7 +83,7 @@ public:
     best = printed(best);
     out.feasible = true;
     out.freedoms = best.x;
-    out.keys = best.keys;
+    out.objectives = best.keys;
     out.evaluations = evaluations_;
     return out;
   }
@@ -98,42 +101,97 @@ private:
   Point atSI(Point p) {
     ++evaluations_;
     for (size_t i = 0; i < p.x.size(); ++i) {
-      a_.box[i] = {p.x[i], p.x[i]};
+      a_.box[static_cast<size_t>(g_.freedoms[i])] = {p.x[i], p.x[i]};
       double d = p.t[i] - 0.5;
       p.offCentre += d * d;
     }
     p.violation = 0;
     bool all = true;
-    for (const auto& r : m_.gearbox.rules) {
-      if (!r.expr) continue;
-      Value v = ev_.eval(*r.expr, a_);
+    for (const auto* r : g_.rules) {
+      Value v = ev_.eval(*r->expr, a_);
       bool holds = v.kind == Value::Bool && v.truth == Truth::True;
       all = all && holds;
-      if (!holds) p.violation += std::max(violation(ev_, *r.expr, a_), 1e-12);
+      if (!holds) p.violation += std::max(violation(ev_, *r->expr, a_), 1e-12);
     }
     p.feasible = all;
-    if (all) p.keys = rankingKeys(ev_, a_);
+    // The point is chosen by the objectives alone; `sort by` only orders the decided designs.
+    if (all) {
+      if (g_.allObjectives) {
+        p.keys = rankingKeys(ev_, a_, false);
+      } else if (!g_.terms.empty()) {
+        double sum = 0;
+        for (const auto& [e, sign] : g_.terms) {
+          Value v = ev_.eval(*e, a_);
+          sum += v.isNumber() ? sign * v.mid() : NAN;
+        }
+        p.keys = {sum};
+      }
+    }
     return p;
   }
 
-  // Moves along each freedom by ±h while that improves, halving h when no move does; a move
-  // past a bound stops at the bound, so a best point at the end of a range is reached exactly.
+  // The moves of the pattern search: along each freedom, and (up to four freedoms) along
+  // every combination of them, with half-steps for one or two; a rule whose boundary bends
+  // across the box is followed by the combined moves where single ones all leave it.
+  static std::vector<std::vector<double>> directions(size_t n) {
+    std::vector<double> levels = n <= 2   ? std::vector<double>{-1, -0.5, 0, 0.5, 1}
+                                 : n <= 4 ? std::vector<double>{-1, 0, 1}
+                                          : std::vector<double>{};
+    std::vector<std::vector<double>> out;
+    if (levels.empty()) {
+      for (size_t i = 0; i < n; ++i)
+        for (double s : {-1.0, 1.0}) {
+          std::vector<double> d(n, 0.0);
+          d[i] = s;
+          out.push_back(d);
+        }
+      return out;
+    }
+    size_t total = 1;
+    for (size_t i = 0; i < n; ++i)
+      total *= levels.size();
+    for (size_t c = 0; c < total; ++c) {
+      std::vector<double> d(n);
+      size_t rest = c;
+      double largest = 0;
+      for (size_t i = 0; i < n; ++i) {
+        d[i] = levels[rest % levels.size()];
+        rest /= levels.size();
+        largest = std::max(largest, std::fabs(d[i]));
+      }
+      if (largest == 1) out.push_back(d); // a half-step only beside a whole one
+    }
+    // Single-freedom moves first: the cheap ones, and the ones that reach a bound exactly.
+    auto moved = [](const std::vector<double>& d) {
+      return std::count_if(d.begin(), d.end(), [](double v) { return v != 0; });
+    };
+    std::stable_sort(out.begin(), out.end(), [&](const auto& x, const auto& y) { return moved(x) < moved(y); });
+    return out;
+  }
+
+  // Moves by h along the pattern's directions while that improves, halving h when no move
+  // does; a move past a bound stops at the bound, so a best point at the end of a range is
+  // reached exactly. It stops at 1e-7 of each range, far below the printed digits.
   Point compass(Point p, double h) {
     const size_t n = p.t.size();
-    while (h > 1e-10 && evaluations_ < kBudget) {
+    const auto dirs = directions(n);
+    while (h > 1e-7 && evaluations_ < kBudget) {
       bool moved = false;
-      for (size_t i = 0; i < n && !moved; ++i)
-        for (double s : {-1.0, 1.0}) {
-          std::vector<double> t = p.t;
-          t[i] = std::clamp(t[i] + s * h, 0.0, 1.0);
-          if (t[i] == p.t[i]) continue;
-          Point q = at(t);
-          if (better(q, p)) {
-            p = std::move(q);
-            moved = true;
-            break;
-          }
+      for (const auto& d : dirs) {
+        std::vector<double> t = p.t;
+        bool changed = false;
+        for (size_t i = 0; i < n; ++i) {
+          t[i] = std::clamp(t[i] + d[i] * h, 0.0, 1.0);
+          changed = changed || t[i] != p.t[i];
         }
+        if (!changed) continue;
+        Point q = at(t);
+        if (better(q, p)) {
+          p = std::move(q);
+          moved = true;
+          break;
+        }
+      }
       if (!moved) h *= 0.5;
     }
     return p;
@@ -142,17 +200,16 @@ private:
   // The rule that fails by the most at the point nearest to feasibility.
   std::string failing(const Point& p) {
     for (size_t i = 0; i < p.x.size(); ++i)
-      a_.box[i] = {p.x[i], p.x[i]};
+      a_.box[static_cast<size_t>(g_.freedoms[i])] = {p.x[i], p.x[i]};
     std::string worst;
     double most = -1;
-    for (const auto& r : m_.gearbox.rules) {
-      if (!r.expr) continue;
-      Value v = ev_.eval(*r.expr, a_);
+    for (const auto* r : g_.rules) {
+      Value v = ev_.eval(*r->expr, a_);
       if (v.kind == Value::Bool && v.truth == Truth::True) continue;
-      double d = violation(ev_, *r.expr, a_);
+      double d = violation(ev_, *r->expr, a_);
       if (d > most) {
         most = d;
-        worst = r.text;
+        worst = r->text;
       }
     }
     return worst;
@@ -165,7 +222,7 @@ private:
     const size_t n = p.x.size();
     std::vector<std::vector<double>> options(n);
     for (size_t i = 0; i < n; ++i) {
-      const Freedom& f = m_.freedoms[i];
+      const Freedom& f = m_.freedoms[static_cast<size_t>(g_.freedoms[i])];
       const ir::Attribute* attr = m_.attribute(f.stage, f.gear, f.key);
       units::Dim dim = attr ? attr->dim : units::Dim{};
       auto du = units::displayUnitFor(dim);
@@ -176,14 +233,20 @@ private:
         unit = units::Number::exact(units::Rational(1));
       else if (auto atom = units::lookupAtom(du.name))
         unit = atom->scale;
-      if (!unit || (mag != 0 && (mag < 1e-3 || mag >= 1e7)) || n > 6) {
+      // formatNumber's digits: 4 decimals, or 5 significant ones below 1e-3 (`1.2345e-04`).
+      int exponent = mag != 0 && mag < 1e-3 ? static_cast<int>(std::floor(std::log10(mag))) : 0;
+      if (!unit || mag >= 1e7 || exponent < -14 || n > 6) {
         options[i].push_back(p.x[i]);
         continue;
       }
-      double scaled = shown * 1e4;
+      std::int64_t denominator = 10000;
+      for (int e = exponent; e < 0; ++e)
+        denominator *= 10;
+      double scaled = shown * static_cast<double>(denominator);
       for (double q : {std::floor(scaled), std::ceil(scaled)}) {
-        double v =
-            units::Number::exact(units::Rational::make(static_cast<std::int64_t>(q), 10000)).mul(*unit).toDouble();
+        double v = units::Number::exact(units::Rational::make(static_cast<std::int64_t>(q), denominator))
+                       .mul(*unit)
+                       .toDouble();
         if (v < lo_[i] || v > hi_[i]) continue;
         if (std::find(options[i].begin(), options[i].end(), v) == options[i].end()) options[i].push_back(v);
       }
@@ -217,20 +280,21 @@ private:
   const Evaluator& ev_;
   const Model& m_;
   Assignment a_;
+  const FreedomGroup& g_;
   std::vector<double> lo_, hi_;
   long evaluations_ = 0;
 };
 
 } // namespace
 
-std::vector<double> rankingKeys(const Evaluator& ev, const Assignment& a) {
+std::vector<double> rankingKeys(const Evaluator& ev, const Assignment& a, bool withSortBy) {
   const Model& m = ev.model();
   std::vector<double> keys;
   auto add = [&](const ir::Expr* e, bool minimize) {
     Value v = e ? ev.eval(*e, a) : Value::invalid();
     keys.push_back(v.isNumber() ? (minimize ? v.mid() : -v.mid()) : NAN);
   };
-  if (m.gearbox.report && m.gearbox.report->sortBy) add(m.gearbox.report->sortBy.get(), true);
+  if (withSortBy && m.gearbox.report && m.gearbox.report->sortBy) add(m.gearbox.report->sortBy.get(), true);
   for (const auto& o : m.gearbox.objectives)
     add(o.expr.get(), o.minimize);
   return keys;
@@ -249,6 +313,216 @@ int compareKeys(const std::vector<double>& x, const std::vector<double>& y) {
   return 0;
 }
 
-DecidedPoint decideFreedoms(const Evaluator& ev, const std::vector<int>& choice) { return Decider(ev, choice).run(); }
+namespace {
+
+// Which stages' freedoms an expression reads (following lets), and whether it reads nothing
+// but stage `own`'s own attributes and geometry: no other stage, no gearbox quantity, nothing
+// of the operating point, no tolerance corners.
+void reads(const Model& m, const ir::Expr& e, int own, std::set<int>& stages, bool& ownOnly, int depth = 0) {
+  if (depth > 64) {
+    ownOnly = false;
+    return;
+  }
+  switch (e.op) {
+  case ir::Op::Quantity:
+    if (e.ref.owner == ir::QuantityRef::Stage) {
+      if (m.hasStage(e.ref.index) && !m.info(e.ref.index).freedoms.empty()) stages.insert(e.ref.index);
+      if (e.ref.index != own || cat::dependsOnOperatingPoint(e.ref.key)) ownOnly = false;
+    } else if (e.ref.owner != ir::QuantityRef::Material) {
+      ownOnly = false;
+    }
+    break;
+  case ir::Op::Let:
+    if (e.let >= 0 && static_cast<size_t>(e.let) < m.gearbox.lets.size() &&
+        m.gearbox.lets[static_cast<size_t>(e.let)].expr)
+      reads(m, *m.gearbox.lets[static_cast<size_t>(e.let)].expr, own, stages, ownOnly, depth + 1);
+    break;
+  case ir::Op::Scatter:
+  case ir::Op::SceneOutput:
+  case ir::Op::Relative:
+    ownOnly = false;
+    // Corners move freedoms of any stage the tolerances name.
+    for (const auto& t : m.gearbox.tolerances)
+      if (t.ref.owner == ir::QuantityRef::Stage) stages.insert(t.ref.index);
+    break;
+  default: break;
+  }
+  for (const auto& x : e.args)
+    if (x) reads(m, *x, own, stages, ownOnly, depth + 1);
+}
+
+// The terms of a sum, with their signs (`a.mass + b.mass`, `x - y`).
+void terms(const ir::Expr& e, double sign, std::vector<std::pair<const ir::Expr*, double>>& out) {
+  if (e.op == ir::Op::Add && e.args.size() == 2) {
+    terms(*e.args[0], sign, out);
+    terms(*e.args[1], sign, out);
+  } else if (e.op == ir::Op::Sub && e.args.size() == 2) {
+    terms(*e.args[0], sign, out);
+    terms(*e.args[1], -sign, out);
+  } else if (e.op == ir::Op::Neg && e.args.size() == 1) {
+    terms(*e.args[0], -sign, out);
+  } else {
+    out.emplace_back(&e, sign);
+  }
+}
+
+} // namespace
+
+FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
+  if (m.freedoms.empty()) return;
+  auto whole = [&] {
+    groups.clear();
+    FreedomGroup g;
+    for (size_t f = 0; f < m.freedoms.size(); ++f)
+      g.freedoms.push_back(static_cast<int>(f));
+    for (const auto& r : m.gearbox.rules)
+      if (r.expr) g.rules.push_back(&r);
+    g.allObjectives = true;
+    groups.push_back(std::move(g));
+  };
+  // Separable when every rule reads the freedoms of one stage at most and the one objective
+  // is a sum of terms that each do: then each stage's freedoms are decided on their own.
+  std::vector<std::set<int>> ruleStages;
+  for (const auto& r : m.gearbox.rules) {
+    std::set<int> st;
+    bool own = true;
+    if (r.expr) reads(m, *r.expr, -1, st, own);
+    if (st.size() > 1) {
+      whole();
+      return;
+    }
+    ruleStages.push_back(st);
+  }
+  std::vector<std::pair<const ir::Expr*, double>> objectiveTerms;
+  if (m.gearbox.objectives.size() > 1) {
+    whole();
+    return;
+  }
+  if (m.gearbox.objectives.size() == 1) {
+    const auto& o = m.gearbox.objectives[0];
+    if (!o.expr) {
+      whole();
+      return;
+    }
+    terms(*o.expr, o.minimize ? 1.0 : -1.0, objectiveTerms);
+  }
+  std::vector<std::set<int>> termStages;
+  for (const auto& [e, sign] : objectiveTerms) {
+    std::set<int> st;
+    bool own = true;
+    reads(m, *e, -1, st, own);
+    if (st.size() > 1) {
+      whole();
+      return;
+    }
+    termStages.push_back(st);
+  }
+  for (size_t s = 0; s < m.stages.size(); ++s) {
+    const auto& fs = m.stages[s].freedoms;
+    if (fs.empty()) continue;
+    FreedomGroup g;
+    g.stage = static_cast<int>(s);
+    g.freedoms = fs;
+    bool own = true;
+    std::set<int> ignored;
+    for (size_t r = 0; r < m.gearbox.rules.size(); ++r)
+      if (ruleStages[r].count(g.stage)) {
+        g.rules.push_back(&m.gearbox.rules[r]);
+        reads(m, *m.gearbox.rules[r].expr, g.stage, ignored, own);
+      }
+    for (size_t t = 0; t < objectiveTerms.size(); ++t)
+      if (termStages[t].count(g.stage)) {
+        g.terms.push_back(objectiveTerms[t]);
+        reads(m, *objectiveTerms[t].first, g.stage, ignored, own);
+      }
+    // A stage attribute given by a formula may read another stage.
+    for (const auto& at : m.stages[s].ir->attributes)
+      if (at.value) reads(m, *at.value, g.stage, ignored, own);
+    g.cacheable = own;
+    groups.push_back(std::move(g));
+  }
+  separable_ = !m.gearbox.objectives.empty();
+  for (const auto& g : groups)
+    separable_ = separable_ && g.cacheable;
+  for (size_t t = 0; t < objectiveTerms.size(); ++t)
+    if (termStages[t].empty()) freeTerms_.push_back(objectiveTerms[t]);
+}
+
+DecidedPoint FreedomPlan::decide(const Evaluator& ev, const std::vector<int>& choice) const {
+  DecidedPoint out;
+  out.freedoms.assign(m_.freedoms.size(), NAN);
+  double sum = 0; // the objective's terms over freedoms, as the groups decided them
+  auto add = [&](const DecidedPoint& part) {
+    if (!part.objectives.empty()) sum += part.objectives[0];
+  };
+  for (const auto& g : groups) {
+    // A group that reads only its own stage is the same in every design with the same choices
+    // of that stage: decided once.
+    std::vector<int> key;
+    if (g.cacheable) {
+      key.push_back(g.stage);
+      for (int sl : m_.stages[static_cast<size_t>(g.stage)].slots)
+        key.push_back(choice[static_cast<size_t>(sl)]);
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (auto it = cache_.find(key); it != cache_.end()) {
+        if (!it->second.feasible) return it->second;
+        add(it->second);
+        for (size_t i = 0; i < g.freedoms.size(); ++i)
+          out.freedoms[static_cast<size_t>(g.freedoms[i])] = it->second.freedoms[i];
+        continue;
+      }
+    }
+    DecidedPoint part = Decider(ev, choice, g).run();
+    out.evaluations += part.evaluations;
+    if (g.cacheable) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      cache_.emplace(key, part);
+    }
+    if (!part.feasible) return part;
+    add(part);
+    for (size_t i = 0; i < g.freedoms.size(); ++i)
+      out.freedoms[static_cast<size_t>(g.freedoms[i])] = part.freedoms[i];
+  }
+  // The whole design at the decided point: every rule (those on no freedom included), and its
+  // ranking keys.
+  Assignment a(m_);
+  a.choice = choice;
+  for (size_t f = 0; f < out.freedoms.size(); ++f)
+    a.box[f] = {out.freedoms[f], out.freedoms[f]};
+  if (separable_) {
+    // Every group read only its own stage and decided its rules; the rules on no freedom were
+    // decided by the search. The objective is the groups' terms and those on no freedom.
+    for (const auto& [e, sign] : freeTerms_) {
+      Value v = ev.eval(*e, a);
+      sum += v.isNumber() ? sign * v.mid() : NAN;
+    }
+    out.feasible = true;
+    out.objectives = {sum};
+    out.keys.clear();
+    if (m_.gearbox.report && m_.gearbox.report->sortBy) {
+      Value v = ev.eval(*m_.gearbox.report->sortBy, a);
+      out.keys.push_back(v.isNumber() ? v.mid() : NAN);
+    }
+    out.keys.push_back(sum);
+    return out;
+  }
+  for (const auto& r : m_.gearbox.rules) {
+    if (!r.expr) continue;
+    Value v = ev.eval(*r.expr, a);
+    if (!(v.kind == Value::Bool && v.truth == Truth::True)) {
+      DecidedPoint failed;
+      failed.rule = r.text;
+      return failed;
+    }
+  }
+  out.feasible = true;
+  out.objectives = rankingKeys(ev, a, false);
+  out.keys = rankingKeys(ev, a);
+  return out;
+}
+
+DecidedPoint decideFreedoms(const Evaluator& ev, const std::vector<int>& choice) {
+  return FreedomPlan(ev.model()).decide(ev, choice);
+}
 
 } // namespace gbx::rt

@@ -2,6 +2,8 @@
 // Deciding a design's continuous freedoms (LANGUAGE.md §15): the point of the freedoms'
 // box where every rule holds that ranks best by the objectives (with none, the feasible
 // point nearest the middle of the box), or the rule that no point satisfies.
+#include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -11,19 +13,50 @@ namespace gbx::rt {
 
 struct DecidedPoint {
   bool feasible = false;
-  std::vector<double> freedoms; // SI, in model.freedoms order; the printed values when they hold
-  std::vector<double> keys;     // the ranking keys there (sort by, then objectives; minimised)
-  std::string rule;             // infeasible: the rule that fails nearest to feasibility
+  std::vector<double> freedoms;   // SI, in model.freedoms order; the printed values when they hold
+  std::vector<double> keys;       // the ranking keys there (sort by, then objectives; minimised)
+  std::vector<double> objectives; // the objectives there (minimised), which chose the point
+  std::string rule;               // infeasible: the rule that fails nearest to feasibility
   long evaluations = 0;
 };
 
-// The ranking keys of a design at an assignment whose freedoms are points: `sort by` first,
-// then each objective, maximised ones negated. NaN where a key has no value.
-std::vector<double> rankingKeys(const Evaluator& ev, const Assignment& a);
+// The ranking keys of a design at an assignment whose freedoms are points: `sort by` first
+// (unless `withSortBy` is false), then each objective, maximised ones negated. NaN where a
+// key has no value.
+std::vector<double> rankingKeys(const Evaluator& ev, const Assignment& a, bool withSortBy = true);
 
 // Lexicographic order of ranking keys, each compared to 12 significant digits (the search's
 // rule: a formula's rounding does not rank two designs).
 int compareKeys(const std::vector<double>& x, const std::vector<double>& y);
+
+// The freedoms decided together: all of them, or one stage's where every rule reads the
+// freedoms of one stage at most and the objective is a sum of terms that each do.
+struct FreedomGroup {
+  int stage = -1;                                        // -1: every freedom of the design
+  std::vector<int> freedoms;                             // indices in model.freedoms
+  std::vector<const ir::Rule*> rules;                    // the rules that read them
+  bool allObjectives = false;                            // chosen by every objective; else by `terms`
+  std::vector<std::pair<const ir::Expr*, double>> terms; // the objective's terms that read them, signed
+  bool cacheable = false; // reads nothing but its own stage: the same for the same choices of it
+};
+
+// How a model's freedoms are decided, made once per gearbox; its cache of per-stage decisions
+// is shared by the threads that decide.
+class FreedomPlan {
+public:
+  explicit FreedomPlan(const Model& m);
+  DecidedPoint decide(const Evaluator& ev, const std::vector<int>& choice) const;
+  std::vector<FreedomGroup> groups;
+
+private:
+  const Model& m_;
+  // One objective, every group read only its own stage: a design's objective is the sum of its
+  // groups' decided terms and the terms on no freedom.
+  bool separable_ = false;
+  std::vector<std::pair<const ir::Expr*, double>> freeTerms_;
+  mutable std::mutex mutex_;
+  mutable std::map<std::vector<int>, DecidedPoint> cache_;
+};
 
 // The freedoms of the design `choice` decided. The decided values are rounded to the digits
 // a report prints (4 decimals in the display unit) where the rounded point still satisfies

@@ -38,7 +38,7 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
   s.warnings = r.warnings;
   for (const auto& n : r.numbers) {
     auto u = units::displayUnitFor(n.dim, n.value);
-    s.outputs.push_back({n.key, u.name, n.value, n.value / u.scale});
+    s.outputs.push_back({n.key, u.name, n.value, n.value / u.scale, n.error});
   }
   for (const auto& ser : r.series) {
     double largest = 0;

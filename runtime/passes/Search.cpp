@@ -17,8 +17,8 @@ namespace {
 constexpr long long kDefaultTop = 50;
 
 // Decides the freedoms of the designs not decided yet, `jobs` at a time.
-void decideAll(const Model& m, const std::vector<Design>& designs, std::map<std::vector<int>, DecidedPoint>& decided,
-               int jobs) {
+void decideAll(const Model& m, const FreedomPlan& plan, const std::vector<Design>& designs,
+               std::map<std::vector<int>, DecidedPoint>& decided, int jobs) {
   std::vector<const Design*> open;
   for (const auto& d : designs)
     if (!decided.count(d.choice)) open.push_back(&d);
@@ -28,7 +28,7 @@ void decideAll(const Model& m, const std::vector<Design>& designs, std::map<std:
   auto work = [&] {
     for (size_t i = next++; i < open.size(); i = next++) {
       if (Deadline::expired()) break;
-      out[i] = decideFreedoms(ev, open[i]->choice);
+      out[i] = plan.decide(ev, open[i]->choice);
     }
   };
   int threads = std::max(1, std::min<int>(jobs, static_cast<int>(open.size())));
@@ -42,52 +42,93 @@ void decideAll(const Model& m, const std::vector<Design>& designs, std::map<std:
     decided.emplace(open[i]->choice, std::move(out[i]));
 }
 
+// Designs counted but not decided are decided too, for an exact count, when some design was
+// removed by deciding and there are at most this many.
+constexpr unsigned long long kDecideForCount = 2000;
+
 // LANGUAGE.md §15: each design the search keeps gets its continuous freedoms decided, and
 // is ranked by the objectives at that point. The search ranks by the best value over the
-// whole box, a lower bound of the decided value: while the kth decided design could still
-// be passed by one the search did not keep, the search keeps more (four times as many).
+// whole box, a lower bound of the decided value (a design whose bound has no value comes
+// first). Designs are decided in the search's order until the kth decided one ranks before
+// the next one's bound: no design from there on can pass it. While that never happens
+// within the designs the search kept, it keeps four times as many.
 SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r) {
   const long long want = so.top ? *so.top : -1;
   std::map<std::vector<int>, DecidedPoint> decided;
-  for (;;) {
-    decideAll(m, r.designs, decided, so.jobs);
-    if (Deadline::expired()) return r;
-    size_t feasible = 0;
-    for (const auto& d : r.designs)
-      feasible += decided.at(d.choice).feasible ? 1 : 0;
-    bool everyDesign = r.designs.size() >= r.count;
-    if (everyDesign || want < 0) break;
-    // The decided designs ranked; the kth is settled when no design left out, whose key is
-    // at least the last kept one's bound, can rank before it.
+  const FreedomPlan plan(m);
+  const size_t batch = static_cast<size_t>(std::max(8, 4 * so.jobs));
+  size_t examined = 0;
+  auto decideInOrder = [&](bool all) {
     std::vector<const DecidedPoint*> ranked;
-    for (const auto& d : r.designs)
-      if (const auto& p = decided.at(d.choice); p.feasible) ranked.push_back(&p);
-    std::stable_sort(ranked.begin(), ranked.end(),
-                     [](const DecidedPoint* x, const DecidedPoint* y) { return compareKeys(x->keys, y->keys) < 0; });
-    if (feasible >= static_cast<size_t>(want) &&
-        compareKeys(ranked[static_cast<size_t>(want) - 1]->keys, r.designs.back().keys) <= 0)
-      break;
-    long long more =
-        std::min<long long>(static_cast<long long>(r.designs.size()) * 4, static_cast<long long>(so.maxKept));
-    if (more <= static_cast<long long>(r.designs.size())) {
+    size_t i = 0;
+    while (i < r.designs.size()) {
+      if (!all && want >= 0 && ranked.size() >= static_cast<size_t>(want) &&
+          compareKeys(ranked[static_cast<size_t>(want) - 1]->keys, r.designs[i].keys) <= 0)
+        return std::pair<size_t, bool>{i, true};
+      size_t end = std::min(r.designs.size(), i + batch);
+      std::vector<Design> part(r.designs.begin() + static_cast<std::ptrdiff_t>(i),
+                               r.designs.begin() + static_cast<std::ptrdiff_t>(end));
+      decideAll(m, plan, part, decided, so.jobs);
+      if (Deadline::expired()) return std::pair<size_t, bool>{end, true};
+      // The best `want` decided so far, in order (a short sorted list).
+      for (; i < end; ++i) {
+        const auto& p = decided.at(r.designs[i].choice);
+        if (!p.feasible || all || want < 0) continue;
+        auto at = std::upper_bound(ranked.begin(), ranked.end(), &p, [](const DecidedPoint* x, const DecidedPoint* y) {
+          return compareKeys(x->keys, y->keys) < 0;
+        });
+        if (ranked.size() < static_cast<size_t>(want) || at != ranked.end()) {
+          ranked.insert(at, &p);
+          if (ranked.size() > static_cast<size_t>(want)) ranked.pop_back();
+        }
+      }
+    }
+    return std::pair<size_t, bool>{i, false};
+  };
+  auto widen = [&](unsigned long long to) {
+    so.top = static_cast<long long>(std::min<unsigned long long>(to, so.maxKept));
+    SearchResult again = rt::search(m, so);
+    if (!again.errors.empty()) return false;
+    r = std::move(again);
+    return true;
+  };
+  for (;;) {
+    auto [upTo, settled] = decideInOrder(false);
+    examined = upTo;
+    if (Deadline::expired()) return r;
+    if (settled || r.designs.size() >= r.count || want < 0) break;
+    unsigned long long more = std::min<unsigned long long>(r.designs.size() * 4ULL, so.maxKept);
+    if (more <= r.designs.size() || !widen(more)) {
       r.notes.push_back(
           fmt::format("the best {} designs are ranked among the {} whose freedoms were decided; more would "
                       "exceed the designs a search may keep",
                       want, r.designs.size()));
       break;
     }
-    so.top = more;
-    SearchResult again = rt::search(m, so);
-    if (!again.errors.empty()) return again;
-    r = std::move(again);
+  }
+  // A count that includes designs not decided is exact only if deciding removes none of them.
+  size_t removed = 0;
+  for (size_t i = 0; i < examined; ++i)
+    removed += decided.at(r.designs[i].choice).feasible ? 0 : 1;
+  bool uncertain = removed > 0 || r.undecided > 0;
+  if (uncertain && examined < r.count) {
+    if (r.count <= kDecideForCount && (r.designs.size() >= r.count || widen(r.count))) {
+      examined = decideInOrder(true).first;
+    } else {
+      r.notes.push_back(
+          fmt::format("{} of the {} designs counted had their freedoms decided; deciding removed {} of them, so the "
+                      "count is an upper bound",
+                      examined, r.count, removed));
+    }
   }
   // Each design at its decided point; those with none are eliminated, by the rule that fails
-  // nearest to feasibility.
+  // nearest to feasibility. Designs past the bound are counted, not listed.
   std::vector<Design> kept;
   std::map<std::string, double> removedBy;
   std::vector<std::string> order;
   unsigned long long examinedUndecided = 0;
-  for (auto& d : r.designs) {
+  for (size_t i = 0; i < examined; ++i) {
+    Design& d = r.designs[i];
     const DecidedPoint& p = decided.at(d.choice);
     examinedUndecided += d.undecided ? 1 : 0;
     if (!p.feasible) {
@@ -102,8 +143,7 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r) {
   }
   std::stable_sort(kept.begin(), kept.end(),
                    [](const Design& x, const Design& y) { return compareKeys(x.keys, y.keys) < 0; });
-  const double examined = static_cast<double>(r.designs.size());
-  double before = examined;
+  double before = static_cast<double>(examined);
   for (const auto& rule : order) {
     FunnelStep step;
     step.rule = rule;
@@ -113,7 +153,7 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r) {
     before -= step.removed;
     r.funnel.push_back(step);
   }
-  r.count -= static_cast<unsigned long long>(examined - static_cast<double>(kept.size()));
+  r.count -= static_cast<unsigned long long>(examined - kept.size());
   r.undecided -= std::min(r.undecided, examinedUndecided);
   if (want >= 0 && kept.size() > static_cast<size_t>(want)) kept.resize(static_cast<size_t>(want));
   r.designs = std::move(kept);

@@ -133,7 +133,10 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
                          sc.stepRule.empty() ? "" : ", " + sc.stepRule, sc.steady);
       for (const auto& out : sc.outputs)
         o += std::isfinite(out.shown)
-                 ? fmt::format("    {} = {}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit)
+                 ? fmt::format("    {} = {}{}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit,
+                               SceneReport::ownError(out, sc.errorEstimate)
+                                   ? fmt::format(" (error estimate {:.2e} of its scale)", out.error)
+                                   : "")
                  : fmt::format("    {} = none (no steady response)\n", out.key);
       if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative = {}\n", sc.errorEstimate, sc.errorMethod);
       for (const auto& w : sc.warnings) o += "    warning: " + w + "\n";
@@ -252,6 +255,13 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
         o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(sc.errorParts[i].first), num(sc.errorParts[i].second));
       o += "}, \"outputs\": {";
       for (size_t i = 0; i < sc.outputs.size(); ++i) o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(sc.outputs[i].key), num(sc.outputs[i].si));
+      o += "}, \"output_errors\": {";
+      bool firstError = true;
+      for (const auto& out : sc.outputs)
+        if (std::isfinite(out.error)) {
+          o += fmt::format("{}\"{}\": {}", firstError ? "" : ", ", jsonEscape(out.key), num(out.error));
+          firstError = false;
+        }
       o += "}, \"spectra\": {";
       for (size_t i = 0; i < sc.spectra.size(); ++i) {
         o += fmt::format("{}\"{}\": [", i ? ", " : "", jsonEscape(sc.spectra[i].key));

@@ -65,7 +65,13 @@ struct SceneReport {
   struct Output {
     std::string key, unit;
     double si = 0, shown = 0;
+    double error = NAN;  // its own error estimate, relative to its scale (LANGUAGE.md §15)
   };
+  // Whether an output's own estimate is worth printing beside the scene's: it differs by
+  // more than the two digits the scene's is printed with.
+  static bool ownError(const Output& o, double scene) {
+    return std::isfinite(o.error) && scene >= 0 && std::fabs(o.error - scene) > 0.05 * std::max(scene, 1e-300);
+  }
   std::vector<Output> outputs;
   struct SpectrumRow {
     std::string key, unit;

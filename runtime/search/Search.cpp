@@ -805,12 +805,16 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     if (!q) return std::nullopt;
     return q->toDouble();
   };
+  // A key with no value ranks last; over freedoms, where the value at the design's decided
+  // point may exist though none exists over the whole box, it ranks first: the key is a lower
+  // bound, and the design is decided before any that could pass it.
+  const double noValue = m.freedoms.empty() ? INFINITY : -INFINITY;
   auto keysInto = [&](const Assignment& a, double* out) {
     size_t i = 0;
     if (opt.sortBy) {
       auto d = direct(i, a);
       Value v = d ? Value::number(*d) : ev.eval(*opt.sortBy, a);
-      out[i++] = v.isNumber() && !std::isnan(v.lo) ? rankingKey(v.lo) : INFINITY;
+      out[i++] = v.isNumber() && !std::isnan(v.lo) ? rankingKey(v.lo) : noValue;
     }
     if (opt.deferDynamics) return; // ranked by the optimiser
     for (const auto& o : m.gearbox.objectives) {
@@ -818,7 +822,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       Value v = d ? Value::number(*d) : o.expr ? ev.eval(*o.expr, a) : Value::invalid();
       // Over a freedom the best attainable value counts: the design may choose it.
       double x = o.minimize ? v.lo : -v.hi;
-      out[i++] = v.isNumber() && !std::isnan(x) ? rankingKey(x) : INFINITY; // NaN would break the order
+      out[i++] = v.isNumber() && !std::isnan(x) ? rankingKey(x) : noValue; // NaN would break the order
     }
   };
   // At most one design more than opt.maxKept is kept, whatever `top` says: finding more is
