@@ -58,6 +58,11 @@ AttrSpec budgeted(AttrSpec a, std::int64_t most) {
   return a;
 }
 Number deg(std::int64_t d) { return Number::exact(Rational::make(d, 180), 1); }
+AttrSpec hinted(AttrSpec a, std::string unit) {
+  a.unitHint = std::move(unit);
+  return a;
+}
+
 Number num(std::int64_t n, std::int64_t d) { return Number::exact(Rational::make(n, d)); }
 
 } // namespace gbx::cat::rows

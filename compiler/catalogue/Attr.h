@@ -52,6 +52,9 @@ AttrSpec required(AttrSpec a);
 AttrSpec symbol(std::string n, std::vector<std::string> words, std::string meaning);
 AttrSpec keyed(AttrSpec a, Q key);
 AttrSpec bounded(AttrSpec a, std::optional<units::Number> lo, std::optional<units::Number> hi);
+// The unit a bare number is suggested in, where the display unit would not fit its size
+// (`clearance = 100` means 100 um, not 100 mm).
+AttrSpec hinted(AttrSpec a, std::string unit);
 // A count no larger than `most` (catalogue/Budgets.h).
 AttrSpec budgeted(AttrSpec a, std::int64_t most);
 units::Number deg(std::int64_t d);

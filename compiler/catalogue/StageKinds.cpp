@@ -63,11 +63,6 @@ AttrSpec accuracyRow() {
   return a;
 }
 
-AttrSpec hinted(AttrSpec a, std::string unit) {
-  a.unitHint = std::move(unit);
-  return a;
-}
-
 // The `rating { … }` block (LANGUAGE.md §11): ISO 6336 inputs of the stage's meshes.
 // Absent values take the defaults their meaning names, applied by the rating itself.
 std::vector<AttrSpec> ratingInputs() {

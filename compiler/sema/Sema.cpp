@@ -230,6 +230,10 @@ private:
       auto unit = units::displayUnitFor(spec.dim);
       if (v && v->kind == ast::ExprKind::Number && !v->unit && x->type.dim.dimensionless() && !unit.name.empty())
         fix = fmt::format("; write it with a unit, as `{} {}`", v->text, spec.unitHint.empty() ? unit.name : spec.unitHint);
+      // A frequency where a speed belongs: the same number of turns per second, in rpm.
+      if (spec.dim == units::dims::angularSpeed && x->type.dim == units::dims::frequency && x->isConst())
+        fix = fmt::format("; a speed of {} turns a second is `{} rpm`", units::formatDouble(x->value.toDouble()),
+                          units::formatDouble(x->value.toDouble() * 60));
       diags_.error("E0302", x->span,
                    fmt::format("unit mismatch: `{}` needs {}{}, got {}{}", name, spec.dim.describe(),
                                spec.altDim ? " or " + spec.altDim->describe() : "", describe(x->type, written), fix));

@@ -135,7 +135,8 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
     reportsRelative = relative(gb.report->sortBy.get());
     for (const auto& c : gb.report->columns) reportsRelative = reportsRelative || relative(c.get());
   }
-  bool optimised = needsOptimiser(gb);
+  // `worst(…)` over catalogue quantities with freedoms: decided by the search pass.
+  bool optimised = needsOptimiser(gb) && (needsScenes(gb) || m.freedoms.empty());
   // Freedoms the search pass decided: the design table, scenes and ratings read them.
   if (!optimised)
     for (const auto& d : out.designs.designs)

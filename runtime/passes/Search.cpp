@@ -52,8 +52,11 @@ constexpr unsigned long long kDecideForCount = 2000;
 // first). Designs are decided in the search's order until the kth decided one ranks before
 // the next one's bound: no design from there on can pass it. While that never happens
 // within the designs the search kept, it keeps four times as many.
-SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r) {
-  const long long want = so.top ? *so.top : -1;
+SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, long long keep) {
+  const long long want = keep;
+  // The search ranked by lower bounds unless it deferred the rules it cannot bound (`worst`):
+  // then every design it lists is decided.
+  const bool bounded = !so.deferDynamics;
   std::map<std::vector<int>, DecidedPoint> decided;
   const FreedomPlan plan(m);
   const size_t batch = static_cast<size_t>(std::max(8, 4 * so.jobs));
@@ -62,7 +65,7 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r) {
     std::vector<const DecidedPoint*> ranked;
     size_t i = 0;
     while (i < r.designs.size()) {
-      if (!all && want >= 0 && ranked.size() >= static_cast<size_t>(want) &&
+      if (!all && bounded && want >= 0 && ranked.size() >= static_cast<size_t>(want) &&
           compareKeys(ranked[static_cast<size_t>(want) - 1]->keys, r.designs[i].keys) <= 0)
         return std::pair<size_t, bool>{i, true};
       size_t end = std::min(r.designs.size(), i + batch);
@@ -175,8 +178,9 @@ SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<v
   }
   so.maxKept = static_cast<size_t>(cat::budget::kKeptDesigns);
   SearchResult r = rt::search(m, so);
-  if (so.deferDynamics || m.freedoms.empty() || !r.errors.empty()) return r;
-  return decideFreedoms(m, so, std::move(r));
+  if (m.freedoms.empty() || !r.errors.empty() || needsScenes(gb)) return r;
+  long long keep = gb.report && gb.report->top ? *gb.report->top : kDefaultTop;
+  return decideFreedoms(m, so, std::move(r), keep);
 }
 
 } // namespace gbx::rt::passes

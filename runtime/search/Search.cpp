@@ -506,6 +506,12 @@ bool needsOptimiser(const ir::Gearbox& g) {
          std::any_of(g.objectives.begin(), g.objectives.end(), [&](const ir::Objective& o) { return walk(o.expr); });
 }
 
+bool needsScenes(const ir::Gearbox& g) {
+  auto walk = [](const ir::ExprPtr& e) { return ir::uses(e.get(), {Op::SceneOutput, Op::Relative}); };
+  return std::any_of(g.rules.begin(), g.rules.end(), [&](const ir::Rule& r) { return walk(r.expr); }) ||
+         std::any_of(g.objectives.begin(), g.objectives.end(), [&](const ir::Objective& o) { return walk(o.expr); });
+}
+
 SearchResult search(const Model& m, const SearchOptions& opt) {
   SearchResult res;
   Evaluator ev(m);

@@ -70,6 +70,9 @@ double rankingKey(double v);
 
 // True when a rule or objective of the gearbox needs a scene result or `relative(…)`.
 bool needsOptimiser(const ir::Gearbox& g);
+// True when one of them needs a scene result or `relative(…)` (the rest, `worst(…)` and
+// `mean(…)` of catalogue quantities, are cheap at a point: the freedoms are decided instead).
+bool needsScenes(const ir::Gearbox& g);
 
 SearchResult search(const Model& m, const SearchOptions& options);
 

@@ -568,3 +568,28 @@ gearbox T {
   for (size_t i = 0; i < two.result.designs.size(); ++i)
     EXPECT_EQ(two.result.designs[i].choice, all.result.designs[i].choice);
 }
+
+// A rule on `worst(q)` over a freedom: the freedom is decided like any other (on the rule's
+// boundary, at the printed digits), not left to the optimiser's simplex.
+TEST(Freedoms, ARuleOnWorstIsDecidedOnItsBoundary) {
+  const std::string text = R"(import materials;
+gearbox F {
+  stage main: helical {
+    pinion.z = 29;  wheel.z = 100;  normal_module = 4 mm;  helix_angle in 8..15 deg;
+    face_width = 50 mm;  material = steel_18CrNiMo7_6;
+  }
+  tolerances { main.face_width +- 0.5 mm; main.helix_angle +- 0.1 deg; }
+  require worst(main.eps_beta) >= 0.9;
+  minimize main.mass;
+}
+)";
+  Solved s = solve(text);
+  ASSERT_EQ(s.result.designs.size(), 1u);
+  double beta = s.result.designs[0].freedoms.at(0) * 180 / M_PI;
+  EXPECT_NEAR(beta * 1e4, std::round(beta * 1e4), 1e-6);  // at the printed digits
+  // Feasible there, not one printed digit lower: the smallest eps_beta over the corners is
+  // b_min sin(beta - 0.1 deg) / (pi m_n).
+  auto worstEb = [](double deg) { return 0.0495 * std::sin((deg - 0.1) * M_PI / 180) / (M_PI * 0.004); };
+  EXPECT_GE(worstEb(beta), 0.9 * (1 - 1e-12));
+  EXPECT_LT(worstEb(beta - 1e-4), 0.9);
+}
