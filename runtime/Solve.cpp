@@ -8,6 +8,7 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -31,10 +32,17 @@ namespace gbx::rt {
 
 namespace {
 
-// A progress bar on stderr, shared by the callback; finished when the last copy goes.
+// A progress bar on stderr, shared by the callback; finished when the last copy goes. It
+// appears once the work has taken a second (a quick solve prints nothing).
 std::function<void(double)> progressBar(std::ostream& err, std::string label) {
   auto bar = std::make_shared<ProgressBar>(err, std::move(label));
-  return [bar](double f) { bar->update(f); };
+  auto start = std::chrono::steady_clock::now();
+  auto shown = std::make_shared<bool>(false);
+  return [bar, start, shown](double f) {
+    if (!*shown && std::chrono::steady_clock::now() - start < std::chrono::seconds(1)) return;
+    *shown = true;
+    bar->update(f);
+  };
 }
 
 } // namespace
@@ -74,7 +82,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     if (!o.gearbox.empty() && gb.name != o.gearbox) continue;
     models.push_back(std::make_unique<Model>(program, gb));
     const Model& m = *models.back();
-    SearchResult found = passes::search(m, o.jobs, o.maxDesigns, progress(gb.name));
+    SearchResult found = passes::search(m, o.jobs, o.maxDesigns, progress(gb.name), progress(gb.name + " deciding freedoms"));
     if (fail(gb.name, found.errors)) {
       if (Deadline::expired()) return 3;  // the message says so; nothing more is worked out
       continue;
@@ -85,7 +93,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     passes::Columns columns = passes::reportColumns(gb);
     std::optional<Assignment> best = passes::bestDesign(m, designs);
     GearboxReport rep = passes::designTable(m, designs, columns, lazyRows);
-    rep.notes = designs.designs.notes;
+    rep.notes.insert(rep.notes.begin(), designs.designs.notes.begin(), designs.designs.notes.end());
     fail(gb.name, passes::unevaluated(m, rep, columns));
     rep.optimisation = std::move(designs.summary);
     // The table holds every listed design now; the search's copies are not read again.

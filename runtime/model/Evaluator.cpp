@@ -320,6 +320,34 @@ Value Evaluator::scatter(const ir::Expr& e, const Assignment& a) const {
   return builtin(e.fn)(v);
 }
 
+std::optional<std::vector<double>> Evaluator::worstCorner(const ir::Expr& e, const Assignment& a) const {
+  const auto& tol = m_.gearbox.tolerances;
+  if (e.op != ir::Op::Scatter || e.fn != cat::Fn::Worst || tol.empty() || e.args.empty()) return std::nullopt;
+  int sense = e.sense != 0 ? e.sense : betterSense(*e.args[0]);
+  if (sense == 0) return std::nullopt;
+  Evaluator atNominal(*this);
+  atNominal.nominalOnly = true;
+  Value best = atNominal.eval(*e.args[0], a);
+  if (!best.isNumber()) return std::nullopt;
+  std::vector<double> where(tol.size(), 0.0);
+  for (unsigned corner = 0; corner < (1u << tol.size()); ++corner) {
+    Evaluator at(*this);
+    std::vector<double> d(tol.size());
+    for (size_t i = 0; i < tol.size(); ++i) {
+      d[i] = (corner >> i) & 1u ? tol[i].amount : -tol[i].amount;
+      at.addOffset(tol[i].ref, d[i]);
+    }
+    Value x = at.eval(*e.args[0], a);
+    if (!x.isNumber()) return std::nullopt;
+    // The same choice as `worst` makes: the first strictly worse value.
+    if (sense > 0 ? x.mid() > best.mid() : x.mid() < best.mid()) {
+      best = x;
+      where = d;
+    }
+  }
+  return where;
+}
+
 const Value* Evaluator::overridden(const ir::QuantityRef& r) const {
   for (const auto& [k, v] : overrides_)
     if (k == r) return &v;

@@ -4,6 +4,7 @@
 // outward-rounded enclosures where continuous freedoms span an interval. Every name was
 // resolved by lowering: quantities arrive as (owner, gear, key), functions as ids.
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -59,6 +60,10 @@ public:
   // `worst(q)` and `mean(q)` read q at the nominal design only (the optimiser's sensitivity
   // evaluates q at each tolerance itself).
   bool nominalOnly = false;
+  // Where `worst(q)` (a Scatter of fn Worst) finds its worst value at this design: each
+  // tolerance's deviation (SI; all 0 at the nominal design), or nothing where it reads both
+  // ends or there are no tolerances.
+  std::optional<std::vector<double>> worstCorner(const ir::Expr& scatter, const Assignment& a) const;
 
   // Scene results (`vibration.rms(acceleration)`) and `relative(x)` need the dynamics
   // and the baseline gearbox: the optimiser provides them. The scene is built with the

@@ -23,8 +23,8 @@ public:
   DesignRows(const Model& m, const std::vector<Design>* designs, const std::vector<const ir::Expr*>& columnExprs,
              const std::vector<Column>& columns, const std::vector<std::vector<double>>& freedoms,
              const Model* baseline, const Assignment* baseDesign)
-      : m_(m), designs_(designs), exprs_(columnExprs), columns_(columns), freedoms_(freedoms), ev_(m), blank_(m),
-        a_(m), b_(m), ranges_(m.gearbox.report && m.gearbox.report->ranges) {
+      : m_(m), designs_(designs), exprs_(columnExprs), columns_(columns), freedoms_(freedoms), ev_(m), blank_(m), a_(m),
+        b_(m), ranges_(m.gearbox.report && m.gearbox.report->ranges) {
     if (!freedoms.empty() || baseline) {
       // Optimised designs, or `relative(x)` columns: scene results and relative values at the
       // scenes' own accuracy.
@@ -225,7 +225,8 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
     c.name = columnNames[i];
     // A catalogue quantity is monotone in each freedom: its corners give its exact image.
     // So are both ends of a `worst` over the tolerance corners.
-    c.exact = columnExprs[i]->op == ir::Op::Quantity || columnExprs[i]->isConst() || columnExprs[i]->op == ir::Op::Scatter;
+    c.exact =
+        columnExprs[i]->op == ir::Op::Quantity || columnExprs[i]->isConst() || columnExprs[i]->op == ir::Op::Scatter;
     auto u = units::displayUnitFor(columnExprs[i]->type.dim);
     // Imbalances read best in percent.
     if (columnExprs[i]->op == ir::Op::Quantity && columnExprs[i]->ref.key == Q::Imbalance) u = {"%", 0.01};
@@ -356,8 +357,8 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
       c.error = fmt::format(
           "{} `{}` has no value for design {} ({}){}", c.what, ir::print(*c.e), row.rank, teeth,
           missing.empty() ? std::string()
-          : cyclic        ? fmt::format(": `{}` is defined in terms of itself, through what it is computed from", missing)
-                          : fmt::format(": `{}` cannot be computed; give it, or what it is computed from", missing));
+          : cyclic ? fmt::format(": `{}` is defined in terms of itself, through what it is computed from", missing)
+                   : fmt::format(": `{}` cannot be computed; give it, or what it is computed from", missing));
     }
   });
   for (const auto& c : checks)
@@ -383,8 +384,30 @@ Columns reportColumns(const ir::Gearbox& gb) {
 }
 
 GearboxReport designTable(const Model& m, Optimised& o, const Columns& columns, bool lazy) {
-  return reportOf(m, o.designs, columns.exprs, columns.names, o.freedoms, o.baseline.get(), o.baselineDesign.get(),
-                  lazy);
+  GearboxReport g =
+      reportOf(m, o.designs, columns.exprs, columns.names, o.freedoms, o.baseline.get(), o.baselineDesign.get(), lazy);
+  // Where each `worst(…)` column finds its value for design 1 (LANGUAGE.md §15).
+  if (!g.rows.empty() && !g.source) {
+    Evaluator ev(m);
+    Assignment a(m);
+    a.choice = g.rows[0].choice;
+    a.box = g.rows[0].box;
+    const auto& tol = m.gearbox.tolerances;
+    for (size_t c = 0; c < columns.exprs.size(); ++c) {
+      auto where = ev.worstCorner(*columns.exprs[c], a);
+      if (!where) continue;
+      std::string at;
+      for (size_t i = 0; i < tol.size(); ++i) {
+        if ((*where)[i] == 0) continue;
+        auto u = units::displayUnitFor(tol[i].dim);
+        at += fmt::format("{}{} {:+g}{}", at.empty() ? "" : ", ", tol[i].target, (*where)[i] / u.scale,
+                          u.name.empty() ? "" : " " + u.name);
+      }
+      g.notes.push_back(fmt::format("`{}` of design 1 is found {}", columns.names[c],
+                                    at.empty() ? "at the nominal design" : "at " + at));
+    }
+  }
+  return g;
 }
 
 std::optional<Assignment> bestDesign(const Model& m, const Optimised& o) {

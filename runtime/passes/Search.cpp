@@ -52,7 +52,8 @@ constexpr unsigned long long kDecideForCount = 2000;
 // first). Designs are decided in the search's order until the kth decided one ranks before
 // the next one's bound: no design from there on can pass it. While that never happens
 // within the designs the search kept, it keeps four times as many.
-SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, long long keep) {
+SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, long long keep,
+                            const std::function<void(double)>& progress) {
   const long long want = keep;
   // The search ranked by lower bounds unless it deferred the rules it cannot bound (`worst`):
   // then every design it lists is decided.
@@ -72,6 +73,7 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, lo
       std::vector<Design> part(r.designs.begin() + static_cast<std::ptrdiff_t>(i),
                                r.designs.begin() + static_cast<std::ptrdiff_t>(end));
       decideAll(m, plan, part, decided, so.jobs);
+      if (progress) progress(0.99 * static_cast<double>(end) / static_cast<double>(r.designs.size()));
       if (Deadline::expired()) return std::pair<size_t, bool>{end, true};
       // The best `want` decided so far, in order (a short sorted list).
       for (; i < end; ++i) {
@@ -164,7 +166,8 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, lo
 }
 } // namespace
 
-SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<void(double)> progress) {
+SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<void(double)> progress,
+                    std::function<void(double)> deciding) {
   const ir::Gearbox& gb = m.gearbox;
   SearchOptions so;
   so.jobs = jobs;
@@ -180,7 +183,9 @@ SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<v
   SearchResult r = rt::search(m, so);
   if (m.freedoms.empty() || !r.errors.empty() || needsScenes(gb)) return r;
   long long keep = gb.report && gb.report->top ? *gb.report->top : kDefaultTop;
-  return decideFreedoms(m, so, std::move(r), keep);
+  SearchResult decided = decideFreedoms(m, so, std::move(r), keep, deciding);
+  if (deciding) deciding(1.0);
+  return decided;
 }
 
 } // namespace gbx::rt::passes

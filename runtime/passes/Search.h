@@ -8,6 +8,8 @@ namespace gbx::rt::passes {
 
 // Ranked and cut as the gearbox's `report` asks; all of them, unranked, when the
 // objectives need the optimiser.
-SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<void(double)> progress);
+// `deciding`: the progress of deciding the designs' continuous freedoms.
+SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<void(double)> progress,
+                    std::function<void(double)> deciding = nullptr);
 
 } // namespace gbx::rt::passes

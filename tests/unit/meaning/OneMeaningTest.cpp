@@ -335,6 +335,15 @@ TEST(Worst, AColumnReadsTheWorseEndAsARuleDoes) {
   EXPECT_DOUBLE_EQ(s.ev->eval(*cols[2], s.at(0)).mid(),
                    std::max(s.value("hs.mass"), *std::max_element(mass.begin(), mass.end())));
   EXPECT_LT(minSh, nominalSh); // the box does reach below the nominal safety
+  // The report says at which corner the smallest S_H is (corners are listed face width
+  // slowest, helix angle fastest, minus first).
+  size_t k = static_cast<size_t>(std::min_element(sh.begin(), sh.end()) - sh.begin());
+  std::string r = report(spec("", "worst(hs.pinion.contact_safety), worst(hs.pinion.contact_stress), worst(hs.mass)"));
+  EXPECT_NE(r.find(fmt::format(
+                "`worst(hs.pinion.contact_safety)` of design 1 is found at hs.face_width {} mm, hs.helix_angle {} deg",
+                k < 2 ? "-0.5" : "+0.5", k % 2 == 0 ? "-0.1" : "+0.1")),
+            std::string::npos)
+      << r;
   // A rule just above the smallest corner removes the design; one just below keeps it.
   for (double off : {-1e-6, 1e-6}) {
     Solved r = solve(spec(fmt::format("require worst(hs.pinion.contact_safety) >= {:.9f};", minSh + off), "hs.mass"));
@@ -586,7 +595,7 @@ gearbox F {
   Solved s = solve(text);
   ASSERT_EQ(s.result.designs.size(), 1u);
   double beta = s.result.designs[0].freedoms.at(0) * 180 / M_PI;
-  EXPECT_NEAR(beta * 1e4, std::round(beta * 1e4), 1e-6);  // at the printed digits
+  EXPECT_NEAR(beta * 1e4, std::round(beta * 1e4), 1e-6); // at the printed digits
   // Feasible there, not one printed digit lower: the smallest eps_beta over the corners is
   // b_min sin(beta - 0.1 deg) / (pi m_n).
   auto worstEb = [](double deg) { return 0.0495 * std::sin((deg - 0.1) * M_PI / 180) / (M_PI * 0.004); };
