@@ -602,3 +602,78 @@ gearbox F {
   EXPECT_GE(worstEb(beta), 0.9 * (1 - 1e-12));
   EXPECT_LT(worstEb(beta - 1e-4), 0.9);
 }
+
+// The same with an optimised baseline (its objective reads a scene): the baseline's design is
+// its optimum, freedoms included, and the unchanged variant's optimum is the same point.
+TEST(Relative, AnUnchangedVariantOfAnOptimisedBaselineIsOne) {
+  const std::string text = R"(import materials;
+gearbox A {
+  stage main: helical {
+    pinion.z = 21;  wheel.z = 83;  normal_module = 4 mm;  helix_angle in 8..15 deg;
+    face_width = 50 mm;  material = steel_18CrNiMo7_6;
+  }
+  operating { input_speed = 1500 rpm; input_torque = 500 N*m; }
+  scene vib on main {
+    effects {
+      varying_stiffness { harmonics = 5; }
+      damping { ratio = 0.05; }
+      transmission_error { mean = 0 um; amplitude = 5 um; phase = 0 deg; }
+    }
+    steady_state = periodic;
+    record = 1 mesh_period;  samples = 64;
+    output rms(acceleration);
+  }
+  minimize vib.rms(acceleration);
+}
+gearbox B extends A {
+  report { columns relative(vib.rms(acceleration)), relative(main.mass); }
+}
+)";
+  std::string json = report(text, "json");
+  EXPECT_NE(json.find("\"values\": {\"relative(vib.rms(acceleration))\": 1, \"relative(main.mass)\": 1}"),
+            std::string::npos)
+      << json;
+}
+
+// `worst` of a vibration output (smaller is better: the largest over the corners), checked
+// against the scene run at each corner on its own.
+TEST(Worst, AVibrationOutputReadsItsLargestCorner) {
+  const std::string text = R"(import materials;
+gearbox A {
+  stage main: helical {
+    pinion.z = 21;  wheel.z = 83;  normal_module = 4 mm;  helix_angle = 12 deg;
+    face_width = WIDTH;  material = steel_18CrNiMo7_6;
+  }
+  operating { input_speed = 1500 rpm; input_torque = 500 N*m; }
+  scene vib on main {
+    effects {
+      varying_stiffness { harmonics = 5; }
+      damping { ratio = 0.05; }
+      transmission_error { mean = 0 um; amplitude = 5 um; phase = 0 deg; }
+    }
+    steady_state = periodic;
+    record = 1 mesh_period;  samples = 64;
+    output rms(acceleration);
+  }
+  TOLERANCES
+  report { columns COLUMN; }
+}
+)";
+  auto value = [](const std::string& json, const std::string& key) {
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(
+        json, m, std::regex("\"" + std::regex_replace(key, std::regex("[()]"), "\\$&") + "\": ([-0-9.e]+)")))
+        << json;
+    return m.empty() ? NAN : std::stod(m[1]);
+  };
+  double largest = 0;
+  for (const char* w : {"49 mm", "50 mm", "51 mm"}) {
+    std::string one =
+        replaced(replaced(replaced(text, "WIDTH", w), "TOLERANCES", ""), "COLUMN", "vib.rms(acceleration)");
+    largest = std::max(largest, value(report(one, "json"), "vib.rms(acceleration)"));
+  }
+  std::string boxed =
+      replaced(replaced(replaced(text, "WIDTH", "50 mm"), "TOLERANCES", "tolerances { main.face_width +- 1 mm; }"),
+               "COLUMN", "worst(vib.rms(acceleration))");
+  EXPECT_NEAR(value(report(boxed, "json"), "worst(vib.rms(acceleration))"), largest, 1e-9 * largest);
+}
