@@ -129,6 +129,7 @@ struct Attribute {
   ExprPtr value;               // Fixed/Default: the expression (Const when it folds)
   std::optional<Number> lo, hi;  // Decision/Freedom over a range
   std::vector<Number> members;   // Decision over a set
+  std::vector<std::string> memberTexts;  // each member as written (`0.2 rad`), in members' order; empty if not all literals
   std::string origin;          // where the binding came from: "stage", "preset klingelnberg", "like upper", "gearbox Name"
   Span span;
   std::string symbol;          // material or other named value

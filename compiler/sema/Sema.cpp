@@ -779,6 +779,7 @@ private:
       return a;
     }
     std::vector<ir::ExprPtr> members;
+    std::vector<std::string> texts;  // literals as written, for reports
     Span span = s.span;
     if (s.domain == ast::DomainKind::Named) {
       auto v = checker_.check(s.value.get(), scope);
@@ -790,12 +791,23 @@ private:
       span = v->span;
       members = std::move(v->args);
     } else {
-      for (const auto& m : s.exprs) members.push_back(checker_.check(m.get(), scope));
+      for (const auto& m : s.exprs) {
+        members.push_back(checker_.check(m.get(), scope));
+        texts.push_back(m && m->kind == ast::ExprKind::Number ? ast::print(*m) : std::string());
+      }
     }
     if (members.empty()) diags_.error("E0404", span, fmt::format("empty set: `{}` has no value to take", path));
-    for (auto& m : members)
-      if (auto v = checkBound(std::move(m))) a.members.push_back(*v);
-    std::sort(a.members.begin(), a.members.end(), [](const Number& x, const Number& y) { return x.compare(y) < 0; });
+    std::vector<std::pair<Number, std::string>> checked;
+    for (size_t i = 0; i < members.size(); ++i)
+      if (auto v = checkBound(std::move(members[i]))) checked.emplace_back(*v, i < texts.size() ? texts[i] : std::string());
+    std::stable_sort(checked.begin(), checked.end(), [](const auto& x, const auto& y) { return x.first.compare(y.first) < 0; });
+    bool written = !checked.empty();
+    for (const auto& [v, t] : checked) {
+      a.members.push_back(v);
+      written = written && !t.empty();
+    }
+    if (written)
+      for (const auto& [v, t] : checked) a.memberTexts.push_back(t);
     return a;
   }
 

@@ -53,10 +53,15 @@ public:
     for (size_t sl = 0; sl < m.slots.size(); ++sl) {
       const Slot& slot = m.slots[sl];
       const ir::Stage& st = *m.stages[static_cast<size_t>(slot.stage)].ir;
-      auto du = units::displayUnitFor(st.find(slot.attr) ? st.find(slot.attr)->dim : units::Dim{});
-      for (const Value& v : slot.values)
-        slotShown_[sl].push_back(
-            {formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name), {v.lo / du.scale, du.name}});
+      const ir::Attribute* at = st.find(slot.attr);
+      auto du = units::displayUnitFor(at ? at->dim : units::Dim{});
+      // A set's member reads as it was written (`0.2 rad`), its value in the display unit.
+      bool written = at && !du.name.empty() && at->memberTexts.size() == slot.values.size();
+      for (size_t vi = 0; vi < slot.values.size(); ++vi) {
+        const Value& v = slot.values[vi];
+        std::string text = written ? at->memberTexts[vi] : formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name);
+        slotShown_[sl].push_back({text, {v.lo / du.scale, du.name}});
+      }
     }
     // Columns that read only the gearbox ratio: from the design's exact ratio directly.
     for (const auto* e : columnExprs)

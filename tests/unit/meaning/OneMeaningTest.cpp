@@ -677,3 +677,14 @@ gearbox A {
                "COLUMN", "worst(vib.rms(acceleration))");
   EXPECT_NEAR(value(report(boxed, "json"), "worst(vib.rms(acceleration))"), largest, 1e-9 * largest);
 }
+
+// A set's member reads in the report as it was written, not converted to the display unit.
+TEST(Choices, ASetMemberReadsAsWritten) {
+  std::string r = report(R"(gearbox G {
+  stage s: helical { pinion.z = 20; wheel.z = 40; normal_module = 2 mm; face_width = 20 mm; helix_angle in {0.2 rad, 12 deg}; }
+}
+)");
+  EXPECT_NE(r.find("0.2 rad"), std::string::npos) << r;
+  EXPECT_NE(r.find("12 deg"), std::string::npos) << r;
+  EXPECT_EQ(r.find("11.4592"), std::string::npos) << r;
+}
