@@ -287,17 +287,30 @@ private:
 
 } // namespace
 
-std::vector<double> rankingKeys(const Evaluator& ev, const Assignment& a, bool withSortBy) {
-  const Model& m = ev.model();
-  std::vector<double> keys;
-  auto add = [&](const ir::Expr* e, bool minimize) {
-    Value v = e ? ev.eval(*e, a) : Value::invalid();
-    keys.push_back(v.isNumber() ? (minimize ? v.mid() : -v.mid()) : NAN);
-  };
-  if (withSortBy && m.gearbox.report && m.gearbox.report->sortBy) add(m.gearbox.report->sortBy.get(), true);
-  for (const auto& o : m.gearbox.objectives)
-    add(o.expr.get(), o.minimize);
+namespace {
+
+// A ranking key's value at a point: the expression's, negated where maximised; NaN if none.
+double keyAt(const Evaluator& ev, const ir::Expr* e, bool minimize, const Assignment& a) {
+  Value v = e ? ev.eval(*e, a) : Value::invalid();
+  return v.isNumber() ? (minimize ? v.mid() : -v.mid()) : NAN;
+}
+
+// The keys a design ranks by: `sort by` (where the report has one) before the objectives.
+std::vector<double> withSortKey(const Evaluator& ev, const Assignment& a, const std::vector<double>& objectives) {
+  const auto& report = ev.model().gearbox.report;
+  if (!report || !report->sortBy) return objectives;
+  std::vector<double> keys = {keyAt(ev, report->sortBy.get(), true, a)};
+  keys.insert(keys.end(), objectives.begin(), objectives.end());
   return keys;
+}
+
+} // namespace
+
+std::vector<double> rankingKeys(const Evaluator& ev, const Assignment& a, bool withSortBy) {
+  std::vector<double> objectives;
+  for (const auto& o : ev.model().gearbox.objectives)
+    objectives.push_back(keyAt(ev, o.expr.get(), o.minimize, a));
+  return withSortBy ? withSortKey(ev, a, objectives) : objectives;
 }
 
 int compareKeys(const std::vector<double>& x, const std::vector<double>& y) {
@@ -343,7 +356,8 @@ void reads(const Model& m, const ir::Expr& e, int own, std::set<int>& stages, bo
     ownOnly = false;
     // Corners move freedoms of any stage the tolerances name.
     for (const auto& t : m.gearbox.tolerances)
-      if (t.ref.owner == ir::QuantityRef::Stage) stages.insert(t.ref.index);
+      if (t.ref.owner == ir::QuantityRef::Stage && m.hasStage(t.ref.index) && !m.info(t.ref.index).freedoms.empty())
+        stages.insert(t.ref.index);
     break;
   default: break;
   }
@@ -441,6 +455,9 @@ FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
     g.cacheable = own;
     groups.push_back(std::move(g));
   }
+  // Rules on no freedom are checked on the whole design at its decided point.
+  for (size_t r = 0; r < m.gearbox.rules.size(); ++r)
+    if (ruleStages[r].empty() && m.gearbox.rules[r].expr) rest_.push_back(&m.gearbox.rules[r]);
   separable_ = !m.gearbox.objectives.empty();
   for (const auto& g : groups)
     separable_ = separable_ && g.cacheable;
@@ -489,40 +506,30 @@ DecidedPoint FreedomPlan::decide(const Evaluator& ev, const std::vector<int>& ch
   a.choice = choice;
   for (size_t f = 0; f < out.freedoms.size(); ++f)
     a.box[f] = {out.freedoms[f], out.freedoms[f]};
-  if (separable_) {
-    // Every group read only its own stage and decided its rules; the rules on no freedom were
-    // decided by the search. The objective is the groups' terms and those on no freedom.
-    for (const auto& [e, sign] : freeTerms_) {
-      Value v = ev.eval(*e, a);
-      sum += v.isNumber() ? sign * v.mid() : NAN;
-    }
-    out.feasible = true;
-    out.objectives = {sum};
-    out.keys.clear();
-    if (m_.gearbox.report && m_.gearbox.report->sortBy) {
-      Value v = ev.eval(*m_.gearbox.report->sortBy, a);
-      out.keys.push_back(v.isNumber() ? v.mid() : NAN);
-    }
-    out.keys.push_back(sum);
-    return out;
-  }
-  for (const auto& r : m_.gearbox.rules) {
-    if (!r.expr) continue;
-    Value v = ev.eval(*r.expr, a);
+  // The groups decided the rules on their freedoms; the rules on none (a `worst` over a stage
+  // without freedoms, which the search defers) are checked here.
+  for (const auto* r : rest_) {
+    Value v = ev.eval(*r->expr, a);
     if (!(v.kind == Value::Bool && v.truth == Truth::True)) {
       DecidedPoint failed;
-      failed.rule = r.text;
+      failed.rule = r->text;
       return failed;
     }
   }
   out.feasible = true;
-  out.objectives = rankingKeys(ev, a, false);
-  out.keys = rankingKeys(ev, a);
+  if (separable_) {
+    // Every group read only its own stage: the objective is the groups' decided terms and
+    // those on no freedom.
+    for (const auto& [e, sign] : freeTerms_) {
+      Value v = ev.eval(*e, a);
+      sum += v.isNumber() ? sign * v.mid() : NAN;
+    }
+    out.objectives = {sum};
+  } else {
+    out.objectives = rankingKeys(ev, a, false);
+  }
+  out.keys = withSortKey(ev, a, out.objectives);
   return out;
-}
-
-DecidedPoint decideFreedoms(const Evaluator& ev, const std::vector<int>& choice) {
-  return FreedomPlan(ev.model()).decide(ev, choice);
 }
 
 } // namespace gbx::rt

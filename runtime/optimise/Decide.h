@@ -54,13 +54,9 @@ private:
   // groups' decided terms and the terms on no freedom.
   bool separable_ = false;
   std::vector<std::pair<const ir::Expr*, double>> freeTerms_;
+  std::vector<const ir::Rule*> rest_; // rules that read no group's freedoms
   mutable std::mutex mutex_;
   mutable std::map<std::vector<int>, DecidedPoint> cache_;
 };
-
-// The freedoms of the design `choice` decided. The decided values are rounded to the digits
-// a report prints (4 decimals in the display unit) where the rounded point still satisfies
-// every rule, so that the design written with those values reproduces every number.
-DecidedPoint decideFreedoms(const Evaluator& ev, const std::vector<int>& choice);
 
 } // namespace gbx::rt

@@ -20,15 +20,18 @@ constexpr double kBaselineDesigns = 1e9;
 
 // How far each inequality rule `q >= c` / `q <= c` stands from its bound at the optimum:
 // the rule with no margin is the one that binds.
-std::vector<OptimisationSummary::Optimum::Margin> margins(const Model& m, const std::vector<int>& choice, const std::vector<double>& freedoms) {
+std::vector<OptimisationSummary::Optimum::Margin> margins(const Model& m, const std::vector<int>& choice,
+                                                          const std::vector<double>& freedoms) {
   std::vector<OptimisationSummary::Optimum::Margin> out;
   Evaluator ev(m);
   Assignment a(m);
   a.choice = choice;
-  for (size_t f = 0; f < freedoms.size() && f < a.box.size(); ++f) a.box[f] = {freedoms[f], freedoms[f]};
+  for (size_t f = 0; f < freedoms.size() && f < a.box.size(); ++f)
+    a.box[f] = {freedoms[f], freedoms[f]};
   std::function<void(const ir::Expr&, const std::string&)> visit = [&](const ir::Expr& e, const std::string& text) {
     if (e.op == ir::Op::And) {
-      for (const auto& x : e.args) visit(*x, ir::print(*x));
+      for (const auto& x : e.args)
+        visit(*x, ir::print(*x));
       return;
     }
     bool ge = e.op == ir::Op::Ge || e.op == ir::Op::Gt, le = e.op == ir::Op::Le || e.op == ir::Op::Lt;
@@ -54,9 +57,10 @@ std::vector<OptimisationSummary::Optimum::Margin> margins(const Model& m, const 
 
 // Each objective at the optimum with every tolerance at -amount and +amount alone, and over
 // the corners of the tolerance box: how much manufacturing scatter moves the optimum's merit.
-std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& m, const Model* baseline, const Assignment* baseDesign,
-                                                                   const std::vector<int>& choice, const std::vector<double>& freedoms,
-                                                                   double rtol) {
+std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& m, const Model* baseline,
+                                                                   const Assignment* baseDesign,
+                                                                   const std::vector<int>& choice,
+                                                                   const std::vector<double>& freedoms, double rtol) {
   std::vector<OptimisationSummary::Optimum::Sensitivity> out;
   const auto& tol = m.gearbox.tolerances;
   if (tol.empty()) return out;
@@ -65,7 +69,8 @@ std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& 
   ev.nominalOnly = true;
   Assignment a(m);
   a.choice = choice;
-  for (size_t f = 0; f < freedoms.size() && f < a.box.size(); ++f) a.box[f] = {freedoms[f], freedoms[f]};
+  for (size_t f = 0; f < freedoms.size() && f < a.box.size(); ++f)
+    a.box[f] = {freedoms[f], freedoms[f]};
   auto atSI = [&](const ir::Expr& e, const std::vector<double>& deltas) {
     Evaluator x(ev);
     for (size_t i = 0; i < tol.size(); ++i)
@@ -111,7 +116,8 @@ std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& 
     }
     for (unsigned corner = 0; corner < (1u << tol.size()); ++corner) {
       std::vector<double> d(tol.size());
-      for (size_t i = 0; i < tol.size(); ++i) d[i] = (corner >> i) & 1u ? tol[i].amount : -tol[i].amount;
+      for (size_t i = 0; i < tol.size(); ++i)
+        d[i] = (corner >> i) & 1u ? tol[i].amount : -tol[i].amount;
       double f = at(d);
       if (!std::isfinite(f)) continue;
       s.lo = std::isfinite(s.lo) ? std::min(s.lo, f) : f;
@@ -124,7 +130,8 @@ std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& 
 
 } // namespace
 
-Optimised optimise(const ir::Program& program, const Model& m, SearchResult found, int jobs, std::function<void(double)> progress) {
+Optimised optimise(const ir::Program& program, const Model& m, SearchResult found, int jobs,
+                   std::function<void(double)> progress) {
   const ir::Gearbox& gb = m.gearbox;
   Optimised out;
   out.designs = std::move(found);
@@ -133,18 +140,15 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
   bool reportsRelative = false;
   if (gb.report) {
     reportsRelative = relative(gb.report->sortBy.get());
-    for (const auto& c : gb.report->columns) reportsRelative = reportsRelative || relative(c.get());
+    for (const auto& c : gb.report->columns)
+      reportsRelative = reportsRelative || relative(c.get());
   }
   // `worst(…)` over catalogue quantities with freedoms: decided by the search pass.
   bool optimised = needsOptimiser(gb) && (needsScenes(gb) || m.freedoms.empty());
   // Freedoms the search pass decided: the design table, scenes and ratings read them.
-  if (!optimised)
+  if (!optimised && !out.designs.designs.empty() && !out.designs.designs[0].freedoms.empty())
     for (const auto& d : out.designs.designs)
-      if (!d.freedoms.empty()) {
-        out.freedoms.clear();
-        for (const auto& e : out.designs.designs) out.freedoms.push_back(e.freedoms);
-        break;
-      }
+      out.freedoms.push_back(d.freedoms);
   if (!optimised && !reportsRelative) return out;
   // The baseline's design is its design 1, as solving the baseline alone reports it: ranked
   // by its own objectives, its freedoms decided or optimised.
@@ -206,7 +210,8 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
     b.objective = best.objective;
     b.terms = best.terms;
     b.margins = margins(m, best.choice, best.freedoms);
-    b.sensitivity = sensitivity(m, out.baseline.get(), out.baselineDesign.get(), best.choice, best.freedoms, oo.sceneRtol);
+    b.sensitivity =
+        sensitivity(m, out.baseline.get(), out.baselineDesign.get(), best.choice, best.freedoms, oo.sceneRtol);
   }
   s.rankCheck = opt.rankCheck;
   s.cloud = opt.cloud;

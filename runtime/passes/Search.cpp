@@ -17,11 +17,11 @@ namespace {
 constexpr long long kDefaultTop = 50;
 
 // Decides the freedoms of the designs not decided yet, `jobs` at a time.
-void decideAll(const Model& m, const FreedomPlan& plan, const std::vector<Design>& designs,
+void decideAll(const Model& m, const FreedomPlan& plan, const Design* first, const Design* last,
                std::map<std::vector<int>, DecidedPoint>& decided, int jobs) {
   std::vector<const Design*> open;
-  for (const auto& d : designs)
-    if (!decided.count(d.choice)) open.push_back(&d);
+  for (const Design* d = first; d != last; ++d)
+    if (!decided.count(d->choice)) open.push_back(d);
   std::vector<DecidedPoint> out(open.size());
   Evaluator ev(m);
   std::atomic<size_t> next{0};
@@ -52,9 +52,8 @@ constexpr unsigned long long kDecideForCount = 2000;
 // first). Designs are decided in the search's order until the kth decided one ranks before
 // the next one's bound: no design from there on can pass it. While that never happens
 // within the designs the search kept, it keeps four times as many.
-SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, long long keep,
+SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, long long want,
                             const std::function<void(double)>& progress) {
-  const long long want = keep;
   // The search ranked by lower bounds unless it deferred the rules it cannot bound (`worst`):
   // then every design it lists is decided.
   const bool bounded = !so.deferDynamics;
@@ -70,9 +69,7 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, lo
           compareKeys(ranked[static_cast<size_t>(want) - 1]->keys, r.designs[i].keys) <= 0)
         return std::pair<size_t, bool>{i, true};
       size_t end = std::min(r.designs.size(), i + batch);
-      std::vector<Design> part(r.designs.begin() + static_cast<std::ptrdiff_t>(i),
-                               r.designs.begin() + static_cast<std::ptrdiff_t>(end));
-      decideAll(m, plan, part, decided, so.jobs);
+      decideAll(m, plan, r.designs.data() + i, r.designs.data() + end, decided, so.jobs);
       if (progress) progress(0.99 * static_cast<double>(end) / static_cast<double>(r.designs.size()));
       if (Deadline::expired()) return std::pair<size_t, bool>{end, true};
       // The best `want` decided so far, in order (a short sorted list).

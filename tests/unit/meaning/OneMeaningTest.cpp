@@ -683,3 +683,20 @@ TEST(Choices, ASetMemberReadsAsWritten) {
   EXPECT_NE(r.find("12 deg"), std::string::npos) << r;
   EXPECT_EQ(r.find("11.4592"), std::string::npos) << r;
 }
+
+// A rule on no freedom that the search leaves to deciding (`worst` over the tolerance of a
+// stage without freedoms) is checked on the whole design, also where the freedoms are decided
+// stage by stage.
+TEST(Freedoms, ARuleOnNoFreedomIsStillChecked) {
+  const std::string text = R"(import materials;
+gearbox H {
+  stage a: helical { pinion.z = 21; wheel.z = 83; normal_module = 4 mm; helix_angle in 8..15 deg; face_width = 50 mm; material = steel_18CrNiMo7_6; }
+  stage b: helical { pinion.z = 21; wheel.z = 83; normal_module = 4 mm; helix_angle = 12 deg; face_width = 50 mm; material = steel_18CrNiMo7_6; }
+  tolerances { b.face_width +- 1 mm; }
+  require worst(b.mass) <= LIMIT;
+  minimize a.mass;
+}
+)";
+  EXPECT_EQ(solve(replaced(text, "LIMIT", "0.1 kg")).result.count, 0u);
+  EXPECT_EQ(solve(replaced(text, "LIMIT", "1000 kg")).result.count, 1u);
+}
