@@ -103,6 +103,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       fail(gb.name, scenes.errors);
       rep.scenes = std::move(scenes.scenes);
       passes::setSceneColumns(rep, scenes.columns);
+      rep.notes.insert(rep.notes.end(), scenes.notes.begin(), scenes.notes.end());
       passes::Modifications mods = passes::modifications(m, *best);
       fail(gb.name, mods.errors);
       rep.modifications = std::move(mods.modifications);

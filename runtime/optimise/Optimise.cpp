@@ -15,6 +15,7 @@
 
 #include "dynamics/Scene.h"
 #include "model/Evaluator.h"
+#include "optimise/Decide.h"
 #include "optimise/Violation.h"
 
 namespace gbx::rt {
@@ -148,6 +149,16 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
   for (const auto* t : baseTerms) res.baselineTerms.push_back(probe.baseline && t ? probe.baseline(*t).mid() : NAN);
   auto sharedBaseline = probe.baseline;
 
+  // Without a scene in the rules or objectives, each candidate's freedoms are decided as the
+  // search decides them (LANGUAGE.md §15): the same point, rounded to the printed digits, so an
+  // unchanged variant reads relative(x) = 1 exactly.
+  auto readsScene = [](const ir::ExprPtr& e) { return ir::uses(e.get(), {ir::Op::SceneOutput}); };
+  bool scenes = std::any_of(m.gearbox.rules.begin(), m.gearbox.rules.end(), [&](const ir::Rule& r) { return readsScene(r.expr); }) ||
+                std::any_of(m.gearbox.objectives.begin(), m.gearbox.objectives.end(),
+                            [&](const ir::Objective& o) { return readsScene(o.expr); });
+  std::unique_ptr<FreedomPlan> plan;
+  if (!scenes && !m.freedoms.empty()) plan = std::make_unique<FreedomPlan>(m);
+
   std::vector<OptCandidate> out(candidates.size());
   std::vector<std::vector<std::pair<std::vector<double>, std::vector<double>>>> clouds(candidates.size());
   std::atomic<size_t> next{0}, done{0};
@@ -165,7 +176,26 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
         task.hi.push_back(f.hi);
       }
       size_t n = task.lo.size();
-      if (n == 0) {
+      if (plan) {
+        DecidedPoint p = plan->decide(ev, a.choice);
+        task.evaluations += p.evaluations;
+        if (p.feasible) {
+          for (size_t f = 0; f < n; ++f)
+            a.box[f] = {p.freedoms[f], p.freedoms[f]};
+          double f = 0;
+          for (const auto& o : m.gearbox.objectives) {
+            Value v = o.expr ? ev.eval(*o.expr, a) : Value::invalid();
+            f += v.isNumber() ? (o.minimize ? v.mid() : -v.mid()) : NAN;
+          }
+          if (std::isfinite(f)) {
+            task.feasible = true;
+            task.bestObjective = f;
+            task.bestFreedoms = p.freedoms;
+            for (const auto* e : terms) task.bestTerms.push_back(ev.eval(*e, a).mid());
+            task.points.emplace_back(p.freedoms, task.bestTerms);
+          }
+        }
+      } else if (n == 0) {
         gsl_vector* u = gsl_vector_alloc(1);
         objectiveAt(u, &task);
         gsl_vector_free(u);

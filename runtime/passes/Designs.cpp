@@ -388,6 +388,21 @@ Columns reportColumns(const ir::Gearbox& gb) {
   return c;
 }
 
+std::optional<std::string> cornerNote(const Model& m, const Evaluator& ev, const ir::Expr& column,
+                                      const std::string& name, const Assignment& a) {
+  auto where = ev.worstCorner(column, a);
+  if (!where) return std::nullopt;
+  const auto& tol = m.gearbox.tolerances;
+  std::string at;
+  for (size_t i = 0; i < tol.size(); ++i) {
+    if ((*where)[i] == 0) continue;
+    auto u = units::displayUnitFor(tol[i].dim);
+    at += fmt::format("{}{} {:+g}{}", at.empty() ? "" : ", ", tol[i].target, (*where)[i] / u.scale,
+                      u.name.empty() ? "" : " " + u.name);
+  }
+  return fmt::format("`{}` of design 1 is found {}", name, at.empty() ? "at the nominal design" : "at " + at);
+}
+
 GearboxReport designTable(const Model& m, Optimised& o, const Columns& columns, bool lazy) {
   GearboxReport g =
       reportOf(m, o.designs, columns.exprs, columns.names, o.freedoms, o.baseline.get(), o.baselineDesign.get(), lazy);
@@ -397,19 +412,17 @@ GearboxReport designTable(const Model& m, Optimised& o, const Columns& columns, 
     Assignment a(m);
     a.choice = g.rows[0].choice;
     a.box = g.rows[0].box;
-    const auto& tol = m.gearbox.tolerances;
-    for (size_t c = 0; c < columns.exprs.size(); ++c) {
-      auto where = ev.worstCorner(*columns.exprs[c], a);
-      if (!where) continue;
-      std::string at;
-      for (size_t i = 0; i < tol.size(); ++i) {
-        if ((*where)[i] == 0) continue;
-        auto u = units::displayUnitFor(tol[i].dim);
-        at += fmt::format("{}{} {:+g}{}", at.empty() ? "" : ", ", tol[i].target, (*where)[i] / u.scale,
-                          u.name.empty() ? "" : " " + u.name);
-      }
-      g.notes.push_back(fmt::format("`{}` of design 1 is found {}", columns.names[c],
-                                    at.empty() ? "at the nominal design" : "at " + at));
+    for (size_t c = 0; c < columns.exprs.size(); ++c)
+      if (auto note = cornerNote(m, ev, *columns.exprs[c], columns.names[c], a)) g.notes.push_back(*note);
+    // A pair whose transverse contact ratio is below 1 loses contact between one tooth pair
+    // and the next: said even where no rule or rating reads eps_alpha.
+    for (size_t st = 0; st < m.gearbox.stages.size(); ++st) {
+      Value eps = ev.quantity(ir::QuantityRef{ir::QuantityRef::Stage, static_cast<std::int16_t>(st), -1, false, Q::EpsAlpha}, a);
+      if (eps.isNumber() && eps.lo < 1)
+        g.warnings.push_back(fmt::format("stage `{}` of design 1 has eps_alpha {:.4f}, below 1: in a transverse "
+                                      "section no tooth pair is in contact for part of each mesh cycle, and the ISO 6336 "
+                                      "rating refuses such a pair",
+                                      m.gearbox.stages[st].name, eps.lo));
     }
   }
   return g;

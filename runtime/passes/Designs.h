@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "model/Evaluator.h"
 #include "passes/Optimise.h"
 #include "report/Report.h"
 
@@ -28,6 +29,11 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
 
 // What scenes, modifications and studies run on: the best design at its optimum freedoms.
 std::optional<Assignment> bestDesign(const Model& m, const Optimised& designs);
+
+// Where a `worst(…)` column finds its value for design 1 (LANGUAGE.md §15), as a report note;
+// nothing for another column or where the evaluator cannot compute the corners.
+std::optional<std::string> cornerNote(const Model& m, const Evaluator& ev, const ir::Expr& column,
+                                      const std::string& name, const Assignment& a);
 
 // A report column that is a scene result, as the scene pass computed it for the best design.
 struct SceneColumn {

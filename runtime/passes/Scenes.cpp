@@ -119,6 +119,8 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns)
     if (!ir::uses(&c, {ir::Op::SceneOutput}) || ir::uses(&c, {ir::Op::Relative})) continue;
     Value v = ev.eval(c, best);
     if (v.isNumber()) out.columns.push_back({i, v.mid()});
+    // The corners ran for the value above: the note reads them from the same runs.
+    if (auto note = cornerNote(m, ev, c, columns.names[i], best)) out.notes.push_back(*note);
   }
   return out;
 }

@@ -12,6 +12,7 @@ struct SceneRuns {
   std::vector<SceneReport> scenes;
   std::vector<SceneColumn> columns;  // report columns that are scene results
   std::vector<std::string> errors;
+  std::vector<std::string> notes;    // where each `worst(…)` of a scene result is found
 };
 
 SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns);

@@ -89,6 +89,7 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
     for (const auto& c : g.columns)
       if (!c.exact) o += "  note: intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images\n";
     for (const auto& n : g.notes) o += "  note: " + n + "\n";
+    for (const auto& w : g.warnings) o += "  warning: " + w + "\n";
     if (g.undecided) o += "  ? = feasibility undecided at the freedom resolution (kept, not proven)\n";
     if (g.optimisation) {
       for (const auto& l : optimisationLines(*g.optimisation)) o += "  " + l + "\n";
@@ -235,6 +236,13 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
                          jsonEscape(f.scope), jsonEscape(f.rule), count(f.before), count(f.removed));
     }
     o += g.funnel.empty() ? "]," : "\n   ],";
+    // Present where there are any.
+    for (const auto& [key, lines] : {std::pair{"notes", &g.notes}, std::pair{"warnings", &g.warnings}}) {
+      if (lines->empty()) continue;
+      o += fmt::format("\n   \"{}\": [", key);
+      for (size_t i = 0; i < lines->size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", jsonEscape((*lines)[i]));
+      o += "],";
+    }
     if (g.optimisation) o += "\n   \"optimisation\": " + optimisationJson(*g.optimisation) + ",";
     o += "\n   \"scenes\": {";
     for (size_t si = 0; si < g.scenes.size(); ++si) {
@@ -375,6 +383,12 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
     std::vector<std::vector<std::string>> rows;
     for (const auto& r : g.rows) rows.push_back(cells(r));
     if (!rows.empty()) o += table(header(g), rows);
+    if (!g.notes.empty()) o += list(g.notes);
+    if (!g.warnings.empty()) {
+      std::vector<std::string> w;
+      for (const auto& x : g.warnings) w.push_back("warning: " + x);
+      o += list(w);
+    }
     if (g.count == 0) {
       std::vector<std::string> f;
       for (const auto& x : g.funnel)

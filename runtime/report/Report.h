@@ -218,7 +218,8 @@ struct GearboxReport {
   std::vector<DesignRow> rows;
   std::shared_ptr<const RowSource> source;
   std::vector<FunnelStep> funnel;
-  std::vector<std::string> notes;
+  std::vector<std::string> notes;     // about the design list (where a `worst` was found, …)
+  std::vector<std::string> warnings;  // what the numbers do not cover (eps_alpha below 1, …)
   std::vector<SceneReport> scenes;
   std::vector<StudyReport> studies;
   std::vector<ModifyReport> modifications;

@@ -61,7 +61,7 @@ void scenesOf(const ir::Expr& e, std::set<int>& out) {
 
 void resonanceMarks(SweepStudy& r, const ir::Study& st, double x, double fm, double fn) {
   if (st.swept.key != Q::InputSpeed || !(fm > 0) || !(fn > 0)) return;
-  const std::pair<double, const char*> orders[] = {{2.0, "f_mesh = 2 f_n (parametric)"}, {1.0, "f_mesh = f_n"}, {0.5, "2 f_mesh = f_n"}};
+  const std::pair<double, const char*> orders[] = {{2.0, "f_mesh = 2 f_n (parametric)"}, {1.0, "f_mesh = f_n"}, {0.5, "2 f_mesh = f_n"}, {1.0 / 3.0, "3 f_mesh = f_n"}};
   double lo = std::min(st.lo->toDouble(), st.hi->toDouble()), hi = std::max(st.lo->toDouble(), st.hi->toDouble());
   for (const auto& [k, label] : orders)
     if (double at = x * k * fn / fm; at >= lo && at <= hi) r.marks.emplace_back(at, label);

@@ -106,10 +106,11 @@ struct Cyl {
                                  });
          }},
         // (1/u)(C6/C5 - 1) - u C1/(C6 - C1), the balance of specific sliding (DOMAIN.md §3).
+        // The tips are those eps_alpha and the rating use.
         {Q::SlidingBalance, false,
          [](const KindContext& c, int) {
-           return arith::corners(pair(c), [](const V& x) {
-             auto p = geometryOf(x);
+           return arith::corners(tips(c), [](const V& x) {
+             auto p = tipped(x);
              double u = x[1] / x[0];
              double c6 = (p.rb1 + p.rb2) * std::tan(p.alphaWt);
              double c5 = std::sqrt(p.ra1 * p.ra1 - p.rb1 * p.rb1);
@@ -137,6 +138,9 @@ struct Cyl {
              return p ? q.ra1 : q.ra2;
            });
          }},
+        // Not given: twice the tip radius above (the rack's, shortened to the centre distance).
+        {Q::TipDiameter, true,
+         [](const KindContext& c, int g) { return arith::mul(Value::rational(Rational(2)), c.derived(g, Q::TipRadius)); }},
         // Not given: the ISO 1328-1 tolerances of the stage's accuracy grade.
         {Q::PitchDeviation, true, [](const KindContext& c, int g) { return grade(c, g, true); }},
         {Q::ProfileDeviation, true, [](const KindContext& c, int g) { return grade(c, g, false); }},

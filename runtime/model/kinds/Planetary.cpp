@@ -5,6 +5,7 @@
 #include "model/Evaluator.h"
 #include "model/RatingRows.h"
 #include "model/StageKind.h"
+#include "model/kinds/Geometry.h"
 
 namespace gbx::rt::kinds {
 
@@ -24,8 +25,19 @@ std::vector<DerivedRow> rows() {
       // Ring fixed: each ring tooth meets a planet once per carrier turn.
       {Q::MeshFrequency, false, [](const KindContext& c, int) { return meshFrequency(c, Q::OutputSpeed, Ring); }},
       {Q::CarrierSpeed, false, [](const KindContext& c, int) { return c.derived(Q::OutputSpeed); }},
+      // Sun to planet axis: the sun-planet mesh's working centre distance, from its shifts (the
+      // mesh runs without backlash), as the rating of that mesh has it.
       {Q::CenterDistance, false,
-       [](const KindContext& c, int) { return arith::mul(arith::add(c.at(Sun, Q::Z), c.at(Planet, Q::Z)), arith::mul(c.at(Q::Module), half())); }},
+       [](const KindContext& c, int) {
+         Value unshifted = arith::mul(arith::add(c.at(Sun, Q::Z), c.at(Planet, Q::Z)), arith::mul(c.at(Q::Module), half()));
+         Value xs = c.orZero(Sun, Q::Shift), xp = c.orZero(Planet, Q::Shift);
+         if (xs.isPoint() && xp.isPoint() && xs.lo + xp.lo == 0) return unshifted;  // exact
+         return arith::corners({c.at(Sun, Q::Z), c.at(Planet, Q::Z), c.at(Q::Module), c.at(Q::PressureAngle), xs, xp},
+                               [](const std::vector<double>& x) {
+                                 double aw = geometry::workingPressureAngle(x[3], x[3], x[0] + x[1], x[4] + x[5]);
+                                 return 0.5 * x[2] * (x[0] + x[1]) * std::cos(x[3]) / std::cos(aw);
+                               });
+       }},
       // Absolute speeds: the sun drives, the ring stands, a planet turns at
       // w_c (1 - z_r / z_p) about its own axis.
       {Q::Speed, true,
