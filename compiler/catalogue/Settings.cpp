@@ -195,4 +195,12 @@ const FlagSpec* findFlag(const std::string& word) {
   return nullptr;
 }
 
+Block blockOf(std::string_view word) {
+  static constexpr std::pair<std::string_view, Block> rows[] = {
+      {"tolerances", Block::Tolerances}, {"accuracy", Block::Accuracy}, {"work_precision", Block::WorkPrecision}};
+  for (const auto& [w, b] : rows)
+    if (w == word) return b;
+  return Block::Unknown;
+}
+
 } // namespace gbx::cat

@@ -3,6 +3,7 @@
 // material properties, scene and accuracy settings, split settings and results,
 // work-precision settings, modification targets and the quantities modify rules read.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "catalogue/Attr.h"
@@ -34,6 +35,11 @@ struct FlagSpec {
 };
 const std::vector<FlagSpec>& flags();
 const FlagSpec* findFlag(const std::string& word);
+
+// Named blocks whose name decides what they hold (`tolerances { … }` in a gearbox,
+// `accuracy { … }` in a scene, `work_precision of …` in a study), resolved through one table.
+enum class Block { Unknown, Tolerances, Accuracy, WorkPrecision };
+Block blockOf(std::string_view word);
 
 // Tooth modification: targets (lengths, per gear or both) and built-in quantities.
 const std::vector<std::string>& modificationTargets();

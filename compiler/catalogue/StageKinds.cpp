@@ -149,7 +149,7 @@ std::vector<KindSpec> buildKinds() {
   auto cylStage = [](bool helical) {
     std::vector<AttrSpec> a = {
         pos("normal_module", length, "normal module"),
-        withDefault(pos("pressure_angle", angle, "normal pressure angle"), deg(20)),
+        withDefault(bounded(pos("pressure_angle", angle, "normal pressure angle"), deg(10), deg(35)), deg(20)),
         pos("face_width", length, "face width"),
         pos("center_distance", length, "centre distance"),
         material(),
@@ -167,7 +167,9 @@ std::vector<KindSpec> buildKinds() {
         derived("total_contact_ratio", none, "eps_alpha + eps_beta"),
     };
     a[3].role = AttrRole::Either;
-    if (helical) a.insert(a.begin() + 1, required(in("helix_angle", angle, "helix angle at the reference circle")));
+    // The hand of a helix is not a sign; beyond 45 deg no parallel-axis pair is made or rated.
+    if (helical)
+      a.insert(a.begin() + 1, required(bounded(in("helix_angle", angle, "helix angle at the reference circle"), deg(0), deg(45))));
     for (auto& d : commonDerived()) a.push_back(d);
     for (auto& r : ratingInputs()) a.push_back(r);
     for (auto& r : ratingStageQuantities()) a.push_back(r);

@@ -54,8 +54,11 @@ std::string writtenUnit(const ast::Expr* e) {
   return "";
 }
 
+// `%` is the one unit written as a symbol: the lexer's token, not a catalogue name.
+constexpr std::string_view kPercent = "%";
+
 bool isPercentUnit(const ast::UnitExpr& u) {
-  return u.factors.size() == 1 && u.factors[0].atom == "%" && u.factors[0].exponent == 1;
+  return u.factors.size() == 1 && u.factors[0].atom == kPercent && u.factors[0].exponent == 1;
 }
 
 bool isPercentLiteral(const ast::Expr* e) { return e && e->kind == ast::ExprKind::Number && e->unit && isPercentUnit(*e->unit); }
@@ -255,7 +258,7 @@ ir::ExprPtr ExprChecker::quantity(const std::string& path, const AttrSpec& spec,
 ir::ExprPtr ExprChecker::stageMember(const StageModel& st, const std::string& m, const source::Span& span) {
   if (!st.kind) return error(span);
   if (isGear(*st.kind, m)) return make(Op::Quantity, Type{Type::Gear, {}, false, st.name + "." + m}, span, st.name + "." + m);
-  if (m == "teeth") return make(Op::Quantity, Type{Type::Collection, {}, false, "teeth"}, span, st.name + ".teeth");
+  if (keyOf(m) == Q::Teeth) return make(Op::Quantity, Type{Type::Collection, {}, false, "teeth"}, span, st.name + ".teeth");
   if (const auto* a = findAttr(*st.kind, m)) return quantity(st.name + "." + m, *a, span);
   std::vector<std::string> names = st.kind->gears;
   for (const auto& a : st.kind->stage) names.push_back(a.name);
@@ -319,7 +322,7 @@ ir::ExprPtr ExprChecker::name(const ast::Expr& e, const Scope& s) {
         Type t = letResolver_ ? letResolver_(n, s.stage) : Type::error();
         return make(Op::Let, t, e.span, s.stage->name + "." + n);
       }
-    if (s.stage->kind && (isGear(*s.stage->kind, n) || findAttr(*s.stage->kind, n) || n == "teeth"))
+    if (s.stage->kind && (isGear(*s.stage->kind, n) || findAttr(*s.stage->kind, n) || keyOf(n) == Q::Teeth))
       return stageMember(*s.stage, n, e.span);
   }
   if (s.gearbox) {
@@ -330,7 +333,7 @@ ir::ExprPtr ExprChecker::name(const ast::Expr& e, const Scope& s) {
       }
     for (const auto& q : gearboxQuantities())
       if (q.name == n) return quantity(n, q, e.span);
-    if (n == "stages" || n == "teeth") return make(Op::Quantity, Type{Type::Collection, {}, false, n}, e.span, n);
+    if (keyOf(n) == Q::Stages || keyOf(n) == Q::Teeth) return make(Op::Quantity, Type{Type::Collection, {}, false, n}, e.span, n);
     if (const auto* st = s.gearbox->findStage(n))
       return make(Op::Quantity, Type{Type::Stage, {}, false, st->kind ? st->kind->name : ""}, e.span, n);
     if (s.gearbox->findScene(n)) return make(Op::Quantity, Type{Type::Scene, {}, false, {}}, e.span, n);
@@ -414,7 +417,7 @@ ir::ExprPtr ExprChecker::member(const ast::Expr& e, const Scope& s) {
       // Every periodic scene has a stability; a settled or from-rest one has none.
       bool transient = false;
       for (const auto& st : scene->body)
-        if (st.kind == ast::StmtKind::Assign && (st.path.str() == "settle" || st.path.str() == "duration")) transient = true;
+        if (st.kind == ast::StmtKind::Assign && (keyOf(st.path.str()) == Q::Settle || keyOf(st.path.str()) == Q::Duration)) transient = true;
       if (sig->id == Signal::Stability && transient) {
         diags_.error("E0232", e.span,
                      fmt::format("scene `{}` settles a transient or runs from rest, so it has no `stability` (the largest Floquet "
@@ -610,7 +613,7 @@ ir::ExprPtr ExprChecker::forall(const ast::Expr& e, const Scope& s) {
   std::string collName;
   if (coll->type.kind == Type::Collection && s.gearbox) {
     collName = coll->name;
-    bool stages = coll->type.detail == "stages";
+    bool stages = keyOf(coll->type.detail) == Q::Stages;
     std::string onlyStage = coll->name.find('.') != std::string::npos ? coll->name.substr(0, coll->name.find('.')) : "";
     for (const auto& st : s.gearbox->stages) {
       if (!onlyStage.empty() && st.name != onlyStage) continue;

@@ -19,6 +19,9 @@ namespace gbx::sema {
 
 namespace fs = std::filesystem;
 
+// A library folder's modules are its files with this extension.
+constexpr std::string_view kSpecExtension = ".gbx";
+
 std::vector<std::string> stdlibSearchPath() {
   std::vector<std::string> dirs;
   if (const char* env = std::getenv("GBX_STDLIB_PATH")) {
@@ -36,7 +39,7 @@ std::vector<std::string> stdlibModules() {
   for (const auto& dir : stdlibSearchPath()) {
     std::error_code ec;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-      if (it->path().extension() == ".gbx") names.insert(it->path().stem().string());
+      if (it->path().extension() == kSpecExtension) names.insert(it->path().stem().string());
   }
   return {names.begin(), names.end()};
 }

@@ -27,6 +27,7 @@ struct StageModel {
   const ast::Stmt* decl = nullptr;
   std::vector<std::string> presets;
   std::string likeOf;
+  bool likePending = false;  // `stage b like a;` not yet copied from `a`
   std::vector<std::pair<std::string, Binding>> attrs;  // in declaration order
   std::vector<ScopedStmt> rules;                       // `require` inside the stage
   std::vector<const ast::Stmt*> lets;                  // `let` inside the stage

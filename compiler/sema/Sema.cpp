@@ -40,6 +40,16 @@ std::string lastPart(const std::string& p) {
   return d == std::string::npos ? p : p.substr(d + 1);
 }
 
+// Whether a written name is the catalogue's name of `key` (names are compared through the
+// catalogue, never as literals).
+bool isKey(std::string_view name, Q key) { return keyOf(name) == key; }
+
+// Whether a scene output reads `signal`.
+bool isSignal(const ir::SceneOutput& o, cat::Signal signal) {
+  const auto* s = cat::findSignal(o.signal);
+  return s && s->id == signal;
+}
+
 bool needsOperating(const std::string& path) {
   auto key = keyOf(lastPart(path));
   return key && dependsOnOperatingPoint(*key);
@@ -89,7 +99,7 @@ private:
         switch (d.kind) {
         case StmtKind::Const: declare(globals_.consts, d); break;
         case StmtKind::Named:
-          if (d.word == "material") declare(globals_.materials, d);
+          if (isKey(d.word, Q::Material)) declare(globals_.materials, d);
           break;
         case StmtKind::Preset: declare(globals_.presets, d); break;
         case StmtKind::Gearbox: declare(globals_.gearboxes, d); break;
@@ -175,6 +185,7 @@ private:
                       const std::string& owner) {
     ir::Setting out;
     out.name = name;
+    out.key = spec.key != Q::None ? spec.key : cat::keyOf(lastPart(name)).value_or(Q::None);
     out.dim = spec.dim;
     out.integer = spec.integer;
     const Stmt& st = *b.stmt;
@@ -213,6 +224,8 @@ private:
         return out;
       }
       out.symbol = v->text;
+      if (auto w = std::find(spec.symbols.begin(), spec.symbols.end(), v->text); w != spec.symbols.end())
+        out.choice = static_cast<int>(w - spec.symbols.begin());
       return out;
     }
     Scope s = scope;
@@ -246,20 +259,12 @@ private:
         return out;
       }
       if (spec.positive && x->value.sign() <= 0) {
-        diags_.error(name == "z" || lastPart(name) == "z" ? "E0402" : "E0405", x->span,
+        diags_.error(isKey(lastPart(name), Q::Z) ? "E0402" : "E0405", x->span,
                      fmt::format("`{}` must be positive, got {}", name, asWritten(v, *x)));
         return out;
       }
       if (beyondBudget(spec, name, *x)) return out;
-      if ((spec.atLeast && x->value.compare(*spec.atLeast) < 0) || (spec.atMost && x->value.compare(*spec.atMost) > 0)) {
-        std::string range = spec.atLeast && spec.atMost ? fmt::format("between {} and {}", units::showQuantity(*spec.atLeast, spec.dim),
-                                                                      units::showQuantity(*spec.atMost, spec.dim))
-                            : spec.atLeast ? fmt::format("at least {}", units::showQuantity(*spec.atLeast, spec.dim))
-                                           : fmt::format("at most {}", units::showQuantity(*spec.atMost, spec.dim));
-        diags_.error("E0405", x->span,
-                     fmt::format("`{}` must be {} ({}), got {}", name, range, spec.meaning, asWritten(v, *x)));
-        return out;
-      }
+      if (outsideLimits(spec, name, *x, v)) return out;
       out.value = x->value;
       // The alternative dimension is kept (a fluctuation's frequency in Hz is 2 pi rad/s
       // a hertz; the runtime converts by the setting's own dimension).
@@ -296,6 +301,7 @@ private:
       if (s.dflt && std::none_of(items.begin(), items.end(), [&](const auto& i) { return i.first == s.name; })) {
         ir::Setting d;
         d.name = s.name;
+        d.key = s.key != Q::None ? s.key : cat::keyOf(lastPart(s.name)).value_or(Q::None);
         d.dim = s.dim;
         d.integer = s.integer;
         d.value = s.dflt;
@@ -445,7 +451,21 @@ private:
   // display unit.
   static std::string asWritten(const ast::Expr* v, const ir::Expr& x) {
     if (v && v->kind == ast::ExprKind::Number) return ast::print(*v);
+    if (v && v->kind == ast::ExprKind::Neg && !v->args.empty() && v->args[0] && v->args[0]->kind == ast::ExprKind::Number)
+      return "-" + ast::print(*v->args[0]);
     return units::showQuantity(x.value, x.type.dim);
+  }
+
+  // A value beyond the limits the catalogue row sets (E0405); `v` as written, where known.
+  bool outsideLimits(const AttrSpec& spec, const std::string& name, const ir::Expr& x, const ast::Expr* v) {
+    if (!((spec.atLeast && x.value.compare(*spec.atLeast) < 0) || (spec.atMost && x.value.compare(*spec.atMost) > 0)))
+      return false;
+    std::string range = spec.atLeast && spec.atMost ? fmt::format("between {} and {}", units::showQuantity(*spec.atLeast, spec.dim),
+                                                                  units::showQuantity(*spec.atMost, spec.dim))
+                        : spec.atLeast ? fmt::format("at least {}", units::showQuantity(*spec.atLeast, spec.dim))
+                                       : fmt::format("at most {}", units::showQuantity(*spec.atMost, spec.dim));
+    diags_.error("E0405", x.span, fmt::format("`{}` must be {} ({}), got {}", name, range, spec.meaning, asWritten(v, x)));
+    return true;
   }
 
   void dupInBlock(std::map<std::string, const Stmt*>& seen, const Stmt& st, const char* what) {
@@ -502,7 +522,7 @@ private:
         StageModel placeholder;
         placeholder.name = st.name;
         placeholder.decl = &st;
-        placeholder.likeOf = "?";
+        placeholder.likePending = true;
         replaceOrAdd(model->stages, std::move(placeholder), [](const StageModel& s) { return s.name; });
         likes.push_back(&st);
       }
@@ -510,7 +530,7 @@ private:
     std::set<std::string> resolving;
     std::function<void(const Stmt&)> resolveLike = [&](const Stmt& st) {
       StageModel* target = model->findStage(st.name);
-      if (!target || target->likeOf != "?") return;
+      if (!target || !target->likePending) return;
       std::string src = st.path.str();
       StageModel* source = model->findStage(src);
       if (!source || st.path.parts.size() != 1) {
@@ -520,13 +540,13 @@ private:
         diags_.error("E0207", st.path.span,
                      fmt::format("stage `{}` is like `{}`, but gearbox `{}` has no stage `{}`{}", st.name, src, name, src,
                                  suggestion(hint)));
-        target->likeOf = "";
+        target->likePending = false;
         return;
       }
-      if (source->likeOf == "?") {
+      if (source->likePending) {
         if (resolving.count(src)) {
           diags_.error("E0223", st.path.span, fmt::format("`like` cycle: stage `{}` is, in the end, like itself", st.name));
-          target->likeOf = "";
+          target->likePending = false;
           return;
         }
         resolving.insert(st.name);
@@ -536,8 +556,8 @@ private:
         source = model->findStage(src);
         target = model->findStage(st.name);
       }
-      if (source->likeOf == "?" || (source->likeOf.empty() && !source->kind && source->decl && source->decl->kind == StmtKind::Like)) {
-        target->likeOf = "";
+      if (source->likePending || (source->likeOf.empty() && !source->kind && source->decl && source->decl->kind == StmtKind::Like)) {
+        target->likePending = false;
         return;
       }
       StageModel copy = *source;
@@ -619,7 +639,7 @@ private:
       case StmtKind::Assign:
       case StmtKind::Domain: override(*model, st, origin); break;
       case StmtKind::Block:
-        if (st.name != "tolerances") {
+        if (cat::blockOf(st.name) != cat::Block::Tolerances) {
           notAllowed(st, fmt::format("gearbox `{}`", name));
           break;
         }
@@ -692,9 +712,9 @@ private:
         for (const auto& x : st.kind->gear) names.push_back(g + "." + x.name);
       std::string hint = closest(path, names);
       std::string extra;
-      if (path == "module" && (st.kind->kind == ir::StageKind::Spur || st.kind->kind == ir::StageKind::Helical))
+      if (isKey(path, Q::Module) && (st.kind->kind == ir::StageKind::Spur || st.kind->kind == ir::StageKind::Helical))
         hint = "normal_module";
-      if (path == "helix_angle" && st.kind->kind == ir::StageKind::Spur) extra = " (a spur stage has no helix; use a helical stage)";
+      if (isKey(path, Q::HelixAngle) && st.kind->kind == ir::StageKind::Spur) extra = " (a spur stage has no helix; use a helical stage)";
       diags_.error("E0211", where,
                    fmt::format("`{}` is not an attribute of a {} stage{}{}", path, st.kind->name, extra,
                                suggestion(hint)));
@@ -709,7 +729,7 @@ private:
       diags_.error("E0212", where, fmt::format("`{}` is derived ({}) and cannot be set; constrain it with `require`", path, spec->meaning));
       return a;
     }
-    bool tooth = lastPart(path) == "z";
+    bool tooth = isKey(lastPart(path), Q::Z);
     if (s.kind == StmtKind::Assign) {
       a.role = ir::Attribute::Fixed;
       ir::Setting v = setting(path, b, *spec, scope, fmt::format("stage `{}`", st.name));
@@ -749,6 +769,7 @@ private:
         return std::nullopt;
       }
       if (beyondBudget(*spec, path, *x)) return std::nullopt;
+      if (!spec->budget && outsideLimits(*spec, path, *x, nullptr)) return std::nullopt;
       if (spec->integer && (x->value.sign() < 0 ? x->value.neg() : x->value).compare(units::Number::exact(units::Rational(cat::budget::kWholeNumber))) > 0) {
         diags_.error("E0411", x->span,
                      fmt::format("`{}` = {} is beyond the budget of {} for a whole number", path, x->value.str(), cat::budget::kWholeNumber));
@@ -1352,7 +1373,7 @@ private:
         break;
       case StmtKind::Assign: flattenOne(b, items, owner); break;
       case StmtKind::Block:
-        if (b.name == "accuracy") flatten(b.body, "", owner + " accuracy", acc, {});
+        if (cat::blockOf(b.name) == cat::Block::Accuracy) flatten(b.body, "", owner + " accuracy", acc, {});
         else diags_.error("E0224", nameOr(b), fmt::format("{} has no block `{}` (it takes `effects` and `accuracy`)", owner, b.name));
         break;
       case StmtKind::Output:
@@ -1380,7 +1401,7 @@ private:
     if (!ir::findSetting(out.settings, "duration") && !ir::findSetting(out.settings, "record"))
       diags_.error("E0225", nameOr(st), fmt::format("{} needs `duration` (a run from rest) or `record` (a steady-state window)", owner));
     for (const auto& o : out.outputs)
-      if (o.signal == "stability" && !ir::findSetting(out.settings, "steady_state"))  // else E0202 already says it
+      if (isSignal(o, cat::Signal::Stability) && !ir::findSetting(out.settings, Q::SteadyState))  // else E0202 already says it
         for (const char* transient : {"settle", "duration"})
           if (ir::findSetting(out.settings, transient))
             diags_.error("E0232", o.span,
@@ -1407,7 +1428,7 @@ private:
           }
     }
     if (!stage && target == m.name && out.hasEffect("transmission_error") &&
-        std::any_of(out.outputs.begin(), out.outputs.end(), [](const ir::SceneOutput& o) { return o.signal != "modes"; }))
+        std::any_of(out.outputs.begin(), out.outputs.end(), [](const ir::SceneOutput& o) { return !isSignal(o, cat::Signal::Modes); }))
       diags_.error("E0232", out.findEffect(Effect::TransmissionError)->span,
                    fmt::format("{}: a whole-gearbox scene does not model `transmission_error`; list `loaded_mesh` (spur and helical "
                                "gearboxes), or run the scene on a stage",
@@ -1522,7 +1543,7 @@ private:
                                  out.name, stage->name, o.function, o.signal));
         return;
       }
-      if (o.signal != "contact_force" && o.signal != "mesh_force") {
+      if (!isSignal(o, cat::Signal::ContactForce) && !isSignal(o, cat::Signal::MeshForce)) {
         diags_.error("E0232", inner->args[0]->span,
                      fmt::format("a mesh of the gearbox has `contact_force` and `mesh_force`; `{}` is not a signal of one mesh", o.signal));
         return;
@@ -1691,11 +1712,11 @@ private:
         auto dot = n.find('.');
         std::string gear = dot == std::string::npos ? "" : n.substr(0, dot), q = dot == std::string::npos ? n : n.substr(dot + 1);
         std::string need;
-        if (q == "bending_deflection" && !has(n) && !(has(gear + ".bearing_span") && has(gear + ".shaft_diameter")))
+        if (isKey(q, Q::BendingDeflection) && !has(n) && !(has(gear + ".bearing_span") && has(gear + ".shaft_diameter")))
           need = fmt::format("give `{}`, or `{}.bearing_span` and `{}.shaft_diameter` for the beam model", n, gear, gear);
-        else if ((q == "pitch_deviation" || q == "profile_deviation") && !gear.empty() && !has(n) && !has("accuracy"))
+        else if ((isKey(q, Q::PitchDeviation) || isKey(q, Q::ProfileDeviation)) && !gear.empty() && !has(n) && !has("accuracy"))
           need = fmt::format("give `{}`, or the stage's `accuracy` grade for the ISO 1328-1 tolerance", n);
-        else if ((q == "torsion_deflection" || q == "load_deflection") && !has(n) && !has("face_width"))
+        else if ((isKey(q, Q::TorsionDeflection) || isKey(q, Q::LoadDeflection)) && !has(n) && !has("face_width"))
           need = fmt::format("the stage gives no `face_width`");
         if (need.empty() || !reported.insert(n).second) continue;
         diags_.error("E0233", b.value ? b.value->span : b.span,
@@ -1715,8 +1736,8 @@ private:
       for (const auto& [p, b] : it->second)
         replaceOrAdd(items, std::make_pair(p, b), [](const auto& x) { return x.first; });
     out.settings = settings(items, splitSettings(), gs, owner, nameOr(st), "E0225");
-    const ir::Setting* install = ir::findSetting(out.settings, "install");
-    if (install && install->symbol == "preloaded" && !ir::findSetting(out.settings, "preload_torque"))
+    const ir::Setting* install = ir::findSetting(out.settings, Q::Install);
+    if (install && install->choice == cat::install::Preloaded && !ir::findSetting(out.settings, Q::PreloadTorque))
       diags_.error("E0225", nameOr(st), fmt::format("{} is installed `preloaded` but gives no `preload_torque`", owner));
     if (!m.hasOperating)
       diags_.error("E0231", nameOr(st), fmt::format("{} needs an operating point, but gearbox `{}` has no `operating` block", owner, m.name));
@@ -1747,7 +1768,8 @@ private:
         auto step = b.step && b.step->kind == ast::ExprKind::Number && !b.step->unit && b.hi && b.hi->unit
                         ? checker_.literal(*b.step, &*b.hi->unit)
                         : checker_.check(b.step.get(), gs);
-        auto bound = [&](ir::ExprPtr x, const char* what) -> std::optional<Number> {
+        // `limit`: a start or an end, which take the swept attribute's limits (a step does not).
+        auto bound = [&](ir::ExprPtr x, const char* what, bool limit) -> std::optional<Number> {
           if (x->type.isError()) return std::nullopt;
           if (!x->isConst()) {
             diags_.error("E0410", x->span, fmt::format("the sweep's {} must be a constant", what));
@@ -1760,7 +1782,7 @@ private:
             return std::nullopt;
           }
           // The values a sweep gives take the swept attribute's own limits (its step is its own).
-          if (std::string(what) == "step") return x->value;
+          if (!limit) return x->value;
           if (swept && swept->positive && x->value.sign() <= 0) {
             diags_.error("E0405", x->span, fmt::format("`{}` must be positive, but the sweep's {} is {}", out.target, what,
                                                        units::showQuantity(x->value, x->type.dim)));
@@ -1773,9 +1795,9 @@ private:
           }
           return x->value;
         };
-        out.lo = bound(std::move(lo), "start");
-        out.hi = bound(std::move(hi), "end");
-        out.step = bound(std::move(step), "step");
+        out.lo = bound(std::move(lo), "start", true);
+        out.hi = bound(std::move(hi), "end", true);
+        out.step = bound(std::move(step), "step", false);
         // A sweep may run downwards (a down-sweep follows the upper branch of a jump).
         if (out.lo && out.hi && out.lo->compare(*out.hi) == 0)
           diags_.error("E0401", b.span, fmt::format("empty sweep: it starts and ends at {}", units::showQuantity(*out.lo, *out.dim)));
@@ -1796,7 +1818,7 @@ private:
           diags_.error("E0202", b.span, fmt::format("{} already says what it varies", owner));
           break;
         }
-        if (b.name != "work_precision") {
+        if (cat::blockOf(b.name) != cat::Block::WorkPrecision) {
           diags_.error("E0224", nameOr(b), fmt::format("unknown study `{} of …`; a study is a `sweep` or `work_precision of SCENE`", b.name));
           break;
         }
@@ -1841,7 +1863,7 @@ private:
         out.settings = settings(items, sweepSettings(), gs, owner, nameOr(st), "E0225");
     }
     // Arclength continuation follows one scene's orbit: its outputs must read exactly one.
-    if (const auto* c = ir::findSetting(out.settings, "continuation"); c && c->symbol == "arclength") {
+    if (const auto* c = ir::findSetting(out.settings, Q::Continuation); c && c->choice == cat::continuation::Arclength) {
       std::set<std::string> scenes;
       std::function<void(const ir::Expr&)> visit = [&](const ir::Expr& e) {
         if (e.op == ir::Op::SceneOutput) scenes.insert(e.name.substr(0, e.name.find('.')));
@@ -1880,7 +1902,7 @@ private:
                    : !set.members.empty() ? static_cast<double>(set.members.size())
                    : set.lo && set.hi ? std::max(1.0, std::floor(set.hi->toDouble() - set.lo->toDouble()) + 1)
                                       : 1;
-        (set.name == "harmonics" ? harmonics : set.name == "methods" ? methods : rtols) = n;
+        (set.key == Q::Harmonics ? harmonics : set.key == Q::Methods ? methods : rtols) = n;
       }
       double runs = harmonics * (2 + methods * rtols);
       if (!(runs <= static_cast<double>(cat::budget::kWorkPrecisionRuns)))
@@ -1916,7 +1938,7 @@ private:
                                  cat::budget::kMeshPeriods));
         continue;
       }
-      bool recorded = std::string(name) == "record" || std::string(name) == "duration";
+      bool recorded = isKey(name, Q::Record) || isKey(name, Q::Duration);
       if (recorded && !(periods * perPeriod <= static_cast<double>(cat::budget::kRecordedSamples)))
         diags_.error("E0411", t->span,
                      fmt::format("{}: recording {} mesh periods at {} samples each is {:.3g} samples, beyond the budget of {} "
@@ -1995,8 +2017,8 @@ private:
       // A tooth modification of a spur or helical stage (`hs.tip_relief`, `hs.pinion.lead_crowning`):
       // the sweep's value replaces what the stage's `modify` rules give.
       std::string what = parts.back();
-      bool gearOk = parts.size() == 2 || (parts.size() == 3 && (parts[1] == "pinion" || parts[1] == "wheel"));
-      if (gearOk && (what == "tip_relief" || what == "tip_relief_height" || what == "lead_crowning") &&
+      bool gearOk = parts.size() == 2 || (parts.size() == 3 && isGear(*st->kind, parts[1]));
+      if (gearOk && (isKey(what, Q::TipRelief) || isKey(what, Q::TipReliefHeight) || isKey(what, Q::LeadCrowning)) &&
           (st->kind->kind == ir::StageKind::Spur || st->kind->kind == ir::StageKind::Helical))
         return units::dims::length;
     } else if (m.findSplit(parts[0])) {

@@ -383,7 +383,13 @@ void terms(const ir::Expr& e, double sign, std::vector<std::pair<const ir::Expr*
 } // namespace
 
 FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
-  if (m.freedoms.empty()) return;
+  // No freedoms: the design's one point, where every rule is checked (`worst` over the
+  // tolerances, which the search defers).
+  if (m.freedoms.empty()) {
+    for (const auto& r : m.gearbox.rules)
+      if (r.expr) rest_.push_back(&r);
+    return;
+  }
   auto whole = [&] {
     groups.clear();
     FreedomGroup g;

@@ -9,6 +9,7 @@
 
 #include "model/Evaluator.h"
 #include "optimise/Optimise.h"
+#include "catalogue/Settings.h"
 #include "search/FastKey.h"
 #include "units/Unit.h"
 
@@ -345,11 +346,13 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
       // is said as such: it is given, and giving it again would not help.
       std::string missing;
       bool cyclic = false;
+      const ir::Expr* missingExpr = nullptr;
       std::function<void(const ir::Expr&)> find = [&](const ir::Expr& x) {
         if (!missing.empty()) return;
         (void)Evaluator::tookCycle();
         if (x.op == ir::Op::Quantity && x.type.isNumber() && !ev.eval(x, a).isNumber()) {
           missing = x.name;
+          missingExpr = &x;
           cyclic = Evaluator::tookCycle();
         }
         for (const auto& y : x.args)
@@ -359,10 +362,17 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
       std::string teeth;
       for (const auto& [n, z] : row.teeth)
         teeth += fmt::format("{}{} = {}", teeth.empty() ? "" : ", ", n, z);
+      // A rating result has no value where the rating refused the design; its own message
+      // says why, and nothing the user could give would change it.
+      const auto& ref = missingExpr ? missingExpr->ref : ir::QuantityRef{};
+      bool rated = ref.owner == ir::QuantityRef::Stage && cat::isRatingQuantity(ref.key) && ref.index >= 0 &&
+                   static_cast<size_t>(ref.index) < m.gearbox.stages.size();
       c.error = fmt::format(
           "{} `{}` has no value for design {} ({}){}", c.what, ir::print(*c.e), row.rank, teeth,
           missing.empty() ? std::string()
           : cyclic ? fmt::format(": `{}` is defined in terms of itself, through what it is computed from", missing)
+          : rated  ? fmt::format(": `{}` comes from the rating of stage `{}`, which cannot rate this design (see its message)",
+                                 missing, m.gearbox.stages[static_cast<size_t>(ref.index)].name)
                    : fmt::format(": `{}` cannot be computed; give it, or what it is computed from", missing));
     }
   });
@@ -418,7 +428,11 @@ GearboxReport designTable(const Model& m, Optimised& o, const Columns& columns, 
     // and the next: said even where no rule or rating reads eps_alpha.
     for (size_t st = 0; st < m.gearbox.stages.size(); ++st) {
       Value eps = ev.quantity(ir::QuantityRef{ir::QuantityRef::Stage, static_cast<std::int16_t>(st), -1, false, Q::EpsAlpha}, a);
-      if (eps.isNumber() && eps.lo < 1)
+      if (eps.isNumber() && eps.lo <= 0)
+        g.warnings.push_back(fmt::format("stage `{}` of design 1 does not mesh: at its centre distance the tip circles do not "
+                                         "reach the line of action (eps_alpha {:.4f}); its other numbers describe no real pair",
+                                         m.gearbox.stages[st].name, eps.lo));
+      else if (eps.isNumber() && eps.lo < 1)
         g.warnings.push_back(fmt::format("stage `{}` of design 1 has eps_alpha {:.4f}, below 1: in a transverse "
                                       "section no tooth pair is in contact for part of each mesh cycle, and the ISO 6336 "
                                       "rating refuses such a pair",

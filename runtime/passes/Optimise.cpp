@@ -143,8 +143,8 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
     for (const auto& c : gb.report->columns)
       reportsRelative = reportsRelative || relative(c.get());
   }
-  // `worst(…)` over catalogue quantities with freedoms: decided by the search pass.
-  bool optimised = needsOptimiser(gb) && (needsScenes(gb) || m.freedoms.empty());
+  // `worst(…)` over catalogue quantities: decided by the search pass.
+  bool optimised = needsOptimiser(gb) && needsScenes(gb);
   // Freedoms the search pass decided: the design table, scenes and ratings read them.
   if (!optimised && !out.designs.designs.empty() && !out.designs.designs[0].freedoms.empty())
     for (const auto& d : out.designs.designs)

@@ -149,7 +149,7 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, lo
   for (const auto& rule : order) {
     FunnelStep step;
     step.rule = rule;
-    step.scope = "freedoms";
+    step.scope = m.freedoms.empty() ? "tolerances" : "freedoms";
     step.before = before;
     step.removed = removedBy[rule];
     before -= step.removed;
@@ -178,7 +178,9 @@ SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<v
   }
   so.maxKept = static_cast<size_t>(cat::budget::kKeptDesigns);
   SearchResult r = rt::search(m, so);
-  if (m.freedoms.empty() || !r.errors.empty() || needsScenes(gb)) return r;
+  // A rule over tolerance corners (`worst`) without freedoms is checked the same way, at the
+  // design's one point.
+  if ((m.freedoms.empty() && !needsOptimiser(gb)) || !r.errors.empty() || needsScenes(gb)) return r;
   long long keep = gb.report && gb.report->top ? *gb.report->top : kDefaultTop;
   SearchResult decided = decideFreedoms(m, so, std::move(r), keep, deciding);
   if (deciding) deciding(1.0);

@@ -843,3 +843,50 @@ gearbox H {
   EXPECT_EQ(solve(replaced(text, "LIMIT", "0.1 kg")).result.count, 0u);
   EXPECT_EQ(solve(replaced(text, "LIMIT", "1000 kg")).result.count, 1u);
 }
+
+// A rule over the tolerance corners of a design with no freedoms is checked at its one point:
+// the design goes, and the funnel names the rule (no optimiser runs for it).
+TEST(Worst, ARuleWithoutFreedomsRemovesTheDesignAndIsNamed) {
+  const std::string text = R"(import materials;
+gearbox T {
+  stage hs: helical {
+    pinion.z = 21;  wheel.z = 83;  normal_module = 4 mm;  helix_angle = 12 deg;  face_width = 50 mm;
+    material = steel_18CrNiMo7_6;
+  }
+  tolerances { hs.face_width +- 0.5 mm; hs.helix_angle +- 0.1 deg; }
+  require worst(hs.eps_beta) >= LIMIT;
+}
+)";
+  // eps_beta = b sin(beta) / (pi m_n) at its smallest corner (49.5 mm, 11.9 deg).
+  double low = 0.0495 * std::sin(11.9 * M_PI / 180) / (M_PI * 0.004);
+  std::string kept = report(replaced(text, "LIMIT", fmt::format("{:.6f}", low - 1e-6)));
+  EXPECT_NE(kept.find("gearbox T: 1 design"), std::string::npos) << kept;
+  std::string gone = report(replaced(text, "LIMIT", fmt::format("{:.6f}", low + 1e-6)));
+  EXPECT_NE(gone.find("gearbox T: 0 designs"), std::string::npos) << gone;
+  EXPECT_NE(gone.find("worst(hs.eps_beta) >= "), std::string::npos) << gone;
+  EXPECT_EQ(gone.find("optimisation"), std::string::npos) << gone;
+}
+
+// Geometry a parallel-axis pair cannot have is refused where it is written, in the unit written.
+TEST(Geometry, AnglesBeyondTheirLimitsAreRefused) {
+  auto check = [](const std::string& stage) {
+    auto c = driver::compileText("t.gbx", "gearbox G {\n  stage s: helical { pinion.z = 20; wheel.z = 61; normal_module = 3 mm; face_width = 30 mm; " +
+                                              stage + " }\n}\n");
+    return c->diags.renderText(c->sources);
+  };
+  EXPECT_NE(check("helix_angle = 95 deg;").find("E0405"), std::string::npos);
+  EXPECT_NE(check("helix_angle = -15 deg;").find("got -15 deg"), std::string::npos) << check("helix_angle = -15 deg;");
+  EXPECT_NE(check("helix_angle in 8..95 deg;").find("E0405"), std::string::npos);
+  EXPECT_NE(check("helix_angle = 15 deg; pressure_angle = 89 deg;").find("E0405"), std::string::npos);
+  EXPECT_EQ(check("helix_angle in 8..15 deg;"), "");
+}
+
+// A pair whose tip circles do not reach the line of action at the given centre distance is
+// said not to mesh.
+TEST(Geometry, APairThatDoesNotMeshIsSaidToBeOne) {
+  std::string r = report(R"(gearbox G {
+  stage s: helical { pinion.z = 20; wheel.z = 61; normal_module = 3 mm; helix_angle = 15 deg; face_width = 30 mm; center_distance = 500 mm; }
+}
+)");
+  EXPECT_NE(r.find("warning: stage `s` of design 1 does not mesh"), std::string::npos) << r;
+}
