@@ -88,7 +88,8 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       continue;
     }
     if (timeUp(gb.name, "the search")) return 3;
-    passes::Optimised designs = passes::optimise(program, m, std::move(found), o.jobs, progress(gb.name + " optimising"));
+    passes::Optimised designs = passes::optimise(program, m, std::move(found), o.jobs, progress(gb.name + " optimising"),
+                                                        o.optimiserIterations);
     if (timeUp(gb.name, "the optimisation")) return 3;
     passes::Columns columns = passes::reportColumns(gb);
     std::optional<Assignment> best = passes::bestDesign(m, designs);

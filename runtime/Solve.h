@@ -16,6 +16,7 @@ struct SolveOptions {
   bool timings = true;  // CPU times in reports (off for golden files)
   double maxDesigns = 1e9;  // the search budget (`--max-designs`)
   double timeLimit = 0;     // seconds of wall time (`--time-limit`); 0: none
+  int optimiserIterations = 0;  // a test setting: Nelder-Mead iterations per candidate; 0: its own
 };
 
 // Returns the exit status: 0 solved (an empty design list included), 3 a runtime failure.

@@ -131,7 +131,7 @@ std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& 
 } // namespace
 
 Optimised optimise(const ir::Program& program, const Model& m, SearchResult found, int jobs,
-                   std::function<void(double)> progress) {
+                   std::function<void(double)> progress, int maxIterations) {
   const ir::Gearbox& gb = m.gearbox;
   Optimised out;
   out.designs = std::move(found);
@@ -158,7 +158,7 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
       SearchResult br = passes::search(*out.baseline, jobs, kBaselineDesigns, nullptr);
       std::vector<double> freedoms;
       if (needsOptimiser(other) && br.errors.empty()) {
-        Optimised bo = optimise(program, *out.baseline, std::move(br), jobs, nullptr);
+        Optimised bo = optimise(program, *out.baseline, std::move(br), jobs, nullptr, maxIterations);
         br = std::move(bo.designs);
         if (!bo.freedoms.empty()) freedoms = bo.freedoms[0];
       } else if (!br.designs.empty()) {
@@ -174,6 +174,7 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
   if (!optimised) return out;
   OptimiseOptions oo;
   oo.jobs = jobs;
+  if (maxIterations > 0) oo.maxIterations = maxIterations;
   oo.progress = std::move(progress);
   auto wall0 = std::chrono::steady_clock::now();
   OptimiseResult opt = rt::optimise(m, out.baseline.get(), out.baselineDesign.get(), out.designs.designs, oo);

@@ -19,6 +19,8 @@ struct Optimised {
   std::optional<OptimisationSummary> summary;
 };
 
-Optimised optimise(const ir::Program& program, const Model& m, SearchResult found, int jobs, std::function<void(double)> progress);
+// `maxIterations` > 0 caps the optimiser's iterations per candidate (a test setting).
+Optimised optimise(const ir::Program& program, const Model& m, SearchResult found, int jobs, std::function<void(double)> progress,
+                   int maxIterations = 0);
 
 } // namespace gbx::rt::passes

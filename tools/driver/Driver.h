@@ -28,6 +28,10 @@ std::unique_ptr<Compilation> compileText(const std::string& displayPath, const s
 
 // The command line, runnable in-process (the golden engine uses it). Returns the exit
 // status: 0 success, 1 the spec has errors, 2 usage, 3 runtime failure.
-int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+// What only tests set: they cut work that another test of the same suite does in full.
+struct TestSettings {
+  int optimiserIterations = 0;  // Nelder-Mead iterations per candidate; 0: the optimiser's own
+};
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, const TestSettings& test = {});
 
 } // namespace gbx::driver

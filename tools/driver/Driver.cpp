@@ -136,6 +136,7 @@ exit status: 0 laid out (or, with --check, already laid out), 1 a file does not 
 )";
 
 struct Options {
+  TestSettings test;
   std::string command;
   std::string sub;  // ast|ir for dump
   std::vector<std::string> files;
@@ -217,6 +218,7 @@ int solve(const Options& o, std::ostream& out, std::ostream& err) {
   so.timings = o.timings;
   so.maxDesigns = o.maxDesigns;
   so.timeLimit = o.timeLimit;
+  so.optimiserIterations = o.test.optimiserIterations;
   return rt::solve(c->program, so, out, err);
 }
 
@@ -317,8 +319,9 @@ int formatFiles(const Options& o, std::ostream& out, std::ostream& err) {
 
 } // namespace
 
-int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, const TestSettings& testSettings) {
   Options o;
+  o.test = testSettings;
   std::vector<std::string> positional;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];

@@ -1,0 +1,25 @@
+#pragma once
+// The scans behind ConventionsTest.cpp, over the source tree.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gbx::test {
+
+struct Hit {
+  std::string where;  // file:line
+  std::string line;
+};
+
+// `== "…"`, `!= "…"`, `.compare(…"…")`, `starts_with("…")`, `ends_with("…")` in one line of
+// code (a line comment's text and string contents are not code).
+size_t countLiteralComparisons(const std::string& line);
+
+// Every such comparison in the .cpp and .h files under `dir`.
+std::vector<Hit> literalComparisons(const std::filesystem::path& dir);
+
+// `#include "…"` lines that name a header of a higher layer: in compiler/, one of runtime/ or
+// tools/; in runtime/, one of tools/.
+std::vector<Hit> upwardIncludes(const std::filesystem::path& root);
+
+} // namespace gbx::test
