@@ -512,142 +512,245 @@ bool needsScenes(const ir::Gearbox& g) {
          std::any_of(g.objectives.begin(), g.objectives.end(), [&](const ir::Objective& o) { return walk(o.expr); });
 }
 
-SearchResult search(const Model& m, const SearchOptions& opt) {
+namespace {
+
+// One search, phase by phase (LANGUAGE.md §5): rules into conjuncts, constant rules, the
+// budget and each stage's filter, interchangeable stages, the halves of the join and its
+// budget, the ranking keys, the join itself, and the ranked list with its funnel. Each phase
+// returns false when it ends the search (the result then says why).
+class Searcher {
+public:
+  Searcher(const Model& model, const SearchOptions& options)
+      : m(model), opt(options), ev(model), k(static_cast<int>(model.stages.size())), kk(static_cast<size_t>(k)) {}
+
+  SearchResult run() {
+    if (splitRules() && constantRules() && filterStages() && symmetry() && layout()) {
+      rankingKeys();
+      orbits();
+      if (join()) collect();
+    }
+    return std::move(res);
+  }
+
+private:
+  // A thread's share of the join: its counts and its kept designs.
+  struct Local {
+    std::vector<double> keys;        // nk per kept design
+    std::vector<std::uint32_t> cand; // k per kept design: candidate index per stage
+    std::vector<std::uint32_t> heap; // kept designs, a max-heap when `top` limits them
+    unsigned long long count = 0, undecided = 0;
+    double inWindow = 0, duplicates = 0;
+    std::vector<double> crossRemoved;
+    std::vector<std::uint32_t> leftAt; // scratch: the left indices the canonical order compares
+    bool overKept = false;             // an unlimited listing reached opt.maxKept
+    double walked = 0;                 // designs visited one by one (not counted by arithmetic)
+  };
+  // One thread's walk over its range of left entries.
+  struct Walk {
+    int t;
+    Local& lo;
+    Assignment a;
+    std::vector<std::uint32_t> cand;
+    std::vector<double> scratch;
+    size_t begin, end;
+    size_t sinceCheck = 0; // right entries walked since the time limit was last asked about
+    bool report;
+  };
+
+  const Model& m;
+  const SearchOptions& opt;
+  Evaluator ev;
+  const int k;
+  const size_t kk;
   SearchResult res;
-  Evaluator ev(m);
-  const int k = static_cast<int>(m.stages.size());
+
+  // Rules.
+  std::vector<Conjunct> conjuncts;
+  Window window;
+  std::vector<std::string> windowTexts;
+  std::vector<std::vector<const Conjunct*>> local;
+  std::vector<const Conjunct*> cross, global;
+  // Stages, symmetry and the join's halves.
+  std::vector<StageResult> stages;
+  std::vector<Perm> group;
+  std::vector<std::pair<int, int>> ordered; // (a, b): index of stage a <= index of stage b
+  bool fast = false;
+  bool rows = false;
+  int h = 0;
+  double combos = 1;
+  std::vector<std::vector<double>> ratios;
+  HalfList leftList, rightList;
+  const HalfList* right = nullptr;
+  size_t n1 = 0;
+  std::vector<std::pair<int, int>> crossing;
+  bool floorOnly = false;
+  // Ranking.
+  size_t nk = 0;
+  std::vector<std::optional<RatioFn>> exactKey;
+  double noValue = INFINITY;
+  size_t keep = SIZE_MAX;
+  bool capped = false;
+  std::optional<FastKey> fastKey;
+  RangeMin rowMin; // three stages: the third stage's table, by candidate (= position in the right list)
+  // Orbits of interchangeable stages checked design by design.
+  bool orbitCheck = false;
+  std::vector<std::set<std::vector<int>>> members;
+  // The join.
+  static constexpr double eps = 1e-9; // larger than the rounding of a ratio product
+  double sureLo = -INFINITY, sureHi = INFINITY, wantLoC = -INFINITY, wantHiC = INFINITY;
+  size_t n = 0, rn = 0;
+  int threads = 1;
+  bool undecidedAny = false;
+  bool arith = false;
+  std::vector<Local> locals;
+  // Set when the time limit stops the join, with each thread's share of its range done
+  // (a thread that finished first keeps 1).
+  std::atomic<bool> timedOut{false};
+  // Set when the designs checked one by one (rules across stages) pass their share of the
+  // search budget: each costs an evaluation of the rules, some fifty times a counted one,
+  // and a wide ratio window hides how many there are from the estimate before the join.
+  std::atomic<bool> overWalked{false};
+  static constexpr double kCheckedShare = 0.02;
+  double walkBudget = 0;
+  std::vector<double> joinDone;
+
+  // ---- rules ----------------------------------------------------------------------------
 
   // Rules into conjuncts: one-stage ones filter that stage, the ratio window joins stages,
   // the rest are checked on whole designs.
-  std::vector<Conjunct> conjuncts;
-  for (const auto& r : m.gearbox.rules) {
-    std::vector<const ir::Expr*> parts;
-    if (r.expr) split(*r.expr, parts);
-    for (const auto* p : parts) {
-      Conjunct c;
-      c.expr = p;
-      c.text = parts.size() == 1 ? r.text : ir::print(*p);
-      dependencies(m, *p, c);
-      if (!r.scope.empty() && c.stages.empty()) c.stages.insert(m.stageIndex(r.scope));
-      conjuncts.push_back(std::move(c));
+  bool splitRules() {
+    for (const auto& r : m.gearbox.rules) {
+      std::vector<const ir::Expr*> parts;
+      if (r.expr) split(*r.expr, parts);
+      for (const auto* p : parts) {
+        Conjunct c;
+        c.expr = p;
+        c.text = parts.size() == 1 ? r.text : ir::print(*p);
+        dependencies(m, *p, c);
+        if (!r.scope.empty() && c.stages.empty()) c.stages.insert(m.stageIndex(r.scope));
+        conjuncts.push_back(std::move(c));
+      }
     }
-  }
-  Window window;
-  std::vector<std::string> windowTexts;
-  std::vector<std::vector<const Conjunct*>> local(static_cast<size_t>(k));
-  std::vector<const Conjunct*> cross, global;
-  for (const auto& c : conjuncts) {
-    if (c.unsupported) {
-      if (opt.deferDynamics)
-        res.deferred.push_back(c.text);
+    local.resize(kk);
+    for (const auto& c : conjuncts) {
+      if (c.unsupported) {
+        if (opt.deferDynamics)
+          res.deferred.push_back(c.text);
+        else
+          res.errors.push_back(
+              fmt::format("rule `{}` needs results the search does not compute (scenes, splits, baselines)", c.text));
+        continue;
+      }
+      if (asWindow(*c.expr, window)) {
+        windowTexts.push_back(c.text);
+        continue;
+      }
+      if (c.stages.size() == 1)
+        local[static_cast<size_t>(*c.stages.begin())].push_back(&c);
+      else if (c.stages.empty())
+        global.push_back(&c);
       else
+        cross.push_back(&c);
+    }
+    // A strength rule runs only on the candidates the cheaper rules kept; the funnel then
+    // says how many it removed.
+    auto cheapFirst = [](const Conjunct* a, const Conjunct* b) { return !a->strength && b->strength; };
+    for (auto& l : local)
+      std::stable_sort(l.begin(), l.end(), cheapFirst);
+    std::stable_sort(cross.begin(), cross.end(), cheapFirst);
+    for (const auto& o : m.gearbox.objectives) {
+      Conjunct c;
+      if (o.expr) dependencies(m, *o.expr, c);
+      if (c.unsupported && !opt.deferDynamics)
         res.errors.push_back(
-            fmt::format("rule `{}` needs results the search does not compute (scenes, splits, baselines)", c.text));
-      continue;
+            fmt::format("objective `{}` needs results the search does not compute (scenes, baselines)", o.text));
     }
-    if (asWindow(*c.expr, window)) {
-      windowTexts.push_back(c.text);
-      continue;
-    }
-    if (c.stages.size() == 1)
-      local[static_cast<size_t>(*c.stages.begin())].push_back(&c);
-    else if (c.stages.empty())
-      global.push_back(&c);
-    else
-      cross.push_back(&c);
+    if (!res.errors.empty()) return false;
+    if (window.lo || window.hi) res.window = window.str();
+    return true;
   }
-  // A strength rule runs only on the candidates the cheaper rules kept; the funnel then
-  // says how many it removed.
-  for (auto& l : local)
-    std::stable_sort(l.begin(), l.end(),
-                     [](const Conjunct* a, const Conjunct* b) { return !a->strength && b->strength; });
-  std::stable_sort(cross.begin(), cross.end(),
-                   [](const Conjunct* a, const Conjunct* b) { return !a->strength && b->strength; });
-  for (const auto& o : m.gearbox.objectives) {
-    Conjunct c;
-    if (o.expr) dependencies(m, *o.expr, c);
-    if (c.unsupported && !opt.deferDynamics)
-      res.errors.push_back(
-          fmt::format("objective `{}` needs results the search does not compute (scenes, baselines)", o.text));
-  }
-  if (!res.errors.empty()) return res;
-  if (window.lo || window.hi) res.window = window.str();
 
   // Rules on constants alone decide everything at once.
-  Assignment none(m);
-  for (const auto* c : global) {
-    Truth t = truthOf(ev.eval(*c->expr, none));
-    res.funnel.push_back({c->text, "", 1, t == Truth::True ? 0.0 : 1.0});
-    if (t != Truth::True) return res;
+  bool constantRules() {
+    Assignment none(m);
+    for (const auto* c : global) {
+      Truth t = truthOf(ev.eval(*c->expr, none));
+      res.funnel.push_back({c->text, "", 1, t == Truth::True ? 0.0 : 1.0});
+      if (t != Truth::True) return false;
+    }
+    return true;
   }
 
-  // The budget, before any work: each stage's domain, counted before its rules filter it.
-  for (int s = 0; s < k; ++s) {
-    double domain = stageDomain(m, s);
-    if (domain > opt.maxDesigns) {
-      res.errors.push_back(fmt::format("stage `{}` has {:.3g} candidates ({}), beyond the search budget of {:.3g} (--max-designs); "
-                                       "narrow these ranges, or raise --max-designs",
-                                       m.stages[static_cast<size_t>(s)].ir->name, domain, stageRanges(m, s), opt.maxDesigns));
-      return res;
-    }
-  }
-  std::vector<StageResult> stages;
-  for (int s = 0; s < k; ++s) {
-    stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs));
-    if (stages.back().timedOutAt >= 0) {
-      res.errors.push_back(timeLimitMessage(fmt::format("filtering the candidates of stage `{}`", m.stages[static_cast<size_t>(s)].ir->name),
-                                            stages.back().timedOutAt, Deadline::seconds(), stageDomain(m, s)));
-      return res;
-    }
-    for (auto& f : stages.back().funnel)
-      res.funnel.push_back(f);
-    for (auto& n : stages.back().notes)
-      res.notes.push_back(n);
-  }
-
-  // Interchangeable groups as permutations of slots.
-  std::vector<Perm> gens;
-  bool stageSwapsOnly = true;
-  size_t nslots = m.slots.size();
-  for (const auto& group : m.gearbox.interchangeable) {
-    for (size_t i = 0; i + 1 < group.size(); ++i) {
-      Perm p(nslots);
-      for (size_t q = 0; q < nslots; ++q)
-        p[q] = static_cast<int>(q);
-      const std::string &x = group[i], &y = group[i + 1];
-      auto sx = x.substr(0, x.find('.')), sy = y.substr(0, y.find('.'));
-      int a = m.stageIndex(sx), b = m.stageIndex(sy);
-      // `upper.pinion, lower.pinion` pairs one gear's decisions; `upper, lower` whole stages.
-      auto gearOf = [&](const std::string& path, int st) {
-        auto dot = path.find('.');
-        return dot == std::string::npos ? -2 : cat::gearIndex(cat::kindSpec(m.info(st).ir->kind), path.substr(dot + 1));
-      };
-      int gx = gearOf(x, a), gy = gearOf(y, b);
-      if (gx != -2) stageSwapsOnly = false;
-      for (int sa : m.stages[static_cast<size_t>(a)].slots) {
-        const Slot& slot = m.slots[static_cast<size_t>(sa)];
-        if (gx != -2 && slot.gear != gx) continue;
-        int sb = m.slotOf(b, gx == -2 ? slot.gear : gy, slot.key);
-        if (sb < 0) {
-          std::string px = x.find('.') == std::string::npos ? "" : x.substr(x.find('.') + 1) + ".";
-          std::string py = y.find('.') == std::string::npos ? "" : y.substr(y.find('.') + 1) + ".";
-          res.errors.push_back(fmt::format("`interchangeable {}, {}`: `{}` has no decision `{}` to match `{}.{}`", x, y,
-                                           sy, py + slot.attr.substr(px.size()), sx, slot.attr));
-          continue;
-        }
-        p[static_cast<size_t>(sa)] = sb;
-        p[static_cast<size_t>(sb)] = sa;
+  // The budget, before any work: each stage's domain, counted before its rules filter it;
+  // then each stage's candidates.
+  bool filterStages() {
+    for (int s = 0; s < k; ++s) {
+      double domain = stageDomain(m, s);
+      if (domain > opt.maxDesigns) {
+        res.errors.push_back(fmt::format("stage `{}` has {:.3g} candidates ({}), beyond the search budget of {:.3g} (--max-designs); "
+                                         "narrow these ranges, or raise --max-designs",
+                                         m.stages[static_cast<size_t>(s)].ir->name, domain, stageRanges(m, s), opt.maxDesigns));
+        return false;
       }
-      gens.push_back(p);
     }
+    for (int s = 0; s < k; ++s) {
+      stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs));
+      if (stages.back().timedOutAt >= 0) {
+        res.errors.push_back(timeLimitMessage(fmt::format("filtering the candidates of stage `{}`", m.stages[static_cast<size_t>(s)].ir->name),
+                                              stages.back().timedOutAt, Deadline::seconds(), stageDomain(m, s)));
+        return false;
+      }
+      for (auto& f : stages.back().funnel)
+        res.funnel.push_back(f);
+      for (auto& note : stages.back().notes)
+        res.notes.push_back(note);
+    }
+    return true;
   }
-  if (!res.errors.empty()) return res;
-  std::vector<Perm> group = closeGroup(gens, nslots);
 
-  // Stages whose swaps make the orbit a multiset: identical candidate lists, and no rule
-  // across stages that could tell them apart. Then designs are enumerated canonically
-  // (non-decreasing candidate index along the block) instead of deduplicated.
-  auto sameList = [&](int a, int b) {
+  // ---- interchangeable stages -------------------------------------------------------------
+
+  // Interchangeable groups as permutations of slots; sets `stageSwapsOnly` false when a
+  // group pairs single gears rather than whole stages.
+  bool generators(std::vector<Perm>& gens, bool& stageSwapsOnly) {
+    size_t nslots = m.slots.size();
+    for (const auto& g : m.gearbox.interchangeable) {
+      for (size_t i = 0; i + 1 < g.size(); ++i) {
+        Perm p(nslots);
+        for (size_t q = 0; q < nslots; ++q)
+          p[q] = static_cast<int>(q);
+        const std::string &x = g[i], &y = g[i + 1];
+        auto sx = x.substr(0, x.find('.')), sy = y.substr(0, y.find('.'));
+        int a = m.stageIndex(sx), b = m.stageIndex(sy);
+        // `upper.pinion, lower.pinion` pairs one gear's decisions; `upper, lower` whole stages.
+        auto gearOf = [&](const std::string& path, int st) {
+          auto dot = path.find('.');
+          return dot == std::string::npos ? -2 : cat::gearIndex(cat::kindSpec(m.info(st).ir->kind), path.substr(dot + 1));
+        };
+        int gx = gearOf(x, a), gy = gearOf(y, b);
+        if (gx != -2) stageSwapsOnly = false;
+        for (int sa : m.stages[static_cast<size_t>(a)].slots) {
+          const Slot& slot = m.slots[static_cast<size_t>(sa)];
+          if (gx != -2 && slot.gear != gx) continue;
+          int sb = m.slotOf(b, gx == -2 ? slot.gear : gy, slot.key);
+          if (sb < 0) {
+            std::string px = x.find('.') == std::string::npos ? "" : x.substr(x.find('.') + 1) + ".";
+            std::string py = y.find('.') == std::string::npos ? "" : y.substr(y.find('.') + 1) + ".";
+            res.errors.push_back(fmt::format("`interchangeable {}, {}`: `{}` has no decision `{}` to match `{}.{}`", x, y,
+                                             sy, py + slot.attr.substr(px.size()), sx, slot.attr));
+            continue;
+          }
+          p[static_cast<size_t>(sa)] = sb;
+          p[static_cast<size_t>(sb)] = sa;
+        }
+        gens.push_back(p);
+      }
+    }
+    return res.errors.empty();
+  }
+
+  // Whether stages a and b have the same candidate list (same attributes, same values).
+  bool sameList(int a, int b) const {
     const auto &ca = stages[static_cast<size_t>(a)].candidates, &cb = stages[static_cast<size_t>(b)].candidates;
     if (ca.size() != cb.size()) return false;
     const auto &sa = m.stages[static_cast<size_t>(a)].slots, &sb = m.stages[static_cast<size_t>(b)].slots;
@@ -661,114 +764,128 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
         if (!va.exact || !vb.exact || *va.exact != *vb.exact) return false;
       }
     return true;
-  };
-  std::vector<std::pair<int, int>> ordered; // (a, b): index of stage a <= index of stage b
-  bool fast = stageSwapsOnly && cross.empty();
-  if (fast && group.size() > 1) {
-    for (const auto& gp : m.gearbox.interchangeable) {
-      // Links between neighbours in stage order, whatever order the group is written in
-      // (`c, a, b` links a-b and b-c: a chain, so each orbit is enumerated once).
-      std::vector<int> members;
-      for (const auto& name : gp) members.push_back(m.stageIndex(name));
-      std::sort(members.begin(), members.end());
-      for (size_t i = 0; i + 1 < members.size(); ++i) {
-        if (!sameList(members[i], members[i + 1])) fast = false;
-        ordered.emplace_back(members[i], members[i + 1]);
+  }
+
+  // Stages whose swaps make the orbit a multiset: identical candidate lists, and no rule
+  // across stages that could tell them apart. Then designs are enumerated canonically
+  // (non-decreasing candidate index along the block) instead of deduplicated.
+  bool symmetry() {
+    std::vector<Perm> gens;
+    bool stageSwapsOnly = true;
+    if (!generators(gens, stageSwapsOnly)) return false;
+    group = closeGroup(gens, m.slots.size());
+    fast = stageSwapsOnly && cross.empty();
+    if (fast && group.size() > 1) {
+      for (const auto& gp : m.gearbox.interchangeable) {
+        // Links between neighbours in stage order, whatever order the group is written in
+        // (`c, a, b` links a-b and b-c: a chain, so each orbit is enumerated once).
+        std::vector<int> inGroup;
+        for (const auto& name : gp) inGroup.push_back(m.stageIndex(name));
+        std::sort(inGroup.begin(), inGroup.end());
+        for (size_t i = 0; i + 1 < inGroup.size(); ++i) {
+          if (!sameList(inGroup[i], inGroup[i + 1])) fast = false;
+          ordered.emplace_back(inGroup[i], inGroup[i + 1]);
+        }
       }
     }
+    if (!fast) ordered.clear();
+    return true;
   }
-  if (!fast) ordered.clear();
+
+  // ---- the join's halves ------------------------------------------------------------------
+
+  // The join's budget: with a two-sided ratio window it builds and walks its halves; without
+  // one it visits every combination.
+  bool withinBudget() {
+    for (const auto& st : stages)
+      combos *= static_cast<double>(st.candidates.size());
+    double left = 1, rightSize = 1;
+    for (int s = 0; s < k; ++s)
+      (s < h ? left : rightSize) *= static_cast<double>(stages[static_cast<size_t>(s)].candidates.size());
+    bool windowed = window.lo && window.hi && k > 1;
+    double walked = windowed ? std::max(left, rightSize) : combos;
+    if (walked <= opt.maxDesigns) return true;
+    std::vector<std::string> lists;
+    for (int s = 0; s < k; ++s)
+      lists.push_back(fmt::format("`{}` {} candidates ({})", m.stages[static_cast<size_t>(s)].ir->name,
+                                  stages[static_cast<size_t>(s)].candidates.size(), stageRanges(m, s)));
+    res.errors.push_back(fmt::format(
+        "the search space is {:.3g} designs ({}){}, beyond the search budget of {:.3g} (--max-designs); narrow these ranges, "
+        "{}or raise --max-designs",
+        combos, fmt::join(lists, "; "), windowed ? fmt::format(", of which the join walks {:.3g}", walked) : "",
+        opt.maxDesigns, windowed ? "" : "bound the ratio (`require ratio == … +- …`), "));
+    return false;
+  }
+
+  // Whether both halves are the same block of interchangeable stages: one list serves both.
+  bool sameHalves() const {
+    std::vector<int> block(kk);
+    for (int s = 0; s < k; ++s)
+      block[static_cast<size_t>(s)] = s;
+    std::function<int(int)> root = [&](int s) {
+      return block[static_cast<size_t>(s)] == s ? s : root(block[static_cast<size_t>(s)]);
+    };
+    for (const auto& [a, b] : ordered)
+      block[static_cast<size_t>(root(b))] = root(a);
+    bool same = !rows && fast && h == k - h && h > 0;
+    for (int a = 0; same && a < h; ++a)
+      same = root(a) == root(a + h) && sameList(a, a + h);
+    auto has = [&](int x, int y) { return std::find(ordered.begin(), ordered.end(), std::make_pair(x, y)) != ordered.end(); };
+    for (const auto& [a, b] : ordered) {
+      if (!same) break;
+      if (b < h && !has(a + h, b + h)) same = false;
+      if (a >= h && !has(a - h, b - h)) same = false;
+    }
+    return same;
+  }
 
   // Meet in the middle over sorted stage ratios: left stages [0, h), right [h, k). Each
   // half is a compact list sorted by its ratio product; one two-pointer sweep joins them.
   // Three to five stages: the first two are walked row by row (the second stage's index
   // runs fastest, so the left ratio rises along a row, and a row ends where no right
   // entry the canonical order allows can still fit) against the sorted list of the
-  // others, and no list of pairs is built. Otherwise both halves are built and sorted;
-  // when the two halves are the same block of interchangeable stages, one list serves both.
-  bool rows = k >= 3 && k <= 5;
-  int h = rows ? 2 : k / 2;
-  double combos = 1;
-  for (const auto& st : stages)
-    combos *= static_cast<double>(st.candidates.size());
-  {
-    // The join's budget: with a two-sided ratio window it builds and walks its halves;
-    // without one it visits every combination.
-    double left = 1, right = 1;
+  // others, and no list of pairs is built. Otherwise both halves are built and sorted.
+  bool layout() {
+    rows = k >= 3 && k <= 5;
+    h = rows ? 2 : k / 2;
+    if (!withinBudget()) return false;
+    bool same = sameHalves();
+    ratios.resize(kk);
     for (int s = 0; s < k; ++s)
-      (s < h ? left : right) *= static_cast<double>(stages[static_cast<size_t>(s)].candidates.size());
-    bool windowed = window.lo && window.hi && k > 1;
-    double walked = windowed ? std::max(left, right) : combos;
-    if (walked > opt.maxDesigns) {
-      std::vector<std::string> lists;
-      for (int s = 0; s < k; ++s)
-        lists.push_back(fmt::format("`{}` {} candidates ({})", m.stages[static_cast<size_t>(s)].ir->name,
-                                    stages[static_cast<size_t>(s)].candidates.size(), stageRanges(m, s)));
-      res.errors.push_back(fmt::format(
-          "the search space is {:.3g} designs ({}){}, beyond the search budget of {:.3g} (--max-designs); narrow these ranges, "
-          "{}or raise --max-designs",
-          combos, fmt::join(lists, "; "),
-          windowed ? fmt::format(", of which the join walks {:.3g}", walked) : "", opt.maxDesigns,
-          windowed ? "" : "bound the ratio (`require ratio == … +- …`), "));
-      return res;
-    }
+      for (const auto& c : stages[static_cast<size_t>(s)].candidates)
+        ratios[static_cast<size_t>(s)].push_back(c.r);
+    if (!rows) leftList = HalfList::build(ratios, ordered, 0, h);
+    if (!same) rightList = HalfList::build(ratios, ordered, h, k);
+    for (const HalfList* H : {&leftList, &rightList})
+      if (!H->error().empty()) res.errors.push_back(H->error());
+    if (!res.errors.empty()) return false;
+    right = same ? &leftList : &rightList;
+    // Rows: left entries are (i, j) packed as i * n1 + j.
+    n1 = rows ? stages[1].candidates.size() : 0;
+    // Links of the canonical order from a left stage to a right one: a floor on a one-stage
+    // right half (its entries are its sorted candidates), a test per entry otherwise.
+    for (const auto& [sa, sb] : ordered)
+      if (sa < h && sb >= h) crossing.emplace_back(sa, sb);
+    floorOnly = right->width() <= 1;
+    return true;
   }
-  // Blocks of interchangeable stages (union of the `ordered` links).
-  std::vector<int> block(static_cast<size_t>(k));
-  for (int s = 0; s < k; ++s)
-    block[static_cast<size_t>(s)] = s;
-  std::function<int(int)> root = [&](int s) {
-    return block[static_cast<size_t>(s)] == s ? s : root(block[static_cast<size_t>(s)]);
-  };
-  for (const auto& [a, b] : ordered)
-    block[static_cast<size_t>(root(b))] = root(a);
-  bool sameHalves = !rows && fast && h == k - h && h > 0;
-  for (int a = 0; sameHalves && a < h; ++a)
-    sameHalves = root(a) == root(a + h) && sameList(a, a + h);
-  for (const auto& [a, b] : ordered) {
-    if (!sameHalves) break;
-    bool inLeft = b < h, inRight = a >= h;
-    auto has = [&](int x, int y) {
-      return std::find(ordered.begin(), ordered.end(), std::make_pair(x, y)) != ordered.end();
-    };
-    if (inLeft && !has(a + h, b + h)) sameHalves = false;
-    if (inRight && !has(a - h, b - h)) sameHalves = false;
-  }
-  std::vector<std::vector<double>> ratios(static_cast<size_t>(k));
-  for (int s = 0; s < k; ++s)
-    for (const auto& c : stages[static_cast<size_t>(s)].candidates)
-      ratios[static_cast<size_t>(s)].push_back(c.r);
-  HalfList leftList, rightList;
-  if (!rows) leftList = HalfList::build(ratios, ordered, 0, h);
-  if (!sameHalves) rightList = HalfList::build(ratios, ordered, h, k);
-  for (const HalfList* H : {&leftList, &rightList})
-    if (!H->error().empty()) res.errors.push_back(H->error());
-  if (!res.errors.empty()) return res;
-  const HalfList& right = sameHalves ? leftList : rightList;
-  // Rows: left entries are (i, j) packed as i * n1 + j.
-  const size_t n1 = rows ? stages[1].candidates.size() : 0;
-  auto leftIndex = [&](size_t le, int s) -> std::uint32_t {
+
+  std::uint32_t leftIndex(size_t le, int s) const {
     if (rows) return static_cast<std::uint32_t>(s == 0 ? le / n1 : le % n1);
     return leftList.index(le, s);
-  };
-  auto rightIndex = [&](size_t re, int s) -> std::uint32_t { return right.index(re, s - h); };
-  // Links of the canonical order from a left stage to a right one: a floor on a one-stage
-  // right half (its entries are its sorted candidates), a test per entry otherwise.
-  std::vector<std::pair<int, int>> crossing;
-  for (const auto& [sa, sb] : ordered)
-    if (sa < h && sb >= h) crossing.emplace_back(sa, sb);
-  const bool floorOnly = right.width() <= 1;
-  auto rightFloor = [&](size_t le) -> size_t {
+  }
+  std::uint32_t rightIndex(size_t re, int s) const { return right->index(re, s - h); }
+  size_t rightFloor(size_t le) const {
     size_t lo = 0;
     if (floorOnly)
       for (const auto& [sa, sb] : crossing)
         lo = std::max<size_t>(lo, leftIndex(le, sa));
     return lo;
-  };
-  auto candidate = [&](int s, const std::uint32_t* cand) -> const Candidate& {
+  }
+  const Candidate& candidate(int s, const std::uint32_t* cand) const {
     return stages[static_cast<size_t>(s)].candidates[cand[s]];
-  };
-  auto exactRatio = [&](const std::uint32_t* cand) {
+  }
+  Rational exactRatio(const std::uint32_t* cand) const {
     // Parts multiplied out and reduced once; stage by stage only if they would overflow.
     units::i128 num = 1, den = 1;
     bool fits = true;
@@ -780,42 +897,33 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     if (fits) return Rational::make(num, den);
     Rational q(1);
     for (int s = 0; s < k; ++s) {
-      auto n = q.mul(candidate(s, cand).ratio);
-      if (n) q = *n;
+      auto p = q.mul(candidate(s, cand).ratio);
+      if (p) q = *p;
     }
     return q;
-  };
-  auto place = [&](Assignment& a, int s, size_t c) {
+  }
+  void place(Assignment& a, int s, size_t c) const {
     const auto& slots = m.stages[static_cast<size_t>(s)].slots;
     const auto& idx = stages[static_cast<size_t>(s)].candidates[c].idx;
     for (size_t j = 0; j < slots.size(); ++j)
       a.choice[static_cast<size_t>(slots[j])] = idx[j];
-  };
-  auto fill = [&](Assignment& a, const std::uint32_t* cand) {
+  }
+  void fill(Assignment& a, const std::uint32_t* cand) const {
     for (int s = 0; s < k; ++s)
       place(a, s, cand[s]);
-  };
+  }
 
-  // Ranking keys: `sort by`, then the objectives (minimised; maximised ones negated).
-  const size_t nk = (opt.sortBy ? 1 : 0) + (opt.deferDynamics ? 0 : m.gearbox.objectives.size());
-  // A key that reads only the gearbox ratio is computed from the exact ratio directly (the
-  // same rational the evaluator would reach, without its per-step reductions).
-  std::vector<std::optional<RatioFn>> exactKey;
-  if (opt.sortBy) exactKey.push_back(RatioFn::compile(*opt.sortBy));
-  if (!opt.deferDynamics)
-    for (const auto& o : m.gearbox.objectives)
-      exactKey.push_back(o.expr ? RatioFn::compile(*o.expr) : std::nullopt);
-  auto direct = [&](size_t i, const Assignment& a) -> std::optional<double> {
+  // ---- ranking ----------------------------------------------------------------------------
+
+  std::optional<double> direct(size_t i, const Assignment& a) const {
     if (!a.ratio || !exactKey[i]) return std::nullopt;
     auto q = exactKey[i]->exactAt(*a.ratio);
     if (!q) return std::nullopt;
     return q->toDouble();
-  };
-  // A key with no value ranks last; over freedoms, where the value at the design's decided
-  // point may exist though none exists over the whole box, it ranks first: the key is a lower
-  // bound, and the design is decided before any that could pass it.
-  const double noValue = m.freedoms.empty() ? INFINITY : -INFINITY;
-  auto keysInto = [&](const Assignment& a, double* out) {
+  }
+
+  // Ranking keys: `sort by`, then the objectives (minimised; maximised ones negated).
+  void keysInto(const Assignment& a, double* out) const {
     size_t i = 0;
     if (opt.sortBy) {
       auto d = direct(i, a);
@@ -830,18 +938,33 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       double x = o.minimize ? v.lo : -v.hi;
       out[i++] = v.isNumber() && !std::isnan(x) ? rankingKey(x) : noValue; // NaN would break the order
     }
-  };
-  // At most one design more than opt.maxKept is kept, whatever `top` says: finding more is
-  // a failure, not memory spent.
-  const size_t top = opt.top ? static_cast<size_t>(std::max(0LL, *opt.top)) : SIZE_MAX;
-  const bool capped = opt.top && top > opt.maxKept;
-  const size_t keep = capped ? opt.maxKept + 1 : top;
+  }
+
+  void rankingKeys() {
+    nk = (opt.sortBy ? 1 : 0) + (opt.deferDynamics ? 0 : m.gearbox.objectives.size());
+    // A key that reads only the gearbox ratio is computed from the exact ratio directly (the
+    // same rational the evaluator would reach, without its per-step reductions).
+    if (opt.sortBy) exactKey.push_back(RatioFn::compile(*opt.sortBy));
+    if (!opt.deferDynamics)
+      for (const auto& o : m.gearbox.objectives)
+        exactKey.push_back(o.expr ? RatioFn::compile(*o.expr) : std::nullopt);
+    // A key with no value ranks last; over freedoms, where the value at the design's decided
+    // point may exist though none exists over the whole box, it ranks first: the key is a lower
+    // bound, and the design is decided before any that could pass it.
+    noValue = m.freedoms.empty() ? INFINITY : -INFINITY;
+    // At most one design more than opt.maxKept is kept, whatever `top` says: finding more is
+    // a failure, not memory spent.
+    const size_t top = opt.top ? static_cast<size_t>(std::max(0LL, *opt.top)) : SIZE_MAX;
+    capped = opt.top && top > opt.maxKept;
+    keep = capped ? opt.maxKept + 1 : top;
+    if (!opt.exhaustive && nk > 0 && keep > 0 && keep != SIZE_MAX && k > 0) screen();
+    if (fastKey && k == 3 && fastKey->table(2)) rowMin = RangeMin(*fastKey->table(2));
+  }
 
   // The first key in doubles, when it is a sum of one-stage terms and functions of the
   // ratio: a screen before the evaluator, and bounds that skip whole windows. Checked
   // against the evaluator on sample designs before it is trusted.
-  std::optional<FastKey> fastKey;
-  if (!opt.exhaustive && nk > 0 && keep > 0 && keep != SIZE_MAX && k > 0) {
+  void screen() {
     const ir::Expr* e = opt.sortBy ? opt.sortBy : m.gearbox.objectives[0].expr.get();
     bool maximise = !opt.sortBy && !m.gearbox.objectives[0].minimize;
     std::vector<size_t> sizes;
@@ -853,9 +976,10 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       dependencies(m, x, c);
       return FastKey::Reads{c.stages, c.freedom || c.unsupported};
     };
-    if (e && any) fastKey = FastKey::build(ev, *e, maximise, sizes, reads, place);
+    auto placeOne = [this](Assignment& a, int s, size_t c) { place(a, s, c); };
+    if (e && any) fastKey = FastKey::build(ev, *e, maximise, sizes, reads, placeOne);
     std::vector<double> want(nk);
-    std::vector<std::uint32_t> cand(static_cast<size_t>(k));
+    std::vector<std::uint32_t> cand(kk);
     Assignment a(m);
     for (std::uint64_t t = 0; fastKey && t < 16; ++t) {
       double r = 1;
@@ -872,40 +996,38 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       if (!same) fastKey.reset();
     }
   }
-  RangeMin rowMin; // three stages: the third stage's table, by candidate (= position in the right list)
-  if (fastKey && k == 3 && fastKey->table(2)) rowMin = RangeMin(*fastKey->table(2));
 
-  // Per-stage membership, for checking the images of a design under the group.
-  bool orbitCheck = !fast && group.size() > 1;
-  std::vector<std::set<std::vector<int>>> members(static_cast<size_t>(k));
-  if (orbitCheck)
-    for (int s = 0; s < k; ++s)
-      for (const auto& c : stages[static_cast<size_t>(s)].candidates)
-        members[static_cast<size_t>(s)].insert(c.idx);
-  auto valueOf = [&](int slot, int c) -> const Value& {
-    return m.slots[static_cast<size_t>(slot)].values[static_cast<size_t>(c)];
-  };
+  // ---- orbits checked design by design ------------------------------------------------------
+
+  void orbits() {
+    orbitCheck = !fast && group.size() > 1;
+    members.resize(kk);
+    if (orbitCheck)
+      for (int s = 0; s < k; ++s)
+        for (const auto& c : stages[static_cast<size_t>(s)].candidates)
+          members[static_cast<size_t>(s)].insert(c.idx);
+  }
+  const Value& valueOf(int slot, int c) const { return m.slots[static_cast<size_t>(slot)].values[static_cast<size_t>(c)]; }
   // Image of a design under a permutation: slot values moved; -1 where a value is outside
   // the target slot's domain.
-  auto image = [&](const std::vector<int>& choice, const Perm& p) {
+  std::vector<int> image(const std::vector<int>& choice, const Perm& p) const {
     std::vector<int> out(choice.size(), -1);
     for (size_t sl = 0; sl < choice.size(); ++sl) {
       int target = p[sl];
       const Value& v = valueOf(static_cast<int>(sl), choice[sl]);
       const auto& dom = m.slots[static_cast<size_t>(target)].values;
       for (size_t i = 0; i < dom.size(); ++i)
-        if (dom[i].exact && v.exact && *dom[i].exact == *v.exact)
-          out[static_cast<size_t>(target)] = static_cast<int>(i);
+        if (dom[i].exact && v.exact && *dom[i].exact == *v.exact) out[static_cast<size_t>(target)] = static_cast<int>(i);
     }
     return out;
-  };
-  auto stageTuple = [&](const std::vector<int>& choice, int s) {
+  }
+  std::vector<int> stageTuple(const std::vector<int>& choice, int s) const {
     std::vector<int> t;
     for (int sl : m.stages[static_cast<size_t>(s)].slots)
       t.push_back(choice[static_cast<size_t>(sl)]);
     return t;
-  };
-  auto feasibleDesign = [&](const std::vector<int>& choice) {
+  }
+  bool feasibleDesign(const std::vector<int>& choice) const {
     for (int c : choice)
       if (c < 0) return false;
     for (int s = 0; s < k; ++s)
@@ -917,10 +1039,10 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     for (const auto* c : cross)
       if (truthOf(ev.eval(*c->expr, a)) == Truth::False) return false;
     return true;
-  };
+  }
   // Orders designs by the ratios of their stages, then by their values: the order of the
   // sorted candidate lists. An orbit is shown by its least member.
-  auto less = [&](const std::vector<int>& x, const std::vector<int>& y) {
+  bool less(const std::vector<int>& x, const std::vector<int>& y) const {
     Assignment ax(m), ay(m);
     ax.choice = x;
     ay.choice = y;
@@ -933,49 +1055,32 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       }
     }
     return false;
-  };
+  }
+  // Whether a design is the least of its orbit (the one the search lists).
+  bool representative(const std::vector<int>& choice) const {
+    for (size_t g = 1; g < group.size(); ++g) {
+      auto img = image(choice, group[g]);
+      if (img != choice && feasibleDesign(img) && less(img, choice)) return false;
+    }
+    return true;
+  }
 
-  const double eps = 1e-9; // larger than the rounding of a ratio product
-  const double wlo = window.lo ? window.lo->toDouble() : -INFINITY, whi = window.hi ? window.hi->toDouble() : INFINITY;
-  const double sureLo = wlo * (1 + 4 * eps), sureHi = whi * (1 - 4 * eps);
-  size_t n = rows ? stages[0].candidates.size() : leftList.size(), rn = right.size();
-  int threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(n / 64) + 1));
-  bool undecidedAny = false;
-  for (const auto& st : stages)
-    for (const auto& c : st.candidates)
-      undecidedAny = undecidedAny || c.undecided;
-  // Counted by arithmetic (the window's length, its borders confirmed exactly) when every
-  // design in a window counts: no rule across stages, no orbit test, no undecided freedom,
-  // and the canonical order at most a floor.
-  const bool arith =
-      !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny && (floorOnly || crossing.empty());
-  struct Local {
-    std::vector<double> keys;        // nk per kept design
-    std::vector<std::uint32_t> cand; // k per kept design: candidate index per stage
-    std::vector<std::uint32_t> heap; // kept designs, a max-heap when `top` limits them
-    unsigned long long count = 0, undecided = 0;
-    double inWindow = 0, duplicates = 0;
-    std::vector<double> crossRemoved;
-    std::vector<std::uint32_t> leftAt; // scratch: the left indices the canonical order compares
-    bool overKept = false;             // an unlimited listing reached opt.maxKept
-    double walked = 0;                 // designs visited one by one (not counted by arithmetic)
-  };
-  std::vector<Local> locals(static_cast<size_t>(threads));
-  const size_t kk = static_cast<size_t>(k);
-  auto lessRaw = [&](const double* ka, const std::uint32_t* ca, const double* kb, const std::uint32_t* cb) {
+  // ---- the join: kept designs -----------------------------------------------------------------
+
+  bool lessRaw(const double* ka, const std::uint32_t* ca, const double* kb, const std::uint32_t* cb) const {
     for (size_t i = 0; i < nk; ++i)
       if (ka[i] != kb[i]) return ka[i] < kb[i];
     for (size_t s = 0; s < kk; ++s)
       if (ca[s] != cb[s]) return ca[s] < cb[s];
     return false;
-  };
-  auto full = [&](const Local& lo) { return keep != SIZE_MAX && lo.heap.size() >= keep; };
-  auto worst0 = [&](const Local& lo) { return lo.keys[static_cast<size_t>(lo.heap.front()) * nk]; };
-  auto slack = [](double w) { return 1e-9 * (1 + std::fabs(w)); };
-  auto keepHit = [&](Local& lo, const double* keys, const std::uint32_t* cand) {
+  }
+  bool full(const Local& lo) const { return keep != SIZE_MAX && lo.heap.size() >= keep; }
+  double worst0(const Local& lo) const { return lo.keys[static_cast<size_t>(lo.heap.front()) * nk]; }
+  static double slack(double w) { return 1e-9 * (1 + std::fabs(w)); }
+
+  void keepHit(Local& lo, const double* keys, const std::uint32_t* cand) const {
     auto cmp = [&](std::uint32_t x, std::uint32_t y) {
-      return lessRaw(lo.keys.data() + x * nk, lo.cand.data() + x * kk, lo.keys.data() + y * nk,
-                     lo.cand.data() + y * kk);
+      return lessRaw(lo.keys.data() + x * nk, lo.cand.data() + x * kk, lo.keys.data() + y * nk, lo.cand.data() + y * kk);
     };
     if (keep == SIZE_MAX && lo.heap.size() >= opt.maxKept) {
       lo.overKept = true;  // memory stays bounded; the caller says how many were found
@@ -996,26 +1101,45 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
     std::copy(keys, keys + nk, lo.keys.begin() + static_cast<std::ptrdiff_t>(w * nk));
     std::copy(cand, cand + kk, lo.cand.begin() + static_cast<std::ptrdiff_t>(w * kk));
     std::push_heap(lo.heap.begin(), lo.heap.end(), cmp);
-  };
-  // Both bounds of the right window fall as the left ratio rises.
-  const double wantLoC = wlo * (1 - eps), wantHiC = whi * (1 + eps);
+  }
+
   // Designs of the window [from, to) whose ratio is exactly inside; only entries within
   // the rounding margin of a bound are confirmed exactly.
-  auto exactCount = [&](std::uint32_t* cand, double x, size_t from, size_t to) {
+  unsigned long long exactCount(std::uint32_t* cand, double x, size_t from, size_t to) const {
     size_t a = from, b = to, rejected = 0;
     auto outside = [&](size_t re) {
       for (int s = h; s < k; ++s)
         cand[s] = rightIndex(re, s);
       return !window.contains(exactRatio(cand));
     };
-    for (; a < b && x * right.ratio(a) < sureLo; ++a)
+    for (; a < b && x * right->ratio(a) < sureLo; ++a)
       rejected += outside(a);
-    for (; b > a && x * right.ratio(b - 1) > sureHi; --b)
+    for (; b > a && x * right->ratio(b - 1) > sureHi; --b)
       rejected += outside(b - 1);
     return static_cast<unsigned long long>(to - from - rejected);
-  };
-  auto visit = [&](Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from,
-                   size_t to, bool counted) {
+  }
+
+  // Whether a design that passed the window counts: the rules across stages hold, and it is
+  // the least of its orbit. Counts what removes it.
+  bool counts(Local& lo, Assignment& a, const std::uint32_t* cand) const {
+    if (cross.empty() && !orbitCheck) return true;
+    fill(a, cand);
+    for (size_t c = 0; c < cross.size(); ++c)
+      if (truthOf(ev.eval(*cross[c]->expr, a)) == Truth::False) {
+        lo.crossRemoved[c] += 1;
+        return false;
+      }
+    if (orbitCheck && !representative(a.choice)) {
+      lo.duplicates += 1;
+      return false;
+    }
+    return true;
+  }
+
+  // One left entry against the right entries [from, to): each in the window counted (unless
+  // `counted` says arithmetic did), then keyed and kept when it may rank among the best.
+  void visit(Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from, size_t to,
+             bool counted) const {
     // The left indices the canonical order compares, read once.
     const bool checkCanon = !floorOnly && !crossing.empty();
     auto& leftAt = lo.leftAt;
@@ -1031,7 +1155,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       }
       for (int s = h; s < k; ++s)
         cand[s] = rightIndex(re, s);
-      double p = x * right.ratio(re);
+      double p = x * right->ratio(re);
       std::optional<Rational> q;
       if (p < sureLo || p > sureHi) {
         q = exactRatio(cand);
@@ -1039,27 +1163,7 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       }
       if (!counted) {
         lo.inWindow += 1;
-        if (!cross.empty() || orbitCheck) {
-          fill(a, cand);
-          bool ok = true;
-          for (size_t c = 0; c < cross.size() && ok; ++c)
-            if (truthOf(ev.eval(*cross[c]->expr, a)) == Truth::False) {
-              lo.crossRemoved[c] += 1;
-              ok = false;
-            }
-          if (!ok) continue;
-          if (orbitCheck) {
-            bool rep = true;
-            for (size_t g = 1; g < group.size() && rep; ++g) {
-              auto img = image(a.choice, group[g]);
-              if (img != a.choice && feasibleDesign(img) && less(img, a.choice)) rep = false;
-            }
-            if (!rep) {
-              lo.duplicates += 1;
-              continue;
-            }
-          }
-        }
+        if (!counts(lo, a, cand)) continue;
         lo.count += 1;
         if (undecidedAny) {
           bool undecided = false;
@@ -1081,237 +1185,247 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       a.ratio.reset();
       keepHit(lo, scratch, cand);
     }
-  };
+  }
+
   // Whether no design of the window can enter the kept ones (the window's ratios span [rlo, rhi]).
-  auto bounded = [&](const Local& lo, double partial, double rlo, double rhi) {
+  bool bounded(const Local& lo, double partial, double rlo, double rhi) const {
     if (!fastKey || !full(lo)) return false;
     double w = worst0(lo);
     double lb = partial + fastKey->ratioLower(rlo * (1 - 1e-12), rhi * (1 + 1e-12)) - fastKey->rounding();
     return lb > w + slack(w);
-  };
-  // Set when the time limit stops the join, with each thread's share of its range done
-  // (a thread that finished first keeps 1).
-  std::atomic<bool> timedOut{false};
-  // Set when the designs checked one by one (rules across stages) pass their share of the
-  // search budget: each costs an evaluation of the rules, some fifty times a counted one,
-  // and a wide ratio window hides how many there are from the estimate before the join.
-  std::atomic<bool> overWalked{false};
-  constexpr double kCheckedShare = 0.02;
-  const double walkBudget = opt.maxDesigns * kCheckedShare / static_cast<double>(threads);
-  std::vector<double> joinDone(static_cast<size_t>(threads), 1.0);
-  auto stopHere = [&](int t, size_t at, size_t begin, size_t end) {
+  }
+
+  // ---- the join: walking ------------------------------------------------------------------------
+
+  bool stopHere(int t, size_t at, size_t begin, size_t end) {
     if (!Deadline::expired() && !timedOut.load(std::memory_order_relaxed) && !overWalked.load(std::memory_order_relaxed))
       return false;
     if (!overWalked) timedOut = true;
     joinDone[static_cast<size_t>(t)] = static_cast<double>(at - begin) / static_cast<double>(std::max<size_t>(1, end - begin));
     return true;
-  };
-  auto sweep = [&](int t) {
-    Local& lo = locals[static_cast<size_t>(t)];
-    lo.crossRemoved.assign(cross.size(), 0);
-    Assignment a(m);
-    std::vector<std::uint32_t> cand(kk + 1, 0);
-    std::vector<double> scratch(nk + 1, 0);
-    size_t begin = n * static_cast<size_t>(t) / static_cast<size_t>(threads);
-    size_t end = n * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
-    if (begin >= end || rn == 0) return;
-    auto lower = [&](double v) { return right.lowerBound(v); };
-    auto upper = [&](double v) { return right.upperBound(v); };
-    // Right entries walked since the time limit was last asked about; `due` says when to ask
-    // again: at a loop's own interval, or after enough work inside it.
-    size_t sinceCheck = 0;
-    auto due = [&](bool interval) {
-      if (!interval && sinceCheck <= (1u << 16)) return false;
-      sinceCheck = 0;
-      return true;
-    };
-    // One left entry against its window of right entries [loP, hiP), from `floor` on.
-    auto join = [&](size_t le, double x, size_t from, size_t to, double partial) {
-      if (from >= to) return;
-      sinceCheck += to - from;
-      if (!arith) {
-        lo.walked += static_cast<double>(to - from);
-        // The exhaustive reference (tests, benchmarks) visits everything by design.
-        if (lo.walked > walkBudget && !opt.exhaustive) overWalked = true;
-        visit(lo, a, cand.data(), scratch.data(), le, x, from, to, false);
-        return;
-      }
-      unsigned long long c = exactCount(cand.data(), x, from, to);
-      lo.count += c;
-      lo.inWindow += static_cast<double>(c);
-      if (c == 0 || keep == 0) return;
-      if (bounded(lo, partial, x * right.ratio(from), x * right.ratio(to - 1))) return;
-      visit(lo, a, cand.data(), scratch.data(), le, x, from, to, true);
-    };
-    bool report = t == 0 && opt.progress && (rows ? n * n1 : n) > 1000000;
-    if (rows) {
-      // The tight loop: raw ratio arrays, the floor of a one-stage right half from flags.
-      const double* r0 = ratios[0].data();
-      const double* r1 = ratios[1].data();
-      const double* r2 = right.width() == 1 ? ratios[2].data() : nullptr;
-      const size_t m1 = ratios[1].size();
-      bool j0FromI = false, floorI = false, floorJ = false;
-      for (const auto& [sa, sb] : ordered) {
-        j0FromI = j0FromI || (sa == 0 && sb == 1);
-        floorI = floorI || (sa == 0 && sb == 2);
-        floorJ = floorJ || (sa == 1 && sb == 2);
-      }
-      // A wider right half: the least ratio its canonical entries can have, from the
-      // least index each of its stages may take (ratios ascend with the index).
-      std::vector<size_t> fl(kk, 0);
-      auto leastRight = [&](size_t i, size_t j) {
-        double r = 1;
-        for (int s = 2; s < k; ++s) {
-          size_t f = 0;
-          for (const auto& [sa, sb] : ordered)
-            if (sb == s) f = std::max(f, sa == 0 ? i : sa == 1 ? j : fl[static_cast<size_t>(sa)]);
-          fl[static_cast<size_t>(s)] = f;
-          const auto& list = ratios[static_cast<size_t>(s)];
-          if (f >= list.size()) return static_cast<double>(INFINITY);
-          r *= list[f];
-        }
-        return r;
-      };
-      const double base = fastKey ? fastKey->constant() : 0;
-      double rightLeast = 0;
-      if (fastKey)
-        for (int s = 2; s < k; ++s)
-          rightLeast += fastKey->least(s);
-      for (size_t i = begin; i < end; ++i) {
-        if (due((i - begin) % 64 == 0) && stopHere(t, i, begin, end)) return;
-        if (report && (i - begin) % 64 == 0)
-          opt.progress(static_cast<double>(i - begin) / static_cast<double>(end - begin));
-        size_t j0 = j0FromI ? i : 0;
-        if (j0 >= m1) continue;
-        cand[0] = static_cast<std::uint32_t>(i);
-        double x0 = r0[i] * r1[j0];
-        size_t loP = lower(wantLoC / x0), hiP = upper(wantHiC / x0);
-        double rowPart = fastKey ? base + fastKey->entry(0, cand[0]) : 0;
-        for (size_t j = j0; j < m1; ++j) {
-          if (due(false) && stopHere(t, i, begin, end)) return;
-          double x = r0[i] * r1[j];
-          double inv = 1 / x;
-          double wl = wantLoC * inv, wh = wantHiC * inv;
-          if (r2) {
-            // A short list: the window's bounds walk down it.
-            while (loP > 0 && r2[loP - 1] >= wl)
-              --loP;
-            while (hiP > 0 && r2[hiP - 1] > wh)
-              --hiP;
-          } else {
-            // A long one: its index jumps to them.
-            // The queries two and one rows ahead are known: their memory is fetched now.
-            if (j + 2 < m1) right.prefetchIndex(wantLoC / (r0[i] * r1[j + 2]));
-            if (j + 1 < m1) right.prefetchEntries(wantLoC / (r0[i] * r1[j + 1]));
-            loP = right.lowerBound(wl);
-            for (hiP = loP; hiP < rn && right.ratio(hiP) <= wh;)
-              ++hiP;
-          }
-          // The window only falls and the floor only rises along a row.
-          size_t from = loP;
-          if (floorOnly) {
-            size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
-            if (hiP <= floor) break;
-            from = std::max(loP, floor);
-          } else if (x * leastRight(i, j) > wantHiC) {
-            break;
-          }
-          if (from >= hiP) continue;
-          cand[1] = static_cast<std::uint32_t>(j);
-          double partial = 0;
-          if (fastKey && full(lo))
-            partial = rowPart + fastKey->entry(1, cand[1]) + (rowMin.empty() ? rightLeast : rowMin.least(from, hiP));
-          join(i * n1 + j, x, from, hiP, partial);
-        }
-      }
-      if (report) opt.progress(1.0);
+  }
+  // Whether to ask about the time limit: at a loop's own interval, or after enough work inside it.
+  static bool due(Walk& w, bool interval) {
+    if (!interval && w.sinceCheck <= (1u << 16)) return false;
+    w.sinceCheck = 0;
+    return true;
+  }
+
+  // One left entry against its window of right entries [from, to).
+  void joinEntry(Walk& w, size_t le, double x, size_t from, size_t to, double partial) {
+    if (from >= to) return;
+    w.sinceCheck += to - from;
+    Local& lo = w.lo;
+    if (!arith) {
+      lo.walked += static_cast<double>(to - from);
+      // The exhaustive reference (tests, benchmarks) visits everything by design.
+      if (lo.walked > walkBudget && !opt.exhaustive) overWalked = true;
+      visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, false);
       return;
     }
+    unsigned long long c = exactCount(w.cand.data(), x, from, to);
+    lo.count += c;
+    lo.inWindow += static_cast<double>(c);
+    if (c == 0 || keep == 0) return;
+    if (bounded(lo, partial, x * right->ratio(from), x * right->ratio(to - 1))) return;
+    visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, true);
+  }
+
+  // Three to five stages: the first two walked row by row; the tight loop reads raw ratio
+  // arrays, and the floor of a one-stage right half from flags.
+  bool sweepRows(Walk& w) {
+    const double* r0 = ratios[0].data();
+    const double* r1 = ratios[1].data();
+    const double* r2 = right->width() == 1 ? ratios[2].data() : nullptr;
+    const size_t m1 = ratios[1].size();
+    bool j0FromI = false, floorI = false, floorJ = false;
+    for (const auto& [sa, sb] : ordered) {
+      j0FromI = j0FromI || (sa == 0 && sb == 1);
+      floorI = floorI || (sa == 0 && sb == 2);
+      floorJ = floorJ || (sa == 1 && sb == 2);
+    }
+    // A wider right half: the least ratio its canonical entries can have, from the least
+    // index each of its stages may take (ratios ascend with the index).
+    std::vector<size_t> fl(kk, 0);
+    auto leastRight = [&](size_t i, size_t j) {
+      double r = 1;
+      for (int s = 2; s < k; ++s) {
+        size_t f = 0;
+        for (const auto& [sa, sb] : ordered)
+          if (sb == s) f = std::max(f, sa == 0 ? i : sa == 1 ? j : fl[static_cast<size_t>(sa)]);
+        fl[static_cast<size_t>(s)] = f;
+        const auto& list = ratios[static_cast<size_t>(s)];
+        if (f >= list.size()) return static_cast<double>(INFINITY);
+        r *= list[f];
+      }
+      return r;
+    };
+    const double base = fastKey ? fastKey->constant() : 0;
+    double rightLeast = 0;
+    if (fastKey)
+      for (int s = 2; s < k; ++s)
+        rightLeast += fastKey->least(s);
+    auto& cand = w.cand;
+    for (size_t i = w.begin; i < w.end; ++i) {
+      if (due(w, (i - w.begin) % 64 == 0) && stopHere(w.t, i, w.begin, w.end)) return false;
+      if (w.report && (i - w.begin) % 64 == 0) opt.progress(static_cast<double>(i - w.begin) / static_cast<double>(w.end - w.begin));
+      size_t j0 = j0FromI ? i : 0;
+      if (j0 >= m1) continue;
+      cand[0] = static_cast<std::uint32_t>(i);
+      double x0 = r0[i] * r1[j0];
+      size_t loP = right->lowerBound(wantLoC / x0), hiP = right->upperBound(wantHiC / x0);
+      double rowPart = fastKey ? base + fastKey->entry(0, cand[0]) : 0;
+      for (size_t j = j0; j < m1; ++j) {
+        if (due(w, false) && stopHere(w.t, i, w.begin, w.end)) return false;
+        double x = r0[i] * r1[j];
+        double inv = 1 / x;
+        double wl = wantLoC * inv, wh = wantHiC * inv;
+        if (r2) {
+          // A short list: the window's bounds walk down it.
+          while (loP > 0 && r2[loP - 1] >= wl)
+            --loP;
+          while (hiP > 0 && r2[hiP - 1] > wh)
+            --hiP;
+        } else {
+          // A long one: its index jumps to them.
+          // The queries two and one rows ahead are known: their memory is fetched now.
+          if (j + 2 < m1) right->prefetchIndex(wantLoC / (r0[i] * r1[j + 2]));
+          if (j + 1 < m1) right->prefetchEntries(wantLoC / (r0[i] * r1[j + 1]));
+          loP = right->lowerBound(wl);
+          for (hiP = loP; hiP < rn && right->ratio(hiP) <= wh;)
+            ++hiP;
+        }
+        // The window only falls and the floor only rises along a row.
+        size_t from = loP;
+        if (floorOnly) {
+          size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
+          if (hiP <= floor) break;
+          from = std::max(loP, floor);
+        } else if (x * leastRight(i, j) > wantHiC) {
+          break;
+        }
+        if (from >= hiP) continue;
+        cand[1] = static_cast<std::uint32_t>(j);
+        double partial = 0;
+        if (fastKey && full(w.lo))
+          partial = rowPart + fastKey->entry(1, cand[1]) + (rowMin.empty() ? rightLeast : rowMin.least(from, hiP));
+        joinEntry(w, i * n1 + j, x, from, hiP, partial);
+      }
+    }
+    return true;
+  }
+
+  // Two halves built and sorted: one two-pointer sweep of the left list against the right.
+  bool sweepHalves(Walk& w) {
     double rightLeast = 0;
     if (fastKey) {
       rightLeast = fastKey->constant();
       for (int s = h; s < k; ++s)
         rightLeast += fastKey->least(s);
     }
-    size_t loP = lower(wantLoC / leftList.ratio(begin)), hiP = upper(wantHiC / leftList.ratio(begin));
-    for (size_t le = begin; le < end; ++le) {
-      if (due((le - begin) % 4096 == 0) && stopHere(t, le, begin, end)) return;
-      if (report && (le - begin) % 65536 == 0)
-        opt.progress(static_cast<double>(le - begin) / static_cast<double>(end - begin));
+    size_t loP = right->lowerBound(wantLoC / leftList.ratio(w.begin)), hiP = right->upperBound(wantHiC / leftList.ratio(w.begin));
+    for (size_t le = w.begin; le < w.end; ++le) {
+      if (due(w, (le - w.begin) % 4096 == 0) && stopHere(w.t, le, w.begin, w.end)) return false;
+      if (w.report && (le - w.begin) % 65536 == 0)
+        opt.progress(static_cast<double>(le - w.begin) / static_cast<double>(w.end - w.begin));
       double x = leftList.ratio(le);
       double inv = 1 / x;
       double wl = wantLoC * inv, wh = wantHiC * inv;
-      while (loP > 0 && right.ratio(loP - 1) >= wl)
+      while (loP > 0 && right->ratio(loP - 1) >= wl)
         --loP;
-      while (hiP > 0 && right.ratio(hiP - 1) > wh)
+      while (hiP > 0 && right->ratio(hiP - 1) > wh)
         --hiP;
       size_t from = std::max(loP, rightFloor(le));
       if (from >= hiP) continue;
       double partial = rightLeast;
       for (int s = 0; s < h; ++s) {
-        cand[static_cast<size_t>(s)] = leftIndex(le, s);
-        if (fastKey) partial += fastKey->entry(s, cand[static_cast<size_t>(s)]);
+        w.cand[static_cast<size_t>(s)] = leftIndex(le, s);
+        if (fastKey) partial += fastKey->entry(s, w.cand[static_cast<size_t>(s)]);
       }
-      join(le, x, from, hiP, partial);
+      joinEntry(w, le, x, from, hiP, partial);
     }
-    if (report) opt.progress(1.0);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back(sweep, t);
-  sweep(0);
-  for (auto& th : pool)
-    th.join();
-  if (overWalked) {
-    res.errors.push_back(fmt::format("the rules across stages are checked design by design, and more than {:.3g} designs (a fiftieth "
-                                     "of the search budget, --max-designs {:.3g}) of the {:.3g} combinations need it; narrow the "
-                                     "ranges or the ratio window, or raise --max-designs",
-                                     opt.maxDesigns * kCheckedShare, opt.maxDesigns, combos));
-    return res;
+    return true;
   }
-  if (timedOut) {
-    double elapsed = Deadline::seconds();
-    double done = 0;
-    for (double d : joinDone) done += d / static_cast<double>(joinDone.size());
-    res.errors.push_back(timeLimitMessage("joining the stages' candidates", done, elapsed, combos));
-    return res;
+
+  void sweep(int t) {
+    Local& lo = locals[static_cast<size_t>(t)];
+    lo.crossRemoved.assign(cross.size(), 0);
+    size_t begin = n * static_cast<size_t>(t) / static_cast<size_t>(threads);
+    size_t end = n * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
+    if (begin >= end || rn == 0) return;
+    bool report = t == 0 && opt.progress && (rows ? n * n1 : n) > 1000000;
+    Walk w{t, lo, Assignment(m), std::vector<std::uint32_t>(kk + 1, 0), std::vector<double>(nk + 1, 0), begin, end, 0, report};
+    bool done = rows ? sweepRows(w) : sweepHalves(w);
+    if (report && done) opt.progress(1.0);
   }
-  std::vector<double> crossRemoved(cross.size(), 0);
-  double inWindow = 0, duplicates = 0;
-  unsigned long long count = 0, undecided = 0;
+
+  // The join over threads; false when it stopped (the time limit, or the designs checked one
+  // by one beyond their budget).
+  bool join() {
+    const double wlo = window.lo ? window.lo->toDouble() : -INFINITY, whi = window.hi ? window.hi->toDouble() : INFINITY;
+    sureLo = wlo * (1 + 4 * eps);
+    sureHi = whi * (1 - 4 * eps);
+    // Both bounds of the right window fall as the left ratio rises.
+    wantLoC = wlo * (1 - eps);
+    wantHiC = whi * (1 + eps);
+    n = rows ? stages[0].candidates.size() : leftList.size();
+    rn = right->size();
+    threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(n / 64) + 1));
+    for (const auto& st : stages)
+      for (const auto& c : st.candidates)
+        undecidedAny = undecidedAny || c.undecided;
+    // Counted by arithmetic (the window's length, its borders confirmed exactly) when every
+    // design in a window counts: no rule across stages, no orbit test, no undecided freedom,
+    // and the canonical order at most a floor.
+    arith = !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny && (floorOnly || crossing.empty());
+    locals.resize(static_cast<size_t>(threads));
+    walkBudget = opt.maxDesigns * kCheckedShare / static_cast<double>(threads);
+    joinDone.assign(static_cast<size_t>(threads), 1.0);
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t)
+      pool.emplace_back([this, t] { sweep(t); });
+    sweep(0);
+    for (auto& th : pool)
+      th.join();
+    if (overWalked) {
+      res.errors.push_back(fmt::format("the rules across stages are checked design by design, and more than {:.3g} designs (a fiftieth "
+                                       "of the search budget, --max-designs {:.3g}) of the {:.3g} combinations need it; narrow the "
+                                       "ranges or the ratio window, or raise --max-designs",
+                                       opt.maxDesigns * kCheckedShare, opt.maxDesigns, combos));
+      return false;
+    }
+    if (timedOut) {
+      double elapsed = Deadline::seconds();
+      double done = 0;
+      for (double d : joinDone) done += d / static_cast<double>(joinDone.size());
+      res.errors.push_back(timeLimitMessage("joining the stages' candidates", done, elapsed, combos));
+      return false;
+    }
+    return true;
+  }
+
+  // ---- the ranked list ----------------------------------------------------------------------
+
   struct Ref {
     double k0; // the first key, compared before the rest is looked up
     const Local* lo;
     std::uint32_t id;
   };
-  std::vector<Ref> hits;
-  for (const auto& lo : locals) {
-    count += lo.count;
-    undecided += lo.undecided;
-    inWindow += lo.inWindow;
-    duplicates += lo.duplicates;
-    for (size_t c = 0; c < cross.size(); ++c)
-      crossRemoved[c] += lo.crossRemoved[c];
-    for (std::uint32_t id : lo.heap)
-      hits.push_back({nk ? lo.keys[id * nk] : 0.0, &lo, id});
-  }
-  if ((capped && count > opt.maxKept) || std::any_of(locals.begin(), locals.end(), [](const Local& lo) { return lo.overKept; })) {
-    res.errors.push_back(fmt::format("{} designs satisfy the rules, more than the {} a report can list (the budget of kept "
-                                     "designs); ask for fewer with `report {{ top N; }}`, or narrow the ranges",
-                                     count, opt.maxKept));
-    return res;
-  }
-  auto refLess = [&](const Ref& x, const Ref& y) {
+  bool refLess(const Ref& x, const Ref& y) const {
     if (x.k0 != y.k0) return x.k0 < y.k0;
     return lessRaw(x.lo->keys.data() + x.id * nk, x.lo->cand.data() + x.id * kk, y.lo->keys.data() + y.id * nk,
                    y.lo->cand.data() + y.id * kk);
-  };
-  if (hits.size() > keep) {
-    std::partial_sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(keep), hits.end(), refLess);
-    hits.resize(keep);
-  } else {
-    // By the first key alone (a plain comparison), then each run of equal first keys by
-    // the rest: most runs are a single design.
+  }
+
+  // Every kept design in order: the best `keep` of them, or all, by the first key alone (a
+  // plain comparison), then each run of equal first keys by the rest (most runs are one design).
+  void order(std::vector<Ref>& hits) const {
+    auto byRef = [this](const Ref& x, const Ref& y) { return refLess(x, y); };
+    if (hits.size() > keep) {
+      std::partial_sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(keep), hits.end(), byRef);
+      hits.resize(keep);
+      return;
+    }
     if (hits.size() < 65536) {
       std::sort(hits.begin(), hits.end(), [](const Ref& x, const Ref& y) { return x.k0 < y.k0; });
     } else {
@@ -1320,13 +1434,13 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       std::vector<size_t> at(65537);
       for (int shift = 0; shift < 64; shift += 16) {
         std::fill(at.begin(), at.end(), 0);
-        for (const Ref& h : hits)
-          ++at[((orderKey(h.k0) >> shift) & 0xFFFF) + 1];
+        for (const Ref& r : hits)
+          ++at[((orderKey(r.k0) >> shift) & 0xFFFF) + 1];
         if (at[1 + ((orderKey(hits[0].k0) >> shift) & 0xFFFF)] == hits.size()) continue; // one digit: already in order
         for (size_t b = 0; b < 65536; ++b)
           at[b + 1] += at[b];
-        for (const Ref& h : hits)
-          other[at[(orderKey(h.k0) >> shift) & 0xFFFF]++] = h;
+        for (const Ref& r : hits)
+          other[at[(orderKey(r.k0) >> shift) & 0xFFFF]++] = r;
         hits.swap(other);
       }
     }
@@ -1334,15 +1448,12 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
       size_t j = i + 1;
       while (j < hits.size() && !(hits[i].k0 < hits[j].k0))
         ++j;
-      if (j - i > 1)
-        std::sort(hits.begin() + static_cast<std::ptrdiff_t>(i), hits.begin() + static_cast<std::ptrdiff_t>(j),
-                  refLess);
+      if (j - i > 1) std::sort(hits.begin() + static_cast<std::ptrdiff_t>(i), hits.begin() + static_cast<std::ptrdiff_t>(j), byRef);
       i = j;
     }
   }
-  std::vector<Design> designs;
-  designs.reserve(hits.size());
-  for (const auto& x : hits) {
+
+  Design design(const Ref& x) const {
     Design d;
     const std::uint32_t* cand = x.lo->cand.data() + x.id * kk;
     d.choice.assign(m.slots.size(), -1);
@@ -1357,26 +1468,55 @@ SearchResult search(const Model& m, const SearchOptions& opt) {
                   x.lo->keys.begin() + static_cast<std::ptrdiff_t>((x.id + 1) * nk));
     for (int s = 0; s < k; ++s)
       d.undecided = d.undecided || candidate(s, cand).undecided;
-    designs.push_back(std::move(d));
+    return d;
   }
 
-  std::string windowText =
-      windowTexts.empty() ? "ratio (no window)" : fmt::format("{}", fmt::join(windowTexts, " and "));
-  // With interchangeable stages enumerated canonically, what passes the window is
-  // already one design per orbit.
-  if (fast && !ordered.empty()) windowText += " (interchangeable stages: one design per orbit)";
-  res.funnel.push_back({windowText, "", combos, combos - inWindow});
-  double before = inWindow;
-  for (size_t c = 0; c < cross.size(); ++c) {
-    res.funnel.push_back({cross[c]->text, "", before, crossRemoved[c]});
-    before -= crossRemoved[c];
+  // The threads' counts and kept designs merged, ranked, and the funnel's last steps.
+  void collect() {
+    std::vector<double> crossRemoved(cross.size(), 0);
+    double inWindow = 0, duplicates = 0;
+    unsigned long long count = 0, undecided = 0;
+    std::vector<Ref> hits;
+    for (const auto& lo : locals) {
+      count += lo.count;
+      undecided += lo.undecided;
+      inWindow += lo.inWindow;
+      duplicates += lo.duplicates;
+      for (size_t c = 0; c < cross.size(); ++c)
+        crossRemoved[c] += lo.crossRemoved[c];
+      for (std::uint32_t id : lo.heap)
+        hits.push_back({nk ? lo.keys[id * nk] : 0.0, &lo, id});
+    }
+    if ((capped && count > opt.maxKept) || std::any_of(locals.begin(), locals.end(), [](const Local& lo) { return lo.overKept; })) {
+      res.errors.push_back(fmt::format("{} designs satisfy the rules, more than the {} a report can list (the budget of kept "
+                                       "designs); ask for fewer with `report {{ top N; }}`, or narrow the ranges",
+                                       count, opt.maxKept));
+      return;
+    }
+    order(hits);
+    std::vector<Design> designs;
+    designs.reserve(hits.size());
+    for (const auto& x : hits)
+      designs.push_back(design(x));
+    std::string windowText = windowTexts.empty() ? "ratio (no window)" : fmt::format("{}", fmt::join(windowTexts, " and "));
+    // With interchangeable stages enumerated canonically, what passes the window is
+    // already one design per orbit.
+    if (fast && !ordered.empty()) windowText += " (interchangeable stages: one design per orbit)";
+    res.funnel.push_back({windowText, "", combos, combos - inWindow});
+    double before = inWindow;
+    for (size_t c = 0; c < cross.size(); ++c) {
+      res.funnel.push_back({cross[c]->text, "", before, crossRemoved[c]});
+      before -= crossRemoved[c];
+    }
+    if (group.size() > 1 && !fast) res.funnel.push_back({"interchangeable: one design per orbit", "", before, duplicates});
+    res.count = count;
+    res.undecided = undecided;
+    res.designs = std::move(designs);
   }
-  if (group.size() > 1 && !fast)
-    res.funnel.push_back({"interchangeable: one design per orbit", "", before, duplicates});
-  res.count = count;
-  res.undecided = undecided;
-  res.designs = std::move(designs);
-  return res;
-}
+};
+
+} // namespace
+
+SearchResult search(const Model& m, const SearchOptions& opt) { return Searcher(m, opt).run(); }
 
 } // namespace gbx::rt
