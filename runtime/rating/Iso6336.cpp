@@ -1,6 +1,7 @@
 #include "rating/Iso6336.h"
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -86,99 +87,131 @@ ToothForm toothForm(double z, double x, double da, double mn, double alphaN, dou
   return t;
 }
 
-PairRating rate(const PairInput& in) {
-  PairRating r{};
-  // The standard's units: mm, N, um, N/mm^2.
-  const double mn = in.mn * 1e3, b = in.b * 1e3, an = in.alphaN, beta = in.beta;
-  const double z1 = in.gear[0].z, z2 = in.gear[1].z;
-  const double x1 = in.gear[0].x, x2 = in.gear[1].x;
-  const double sigmaHlim = std::min(in.gear[0].sigmaHlim, in.gear[1].sigmaHlim) * 1e-6;
-  if (!(z1 > 0 && z2 > 0 && mn > 0 && b > 0)) throw std::domain_error("the rating needs positive tooth counts, module and face width");
+namespace {
 
-  // Geometry (ISO 21771). An internal wheel is signed: z2, d2, d_b2, d_a2 and the centre
-  // distance negative, its shift as ISO 21771 signs it, so one set of formulas serves both.
-  const bool internal = in.gear[1].internal;
-  const double s2 = internal ? -1.0 : 1.0, z2s = s2 * z2;
-  double at = std::atan(std::tan(an) / std::cos(beta));
-  double mt = mn / std::cos(beta);
-  double d1 = z1 * mt, d2 = z2s * mt;
-  double db1 = d1 * std::cos(at), db2 = d2 * std::cos(at);
-  double betaB = std::asin(std::sin(beta) * std::cos(an));
-  double ad = 0.5 * (d1 + d2), a = 0, awt = 0;
+// The pair in the standard's units (mm, N, um, N/mm^2). An internal wheel is signed: z2, d2,
+// d_b2, d_a2 and the centre distance negative, its shift as ISO 21771 signs it, so one set of
+// formulas serves both.
+struct Geometry {
+  double mn, b, an, beta, z1, z2, x1, x2, sigmaHlim;
+  bool internal;
+  double s2, z2s, at, mt, d1, d2, db1, db2, betaB, ad, a, awt;
+  std::array<double, 2> da, df, d, db;
+};
+
+// Deviations that load the mesh and what running-in takes off them (um).
+struct Deviations {
+  double fpb, ffa, fHb, yf;
+};
+
+// ISO 21771: reference, base, tip and root circles, and the working centre distance and
+// pressure angle (given, or from the shifts).
+Geometry geometryOf(const PairInput& in) {
+  Geometry g{};
+  g.mn = in.mn * 1e3;
+  g.b = in.b * 1e3;
+  g.an = in.alphaN;
+  g.beta = in.beta;
+  g.z1 = in.gear[0].z;
+  g.z2 = in.gear[1].z;
+  g.x1 = in.gear[0].x;
+  g.x2 = in.gear[1].x;
+  g.sigmaHlim = std::min(in.gear[0].sigmaHlim, in.gear[1].sigmaHlim) * 1e-6;
+  if (!(g.z1 > 0 && g.z2 > 0 && g.mn > 0 && g.b > 0)) throw std::domain_error("the rating needs positive tooth counts, module and face width");
+  const double mn = g.mn, an = g.an, beta = g.beta;
+  g.internal = in.gear[1].internal;
+  g.s2 = g.internal ? -1.0 : 1.0;
+  g.z2s = g.s2 * g.z2;
+  g.at = std::atan(std::tan(an) / std::cos(beta));
+  g.mt = mn / std::cos(beta);
+  g.d1 = g.z1 * g.mt;
+  g.d2 = g.z2s * g.mt;
+  g.db1 = g.d1 * std::cos(g.at);
+  g.db2 = g.d2 * std::cos(g.at);
+  g.betaB = std::asin(std::sin(beta) * std::cos(an));
+  g.ad = 0.5 * (g.d1 + g.d2);
   if (std::isfinite(in.a)) {
-    a = s2 * in.a * 1e3;
-    awt = std::acos(ad * std::cos(at) / a);
+    g.a = g.s2 * in.a * 1e3;
+    g.awt = std::acos(g.ad * std::cos(g.at) / g.a);
   } else {
-    awt = (x1 + x2) == 0 ? at : invInverse(inv(at) + 2 * std::tan(an) * (x1 + x2) / (z1 + z2s));
-    a = ad * std::cos(at) / std::cos(awt);
+    g.awt = (g.x1 + g.x2) == 0 ? g.at : invInverse(inv(g.at) + 2 * std::tan(an) * (g.x1 + g.x2) / (g.z1 + g.z2s));
+    g.a = g.ad * std::cos(g.at) / std::cos(g.awt);
   }
   // Tip alteration keeps the bottom clearance of an external pair.
-  double k = internal ? 0.0 : std::min(0.0, (a - ad) / mn - (x1 + x2));
-  std::array<double, 2> da, df, d = {d1, d2}, db = {db1, db2};
-  for (int g = 0; g < 2; ++g) {
-    const auto& gi = in.gear[static_cast<size_t>(g)];
-    double sign = g == 1 ? s2 : 1.0;
-    da[g] = std::isfinite(gi.tipDiameter) ? sign * gi.tipDiameter * 1e3 : d[g] + 2 * mn * (in.haP + gi.x + k);
-    df[g] = d[g] - 2 * mn * (in.hfP - gi.x);
+  double k = g.internal ? 0.0 : std::min(0.0, (g.a - g.ad) / mn - (g.x1 + g.x2));
+  g.d = {g.d1, g.d2};
+  g.db = {g.db1, g.db2};
+  for (int i = 0; i < 2; ++i) {
+    const auto& gi = in.gear[static_cast<size_t>(i)];
+    double sign = i == 1 ? g.s2 : 1.0;
+    g.da[i] = std::isfinite(gi.tipDiameter) ? sign * gi.tipDiameter * 1e3 : g.d[i] + 2 * mn * (in.haP + gi.x + k);
+    g.df[i] = g.d[i] - 2 * mn * (in.hfP - gi.x);
   }
-  // Geometry the method cannot rate, said rather than rated.
-  if (!std::isfinite(awt)) throw std::domain_error("the centre distance does not fit the tooth counts and shifts");
+  return g;
+}
+
+// Geometry the method cannot rate, said rather than rated: no working pressure angle, a root
+// radius the rack cannot have, a tip inside its base circle, pointed or undercut teeth, a tip
+// in the mate's root.
+void refuseWhatCannotBeRated(const PairInput& in, const Geometry& g) {
+  if (!std::isfinite(g.awt)) throw std::domain_error("the centre distance does not fit the tooth counts and shifts");
+  const double an = g.an;
   const char* names[] = {"driving gear", "driven gear"};
   double rhoMax = (kPi / 4 - in.hfP * std::tan(an)) * std::cos(an) / (1 - std::sin(an));
   if (in.rhoFP > rhoMax)
     throw std::domain_error(fmt::format("the basic rack's root radius {:.3f} exceeds the largest its dedendum and pressure angle allow ({:.3f})",
                                         in.rhoFP, rhoMax));
-  for (int g = 0; g < 2; ++g) {
-    if (g == 1 && internal) continue;
-    double zg = g == 0 ? z1 : z2, xg = in.gear[static_cast<size_t>(g)].x;
+  for (int i = 0; i < 2; ++i) {
+    if (i == 1 && g.internal) continue;
+    double zg = i == 0 ? g.z1 : g.z2, xg = in.gear[static_cast<size_t>(i)].x;
     // Tooth thickness at the tip circle (transverse), from the reference thickness.
-    double dag = std::fabs(da[g]), dbg = std::fabs(db[g]), dg = std::fabs(d[g]);
-    if (dag <= dbg) throw std::domain_error(fmt::format("the {}'s tip circle lies inside its base circle", names[g]));
+    double dag = std::fabs(g.da[i]), dbg = std::fabs(g.db[i]);
+    if (dag <= dbg) throw std::domain_error(fmt::format("the {}'s tip circle lies inside its base circle", names[i]));
     double aa = std::acos(dbg / dag);
-    double sa = dag * ((kPi / 2 + 2 * xg * std::tan(an)) / zg + inv(at) - inv(aa));
-    if (sa <= 0) throw std::domain_error(fmt::format("the {}'s teeth are pointed at the tip diameter {:.3f} mm", names[g], dag));
+    double sa = dag * ((kPi / 2 + 2 * xg * std::tan(an)) / zg + inv(g.at) - inv(aa));
+    if (sa <= 0) throw std::domain_error(fmt::format("the {}'s teeth are pointed at the tip diameter {:.3f} mm", names[i], dag));
     // Undercut by the basic rack: the rack's straight flank starts below the base circle.
-    double xmin = in.hfP - in.rhoFP * (1 - std::sin(an)) - zg * sq(std::sin(at)) / (2 * std::cos(beta));
+    double xmin = in.hfP - in.rhoFP * (1 - std::sin(an)) - zg * sq(std::sin(g.at)) / (2 * std::cos(g.beta));
     if (xg < xmin - 1e-9)
       throw std::domain_error(fmt::format("the {} is undercut (shift {:.4f} below {:.4f}); method B assumes a fillet without undercut",
-                                          names[g], xg, xmin));
-    (void)dg;
+                                          names[i], xg, xmin));
   }
-  if (!internal) {
+  if (!g.internal) {
     // Bottom clearance at the working centre distance: a tip must clear the mate's root.
-    double c1 = std::fabs(a) - da[0] / 2 - df[1] / 2, c2 = std::fabs(a) - da[1] / 2 - df[0] / 2;
-    if (c1 < -1e-9 || c2 < -1e-9)
-      throw std::domain_error("a tip diameter reaches into the mating gear's root at this centre distance");
+    double c1 = std::fabs(g.a) - g.da[0] / 2 - g.df[1] / 2, c2 = std::fabs(g.a) - g.da[1] / 2 - g.df[0] / 2;
+    if (c1 < -1e-9 || c2 < -1e-9) throw std::domain_error("a tip diameter reaches into the mating gear's root at this centre distance");
   }
-  double pbt = kPi * mt * std::cos(at);
-  r.alphaWt = awt;
-  r.epsAlpha = (std::sqrt(sq(da[0] / 2) - sq(db1 / 2)) + s2 * std::sqrt(sq(da[1] / 2) - sq(db2 / 2)) - a * std::sin(awt)) / pbt;
-  r.epsBeta = b * std::sin(beta) / (kPi * mn);
+}
+
+void contactRatios(const Geometry& g, PairRating& r) {
+  double pbt = kPi * g.mt * std::cos(g.at);
+  r.alphaWt = g.awt;
+  r.epsAlpha = (std::sqrt(sq(g.da[0] / 2) - sq(g.db1 / 2)) + g.s2 * std::sqrt(sq(g.da[1] / 2) - sq(g.db2 / 2)) - g.a * std::sin(g.awt)) / pbt;
+  r.epsBeta = g.b * std::sin(g.beta) / (kPi * g.mn);
   r.epsGamma = r.epsAlpha + r.epsBeta;
   if (!(r.epsAlpha >= 1)) throw std::domain_error(fmt::format("the transverse contact ratio is {:.3f}, below 1: the gears do not mesh continuously", r.epsAlpha));
-  const double ea = r.epsAlpha, eb = r.epsBeta, eg = r.epsGamma;
+}
 
-  // Load and speed.
-  r.u = z2s / z1;
-  r.Ft = 2000.0 * in.torque1 / d1;                 // N
-  r.v = in.gear[0].speed * in.mn * z1 / std::cos(beta) / 2;  // m/s
-  const double w = in.KA * r.Ft / b;                // N/mm
+Deviations deviations(const PairInput& in, const Geometry& g, PairRating& r) {
+  Deviations dev{};
+  dev.fpb = std::max(in.gear[0].fpb, in.gear[1].fpb) * 1e6;
+  dev.ffa = std::max(in.gear[0].ffa, in.gear[1].ffa) * 1e6;
+  dev.fHb = std::max(in.gear[0].fHb, in.gear[1].fHb) * 1e6;
+  r.yAlpha = runIn(dev.fpb, in, g.sigmaHlim, r.v);
+  dev.yf = runIn(dev.ffa, in, g.sigmaHlim, r.v);
+  return dev;
+}
 
-  // Deviations and running-in (um).
-  double fpb = std::max(in.gear[0].fpb, in.gear[1].fpb) * 1e6;
-  double ffa = std::max(in.gear[0].ffa, in.gear[1].ffa) * 1e6;
-  double fHb = std::max(in.gear[0].fHb, in.gear[1].fHb) * 1e6;
-  r.yAlpha = runIn(fpb, in, sigmaHlim, r.v);
-  double yf = runIn(ffa, in, sigmaHlim, r.v);
-
-  // Stiffness, ISO 6336-1 clause 9 (method B).
+// Stiffness, ISO 6336-1 clause 9 (method B).
+void meshStiffness(const PairInput& in, const Geometry& g, double w, PairRating& r) {
+  const double an = g.an, beta = g.beta, ea = r.epsAlpha;
   // Virtual tooth counts of the normal section, z / (cos^2 beta_b cos beta).
-  double virt = sq(std::cos(betaB)) * std::cos(beta);
+  double virt = sq(std::cos(g.betaB)) * std::cos(beta);
   // The polynomial's gear 1 is the pinion, the gear with fewer teeth (a sun may have more
   // than its planets); an internal wheel is a rack (1/z_n2 = 0).
-  bool swap = !internal && z2 < z1;
-  double zA = swap ? z2 : z1, zB = swap ? z1 : z2, xA = swap ? x2 : x1, xB = swap ? x1 : x2;
-  double zn1 = zA / virt, zn2 = internal ? INFINITY : zB / virt;
+  bool swap = !g.internal && g.z2 < g.z1;
+  double zA = swap ? g.z2 : g.z1, zB = swap ? g.z1 : g.z2, xA = swap ? g.x2 : g.x1, xB = swap ? g.x1 : g.x2;
+  double zn1 = zA / virt, zn2 = g.internal ? INFINITY : zB / virt;
   double q = 0.04723 + 0.15551 / zn1 + 0.25791 / zn2 - 0.00635 * xA - 0.11654 * xA / zn1 - 0.00193 * xB - 0.24188 * xB / zn2 +
              0.00529 * xA * xA + 0.00182 * xB * xB;
   double CR = std::min(in.gear[0].webFactor, in.gear[1].webFactor);
@@ -192,26 +225,29 @@ PairRating rate(const PairInput& in) {
     r.cprime = r.cgammaAlpha / (0.75 * ea + 0.25);
   }
   r.cgammaBeta = 0.85 * r.cgammaAlpha;
+}
 
-  // Dynamic factor, clause 6.5 (method B): resonance ratio from the reduced mass.
+// Dynamic factor, clause 6.5 (method B): resonance ratio from the reduced mass.
+void dynamicFactor(const PairInput& in, const Geometry& g, const Deviations& dev, double w, PairRating& r) {
+  const double eg = r.epsGamma;
   double rho = in.density * 1e-9;  // kg/mm^3
-  auto blank = [&](int g) {
-    double dm = 0.5 * (da[g] + df[g]);
-    double qi = in.gear[static_cast<size_t>(g)].bore * 1e3 / dm;
-    return kPi / 8 * rho * std::pow(dm, 4) * (1 - std::pow(qi, 4)) / sq(db[g]);
+  auto blank = [&](int i) {
+    double dm = 0.5 * (g.da[i] + g.df[i]);
+    double qi = in.gear[static_cast<size_t>(i)].bore * 1e3 / dm;
+    return kPi / 8 * rho * std::pow(dm, 4) * (1 - std::pow(qi, 4)) / sq(g.db[i]);
   };
   // Planetary meshes: a sun drives `planets` planets; a ring counts as infinitely heavy.
-  double m1 = blank(0), m2 = internal ? INFINITY : blank(1);
-  r.mred = internal ? m1 : in.planets > 0 ? m1 * m2 / (m1 + in.planets * m2) : m1 * m2 / (m1 + m2);
-  r.nE1 = 30000.0 / (kPi * z1) * std::sqrt(r.cgammaAlpha / r.mred);
+  double m1 = blank(0), m2 = g.internal ? INFINITY : blank(1);
+  r.mred = g.internal ? m1 : in.planets > 0 ? m1 * m2 / (m1 + in.planets * m2) : m1 * m2 / (m1 + m2);
+  r.nE1 = 30000.0 / (kPi * g.z1) * std::sqrt(r.cgammaAlpha / r.mred);
   double n1 = in.gear[0].speed * 30 / kPi;
   r.N = n1 / r.nE1;
   if (!(r.mred > 0) || !std::isfinite(r.N))
     throw std::domain_error("the gear blanks have no mass for K_v (is a bore diameter as large as the gear?)");
   r.NS = w < 100 ? 0.5 + 0.35 * std::sqrt(w / 100) : 0.85;
-  double Ca = std::isfinite(in.tipRelief) ? in.tipRelief * 1e6 : (1.0 / 18) * sq(sigmaHlim / 97 - 18.45) + 1.5;
-  double Bp = r.cprime * std::max(0.0, fpb - r.yAlpha) / w;
-  double Bf = r.cprime * std::max(0.0, ffa - yf) / w;
+  double Ca = std::isfinite(in.tipRelief) ? in.tipRelief * 1e6 : (1.0 / 18) * sq(g.sigmaHlim / 97 - 18.45) + 1.5;
+  double Bp = r.cprime * std::max(0.0, dev.fpb - r.yAlpha) / w;
+  double Bf = r.cprime * std::max(0.0, dev.ffa - dev.yf) / w;
   double Bk = std::fabs(1 - r.cprime * Ca / w);
   double Cv1 = 0.32, Cv2 = eg <= 2 ? 0.34 : 0.57 / (eg - 0.3), Cv3 = eg <= 2 ? 0.23 : 0.096 / (eg - 1.56);
   double Cv4 = eg <= 2 ? 0.90 : (0.57 - 0.05 * eg) / (eg - 1.44), Cv5 = 0.47, Cv6 = eg <= 2 ? 0.47 : 0.12 / (eg - 1.74);
@@ -234,16 +270,19 @@ PairRating rate(const PairInput& in) {
     r.Kv = super();
     r.kvRange = KvRange::Supercritical;
   }
+}
 
-  // Face load factor, clause 7.6: the effective mismatch from the pinion's deflection
-  // (symmetric between its bearings), the manufacturing misalignment and the lead
-  // modifications, less running-in.
+// Face load factor, clause 7.6: the effective mismatch from the pinion's deflection
+// (symmetric between its bearings), the manufacturing misalignment and the lead
+// modifications, less running-in.
+void faceLoadFactors(const PairInput& in, const Geometry& g, const Deviations& dev, PairRating& r) {
+  const double b = g.b, sigmaHlim = g.sigmaHlim;
   double Fmb = r.Ft * in.KA * in.Kgamma * r.Kv / b;
   // The pinion's bending and torsion: the smaller gear of an external pair.
-  double dPinion = internal ? d1 : std::min(d1, d2);
+  double dPinion = g.internal ? g.d1 : std::min(g.d1, g.d2);
   r.fsh = Fmb * 0.023 * sq(b / dPinion);
-  double fma = std::isfinite(in.fma) ? in.fma * 1e6 : fHb;
-  r.FbetaX = std::max({1.33 * in.B1 * r.fsh + in.B2 * fma, 0.005 * Fmb, 0.5 * fHb});
+  double fma = std::isfinite(in.fma) ? in.fma * 1e6 : dev.fHb;
+  r.FbetaX = std::max({1.33 * in.B1 * r.fsh + in.B2 * fma, 0.005 * Fmb, 0.5 * dev.fHb});
   if (in.treatment == Treatment::ThroughHardened) {
     double y = 320.0 / sigmaHlim * r.FbetaX;
     // F_betax limited to 80 um (5 < v <= 10 m/s) and 40 um (v > 10 m/s) in y_beta.
@@ -259,133 +298,194 @@ PairRating rate(const PairInput& in) {
     double kb = 1 + r.FbetaY * r.cgammaBeta / (2 * Fmb);
     r.KHbeta = kb <= 2 ? kb : std::sqrt(2 * r.FbetaY * r.cgammaBeta / Fmb);
   }
-  double bh = std::max(3.0, b / ((in.haP + in.hfP) * mn));
+  double bh = std::max(3.0, b / ((in.haP + in.hfP) * g.mn));
   r.KFbeta = std::pow(r.KHbeta, sq(bh) / (1 + bh + sq(bh)));
+}
 
-  // Contact factors, ISO 6336-2.
-  r.ZH = std::sqrt(2 * std::cos(betaB) * std::cos(awt) / (sq(std::cos(at)) * std::sin(awt)));
+// Contact factors, ISO 6336-2.
+void contactFactors(const PairInput& in, const Geometry& g, PairRating& r) {
+  const double ea = r.epsAlpha, eb = r.epsBeta;
+  r.ZH = std::sqrt(2 * std::cos(g.betaB) * std::cos(g.awt) / (sq(std::cos(g.at)) * std::sin(g.awt)));
   double E = in.E * 1e-6;
   r.ZE = std::sqrt(1 / (kPi * 2 * (1 - sq(in.nu)) / E));
   r.Zeps = eb < 1 ? std::sqrt((4 - ea) * (1 - eb) / 3 + eb / ea) : std::sqrt(1 / ea);
-  r.Zbeta = 1 / std::sqrt(std::cos(beta));
+  r.Zbeta = 1 / std::sqrt(std::cos(g.beta));
+}
 
-  // Transverse load factors, clause 8 (method B).
+// Transverse load factors, clause 8 (method B).
+void transverseLoadFactors(const PairInput& in, const Geometry& g, const Deviations& dev, PairRating& r) {
+  const double ea = r.epsAlpha, eg = r.epsGamma;
   if (std::isfinite(in.KHalphaGiven)) {
     r.KHalpha = r.KFalpha = in.KHalphaGiven;
-  } else {
-    double FtHb = r.Ft * in.KA * in.Kgamma * r.Kv * r.KHbeta / b;
-    double qa = r.cgammaAlpha * (std::max(fpb, ffa) - r.yAlpha) / FtHb;
-    double raw = eg <= 2 ? eg / 2 * (0.9 + 0.4 * qa) : 0.9 + 0.4 * std::sqrt(2 * (eg - 1) / eg) * qa;
-    r.KHalpha = std::clamp(raw, 1.0, std::max(1.0, eg / (ea * sq(r.Zeps))));
-    r.KFalpha = std::clamp(raw, 1.0, std::max(1.0, eg / (0.25 * ea + 0.75)));
+    return;
   }
+  double FtHb = r.Ft * in.KA * in.Kgamma * r.Kv * r.KHbeta / g.b;
+  double qa = r.cgammaAlpha * (std::max(dev.fpb, dev.ffa) - r.yAlpha) / FtHb;
+  double raw = eg <= 2 ? eg / 2 * (0.9 + 0.4 * qa) : 0.9 + 0.4 * std::sqrt(2 * (eg - 1) / eg) * qa;
+  r.KHalpha = std::clamp(raw, 1.0, std::max(1.0, eg / (ea * sq(r.Zeps))));
+  r.KFalpha = std::clamp(raw, 1.0, std::max(1.0, eg / (0.25 * ea + 0.75)));
+}
 
-  r.sigmaH0 = r.ZH * r.ZE * r.Zeps * r.Zbeta * std::sqrt(r.Ft / (d1 * b) * (r.u + 1) / r.u);
-
-  // Single pair contact factors Z_B (pinion) and Z_D (wheel).
-  double t1 = std::sqrt(sq(da[0] / db1) - 1), t2 = std::sqrt(sq(da[1] / db2) - 1);
-  double M1 = std::tan(awt) / std::sqrt((t1 - 2 * kPi / z1) * (t2 - (ea - 1) * 2 * kPi / z2));
-  double M2 = std::tan(awt) / std::sqrt((t2 - 2 * kPi / z2) * (t1 - (ea - 1) * 2 * kPi / z1));
+// Single pair contact factors Z_B (pinion) and Z_D (wheel).
+std::array<double, 2> singlePairFactors(const Geometry& g, const PairRating& r) {
+  const double ea = r.epsAlpha, eb = r.epsBeta;
+  double t1 = std::sqrt(sq(g.da[0] / g.db1) - 1), t2 = std::sqrt(sq(g.da[1] / g.db2) - 1);
+  double M1 = std::tan(g.awt) / std::sqrt((t1 - 2 * kPi / g.z1) * (t2 - (ea - 1) * 2 * kPi / g.z2));
+  double M2 = std::tan(g.awt) / std::sqrt((t2 - 2 * kPi / g.z2) * (t1 - (ea - 1) * 2 * kPi / g.z1));
   auto single = [&](double M) {
     if (eb >= 1) return 1.0;
     double s = M > 1 ? M : 1.0;
     return std::max(1.0, s - eb * (s - 1));
   };
-  std::array<double, 2> ZBD = {single(M1), single(M2)};
-  if (internal) ZBD = {1.0, 1.0};  // internal meshes: Z_B = Z_D = 1
+  if (g.internal) return {1.0, 1.0};  // internal meshes: Z_B = Z_D = 1
+  return {single(M1), single(M2)};
+}
 
+// What the two gears share in their own ratings: the flank factors of the softer flank
+// (clause 11), the bending factors of the pair, and the load factors.
+struct Shared {
+  double ZL, Zv, ZR;
+  std::array<double, 2> ZBD;
+  double Ybeta, YDT, KH, KF, rhoSlip;
+};
+
+Shared sharedFactors(const PairInput& in, const Geometry& g, const PairRating& r) {
+  Shared s{};
+  const double sigmaHlim = g.sigmaHlim, ea = r.epsAlpha, eb = r.epsBeta;
   // Lubricant, velocity and roughness factors (clause 11), from the softer flank.
   double CZL = sigmaHlim < 850 ? 0.83 : sigmaHlim > 1200 ? 0.91 : 0.83 + 0.08 * (sigmaHlim - 850) / 350;
   double nu40 = in.nu40 * 1e6;  // mm^2/s
-  double ZL = CZL + 4 * (1 - CZL) / sq(1.2 + 134 / nu40);
+  s.ZL = CZL + 4 * (1 - CZL) / sq(1.2 + 134 / nu40);
   double CZv = CZL + 0.02;
-  double Zv = CZv + 2 * (1 - CZv) / std::sqrt(0.8 + 32 / r.v);
-  double rho1 = 0.5 * db1 * std::tan(awt), rho2 = 0.5 * db2 * std::tan(awt);
+  s.Zv = CZv + 2 * (1 - CZv) / std::sqrt(0.8 + 32 / r.v);
+  double rho1 = 0.5 * g.db1 * std::tan(g.awt), rho2 = 0.5 * g.db2 * std::tan(g.awt);
   double rhoRed = rho1 * rho2 / (rho1 + rho2);
   double Rz10 = in.RzFlank * 1e6 * std::cbrt(10 / rhoRed);
   double CZR = sigmaHlim < 850 ? 0.15 : sigmaHlim > 1200 ? 0.08 : 0.32 - 0.0002 * sigmaHlim;
-  double ZR = std::pow(3 / Rz10, CZR);
+  s.ZR = std::pow(3 / Rz10, CZR);
+  s.ZBD = singlePairFactors(g, r);
+  s.Ybeta = 1 - std::min(eb, 1.0) * std::min(g.beta * 180 / kPi, 30.0) / 120;
+  double epsAn = ea / sq(std::cos(g.betaB));
+  s.YDT = 1;
+  if (in.grade > 0 && in.grade <= 4 && epsAn > 2.05) s.YDT = epsAn > 2.5 ? 0.7 : 2.366 - 0.666 * epsAn;
+  s.KH = in.KA * in.Kgamma * r.Kv * r.KHbeta * r.KHalpha;
+  s.KF = in.KA * in.Kgamma * r.Kv * r.KFbeta * r.KFalpha;
+  s.rhoSlip = in.treatment == Treatment::CaseHardened ? 0.0030 : in.treatment == Treatment::Nitrided ? 0.1005 : 0.0064;
+  return s;
+}
 
-  double Ybeta = 1 - std::min(eb, 1.0) * std::min(beta * 180 / kPi, 30.0) / 120;
-  double epsAn = ea / sq(std::cos(betaB));
-  double YDT = 1;
-  if (in.grade > 0 && in.grade <= 4 && epsAn > 2.05) YDT = epsAn > 2.5 ? 0.7 : 2.366 - 0.666 * epsAn;
-  double KH = in.KA * in.Kgamma * r.Kv * r.KHbeta * r.KHalpha;
-  double KF = in.KA * in.Kgamma * r.Kv * r.KFbeta * r.KFalpha;
-  double rhoSlip = in.treatment == Treatment::CaseHardened ? 0.0030 : in.treatment == Treatment::Nitrided ? 0.1005 : 0.0064;
-  for (int g = 0; g < 2; ++g) {
-    const auto& gi = in.gear[static_cast<size_t>(g)];
-    GearRating& o = r.gear[static_cast<size_t>(g)];
-    o.tipDiameter = std::fabs(da[g]) * 1e-3;
-    o.rootDiameter = std::fabs(df[g]) * 1e-3;
-    o.cycles = gi.speed / (2 * kPi) * in.life * gi.cyclesPerRev;
-    double end = in.optimumLife ? 1.0 : 0.85;
-    // Life factors, ISO 6336-2 Table 2 and ISO 6336-3 Table 3.
-    switch (in.treatment) {
-    case Treatment::Nitrided:
-      o.ZNT = lifeFactor(o.cycles, 1e5, 1.3, 2e6, end);
-      o.YNT = lifeFactor(o.cycles, 1e3, 1.6, 3e6, end);
-      break;
-    case Treatment::ThroughHardened:
-      o.ZNT = lifeFactor(o.cycles, 1e5, 1.6, 5e7, end);
-      o.YNT = lifeFactor(o.cycles, 1e4, 2.5, 3e6, end);
-      break;
-    case Treatment::CaseHardened:
-      o.ZNT = lifeFactor(o.cycles, 1e5, 1.6, 5e7, end);
-      o.YNT = lifeFactor(o.cycles, 1e3, 2.5, 3e6, end);
-      break;
-    }
-    o.ZL = ZL;
-    o.Zv = Zv;
-    o.ZR = ZR;
-    o.ZW = 1;  // both gears of one material
-    o.ZX = 1;
-    o.ZBD = ZBD[static_cast<size_t>(g)];
-    double shl = gi.sigmaHlim * 1e-6;
-    o.sigmaH = o.ZBD * r.sigmaH0 * std::sqrt(KH);
-    double hLimit = shl * o.ZNT * o.ZL * o.Zv * o.ZR * o.ZW * o.ZX;
-    o.sigmaHP = hLimit / in.SHmin;
-    o.SH = hLimit / o.sigmaH;
+// Life factors Z_NT and Y_NT, ISO 6336-2 Table 2 and ISO 6336-3 Table 3.
+void lifeFactors(const PairInput& in, GearRating& o) {
+  double end = in.optimumLife ? 1.0 : 0.85;
+  switch (in.treatment) {
+  case Treatment::Nitrided:
+    o.ZNT = lifeFactor(o.cycles, 1e5, 1.3, 2e6, end);
+    o.YNT = lifeFactor(o.cycles, 1e3, 1.6, 3e6, end);
+    break;
+  case Treatment::ThroughHardened:
+    o.ZNT = lifeFactor(o.cycles, 1e5, 1.6, 5e7, end);
+    o.YNT = lifeFactor(o.cycles, 1e4, 2.5, 3e6, end);
+    break;
+  case Treatment::CaseHardened:
+    o.ZNT = lifeFactor(o.cycles, 1e5, 1.6, 5e7, end);
+    o.YNT = lifeFactor(o.cycles, 1e3, 2.5, 3e6, end);
+    break;
+  }
+}
 
-    if (g == 1 && internal) {
-      // ISO 6336-3 for internal gears is not implemented: the ring's root is not rated.
-      o.sFn = o.hFe = o.rhoF = o.alphaFen = o.YF = o.YS = o.Ybeta = o.YB = o.YDT = kNaN;
-      o.YNT = o.YdeltarelT = o.YRrelT = o.YX = kNaN;
-      o.YM = gi.YM;
-      o.sigmaF0 = o.sigmaF = o.sigmaFP = o.SF = kNaN;
-      o.sigmaH *= 1e6;
-      o.sigmaHP *= 1e6;
-      continue;
-    }
-    ToothForm t = toothForm(gi.z, gi.x, da[g], mn, an, beta, ea, in.hfP, in.rhoFP);
-    o.sFn = t.sFn * 1e-3;
-    o.hFe = t.hFe * 1e-3;
-    o.rhoF = t.rhoF * 1e-3;
-    o.alphaFen = t.alphaFen;
-    o.YF = t.YF;
-    o.YS = t.YS;
-    o.Ybeta = Ybeta;
-    o.YB = 1;
-    o.YDT = YDT;
-    double qs = t.sFn / (2 * t.rhoF);
-    o.YdeltarelT = (1 + std::sqrt(rhoSlip * (1 + 2 * qs) / 5)) / (1 + std::sqrt(rhoSlip * 1.2));
-    double Rz = in.RzRoot * 1e6;
-    bool nitr = in.treatment == Treatment::Nitrided;
-    o.YRrelT = Rz < 1 ? (nitr ? 1.070 : 1.120) : nitr ? 5.306 - 4.203 * std::pow(Rz + 1, 0.01) : 1.674 - 0.529 * std::pow(Rz + 1, 0.1);
-    o.YX = in.treatment == Treatment::ThroughHardened ? std::clamp(1.03 - 0.006 * mn, 0.85, 1.0) : std::clamp(1.05 - 0.01 * mn, 0.8, 1.0);
+// A gear's flank (ISO 6336-2), in N/mm^2.
+void rateFlank(const PairInput& in, const PairRating& r, const Shared& s, int i, GearRating& o) {
+  const auto& gi = in.gear[static_cast<size_t>(i)];
+  o.ZL = s.ZL;
+  o.Zv = s.Zv;
+  o.ZR = s.ZR;
+  o.ZW = 1;  // both gears of one material
+  o.ZX = 1;
+  o.ZBD = s.ZBD[static_cast<size_t>(i)];
+  double shl = gi.sigmaHlim * 1e-6;
+  o.sigmaH = o.ZBD * r.sigmaH0 * std::sqrt(s.KH);
+  double hLimit = shl * o.ZNT * o.ZL * o.Zv * o.ZR * o.ZW * o.ZX;
+  o.sigmaHP = hLimit / in.SHmin;
+  o.SH = hLimit / o.sigmaH;
+}
+
+// A gear's tooth root (ISO 6336-3), in N/mm^2.
+void rateRoot(const PairInput& in, const Geometry& g, const PairRating& r, const Shared& s, int i, GearRating& o) {
+  const auto& gi = in.gear[static_cast<size_t>(i)];
+  const double mn = g.mn;
+  ToothForm t = toothForm(gi.z, gi.x, g.da[i], mn, g.an, g.beta, r.epsAlpha, in.hfP, in.rhoFP);
+  o.sFn = t.sFn * 1e-3;
+  o.hFe = t.hFe * 1e-3;
+  o.rhoF = t.rhoF * 1e-3;
+  o.alphaFen = t.alphaFen;
+  o.YF = t.YF;
+  o.YS = t.YS;
+  o.Ybeta = s.Ybeta;
+  o.YB = 1;
+  o.YDT = s.YDT;
+  double qs = t.sFn / (2 * t.rhoF);
+  o.YdeltarelT = (1 + std::sqrt(s.rhoSlip * (1 + 2 * qs) / 5)) / (1 + std::sqrt(s.rhoSlip * 1.2));
+  double Rz = in.RzRoot * 1e6;
+  bool nitr = in.treatment == Treatment::Nitrided;
+  o.YRrelT = Rz < 1 ? (nitr ? 1.070 : 1.120) : nitr ? 5.306 - 4.203 * std::pow(Rz + 1, 0.01) : 1.674 - 0.529 * std::pow(Rz + 1, 0.1);
+  o.YX = in.treatment == Treatment::ThroughHardened ? std::clamp(1.03 - 0.006 * mn, 0.85, 1.0) : std::clamp(1.05 - 0.01 * mn, 0.8, 1.0);
+  o.YM = gi.YM;
+  o.sigmaF0 = r.Ft / (g.b * mn) * o.YF * o.YS * o.Ybeta * o.YB * o.YDT;
+  o.sigmaF = o.sigmaF0 * s.KF;
+  double fLimit = gi.sigmaFlim * 1e-6 * 2.0 * o.YNT * o.YdeltarelT * o.YRrelT * o.YX * o.YM;
+  o.sigmaFP = fLimit / in.SFmin;
+  o.SF = fLimit / o.sigmaF;
+}
+
+// One gear of the pair: its cycles, life factors, flank and root; stresses back to SI.
+void rateGear(const PairInput& in, const Geometry& g, const PairRating& r, const Shared& s, int i, GearRating& o) {
+  const auto& gi = in.gear[static_cast<size_t>(i)];
+  o.tipDiameter = std::fabs(g.da[i]) * 1e-3;
+  o.rootDiameter = std::fabs(g.df[i]) * 1e-3;
+  o.cycles = gi.speed / (2 * kPi) * in.life * gi.cyclesPerRev;
+  lifeFactors(in, o);
+  rateFlank(in, r, s, i, o);
+  if (i == 1 && g.internal) {
+    // ISO 6336-3 for internal gears is not implemented: the ring's root is not rated.
+    o.sFn = o.hFe = o.rhoF = o.alphaFen = o.YF = o.YS = o.Ybeta = o.YB = o.YDT = kNaN;
+    o.YNT = o.YdeltarelT = o.YRrelT = o.YX = kNaN;
     o.YM = gi.YM;
-    o.sigmaF0 = r.Ft / (b * mn) * o.YF * o.YS * o.Ybeta * o.YB * o.YDT;
-    o.sigmaF = o.sigmaF0 * KF;
-    double fLimit = gi.sigmaFlim * 1e-6 * 2.0 * o.YNT * o.YdeltarelT * o.YRrelT * o.YX * o.YM;
-    o.sigmaFP = fLimit / in.SFmin;
-    o.SF = fLimit / o.sigmaF;
-    // Back to SI.
+    o.sigmaF0 = o.sigmaF = o.sigmaFP = o.SF = kNaN;
     o.sigmaH *= 1e6;
     o.sigmaHP *= 1e6;
-    o.sigmaF0 *= 1e6;
-    o.sigmaF *= 1e6;
-    o.sigmaFP *= 1e6;
+    return;
   }
+  rateRoot(in, g, r, s, i, o);
+  // Back to SI.
+  o.sigmaH *= 1e6;
+  o.sigmaHP *= 1e6;
+  o.sigmaF0 *= 1e6;
+  o.sigmaF *= 1e6;
+  o.sigmaFP *= 1e6;
+}
+
+} // namespace
+
+PairRating rate(const PairInput& in) {
+  PairRating r{};
+  const Geometry g = geometryOf(in);
+  refuseWhatCannotBeRated(in, g);
+  contactRatios(g, r);
+  // Load and speed.
+  r.u = g.z2s / g.z1;
+  r.Ft = 2000.0 * in.torque1 / g.d1;                 // N
+  r.v = in.gear[0].speed * in.mn * g.z1 / std::cos(g.beta) / 2;  // m/s
+  const double w = in.KA * r.Ft / g.b;                // N/mm
+  const Deviations dev = deviations(in, g, r);
+  meshStiffness(in, g, w, r);
+  dynamicFactor(in, g, dev, w, r);
+  faceLoadFactors(in, g, dev, r);
+  contactFactors(in, g, r);
+  transverseLoadFactors(in, g, dev, r);
+  r.sigmaH0 = r.ZH * r.ZE * r.Zeps * r.Zbeta * std::sqrt(r.Ft / (g.d1 * g.b) * (r.u + 1) / r.u);
+  const Shared s = sharedFactors(in, g, r);
+  for (int i = 0; i < 2; ++i)
+    rateGear(in, g, r, s, i, r.gear[static_cast<size_t>(i)]);
   r.sigmaH0 *= 1e6;
   return r;
 }
