@@ -277,275 +277,351 @@ double epsAlphaStandard(double z1, double z2, double mod, double alpha, bool int
   return path / (M_PI * mod * std::cos(alpha));
 }
 
-} // namespace
+// A whole-gearbox scene set up and run, step by step: the effects it lists, its members and
+// meshes stage by stage, the kinematics, the load and the static deflections, the loaded-mesh
+// tables, the damping, the modes at the static load, and the integration.
+class GearboxAssembly {
+public:
+  GearboxAssembly(const Model& model, const Evaluator& evaluator, const Assignment& design, const ir::Scene& sc, Accuracy accuracy,
+                  const SceneOverrides& overrides)
+      : m(model), ev(evaluator), a(design), scene(sc), acc(accuracy), ov(overrides), prov(run.provenance) {}
 
-GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ir::Scene& scene, Accuracy acc,
-                      const SceneOverrides& ov) {
-  GearboxRun run;
-  auto& prov = run.provenance;
-  using namespace cat::gear;
-  for (const auto& fx : scene.effects)
-    if (fx.kind != Effect::HertzContact && fx.kind != Effect::Backlash && fx.kind != Effect::VaryingStiffness && fx.kind != Effect::Damping &&
-        fx.kind != Effect::SpeedFluctuation && fx.kind != Effect::TorqueFluctuation && fx.kind != Effect::LoadedMesh)
-      throw SceneFailure{fmt::format("effect `{}` is not modelled in a whole-gearbox scene (it takes hertz_contact, backlash, "
-                                     "varying_stiffness, loaded_mesh, damping, speed_fluctuation and torque_fluctuation)",
-                                     fx.name)};
-  if (!m.gearbox.splits.empty()) throw SceneFailure{"a whole-gearbox scene of a power split is not modelled: run the scene on a stage"};
-  const ir::Effect* hertz = scene.findEffect(Effect::HertzContact);
-  const ir::Effect* varying = scene.findEffect(Effect::VaryingStiffness);
-  const ir::Effect* damping = scene.findEffect(Effect::Damping);
-  const ir::Effect* torqueFx = scene.findEffect(Effect::TorqueFluctuation);
-  const ir::Effect* backlash = scene.findEffect(Effect::Backlash);
-  const ir::Effect* loadedFx = scene.findEffect(Effect::LoadedMesh);
-  if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
-  if (loadedFx && (hertz || backlash || varying))
-    throw SceneFailure{"`loaded_mesh` gives every mesh its stiffness and separation from the flanks: list it without hertz_contact, backlash "
-                       "and varying_stiffness"};
-  if (loadedFx)
-    for (const auto& st : m.stages)
-      if (st.ir->kind != ir::StageKind::Spur && st.ir->kind != ir::StageKind::Helical)
-        throw SceneFailure{fmt::format("`loaded_mesh` models spur and helical pairs; stage `{}` is {}", st.ir->name, ir::stageKindName(st.ir->kind))};
-
-  Params P;
-  if (hertz) {
-    if (const auto* s = effectParam(hertz, Q::Exponent)) P.e = settingValue(*s);
-    if (const auto* s = effectParam(hertz, Q::PenetrationRamp)) P.ramp = settingValue(*s);
+  GearboxRun build() {
+    effects();
+    members();
+    kinematics();
+    load();
+    staticLoad();
+    if (loadedFx) loadedMeshes();
+    if (damping) meshDamping();
+    modes();
+    integrate();
+    return std::move(run);
   }
-  if (backlash) P.halfClearance = 0.5 * settingValue(*effectParam(backlash, Q::Clearance));
-  int harmonics = varying ? (ov.harmonics ? *ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)))) : 0;
-  run.harmonics = harmonics;
 
+private:
+  // What the meshes of one stage share.
+  struct StageAt {
+    int st;
+    const ir::Stage& s;
+    Elastic mat;
+    double Estar, alpha, fz;
+  };
+
+  const Model& m;
+  const Evaluator& ev;
+  const Assignment& a;
+  const ir::Scene& scene;
+  Accuracy acc;
+  const SceneOverrides& ov;
+  GearboxRun run;
+  std::vector<std::string>& prov;
+  const ir::Effect *hertz = nullptr, *varying = nullptr, *damping = nullptr, *torqueFx = nullptr, *backlash = nullptr, *loadedFx = nullptr;
+  Params P;
+  int harmonics = 0;
   // Members: the driven input shaft first (prescribed), then one per shaft, carrier, planet, idler.
   std::vector<std::string> names = {"input shaft"};
   std::vector<double> J = {0.0};
-  auto add = [&](const std::string& n, double inertia) {
-    names.push_back(n);
-    J.push_back(inertia);
-    return static_cast<int>(names.size()) - 1;
-  };
-  // A member index as the state sees it: the input is -1, the others one lower.
-  auto dofOf = [](int member) { return member - 1; };
   int shaft = 0;
   // The sense the current shaft turns in: every mesh is written so that a positive deflection
   // carries the load (the driving flank), whichever way its stage's input turns.
   double sense = 1.0;
   double fastest = 0;
   std::vector<std::string> hertzLines;
-  for (int st = 0; st < static_cast<int>(m.stages.size()); ++st) {
-    const ir::Stage& s = *m.stages[static_cast<size_t>(st)].ir;
-    Elastic mat = materialOf(m, st);
-    double Estar = mat.E / (2.0 * (1.0 - mat.nu * mat.nu));
-    double alpha = need(ev.attribute(st, Q::PressureAngle, a), "a pressure angle");
-    double fz = need(ev.derived(st, Q::MeshFrequency, a), fmt::format("the mesh frequency of stage `{}`", s.name));
-    fastest = std::max(fastest, fz);
-    if (mat.assumed) prov.push_back(fmt::format("stage `{}`: density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)", s.name));
-    auto hertzK = [&](double rho1, double rho2, bool internal) {
-      double R = 1.0 / (1.0 / rho1 + (internal ? -1.0 : 1.0) / rho2);
-      return 4.0 / 3.0 * std::sqrt(R) * Estar;
-    };
-    // Linear stiffness without a contact law: c_gamma x b, given or assumed.
-    auto linearK = [&](double b) {
-      Value cg = ev.attribute(st, Q::MeshStiffness, a);
-      return (cg.isNumber() ? cg.mid() : 16e9) * b;
-    };
-    auto mesh = [&](const std::string& n, bool reported, std::vector<std::pair<int, double>> coupling, double K, double kLin, double normal,
-                    int fourier, int phaseMember, double gain, double phase0) {
-      GMesh me;
-      me.name = n;
-      me.reported = reported;
-      me.stage = st;
-      me.n = static_cast<int>(coupling.size());
-      for (size_t k = 0; k < coupling.size(); ++k) {
-        me.dof[k] = dofOf(coupling[k].first);
-        me.coef[k] = sense * coupling[k].second;
-      }
-      me.K = hertz ? K : kLin;
-      me.kLinear = kLin;
-      me.normal = normal;
-      me.fourier = fourier;
-      me.phaseDof = dofOf(phaseMember);
-      me.phaseGain = sense * gain;
-      me.phase0 = phase0;
-      me.meshFrequency = fz;
-      if (hertz)
-        if (const auto* hd = effectParam(hertz, Q::Damping)) me.hertzDamping = settingValue(*hd, {adamsStiffness(K, P.e)});
-      P.meshes.push_back(me);
-    };
-    auto width = [&](double mod) {
-      Value bw = ev.attribute(st, Q::FaceWidth, a);
-      if (bw.isNumber()) return bw.mid();
-      prov.push_back(fmt::format("stage `{}`: face width {:.2f} mm assumed (10 x module): not given", s.name, 10.0 * mod * 1e3));
-      return 10.0 * mod;
-    };
-    auto solid = [&](int gear, double r, double b) {
-      Value given = ev.attribute(st, gear, Q::Inertia, a);
-      return given.isNumber() ? given.mid() : 0.5 * mat.density * M_PI * b * r * r * r * r;
-    };
-    switch (s.kind) {
-    case ir::StageKind::Planetary: {
-      double zs = need(ev.attribute(st, Sun, Q::Z, a), "sun.z"), zp = need(ev.attribute(st, Planet, Q::Z, a), "planet.z"),
-             zr = need(ev.attribute(st, Ring, Q::Z, a), "ring.z"), mod = need(ev.attribute(st, Q::Module, a), "`module`");
-      int N = static_cast<int>(need(ev.attribute(st, Q::Planets, a), "planets"));
-      if (N < 1 || N > 32) throw SceneFailure{fmt::format("a planetary stage is modelled with 1 to 32 planets, not {}", N)};
-      double rbs = 0.5 * zs * mod * std::cos(alpha), rbp = 0.5 * zp * mod * std::cos(alpha), rbr = 0.5 * zr * mod * std::cos(alpha);
-      double rc = 0.5 * (zs + zp) * mod, rp = 0.5 * zp * mod, b = width(mod);
-      double mp = mat.density * M_PI * rp * rp * b;
-      double Jp = solid(Planet, rp, b);
-      Value jcGiven = ev.attribute(st, Q::CarrierInertia, a);
-      double Rcar = rc + rp;
-      double Jc = jcGiven.isNumber() ? jcGiven.mid() : 0.5 * mat.density * M_PI * Rcar * Rcar * b * Rcar * Rcar;
-      J[static_cast<size_t>(shaft)] += solid(Sun, 0.5 * zs * mod, b);
-      int carrier = add(s.name + " carrier", Jc + N * mp * rc * rc);
-      double tanA = std::tan(alpha);
-      double Ksp = hertzK(rbs * tanA, rbp * tanA, false), Krp = hertzK(rbp * tanA, rbr * tanA, true);
-      if (hertz) hertzLines.push_back(fmt::format("`{}` sun-planet {:.4g}, ring-planet {:.4g} N/m^{} (internal curvature subtracted)", s.name, Ksp, Krp, P.e));
-      int fourier = -1;
-      if (varying) {
-        double eps = epsAlphaStandard(zs, zp, mod, alpha, false);
-        P.fouriers.push_back(contactLineSeries(eps, 0.0, harmonics));
-        fourier = static_cast<int>(P.fouriers.size()) - 1;
-        prov.push_back(fmt::format("stage `{}`: contact-line stiffness variation, {} harmonics, eps_alpha {:.4f} (sun-planet, on both meshes)",
-                                   s.name, harmonics, eps));
-      }
-      double kLin = linearK(b);
-      for (int i = 0; i < N; ++i) {
-        int p = add(fmt::format("{} planet {}", s.name, i + 1), Jp);
-        // Sun-planet: rbs (theta_sun - theta_c) + rbp phi; ring-planet: -rbp phi - rbr theta_c.
-        mesh(s.name + ".sun_planet", i == 0, {{shaft, rbs}, {carrier, -rbs}, {p, rbp}}, Ksp, kLin, 1.0, fourier, carrier, zr / (2.0 * M_PI),
-             std::fmod(zs * i / static_cast<double>(N), 1.0));
-        mesh(s.name + ".ring_planet", i == 0, {{p, -rbp}, {carrier, -rbr}}, Krp, kLin, 1.0, fourier, carrier, zr / (2.0 * M_PI),
-             1.0 - std::fmod(zr * i / static_cast<double>(N), 1.0));  // Parker and Lin's phasing, as in Planetary.cpp
-      }
-      prov.push_back(fmt::format("stage `{}`: carrier {:.4g} kg*m^2 with {} planets at r = {:.2f} mm, planet spin {:.4g} kg*m^2 ({})", s.name,
-                                 Jc + N * mp * rc * rc, N, rc * 1e3, Jp, "solid discs unless given"));
-      shaft = carrier;
-      break;
-    }
-    case ir::StageKind::Idler: {
-      double z1 = need(ev.attribute(st, Driver, Q::Z, a), "driver.z"), z2 = need(ev.attribute(st, Idler, Q::Z, a), "idler.z"),
-             z3 = need(ev.attribute(st, Driven, Q::Z, a), "driven.z"), mod = need(ev.attribute(st, Q::Module, a), "`module`");
-      double rb1 = 0.5 * z1 * mod * std::cos(alpha), rb2 = 0.5 * z2 * mod * std::cos(alpha), rb3 = 0.5 * z3 * mod * std::cos(alpha);
-      double b = width(mod), tanA = std::tan(alpha);
-      J[static_cast<size_t>(shaft)] += solid(Driver, 0.5 * z1 * mod, b);
-      int idler = add(s.name + " idler", solid(Idler, 0.5 * z2 * mod, b));
-      int driven = add(s.name + " driven", solid(Driven, 0.5 * z3 * mod, b));
-      double K1 = hertzK(rb1 * tanA, rb2 * tanA, false), K2 = hertzK(rb2 * tanA, rb3 * tanA, false);
-      if (hertz) hertzLines.push_back(fmt::format("`{}` driver-idler {:.4g}, idler-driven {:.4g} N/m^{}", s.name, K1, K2, P.e));
-      int f1 = -1, f2 = -1;
-      if (varying) {
-        double e1 = epsAlphaStandard(z1, z2, mod, alpha, false), e2 = epsAlphaStandard(z2, z3, mod, alpha, false);
-        P.fouriers.push_back(contactLineSeries(e1, 0.0, harmonics));
-        f1 = static_cast<int>(P.fouriers.size()) - 1;
-        P.fouriers.push_back(contactLineSeries(e2, 0.0, harmonics));
-        f2 = f1 + 1;
-        prov.push_back(fmt::format("stage `{}`: contact-line stiffness variation, {} harmonics, eps_alpha {:.4f} and {:.4f}; the two meshes "
-                                   "in phase (the idler's angle between its centre lines is not modelled)",
-                                   s.name, harmonics, e1, e2));
-      }
-      double kLin = linearK(b);
-      // Driver-idler: rb1 theta_1 + rb2 theta_2; idler-driven: -rb2 theta_2 - rb3 theta_3.
-      mesh(s.name + ".driver_idler", true, {{shaft, rb1}, {idler, rb2}}, K1, kLin, 1.0, f1, shaft, z1 / (2.0 * M_PI), 0.0);
-      mesh(s.name + ".idler_driven", true, {{idler, -rb2}, {driven, -rb3}}, K2, kLin, 1.0, f2, shaft, z1 / (2.0 * M_PI), 0.0);
-      shaft = driven;
-      break;
-    }
-    case ir::StageKind::Spur:
-    case ir::StageKind::Helical: {
-      double z1 = need(ev.attribute(st, Pinion, Q::Z, a), "pinion.z");
-      double d1 = need(ev.derived(st, Pinion, Q::D, a), "the pinion's pitch diameter"), d2 = need(ev.derived(st, Wheel, Q::D, a), "the wheel's pitch diameter");
-      double beta = s.kind == ir::StageKind::Helical ? need(ev.attribute(st, Q::HelixAngle, a), "the helix angle") : 0.0;
-      double at = std::atan(std::tan(alpha) / std::cos(beta));
-      double rb1 = 0.5 * d1 * std::cos(at), rb2 = 0.5 * d2 * std::cos(at);
-      Value bw = ev.attribute(st, Q::FaceWidth, a);
-      double b = need(bw, fmt::format("the `face_width` of stage `{}`", s.name));
-      J[static_cast<size_t>(shaft)] += solid(Pinion, 0.5 * d1, b);
-      int wheel = add(s.name + " wheel", solid(Wheel, 0.5 * d2, b));
-      double betab = std::atan(std::tan(beta) * std::cos(at));
-      // Under hertz_contact the same point-contact law as the planetary and idler meshes (the
-      // source paper's multibody contact): it ignores the face width of a line contact.
-      double kLin = linearK(b);
-      double K = hertzK(rb1 * std::tan(at), rb2 * std::tan(at), false);
-      if (hertz) hertzLines.push_back(fmt::format("`{}` {:.4g} N/m^{}", s.name, K, P.e));
-      int f = -1;
-      if (varying) {
-        double ea = need(ev.derived(st, Q::EpsAlpha, a), "eps_alpha"), eb = s.kind == ir::StageKind::Helical ? need(ev.derived(st, Q::EpsBeta, a), "eps_beta") : 0.0;
-        P.fouriers.push_back(contactLineSeries(ea, eb, harmonics));
-        f = static_cast<int>(P.fouriers.size()) - 1;
-      }
-      mesh(s.name, true, {{shaft, rb1}, {wheel, rb2}}, K, kLin, 1.0 / std::cos(betab), f, shaft, z1 / (2.0 * M_PI), 0.0);
-      shaft = wheel;
-      sense = -sense;  // the wheel turns against the pinion
-      break;
-    }
-    default: throw SceneFailure{fmt::format("a whole-gearbox scene does not model {} stages (`{}`)", ir::stageKindName(s.kind), s.name)};
-    }
-  }
-  if (P.meshes.empty()) throw SceneFailure{"the gearbox has no mesh to integrate"};
-  if (!hertzLines.empty()) prov.push_back("Hertz stiffness K = 4/3 sqrt(R) E*: " + fmt::format("{}", fmt::join(hertzLines, "; ")));
-  size_t nMembers = names.size(), nq = nMembers - 1;
-  P.nq = nq;
-  P.J.assign(J.begin() + 1, J.end());
-  for (size_t i = 0; i < nq; ++i)
-    if (!(P.J[i] > 0)) throw SceneFailure{fmt::format("`{}` has no inertia", names[i + 1])};
-  P.output = dofOf(shaft);
-  run.members = names;
+  size_t nq = 0;
+  long nm = 0;
+  Eigen::MatrixXd G;
+  Eigen::VectorXd gin, v;
+  double speed = 0, Tz = 0, Tn = 0;
+  std::vector<double> F0, target;
 
-  // Kinematics: the member speeds that leave every mesh undeflected, per unit input speed.
-  long nm = static_cast<long>(P.meshes.size());
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nm, static_cast<long>(nq));
-  Eigen::VectorXd gin = Eigen::VectorXd::Zero(nm);
-  for (long i = 0; i < nm; ++i) {
-    const GMesh& me = P.meshes[static_cast<size_t>(i)];
-    for (int k = 0; k < me.n; ++k) {
-      if (me.dof[static_cast<size_t>(k)] < 0) gin(i) += me.coef[static_cast<size_t>(k)];
-      else G(i, me.dof[static_cast<size_t>(k)]) += me.coef[static_cast<size_t>(k)];
+  // ---- effects ----------------------------------------------------------------------------
+
+  void effects() {
+    for (const auto& fx : scene.effects)
+      if (fx.kind != Effect::HertzContact && fx.kind != Effect::Backlash && fx.kind != Effect::VaryingStiffness && fx.kind != Effect::Damping &&
+          fx.kind != Effect::SpeedFluctuation && fx.kind != Effect::TorqueFluctuation && fx.kind != Effect::LoadedMesh)
+        throw SceneFailure{fmt::format("effect `{}` is not modelled in a whole-gearbox scene (it takes hertz_contact, backlash, "
+                                       "varying_stiffness, loaded_mesh, damping, speed_fluctuation and torque_fluctuation)",
+                                       fx.name)};
+    if (!m.gearbox.splits.empty()) throw SceneFailure{"a whole-gearbox scene of a power split is not modelled: run the scene on a stage"};
+    hertz = scene.findEffect(Effect::HertzContact);
+    varying = scene.findEffect(Effect::VaryingStiffness);
+    damping = scene.findEffect(Effect::Damping);
+    torqueFx = scene.findEffect(Effect::TorqueFluctuation);
+    backlash = scene.findEffect(Effect::Backlash);
+    loadedFx = scene.findEffect(Effect::LoadedMesh);
+    if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
+    if (loadedFx && (hertz || backlash || varying))
+      throw SceneFailure{"`loaded_mesh` gives every mesh its stiffness and separation from the flanks: list it without hertz_contact, backlash "
+                         "and varying_stiffness"};
+    if (loadedFx)
+      for (const auto& st : m.stages)
+        if (st.ir->kind != ir::StageKind::Spur && st.ir->kind != ir::StageKind::Helical)
+          throw SceneFailure{fmt::format("`loaded_mesh` models spur and helical pairs; stage `{}` is {}", st.ir->name, ir::stageKindName(st.ir->kind))};
+    if (hertz) {
+      if (const auto* s = effectParam(hertz, Q::Exponent)) P.e = settingValue(*s);
+      if (const auto* s = effectParam(hertz, Q::PenetrationRamp)) P.ramp = settingValue(*s);
     }
+    if (backlash) P.halfClearance = 0.5 * settingValue(*effectParam(backlash, Q::Clearance));
+    harmonics = varying ? (ov.harmonics ? *ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)))) : 0;
+    run.harmonics = harmonics;
   }
-  Eigen::VectorXd v = G.colPivHouseholderQr().solve(-gin);
-  run.kinematic = {1.0};
-  for (long i = 0; i < v.size(); ++i) run.kinematic.push_back(v(i));
-  P.outSign = v(P.output) >= 0 ? 1.0 : -1.0;
 
-  // The load: the gearbox output torque (or its fluctuation) on the last member, against its sense.
-  P.tMean = need(ev.gearboxQuantity(Q::OutputTorque, a), "an output torque (`operating`)");
-  if (torqueFx) {
-    P.tMean = settingValue(*effectParam(torqueFx, Q::Mean));
-    P.tAmp = settingValue(*effectParam(torqueFx, Q::Amplitude));
-    P.tOmega = angularFrequency(*effectParam(torqueFx, Q::Frequency));
-    prov.push_back("load torque mean + amplitude sin(frequency t) on the output");
+  // ---- members and meshes -------------------------------------------------------------------
+
+  int add(const std::string& n, double inertia) {
+    names.push_back(n);
+    J.push_back(inertia);
+    return static_cast<int>(names.size()) - 1;
   }
-  double speed = need(ev.gearboxQuantity(Q::InputSpeed, a), "an input speed (`operating`)");
-  double Tz = 1.0 / fastest;
-  run.meshFrequency = fastest;
-  P.drive = sceneDrive(scene, speed, 1.0, Tz);
-  P.audit = ov.energyAudit;
+  // A member index as the state sees it: the input is -1, the others one lower.
+  static int dofOf(int member) { return member - 1; }
+  double hertzK(const StageAt& at, double rho1, double rho2, bool internal) const {
+    double R = 1.0 / (1.0 / rho1 + (internal ? -1.0 : 1.0) / rho2);
+    return 4.0 / 3.0 * std::sqrt(R) * at.Estar;
+  }
+  // Linear stiffness without a contact law: c_gamma x b, given or assumed.
+  double linearK(const StageAt& at, double b) const {
+    Value cg = ev.attribute(at.st, Q::MeshStiffness, a);
+    return (cg.isNumber() ? cg.mid() : 16e9) * b;
+  }
+  void mesh(const StageAt& at, const std::string& n, bool reported, std::vector<std::pair<int, double>> coupling, double K, double kLin,
+            double normal, int fourier, int phaseMember, double gain, double phase0) {
+    GMesh me;
+    me.name = n;
+    me.reported = reported;
+    me.stage = at.st;
+    me.n = static_cast<int>(coupling.size());
+    for (size_t k = 0; k < coupling.size(); ++k) {
+      me.dof[k] = dofOf(coupling[k].first);
+      me.coef[k] = sense * coupling[k].second;
+    }
+    me.K = hertz ? K : kLin;
+    me.kLinear = kLin;
+    me.normal = normal;
+    me.fourier = fourier;
+    me.phaseDof = dofOf(phaseMember);
+    me.phaseGain = sense * gain;
+    me.phase0 = phase0;
+    me.meshFrequency = at.fz;
+    if (hertz)
+      if (const auto* hd = effectParam(hertz, Q::Damping)) me.hertzDamping = settingValue(*hd, {adamsStiffness(K, P.e)});
+    P.meshes.push_back(me);
+  }
+  double width(const StageAt& at, double mod) {
+    Value bw = ev.attribute(at.st, Q::FaceWidth, a);
+    if (bw.isNumber()) return bw.mid();
+    prov.push_back(fmt::format("stage `{}`: face width {:.2f} mm assumed (10 x module): not given", at.s.name, 10.0 * mod * 1e3));
+    return 10.0 * mod;
+  }
+  double solid(const StageAt& at, int gear, double r, double b) const {
+    Value given = ev.attribute(at.st, gear, Q::Inertia, a);
+    return given.isNumber() ? given.mid() : 0.5 * at.mat.density * M_PI * b * r * r * r * r;
+  }
 
-  // Static load: the linear model (input held) under the output torque gives each mesh's force.
+  void planetary(const StageAt& at) {
+    using namespace cat::gear;
+    const int st = at.st;
+    const ir::Stage& s = at.s;
+    const double alpha = at.alpha;
+    double zs = need(ev.attribute(st, Sun, Q::Z, a), "sun.z"), zp = need(ev.attribute(st, Planet, Q::Z, a), "planet.z"),
+           zr = need(ev.attribute(st, Ring, Q::Z, a), "ring.z"), mod = need(ev.attribute(st, Q::Module, a), "`module`");
+    int N = static_cast<int>(need(ev.attribute(st, Q::Planets, a), "planets"));
+    if (N < 1 || N > 32) throw SceneFailure{fmt::format("a planetary stage is modelled with 1 to 32 planets, not {}", N)};
+    double rbs = 0.5 * zs * mod * std::cos(alpha), rbp = 0.5 * zp * mod * std::cos(alpha), rbr = 0.5 * zr * mod * std::cos(alpha);
+    double rc = 0.5 * (zs + zp) * mod, rp = 0.5 * zp * mod, b = width(at, mod);
+    double mp = at.mat.density * M_PI * rp * rp * b;
+    double Jp = solid(at, Planet, rp, b);
+    Value jcGiven = ev.attribute(st, Q::CarrierInertia, a);
+    double Rcar = rc + rp;
+    double Jc = jcGiven.isNumber() ? jcGiven.mid() : 0.5 * at.mat.density * M_PI * Rcar * Rcar * b * Rcar * Rcar;
+    J[static_cast<size_t>(shaft)] += solid(at, Sun, 0.5 * zs * mod, b);
+    int carrier = add(s.name + " carrier", Jc + N * mp * rc * rc);
+    double tanA = std::tan(alpha);
+    double Ksp = hertzK(at, rbs * tanA, rbp * tanA, false), Krp = hertzK(at, rbp * tanA, rbr * tanA, true);
+    if (hertz) hertzLines.push_back(fmt::format("`{}` sun-planet {:.4g}, ring-planet {:.4g} N/m^{} (internal curvature subtracted)", s.name, Ksp, Krp, P.e));
+    int fourier = -1;
+    if (varying) {
+      double eps = epsAlphaStandard(zs, zp, mod, alpha, false);
+      P.fouriers.push_back(contactLineSeries(eps, 0.0, harmonics));
+      fourier = static_cast<int>(P.fouriers.size()) - 1;
+      prov.push_back(fmt::format("stage `{}`: contact-line stiffness variation, {} harmonics, eps_alpha {:.4f} (sun-planet, on both meshes)",
+                                 s.name, harmonics, eps));
+    }
+    double kLin = linearK(at, b);
+    for (int i = 0; i < N; ++i) {
+      int p = add(fmt::format("{} planet {}", s.name, i + 1), Jp);
+      // Sun-planet: rbs (theta_sun - theta_c) + rbp phi; ring-planet: -rbp phi - rbr theta_c.
+      mesh(at, s.name + ".sun_planet", i == 0, {{shaft, rbs}, {carrier, -rbs}, {p, rbp}}, Ksp, kLin, 1.0, fourier, carrier, zr / (2.0 * M_PI),
+           std::fmod(zs * i / static_cast<double>(N), 1.0));
+      mesh(at, s.name + ".ring_planet", i == 0, {{p, -rbp}, {carrier, -rbr}}, Krp, kLin, 1.0, fourier, carrier, zr / (2.0 * M_PI),
+           1.0 - std::fmod(zr * i / static_cast<double>(N), 1.0));  // Parker and Lin's phasing, as in Planetary.cpp
+    }
+    prov.push_back(fmt::format("stage `{}`: carrier {:.4g} kg*m^2 with {} planets at r = {:.2f} mm, planet spin {:.4g} kg*m^2 ({})", s.name,
+                               Jc + N * mp * rc * rc, N, rc * 1e3, Jp, "solid discs unless given"));
+    shaft = carrier;
+  }
+
+  void idler(const StageAt& at) {
+    using namespace cat::gear;
+    const int st = at.st;
+    const ir::Stage& s = at.s;
+    const double alpha = at.alpha;
+    double z1 = need(ev.attribute(st, Driver, Q::Z, a), "driver.z"), z2 = need(ev.attribute(st, Idler, Q::Z, a), "idler.z"),
+           z3 = need(ev.attribute(st, Driven, Q::Z, a), "driven.z"), mod = need(ev.attribute(st, Q::Module, a), "`module`");
+    double rb1 = 0.5 * z1 * mod * std::cos(alpha), rb2 = 0.5 * z2 * mod * std::cos(alpha), rb3 = 0.5 * z3 * mod * std::cos(alpha);
+    double b = width(at, mod), tanA = std::tan(alpha);
+    J[static_cast<size_t>(shaft)] += solid(at, Driver, 0.5 * z1 * mod, b);
+    int idlerMember = add(s.name + " idler", solid(at, Idler, 0.5 * z2 * mod, b));
+    int driven = add(s.name + " driven", solid(at, Driven, 0.5 * z3 * mod, b));
+    double K1 = hertzK(at, rb1 * tanA, rb2 * tanA, false), K2 = hertzK(at, rb2 * tanA, rb3 * tanA, false);
+    if (hertz) hertzLines.push_back(fmt::format("`{}` driver-idler {:.4g}, idler-driven {:.4g} N/m^{}", s.name, K1, K2, P.e));
+    int f1 = -1, f2 = -1;
+    if (varying) {
+      double e1 = epsAlphaStandard(z1, z2, mod, alpha, false), e2 = epsAlphaStandard(z2, z3, mod, alpha, false);
+      P.fouriers.push_back(contactLineSeries(e1, 0.0, harmonics));
+      f1 = static_cast<int>(P.fouriers.size()) - 1;
+      P.fouriers.push_back(contactLineSeries(e2, 0.0, harmonics));
+      f2 = f1 + 1;
+      prov.push_back(fmt::format("stage `{}`: contact-line stiffness variation, {} harmonics, eps_alpha {:.4f} and {:.4f}; the two meshes "
+                                 "in phase (the idler's angle between its centre lines is not modelled)",
+                                 s.name, harmonics, e1, e2));
+    }
+    double kLin = linearK(at, b);
+    // Driver-idler: rb1 theta_1 + rb2 theta_2; idler-driven: -rb2 theta_2 - rb3 theta_3.
+    mesh(at, s.name + ".driver_idler", true, {{shaft, rb1}, {idlerMember, rb2}}, K1, kLin, 1.0, f1, shaft, z1 / (2.0 * M_PI), 0.0);
+    mesh(at, s.name + ".idler_driven", true, {{idlerMember, -rb2}, {driven, -rb3}}, K2, kLin, 1.0, f2, shaft, z1 / (2.0 * M_PI), 0.0);
+    shaft = driven;
+  }
+
+  void cylindrical(const StageAt& at) {
+    using namespace cat::gear;
+    const int st = at.st;
+    const ir::Stage& s = at.s;
+    double z1 = need(ev.attribute(st, Pinion, Q::Z, a), "pinion.z");
+    double d1 = need(ev.derived(st, Pinion, Q::D, a), "the pinion's pitch diameter"), d2 = need(ev.derived(st, Wheel, Q::D, a), "the wheel's pitch diameter");
+    double beta = s.kind == ir::StageKind::Helical ? need(ev.attribute(st, Q::HelixAngle, a), "the helix angle") : 0.0;
+    double at_ = std::atan(std::tan(at.alpha) / std::cos(beta));
+    double rb1 = 0.5 * d1 * std::cos(at_), rb2 = 0.5 * d2 * std::cos(at_);
+    Value bw = ev.attribute(st, Q::FaceWidth, a);
+    double b = need(bw, fmt::format("the `face_width` of stage `{}`", s.name));
+    J[static_cast<size_t>(shaft)] += solid(at, Pinion, 0.5 * d1, b);
+    int wheel = add(s.name + " wheel", solid(at, Wheel, 0.5 * d2, b));
+    double betab = std::atan(std::tan(beta) * std::cos(at_));
+    // Under hertz_contact the same point-contact law as the planetary and idler meshes (the
+    // source paper's multibody contact): it ignores the face width of a line contact.
+    double kLin = linearK(at, b);
+    double K = hertzK(at, rb1 * std::tan(at_), rb2 * std::tan(at_), false);
+    if (hertz) hertzLines.push_back(fmt::format("`{}` {:.4g} N/m^{}", s.name, K, P.e));
+    int f = -1;
+    if (varying) {
+      double ea = need(ev.derived(st, Q::EpsAlpha, a), "eps_alpha"), eb = s.kind == ir::StageKind::Helical ? need(ev.derived(st, Q::EpsBeta, a), "eps_beta") : 0.0;
+      P.fouriers.push_back(contactLineSeries(ea, eb, harmonics));
+      f = static_cast<int>(P.fouriers.size()) - 1;
+    }
+    mesh(at, s.name, true, {{shaft, rb1}, {wheel, rb2}}, K, kLin, 1.0 / std::cos(betab), f, shaft, z1 / (2.0 * M_PI), 0.0);
+    shaft = wheel;
+    sense = -sense;  // the wheel turns against the pinion
+  }
+
+  void members() {
+    for (int st = 0; st < static_cast<int>(m.stages.size()); ++st) {
+      const ir::Stage& s = *m.stages[static_cast<size_t>(st)].ir;
+      Elastic mat = materialOf(m, st);
+      double Estar = mat.E / (2.0 * (1.0 - mat.nu * mat.nu));
+      double alpha = need(ev.attribute(st, Q::PressureAngle, a), "a pressure angle");
+      double fz = need(ev.derived(st, Q::MeshFrequency, a), fmt::format("the mesh frequency of stage `{}`", s.name));
+      fastest = std::max(fastest, fz);
+      if (mat.assumed) prov.push_back(fmt::format("stage `{}`: density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)", s.name));
+      StageAt at{st, s, mat, Estar, alpha, fz};
+      switch (s.kind) {
+      case ir::StageKind::Planetary: planetary(at); break;
+      case ir::StageKind::Idler: idler(at); break;
+      case ir::StageKind::Spur:
+      case ir::StageKind::Helical: cylindrical(at); break;
+      default: throw SceneFailure{fmt::format("a whole-gearbox scene does not model {} stages (`{}`)", ir::stageKindName(s.kind), s.name)};
+      }
+    }
+    if (P.meshes.empty()) throw SceneFailure{"the gearbox has no mesh to integrate"};
+    if (!hertzLines.empty()) prov.push_back("Hertz stiffness K = 4/3 sqrt(R) E*: " + fmt::format("{}", fmt::join(hertzLines, "; ")));
+    nq = names.size() - 1;
+    P.nq = nq;
+    P.J.assign(J.begin() + 1, J.end());
+    for (size_t i = 0; i < nq; ++i)
+      if (!(P.J[i] > 0)) throw SceneFailure{fmt::format("`{}` has no inertia", names[i + 1])};
+    P.output = dofOf(shaft);
+    run.members = names;
+  }
+
+  // ---- kinematics, load, static deflections ---------------------------------------------------
+
+  // The member speeds that leave every mesh undeflected, per unit input speed.
+  void kinematics() {
+    nm = static_cast<long>(P.meshes.size());
+    G = Eigen::MatrixXd::Zero(nm, static_cast<long>(nq));
+    gin = Eigen::VectorXd::Zero(nm);
+    for (long i = 0; i < nm; ++i) {
+      const GMesh& me = P.meshes[static_cast<size_t>(i)];
+      for (int k = 0; k < me.n; ++k) {
+        if (me.dof[static_cast<size_t>(k)] < 0) gin(i) += me.coef[static_cast<size_t>(k)];
+        else G(i, me.dof[static_cast<size_t>(k)]) += me.coef[static_cast<size_t>(k)];
+      }
+    }
+    v = G.colPivHouseholderQr().solve(-gin);
+    run.kinematic = {1.0};
+    for (long i = 0; i < v.size(); ++i) run.kinematic.push_back(v(i));
+    P.outSign = v(P.output) >= 0 ? 1.0 : -1.0;
+  }
+
+  // The load: the gearbox output torque (or its fluctuation) on the last member, against its
+  // sense; the drive at the input.
+  void load() {
+    P.tMean = need(ev.gearboxQuantity(Q::OutputTorque, a), "an output torque (`operating`)");
+    if (torqueFx) {
+      P.tMean = settingValue(*effectParam(torqueFx, Q::Mean));
+      P.tAmp = settingValue(*effectParam(torqueFx, Q::Amplitude));
+      P.tOmega = angularFrequency(*effectParam(torqueFx, Q::Frequency));
+      prov.push_back("load torque mean + amplitude sin(frequency t) on the output");
+    }
+    speed = need(ev.gearboxQuantity(Q::InputSpeed, a), "an input speed (`operating`)");
+    Tz = 1.0 / fastest;
+    run.meshFrequency = fastest;
+    P.drive = sceneDrive(scene, speed, 1.0, Tz);
+    P.audit = ov.energyAudit;
+  }
+
   // K = sum k G_i^T G_i with each mesh's current linear stiffness.
-  auto stiffness = [&] {
+  Eigen::MatrixXd stiffness() const {
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq));
     for (long i = 0; i < nm; ++i) K += P.meshes[static_cast<size_t>(i)].kLinear * G.row(i).transpose() * G.row(i);
     return K;
-  };
-  Eigen::MatrixXd Klin = stiffness();
-  Eigen::VectorXd load = Eigen::VectorXd::Zero(static_cast<long>(nq));
-  load(P.output) = -P.outSign * P.tMean;
-  Eigen::VectorXd q0 = Klin.ldlt().solve(load);
-  std::vector<double> F0(static_cast<size_t>(nm)), target(static_cast<size_t>(nm));
-  for (long i = 0; i < nm; ++i) {
-    GMesh& me = P.meshes[static_cast<size_t>(i)];
-    double F = me.kLinear * G.row(i).dot(q0);
-    F0[static_cast<size_t>(i)] = F;
-    double Fp = std::max(std::fabs(F), 1e-9);
-    if (hertz) {
-      target[static_cast<size_t>(i)] = std::pow(Fp / me.K, 1.0 / P.e);
-      me.kLinear = P.e * me.K * std::pow(Fp / me.K, (P.e - 1.0) / P.e);  // the contact's slope at the static load
-    } else {
-      target[static_cast<size_t>(i)] = F / me.kLinear + (backlash ? P.halfClearance : 0.0);
+  }
+
+  // Static load: the linear model (input held) under the output torque gives each mesh's force.
+  void staticLoad() {
+    Eigen::MatrixXd Klin = stiffness();
+    Eigen::VectorXd loadVec = Eigen::VectorXd::Zero(static_cast<long>(nq));
+    loadVec(P.output) = -P.outSign * P.tMean;
+    Eigen::VectorXd q0 = Klin.ldlt().solve(loadVec);
+    F0.assign(static_cast<size_t>(nm), 0.0);
+    target.assign(static_cast<size_t>(nm), 0.0);
+    for (long i = 0; i < nm; ++i) {
+      GMesh& me = P.meshes[static_cast<size_t>(i)];
+      double F = me.kLinear * G.row(i).dot(q0);
+      F0[static_cast<size_t>(i)] = F;
+      double Fp = std::max(std::fabs(F), 1e-9);
+      if (hertz) {
+        target[static_cast<size_t>(i)] = std::pow(Fp / me.K, 1.0 / P.e);
+        me.kLinear = P.e * me.K * std::pow(Fp / me.K, (P.e - 1.0) / P.e);  // the contact's slope at the static load
+      } else {
+        target[static_cast<size_t>(i)] = F / me.kLinear + (backlash ? P.halfClearance : 0.0);
+      }
     }
   }
+
   // loaded_mesh: each pair's thin-slice tables at its static load; the mesh force k (x - u).
-  if (loadedFx) {
+  void loadedMeshes() {
     auto param = [&](Q key, int dflt) {
       const auto* s = effectParam(loadedFx, key);
       return s ? static_cast<int>(settingValue(*s)) : dflt;
@@ -571,9 +647,10 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
                                  me.name, slices, positions, H, tab.peakToPeakTe * 1e6, tab.meanStiffness));
     }
   }
+
   // Damping: a coefficient, or a ratio of each mesh's critical damping with the effective mass
   // along its line of action.
-  if (damping)
+  void meshDamping() {
     for (auto& me : P.meshes) {
       if (const auto* s = effectParam(damping, Q::Coefficient)) {
         me.c = settingValue(*s);
@@ -584,85 +661,56 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
         if (me.dof[static_cast<size_t>(k)] >= 0) inv += me.coef[static_cast<size_t>(k)] * me.coef[static_cast<size_t>(k)] / P.J[static_cast<size_t>(me.dof[static_cast<size_t>(k)])];
       me.c = 2.0 * settingValue(*effectParam(damping, Q::DampingRatio)) * std::sqrt(me.kLinear / inv);
     }
-  // Modes of the model linearised at the static load (the input held).
-  Klin = stiffness();  // the contacts' slopes at the static load
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq));
-  for (size_t i = 0; i < nq; ++i) M(static_cast<long>(i), static_cast<long>(i)) = P.J[i];
-  run.modes = naturalFrequencies(Klin, M);
-  double fmax = run.modes.empty() ? 0.0 : *std::max_element(run.modes.begin(), run.modes.end());
-  prov.push_back(fmt::format("{} members, one rotation each (the driven input first: {}), {} mesh{}; modes at the static load {} Hz",
-                             nMembers, fmt::join(names, ", "), nm, nm == 1 ? "" : "es", frequencyList(run.modes)));
-  double Tn = fmax > 0 ? 1.0 / fmax : Tz;
-  run.stepRule = lumpedMaxStep(acc.maxStep, Tz, fmax, ov.maxStepFactor, "Tz/20 (the fastest mesh)");
-  run.plan = timePlan(scene, Tz, ov.settlePeriods);
-
-  int contactKind = loadedFx ? contact::Loaded : backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
-  int phaseKind = P.drive.needsState() ? drivephase::State : drivephase::Closed;
-  Compiled model = compile(P, varying != nullptr, damping != nullptr, contactKind, torqueFx != nullptr, phaseKind);
-  System sys;
-  size_t extra = (phaseKind == drivephase::State ? 1 : 0) + (P.audit ? 3 : 0);
-  sys.dim = 2 * nq + extra;
-  sys.rhs = model.rhs;
-  sys.dfdy = model.dfdy;
-  // The implicit method's Jacobian: dfdy, and dfdt by a central difference (the terms depend on
-  // t only through the drive and the load, both smooth).
-  sys.jacobian = [&sys, Tz](double t, const double* y, double* dfdy, double* dfdt) {
-    size_t n = sys.dim;
-    sys.dfdy(t, y, dfdy);
-    double h = 1e-7 * Tz;
-    std::vector<double> a(n), b(n);
-    sys.rhs(t + h, y, a.data());
-    sys.rhs(t - h, y, b.data());
-    for (size_t i = 0; i < n; ++i) dfdt[i] = (a[i] - b[i]) / (2 * h);
-  };
-  if (hertz || backlash)
-    for (const auto& me : P.meshes)
-      for (double side : backlash ? std::vector<double>{1.0, -1.0} : std::vector<double>{0.0})
-        sys.events.push_back([&model, me, side, hc = P.halfClearance](double t, const double* y) { return model.deflection(me, t, y) - side * hc; });
-
-  // Initial state: each mesh at its static deflection (least squares where the planets share),
-  // every member at its kinematic speed.
-  std::vector<double> y(sys.dim, 0.0);
-  double tin0 = P.drive.angle(0.0), win0 = P.drive.speed(0.0);
-  Eigen::VectorXd rhsv(nm);
-  for (long i = 0; i < nm; ++i) rhsv(i) = target[static_cast<size_t>(i)] - gin(i) * tin0;
-  Eigen::VectorXd qs = G.colPivHouseholderQr().solve(rhsv);
-  for (size_t i = 0; i < nq; ++i) {
-    y[i] = qs(static_cast<long>(i));
-    y[nq + i] = v(static_cast<long>(i)) * win0;
-  }
-  if (phaseKind == drivephase::State) y[2 * nq] = tin0;
-  double dRef = 0;
-  for (double d : target) dRef = std::max(dRef, std::fabs(d));
-  sys.scale.assign(sys.dim, 1.0);
-  for (size_t i = 0; i < nq; ++i) {
-    double r = 0;
-    for (long k = 0; k < nm; ++k) r = std::max(r, std::fabs(G(k, static_cast<long>(i))));
-    sys.scale[i] = std::max(dRef, 1e-9) / std::max(r, 1e-9);
-    sys.scale[nq + i] = std::max(speed * std::fabs(v(static_cast<long>(i))), sys.scale[i] / Tn);
-  }
-  if (P.audit) {
-    double Pref = std::fabs(P.tMean) * speed * std::fabs(v(P.output)) * Tz;
-    for (size_t k = sys.dim - 3; k < sys.dim; ++k) sys.scale[k] = std::max(Pref, 1e-12);
   }
 
-  for (const auto& me : P.meshes)
-    if (me.reported) run.meshes.push_back({me.name, me.meshFrequency, {}, {}});
-  auto sample = [&](double ts, const double* ys) {
-    run.t.push_back(ts);
-    size_t k = 0;
-    for (const auto& me : P.meshes) {
-      if (!me.reported) continue;
-      double f = model.force(me, ts, ys);
-      run.meshes[k].meshForce.push_back(f);
-      run.meshes[k].contactForce.push_back(f * me.normal);
-      ++k;
+  // Modes of the model linearised at the static load (the input held); the step rule and the
+  // time plan they set.
+  void modes() {
+    Eigen::MatrixXd Klin = stiffness();  // the contacts' slopes at the static load
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq));
+    for (size_t i = 0; i < nq; ++i) M(static_cast<long>(i), static_cast<long>(i)) = P.J[i];
+    run.modes = naturalFrequencies(Klin, M);
+    double fmax = run.modes.empty() ? 0.0 : *std::max_element(run.modes.begin(), run.modes.end());
+    prov.push_back(fmt::format("{} members, one rotation each (the driven input first: {}), {} mesh{}; modes at the static load {} Hz",
+                               names.size(), fmt::join(names, ", "), nm, nm == 1 ? "" : "es", frequencyList(run.modes)));
+    Tn = fmax > 0 ? 1.0 / fmax : Tz;
+    run.stepRule = lumpedMaxStep(acc.maxStep, Tz, fmax, ov.maxStepFactor, "Tz/20 (the fastest mesh)");
+    run.plan = timePlan(scene, Tz, ov.settlePeriods);
+  }
+
+  // ---- the run ------------------------------------------------------------------------------
+
+  // Each mesh at its static deflection (least squares where the planets share), every member
+  // at its kinematic speed; and the state's scales.
+  std::vector<double> initialState(System& sys, int phaseKind) const {
+    std::vector<double> y(sys.dim, 0.0);
+    double tin0 = P.drive.angle(0.0), win0 = P.drive.speed(0.0);
+    Eigen::VectorXd rhsv(nm);
+    for (long i = 0; i < nm; ++i) rhsv(i) = target[static_cast<size_t>(i)] - gin(i) * tin0;
+    Eigen::VectorXd qs = G.colPivHouseholderQr().solve(rhsv);
+    for (size_t i = 0; i < nq; ++i) {
+      y[i] = qs(static_cast<long>(i));
+      y[nq + i] = v(static_cast<long>(i)) * win0;
     }
-    run.inputSpeed.push_back(P.drive.speed(ts));
-    run.outputSpeed.push_back(P.outSign * ys[nq + static_cast<size_t>(P.output)]);
-  };
+    if (phaseKind == drivephase::State) y[2 * nq] = tin0;
+    double dRef = 0;
+    for (double d : target) dRef = std::max(dRef, std::fabs(d));
+    sys.scale.assign(sys.dim, 1.0);
+    for (size_t i = 0; i < nq; ++i) {
+      double r = 0;
+      for (long k = 0; k < nm; ++k) r = std::max(r, std::fabs(G(k, static_cast<long>(i))));
+      sys.scale[i] = std::max(dRef, 1e-9) / std::max(r, 1e-9);
+      sys.scale[nq + i] = std::max(speed * std::fabs(v(static_cast<long>(i))), sys.scale[i] / Tn);
+    }
+    if (P.audit) {
+      double Pref = std::fabs(P.tMean) * speed * std::fabs(v(P.output)) * Tz;
+      for (size_t k = sys.dim - 3; k < sys.dim; ++k) sys.scale[k] = std::max(Pref, 1e-12);
+    }
+    return y;
+  }
+
   // The energy stored at a state: kinetic and elastic.
-  auto energy = [&](double t, const double* ys) {
+  double energy(const Compiled& model, double t, const double* ys) const {
     double E = 0;
     for (size_t i = 0; i < nq; ++i) E += 0.5 * P.J[i] * ys[nq + i] * ys[nq + i];
     for (const auto& me : P.meshes) {
@@ -674,22 +722,71 @@ GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, 
       } else E += 0.5 * me.K * d * d;
     }
     return E;
-  };
-  if (P.audit && (varying || loadedFx)) throw SceneFailure{"the energy audit needs a constant mesh stiffness (leave out varying_stiffness and loaded_mesh)"};
-  double E0 = P.audit ? energy(0.0, y.data()) : 0.0;
-  Integrator integ(sys, acc);
-  double t = 0;
-  bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, sample);
-  run.stats = integ.stats();
-  if (!ok) run.failure = integ.error();
-  if (P.audit) {
-    size_t at = sys.dim - 3;
-    run.driveWork = y[at];
-    run.loadWork = y[at + 1];
-    run.dissipated = y[at + 2];
-    run.energyGained = energy(t, y.data()) - E0;
   }
-  return run;
+
+  void integrate() {
+    int contactKind = loadedFx ? contact::Loaded : backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
+    int phaseKind = P.drive.needsState() ? drivephase::State : drivephase::Closed;
+    Compiled model = compile(P, varying != nullptr, damping != nullptr, contactKind, torqueFx != nullptr, phaseKind);
+    System sys;
+    size_t extra = (phaseKind == drivephase::State ? 1 : 0) + (P.audit ? 3 : 0);
+    sys.dim = 2 * nq + extra;
+    sys.rhs = model.rhs;
+    sys.dfdy = model.dfdy;
+    // The implicit method's Jacobian: dfdy, and dfdt by a central difference (the terms depend on
+    // t only through the drive and the load, both smooth).
+    double period = Tz;
+    sys.jacobian = [&sys, period](double t, const double* y, double* dfdy, double* dfdt) {
+      size_t n = sys.dim;
+      sys.dfdy(t, y, dfdy);
+      double h = 1e-7 * period;
+      std::vector<double> a(n), b(n);
+      sys.rhs(t + h, y, a.data());
+      sys.rhs(t - h, y, b.data());
+      for (size_t i = 0; i < n; ++i) dfdt[i] = (a[i] - b[i]) / (2 * h);
+    };
+    if (hertz || backlash)
+      for (const auto& me : P.meshes)
+        for (double side : backlash ? std::vector<double>{1.0, -1.0} : std::vector<double>{0.0})
+          sys.events.push_back([&model, me, side, hc = P.halfClearance](double t, const double* y) { return model.deflection(me, t, y) - side * hc; });
+    std::vector<double> y = initialState(sys, phaseKind);
+    for (const auto& me : P.meshes)
+      if (me.reported) run.meshes.push_back({me.name, me.meshFrequency, {}, {}});
+    auto sample = [&](double ts, const double* ys) {
+      run.t.push_back(ts);
+      size_t k = 0;
+      for (const auto& me : P.meshes) {
+        if (!me.reported) continue;
+        double f = model.force(me, ts, ys);
+        run.meshes[k].meshForce.push_back(f);
+        run.meshes[k].contactForce.push_back(f * me.normal);
+        ++k;
+      }
+      run.inputSpeed.push_back(P.drive.speed(ts));
+      run.outputSpeed.push_back(P.outSign * ys[nq + static_cast<size_t>(P.output)]);
+    };
+    if (P.audit && (varying || loadedFx)) throw SceneFailure{"the energy audit needs a constant mesh stiffness (leave out varying_stiffness and loaded_mesh)"};
+    double E0 = P.audit ? energy(model, 0.0, y.data()) : 0.0;
+    Integrator integ(sys, acc);
+    double t = 0;
+    bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, sample);
+    run.stats = integ.stats();
+    if (!ok) run.failure = integ.error();
+    if (P.audit) {
+      size_t at = sys.dim - 3;
+      run.driveWork = y[at];
+      run.loadWork = y[at + 1];
+      run.dissipated = y[at + 2];
+      run.energyGained = energy(model, t, y.data()) - E0;
+    }
+  }
+};
+
+} // namespace
+
+GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ir::Scene& scene, Accuracy acc,
+                      const SceneOverrides& ov) {
+  return GearboxAssembly(m, ev, a, scene, acc, ov).build();
 }
 
 } // namespace gbx::rt::dyn
