@@ -251,233 +251,316 @@ int wholeMeshPeriods(double Tm, const std::vector<double>& periods) {
   return 0;
 }
 
-} // namespace
+// A planetary stage's scene set up and run, step by step: its geometry and inertias, the
+// effects it lists and the contact law, the load and the drive, the stiffness variation, the
+// meshes and their parameters, the modes and the time plan, the initial state, and the run
+// (a transient, or the periodic steady state).
+class PlanetaryAssembly {
+public:
+  struct Inputs {
+    const Evaluator& ev;
+    const Assignment& a;
+    int st;
+    const ir::Scene& scene;
+    Accuracy acc;
+    const SceneOverrides& ov;
+    double upstream, downstream, speed, E, nu, density;
+    bool materialAssumed, periodic;
+  };
+  explicit PlanetaryAssembly(const Inputs& in)
+      : in_(in), ev(in.ev), a(in.a), st(in.st), scene(in.scene), acc(in.acc), prov(run.provenance) {}
 
-PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, const ir::Scene& scene, Accuracy acc,
-                          const SceneOverrides& ov, double upstream, double downstream, double speed, double E, double nu,
-                          double density, bool materialAssumed, bool periodic) {
-  PlanetaryRun run;
-  auto& prov = run.provenance;
-  using namespace cat::gear;
-  using cat::Effect;
-  double zs = need(ev.attribute(st, Sun, Q::Z, a), "sun.z"), zp = need(ev.attribute(st, Planet, Q::Z, a), "planet.z"),
-         zr = need(ev.attribute(st, Ring, Q::Z, a), "ring.z");
-  int N = static_cast<int>(need(ev.attribute(st, Q::Planets, a), "planets"));
-  if (N < 1 || N > 32) throw SceneFailure{fmt::format("a planetary scene models 1 to 32 planets, not {}", N)};
-  double mod = need(ev.attribute(st, Q::Module, a), "`module`");
-  double alpha = need(ev.attribute(st, Q::PressureAngle, a), "the pressure angle");
-  double rbs = 0.5 * zs * mod * std::cos(alpha), rbp = 0.5 * zp * mod * std::cos(alpha), rbr = 0.5 * zr * mod * std::cos(alpha);
-  double rc = 0.5 * (zs + zp) * mod, rp = 0.5 * zp * mod;
-  Value bw = ev.attribute(st, Q::FaceWidth, a);
-  double b = bw.isNumber() ? bw.mid() : 10.0 * mod;
-  if (!bw.isNumber()) prov.push_back(fmt::format("face width {:.2f} mm assumed (10 x module): not given", b * 1e3));
-  if (materialAssumed) prov.push_back("density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)");
-  double mp = density * M_PI * rp * rp * b;
-  Value jpGiven = ev.attribute(st, Planet, Q::Inertia, a);
-  double Jp = jpGiven.isNumber() ? jpGiven.mid() : 0.5 * mp * rp * rp;
-  Value jcGiven = ev.attribute(st, Q::CarrierInertia, a);
-  double Rcar = rc + rp;
-  double Jc = jcGiven.isNumber() ? jcGiven.mid() : 0.5 * density * M_PI * Rcar * Rcar * b * Rcar * Rcar;
-  double JcEff = Jc + N * mp * rc * rc;
-  prov.push_back(fmt::format("planet inertia {:.4g} kg*m^2 ({}), carrier {:.4g} kg*m^2 ({}) + {} planets at r = {:.2f} mm",
-                             Jp, jpGiven.isNumber() ? "given" : "solid disc", Jc, jcGiven.isNumber() ? "given" : "disc of radius rc + rp",
-                             N, rc * 1e3));
-  // Hertz stiffness K = 4/3 sqrt(R) E*; the ring-planet mesh is internal, so the
-  // curvatures subtract (the source paper adds them; DOMAIN.md §2).
-  double Estar = E / (2.0 * (1.0 - nu * nu));
-  double rhoS = rbs * std::tan(alpha), rhoP = rbp * std::tan(alpha), rhoR = rbr * std::tan(alpha);
-  double Rsp = 1.0 / (1.0 / rhoS + 1.0 / rhoP), Rrp = 1.0 / (1.0 / rhoP - 1.0 / rhoR);
-  double Ksp = 4.0 / 3.0 * std::sqrt(Rsp) * Estar, Krp = 4.0 / 3.0 * std::sqrt(Rrp) * Estar;
-
-  // Every listed effect must be one the planetary model implements (its registry row says).
-  for (const auto& fx : scene.effects)
-    if (const EffectRow* row = effectRow(fx.kind); !row || !row->planetary)
-      throw SceneFailure{fmt::format("effect `{}` is not modelled on planetary stages", fx.name)};
-  const ir::Effect* hertz = scene.findEffect(Effect::HertzContact);
-  const ir::Effect* varying = scene.findEffect(Effect::VaryingStiffness);
-  const ir::Effect* damping = scene.findEffect(Effect::Damping);
-  const ir::Effect* torqueFx = scene.findEffect(Effect::TorqueFluctuation);
-  const ir::Effect* te = scene.findEffect(Effect::TransmissionError);
-  const ir::Effect* backlash = scene.findEffect(Effect::Backlash);
-  if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
-  double e = 1.5, ramp = 0, hertzDampingSp = 0, hertzDampingRp = 0;
-  if (hertz) {
-    if (const auto* s = effectParam(hertz, Q::Exponent)) e = settingValue(*s);
-    if (const auto* s = effectParam(hertz, Q::PenetrationRamp)) ramp = settingValue(*s);
-    if (const auto* s = effectParam(hertz, Q::Damping)) {
-      hertzDampingSp = settingValue(*s, {adamsStiffness(Ksp, e)});
-      hertzDampingRp = settingValue(*s, {adamsStiffness(Krp, e)});
+  PlanetaryRun build() {
+    geometry();
+    contact();
+    loadAndDrive();
+    variation();
+    parameters();
+    system();
+    modes();
+    initialState();
+    if (!in_.periodic) {
+      transient();
+      return std::move(run);
     }
-    prov.push_back(fmt::format("Hertz stiffness sun-planet {:.4g}, ring-planet {:.4g} N/m^{} (R = {:.3f} / {:.3f} mm, internal curvature subtracted)",
-                               Ksp, Krp, e, Rsp * 1e3, Rrp * 1e3));
+    steadyState();
+    return std::move(run);
   }
-  // Load on the carrier: the gearbox output torque brought back through the stages after it.
-  double outTorque = need(ev.gearboxQuantity(Q::OutputTorque, a), "an output torque (`operating`)");
-  double tMean = outTorque / downstream, tAmp = 0, tOmega = 0;
-  if (torqueFx) {
-    tMean = settingValue(*effectParam(torqueFx, Q::Mean)) / downstream;
-    tAmp = settingValue(*effectParam(torqueFx, Q::Amplitude)) / downstream;
-    tOmega = angularFrequency(*effectParam(torqueFx, Q::Frequency));
-    prov.push_back("load torque mean + amplitude sin(frequency t) at the gearbox output, brought to the carrier");
-  }
-  double ratio = 1.0 + zr / zs;
-  double Tz = 2.0 * M_PI / (speed / ratio * zr);
-  run.meshFrequency = 1.0 / Tz;
-  Drive drive = sceneDrive(scene, speed, upstream, Tz);
-  // Static mesh force and the linearised stiffness there.
-  double F0 = std::fabs(tMean) / (N * (rbs + rbr));
-  auto linear = [&](double K) { return hertz ? e * K * std::pow(std::max(F0, 1e-9) / K, (e - 1.0) / e) : K; };
-  double kLinSp = linear(Ksp), kLinRp = linear(Krp);
-  if (!hertz) {
-    // Without a contact law the meshes are linear springs of the ISO mesh stiffness.
-    Value cg = ev.attribute(st, Q::MeshStiffness, a);
-    double k = (cg.isNumber() ? cg.mid() : 16e9) * b;
-    Ksp = Krp = kLinSp = kLinRp = k;
-    prov.push_back(fmt::format("linear mesh stiffness {:.4g} N/m ({})", k, cg.isNumber() ? "c_gamma given x b" : "c_gamma 16 N/(mm*um) x b assumed"));
-  }
+
+private:
+  const Inputs& in_;
+  const Evaluator& ev;
+  const Assignment& a;
+  const int st;
+  const ir::Scene& scene;
+  Accuracy acc;  // its maximum step is set from the modes
+  PlanetaryRun run;
+  std::vector<std::string>& prov;
+  // Geometry and inertias.
+  double zs = 0, zp = 0, zr = 0, mod = 0, alpha = 0, rbs = 0, rbp = 0, rbr = 0, rc = 0, rp = 0, b = 0;
+  int N = 0;
+  double Jp = 0, JcEff = 0;
+  // Contact.
+  double Ksp = 0, Krp = 0, e = 1.5, ramp = 0, hertzDampingSp = 0, hertzDampingRp = 0, kLinSp = 0, kLinRp = 0;
+  const ir::Effect *hertz = nullptr, *varying = nullptr, *damping = nullptr, *torqueFx = nullptr, *te = nullptr, *backlash = nullptr;
+  // Load, drive, time scales.
+  double tMean = 0, tAmp = 0, tOmega = 0, ratio = 1, Tz = 0, Tn = 0, F0 = 0;
+  Drive drive;
   Fourier fourier;
-  int harmonics = 0;
-  if (varying) {
-    harmonics = ov.harmonics ? *ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)));
+  std::vector<Mesh> meshes;
+  double halfClearance = 0, teMean = 0, teAmp = 0, tePhase = 0;
+  // The model.
+  size_t nq = 0, dim = 0;
+  Params P;
+  Compiled model;
+  System sys;
+  std::vector<double> y;
+
+  void geometry() {
+    using namespace cat::gear;
+    zs = need(ev.attribute(st, Sun, Q::Z, a), "sun.z");
+    zp = need(ev.attribute(st, Planet, Q::Z, a), "planet.z");
+    zr = need(ev.attribute(st, Ring, Q::Z, a), "ring.z");
+    N = static_cast<int>(need(ev.attribute(st, Q::Planets, a), "planets"));
+    if (N < 1 || N > 32) throw SceneFailure{fmt::format("a planetary scene models 1 to 32 planets, not {}", N)};
+    mod = need(ev.attribute(st, Q::Module, a), "`module`");
+    alpha = need(ev.attribute(st, Q::PressureAngle, a), "the pressure angle");
+    rbs = 0.5 * zs * mod * std::cos(alpha);
+    rbp = 0.5 * zp * mod * std::cos(alpha);
+    rbr = 0.5 * zr * mod * std::cos(alpha);
+    rc = 0.5 * (zs + zp) * mod;
+    rp = 0.5 * zp * mod;
+    Value bw = ev.attribute(st, Q::FaceWidth, a);
+    b = bw.isNumber() ? bw.mid() : 10.0 * mod;
+    if (!bw.isNumber()) prov.push_back(fmt::format("face width {:.2f} mm assumed (10 x module): not given", b * 1e3));
+    if (in_.materialAssumed) prov.push_back("density 7850 kg/m^3, E = 206 GPa, nu = 0.3 (steel assumed: no material given)");
+    double mp = in_.density * M_PI * rp * rp * b;
+    Value jpGiven = ev.attribute(st, Planet, Q::Inertia, a);
+    Jp = jpGiven.isNumber() ? jpGiven.mid() : 0.5 * mp * rp * rp;
+    Value jcGiven = ev.attribute(st, Q::CarrierInertia, a);
+    double Rcar = rc + rp;
+    double Jc = jcGiven.isNumber() ? jcGiven.mid() : 0.5 * in_.density * M_PI * Rcar * Rcar * b * Rcar * Rcar;
+    JcEff = Jc + N * mp * rc * rc;
+    prov.push_back(fmt::format("planet inertia {:.4g} kg*m^2 ({}), carrier {:.4g} kg*m^2 ({}) + {} planets at r = {:.2f} mm",
+                               Jp, jpGiven.isNumber() ? "given" : "solid disc", Jc, jcGiven.isNumber() ? "given" : "disc of radius rc + rp",
+                               N, rc * 1e3));
+  }
+
+  // Hertz stiffness K = 4/3 sqrt(R) E*; the ring-planet mesh is internal, so the curvatures
+  // subtract (the source paper adds them; DOMAIN.md §2). Every listed effect must be one the
+  // planetary model implements (its registry row says).
+  void contact() {
+    using cat::Effect;
+    double Estar = in_.E / (2.0 * (1.0 - in_.nu * in_.nu));
+    double rhoS = rbs * std::tan(alpha), rhoP = rbp * std::tan(alpha), rhoR = rbr * std::tan(alpha);
+    double Rsp = 1.0 / (1.0 / rhoS + 1.0 / rhoP), Rrp = 1.0 / (1.0 / rhoP - 1.0 / rhoR);
+    Ksp = 4.0 / 3.0 * std::sqrt(Rsp) * Estar;
+    Krp = 4.0 / 3.0 * std::sqrt(Rrp) * Estar;
+    for (const auto& fx : scene.effects)
+      if (const EffectRow* row = effectRow(fx.kind); !row || !row->planetary)
+        throw SceneFailure{fmt::format("effect `{}` is not modelled on planetary stages", fx.name)};
+    hertz = scene.findEffect(Effect::HertzContact);
+    varying = scene.findEffect(Effect::VaryingStiffness);
+    damping = scene.findEffect(Effect::Damping);
+    torqueFx = scene.findEffect(Effect::TorqueFluctuation);
+    te = scene.findEffect(Effect::TransmissionError);
+    backlash = scene.findEffect(Effect::Backlash);
+    if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
+    if (hertz) {
+      if (const auto* s = effectParam(hertz, Q::Exponent)) e = settingValue(*s);
+      if (const auto* s = effectParam(hertz, Q::PenetrationRamp)) ramp = settingValue(*s);
+      if (const auto* s = effectParam(hertz, Q::Damping)) {
+        hertzDampingSp = settingValue(*s, {adamsStiffness(Ksp, e)});
+        hertzDampingRp = settingValue(*s, {adamsStiffness(Krp, e)});
+      }
+      prov.push_back(fmt::format("Hertz stiffness sun-planet {:.4g}, ring-planet {:.4g} N/m^{} (R = {:.3f} / {:.3f} mm, internal curvature subtracted)",
+                                 Ksp, Krp, e, Rsp * 1e3, Rrp * 1e3));
+    }
+  }
+
+  // Load on the carrier: the gearbox output torque brought back through the stages after it;
+  // the drive; the static mesh force and the linearised stiffness there.
+  void loadAndDrive() {
+    double outTorque = need(ev.gearboxQuantity(Q::OutputTorque, a), "an output torque (`operating`)");
+    tMean = outTorque / in_.downstream;
+    if (torqueFx) {
+      tMean = settingValue(*effectParam(torqueFx, Q::Mean)) / in_.downstream;
+      tAmp = settingValue(*effectParam(torqueFx, Q::Amplitude)) / in_.downstream;
+      tOmega = angularFrequency(*effectParam(torqueFx, Q::Frequency));
+      prov.push_back("load torque mean + amplitude sin(frequency t) at the gearbox output, brought to the carrier");
+    }
+    ratio = 1.0 + zr / zs;
+    Tz = 2.0 * M_PI / (in_.speed / ratio * zr);
+    run.meshFrequency = 1.0 / Tz;
+    drive = sceneDrive(scene, in_.speed, in_.upstream, Tz);
+    F0 = std::fabs(tMean) / (N * (rbs + rbr));
+    auto linear = [&](double K) { return hertz ? e * K * std::pow(std::max(F0, 1e-9) / K, (e - 1.0) / e) : K; };
+    kLinSp = linear(Ksp);
+    kLinRp = linear(Krp);
+    if (!hertz) {
+      // Without a contact law the meshes are linear springs of the ISO mesh stiffness.
+      Value cg = ev.attribute(st, Q::MeshStiffness, a);
+      double k = (cg.isNumber() ? cg.mid() : 16e9) * b;
+      Ksp = Krp = kLinSp = kLinRp = k;
+      prov.push_back(fmt::format("linear mesh stiffness {:.4g} N/m ({})", k, cg.isNumber() ? "c_gamma given x b" : "c_gamma 16 N/(mm*um) x b assumed"));
+    }
+  }
+
+  // Spur meshes: contact ratio from the standard geometry of each pair.
+  double epsAlpha(double z1, double z2, bool internal) const {
+    double ra1 = 0.5 * z1 * mod + mod, rb1 = 0.5 * z1 * mod * std::cos(alpha);
+    double ra2 = internal ? 0.5 * z2 * mod - mod : 0.5 * z2 * mod + mod, rb2 = 0.5 * z2 * mod * std::cos(alpha);
+    double a0 = internal ? 0.5 * (z2 - z1) * mod : 0.5 * (z1 + z2) * mod;
+    double path = std::sqrt(ra1 * ra1 - rb1 * rb1) + (internal ? -1.0 : 1.0) * std::sqrt(ra2 * ra2 - rb2 * rb2) +
+                  (internal ? 1.0 : -1.0) * a0 * std::sin(alpha);
+    return path / (M_PI * mod * std::cos(alpha));
+  }
+
+  void variation() {
+    if (!varying) return;
+    int harmonics = in_.ov.harmonics ? *in_.ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)));
     run.harmonics = harmonics;
-    // Spur meshes: contact ratio from the standard geometry of each pair.
-    auto epsAlpha = [&](double z1, double z2, bool internal) {
-      double ra1 = 0.5 * z1 * mod + mod, rb1 = 0.5 * z1 * mod * std::cos(alpha);
-      double ra2 = internal ? 0.5 * z2 * mod - mod : 0.5 * z2 * mod + mod, rb2 = 0.5 * z2 * mod * std::cos(alpha);
-      double a0 = internal ? 0.5 * (z2 - z1) * mod : 0.5 * (z1 + z2) * mod;
-      double path = std::sqrt(ra1 * ra1 - rb1 * rb1) + (internal ? -1.0 : 1.0) * std::sqrt(ra2 * ra2 - rb2 * rb2) +
-                    (internal ? 1.0 : -1.0) * a0 * std::sin(alpha);
-      return path / (M_PI * mod * std::cos(alpha));
-    };
     double eSp = epsAlpha(zs, zp, false);
     fourier = contactLineSeries(eSp, 0.0, harmonics);
     prov.push_back(fmt::format("contact-line stiffness variation, {} harmonics, eps_alpha {:.4f} (sun-planet)", harmonics, eSp));
   }
+
   // Meshes: sun-planet i and ring-planet i, phased by the planets' positions psi_i = 2 pi i/N:
   // zs psi_i / 2 pi on the sun, -zr psi_i / 2 pi on the ring (Parker and Lin's mesh phasing),
   // equal modulo one by the assembly condition, so every planet meets the same mesh cycle.
-  std::vector<Mesh> meshes;
-  for (int i = 0; i < N; ++i) {
-    meshes.push_back({Ksp, std::fmod(zs * i / static_cast<double>(N), 1.0), false, i});
-    meshes.push_back({Krp, 1.0 - std::fmod(zr * i / static_cast<double>(N), 1.0), true, i});
-  }
-  double halfClearance = backlash ? 0.5 * settingValue(*effectParam(backlash, Q::Clearance)) : 0.0;
-  double teMean = 0, teAmp = 0, tePhase = 0;
-  if (te) {
-    teMean = settingValue(*effectParam(te, Q::Mean));
-    teAmp = settingValue(*effectParam(te, Q::Amplitude));
-    tePhase = settingValue(*effectParam(te, Q::Phase));
-    prov.push_back("transmission error on every mesh, F = dk(t) e(t), phased with the mesh");
-  }
-  double cSp = 0, cRp = 0;
-  if (damping) {
-    double mEq = Jp / (rbp * rbp);
-    if (const auto* s = effectParam(damping, Q::Coefficient)) cSp = cRp = settingValue(*s);
-    else {
-      double z = settingValue(*effectParam(damping, Q::DampingRatio));
-      cSp = 2 * z * std::sqrt(kLinSp * mEq);
-      cRp = 2 * z * std::sqrt(kLinRp * mEq);
+  // Then the transmission error, the damping and the kernel's parameters.
+  void parameters() {
+    for (int i = 0; i < N; ++i) {
+      meshes.push_back({Ksp, std::fmod(zs * i / static_cast<double>(N), 1.0), false, i});
+      meshes.push_back({Krp, 1.0 - std::fmod(zr * i / static_cast<double>(N), 1.0), true, i});
     }
+    halfClearance = backlash ? 0.5 * settingValue(*effectParam(backlash, Q::Clearance)) : 0.0;
+    if (te) {
+      teMean = settingValue(*effectParam(te, Q::Mean));
+      teAmp = settingValue(*effectParam(te, Q::Amplitude));
+      tePhase = settingValue(*effectParam(te, Q::Phase));
+      prov.push_back("transmission error on every mesh, F = dk(t) e(t), phased with the mesh");
+    }
+    double cSp = 0, cRp = 0;
+    if (damping) {
+      double mEq = Jp / (rbp * rbp);
+      if (const auto* s = effectParam(damping, Q::Coefficient)) cSp = cRp = settingValue(*s);
+      else {
+        double z = settingValue(*effectParam(damping, Q::DampingRatio));
+        cSp = 2 * z * std::sqrt(kLinSp * mEq);
+        cRp = 2 * z * std::sqrt(kLinRp * mEq);
+      }
+    }
+    // Degrees of freedom: q = [theta_c, phi_1..phi_N]; state = [q, q'] (+ drive angle).
+    nq = static_cast<size_t>(N) + 1;
+    dim = 2 * nq + (drive.needsState() ? 1 : 0);
+    P.N = N;
+    P.nq = nq;
+    P.rbs = rbs;
+    P.rbp = rbp;
+    P.rbr = rbr;
+    P.zr = zr;
+    P.JcEff = JcEff;
+    P.Jp = Jp;
+    P.meshes = meshes;
+    P.fourier = fourier;
+    P.e = e;
+    P.ramp = ramp;
+    P.hertzDampingSp = hertzDampingSp;
+    P.hertzDampingRp = hertzDampingRp;
+    P.halfClearance = halfClearance;
+    P.teMean = teMean;
+    P.teAmp = teAmp;
+    P.tePhase = tePhase;
+    P.cSp = cSp;
+    P.cRp = cRp;
+    P.tMean = tMean;
+    P.tAmp = tAmp;
+    P.tOmega = tOmega;
+    P.drive = drive;
   }
-  // Degrees of freedom: q = [theta_c, phi_1..phi_N]; state = [q, q'] (+ drive angle).
-  size_t nq = static_cast<size_t>(N) + 1;
-  size_t dim = 2 * nq + (drive.needsState() ? 1 : 0);
-  Params P;
-  P.N = N;
-  P.nq = nq;
-  P.rbs = rbs;
-  P.rbp = rbp;
-  P.rbr = rbr;
-  P.zr = zr;
-  P.JcEff = JcEff;
-  P.Jp = Jp;
-  P.meshes = meshes;
-  P.fourier = fourier;
-  P.e = e;
-  P.ramp = ramp;
-  P.hertzDampingSp = hertzDampingSp;
-  P.hertzDampingRp = hertzDampingRp;
-  P.halfClearance = halfClearance;
-  P.teMean = teMean;
-  P.teAmp = teAmp;
-  P.tePhase = tePhase;
-  P.cSp = cSp;
-  P.cRp = cRp;
-  P.tMean = tMean;
-  P.tAmp = tAmp;
-  P.tOmega = tOmega;
-  P.drive = drive;
-  int contactKind = backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
-  int phaseKind = drive.needsState()                   ? drivephase::State
-                  : drive.fluctuates || drive.ramp > 0 ? drivephase::ClosedForm
-                                                       : drivephase::Constant;
-  Compiled model = compile(P, varying != nullptr, damping != nullptr, contactKind, te != nullptr, torqueFx != nullptr, phaseKind);
-  const auto& deflection = model.deflection;
+
   // The transmission error of a mesh at the carrier angle y[0].
-  auto error = [&](const Mesh& me, const double* y) {
-    double tau = zr * y[0] / (2.0 * M_PI) + me.phase0;
+  double error(const Mesh& me, const double* ys) const {
+    double tau = zr * ys[0] / (2.0 * M_PI) + me.phase0;
     return te ? teMean + teAmp * std::sin(2.0 * M_PI * tau + tePhase) : 0.0;
-  };
-  System sys;
-  sys.dim = dim;
-  sys.rhs = model.rhs;
-  sys.dfdy = model.dfdy;
-  if (hertz)
-    for (const auto& me : meshes)
-      sys.events.push_back([&, me](double t, const double* y) {
-        double rate;
-        return deflection(me, t, y, rate) - error(me, y);
-      });
-  if (backlash)
-    for (const auto& me : meshes)
-      for (double side : {1.0, -1.0})
-        sys.events.push_back([&, me, side](double t, const double* y) {
+  }
+
+  // The kernel the effects select, and its contact events.
+  void system() {
+    int contactKind = backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
+    int phaseKind = drive.needsState()                   ? drivephase::State
+                    : drive.fluctuates || drive.ramp > 0 ? drivephase::ClosedForm
+                                                         : drivephase::Constant;
+    model = compile(P, varying != nullptr, damping != nullptr, contactKind, te != nullptr, torqueFx != nullptr, phaseKind);
+    sys.dim = dim;
+    sys.rhs = model.rhs;
+    sys.dfdy = model.dfdy;
+    if (hertz)
+      for (const auto& me : meshes)
+        sys.events.push_back([this, me](double t, const double* ys) {
           double rate;
-          return deflection(me, t, y, rate) - error(me, y) - side * halfClearance;
+          return model.deflection(me, t, ys, rate) - error(me, ys);
         });
-  // Linearised model: stiffness K = sum k g g^T with g = d(deflection)/dq; modes from
-  // the generalised eigenproblem K v = w^2 M v.
-  Eigen::MatrixXd Km = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq)), M = Km;
-  M(0, 0) = JcEff;
-  for (int i = 0; i < N; ++i) M(1 + i, 1 + i) = Jp;
-  for (const auto& me : meshes) {
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(static_cast<long>(nq));
-    g(0) = me.ring ? -rbr : -rbs;
-    g(1 + me.planet) = me.ring ? -rbp : rbp;
-    Km += (me.ring ? kLinRp : kLinSp) * g * g.transpose();
+    if (backlash)
+      for (const auto& me : meshes)
+        for (double side : {1.0, -1.0})
+          sys.events.push_back([this, me, side](double t, const double* ys) {
+            double rate;
+            return model.deflection(me, t, ys, rate) - error(me, ys) - side * halfClearance;
+          });
   }
-  run.modes = naturalFrequencies(Km, M);
-  double fmax = 0;
-  for (double f : run.modes) {
-    fmax = std::max(fmax, f);
-    for (int k = 1; k <= 10 && f > 0; ++k)
-      if (std::fabs(k * run.meshFrequency - f) <= 0.1 * f)
-        prov.push_back(fmt::format("warning: mesh harmonic {} x {:.2f} Hz lies within 10 % of the mode at {:.2f} Hz", k, run.meshFrequency, f));
+
+  // Linearised model: stiffness K = sum k g g^T with g = d(deflection)/dq; modes from the
+  // generalised eigenproblem K v = w^2 M v; the step rule and the time plan.
+  void modes() {
+    Eigen::MatrixXd Km = Eigen::MatrixXd::Zero(static_cast<long>(nq), static_cast<long>(nq)), M = Km;
+    M(0, 0) = JcEff;
+    for (int i = 0; i < N; ++i) M(1 + i, 1 + i) = Jp;
+    for (const auto& me : meshes) {
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(static_cast<long>(nq));
+      g(0) = me.ring ? -rbr : -rbs;
+      g(1 + me.planet) = me.ring ? -rbp : rbp;
+      Km += (me.ring ? kLinRp : kLinSp) * g * g.transpose();
+    }
+    run.modes = naturalFrequencies(Km, M);
+    double fmax = 0;
+    for (double f : run.modes) {
+      fmax = std::max(fmax, f);
+      for (int k = 1; k <= 10 && f > 0; ++k)
+        if (std::fabs(k * run.meshFrequency - f) <= 0.1 * f)
+          prov.push_back(fmt::format("warning: mesh harmonic {} x {:.2f} Hz lies within 10 % of the mode at {:.2f} Hz", k, run.meshFrequency, f));
+    }
+    prov.push_back(fmt::format("mesh frequency {:.4f} Hz; linearised modes {} Hz", run.meshFrequency, frequencyList(run.modes)));
+    Tn = fmax > 0 ? 1.0 / fmax : Tz;
+    run.stepRule = lumpedMaxStep(acc.maxStep, Tz, fmax, in_.ov.maxStepFactor, "Tz/20");
+    // With `periodic` the record window starts at t = 0 on the orbit.
+    run.plan = in_.periodic ? periodicPlan(scene, Tz) : timePlan(scene, Tz, in_.ov.settlePeriods);
   }
-  prov.push_back(fmt::format("mesh frequency {:.4f} Hz; linearised modes {} Hz", run.meshFrequency, frequencyList(run.modes)));
-  double Tn = fmax > 0 ? 1.0 / fmax : Tz;
-  run.stepRule = lumpedMaxStep(acc.maxStep, Tz, fmax, ov.maxStepFactor, "Tz/20");
-  // With `periodic` the record window starts at t = 0 on the orbit.
-  run.plan = periodic ? periodicPlan(scene, Tz) : timePlan(scene, Tz, ov.settlePeriods);
-  // Initial state: the static deflection on every mesh, at the kinematic speeds.
-  double d0 = hertz ? std::pow(F0 / Ksp, 1.0 / e) : F0 / Ksp + halfClearance;
-  std::vector<double> y(dim, 0.0);
-  y[0] = -2.0 * d0 / (rbs + rbr);
-  for (int i = 0; i < N; ++i) y[1 + static_cast<size_t>(i)] = (d0 - rbs * (drive.angle(0.0) - y[0])) / rbp;
-  double ws0 = drive.speed(0);
-  y[nq] = ws0 / ratio;
-  for (int i = 0; i < N; ++i) y[nq + 1 + static_cast<size_t>(i)] = -rbs * (ws0 - y[nq]) / rbp;
-  sys.scale.assign(dim, 1.0);
-  for (size_t i = 0; i < nq; ++i) {
-    sys.scale[i] = d0 / rbp;
-    sys.scale[nq + i] = std::max(speed, d0 / rbp / Tn);
+
+  // The static deflection on every mesh, at the kinematic speeds; the state's scales.
+  void initialState() {
+    double d0 = hertz ? std::pow(F0 / Ksp, 1.0 / e) : F0 / Ksp + halfClearance;
+    y.assign(dim, 0.0);
+    y[0] = -2.0 * d0 / (rbs + rbr);
+    for (int i = 0; i < N; ++i) y[1 + static_cast<size_t>(i)] = (d0 - rbs * (drive.angle(0.0) - y[0])) / rbp;
+    double ws0 = drive.speed(0);
+    y[nq] = ws0 / ratio;
+    for (int i = 0; i < N; ++i) y[nq + 1 + static_cast<size_t>(i)] = -rbs * (ws0 - y[nq]) / rbp;
+    sys.scale.assign(dim, 1.0);
+    for (size_t i = 0; i < nq; ++i) {
+      sys.scale[i] = d0 / rbp;
+      sys.scale[nq + i] = std::max(in_.speed, d0 / rbp / Tn);
+    }
+    run.staticLoad = F0;
   }
-  run.staticLoad = F0;
-  auto sample = [&](double ts, const double* ys) {
+
+  // The signals of the first planet's sun mesh at one sample.
+  void sample(double ts, const double* ys) {
     std::vector<double> dy(dim);
     sys.rhs(ts, ys, dy.data());
     double rate;
-    double d = deflection(meshes[0], ts, ys, rate);
+    double d = model.deflection(meshes[0], ts, ys, rate);
     double f = model.force(meshes[0], ts, ys);
     run.t.push_back(ts);
     using cat::Signal;
@@ -488,69 +571,79 @@ PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, cons
     series(run.signals, Signal::ContactForce).push_back(f);
     series(run.signals, Signal::Stiffness).push_back(varying ? meshes[0].K * relativeStiffness(fourier, zr * ys[0] / (2.0 * M_PI)) : meshes[0].K);
     if (te) series(run.signals, Signal::TransmissionError).push_back(error(meshes[0], ys));
-    series(run.signals, Signal::InputSpeed).push_back(drive.speed(ts) * upstream);
-    series(run.signals, Signal::OutputSpeed).push_back(ys[nq] / downstream);
-  };
-  if (!periodic) {
-    Integrator integ(sys, acc);
-    double t = 0;
-    bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, sample);
-    run.stats = integ.stats();
-    if (!ok) run.failure = integ.error();
-    return run;
+    series(run.signals, Signal::InputSpeed).push_back(drive.speed(ts) * in_.upstream);
+    series(run.signals, Signal::OutputSpeed).push_back(ys[nq] / in_.downstream);
   }
 
-  // The periodic steady state (dynamics/Periodic.h). The excitation repeats after whole
-  // mean mesh periods that also hold whole periods of every fluctuation.
-  run.periodic = true;
-  auto notPeriodic = [&](const std::string& why) {
+  // From `y` over the time plan, sampled; whether it got there.
+  bool record() {
+    Integrator integ(sys, acc);
+    double t = 0;
+    bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, [this](double ts, const double* ys) { sample(ts, ys); });
+    run.stats += integ.stats();
+    if (!ok) run.failure = integ.error();
+    return ok;
+  }
+
+  void transient() { record(); }
+
+  void notPeriodic(const std::string& why) {
     run.failure = fmt::format("the excitation is not periodic ({}), so there is no periodic steady state: write `settle = N "
                               "mesh_periods` to settle a transient, or `duration` for a run from rest",
                               why);
-    return run;
-  };
-  if (drive.ramp > 0) return notPeriodic("a `ramp` start-up");
-  double sunMean = drive.fluctuates ? drive.mean : drive.speed0;
-  std::vector<double> periods;
-  if (drive.fluctuates && drive.amplitude != 0) periods.push_back(drive.omega > 0 ? 2.0 * M_PI / drive.omega : INFINITY);
-  if (torqueFx && tAmp != 0) periods.push_back(tOmega > 0 ? 2.0 * M_PI / tOmega : INFINITY);
-  double Tm = !drive.fluctuates ? Tz : sunMean > 0 ? 2.0 * M_PI * ratio / (sunMean * zr) : INFINITY;
-  int q = std::isfinite(Tm) ? wholeMeshPeriods(Tm, periods) : 0;
-  if (q == 0) return notPeriodic("no whole number of mesh periods, up to 1000, holds whole periods of the fluctuations");
-  double period = q * Tm;
-  // Outputs over a whole orbit: a record window shorter than its period is widened to it.
-  if (widenToPeriod(run.plan, period)) prov.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", q));
-  // Drift over a period: the carrier turns q ring-tooth pitches; the sun-planet deflection
-  // rbs (theta_s - theta_c) + rbp phi repeats, so phi advances -rbs (d theta_s - d theta_c) / rbp.
-  double carrierAdvance = q * 2.0 * M_PI / zr, sunAdvance = ratio * carrierAdvance;
-  PeriodicOptions opt;
-  opt.period = period;
-  opt.drift.assign(dim, 0.0);
-  opt.drift[0] = carrierAdvance;
-  for (size_t i = 1; i < nq; ++i) opt.drift[i] = -rbs * (sunAdvance - carrierAdvance) / rbp;
-  opt.linear = !hertz && !backlash && !varying;  // the phase (carrier angle) makes varying stiffness nonlinear
-  PeriodicOrbit orbit = periodicOrbit(sys, acc, opt, ov.guess && ov.guess->size() == dim ? *ov.guess : y);
-  run.stats = orbit.stats;
-  run.newtonIterations = orbit.iterations;
-  run.newtonResidual = orbit.residual;
-  if (!orbit.converged) {
-    run.failure = "the periodic steady state was not found: " + orbit.failure;
-    return run;
   }
-  run.stability = orbit.stability;
-  prov.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), Newton {} iteration{} (monodromy by {}), "
-                             "residual {:.2e} of the state scale, largest Floquet multiplier {:.6f}",
-                             period * 1e3, q, q == 1 ? "" : "s", orbit.iterations, orbit.iterations == 1 ? "" : "s",
-                             orbit.variational ? "variational equations" : "differences", orbit.residual, orbit.stability));
-  y = orbit.y0;
-  run.orbit = orbit.y0;
-  run.period = period;
-  Integrator integ(sys, acc);
-  double t = 0;
-  bool ok = integ.advance(t, y, run.plan.end, run.plan.samples, sample);
-  run.stats += integ.stats();
-  if (!ok) run.failure = integ.error();
-  return run;
+
+  // The periodic steady state (dynamics/Periodic.h). The excitation repeats after whole mean
+  // mesh periods that also hold whole periods of every fluctuation.
+  void steadyState() {
+    run.periodic = true;
+    if (drive.ramp > 0) return notPeriodic("a `ramp` start-up");
+    double sunMean = drive.fluctuates ? drive.mean : drive.speed0;
+    std::vector<double> periods;
+    if (drive.fluctuates && drive.amplitude != 0) periods.push_back(drive.omega > 0 ? 2.0 * M_PI / drive.omega : INFINITY);
+    if (torqueFx && tAmp != 0) periods.push_back(tOmega > 0 ? 2.0 * M_PI / tOmega : INFINITY);
+    double Tm = !drive.fluctuates ? Tz : sunMean > 0 ? 2.0 * M_PI * ratio / (sunMean * zr) : INFINITY;
+    int q = std::isfinite(Tm) ? wholeMeshPeriods(Tm, periods) : 0;
+    if (q == 0) return notPeriodic("no whole number of mesh periods, up to 1000, holds whole periods of the fluctuations");
+    double period = q * Tm;
+    // Outputs over a whole orbit: a record window shorter than its period is widened to it.
+    if (widenToPeriod(run.plan, period)) prov.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", q));
+    // Drift over a period: the carrier turns q ring-tooth pitches; the sun-planet deflection
+    // rbs (theta_s - theta_c) + rbp phi repeats, so phi advances -rbs (d theta_s - d theta_c) / rbp.
+    double carrierAdvance = q * 2.0 * M_PI / zr, sunAdvance = ratio * carrierAdvance;
+    PeriodicOptions opt;
+    opt.period = period;
+    opt.drift.assign(dim, 0.0);
+    opt.drift[0] = carrierAdvance;
+    for (size_t i = 1; i < nq; ++i) opt.drift[i] = -rbs * (sunAdvance - carrierAdvance) / rbp;
+    opt.linear = !hertz && !backlash && !varying;  // the phase (carrier angle) makes varying stiffness nonlinear
+    const SceneOverrides& ov = in_.ov;
+    PeriodicOrbit orbit = periodicOrbit(sys, acc, opt, ov.guess && ov.guess->size() == dim ? *ov.guess : y);
+    run.stats = orbit.stats;
+    run.newtonIterations = orbit.iterations;
+    run.newtonResidual = orbit.residual;
+    if (!orbit.converged) {
+      run.failure = "the periodic steady state was not found: " + orbit.failure;
+      return;
+    }
+    run.stability = orbit.stability;
+    prov.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), Newton {} iteration{} (monodromy by {}), "
+                               "residual {:.2e} of the state scale, largest Floquet multiplier {:.6f}",
+                               period * 1e3, q, q == 1 ? "" : "s", orbit.iterations, orbit.iterations == 1 ? "" : "s",
+                               orbit.variational ? "variational equations" : "differences", orbit.residual, orbit.stability));
+    y = orbit.y0;
+    run.orbit = orbit.y0;
+    run.period = period;
+    record();
+  }
+};
+
+} // namespace
+
+PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, const ir::Scene& scene, Accuracy acc,
+                          const SceneOverrides& ov, double upstream, double downstream, double speed, double E, double nu,
+                          double density, bool materialAssumed, bool periodic) {
+  return PlanetaryAssembly({ev, a, st, scene, acc, ov, upstream, downstream, speed, E, nu, density, materialAssumed, periodic}).build();
 }
 
 } // namespace gbx::rt::dyn
