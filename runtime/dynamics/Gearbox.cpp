@@ -267,15 +267,6 @@ Compiled compile(const Params& p, bool varying, bool damped, int contactKind, bo
 
 double need(const Value& v, const std::string& what) { return needNumber(v, what); }
 
-// Transverse contact ratio of a standard spur pair (no shift), external or internal.
-double epsAlphaStandard(double z1, double z2, double mod, double alpha, bool internal) {
-  double ra1 = 0.5 * z1 * mod + mod, rb1 = 0.5 * z1 * mod * std::cos(alpha);
-  double ra2 = internal ? 0.5 * z2 * mod - mod : 0.5 * z2 * mod + mod, rb2 = 0.5 * z2 * mod * std::cos(alpha);
-  double a0 = internal ? 0.5 * (z2 - z1) * mod : 0.5 * (z1 + z2) * mod;
-  double path = std::sqrt(ra1 * ra1 - rb1 * rb1) + (internal ? -1.0 : 1.0) * std::sqrt(ra2 * ra2 - rb2 * rb2) +
-                (internal ? 1.0 : -1.0) * a0 * std::sin(alpha);
-  return path / (M_PI * mod * std::cos(alpha));
-}
 
 // A whole-gearbox scene set up and run, step by step: the effects it lists, its members and
 // meshes stage by stage, the kinematics, the load and the static deflections, the loaded-mesh

@@ -406,21 +406,12 @@ private:
     }
   }
 
-  // Spur meshes: contact ratio from the standard geometry of each pair.
-  double epsAlpha(double z1, double z2, bool internal) const {
-    double ra1 = 0.5 * z1 * mod + mod, rb1 = 0.5 * z1 * mod * std::cos(alpha);
-    double ra2 = internal ? 0.5 * z2 * mod - mod : 0.5 * z2 * mod + mod, rb2 = 0.5 * z2 * mod * std::cos(alpha);
-    double a0 = internal ? 0.5 * (z2 - z1) * mod : 0.5 * (z1 + z2) * mod;
-    double path = std::sqrt(ra1 * ra1 - rb1 * rb1) + (internal ? -1.0 : 1.0) * std::sqrt(ra2 * ra2 - rb2 * rb2) +
-                  (internal ? 1.0 : -1.0) * a0 * std::sin(alpha);
-    return path / (M_PI * mod * std::cos(alpha));
-  }
 
   void variation() {
     if (!varying) return;
     int harmonics = in_.ov.harmonics ? *in_.ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)));
     run.harmonics = harmonics;
-    double eSp = epsAlpha(zs, zp, false);
+    double eSp = epsAlphaStandard(zs, zp, mod, alpha, false);
     fourier = contactLineSeries(eSp, 0.0, harmonics);
     prov.push_back(fmt::format("contact-line stiffness variation, {} harmonics, eps_alpha {:.4f} (sun-planet)", harmonics, eSp));
   }

@@ -9,6 +9,15 @@ namespace {
 double sinc(double x) { return std::fabs(x) < 1e-8 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }
 } // namespace
 
+double epsAlphaStandard(double z1, double z2, double mod, double alpha, bool internal) {
+  double ra1 = 0.5 * z1 * mod + mod, rb1 = 0.5 * z1 * mod * std::cos(alpha);
+  double ra2 = internal ? 0.5 * z2 * mod - mod : 0.5 * z2 * mod + mod, rb2 = 0.5 * z2 * mod * std::cos(alpha);
+  double a0 = internal ? 0.5 * (z2 - z1) * mod : 0.5 * (z1 + z2) * mod;
+  double path = std::sqrt(ra1 * ra1 - rb1 * rb1) + (internal ? -1.0 : 1.0) * std::sqrt(ra2 * ra2 - rb2 * rb2) +
+                (internal ? 1.0 : -1.0) * a0 * std::sin(alpha);
+  return path / (M_PI * mod * std::cos(alpha));
+}
+
 Fourier contactLineSeries(double epsAlpha, double epsBeta, int harmonics) {
   Fourier f;
   for (int k = 1; k <= harmonics; ++k) {

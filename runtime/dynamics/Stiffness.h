@@ -17,6 +17,10 @@ struct Fourier {
 // where they meet the spur limit sin(a)/(pi k epsAlpha), (1 - cos a)/(pi k epsAlpha).
 Fourier contactLineSeries(double epsAlpha, double epsBeta, int harmonics);
 
+// Transverse contact ratio of a standard spur pair (no shift, addendum one module), external
+// or internal: what the planetary and whole-gearbox scene models give their stiffness series.
+double epsAlphaStandard(double z1, double z2, double mod, double alpha, bool internal);
+
 // Relative stiffness L(tau)/Lm at phase tau (mesh periods).
 double relativeStiffness(const Fourier& f, double tau);
 // Its derivative in tau.

@@ -93,6 +93,308 @@ private:
   double lo_, hi_;
 };
 
+// Pseudo-arclength continuation of one scene's periodic response over a sweep, step by step:
+// the first orbit by plain shooting, then predictor and corrector along the curve, with turning
+// points found where the Floquet multipliers say so and gaps where the branch cannot be followed.
+class Continuer {
+public:
+  Continuer(const Model& model, const Assignment& design, const ir::Study& study, const ir::Scene& sc, SweepStudy& result)
+      : m(model), a(design), st(study), scene(sc), out(result), sh(model, design, study, sc) {
+    double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
+    dLambda = step / std::fabs(hi - lo);
+    ds = dLambda;
+    dsMax = 4.0 * dLambda;
+    dsMin = 1e-4 * dLambda;
+    maxPoints = 40 * static_cast<long>(std::ceil(1.0 / dLambda)) + 400;
+    edge = 0.5 * dLambda;
+  }
+
+  // False when the scene is linear (a plain sweep serves); throws dyn::SceneFailure.
+  bool run() {
+    if (!start()) return false;
+    follow();
+    if (points >= maxPoints)
+      throw dyn::SceneFailure{fmt::format("the continuation stopped after {} points at {} = {:.6g} before the end of the range (a "
+                                          "Floquet multiplier near 1 there: the response grows without bound)",
+                                          points, st.target, sh.x(z(n)))};
+    out.notes.push_back(fmt::format("pseudo-arclength continuation of the shooting equations: {} points, {} turning point{}, {} gap{}, {} RHS "
+                                    "evaluations",
+                                    out.points.size(), out.folds.size(), out.folds.size() == 1 ? "" : "s", out.gaps.size(),
+                                    out.gaps.size() == 1 ? "" : "s", sh.stats.rhsEvaluations));
+    return true;
+  }
+
+private:
+  // What one predictor-corrector step found.
+  struct Step {
+    VectorXd zz, tn;
+    bool ok = false, turned = false;
+    int iterations = 0, aboveThere = 0;
+    SweepStudy::Point point;
+  };
+
+  const Model& m;
+  const Assignment& a;
+  const ir::Study& st;
+  const ir::Scene& scene;
+  SweepStudy& out;
+  Shooting sh;
+  double dLambda = 0, ds = 0, dsMax = 0, dsMin = 0, edge = 0;
+  long maxPoints = 0;
+  // The scene's own tolerance sets the corrector's; lambda's difference step balances the
+  // integration error against truncation.
+  double rtol = 1e-6, h = 0, tol = 0;
+  std::vector<double> s;  // the state's scales
+  long n = 0;
+  VectorXd z, t, start_, R;
+  MatrixXd J;
+  int branch = 1;
+  bool afterGap = false;
+  int aboveHere = 0;
+  double reached = 0.0;  // the farthest lambda followed
+  long points = 0;
+
+  void jacobian(const VectorXd& zz, VectorXd& Rz, MatrixXd& Jz) {
+    MatrixXd A;
+    VectorXd u = zz.head(n);
+    Rz = sh.residual(u, zz(n), &A);
+    VectorXd Rl = (sh.residual(u, zz(n) + h, nullptr) - Rz) / h;
+    Jz.resize(n + 1, n + 1);
+    Jz.topLeftCorner(n, n) = A;
+    Jz.topRightCorner(n, 1) = Rl;
+  }
+  // Tangent: [A R_lambda; t_old^T] t = [0; 1], normalised, continuing the old direction.
+  VectorXd tangent(MatrixXd Jz, const VectorXd& old) const {
+    Jz.bottomRows(1) = old.transpose();
+    VectorXd rhs = VectorXd::Zero(n + 1);
+    rhs(n) = 1.0;
+    VectorXd tt = Jz.fullPivLu().solve(rhs);
+    return VectorXd(tt / tt.norm());
+  }
+  // Real Floquet multipliers above 1: their count changes by one where the branch turns
+  // (a fold), and not where a step merely reverses by error.
+  int above(const MatrixXd& Jz) const {
+    MatrixXd M = Jz.topLeftCorner(n, n) + MatrixXd::Identity(n, n);
+    Eigen::EigenSolver<MatrixXd> es(M, false);
+    int c = 0;
+    for (long i = 0; i < es.eigenvalues().size(); ++i) {
+      auto mu = es.eigenvalues()(i);
+      if (std::fabs(mu.imag()) <= 1e-9 * std::max(1.0, std::abs(mu)) && mu.real() > 1.0) ++c;
+    }
+    return c;
+  }
+
+  // The first point: the periodic orbit at the sweep's start, by plain shooting.
+  bool start() {
+    auto at0 = sh.build(0.0);
+    if (at0.model->linear()) return false;
+    rtol = at0.ms.accuracy.rtol;
+    dyn::PeriodicOptions po;
+    po.period = at0.period;
+    po.linear = at0.model->linear();
+    dyn::PeriodicOrbit o = dyn::periodicOrbit(at0.model->system(), at0.ms.accuracy, po, at0.model->initialState());
+    sh.stats += o.stats;
+    if (!o.converged) throw dyn::SceneFailure{"the periodic steady state at the sweep's start was not found: " + o.failure};
+    s = sh.scale(at0);
+    n = static_cast<long>(s.size());
+    z.resize(n + 1);
+    for (long i = 0; i < n; ++i) z(i) = o.y0[static_cast<size_t>(i)] / s[static_cast<size_t>(i)];
+    z(n) = 0.0;
+    h = std::max(1e-7, 30.0 * std::sqrt(rtol)) * dLambda;
+    tol = std::max(1e-9, 100.0 * rtol);
+    jacobian(z, R, J);
+    start_ = VectorXd::Zero(n + 1);
+    start_(n) = 1.0;
+    t = tangent(J, start_);
+    aboveHere = above(J);
+    keep(measure(z));
+    points = 1;
+    return true;
+  }
+
+  // The point at zz: the scene's outputs and stability there (not yet kept).
+  SweepStudy::Point measure(const VectorXd& zz) {
+    double x = sh.x(zz(n));
+    Evaluator ev(m);
+    ev.setOverride(st.swept, Value::number(x));
+    dyn::SceneOverrides ov;
+    ov.evaluator = &ev;
+    ov.keepSeries = false;
+    ov.estimateError = false;
+    ov.keepUnstable = true;
+    std::vector<double> y(static_cast<size_t>(n));
+    for (long i = 0; i < n; ++i) y[static_cast<size_t>(i)] = s[static_cast<size_t>(i)] * zz(i);
+    ov.guess = y;
+    dyn::SceneResult res = dyn::runScene(m, a, scene, ov);
+    if (!res.failure.empty()) throw dyn::SceneFailure{res.failure};
+    sh.stats += res.stats;
+    SweepStudy::Point p;
+    p.x = x;
+    if (out.points.empty()) resonanceMarks(out, st, x, res.meshFrequency, res.naturalFrequency);
+    p.stability = res.stability;
+    ev.sceneOutput = [&](const ir::Expr& e, const Assignment& aa, const Evaluator& asking) {
+      // At a corner of the tolerance box (`worst`, `mean`) the scene runs again there, from
+      // this point's orbit.
+      dyn::SceneResult corner;
+      const dyn::SceneResult* r = &res;
+      if (!asking.offsets().empty()) {
+        dyn::SceneOverrides co = ov;
+        co.evaluator = &asking;
+        co.keepUnstable = false;
+        corner = dyn::runScene(m, aa, scene, co);
+        r = &corner;
+      }
+      const dyn::SceneNumber* num = r->find(e.output);
+      return num && std::isfinite(num->value) ? Value::number(num->value) : Value::invalid();
+    };
+    for (const auto& o2 : st.outputs) {
+      Value v = ev.eval(*o2, a);
+      p.y.push_back(v.isNumber() ? v.mid() : NAN);
+      p.unstable.push_back(res.unstable);
+    }
+    return p;
+  }
+
+  void keep(SweepStudy::Point p) {
+    p.branch = branch;
+    p.afterGap = afterGap;
+    afterGap = false;
+    out.points.push_back(std::move(p));
+  }
+
+  // A step's outputs may change by at most a quarter of their size: more, and the corrector
+  // has likely landed on another branch.
+  bool smooth(const SweepStudy::Point& p) const {
+    if (out.points.empty()) return true;
+    const auto& q = out.points.back();
+    for (size_t i = 0; i < p.y.size() && i < q.y.size(); ++i) {
+      if (!std::isfinite(p.y[i]) || !std::isfinite(q.y[i])) continue;
+      double scale = std::max(std::fabs(p.y[i]), std::fabs(q.y[i]));
+      if (scale > 0 && std::fabs(p.y[i] - q.y[i]) > 0.25 * scale) return false;
+    }
+    return true;
+  }
+
+  // Where the branch cannot be followed (the step fell below its minimum, or the branch
+  // leaves the range at its start), the stretch to the next sweep step past the farthest
+  // point followed is a gap; the response there is found afresh by shooting from the last
+  // orbit, and followed on as a new branch. False at the end of the range.
+  bool gapFrom(const VectorXd& from, const std::string& why) {
+    double resume = std::max(from(n), reached) + dLambda;
+    if (resume >= 1.0 - 1e-12) resume = 1.0;
+    auto at = sh.build(resume);
+    dyn::PeriodicOptions po2;
+    po2.period = at.period;
+    std::vector<double> guess(static_cast<size_t>(n));
+    for (long i = 0; i < n; ++i) guess[static_cast<size_t>(i)] = s[static_cast<size_t>(i)] * from(i);
+    dyn::PeriodicOrbit o2 = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po2, guess);
+    sh.stats += o2.stats;
+    if (!o2.converged) throw dyn::SceneFailure{fmt::format("the periodic response at {} = {:.6g} was not found after a gap: {}", st.target, sh.x(resume), o2.failure)};
+    out.gaps.emplace_back(sh.x(std::max(from(n), reached)), sh.x(resume));
+    out.notes.push_back(fmt::format("gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh",
+                                    st.target, sh.x(std::max(from(n), reached)) / out.unit.scale, sh.x(resume) / out.unit.scale,
+                                    out.unit.name, why));
+    for (long i = 0; i < n; ++i) z(i) = o2.y0[static_cast<size_t>(i)] / s[static_cast<size_t>(i)];
+    z(n) = resume;
+    reached = resume;
+    ++branch;
+    afterGap = true;
+    keep(measure(z));
+    ++points;
+    if (resume >= 1.0) return false;
+    jacobian(z, R, J);
+    aboveHere = above(J);
+    t = tangent(J, start_);
+    ds = dLambda;
+    return true;
+  }
+
+  // One predictor-corrector step of length ds from z. A corrector that lands far from its
+  // predictor, or turns the branch sharply, may have jumped to another branch: not ok.
+  Step step() {
+    Step r;
+    VectorXd pred = z + ds * t;
+    r.zz = pred;
+    for (; r.iterations < 8; ++r.iterations) {
+      jacobian(r.zz, R, J);
+      J.bottomRows(1) = t.transpose();
+      VectorXd rhs(n + 1);
+      rhs.head(n) = -R;
+      rhs(n) = -t.dot(r.zz - pred);
+      VectorXd d = J.fullPivLu().solve(rhs);
+      r.zz += d;
+      if (!std::isfinite(d.norm()) || r.zz(n) < -edge || r.zz(n) > 1.0 + dsMax + edge) break;
+      if (d.lpNorm<Eigen::Infinity>() < tol) {
+        r.ok = true;
+        break;
+      }
+    }
+    r.aboveThere = aboveHere;
+    if (r.ok) r.ok = (r.zz - pred).norm() <= 0.5 * ds + tol;
+    if (r.ok) {
+      jacobian(r.zz, R, J);
+      r.tn = tangent(J, t);
+      r.ok = t.dot(r.tn) >= 0.8;
+    }
+    if (r.ok && (r.tn(n) > 0) != (t(n) > 0)) {
+      r.aboveThere = above(J);
+      r.turned = r.aboveThere != aboveHere;
+      r.ok = r.turned;  // a reversal without a multiplier crossing +1 is an error of the step
+    }
+    if (r.ok && r.zz(n) <= 1.0 + 1e-12 && r.zz(n) >= 0.0) {
+      r.point = measure(r.zz);
+      r.ok = smooth(r.point) || ds <= 4 * dsMin;
+    }
+    return r;
+  }
+
+  // The turning point between z and zz: where lambda(s), the quadratic through lambda and its
+  // slope at z and lambda at zz, is extreme.
+  double fold(const VectorXd& zz) const {
+    double lz = z(n), lzz = zz(n), slope = t(n);
+    double c = (lzz - lz - slope * ds) / (ds * ds);
+    double sStar = c != 0 ? -slope / (2 * c) : -1;
+    return sStar >= 0 && sStar <= ds ? lz - slope * slope / (4 * c) : (slope > 0 ? std::max(lz, lzz) : std::min(lz, lzz));
+  }
+
+  void follow() {
+    while (points < maxPoints) {
+      Step r = step();
+      if (!r.ok) {
+        ds *= 0.5;
+        if (ds < dsMin && !gapFrom(z, "the step fell below 1e-4 of the sweep step")) break;
+        continue;
+      }
+      if (r.turned) {
+        out.folds.push_back(sh.x(fold(r.zz)));
+        ++branch;
+      }
+      if (r.zz(n) < 0.0) {
+        // The branch turns back out of the range at its start: the rest of the range lies
+        // beyond the farthest turning point.
+        if (!gapFrom(z, "the branch turned back out of the range at its start")) break;
+        continue;
+      }
+      if (r.zz(n) > 1.0 + 1e-12) {
+        // Leaving the range: the last point at its end, from the state interpolated there
+        // (the scene's own Newton solves it exactly).
+        double end = 1.0, w = (end - z(n)) / (r.zz(n) - z(n));
+        VectorXd last = z + w * (r.zz - z);
+        last(n) = end;
+        keep(measure(last));
+        break;
+      }
+      z = r.zz;
+      t = r.tn;
+      aboveHere = r.aboveThere;
+      reached = std::max(reached, z(n));
+      keep(std::move(r.point));
+      ++points;
+      if (r.iterations <= 2) ds = std::min(dsMax, 1.5 * ds);
+    }
+  }
+};
+
 } // namespace
 
 bool continuation(const Model& m, const Assignment& a, const ir::Study& st, const ir::Scene& scene, SweepStudy& out) {
@@ -102,256 +404,8 @@ bool continuation(const Model& m, const Assignment& a, const ir::Study& st, cons
                               st.name, scene.name);
     return true;
   }
-  double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
-  double dLambda = step / std::fabs(hi - lo);
-  Shooting sh(m, a, st, scene);
-  // The scene's own tolerance sets the corrector's; lambda's difference step balances the
-  // integration error against truncation.
-  double rtol = 1e-6;
   try {
-    auto at0 = sh.build(0.0);
-    if (at0.model->linear()) return false;
-    rtol = at0.ms.accuracy.rtol;
-    // The first point: the periodic orbit at the sweep's start, by plain shooting.
-    dyn::PeriodicOptions po;
-    po.period = at0.period;
-    po.linear = at0.model->linear();
-    dyn::PeriodicOrbit o = dyn::periodicOrbit(at0.model->system(), at0.ms.accuracy, po, at0.model->initialState());
-    sh.stats += o.stats;
-    if (!o.converged) throw dyn::SceneFailure{"the periodic steady state at the sweep's start was not found: " + o.failure};
-    std::vector<double> s = sh.scale(at0);
-    long n = static_cast<long>(s.size());
-    VectorXd z(n + 1);
-    for (long i = 0; i < n; ++i) z(i) = o.y0[static_cast<size_t>(i)] / s[static_cast<size_t>(i)];
-    z(n) = 0.0;
-    double h = std::max(1e-7, 30.0 * std::sqrt(rtol)) * dLambda;
-    double tol = std::max(1e-9, 100.0 * rtol);
-    auto jacobian = [&](const VectorXd& zz, VectorXd& R, MatrixXd& J) {
-      MatrixXd A;
-      VectorXd u = zz.head(n);
-      R = sh.residual(u, zz(n), &A);
-      VectorXd Rl = (sh.residual(u, zz(n) + h, nullptr) - R) / h;
-      J.resize(n + 1, n + 1);
-      J.topLeftCorner(n, n) = A;
-      J.topRightCorner(n, 1) = Rl;
-    };
-    // Tangent: [A R_lambda; t_old^T] t = [0; 1], normalised, continuing the old direction.
-    auto tangent = [&](MatrixXd J, const VectorXd& old) {
-      J.bottomRows(1) = old.transpose();
-      VectorXd rhs = VectorXd::Zero(n + 1);
-      rhs(n) = 1.0;
-      VectorXd t = J.fullPivLu().solve(rhs);
-      return VectorXd(t / t.norm());
-    };
-    VectorXd R;
-    MatrixXd J;
-    jacobian(z, R, J);
-    VectorXd start = VectorXd::Zero(n + 1);
-    start(n) = 1.0;
-    VectorXd t = tangent(J, start);
-    // Steps along the curve (lambda and the scaled state together) at most four of the
-    // sweep's own steps: where the response changes fast the points come denser.
-    double ds = dLambda, dsMax = 4.0 * dLambda, dsMin = 1e-4 * dLambda;
-    int branch = 1;
-    bool afterGap = false;
-    long maxPoints = 40 * static_cast<long>(std::ceil(1.0 / dLambda)) + 400;
-    // The point at zz: the scene's outputs and stability there (not yet kept).
-    auto measure = [&](const VectorXd& zz) {
-      double x = sh.x(zz(n));
-      Evaluator ev(m);
-      ev.setOverride(st.swept, Value::number(x));
-      dyn::SceneOverrides ov;
-      ov.evaluator = &ev;
-      ov.keepSeries = false;
-      ov.estimateError = false;
-      ov.keepUnstable = true;
-      std::vector<double> y(static_cast<size_t>(n));
-      for (long i = 0; i < n; ++i) y[static_cast<size_t>(i)] = s[static_cast<size_t>(i)] * zz(i);
-      ov.guess = y;
-      dyn::SceneResult res = dyn::runScene(m, a, scene, ov);
-      if (!res.failure.empty()) throw dyn::SceneFailure{res.failure};
-      sh.stats += res.stats;
-      SweepStudy::Point p;
-      p.x = x;
-      if (out.points.empty()) resonanceMarks(out, st, x, res.meshFrequency, res.naturalFrequency);
-      p.stability = res.stability;
-      ev.sceneOutput = [&](const ir::Expr& e, const Assignment& aa, const Evaluator& asking) {
-        // At a corner of the tolerance box (`worst`, `mean`) the scene runs again there, from
-        // this point's orbit.
-        dyn::SceneResult corner;
-        const dyn::SceneResult* r = &res;
-        if (!asking.offsets().empty()) {
-          dyn::SceneOverrides co = ov;
-          co.evaluator = &asking;
-          co.keepUnstable = false;
-          corner = dyn::runScene(m, aa, scene, co);
-          r = &corner;
-        }
-        const dyn::SceneNumber* num = r->find(e.output);
-        return num && std::isfinite(num->value) ? Value::number(num->value) : Value::invalid();
-      };
-      for (const auto& o2 : st.outputs) {
-        Value v = ev.eval(*o2, a);
-        p.y.push_back(v.isNumber() ? v.mid() : NAN);
-        p.unstable.push_back(res.unstable);
-      }
-      return p;
-    };
-    auto keep = [&](SweepStudy::Point p) {
-      p.branch = branch;
-      p.afterGap = afterGap;
-      afterGap = false;
-      out.points.push_back(std::move(p));
-    };
-    // A step's outputs may change by at most a quarter of their size: more, and the corrector
-    // has likely landed on another branch.
-    auto smooth = [&](const SweepStudy::Point& p) {
-      if (out.points.empty()) return true;
-      const auto& q = out.points.back();
-      for (size_t i = 0; i < p.y.size() && i < q.y.size(); ++i) {
-        if (!std::isfinite(p.y[i]) || !std::isfinite(q.y[i])) continue;
-        double scale = std::max(std::fabs(p.y[i]), std::fabs(q.y[i]));
-        if (scale > 0 && std::fabs(p.y[i] - q.y[i]) > 0.25 * scale) return false;
-      }
-      return true;
-    };
-    // Real Floquet multipliers above 1: their count changes by one where the branch turns
-    // (a fold), and not where a step merely reverses by error.
-    auto above = [&](const MatrixXd& Jz) {
-      MatrixXd M = Jz.topLeftCorner(n, n) + MatrixXd::Identity(n, n);
-      Eigen::EigenSolver<MatrixXd> es(M, false);
-      int c = 0;
-      for (long i = 0; i < es.eigenvalues().size(); ++i) {
-        auto mu = es.eigenvalues()(i);
-        if (std::fabs(mu.imag()) <= 1e-9 * std::max(1.0, std::abs(mu)) && mu.real() > 1.0) ++c;
-      }
-      return c;
-    };
-    int aboveHere = above(J);
-    double reached = 0.0;  // the farthest lambda followed
-    keep(measure(z));
-    long points = 1;
-    // Where the branch cannot be followed (the step fell below its minimum, or the branch
-    // leaves the range at its start), the stretch to the next sweep step past the farthest
-    // point followed is a gap; the response there is found afresh by shooting from the last
-    // orbit, and followed on as a new branch.
-    auto gapFrom = [&](const VectorXd& from, const std::string& why) -> bool {
-      double resume = std::max(from(n), reached) + dLambda;
-      if (resume >= 1.0 - 1e-12) resume = 1.0;
-      auto at = sh.build(resume);
-      dyn::PeriodicOptions po2;
-      po2.period = at.period;
-      std::vector<double> guess(static_cast<size_t>(n));
-      for (long i = 0; i < n; ++i) guess[static_cast<size_t>(i)] = s[static_cast<size_t>(i)] * from(i);
-      dyn::PeriodicOrbit o2 = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po2, guess);
-      sh.stats += o2.stats;
-      if (!o2.converged) throw dyn::SceneFailure{fmt::format("the periodic response at {} = {:.6g} was not found after a gap: {}", st.target, sh.x(resume), o2.failure)};
-      out.gaps.emplace_back(sh.x(std::max(from(n), reached)), sh.x(resume));
-      out.notes.push_back(fmt::format("gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh",
-                                      st.target, sh.x(std::max(from(n), reached)) / out.unit.scale, sh.x(resume) / out.unit.scale,
-                                      out.unit.name, why));
-      for (long i = 0; i < n; ++i) z(i) = o2.y0[static_cast<size_t>(i)] / s[static_cast<size_t>(i)];
-      z(n) = resume;
-      reached = resume;
-      ++branch;
-      afterGap = true;
-      keep(measure(z));
-      ++points;
-      if (resume >= 1.0) return false;
-      jacobian(z, R, J);
-      aboveHere = above(J);
-      t = tangent(J, start);
-      ds = dLambda;
-      return true;
-    };
-    const double edge = 0.5 * dLambda;  // how far a corrector may stray outside the range
-    while (points < maxPoints) {
-      VectorXd pred = z + ds * t, zz = pred;
-      bool ok = false;
-      int iterations = 0;
-      for (; iterations < 8; ++iterations) {
-        jacobian(zz, R, J);
-        J.bottomRows(1) = t.transpose();
-        VectorXd rhs(n + 1);
-        rhs.head(n) = -R;
-        rhs(n) = -t.dot(zz - pred);
-        VectorXd d = J.fullPivLu().solve(rhs);
-        zz += d;
-        if (!std::isfinite(d.norm()) || zz(n) < -edge || zz(n) > 1.0 + dsMax + edge) break;
-        if (d.lpNorm<Eigen::Infinity>() < tol) {
-          ok = true;
-          break;
-        }
-      }
-      // A corrector that lands far from its predictor, or turns the branch sharply, may have
-      // jumped to another branch: the step is retried smaller.
-      VectorXd tn;
-      int aboveThere = aboveHere;
-      bool turned = false;
-      if (ok) ok = (zz - pred).norm() <= 0.5 * ds + tol;
-      if (ok) {
-        jacobian(zz, R, J);
-        tn = tangent(J, t);
-        ok = t.dot(tn) >= 0.8;
-      }
-      if (ok && (tn(n) > 0) != (t(n) > 0)) {
-        aboveThere = above(J);
-        turned = aboveThere != aboveHere;
-        ok = turned;  // a reversal without a multiplier crossing +1 is an error of the step
-      }
-      SweepStudy::Point candidate;
-      if (ok && zz(n) <= 1.0 + 1e-12 && zz(n) >= 0.0) {
-        candidate = measure(zz);
-        ok = smooth(candidate) || ds <= 4 * dsMin;
-      }
-      if (!ok) {
-        ds *= 0.5;
-        if (ds < dsMin) {
-          if (!gapFrom(z, "the step fell below 1e-4 of the sweep step")) break;
-        }
-        continue;
-      }
-      if (turned) {
-        // The turning point between the two: where lambda(s), the quadratic through lambda and
-        // its slope at the last point and lambda at this one, is extreme.
-        double lz = z(n), lzz = zz(n), slope = t(n);
-        double c = (lzz - lz - slope * ds) / (ds * ds);
-        double sStar = c != 0 ? -slope / (2 * c) : -1;
-        double fold = sStar >= 0 && sStar <= ds ? lz - slope * slope / (4 * c) : (slope > 0 ? std::max(lz, lzz) : std::min(lz, lzz));
-        out.folds.push_back(sh.x(fold));
-        ++branch;
-      }
-      if (zz(n) < 0.0) {
-        // The branch turns back out of the range at its start: the rest of the range lies
-        // beyond the farthest turning point.
-        if (!gapFrom(z, "the branch turned back out of the range at its start")) break;
-        continue;
-      }
-      if (zz(n) > 1.0 + 1e-12) {
-        // Leaving the range: the last point at its end, from the state interpolated there
-        // (the scene's own Newton solves it exactly).
-        double end = 1.0, w = (end - z(n)) / (zz(n) - z(n));
-        VectorXd last = z + w * (zz - z);
-        last(n) = end;
-        keep(measure(last));
-        break;
-      }
-      z = zz;
-      t = tn;
-      aboveHere = aboveThere;
-      reached = std::max(reached, z(n));
-      keep(std::move(candidate));
-      ++points;
-      if (iterations <= 2) ds = std::min(dsMax, 1.5 * ds);
-    }
-    if (points >= maxPoints)
-      throw dyn::SceneFailure{fmt::format("the continuation stopped after {} points at {} = {:.6g} before the end of the range (a "
-                                          "Floquet multiplier near 1 there: the response grows without bound)",
-                                          points, st.target, sh.x(z(n)))};
-    out.notes.push_back(fmt::format("pseudo-arclength continuation of the shooting equations: {} points, {} turning point{}, {} gap{}, {} RHS "
-                                    "evaluations",
-                                    out.points.size(), out.folds.size(), out.folds.size() == 1 ? "" : "s", out.gaps.size(),
-                                    out.gaps.size() == 1 ? "" : "s", sh.stats.rhsEvaluations));
+    return Continuer(m, a, st, scene, out).run();
   } catch (const dyn::SceneFailure& f) {
     out.failure = fmt::format("study `{}`: scene `{}`: {}", st.name, scene.name, f.what);
   }
