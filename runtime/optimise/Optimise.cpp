@@ -79,6 +79,57 @@ double objectiveAt(const gsl_vector* u, void* p) {
   return f;
 }
 
+// One candidate's freedoms: decided as the search decides them (`plan`, no scene read), or by
+// Nelder-Mead from the middle of every domain. The best point and its objective land in `task`.
+void runCandidate(Task& task, const Model& m, Evaluator& ev, Assignment& a, const FreedomPlan* plan,
+                  const std::vector<const ir::Expr*>& terms, const OptimiseOptions& opt) {
+  for (const auto& f : m.freedoms) {
+    task.lo.push_back(f.lo);
+    task.hi.push_back(f.hi);
+  }
+  size_t n = task.lo.size();
+  if (plan) {
+    DecidedPoint p = plan->decide(ev, a.choice);
+    task.evaluations += p.evaluations;
+    if (p.feasible) {
+      for (size_t f = 0; f < n; ++f)
+        a.box[f] = {p.freedoms[f], p.freedoms[f]};
+      double f = 0;
+      for (const auto& o : m.gearbox.objectives) {
+        Value v = o.expr ? ev.eval(*o.expr, a) : Value::invalid();
+        f += v.isNumber() ? (o.minimize ? v.mid() : -v.mid()) : NAN;
+      }
+      if (std::isfinite(f)) {
+        task.feasible = true;
+        task.bestObjective = f;
+        task.bestFreedoms = p.freedoms;
+        for (const auto* e : terms) task.bestTerms.push_back(ev.eval(*e, a).mid());
+        task.points.emplace_back(p.freedoms, task.bestTerms);
+      }
+    }
+  } else if (n == 0) {
+    gsl_vector* u = gsl_vector_alloc(1);
+    objectiveAt(u, &task);
+    gsl_vector_free(u);
+  } else {
+    const gsl_multimin_fminimizer_type* type = gsl_multimin_fminimizer_nmsimplex2;
+    gsl_multimin_fminimizer* s = gsl_multimin_fminimizer_alloc(type, n);
+    gsl_vector* u = gsl_vector_alloc(n);
+    gsl_vector* step = gsl_vector_alloc(n);
+    gsl_vector_set_all(u, M_PI / 4);  // the middle of every domain
+    gsl_vector_set_all(step, 0.35);
+    gsl_multimin_function fn{&objectiveAt, n, &task};
+    gsl_multimin_fminimizer_set(s, &fn, u, step);
+    for (int it = 0; it < opt.maxIterations && !Deadline::expired(); ++it) {
+      if (gsl_multimin_fminimizer_iterate(s) != GSL_SUCCESS) break;
+      if (gsl_multimin_test_size(gsl_multimin_fminimizer_size(s), 1e-4) == GSL_SUCCESS) break;
+    }
+    gsl_vector_free(step);
+    gsl_vector_free(u);
+    gsl_multimin_fminimizer_free(s);
+  }
+}
+
 } // namespace
 
 void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const Assignment* baseDesign, double rtol) {
@@ -135,6 +186,37 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
   }
 }
 
+// Rank check: the best few again with the scene at its own tolerance; empty where the scene's
+// own tolerance is no tighter than the optimiser's, or fewer than two are ranked.
+std::string rankCheck(const Model& m, const Model* baseline, const Assignment* baseDesign, const std::vector<OptCandidate>& ranked,
+                      const OptimiseOptions& opt) {
+  const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, Q::Rtol);
+  double tight = own && own->value ? own->value->toDouble() : 1e-9;
+  size_t k = std::min(opt.rankCheck, ranked.size());
+  if (k >= 2 && tight < opt.sceneRtol) {
+    Evaluator ev(m);
+    installHooks(ev, m, baseline, baseDesign, tight);
+    std::vector<std::pair<double, size_t>> again;
+    double worst = 0;
+    for (size_t i = 0; i < k; ++i) {
+      Assignment a(m);
+      a.choice = ranked[i].choice;
+      for (size_t f = 0; f < ranked[i].freedoms.size(); ++f) a.box[f] = {ranked[i].freedoms[f], ranked[i].freedoms[f]};
+      double f = 0;
+      for (const auto& o : m.gearbox.objectives) f += (o.minimize ? 1 : -1) * ev.eval(*o.expr, a).mid();
+      again.emplace_back(f, i);
+      worst = std::max(worst, std::fabs(f - ranked[i].objective) / std::max(std::fabs(f), 1e-300));
+    }
+    std::stable_sort(again.begin(), again.end());
+    bool same = true;
+    for (size_t i = 0; i < k; ++i) same = same && again[i].second == i;
+    if (!same) return fmt::format("the ranking of the best {} changes at rtol {:.0e}: rank by a tighter tolerance", k, tight);
+    return fmt::format("the best {} keep their ranks with the scene at rtol {:.0e} (objectives within {:.1e} relative of rtol {:.0e})",
+                       k, tight, worst, opt.sceneRtol);
+  }
+  return "";
+}
+
 OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment* baseDesign, const std::vector<Design>& candidates,
                         const OptimiseOptions& opt) {
   OptimiseResult res;
@@ -171,51 +253,7 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
       Assignment a(m);
       a.choice = candidates[i].choice;
       Task task{&m, &ev, &a, {}, {}, &terms, {}, 0, INFINITY, {}, {}, false};
-      for (const auto& f : m.freedoms) {
-        task.lo.push_back(f.lo);
-        task.hi.push_back(f.hi);
-      }
-      size_t n = task.lo.size();
-      if (plan) {
-        DecidedPoint p = plan->decide(ev, a.choice);
-        task.evaluations += p.evaluations;
-        if (p.feasible) {
-          for (size_t f = 0; f < n; ++f)
-            a.box[f] = {p.freedoms[f], p.freedoms[f]};
-          double f = 0;
-          for (const auto& o : m.gearbox.objectives) {
-            Value v = o.expr ? ev.eval(*o.expr, a) : Value::invalid();
-            f += v.isNumber() ? (o.minimize ? v.mid() : -v.mid()) : NAN;
-          }
-          if (std::isfinite(f)) {
-            task.feasible = true;
-            task.bestObjective = f;
-            task.bestFreedoms = p.freedoms;
-            for (const auto* e : terms) task.bestTerms.push_back(ev.eval(*e, a).mid());
-            task.points.emplace_back(p.freedoms, task.bestTerms);
-          }
-        }
-      } else if (n == 0) {
-        gsl_vector* u = gsl_vector_alloc(1);
-        objectiveAt(u, &task);
-        gsl_vector_free(u);
-      } else {
-        const gsl_multimin_fminimizer_type* type = gsl_multimin_fminimizer_nmsimplex2;
-        gsl_multimin_fminimizer* s = gsl_multimin_fminimizer_alloc(type, n);
-        gsl_vector* u = gsl_vector_alloc(n);
-        gsl_vector* step = gsl_vector_alloc(n);
-        gsl_vector_set_all(u, M_PI / 4);  // the middle of every domain
-        gsl_vector_set_all(step, 0.35);
-        gsl_multimin_function fn{&objectiveAt, n, &task};
-        gsl_multimin_fminimizer_set(s, &fn, u, step);
-        for (int it = 0; it < opt.maxIterations && !Deadline::expired(); ++it) {
-          if (gsl_multimin_fminimizer_iterate(s) != GSL_SUCCESS) break;
-          if (gsl_multimin_test_size(gsl_multimin_fminimizer_size(s), 1e-4) == GSL_SUCCESS) break;
-        }
-        gsl_vector_free(step);
-        gsl_vector_free(u);
-        gsl_multimin_fminimizer_free(s);
-      }
+      runCandidate(task, m, ev, a, plan.get(), terms, opt);
       OptCandidate& c = out[i];
       c.choice = candidates[i].choice;
       c.ratio = candidates[i].ratio;
@@ -257,31 +295,7 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
       res.pareto.push_back(p);
       best = p.second;
     }
-  // Rank check: the best few again with the scene at its own tolerance.
-  const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, Q::Rtol);
-  double tight = own && own->value ? own->value->toDouble() : 1e-9;
-  size_t k = std::min(opt.rankCheck, res.ranked.size());
-  if (k >= 2 && tight < opt.sceneRtol) {
-    Evaluator ev(m);
-    installHooks(ev, m, baseline, baseDesign, tight);
-    std::vector<std::pair<double, size_t>> again;
-    double worst = 0;
-    for (size_t i = 0; i < k; ++i) {
-      Assignment a(m);
-      a.choice = res.ranked[i].choice;
-      for (size_t f = 0; f < res.ranked[i].freedoms.size(); ++f) a.box[f] = {res.ranked[i].freedoms[f], res.ranked[i].freedoms[f]};
-      double f = 0;
-      for (const auto& o : m.gearbox.objectives) f += (o.minimize ? 1 : -1) * ev.eval(*o.expr, a).mid();
-      again.emplace_back(f, i);
-      worst = std::max(worst, std::fabs(f - res.ranked[i].objective) / std::max(std::fabs(f), 1e-300));
-    }
-    std::stable_sort(again.begin(), again.end());
-    bool same = true;
-    for (size_t i = 0; i < k; ++i) same = same && again[i].second == i;
-    res.rankCheck = fmt::format("the best {} keep their ranks with the scene at rtol {:.0e} (objectives within {:.1e} relative of rtol {:.0e})",
-                                k, tight, worst, opt.sceneRtol);
-    if (!same) res.rankCheck = fmt::format("the ranking of the best {} changes at rtol {:.0e}: rank by a tighter tolerance", k, tight);
-  }
+  res.rankCheck = rankCheck(m, baseline, baseDesign, res.ranked, opt);
   res.cpuSeconds = dyn::threadCpuSeconds() - cpu0;
   return res;
 }

@@ -51,9 +51,9 @@ struct Cyl {
     return p;
   }
 
-  static std::vector<DerivedRow> rows() {
-    auto r = pinionWheelRows();
-    std::vector<DerivedRow> own = {
+  // The pair's own quantities: geometry at its centre distance, loads, stiffness, ratios, mass.
+  static std::vector<DerivedRow> stageRows() {
+    return {
         {Q::CenterDistance, false,
          [](const KindContext& c, int) {
            return arith::corners(pair(c), [](const V& x) { return geometryOf(x).a; });
@@ -118,7 +118,12 @@ struct Cyl {
              return (1.0 / u) * (c6 / c5 - 1.0) - u * (c1 / (c6 - c1));
            });
          }},
-        // Gear-level quantities.
+    };
+  }
+
+  // Each gear's quantities: diameters, radii, accuracy-grade deviations, deflections.
+  static std::vector<DerivedRow> gearRows() {
+    return {
         {Q::D, true,
          [](const KindContext& c, int g) {
            return arith::corners({c.at(g, Q::Z), mn(c), beta(c)}, [](const V& x) { return x[0] * x[1] / std::cos(x[2]); });
@@ -168,9 +173,12 @@ struct Cyl {
            });
          }},
     };
-    r.insert(r.end(), own.begin(), own.end());
-    auto rating = rating::pairRows();
-    r.insert(r.end(), rating.begin(), rating.end());
+  }
+
+  static std::vector<DerivedRow> rows() {
+    auto r = pinionWheelRows();
+    for (auto part : {stageRows(), gearRows(), rating::pairRows()})
+      r.insert(r.end(), part.begin(), part.end());
     return r;
   }
 
