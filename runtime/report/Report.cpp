@@ -54,131 +54,258 @@ std::vector<std::string> cells(const DesignRow& r) {
 
 } // namespace
 
-std::string renderText(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
+namespace {
+
+// A table's rows padded to their columns' widths, right-aligned, each line after `indent`.
+std::string aligned(const std::vector<std::vector<std::string>>& table, const std::string& indent, size_t columns) {
+  std::vector<size_t> w(columns, 0);
+  for (const auto& row : table)
+    for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
   std::string o;
-  for (const auto& g : reports) {
-    o += fmt::format("gearbox {}: {} design{}", g.name, g.count, g.count == 1 ? "" : "s");
-    if (g.undecided) o += fmt::format(" ({} undecided)", g.undecided);
-    if (g.count > g.rows.size()) o += fmt::format(", best {} shown", g.rows.size());
-    o += "\n";
-    if (!g.window.empty()) o += "  ratio window " + g.window + "\n";
-    if (!g.rows.empty()) {
-      auto h = header(g);
-      std::vector<std::vector<std::string>> table = {h};
-      for (const auto& r : g.rows) table.push_back(cells(r));
-      std::vector<size_t> w(h.size(), 0);
-      for (const auto& row : table)
-        for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
-      for (const auto& row : table) {
-        std::string line = " ";
-        for (size_t i = 0; i < row.size(); ++i) line += " " + fmt::format("{:>{}}", row[i], w[i]);
-        o += line + "\n";
-      }
-    }
-    if (g.count == 0 || g.undecided) {
-      o += "  elimination funnel:\n";
-      for (const auto& f : g.funnel) {
-        if (f.domain) {
-          o += fmt::format("    stage {}: {} candidates\n", f.scope, count(-f.removed));
-          continue;
-        }
-        o += fmt::format("    {}{}: {} of {} removed\n", f.scope.empty() ? "" : f.scope + ": ", f.rule, count(f.removed),
-                         count(f.before));
-      }
-    }
-    for (const auto& c : g.columns)
-      if (!c.exact) o += "  note: intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images\n";
-    for (const auto& n : g.notes) o += "  note: " + n + "\n";
-    for (const auto& w : g.warnings) o += "  warning: " + w + "\n";
-    if (g.undecided) o += "  ? = feasibility undecided at the freedom resolution (kept, not proven)\n";
-    if (g.optimisation) {
-      for (const auto& l : optimisationLines(*g.optimisation)) o += "  " + l + "\n";
-      if (ro.timings) o += "  " + optimisationTiming(*g.optimisation) + "\n";
-    }
-    for (const auto& md : g.modifications) {
-      o += fmt::format("  modify {} (design 1)\n", md.stage);
-      for (const auto& r : md.rows) {
-        if (!r.error.empty()) o += fmt::format("    {}: not computed: {}\n", r.target, r.error);
-        else if (!r.present) o += fmt::format("    {}: absent (not {})\n", r.target, r.condition);
-        else o += fmt::format("    {} = {}{}\n", r.target, r.shown, r.condition.empty() ? "" : fmt::format(" (as {})", r.condition));
-        o += fmt::format("      rule: {}\n", r.text);
-        for (const auto& in : r.inputs) o += "      input: " + in + "\n";
-      }
-    }
-    for (const auto& r : g.ratings) {
-      o += fmt::format("  rating {}{} (design 1), ISO 6336-1/-2/-3 method B\n", r.stage, r.mesh.empty() ? "" : ", mesh " + r.mesh);
-      if (r.error.empty()) {
-        auto rows = ratingRows(r);
-        rows.insert(rows.begin(), ratingHeader(r));
-        std::vector<size_t> w(rows[0].size(), 0);
-        for (const auto& row : rows)
-          for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
-        for (const auto& row : rows) {
-          std::string line = fmt::format("    {:<{}}", row[0], w[0]);
-          for (size_t i = 1; i < row.size(); ++i) line += " " + fmt::format("{:>{}}", row[i], w[i]);
-          while (!line.empty() && line.back() == ' ') line.pop_back();
-          o += line + "\n";
-        }
-      }
-      o += "    " + ratingVerdict(r) + "\n";
-    }
-    for (const auto& sc : g.scenes) {
-      o += fmt::format("  scene {} on {} (design 1)\n", sc.name, sc.target.empty() ? g.name : sc.target);
-      if (!sc.failure.empty()) {
-        o += "    failed: " + sc.failure + "\n";
-        continue;
-      }
-      if (sc.eigen) o += "    accuracy: generalised eigenproblem (Eigen), double precision\n";
-      else
-        o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled){}; steady state: {}\n", sc.method, sc.rtol, sc.atol,
-                         sc.stepRule.empty() ? "" : ", " + sc.stepRule, sc.steady);
-      for (const auto& out : sc.outputs)
-        o += std::isfinite(out.shown)
-                 ? fmt::format("    {} = {}{}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit,
-                               SceneReport::ownError(out, sc.errorEstimate)
-                                   ? fmt::format(" (error estimate {:.2e} of its scale)", out.error)
-                                   : "")
-                 : fmt::format("    {} = none (no steady response)\n", out.key);
-      if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative = {}\n", sc.errorEstimate, sc.errorMethod);
-      for (const auto& w : sc.warnings) o += "    warning: " + w + "\n";
-      if (!sc.eigen)
-        o += fmt::format("    cost: {} steps, {} rejected, {} RHS evaluations, {} Jacobians, {} events located\n", sc.steps, sc.rejected,
-                       sc.rhs, sc.jacobians, sc.events);
-      for (const auto& sp : sc.spectra) {
-        o += fmt::format("    {} peaks:", sp.key);
-        for (const auto& p : sp.peaks)
-          o += fmt::format(" {:.2f} Hz{} {}{};", p.frequency, p.harmonic ? fmt::format(" ({}x mesh)", p.harmonic) : "",
-                           formatNumber(p.amplitude / sp.scale), sp.unit.empty() ? "" : " " + sp.unit);
-        o += "\n";
-      }
-      for (const auto& m : sc.model) o += "    model: " + m + "\n";
-      for (const auto& f : sc.files) o += "    wrote " + f + "\n";
-      if (ro.timings) o += fmt::format("    timing: {:.1f} ms CPU (error estimate run {:.1f} ms)\n", sc.cpu * 1e3, sc.referenceCpu * 1e3);
-    }
-    for (const auto& study : g.studies) {
-      StudyTable st = studyTable(study, ro);
-      o += fmt::format("  study {} ({})\n", st.name, st.kind);
-      std::vector<std::vector<std::string>> table = {st.header};
-      for (const auto& r : st.rows) table.push_back(r);
-      std::vector<size_t> w(st.header.size(), 0);
-      for (const auto& row : table)
-        for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
-      for (const auto& row : table) {
-        std::string line = "   ";
-        for (size_t i = 0; i < row.size() && i < w.size(); ++i) line += " " + fmt::format("{:>{}}", row[i], w[i]);
-        o += line + "\n";
-      }
-      for (const auto& n : st.notes) o += "    note: " + n + "\n";
-      for (const auto& w : st.warnings) o += "    warning: " + w + "\n";
-      for (const auto& f : study.files) o += "    wrote " + f + "\n";
-    }
+  for (const auto& row : table) {
+    std::string line = indent;
+    for (size_t i = 0; i < row.size() && i < w.size(); ++i) line += " " + fmt::format("{:>{}}", row[i], w[i]);
+    o += line + "\n";
   }
   return o;
 }
 
+// The design list: its headline, table, funnel, notes and warnings, and the optimisation.
+std::string textDesigns(const GearboxReport& g, const RenderOptions& ro) {
+  std::string o = fmt::format("gearbox {}: {} design{}", g.name, g.count, g.count == 1 ? "" : "s");
+  if (g.undecided) o += fmt::format(" ({} undecided)", g.undecided);
+  if (g.count > g.rows.size()) o += fmt::format(", best {} shown", g.rows.size());
+  o += "\n";
+  if (!g.window.empty()) o += "  ratio window " + g.window + "\n";
+  if (!g.rows.empty()) {
+    auto h = header(g);
+    std::vector<std::vector<std::string>> table = {h};
+    for (const auto& r : g.rows) table.push_back(cells(r));
+    o += aligned(table, " ", h.size());
+  }
+  if (g.count == 0 || g.undecided) {
+    o += "  elimination funnel:\n";
+    for (const auto& f : g.funnel) {
+      if (f.domain) {
+        o += fmt::format("    stage {}: {} candidates\n", f.scope, count(-f.removed));
+        continue;
+      }
+      o += fmt::format("    {}{}: {} of {} removed\n", f.scope.empty() ? "" : f.scope + ": ", f.rule, count(f.removed), count(f.before));
+    }
+  }
+  for (const auto& c : g.columns)
+    if (!c.exact) o += "  note: intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images\n";
+  for (const auto& n : g.notes) o += "  note: " + n + "\n";
+  for (const auto& w : g.warnings) o += "  warning: " + w + "\n";
+  if (g.undecided) o += "  ? = feasibility undecided at the freedom resolution (kept, not proven)\n";
+  if (g.optimisation) {
+    for (const auto& l : optimisationLines(*g.optimisation)) o += "  " + l + "\n";
+    if (ro.timings) o += "  " + optimisationTiming(*g.optimisation) + "\n";
+  }
+  return o;
+}
+
+std::string textModification(const ModifyReport& md) {
+  std::string o = fmt::format("  modify {} (design 1)\n", md.stage);
+  for (const auto& r : md.rows) {
+    if (!r.error.empty()) o += fmt::format("    {}: not computed: {}\n", r.target, r.error);
+    else if (!r.present) o += fmt::format("    {}: absent (not {})\n", r.target, r.condition);
+    else o += fmt::format("    {} = {}{}\n", r.target, r.shown, r.condition.empty() ? "" : fmt::format(" (as {})", r.condition));
+    o += fmt::format("      rule: {}\n", r.text);
+    for (const auto& in : r.inputs) o += "      input: " + in + "\n";
+  }
+  return o;
+}
+
+std::string textRating(const RatingReport& r) {
+  std::string o = fmt::format("  rating {}{} (design 1), ISO 6336-1/-2/-3 method B\n", r.stage, r.mesh.empty() ? "" : ", mesh " + r.mesh);
+  if (r.error.empty()) {
+    auto rows = ratingRows(r);
+    rows.insert(rows.begin(), ratingHeader(r));
+    std::vector<size_t> w(rows[0].size(), 0);
+    for (const auto& row : rows)
+      for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
+    for (const auto& row : rows) {
+      std::string line = fmt::format("    {:<{}}", row[0], w[0]);
+      for (size_t i = 1; i < row.size(); ++i) line += " " + fmt::format("{:>{}}", row[i], w[i]);
+      while (!line.empty() && line.back() == ' ') line.pop_back();
+      o += line + "\n";
+    }
+  }
+  return o + "    " + ratingVerdict(r) + "\n";
+}
+
+std::string textScene(const SceneReport& sc, const GearboxReport& g, const RenderOptions& ro) {
+  std::string o = fmt::format("  scene {} on {} (design 1)\n", sc.name, sc.target.empty() ? g.name : sc.target);
+  if (!sc.failure.empty()) return o + "    failed: " + sc.failure + "\n";
+  if (sc.eigen) o += "    accuracy: generalised eigenproblem (Eigen), double precision\n";
+  else
+    o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled){}; steady state: {}\n", sc.method, sc.rtol, sc.atol,
+                     sc.stepRule.empty() ? "" : ", " + sc.stepRule, sc.steady);
+  for (const auto& out : sc.outputs)
+    o += std::isfinite(out.shown)
+             ? fmt::format("    {} = {}{}{}\n", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit,
+                           SceneReport::ownError(out, sc.errorEstimate) ? fmt::format(" (error estimate {:.2e} of its scale)", out.error)
+                                                                         : "")
+             : fmt::format("    {} = none (no steady response)\n", out.key);
+  if (sc.errorEstimate >= 0) o += fmt::format("    error estimate: {:.2e} relative = {}\n", sc.errorEstimate, sc.errorMethod);
+  for (const auto& w : sc.warnings) o += "    warning: " + w + "\n";
+  if (!sc.eigen)
+    o += fmt::format("    cost: {} steps, {} rejected, {} RHS evaluations, {} Jacobians, {} events located\n", sc.steps, sc.rejected,
+                     sc.rhs, sc.jacobians, sc.events);
+  for (const auto& sp : sc.spectra) {
+    o += fmt::format("    {} peaks:", sp.key);
+    for (const auto& p : sp.peaks)
+      o += fmt::format(" {:.2f} Hz{} {}{};", p.frequency, p.harmonic ? fmt::format(" ({}x mesh)", p.harmonic) : "",
+                       formatNumber(p.amplitude / sp.scale), sp.unit.empty() ? "" : " " + sp.unit);
+    o += "\n";
+  }
+  for (const auto& m : sc.model) o += "    model: " + m + "\n";
+  for (const auto& f : sc.files) o += "    wrote " + f + "\n";
+  if (ro.timings) o += fmt::format("    timing: {:.1f} ms CPU (error estimate run {:.1f} ms)\n", sc.cpu * 1e3, sc.referenceCpu * 1e3);
+  return o;
+}
+
+std::string textStudy(const StudyReport& study, const RenderOptions& ro) {
+  StudyTable st = studyTable(study, ro);
+  std::string o = fmt::format("  study {} ({})\n", st.name, st.kind);
+  std::vector<std::vector<std::string>> table = {st.header};
+  for (const auto& r : st.rows) table.push_back(r);
+  o += aligned(table, "   ", st.header.size());
+  for (const auto& n : st.notes) o += "    note: " + n + "\n";
+  for (const auto& w : st.warnings) o += "    warning: " + w + "\n";
+  for (const auto& f : study.files) o += "    wrote " + f + "\n";
+  return o;
+}
+
+} // namespace
+
+std::string renderText(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
+  std::string o;
+  for (const auto& g : reports) {
+    o += textDesigns(g, ro);
+    for (const auto& md : g.modifications) o += textModification(md);
+    for (const auto& r : g.ratings) o += textRating(r);
+    for (const auto& sc : g.scenes) o += textScene(sc, g, ro);
+    for (const auto& study : g.studies) o += textStudy(study, ro);
+  }
+  return o;
+}
+
+namespace {
+
+std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); }
+
+// One listed design: teeth, choices, ratio, column values and their feasible ranges.
+std::string jsonCandidate(const GearboxReport& g, const DesignRow& r) {
+  using diag::jsonEscape;
+  auto num = jsonNumber;
+  std::string o;
+  o += fmt::format("{{\"rank\": {}, \"teeth\": {{", r.rank);
+  for (size_t i = 0; i < r.teeth.size(); ++i)
+    o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(r.teeth[i].first), r.teeth[i].second);
+  o += "}";
+  if (!r.choices.empty()) {
+    o += ", \"choices\": {";
+    for (size_t i = 0; i < r.choices.size(); ++i)
+      o += fmt::format("{}\"{}\": \"{}\"", i ? ", " : "", jsonEscape(r.choices[i].first), jsonEscape(r.choices[i].second));
+    o += "}";
+  }
+  o += fmt::format(", \"ratio\": {}, \"ratio_exact\": \"{}\", \"undecided\": {}, \"values\": {{", num(r.ratio.toDouble()),
+                   r.ratio.str(), r.undecided ? "true" : "false");
+  for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
+    const Cell& c = r.cells[i];
+    std::string v = !c.valid ? "null" : c.lo == c.hi ? num(c.lo) : fmt::format("[{}, {}]", num(c.lo), num(c.hi));
+    o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(g.columns[i].name), v);
+  }
+  o += "}";
+  bool anyFeasible = false;
+  for (const auto& c : r.cells) anyFeasible = anyFeasible || c.feasible;
+  if (anyFeasible) {
+    o += ", \"feasible\": {";
+    bool first = true;
+    for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
+      if (!r.cells[i].feasible) continue;
+      o += fmt::format("{}\"{}\": [{}, {}]", first ? "" : ", ", jsonEscape(g.columns[i].name), num(r.cells[i].flo), num(r.cells[i].fhi));
+      first = false;
+    }
+    o += "}";
+  }
+  o += "}";
+  return o;
+}
+
+// One scene: its accuracy, cost, error estimate, outputs, spectra and model lines.
+std::string jsonScene(const SceneReport& sc, const RenderOptions& ro) {
+  using diag::jsonEscape;
+  auto num = jsonNumber;
+  std::string o;
+  if (!sc.failure.empty()) {
+    o += fmt::format("\"failure\": \"{}\"}}", jsonEscape(sc.failure));
+    return o;
+  }
+  o += fmt::format("\"target\": \"{}\", \"method\": \"{}\", \"rtol\": {}, \"atol\": {}, \"steps\": {}, \"rejected\": {}, "
+                   "\"rhs_evaluations\": {}, \"jacobian_evaluations\": {}, \"events\": {}, ",
+                   jsonEscape(sc.target), sc.method, num(sc.rtol), num(sc.atol), sc.steps, sc.rejected, sc.rhs, sc.jacobians, sc.events);
+  if (ro.timings) o += fmt::format("\"cpu_seconds\": {}, ", num(sc.cpu));
+  o += fmt::format("\"steady_state\": \"{}\", \"max_step_rule\": \"{}\", ", jsonEscape(sc.steady), jsonEscape(sc.stepRule));
+  o += fmt::format("\"error_estimate\": {}, \"error_method\": \"{}\", \"error_parts\": {{", sc.errorEstimate >= 0 ? num(sc.errorEstimate) : "null",
+                   jsonEscape(sc.errorMethod));
+  for (size_t i = 0; i < sc.errorParts.size(); ++i)
+    o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(sc.errorParts[i].first), num(sc.errorParts[i].second));
+  o += "}, \"outputs\": {";
+  for (size_t i = 0; i < sc.outputs.size(); ++i) o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(sc.outputs[i].key), num(sc.outputs[i].si));
+  o += "}, \"output_errors\": {";
+  bool firstError = true;
+  for (const auto& out : sc.outputs)
+    if (std::isfinite(out.error)) {
+      o += fmt::format("{}\"{}\": {}", firstError ? "" : ", ", jsonEscape(out.key), num(out.error));
+      firstError = false;
+    }
+  o += "}, \"spectra\": {";
+  for (size_t i = 0; i < sc.spectra.size(); ++i) {
+    o += fmt::format("{}\"{}\": [", i ? ", " : "", jsonEscape(sc.spectra[i].key));
+    for (size_t k = 0; k < sc.spectra[i].peaks.size(); ++k) {
+      const auto& p = sc.spectra[i].peaks[k];
+      o += fmt::format("{}{{\"frequency\": {}, \"amplitude\": {}, \"harmonic\": {}}}", k ? ", " : "", num(p.frequency), num(p.amplitude), p.harmonic);
+    }
+    o += "]";
+  }
+  o += "}, \"model\": [";
+  for (size_t i = 0; i < sc.model.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", jsonEscape(sc.model[i]));
+  o += "]";
+  if (!sc.warnings.empty()) {
+    o += ", \"warnings\": [";
+    for (size_t i = 0; i < sc.warnings.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", jsonEscape(sc.warnings[i]));
+    o += "]";
+  }
+  o += "}";
+  return o;
+}
+
+// One stage's modification rules, as lists of rows.
+std::string jsonModification(const ModifyReport& md) {
+  using diag::jsonEscape;
+  auto num = jsonNumber;
+  std::string o;
+  for (size_t ri = 0; ri < md.rows.size(); ++ri) {
+    const auto& r = md.rows[ri];
+    o += fmt::format("{}\n      {{\"target\": \"{}\", \"present\": {}, \"value\": {}, \"rule\": \"{}\", \"inputs\": {{", ri ? "," : "",
+                     jsonEscape(r.target), r.present ? "true" : "false", r.present && r.valid ? num(r.si) : "null", jsonEscape(r.text));
+    for (size_t i = 0; i < r.inputsSI.size(); ++i)
+      o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(r.inputsSI[i].first), num(r.inputsSI[i].second));
+    o += "}";
+    if (!r.error.empty()) o += fmt::format(", \"error\": \"{}\"", jsonEscape(r.error));
+    o += "}";
+  }
+  o += "]";
+  return o;
+}
+
+} // namespace
+
 std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
   using diag::jsonEscape;
-  auto num = [](double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); };
   std::string o = "{\"gearboxes\": [";
   for (size_t gi = 0; gi < reports.size(); ++gi) {
     const auto& g = reports[gi];
@@ -186,39 +313,8 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
     o += fmt::format("  {{\"name\": \"{}\", \"count\": {}, \"undecided\": {}, \"window\": \"{}\",\n   \"candidates\": [",
                      jsonEscape(g.name), g.count, g.undecided, jsonEscape(g.window));
     for (size_t ri = 0; ri < g.rows.size(); ++ri) {
-      const auto& r = g.rows[ri];
       o += ri ? ",\n    " : "\n    ";
-      o += fmt::format("{{\"rank\": {}, \"teeth\": {{", r.rank);
-      for (size_t i = 0; i < r.teeth.size(); ++i)
-        o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(r.teeth[i].first), r.teeth[i].second);
-      o += "}";
-      if (!r.choices.empty()) {
-        o += ", \"choices\": {";
-        for (size_t i = 0; i < r.choices.size(); ++i)
-          o += fmt::format("{}\"{}\": \"{}\"", i ? ", " : "", jsonEscape(r.choices[i].first), jsonEscape(r.choices[i].second));
-        o += "}";
-      }
-      o += fmt::format(", \"ratio\": {}, \"ratio_exact\": \"{}\", \"undecided\": {}, \"values\": {{", num(r.ratio.toDouble()),
-                       r.ratio.str(), r.undecided ? "true" : "false");
-      for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
-        const Cell& c = r.cells[i];
-        std::string v = !c.valid ? "null" : c.lo == c.hi ? num(c.lo) : fmt::format("[{}, {}]", num(c.lo), num(c.hi));
-        o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(g.columns[i].name), v);
-      }
-      o += "}";
-      bool anyFeasible = false;
-      for (const auto& c : r.cells) anyFeasible = anyFeasible || c.feasible;
-      if (anyFeasible) {
-        o += ", \"feasible\": {";
-        bool first = true;
-        for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
-          if (!r.cells[i].feasible) continue;
-          o += fmt::format("{}\"{}\": [{}, {}]", first ? "" : ", ", jsonEscape(g.columns[i].name), num(r.cells[i].flo), num(r.cells[i].fhi));
-          first = false;
-        }
-        o += "}";
-      }
-      o += "}";
+      o += jsonCandidate(g, g.rows[ri]);
     }
     o += g.rows.empty() ? "],\n" : "\n   ],\n";
     o += "   \"columns\": [";
@@ -248,63 +344,14 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
     for (size_t si = 0; si < g.scenes.size(); ++si) {
       const auto& sc = g.scenes[si];
       o += fmt::format("{}\n    \"{}\": {{", si ? "," : "", jsonEscape(sc.name));
-      if (!sc.failure.empty()) {
-        o += fmt::format("\"failure\": \"{}\"}}", jsonEscape(sc.failure));
-        continue;
-      }
-      o += fmt::format("\"target\": \"{}\", \"method\": \"{}\", \"rtol\": {}, \"atol\": {}, \"steps\": {}, \"rejected\": {}, "
-                       "\"rhs_evaluations\": {}, \"jacobian_evaluations\": {}, \"events\": {}, ",
-                       jsonEscape(sc.target), sc.method, num(sc.rtol), num(sc.atol), sc.steps, sc.rejected, sc.rhs, sc.jacobians, sc.events);
-      if (ro.timings) o += fmt::format("\"cpu_seconds\": {}, ", num(sc.cpu));
-      o += fmt::format("\"steady_state\": \"{}\", \"max_step_rule\": \"{}\", ", jsonEscape(sc.steady), jsonEscape(sc.stepRule));
-      o += fmt::format("\"error_estimate\": {}, \"error_method\": \"{}\", \"error_parts\": {{", sc.errorEstimate >= 0 ? num(sc.errorEstimate) : "null",
-                       jsonEscape(sc.errorMethod));
-      for (size_t i = 0; i < sc.errorParts.size(); ++i)
-        o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(sc.errorParts[i].first), num(sc.errorParts[i].second));
-      o += "}, \"outputs\": {";
-      for (size_t i = 0; i < sc.outputs.size(); ++i) o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(sc.outputs[i].key), num(sc.outputs[i].si));
-      o += "}, \"output_errors\": {";
-      bool firstError = true;
-      for (const auto& out : sc.outputs)
-        if (std::isfinite(out.error)) {
-          o += fmt::format("{}\"{}\": {}", firstError ? "" : ", ", jsonEscape(out.key), num(out.error));
-          firstError = false;
-        }
-      o += "}, \"spectra\": {";
-      for (size_t i = 0; i < sc.spectra.size(); ++i) {
-        o += fmt::format("{}\"{}\": [", i ? ", " : "", jsonEscape(sc.spectra[i].key));
-        for (size_t k = 0; k < sc.spectra[i].peaks.size(); ++k) {
-          const auto& p = sc.spectra[i].peaks[k];
-          o += fmt::format("{}{{\"frequency\": {}, \"amplitude\": {}, \"harmonic\": {}}}", k ? ", " : "", num(p.frequency), num(p.amplitude), p.harmonic);
-        }
-        o += "]";
-      }
-      o += "}, \"model\": [";
-      for (size_t i = 0; i < sc.model.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", jsonEscape(sc.model[i]));
-      o += "]";
-      if (!sc.warnings.empty()) {
-        o += ", \"warnings\": [";
-        for (size_t i = 0; i < sc.warnings.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", jsonEscape(sc.warnings[i]));
-        o += "]";
-      }
-      o += "}";
+      o += jsonScene(sc, ro);
     }
     o += g.scenes.empty() ? "}, " : "\n   }, ";
     o += "\"modifications\": {";
     for (size_t mi = 0; mi < g.modifications.size(); ++mi) {
       const auto& md = g.modifications[mi];
       o += fmt::format("{}\n    \"{}\": [", mi ? "," : "", jsonEscape(md.stage));
-      for (size_t ri = 0; ri < md.rows.size(); ++ri) {
-        const auto& r = md.rows[ri];
-        o += fmt::format("{}\n      {{\"target\": \"{}\", \"present\": {}, \"value\": {}, \"rule\": \"{}\", \"inputs\": {{", ri ? "," : "",
-                         jsonEscape(r.target), r.present ? "true" : "false", r.present && r.valid ? num(r.si) : "null", jsonEscape(r.text));
-        for (size_t i = 0; i < r.inputsSI.size(); ++i)
-          o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(r.inputsSI[i].first), num(r.inputsSI[i].second));
-        o += "}";
-        if (!r.error.empty()) o += fmt::format(", \"error\": \"{}\"", jsonEscape(r.error));
-        o += "}";
-      }
-      o += "]";
+      o += jsonModification(md);
     }
     o += g.modifications.empty() ? "}, " : "\n   }, ";
     o += "\"ratings\": {";
