@@ -370,6 +370,27 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
 
 namespace {
 
+// A scene's lines in the Markdown and HTML reports: outputs, method, error, cost, spectra, model.
+std::vector<std::string> sceneItems(const SceneReport& sc) {
+  std::vector<std::string> items;
+  for (const auto& out : sc.outputs)
+    items.push_back(std::isfinite(out.shown) ? fmt::format("{} = {}{}", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit)
+                                             : fmt::format("{} = none (no steady response)", out.key));
+  if (!sc.eigen) items.push_back(fmt::format("steady state: {}{}", sc.steady, sc.stepRule.empty() ? "" : "; " + sc.stepRule));
+  if (sc.errorEstimate >= 0) items.push_back(fmt::format("error estimate {:.2e} ({})", sc.errorEstimate, sc.errorMethod));
+  for (const auto& w : sc.warnings) items.push_back("warning: " + w);
+  if (!sc.eigen) items.push_back(fmt::format("{} at rtol {:.0e}: {} steps, {} RHS evaluations", sc.method, sc.rtol, sc.steps, sc.rhs));
+  for (const auto& sp : sc.spectra) {
+    std::string peaks;
+    for (const auto& p : sp.peaks)
+      peaks += fmt::format("{}{:.2f} Hz{} {}{}", peaks.empty() ? "" : "; ", p.frequency, p.harmonic ? fmt::format(" ({}x mesh)", p.harmonic) : "",
+                           formatNumber(p.amplitude / sp.scale), sp.unit.empty() ? "" : " " + sp.unit);
+    items.push_back(sp.key + " peaks: " + peaks);
+  }
+  for (const auto& m : sc.model) items.push_back(m);
+  return items;
+}
+
 std::string markdown(const std::vector<GearboxReport>& reports, const RenderOptions& ro, bool html) {
   auto esc = [&](const std::string& x) {
     if (!html) return x;
@@ -468,25 +489,7 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
         o += para("failed: " + sc.failure);
         continue;
       }
-      std::vector<std::string> items;
-      for (const auto& out : sc.outputs)
-        items.push_back(std::isfinite(out.shown)
-                            ? fmt::format("{} = {}{}", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit)
-                            : fmt::format("{} = none (no steady response)", out.key));
-      if (!sc.eigen) items.push_back(fmt::format("steady state: {}{}", sc.steady, sc.stepRule.empty() ? "" : "; " + sc.stepRule));
-      if (sc.errorEstimate >= 0) items.push_back(fmt::format("error estimate {:.2e} ({})", sc.errorEstimate, sc.errorMethod));
-      for (const auto& w : sc.warnings) items.push_back("warning: " + w);
-      if (!sc.eigen)
-        items.push_back(fmt::format("{} at rtol {:.0e}: {} steps, {} RHS evaluations", sc.method, sc.rtol, sc.steps, sc.rhs));
-      for (const auto& sp : sc.spectra) {
-        std::string peaks;
-        for (const auto& p : sp.peaks)
-          peaks += fmt::format("{}{:.2f} Hz{} {}{}", peaks.empty() ? "" : "; ", p.frequency, p.harmonic ? fmt::format(" ({}x mesh)", p.harmonic) : "",
-                               formatNumber(p.amplitude / sp.scale), sp.unit.empty() ? "" : " " + sp.unit);
-        items.push_back(sp.key + " peaks: " + peaks);
-      }
-      for (const auto& m : sc.model) items.push_back(m);
-      o += list(items);
+      o += list(sceneItems(sc));
       for (const auto& f : sc.files) o += image(f);
     }
     for (const auto& study : g.studies) {
