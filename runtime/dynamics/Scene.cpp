@@ -286,167 +286,163 @@ SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignmen
   return r;
 }
 
-SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
-  SceneResult r;
-  r.name = scene.name;
-  r.target = scene.target;
-  Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
-  int st = scene.stage;
-  if (st < 0) {
-    bool timeDomain = std::any_of(scene.outputs.begin(), scene.outputs.end(), [](const ir::SceneOutput& o) { return o.id != Signal::Modes; });
-    if (timeDomain) return runWholeGearbox(m, ev, a, scene, ov, std::move(r));
-    // The whole gearbox: its lumped torsional model, for its modes.
-    LumpedModes lm = gearboxModes(m, a);
-    r.model = lm.provenance;
-    for (size_t i = 0; i < lm.frequencies.size(); ++i) {
-      r.numbers.push_back({fmt::format("mode {}", i + 1), lm.frequencies[i], units::dims::frequency});
-      r.model.push_back(fmt::format("mode {}: {:.2f} Hz, moving {}", i + 1, lm.frequencies[i], lm.shapes[i]));
-    }
-    r.eigen = true;
-    r.method = "eigen";
-    return r;
+// The whole gearbox's lumped torsional model, for its modes.
+SceneResult wholeGearboxModes(const Model& m, const Assignment& a, SceneResult r) {
+  // The whole gearbox: its lumped torsional model, for its modes.
+  LumpedModes lm = gearboxModes(m, a);
+  r.model = lm.provenance;
+  for (size_t i = 0; i < lm.frequencies.size(); ++i) {
+    r.numbers.push_back({fmt::format("mode {}", i + 1), lm.frequencies[i], units::dims::frequency});
+    r.model.push_back(fmt::format("mode {}: {:.2f} Hz, moving {}", i + 1, lm.frequencies[i], lm.shapes[i]));
   }
-  const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
-  Accuracy acc = sceneAccuracy(scene, ov);
-  r.method = std::string(cat::methodSpec(acc.method).name);
-  r.rtol = acc.rtol;
-  r.atol = acc.atol > 0 ? acc.atol : acc.rtol;
+  r.eigen = true;
+  r.method = "eigen";
+  return r;
+}
 
-  Samples samples;
-  TimePlan tp;
+// The periodic orbit of a single-mesh scene, from the model's initial state or the caller's
+// guess; false (with r.failure) where it is not found.
+bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, const ir::Scene& scene, const SceneOverrides& ov,
+                 const Accuracy& acc, SceneResult& r, std::vector<double>& y) {
+  double Tz = 1.0 / ms.meshFrequency, T = model.excitationPeriod();
+  if (T <= 0)
+    throw Failure{fmt::format("the excitation is not periodic (a start-up ramp, or a fluctuation whose period holds no whole number of "
+                              "mesh periods), so there is no periodic steady state{}; write `settle = N mesh_periods` to settle a "
+                              "transient, or `duration` for a run from rest",
+                              tp.periodicWritten ? "" : " (the default when a scene neither settles nor runs from rest)")};
+  PeriodicOptions po;
+  po.period = T;
+  po.linear = model.linear();
+  std::vector<double> guess = ov.guess && ov.guess->size() == y.size() ? *ov.guess : y;
+  PeriodicOrbit orbit = periodicOrbit(model.system(), acc, po, guess);
+  r.stats += orbit.stats;
+  if (!orbit.converged) {
+    r.failure = fmt::format("scene `{}`: the periodic steady state was not found: {}", scene.name, orbit.failure);
+    return false;
+  }
+  y = orbit.y0;
+  r.orbit = orbit.y0;
+  r.period = T;
+  // Outputs over a whole orbit: a window shorter than its period (a fluctuation holding
+  // several mesh periods) is widened to it.
+  if (widenToPeriod(tp, T))
+    r.model.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", std::lround(T / Tz)));
+  r.stability = orbit.stability;
+  r.unstable = orbit.stability >= 1.0;
+  r.newtonIterations = orbit.iterations;
+  r.newtonResidual = orbit.residual;
+  r.model.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), {} by {}, {} Newton iteration{}, residual "
+                                "{:.2e} of the state scale, largest Floquet multiplier {:.6f}",
+                                T * 1e3, std::lround(T / Tz), std::lround(T / Tz) == 1 ? "" : "s",
+                                po.linear ? "linear: the monodromy matrix" : "shooting with Newton",
+                                orbit.variational ? "variational equations" : "differences", orbit.iterations,
+                                orbit.iterations == 1 ? "" : "s", orbit.residual, orbit.stability));
+  return true;
+}
+
+// `settle = N` integrates exactly N periods; whether the transient has died out there is
+// measured: one more excitation period from the settled state must come back to it.
+void checkSettled(const MeshModel& model, const TimePlan& tp, const Accuracy& acc, SceneResult& r) {
+  if (tp.steady == SteadyMethod::Settle && r.orbit.size() == model.system().dim) {
+    double T = model.excitationPeriod();
+    if (T > 0) {
+      Integrator check(model.system(), acc);
+      std::vector<double> y1 = r.orbit;
+      double t0 = tp.statsFrom;  // the settled state's own time: the excitation's phase there
+      if (check.advance(t0, y1, tp.statsFrom + T, {}, [](double, const double*) {})) {
+        std::vector<double> d(y1.size());
+        for (size_t i = 0; i < d.size(); ++i) d[i] = y1[i] - r.orbit[i];
+        double settleResidual = scaledNorm(d, model.system().scale);
+        r.stats += check.stats();
+        if (settleResidual > std::max(1e-6, 1e3 * acc.rtol))
+          r.warnings.push_back(fmt::format("the transient has not died out after the settled periods: one more period moves the state "
+                                           "by {:.2e} of its scale; settle longer, or write `steady_state = periodic`",
+                                           settleResidual));
+      }
+    }
+  }
+}
+
+// A scene on a spur or helical stage: its mesh model run, the signals recorded; the failure,
+// or "".
+std::string runSingleMesh(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov, Accuracy& acc,
+                          SceneResult& r, Samples& samples, TimePlan& tp) {
   auto record = [&](Signal k, double v) { series(samples.signals, k).push_back(v); };
-  std::string failure;
-  switch (m.info(st).kind->scene) {
-  case SceneModel::SingleMesh: {
-    MeshScene ms = meshSceneOf(m, a, scene, ov, acc, r.model);
-    MeshModel model(ms.params, ms.effects);
-    const MeshParameters& p = ms.params;
-    acc = ms.accuracy;
-    tp = ms.plan;
-    r.meshFrequency = ms.meshFrequency;
-    r.stepRule = ms.stepRule;
-    r.harmonics = ms.harmonics;
-    r.naturalFrequency = 1.0 / model.naturalPeriod();
-    r.steady = tp.steady;
-    std::vector<double> y = model.initialState();
-    // A transient may start from a given state (a study's run from another initial condition).
-    if (tp.steady != SteadyMethod::Periodic && ov.guess && ov.guess->size() == y.size()) y = *ov.guess;
-    if (tp.steady == SteadyMethod::Periodic) {
-      double Tz = 1.0 / ms.meshFrequency, T = model.excitationPeriod();
-      if (T <= 0)
-        throw Failure{fmt::format("the excitation is not periodic (a start-up ramp, or a fluctuation whose period holds no whole number of "
-                                  "mesh periods), so there is no periodic steady state{}; write `settle = N mesh_periods` to settle a "
-                                  "transient, or `duration` for a run from rest",
-                                  tp.periodicWritten ? "" : " (the default when a scene neither settles nor runs from rest)")};
-      PeriodicOptions po;
-      po.period = T;
-      po.linear = model.linear();
-      std::vector<double> guess = ov.guess && ov.guess->size() == y.size() ? *ov.guess : y;
-      PeriodicOrbit orbit = periodicOrbit(model.system(), acc, po, guess);
-      r.stats += orbit.stats;
-      if (!orbit.converged) {
-        r.failure = fmt::format("scene `{}`: the periodic steady state was not found: {}", scene.name, orbit.failure);
-        return r;
-      }
-      y = orbit.y0;
-      r.orbit = orbit.y0;
-      r.period = T;
-      // Outputs over a whole orbit: a window shorter than its period (a fluctuation holding
-      // several mesh periods) is widened to it.
-      if (widenToPeriod(tp, T))
-        r.model.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", std::lround(T / Tz)));
-      r.stability = orbit.stability;
-      r.unstable = orbit.stability >= 1.0;
-      r.newtonIterations = orbit.iterations;
-      r.newtonResidual = orbit.residual;
-      r.model.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), {} by {}, {} Newton iteration{}, residual "
-                                    "{:.2e} of the state scale, largest Floquet multiplier {:.6f}",
-                                    T * 1e3, std::lround(T / Tz), std::lround(T / Tz) == 1 ? "" : "s",
-                                    po.linear ? "linear: the monodromy matrix" : "shooting with Newton",
-                                    orbit.variational ? "variational equations" : "differences", orbit.iterations,
-                                    orbit.iterations == 1 ? "" : "s", orbit.residual, orbit.stability));
-    }
-    Integrator integ(model.system(), acc);
-    double t = 0;
-    bool ok = integ.advance(t, y, tp.end, tp.samples, [&](double ts, const double* ys) {
-      MeshSignals s = model.signals(ts, ys);
-      // A settled run's first sample lies on its orbit at phase 0 (a whole number of periods).
-      if (samples.t.empty() && tp.steady == SteadyMethod::Settle) r.orbit.assign(ys, ys + model.system().dim);
-      samples.t.push_back(ts);
-      record(Signal::Displacement, s.displacement);
-      record(Signal::Velocity, s.velocity);
-      record(Signal::Acceleration, s.acceleration);
-      record(Signal::MeshForce, s.meshForce);
-      record(Signal::ContactForce, s.contactForce);
-      record(Signal::Stiffness, s.stiffness);
-      record(Signal::TransmissionError, s.transmissionError);
-      record(Signal::StaticTransmissionError, s.staticTransmissionError);
-      record(Signal::InputSpeed, s.inputSpeed);
-      record(Signal::OutputSpeed, s.outputSpeed);
-    });
-    r.stats += integ.stats();
-    if (!ok) failure = integ.error();
-    samples.staticLoad = p.staticLoad;
-    // `settle = N` integrates exactly N periods; whether the transient has died out there is
-    // measured: one more excitation period from the settled state must come back to it.
-    if (ok && tp.steady == SteadyMethod::Settle && r.orbit.size() == model.system().dim) {
-      double T = model.excitationPeriod();
-      if (T > 0) {
-        Integrator check(model.system(), acc);
-        std::vector<double> y1 = r.orbit;
-        double t0 = tp.statsFrom;  // the settled state's own time: the excitation's phase there
-        if (check.advance(t0, y1, tp.statsFrom + T, {}, [](double, const double*) {})) {
-          std::vector<double> d(y1.size());
-          for (size_t i = 0; i < d.size(); ++i) d[i] = y1[i] - r.orbit[i];
-          double settleResidual = scaledNorm(d, model.system().scale);
-          r.stats += check.stats();
-          if (settleResidual > std::max(1e-6, 1e3 * acc.rtol))
-            r.warnings.push_back(fmt::format("the transient has not died out after the settled periods: one more period moves the state "
-                                             "by {:.2e} of its scale; settle longer, or write `steady_state = periodic`",
-                                             settleResidual));
-        }
-      }
-    }
-    break;
+  MeshScene ms = meshSceneOf(m, a, scene, ov, acc, r.model);
+  MeshModel model(ms.params, ms.effects);
+  const MeshParameters& p = ms.params;
+  acc = ms.accuracy;
+  tp = ms.plan;
+  r.meshFrequency = ms.meshFrequency;
+  r.stepRule = ms.stepRule;
+  r.harmonics = ms.harmonics;
+  r.naturalFrequency = 1.0 / model.naturalPeriod();
+  r.steady = tp.steady;
+  std::vector<double> y = model.initialState();
+  // A transient may start from a given state (a study's run from another initial condition).
+  if (tp.steady != SteadyMethod::Periodic && ov.guess && ov.guess->size() == y.size()) y = *ov.guess;
+  if (tp.steady == SteadyMethod::Periodic && !steadyOrbit(model, ms, tp, scene, ov, acc, r, y)) return "";
+  Integrator integ(model.system(), acc);
+  double t = 0;
+  bool ok = integ.advance(t, y, tp.end, tp.samples, [&](double ts, const double* ys) {
+    MeshSignals s = model.signals(ts, ys);
+    // A settled run's first sample lies on its orbit at phase 0 (a whole number of periods).
+    if (samples.t.empty() && tp.steady == SteadyMethod::Settle) r.orbit.assign(ys, ys + model.system().dim);
+    samples.t.push_back(ts);
+    record(Signal::Displacement, s.displacement);
+    record(Signal::Velocity, s.velocity);
+    record(Signal::Acceleration, s.acceleration);
+    record(Signal::MeshForce, s.meshForce);
+    record(Signal::ContactForce, s.contactForce);
+    record(Signal::Stiffness, s.stiffness);
+    record(Signal::TransmissionError, s.transmissionError);
+    record(Signal::StaticTransmissionError, s.staticTransmissionError);
+    record(Signal::InputSpeed, s.inputSpeed);
+    record(Signal::OutputSpeed, s.outputSpeed);
+  });
+  r.stats += integ.stats();
+  samples.staticLoad = p.staticLoad;
+  if (!ok) return integ.error();
+  checkSettled(model, tp, acc, r);
+  return "";
+}
+
+// A scene on a planetary stage; the failure, or "".
+std::string runPlanetaryScene(const Model& m, const Evaluator& ev, const Assignment& a, int st, const ir::Scene& scene,
+                              const SceneOverrides& ov, const Accuracy& acc, SceneResult& r, Samples& samples, TimePlan& tp) {
+  double upstream = num(ev.ratioProduct(0, st, a), "the ratios upstream");
+  double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
+  double speed = num(ev.derived(st, Q::InputSpeed, a), "an input speed (`operating`)");
+  Elastic mat = materialOf(m, st);
+  bool periodic = ov.forcePeriodic || steadyMethod(scene, ov.settlePeriods) == SteadyMethod::Periodic;
+  PlanetaryRun pr = runPlanetary(ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
+                                 mat.assumed, periodic);
+  r.model = pr.provenance;
+  r.stats = pr.stats;
+  r.harmonics = pr.harmonics;
+  r.stepRule = pr.stepRule;
+  if (periodic) {
+    r.steady = SteadyMethod::Periodic;
+    r.stability = pr.stability;
+    r.unstable = pr.failure.empty() && pr.stability >= 1.0;
+    r.newtonIterations = pr.newtonIterations;
+    r.newtonResidual = pr.newtonResidual;
+    r.period = pr.period;
+    r.orbit = pr.orbit;
+  } else {
+    r.steady = pr.plan.steady;
   }
-  case SceneModel::Planetary: {
-    double upstream = num(ev.ratioProduct(0, st, a), "the ratios upstream");
-    double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
-    double speed = num(ev.derived(st, Q::InputSpeed, a), "an input speed (`operating`)");
-    Elastic mat = materialOf(m, st);
-    bool periodic = ov.forcePeriodic || steadyMethod(scene, ov.settlePeriods) == SteadyMethod::Periodic;
-    PlanetaryRun pr = runPlanetary(ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
-                                   mat.assumed, periodic);
-    r.model = pr.provenance;
-    r.stats = pr.stats;
-    r.harmonics = pr.harmonics;
-    r.stepRule = pr.stepRule;
-    if (periodic) {
-      r.steady = SteadyMethod::Periodic;
-      r.stability = pr.stability;
-      r.unstable = pr.failure.empty() && pr.stability >= 1.0;
-      r.newtonIterations = pr.newtonIterations;
-      r.newtonResidual = pr.newtonResidual;
-      r.period = pr.period;
-      r.orbit = pr.orbit;
-    } else {
-      r.steady = pr.plan.steady;
-    }
-    r.meshFrequency = pr.meshFrequency;
-    tp = pr.plan;
-    samples.t = pr.t;
-    samples.signals = pr.signals;
-    samples.staticLoad = pr.staticLoad;
-    samples.modes = pr.modes;
-    failure = pr.failure;
-    break;
-  }
-  case SceneModel::None: throw Failure{fmt::format("scenes on {} stages are not modelled", ir::stageKindName(stage.kind))};
-  }
-  if (!failure.empty()) {
-    r.failure = fmt::format("scene `{}`: {}", scene.name, failure);
-    return r;
-  }
+  r.meshFrequency = pr.meshFrequency;
+  tp = pr.plan;
+  samples.t = pr.t;
+  samples.signals = pr.signals;
+  samples.staticLoad = pr.staticLoad;
+  samples.modes = pr.modes;
+  return pr.failure;
+}
+
+// What the run says about itself: an unstable orbit, a linear mesh in tension.
+void runWarnings(const ir::Scene& scene, const SceneOverrides& ov, const Samples& samples, SceneResult& r) {
   r.stabilityNumber = {"stability", r.stability, {}, cat::SignalFn::Max, Signal::Stability};
   if (r.unstable && !ov.keepUnstable)
     r.warnings.push_back(fmt::format("scene `{}` has no steady response: its periodic solution is unstable (largest Floquet multiplier "
@@ -464,6 +460,10 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
           "linear mesh does not allow; list `backlash {{ clearance = …; }}` among the effects to model contact loss",
           *lo, samples.staticLoad));
   }
+}
+
+// The scene's outputs over the statistics window.
+void sceneOutputs(const ir::Scene& scene, const SceneOverrides& ov, const Samples& samples, const TimePlan& tp, SceneResult& r) {
   // Outputs over the statistics window.
   size_t first = static_cast<size_t>(std::lower_bound(samples.t.begin(), samples.t.end(), tp.statsFrom - 1e-12) - samples.t.begin());
   auto window = [&](Signal sig) {
@@ -506,6 +506,41 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
     if (dim == units::dims::force && std::isfinite(samples.staticLoad)) scale = std::max(scale, std::fabs(samples.staticLoad));
     r.numbers.push_back({o.key(), over(o.fn, window(o.id)), dim, o.fn, o.id, std::isfinite(scale) ? scale : 0.0});
   }
+}
+
+SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
+  SceneResult r;
+  r.name = scene.name;
+  r.target = scene.target;
+  Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
+  int st = scene.stage;
+  if (st < 0) {
+    bool timeDomain = std::any_of(scene.outputs.begin(), scene.outputs.end(), [](const ir::SceneOutput& o) { return o.id != Signal::Modes; });
+    if (timeDomain) return runWholeGearbox(m, ev, a, scene, ov, std::move(r));
+    return wholeGearboxModes(m, a, std::move(r));
+  }
+  const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
+  Accuracy acc = sceneAccuracy(scene, ov);
+  r.method = std::string(cat::methodSpec(acc.method).name);
+  r.rtol = acc.rtol;
+  r.atol = acc.atol > 0 ? acc.atol : acc.rtol;
+  Samples samples;
+  TimePlan tp;
+  std::string failure;
+  switch (m.info(st).kind->scene) {
+  case SceneModel::SingleMesh:
+    failure = runSingleMesh(m, a, scene, ov, acc, r, samples, tp);
+    if (failure.empty() && !r.failure.empty()) return r;  // no periodic orbit
+    break;
+  case SceneModel::Planetary: failure = runPlanetaryScene(m, ev, a, st, scene, ov, acc, r, samples, tp); break;
+  case SceneModel::None: throw Failure{fmt::format("scenes on {} stages are not modelled", ir::stageKindName(stage.kind))};
+  }
+  if (!failure.empty()) {
+    r.failure = fmt::format("scene `{}`: {}", scene.name, failure);
+    return r;
+  }
+  runWarnings(scene, ov, samples, r);
+  sceneOutputs(scene, ov, samples, tp, r);
   return r;
 }
 

@@ -55,6 +55,7 @@ enum class SteadyMethod {
 inline constexpr size_t kSignalCount = static_cast<size_t>(cat::Signal::Modes) + 1;
 using SignalSeries = std::array<std::vector<double>, kSignalCount>;
 inline std::vector<double>& series(SignalSeries& s, cat::Signal id) { return s[static_cast<size_t>(id)]; }
+inline const std::vector<double>& series(const SignalSeries& s, cat::Signal id) { return s[static_cast<size_t>(id)]; }
 
 struct SceneFailure {
   std::string what;
