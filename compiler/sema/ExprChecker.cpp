@@ -654,54 +654,7 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
   const ast::Expr* callee = e.args[0].get();
   std::vector<const ast::Expr*> argAst;
   for (size_t i = 1; i < e.args.size(); ++i) argAst.push_back(e.args[i].get());
-
-  // scene.fn(signal): a result of a scene.
-  if (callee && callee->kind == ast::ExprKind::Member) {
-    auto obj = check(callee->args[0].get(), s);
-    if (obj->type.isError()) return obj;
-    if (obj->type.kind != Type::Scene) {
-      diags_.error("E0220", callee->span, fmt::format("`{}` is not a function", ast::print(*callee)));
-      return error(e.span);
-    }
-    const std::string& fn = callee->text;
-    const SignalFnSpec* fnSpec = findSignalFn(fn);
-    if (!fnSpec) {
-      diags_.error("E0220", callee->span,
-                   fmt::format("`{}` is not a scene result function ({})", fn, signalFnList()));
-      return error(e.span);
-    }
-    if (argAst.size() == 1 && argAst[0] && argAst[0]->kind == ast::ExprKind::Call) {
-      diags_.error("E0232", e.span,
-                   fmt::format("`{}.{}({})`: a mesh's result of a whole-gearbox scene is reported, but cannot yet be read in an "
-                               "expression; run a scene on that stage to use its result in a rule, an objective or a column",
-                               obj->name, fn, ast::print(*argAst[0])));
-      return error(e.span);
-    }
-    if (argAst.size() != 1 || !argAst[0] || argAst[0]->kind != ast::ExprKind::Name) {
-      diags_.error("E0221", e.span, fmt::format("`{}` takes one signal, as in `{}.{}(acceleration)`", fn, obj->name, fn));
-      return error(e.span);
-    }
-    const std::string& sig = argAst[0]->text;
-    const auto* spec = findSignal(sig);
-    if (!spec) {
-      diags_.error("E0218", argAst[0]->span, fmt::format("scenes have no signal `{}`", sig));
-      return error(e.span);
-    }
-    const ast::Stmt* scene = s.gearbox->findScene(obj->name);
-    std::string key = fn + "(" + sig + ")";
-    bool declared = false;
-    for (const auto& st : scene->body)
-      if (st.kind == ast::StmtKind::Output)
-        for (const auto& o : st.exprs)
-          if (o && ast::print(*o) == key) declared = true;
-    if (!declared) {
-      diags_.error("E0218", e.span,
-                   fmt::format("scene `{}` does not output `{}`; add it to the scene's `output` list", obj->name, key));
-      return error(e.span);
-    }
-    Type t = fnSpec->number ? Type::number(spec->dim) : Type{Type::Signal, spec->dim, false, {}};
-    return make(Op::SceneOutput, t, e.span, obj->name + "." + key);
-  }
+  if (callee && callee->kind == ast::ExprKind::Member) return sceneResult(e, *callee, argAst, s);
   if (!callee || callee->kind != ast::ExprKind::Name) {
     diags_.error("E0220", callee ? callee->span : e.span, "only a named function can be called");
     return error(e.span);
@@ -726,6 +679,67 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
     bad = bad || args.back()->type.isError();
   }
   if (bad) return error(e.span);
+  if (auto made = argumentsByRule(*spec, args, e, s)) return made;
+  Type t;
+  if (!resultType(*spec, args, t)) return error(e.span);
+  auto n = make(Op::Call, std::move(t), e.span, fn);
+  n->fn = spec->id;
+  n->args = std::move(args);
+  return n;
+}
+
+ir::ExprPtr ExprChecker::sceneResult(const ast::Expr& e, const ast::Expr& calleeRef, const std::vector<const ast::Expr*>& argAst,
+                                     const Scope& s) {
+  const ast::Expr* callee = &calleeRef;
+  auto obj = check(callee->args[0].get(), s);
+  if (obj->type.isError()) return obj;
+  if (obj->type.kind != Type::Scene) {
+    diags_.error("E0220", callee->span, fmt::format("`{}` is not a function", ast::print(*callee)));
+    return error(e.span);
+  }
+  const std::string& fn = callee->text;
+  const SignalFnSpec* fnSpec = findSignalFn(fn);
+  if (!fnSpec) {
+    diags_.error("E0220", callee->span,
+                 fmt::format("`{}` is not a scene result function ({})", fn, signalFnList()));
+    return error(e.span);
+  }
+  if (argAst.size() == 1 && argAst[0] && argAst[0]->kind == ast::ExprKind::Call) {
+    diags_.error("E0232", e.span,
+                 fmt::format("`{}.{}({})`: a mesh's result of a whole-gearbox scene is reported, but cannot yet be read in an "
+                             "expression; run a scene on that stage to use its result in a rule, an objective or a column",
+                             obj->name, fn, ast::print(*argAst[0])));
+    return error(e.span);
+  }
+  if (argAst.size() != 1 || !argAst[0] || argAst[0]->kind != ast::ExprKind::Name) {
+    diags_.error("E0221", e.span, fmt::format("`{}` takes one signal, as in `{}.{}(acceleration)`", fn, obj->name, fn));
+    return error(e.span);
+  }
+  const std::string& sig = argAst[0]->text;
+  const auto* spec = findSignal(sig);
+  if (!spec) {
+    diags_.error("E0218", argAst[0]->span, fmt::format("scenes have no signal `{}`", sig));
+    return error(e.span);
+  }
+  const ast::Stmt* scene = s.gearbox->findScene(obj->name);
+  std::string key = fn + "(" + sig + ")";
+  bool declared = false;
+  for (const auto& st : scene->body)
+    if (st.kind == ast::StmtKind::Output)
+      for (const auto& o : st.exprs)
+        if (o && ast::print(*o) == key) declared = true;
+  if (!declared) {
+    diags_.error("E0218", e.span,
+                 fmt::format("scene `{}` does not output `{}`; add it to the scene's `output` list", obj->name, key));
+    return error(e.span);
+  }
+  Type t = fnSpec->number ? Type::number(spec->dim) : Type{Type::Signal, spec->dim, false, {}};
+  return make(Op::SceneOutput, t, e.span, obj->name + "." + key);
+}
+
+ir::ExprPtr ExprChecker::argumentsByRule(const FunctionSpec& specRef, std::vector<ir::ExprPtr>& args, const ast::Expr& e, const Scope& s) {
+  const FunctionSpec* spec = &specRef;
+  const std::string fn = e.args[0]->text;
   auto arity = [&]() {
     size_t lo = spec->minArgs, hi = spec->maxArgs;
     if (args.size() >= lo && args.size() <= hi) return true;
@@ -758,7 +772,6 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
                  fmt::format("unit mismatch: `{}` needs {}, got {}", fn, angleToo ? "an angle" : "a plain number", describe(args[0]->type)));
     return false;
   };
-  // The arguments against the row's rule.
   switch (spec->args) {
   case ArgRule::WholePlain:
     if (!arity() || !numbers()) return error(e.span);
@@ -767,7 +780,7 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
         diags_.error("E0306", a->span, fmt::format("`{}` takes whole numbers such as tooth counts, but this is {}", fn, describe(a->type)));
         return error(e.span);
       }
-    break;
+    return nullptr;
   case ArgRule::Baseline: {
     if (!arity() || !numbers()) return error(e.span);
     if (!s.hasBaseline) {
@@ -817,21 +830,24 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
       return error(e.span);
     }
     if (!numbers() || !sameDim()) return error(e.span);
-    break;
+    return nullptr;
   }
   case ArgRule::Any:
     if (!numbers() || !arity()) return error(e.span);
-    break;
+    return nullptr;
   case ArgRule::SameDim:
     if (!numbers() || !arity() || !sameDim()) return error(e.span);
-    break;
+    return nullptr;
   case ArgRule::AngleOrPlain:
   case ArgRule::Plain:
     if (!numbers() || !arity() || !plain(spec->args == ArgRule::AngleOrPlain)) return error(e.span);
-    break;
+    return nullptr;
   }
-  // The result's type from the row's rule.
-  Type t;
+  return nullptr;
+}
+
+bool ExprChecker::resultType(const FunctionSpec& specRef, const std::vector<ir::ExprPtr>& args, Type& t) {
+  const FunctionSpec* spec = &specRef;
   switch (spec->result) {
   case ResultRule::Plain: t = Type::number({}); break;
   case ResultRule::Whole: t = Type::number({}, true); break;
@@ -843,7 +859,7 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
     units::Dim d;
     if (!args[0]->type.dim.sqrt(d)) {
       diags_.error("E0303", args[0]->span, fmt::format("the square root of {} has no unit", describe(args[0]->type)));
-      return error(e.span);
+      return false;
     }
     t = Type::number(d);
     break;
@@ -852,10 +868,7 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
     t = Type::number(args[0]->type.dim, std::all_of(args.begin(), args.end(), [](auto& a) { return a->type.integer; }));
     break;
   }
-  auto n = make(Op::Call, std::move(t), e.span, fn);
-  n->fn = spec->id;
-  n->args = std::move(args);
-  return n;
+  return true;
 }
 
 } // namespace gbx::sema

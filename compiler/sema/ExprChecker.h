@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "catalogue/Functions.h"
 #include "diag/Diagnostic.h"
 #include "ir/Ir.h"
 #include "sema/Model.h"
@@ -52,6 +53,14 @@ private:
   ir::ExprPtr name(const ast::Expr& e, const Scope& s);
   ir::ExprPtr member(const ast::Expr& e, const Scope& s);
   ir::ExprPtr call(const ast::Expr& e, const Scope& s);
+  // `scene.fn(signal)`: a result of a scene.
+  ir::ExprPtr sceneResult(const ast::Expr& e, const ast::Expr& callee, const std::vector<const ast::Expr*>& argAst, const Scope& s);
+  // The arguments of a catalogue function against its row's rule: the node itself where the
+  // rule makes it (relative, worst, a per-gear reduction) or an error node; nullptr when a
+  // plain call follows.
+  ir::ExprPtr argumentsByRule(const cat::FunctionSpec& spec, std::vector<ir::ExprPtr>& args, const ast::Expr& e, const Scope& s);
+  // The result's type from the row's rule; false (reported) where it has none.
+  bool resultType(const cat::FunctionSpec& spec, const std::vector<ir::ExprPtr>& args, ir::Type& t);
   ir::ExprPtr binary(const ast::Expr& e, const Scope& s);
   ir::ExprPtr compare(const ast::Expr& e, const Scope& s);
   ir::ExprPtr tolerance(const ast::Expr& e, const Scope& s);
