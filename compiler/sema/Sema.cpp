@@ -512,64 +512,81 @@ private:
     std::map<std::string, const Stmt*> seen;
 
     // Stages first (in place, so `like` and overrides find them), `like` copies after.
+    std::vector<const Stmt*> likes = stagesOf(*model, decl, seen);
+    std::set<std::string> resolving;
+    for (const auto* l : likes) resolveLike(*model, *l, likes, resolving, name);
+    statementsOf(*model, decl, seen, name, origin);
+    auto* raw = model.get();
+    models_[name] = std::move(model);
+    return raw;
+  }
+
+  // A gearbox's own stages and `like` placeholders, in declaration order; the `like` statements.
+  std::vector<const Stmt*> stagesOf(GearboxModel& model, const Stmt& decl, std::map<std::string, const Stmt*>& seen) {
     std::vector<const Stmt*> likes;
     for (const auto& st : decl.body) {
       if (st.kind == StmtKind::Stage) {
         dupInBlock(seen, st, "stage");
-        replaceOrAdd(model->stages, makeStage(st), [](const StageModel& s) { return s.name; });
+        replaceOrAdd(model.stages, makeStage(st), [](const StageModel& s) { return s.name; });
       } else if (st.kind == StmtKind::Like) {
         dupInBlock(seen, st, "stage");
         StageModel placeholder;
         placeholder.name = st.name;
         placeholder.decl = &st;
         placeholder.likePending = true;
-        replaceOrAdd(model->stages, std::move(placeholder), [](const StageModel& s) { return s.name; });
+        replaceOrAdd(model.stages, std::move(placeholder), [](const StageModel& s) { return s.name; });
         likes.push_back(&st);
       }
     }
-    std::set<std::string> resolving;
-    std::function<void(const Stmt&)> resolveLike = [&](const Stmt& st) {
-      StageModel* target = model->findStage(st.name);
-      if (!target || !target->likePending) return;
-      std::string src = st.path.str();
-      StageModel* source = model->findStage(src);
-      if (!source || st.path.parts.size() != 1) {
-        std::vector<std::string> names;
-        for (const auto& s : model->stages) names.push_back(s.name);
-        std::string hint = closest(src, names);
-        diags_.error("E0207", st.path.span,
-                     fmt::format("stage `{}` is like `{}`, but gearbox `{}` has no stage `{}`{}", st.name, src, name, src,
-                                 suggestion(hint)));
-        target->likePending = false;
-        return;
-      }
-      if (source->likePending) {
-        if (resolving.count(src)) {
-          diags_.error("E0223", st.path.span, fmt::format("`like` cycle: stage `{}` is, in the end, like itself", st.name));
-          target->likePending = false;
-          return;
-        }
-        resolving.insert(st.name);
-        for (const auto* l : likes)
-          if (l->name == src) resolveLike(*l);
-        resolving.erase(st.name);
-        source = model->findStage(src);
-        target = model->findStage(st.name);
-      }
-      if (source->likePending || (source->likeOf.empty() && !source->kind && source->decl && source->decl->kind == StmtKind::Like)) {
-        target->likePending = false;
-        return;
-      }
-      StageModel copy = *source;
-      copy.name = st.name;
-      copy.decl = &st;
-      copy.likeOf = src;
-      for (auto& [p, b] : copy.attrs) b.origin = "like " + src;
-      for (auto& r : copy.rules) r.scope = st.name;
-      *target = std::move(copy);
-    };
-    for (const auto* l : likes) resolveLike(*l);
+    return likes;
+  }
 
+  // `stage b like a;`: b becomes a copy of a (resolving a first where it is a `like` too).
+  void resolveLike(GearboxModel& model, const Stmt& st, const std::vector<const Stmt*>& likes, std::set<std::string>& resolving,
+                   const std::string& name) {
+    StageModel* target = model.findStage(st.name);
+    if (!target || !target->likePending) return;
+    std::string src = st.path.str();
+    StageModel* source = model.findStage(src);
+    if (!source || st.path.parts.size() != 1) {
+      std::vector<std::string> names;
+      for (const auto& s : model.stages) names.push_back(s.name);
+      std::string hint = closest(src, names);
+      diags_.error("E0207", st.path.span,
+                   fmt::format("stage `{}` is like `{}`, but gearbox `{}` has no stage `{}`{}", st.name, src, name, src,
+                               suggestion(hint)));
+      target->likePending = false;
+      return;
+    }
+    if (source->likePending) {
+      if (resolving.count(src)) {
+        diags_.error("E0223", st.path.span, fmt::format("`like` cycle: stage `{}` is, in the end, like itself", st.name));
+        target->likePending = false;
+        return;
+      }
+      resolving.insert(st.name);
+      for (const auto* l : likes)
+        if (l->name == src) resolveLike(model, *l, likes, resolving, name);
+      resolving.erase(st.name);
+      source = model.findStage(src);
+      target = model.findStage(st.name);
+    }
+    if (source->likePending || (source->likeOf.empty() && !source->kind && source->decl && source->decl->kind == StmtKind::Like)) {
+      target->likePending = false;
+      return;
+    }
+    StageModel copy = *source;
+    copy.name = st.name;
+    copy.decl = &st;
+    copy.likeOf = src;
+    for (auto& [p, b] : copy.attrs) b.origin = "like " + src;
+    for (auto& r : copy.rules) r.scope = st.name;
+    *target = std::move(copy);
+  }
+
+  // Everything else a gearbox declares, onto its model (a variant's replaces its baseline's).
+  void statementsOf(GearboxModel& model, const Stmt& decl, std::map<std::string, const Stmt*>& seen, const std::string& name,
+                    const std::string& origin) {
     bool ownObjectives = false;
     for (const auto& st : decl.body) {
       switch (st.kind) {
@@ -577,16 +594,16 @@ private:
       case StmtKind::Like: break;
       case StmtKind::Let:
         dupInBlock(seen, st, "let");
-        replaceOrAdd(model->lets, &st, [](const Stmt* s) { return s->name; });
+        replaceOrAdd(model.lets, &st, [](const Stmt* s) { return s->name; });
         break;
-      case StmtKind::Require: model->rules.push_back({&st, ""}); break;
-      case StmtKind::Interchangeable: model->interchangeables.push_back(&st); break;
+      case StmtKind::Require: model.rules.push_back({&st, ""}); break;
+      case StmtKind::Interchangeable: model.interchangeables.push_back(&st); break;
       case StmtKind::Minimize:
       case StmtKind::Maximize:
         // A variant that states its own objectives replaces the baseline's.
-        if (!ownObjectives) model->objectives.clear();
+        if (!ownObjectives) model.objectives.clear();
         ownObjectives = true;
-        model->objectives.push_back(&st);
+        model.objectives.push_back(&st);
         break;
       case StmtKind::Operating:
         if (seen.count("operating")) {
@@ -594,28 +611,28 @@ private:
           break;
         }
         seen["operating"] = &st;
-        model->hasOperating = true;
+        model.hasOperating = true;
         for (const auto& a : st.body) {
           if (a.kind != StmtKind::Assign) {
             notAllowed(a, "`operating`");
             continue;
           }
-          replaceOrAdd(model->operating, std::make_pair(a.path.str(), Binding{&a, origin}),
+          replaceOrAdd(model.operating, std::make_pair(a.path.str(), Binding{&a, origin}),
                        [](const auto& p) { return p.first; });
         }
         break;
       case StmtKind::Scene:
         dupInBlock(seen, st, "scene");
-        replaceOrAdd(model->scenes, &st, [](const Stmt* s) { return s->name; });
+        replaceOrAdd(model.scenes, &st, [](const Stmt* s) { return s->name; });
         break;
       case StmtKind::Split:
         dupInBlock(seen, st, "split");
-        replaceOrAdd(model->splits, &st, [](const Stmt* s) { return s->name; });
-        model->splitOverrides.erase(st.name);
+        replaceOrAdd(model.splits, &st, [](const Stmt* s) { return s->name; });
+        model.splitOverrides.erase(st.name);
         break;
       case StmtKind::Study:
         dupInBlock(seen, st, "study");
-        replaceOrAdd(model->studies, &st, [](const Stmt* s) { return s->name; });
+        replaceOrAdd(model.studies, &st, [](const Stmt* s) { return s->name; });
         break;
       case StmtKind::Modify: {
         // One block per stage in a gearbox; a variant's block adds to or replaces the rules
@@ -628,16 +645,16 @@ private:
           d.notes.push_back({it->second->path.span, "first declared here"});
         }
         seen[key] = &st;
-        model->modifies.push_back(&st);
+        model.modifies.push_back(&st);
         break;
       }
       case StmtKind::Report:
         if (seen.count("report")) diags_.error("E0202", st.span, "duplicate declaration: this gearbox already has a `report` block");
         seen["report"] = &st;
-        model->report = &st;
+        model.report = &st;
         break;
       case StmtKind::Assign:
-      case StmtKind::Domain: override(*model, st, origin); break;
+      case StmtKind::Domain: override(model, st, origin); break;
       case StmtKind::Block:
         if (cat::blockOf(st.name) != cat::Block::Tolerances) {
           notAllowed(st, fmt::format("gearbox `{}`", name));
@@ -651,15 +668,12 @@ private:
             notAllowed(t, "`tolerances` (it lists `stage.attribute +- amount;`)");
             continue;
           }
-          replaceOrAdd(model->tolerances, &t, [](const Stmt* x) { return x->path.str(); });
+          replaceOrAdd(model.tolerances, &t, [](const Stmt* x) { return x->path.str(); });
         }
         break;
       default: notAllowed(st, fmt::format("gearbox `{}`", name));
       }
     }
-    auto* raw = model.get();
-    models_[name] = std::move(model);
-    return raw;
   }
 
   void override(GearboxModel& m, const Stmt& st, const std::string& origin) {
