@@ -1964,6 +1964,7 @@ private:
   ir::Setting domainSetting(const Stmt& b, const AttrSpec& spec, const Scope& gs) {
     ir::Setting s;
     s.name = spec.name;
+    s.key = spec.key != Q::None ? spec.key : cat::keyOf(spec.name).value_or(Q::None);
     s.dim = spec.dim;
     s.integer = spec.integer;
     s.span = b.span;
