@@ -1774,57 +1774,7 @@ private:
           break;
         }
         sweep = true;
-        out.kind = ir::Study::Sweep;
-        out.target = b.path.str();
-        const AttrSpec* swept = nullptr;
-        out.dim = sweepTarget(b.path, m, &swept);
-        auto [lo, hi] = checker_.checkRange(b.lo.get(), b.hi.get(), gs);
-        auto step = b.step && b.step->kind == ast::ExprKind::Number && !b.step->unit && b.hi && b.hi->unit
-                        ? checker_.literal(*b.step, &*b.hi->unit)
-                        : checker_.check(b.step.get(), gs);
-        // `limit`: a start or an end, which take the swept attribute's limits (a step does not).
-        auto bound = [&](ir::ExprPtr x, const char* what, bool limit) -> std::optional<Number> {
-          if (x->type.isError()) return std::nullopt;
-          if (!x->isConst()) {
-            diags_.error("E0410", x->span, fmt::format("the sweep's {} must be a constant", what));
-            return std::nullopt;
-          }
-          if (out.dim && x->type.dim != *out.dim) {
-            diags_.error("E0302", x->span,
-                         fmt::format("unit mismatch: `{}` is {}, but the sweep's {} is {}", out.target, out.dim->describe(), what,
-                                     describe(x->type)));
-            return std::nullopt;
-          }
-          // The values a sweep gives take the swept attribute's own limits (its step is its own).
-          if (!limit) return x->value;
-          if (swept && swept->positive && x->value.sign() <= 0) {
-            diags_.error("E0405", x->span, fmt::format("`{}` must be positive, but the sweep's {} is {}", out.target, what,
-                                                       units::showQuantity(x->value, x->type.dim)));
-            return std::nullopt;
-          }
-          if (swept && swept->budget && swept->atMost && x->value.compare(*swept->atMost) > 0) {
-            diags_.error("E0411", x->span, fmt::format("the sweep's {} {} is beyond the budget of {} for `{}` ({})", what, x->value.str(),
-                                                       swept->atMost->str(), out.target, swept->meaning));
-            return std::nullopt;
-          }
-          return x->value;
-        };
-        out.lo = bound(std::move(lo), "start", true);
-        out.hi = bound(std::move(hi), "end", true);
-        out.step = bound(std::move(step), "step", false);
-        // A sweep may run downwards (a down-sweep follows the upper branch of a jump).
-        if (out.lo && out.hi && out.lo->compare(*out.hi) == 0)
-          diags_.error("E0401", b.span, fmt::format("empty sweep: it starts and ends at {}", units::showQuantity(*out.lo, *out.dim)));
-        if (out.step && out.step->sign() <= 0) diags_.error("E0407", b.step->span, "the sweep's step must be positive");
-        else if (out.lo && out.hi && out.step) {
-          double points = std::fabs(out.hi->toDouble() - out.lo->toDouble()) / out.step->toDouble() + 1;
-          if (!(points <= static_cast<double>(cat::budget::kSweepPoints)))
-            diags_.error("E0411", b.step->span,
-                         fmt::format("{}: the sweep from {} to {} in steps of {} is {:.3g} points, beyond the budget of {} points "
-                                     "per sweep; take a larger step",
-                                     owner, units::showQuantity(*out.lo, *out.dim), units::showQuantity(*out.hi, *out.dim),
-                                     units::showQuantity(*out.step, *out.dim), points, cat::budget::kSweepPoints));
-        }
+        sweepOf(b, m, gs, owner, out);
         break;
       }
       case StmtKind::Of: {
@@ -1876,7 +1826,82 @@ private:
       else
         out.settings = settings(items, sweepSettings(), gs, owner, nameOr(st), "E0225");
     }
-    // Arclength continuation follows one scene's orbit: its outputs must read exactly one.
+    checkContinuation(out, owner);
+    for (const auto& [name, b] : domains) {
+      if (!wp) {
+        diags_.error("E0110", b->span, fmt::format("`{} in …` belongs in a work-precision study", name));
+        continue;
+      }
+      const AttrSpec* spec = nullptr;
+      for (const auto& s : workPrecisionSettings())
+        if (s.name == name) spec = &s;
+      if (!spec) {
+        diags_.error("E0214", b->path.span, fmt::format("`{}` is not a setting of a work-precision study (rtol, harmonics, methods)", name));
+        continue;
+      }
+      out.settings.push_back(domainSetting(*b, *spec, gs));
+    }
+    if (wp) checkRuns(out, st, owner);
+    return out;
+  }
+
+  // `sweep X in a..b step s;`: what is swept and its start, end and step.
+  void sweepOf(const Stmt& b, const GearboxModel& m, const Scope& gs, const std::string& owner, ir::Study& out) {
+    out.kind = ir::Study::Sweep;
+    out.target = b.path.str();
+    const AttrSpec* swept = nullptr;
+    out.dim = sweepTarget(b.path, m, &swept);
+    auto [lo, hi] = checker_.checkRange(b.lo.get(), b.hi.get(), gs);
+    auto step = b.step && b.step->kind == ast::ExprKind::Number && !b.step->unit && b.hi && b.hi->unit
+                    ? checker_.literal(*b.step, &*b.hi->unit)
+                    : checker_.check(b.step.get(), gs);
+    // `limit`: a start or an end, which take the swept attribute's limits (a step does not).
+    auto bound = [&](ir::ExprPtr x, const char* what, bool limit) -> std::optional<Number> {
+      if (x->type.isError()) return std::nullopt;
+      if (!x->isConst()) {
+        diags_.error("E0410", x->span, fmt::format("the sweep's {} must be a constant", what));
+        return std::nullopt;
+      }
+      if (out.dim && x->type.dim != *out.dim) {
+        diags_.error("E0302", x->span,
+                     fmt::format("unit mismatch: `{}` is {}, but the sweep's {} is {}", out.target, out.dim->describe(), what,
+                                 describe(x->type)));
+        return std::nullopt;
+      }
+      // The values a sweep gives take the swept attribute's own limits (its step is its own).
+      if (!limit) return x->value;
+      if (swept && swept->positive && x->value.sign() <= 0) {
+        diags_.error("E0405", x->span, fmt::format("`{}` must be positive, but the sweep's {} is {}", out.target, what,
+                                                   units::showQuantity(x->value, x->type.dim)));
+        return std::nullopt;
+      }
+      if (swept && swept->budget && swept->atMost && x->value.compare(*swept->atMost) > 0) {
+        diags_.error("E0411", x->span, fmt::format("the sweep's {} {} is beyond the budget of {} for `{}` ({})", what, x->value.str(),
+                                                   swept->atMost->str(), out.target, swept->meaning));
+        return std::nullopt;
+      }
+      return x->value;
+    };
+    out.lo = bound(std::move(lo), "start", true);
+    out.hi = bound(std::move(hi), "end", true);
+    out.step = bound(std::move(step), "step", false);
+    // A sweep may run downwards (a down-sweep follows the upper branch of a jump).
+    if (out.lo && out.hi && out.lo->compare(*out.hi) == 0)
+      diags_.error("E0401", b.span, fmt::format("empty sweep: it starts and ends at {}", units::showQuantity(*out.lo, *out.dim)));
+    if (out.step && out.step->sign() <= 0) diags_.error("E0407", b.step->span, "the sweep's step must be positive");
+    else if (out.lo && out.hi && out.step) {
+      double points = std::fabs(out.hi->toDouble() - out.lo->toDouble()) / out.step->toDouble() + 1;
+      if (!(points <= static_cast<double>(cat::budget::kSweepPoints)))
+        diags_.error("E0411", b.step->span,
+                     fmt::format("{}: the sweep from {} to {} in steps of {} is {:.3g} points, beyond the budget of {} points "
+                                 "per sweep; take a larger step",
+                                 owner, units::showQuantity(*out.lo, *out.dim), units::showQuantity(*out.hi, *out.dim),
+                                 units::showQuantity(*out.step, *out.dim), points, cat::budget::kSweepPoints));
+    }
+  }
+
+  // Arclength continuation follows one scene's orbit: its outputs must read exactly one.
+  void checkContinuation(const ir::Study& out, const std::string& owner) {
     if (const auto* c = ir::findSetting(out.settings, Q::Continuation); c && c->choice == cat::continuation::Arclength) {
       std::set<std::string> scenes;
       std::function<void(const ir::Expr&)> visit = [&](const ir::Expr& e) {
@@ -1893,39 +1918,26 @@ private:
                                                   "scenes ({}): give each its own study",
                                                   owner, scenes.size(), fmt::join(scenes, ", ")));
     }
-    for (const auto& [name, b] : domains) {
-      if (!wp) {
-        diags_.error("E0110", b->span, fmt::format("`{} in …` belongs in a work-precision study", name));
-        continue;
-      }
-      const AttrSpec* spec = nullptr;
-      for (const auto& s : workPrecisionSettings())
-        if (s.name == name) spec = &s;
-      if (!spec) {
-        diags_.error("E0214", b->path.span, fmt::format("`{}` is not a setting of a work-precision study (rtol, harmonics, methods)", name));
-        continue;
-      }
-      out.settings.push_back(domainSetting(*b, *spec, gs));
+  }
+
+  // The runs a work-precision study makes against their budget.
+  void checkRuns(const ir::Study& out, const Stmt& st, const std::string& owner) {
+    // Runs as the study makes them: per harmonic count, a reference and its check, then
+    // every method at every tolerance (8 tolerances when none are listed).
+    double harmonics = 1, methods = 1, rtols = 8;
+    for (const auto& set : out.settings) {
+      double n = !set.symbol.empty() ? static_cast<double>(std::count(set.symbol.begin(), set.symbol.end(), ',') + 1)
+                 : !set.members.empty() ? static_cast<double>(set.members.size())
+                 : set.lo && set.hi ? std::max(1.0, std::floor(set.hi->toDouble() - set.lo->toDouble()) + 1)
+                                    : 1;
+      (set.key == Q::Harmonics ? harmonics : set.key == Q::Methods ? methods : rtols) = n;
     }
-    if (wp) {
-      // Runs as the study makes them: per harmonic count, a reference and its check, then
-      // every method at every tolerance (8 tolerances when none are listed).
-      double harmonics = 1, methods = 1, rtols = 8;
-      for (const auto& set : out.settings) {
-        double n = !set.symbol.empty() ? static_cast<double>(std::count(set.symbol.begin(), set.symbol.end(), ',') + 1)
-                   : !set.members.empty() ? static_cast<double>(set.members.size())
-                   : set.lo && set.hi ? std::max(1.0, std::floor(set.hi->toDouble() - set.lo->toDouble()) + 1)
-                                      : 1;
-        (set.key == Q::Harmonics ? harmonics : set.key == Q::Methods ? methods : rtols) = n;
-      }
-      double runs = harmonics * (2 + methods * rtols);
-      if (!(runs <= static_cast<double>(cat::budget::kWorkPrecisionRuns)))
-        diags_.error("E0411", nameOr(st),
-                     fmt::format("{} asks for {:.0f} runs of its scene, beyond the budget of {} runs per work-precision study; "
-                                 "list fewer tolerances, harmonic counts or methods",
-                                 owner, runs, cat::budget::kWorkPrecisionRuns));
-    }
-    return out;
+    double runs = harmonics * (2 + methods * rtols);
+    if (!(runs <= static_cast<double>(cat::budget::kWorkPrecisionRuns)))
+      diags_.error("E0411", nameOr(st),
+                   fmt::format("{} asks for {:.0f} runs of its scene, beyond the budget of {} runs per work-precision study; "
+                               "list fewer tolerances, harmonic counts or methods",
+                               owner, runs, cat::budget::kWorkPrecisionRuns));
   }
 
   // E0411 when a constant is beyond its row's size budget (catalogue/Budgets.h).
