@@ -711,6 +711,61 @@ private:
 
   // ---- from models to IR ---------------------------------------------------------------
 
+  // E0211: no such attribute of the stage's kind, with the name it was likely meant to be.
+  void unknownAttribute(const StageModel& st, const std::string& path, Span where) {
+    std::vector<std::string> names;
+    for (const auto& x : st.kind->stage) names.push_back(x.name);
+    for (const auto& g : st.kind->gears)
+      for (const auto& x : st.kind->gear) names.push_back(g + "." + x.name);
+    std::string hint = closest(path, names);
+    std::string extra;
+    if (isKey(path, Q::Module) && (st.kind->kind == ir::StageKind::Spur || st.kind->kind == ir::StageKind::Helical))
+      hint = "normal_module";
+    if (isKey(path, Q::HelixAngle) && st.kind->kind == ir::StageKind::Spur) extra = " (a spur stage has no helix; use a helical stage)";
+    diags_.error("E0211", where,
+                 fmt::format("`{}` is not an attribute of a {} stage{}{}", path, st.kind->name, extra,
+                             suggestion(hint)));
+    // The attribute it was meant to be is then not "missing": one error, not two.
+    if (!hint.empty()) misspelt_.insert({st.name, hint});
+  }
+
+  // A bound of a domain of `path`: a constant number in the attribute's unit, whole where it
+  // counts, positive and within its row's limits and budgets.
+  std::optional<Number> boundOf(const AttrSpec& spec, const std::string& path, bool tooth, ir::ExprPtr x) {
+    if (x->type.isError()) return std::nullopt;
+    if (!x->type.isNumber()) {
+      diags_.error("E0306", x->span, fmt::format("a bound of `{}` must be a number, but this is {}", path, describe(x->type)));
+      return std::nullopt;
+    }
+    if (!x->isConst()) {
+      diags_.error("E0410", x->span, fmt::format("a bound of `{}` must be a constant", path));
+      return std::nullopt;
+    }
+    if (x->type.dim != spec.dim) {
+      diags_.error("E0302", x->span,
+                   fmt::format("unit mismatch: `{}` needs {}, got {}", path, spec.dim.describe(), describe(x->type)));
+      return std::nullopt;
+    }
+    if (spec.integer && !(x->value.isRational() && x->value.rational().isInteger())) {
+      diags_.error("E0403", x->span, fmt::format("`{}` takes whole numbers, got {}", path, x->value.str()));
+      return std::nullopt;
+    }
+    if (spec.positive && x->value.sign() <= 0) {
+      diags_.error(tooth ? "E0402" : "E0405", x->span,
+                   tooth ? fmt::format("a tooth count must be positive, got {}", x->value.str())
+                         : fmt::format("`{}` must be positive, got {}", path, units::showQuantity(x->value, x->type.dim)));
+      return std::nullopt;
+    }
+    if (beyondBudget(spec, path, *x)) return std::nullopt;
+    if (!spec.budget && outsideLimits(spec, path, *x, nullptr)) return std::nullopt;
+    if (spec.integer && (x->value.sign() < 0 ? x->value.neg() : x->value).compare(units::Number::exact(units::Rational(cat::budget::kWholeNumber))) > 0) {
+      diags_.error("E0411", x->span,
+                   fmt::format("`{}` = {} is beyond the budget of {} for a whole number", path, x->value.str(), cat::budget::kWholeNumber));
+      return std::nullopt;
+    }
+    return x->value;
+  }
+
   ir::Attribute attribute(const StageModel& st, const std::string& path, const Binding& b, const Scope& scope) {
     ir::Attribute a;
     a.name = path;
@@ -720,20 +775,7 @@ private:
     const AttrSpec* spec = findAttr(*st.kind, path);
     Span where = s.path.span;
     if (!spec) {
-      std::vector<std::string> names;
-      for (const auto& x : st.kind->stage) names.push_back(x.name);
-      for (const auto& g : st.kind->gears)
-        for (const auto& x : st.kind->gear) names.push_back(g + "." + x.name);
-      std::string hint = closest(path, names);
-      std::string extra;
-      if (isKey(path, Q::Module) && (st.kind->kind == ir::StageKind::Spur || st.kind->kind == ir::StageKind::Helical))
-        hint = "normal_module";
-      if (isKey(path, Q::HelixAngle) && st.kind->kind == ir::StageKind::Spur) extra = " (a spur stage has no helix; use a helical stage)";
-      diags_.error("E0211", where,
-                   fmt::format("`{}` is not an attribute of a {} stage{}{}", path, st.kind->name, extra,
-                               suggestion(hint)));
-      // The attribute it was meant to be is then not "missing": one error, not two.
-      if (!hint.empty()) misspelt_.insert({st.name, hint});
+      unknownAttribute(st, path, where);
       a.role = ir::Attribute::Fixed;
       return a;
     }
@@ -757,40 +799,7 @@ private:
       return a;
     }
     a.role = spec->integer ? ir::Attribute::Decision : ir::Attribute::Freedom;
-    auto checkBound = [&](ir::ExprPtr x) -> std::optional<Number> {
-      if (x->type.isError()) return std::nullopt;
-      if (!x->type.isNumber()) {
-        diags_.error("E0306", x->span, fmt::format("a bound of `{}` must be a number, but this is {}", path, describe(x->type)));
-        return std::nullopt;
-      }
-      if (!x->isConst()) {
-        diags_.error("E0410", x->span, fmt::format("a bound of `{}` must be a constant", path));
-        return std::nullopt;
-      }
-      if (x->type.dim != spec->dim) {
-        diags_.error("E0302", x->span,
-                     fmt::format("unit mismatch: `{}` needs {}, got {}", path, spec->dim.describe(), describe(x->type)));
-        return std::nullopt;
-      }
-      if (spec->integer && !(x->value.isRational() && x->value.rational().isInteger())) {
-        diags_.error("E0403", x->span, fmt::format("`{}` takes whole numbers, got {}", path, x->value.str()));
-        return std::nullopt;
-      }
-      if (spec->positive && x->value.sign() <= 0) {
-        diags_.error(tooth ? "E0402" : "E0405", x->span,
-                     tooth ? fmt::format("a tooth count must be positive, got {}", x->value.str())
-                           : fmt::format("`{}` must be positive, got {}", path, units::showQuantity(x->value, x->type.dim)));
-        return std::nullopt;
-      }
-      if (beyondBudget(*spec, path, *x)) return std::nullopt;
-      if (!spec->budget && outsideLimits(*spec, path, *x, nullptr)) return std::nullopt;
-      if (spec->integer && (x->value.sign() < 0 ? x->value.neg() : x->value).compare(units::Number::exact(units::Rational(cat::budget::kWholeNumber))) > 0) {
-        diags_.error("E0411", x->span,
-                     fmt::format("`{}` = {} is beyond the budget of {} for a whole number", path, x->value.str(), cat::budget::kWholeNumber));
-        return std::nullopt;
-      }
-      return x->value;
-    };
+    auto checkBound = [&](ir::ExprPtr x) { return boundOf(*spec, path, tooth, std::move(x)); };
     if (s.domain == ast::DomainKind::Range) {
       auto [lo, hi] = checker_.checkRange(s.lo.get(), s.hi.get(), scope);
       Span span = source::cover(lo->span, hi->span);
