@@ -1109,6 +1109,35 @@ private:
       if (state[name] == 0) visit(name);
   }
 
+  ir::Objective objective(const Stmt& st, const Scope& gs) {
+    ir::Objective o;
+    o.minimize = st.kind == StmtKind::Minimize;
+    o.expr = checker_.check(st.value.get(), gs);
+    worstSense(*o.expr, o.minimize ? 1 : -1);
+    if (!o.expr->type.isError() && !o.expr->type.isNumber())
+      diags_.error("E0306", o.expr->span,
+                   fmt::format("an objective must be a number to {}, but this is {}", o.minimize ? "minimize" : "maximize",
+                               describe(o.expr->type)));
+    o.text = st.value ? ast::print(*st.value) : "";
+    o.span = st.span;
+    return o;
+  }
+
+  // A stage's rules from its baseline's block and its own, one rule per target: a later rule
+  // for a target replaces the earlier one (as a `tolerances` line does).
+  static void mergeModify(std::vector<ir::Modify>& modifies, ir::Modify built) {
+    auto same = std::find_if(modifies.begin(), modifies.end(), [&](const ir::Modify& x) { return x.stage == built.stage; });
+    if (same == modifies.end()) {
+      modifies.push_back(std::move(built));
+      return;
+    }
+    for (auto& r : built.rules) {
+      auto old = std::find_if(same->rules.begin(), same->rules.end(), [&](const ir::ModRule& x) { return x.target == r.target; });
+      if (old != same->rules.end()) *old = std::move(r);
+      else same->rules.push_back(std::move(r));
+    }
+  }
+
   ir::Gearbox lowerGearbox(const GearboxModel& m) {
     ir::Gearbox g;
     g.name = m.name;
@@ -1186,19 +1215,7 @@ private:
     for (const auto& r : m.rules) g.rules.push_back(rule(*r.stmt, gs, ""));
 
     for (const auto* st : m.interchangeables) g.interchangeable.push_back(interchangeable(*st, m));
-    for (const auto* st : m.objectives) {
-      ir::Objective o;
-      o.minimize = st->kind == StmtKind::Minimize;
-      o.expr = checker_.check(st->value.get(), gs);
-      worstSense(*o.expr, o.minimize ? 1 : -1);
-      if (!o.expr->type.isError() && !o.expr->type.isNumber())
-        diags_.error("E0306", o.expr->span,
-                     fmt::format("an objective must be a number to {}, but this is {}", o.minimize ? "minimize" : "maximize",
-                                 describe(o.expr->type)));
-      o.text = st->value ? ast::print(*st->value) : "";
-      o.span = st->span;
-      g.objectives.push_back(std::move(o));
-    }
+    for (const auto* st : m.objectives) g.objectives.push_back(objective(*st, gs));
     // A let read in one direction by the rules and objectives takes it where it stands alone
     // too (a report column of it reads the same number as the rule).
     for (auto& l : g.lets)
@@ -1211,21 +1228,7 @@ private:
       checkOperating(m, g.operating, opDecl);
     }
     for (const auto* sc : m.scenes) g.scenes.push_back(scene(*sc, m, gs));
-    // A stage's rules from its baseline's block and its own, one rule per target: a later
-    // rule for a target replaces the earlier one (as a `tolerances` line does).
-    for (const auto* md : m.modifies) {
-      ir::Modify built = modify(*md, m, gs);
-      auto same = std::find_if(g.modifies.begin(), g.modifies.end(), [&](const ir::Modify& x) { return x.stage == built.stage; });
-      if (same == g.modifies.end()) {
-        g.modifies.push_back(std::move(built));
-        continue;
-      }
-      for (auto& r : built.rules) {
-        auto old = std::find_if(same->rules.begin(), same->rules.end(), [&](const ir::ModRule& x) { return x.target == r.target; });
-        if (old != same->rules.end()) *old = std::move(r);
-        else same->rules.push_back(std::move(r));
-      }
-    }
+    for (const auto* md : m.modifies) mergeModify(g.modifies, modify(*md, m, gs));
     for (const auto* sp : m.splits) g.splits.push_back(split(*sp, m, gs));
     for (const auto* sd : m.studies) g.studies.push_back(study(*sd, m, gs));
     if (m.report) g.report = report(*m.report, gs);

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <regex>
 #include <set>
+#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -99,6 +100,26 @@ std::vector<Hit> upwardIncludes(const fs::path& root) {
   };
   scan("compiler", {&runtime, &tools});
   scan("runtime", {&tools});
+  return hits;
+}
+
+std::vector<Hit> longFunctions(const std::string& ctagsOutput, int most) {
+  std::vector<Hit> hits;
+  std::istringstream in(ctagsOutput);
+  std::string row;
+  while (std::getline(in, row)) {
+    std::vector<std::string> f;
+    std::istringstream fields(row);
+    for (std::string x; std::getline(fields, x, '\t');) f.push_back(x);
+    if (f.size() < 4) continue;
+    long line = 0, end = 0;
+    for (size_t i = 3; i < f.size(); ++i) {
+      if (f[i].rfind("line:", 0) == 0) line = std::stol(f[i].substr(5));
+      if (f[i].rfind("end:", 0) == 0) end = std::stol(f[i].substr(4));
+    }
+    if (line > 0 && end >= line && end - line + 1 > most)
+      hits.push_back({f[1] + ":" + std::to_string(line), f[0] + " (" + std::to_string(end - line + 1) + " lines)"});
+  }
   return hits;
 }
 

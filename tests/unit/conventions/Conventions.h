@@ -22,4 +22,7 @@ std::vector<Hit> literalComparisons(const std::filesystem::path& dir);
 // tools/; in runtime/, one of tools/.
 std::vector<Hit> upwardIncludes(const std::filesystem::path& root);
 
+// The functions of a u-ctags listing (with `line:` and `end:` fields) longer than `most` lines.
+std::vector<Hit> longFunctions(const std::string& ctagsOutput, int most);
+
 } // namespace gbx::test

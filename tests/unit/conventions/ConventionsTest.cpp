@@ -1,6 +1,7 @@
 // Rules of the house that nothing else checks, kept as tests so they cannot erode:
 // names never decide (literal string comparisons stay under a ceiling), and the layers
 // include downwards only (compiler/ sees neither runtime/ nor tools/; runtime/ not tools/).
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -51,4 +52,21 @@ TEST(Conventions, ThePatternFindsEachForm) {
 TEST(Conventions, LayersIncludeDownwardsOnly) {
   auto up = upwardIncludes(kRoot);
   EXPECT_TRUE(up.empty()) << "includes that run up a layer:\n" << listed(up);
+}
+
+// No function in compiler/ or runtime/ runs over 120 lines, as Universal Ctags measures them
+// (its end line of each function definition): a function a newcomer must scroll through is
+// split by what it does.
+TEST(Conventions, NoFunctionOverAHundredAndTwentyLines) {
+  ASSERT_EQ(std::system("command -v ctags-universal >/dev/null 2>&1"), 0) << "universal-ctags is missing: run scripts/setup.sh";
+  std::string cmd = "cd '" + kRoot.string() + "' && ctags-universal --kinds-C++=f --fields=+ne -R --output-format=u-ctags -f - compiler runtime";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  ASSERT_EQ(pclose(pipe), 0);
+  auto long_ = longFunctions(out, 120);
+  EXPECT_GT(std::count(out.begin(), out.end(), '\n'), 500) << "ctags listed too few functions";
+  EXPECT_TRUE(long_.empty()) << "functions over 120 lines:\n" << listed(long_);
 }
