@@ -204,6 +204,9 @@ int solve(const Options& o, std::ostream& out, std::ostream& err) {
   // The report owns stdout: diagnostics go there only when they stop the solve.
   if (!c->ok()) return report(*c, o, out, err);
   if (!c->diags.all().empty()) err << c->diags.renderText(c->sources);
+  // A file of materials or presets alone has nothing to solve: said, not a silent empty report.
+  if (c->program.gearboxes.empty() && !o.quiet)
+    err << fmt::format("gbxc: `{}` declares no gearbox, so there is nothing to solve (`gbxc check` checks such a file)\n", o.files[0]);
   if (!o.gearbox.empty()) {
     bool found = false;
     for (const auto& g : c->program.gearboxes) found = found || g.name == o.gearbox;

@@ -60,6 +60,16 @@ TEST(Cli, ExitStatuses) {
   EXPECT_NE(missing.err.find("E0001"), std::string::npos);
 }
 
+// A file with no gearbox is solved to nothing, and `solve` says so.
+TEST(Cli, SolvingAFileWithoutAGearboxSaysSo) {
+  fs::path d = tempDir("no-gearbox");
+  write(d / "empty.gbx", "");
+  auto r = gbxc({"solve", (d / "empty.gbx").string()});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.err.find("declares no gearbox"), std::string::npos) << r.err;
+  fs::remove_all(d);
+}
+
 TEST(Cli, CheckAndDumpOfASpecExample) {
   fs::path spec = fs::path(GBX_SOURCE_DIR) / "specs" / "thruster_one_stage.gbx";
   auto r = gbxc({"check", spec.string()});
