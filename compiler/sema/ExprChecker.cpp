@@ -594,10 +594,16 @@ ir::ExprPtr ExprChecker::compare(const ast::Expr& e, const Scope& s) {
   }
   if (a->type.isError() || b->type.isError()) return error(e.span);
   if (a->type.dim != b->type.dim) {
+    // A bare number against a quantity with a unit: show it with the quantity's usual unit.
+    auto unit = units::displayUnitFor(a->type.dim);
+    std::string fix = rhs && rhs->kind == ast::ExprKind::Number && !rhs->unit && b->type.dim.dimensionless() && !unit.name.empty()
+                          ? fmt::format("; write it with a unit, as `{} {}`", rhs->text, unit.name)
+                          : "";
     diags_.error("E0303", e.span,
-                 fmt::format("dimension mismatch: cannot compare {} with {}", describe(a->type, writtenUnit(e.args[0].get())),
+                 fmt::format("dimension mismatch: cannot compare {} with {}{}", describe(a->type, writtenUnit(e.args[0].get())),
                              b->type.kind == Type::Interval ? b->type.dim.describe()
-                                                            : describe(b->type, writtenUnit(rhs))));
+                                                            : describe(b->type, writtenUnit(rhs)),
+                             fix));
     return error(e.span);
   }
   auto n = make(op, Type::boolean(), e.span);

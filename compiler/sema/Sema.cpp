@@ -1063,8 +1063,15 @@ private:
         continue;
       }
       if (x->type.dim != a->dim) {
+        // A bare number for a quantity with a unit: show it with the attribute's usual unit.
+        const ast::Expr* v = t->value.get();
+        auto unit = units::displayUnitFor(a->dim);
+        std::string fix = v && v->kind == ast::ExprKind::Number && !v->unit && x->type.dim.dimensionless() && !unit.name.empty()
+                              ? fmt::format("; write it with a unit, as `{} {}`", v->text, unit.name)
+                              : "";
         diags_.error("E0302", x->span,
-                     fmt::format("unit mismatch: `{}` is {}, its tolerance is {}", tol.target, describe(Type::number(a->dim)), describe(x->type)));
+                     fmt::format("unit mismatch: `{}` is {}, its tolerance is {}{}", tol.target, describe(Type::number(a->dim)),
+                                 describe(x->type), fix));
         continue;
       }
       if (x->value.sign() < 0) {
