@@ -234,12 +234,8 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
   // Without a scene in the rules or objectives, each candidate's freedoms are decided as the
   // search decides them (LANGUAGE.md §15): the same point, rounded to the printed digits, so an
   // unchanged variant reads relative(x) = 1 exactly.
-  auto readsScene = [](const ir::ExprPtr& e) { return ir::uses(e.get(), {ir::Op::SceneOutput}); };
-  bool scenes = std::any_of(m.gearbox.rules.begin(), m.gearbox.rules.end(), [&](const ir::Rule& r) { return readsScene(r.expr); }) ||
-                std::any_of(m.gearbox.objectives.begin(), m.gearbox.objectives.end(),
-                            [&](const ir::Objective& o) { return readsScene(o.expr); });
   std::unique_ptr<FreedomPlan> plan;
-  if (!scenes && !m.freedoms.empty()) plan = std::make_unique<FreedomPlan>(m);
+  if (!readsScenes(m.gearbox) && !m.freedoms.empty()) plan = std::make_unique<FreedomPlan>(m);
 
   std::vector<OptCandidate> out(candidates.size());
   std::vector<std::vector<std::pair<std::vector<double>, std::vector<double>>>> clouds(candidates.size());

@@ -500,17 +500,20 @@ double rankingKey(double v) {
 }
 
 
-bool needsOptimiser(const ir::Gearbox& g) {
-  auto walk = [](const ir::ExprPtr& e) { return ir::uses(e.get(), {Op::SceneOutput, Op::Relative, Op::Scatter}); };
+namespace {
+// Whether a rule or an objective of the gearbox uses one of `ops`.
+bool rulesOrObjectivesUse(const ir::Gearbox& g, std::initializer_list<Op> ops) {
+  auto walk = [&](const ir::ExprPtr& e) { return ir::uses(e.get(), ops); };
   return std::any_of(g.rules.begin(), g.rules.end(), [&](const ir::Rule& r) { return walk(r.expr); }) ||
          std::any_of(g.objectives.begin(), g.objectives.end(), [&](const ir::Objective& o) { return walk(o.expr); });
 }
+} // namespace
 
-bool needsScenes(const ir::Gearbox& g) {
-  auto walk = [](const ir::ExprPtr& e) { return ir::uses(e.get(), {Op::SceneOutput, Op::Relative}); };
-  return std::any_of(g.rules.begin(), g.rules.end(), [&](const ir::Rule& r) { return walk(r.expr); }) ||
-         std::any_of(g.objectives.begin(), g.objectives.end(), [&](const ir::Objective& o) { return walk(o.expr); });
-}
+bool needsOptimiser(const ir::Gearbox& g) { return rulesOrObjectivesUse(g, {Op::SceneOutput, Op::Relative, Op::Scatter}); }
+
+bool needsScenes(const ir::Gearbox& g) { return rulesOrObjectivesUse(g, {Op::SceneOutput, Op::Relative}); }
+
+bool readsScenes(const ir::Gearbox& g) { return rulesOrObjectivesUse(g, {Op::SceneOutput}); }
 
 namespace {
 

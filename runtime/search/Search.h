@@ -73,6 +73,8 @@ bool needsOptimiser(const ir::Gearbox& g);
 // True when one of them needs a scene result or `relative(…)` (the rest, `worst(…)` and
 // `mean(…)` of catalogue quantities, are cheap at a point: the freedoms are decided instead).
 bool needsScenes(const ir::Gearbox& g);
+// Whether a rule or an objective reads a scene's result.
+bool readsScenes(const ir::Gearbox& g);
 
 SearchResult search(const Model& m, const SearchOptions& options);
 

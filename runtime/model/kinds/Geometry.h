@@ -26,6 +26,13 @@ inline double workingPressureAngle(double alphaT, double alphaN, double zSum, do
   return xSum == 0 ? alphaT : inverseInvolute(involute(alphaT) + 2.0 * xSum * std::tan(alphaN) / zSum);
 }
 
+// The working centre distance of a spur pair (module m, pressure angle alpha) meshing without
+// backlash at the shifts x1, x2: a cos(alpha) / cos(alpha_w).
+inline double workingCenterDistance(double z1, double z2, double m, double alpha, double x1, double x2) {
+  double aw = workingPressureAngle(alpha, alpha, z1 + z2, x1 + x2);
+  return 0.5 * m * (z1 + z2) * std::cos(alpha) / std::cos(aw);
+}
+
 // Helical/spur pair with profile shifts: working centre distance, working pressure angle
 // and tip radii with the tip shortening. A given centre distance aw (> 0) sets the working
 // pressure angle (cos a_wt = a cos a_t / a_w); otherwise the pair meshes without backlash.

@@ -31,11 +31,8 @@ std::vector<DerivedRow> rows() {
          if (x1.isPoint() && x2.isPoint() && x3.isPoint() && x1.lo == 0 && x2.lo == 0 && x3.lo == 0) return unshifted;  // exact
          return arith::corners({c.at(Driver, Q::Z), c.at(Idler, Q::Z), c.at(Driven, Q::Z), c.at(Q::Module), c.at(Q::PressureAngle), x1, x2, x3},
                                [](const std::vector<double>& x) {
-                                 auto mesh = [&](double za, double zb, double xa, double xb) {
-                                   double aw = geometry::workingPressureAngle(x[4], x[4], za + zb, xa + xb);
-                                   return 0.5 * x[3] * (za + zb) * std::cos(x[4]) / std::cos(aw);
-                                 };
-                                 return mesh(x[0], x[1], x[5], x[6]) + mesh(x[1], x[2], x[6], x[7]);
+                                 return geometry::workingCenterDistance(x[0], x[1], x[3], x[4], x[5], x[6]) +
+                                        geometry::workingCenterDistance(x[1], x[2], x[3], x[4], x[6], x[7]);
                                });
        }},
       {Q::Speed, true,

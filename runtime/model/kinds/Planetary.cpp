@@ -33,10 +33,7 @@ std::vector<DerivedRow> rows() {
          Value xs = c.orZero(Sun, Q::Shift), xp = c.orZero(Planet, Q::Shift);
          if (xs.isPoint() && xp.isPoint() && xs.lo + xp.lo == 0) return unshifted;  // exact
          return arith::corners({c.at(Sun, Q::Z), c.at(Planet, Q::Z), c.at(Q::Module), c.at(Q::PressureAngle), xs, xp},
-                               [](const std::vector<double>& x) {
-                                 double aw = geometry::workingPressureAngle(x[3], x[3], x[0] + x[1], x[4] + x[5]);
-                                 return 0.5 * x[2] * (x[0] + x[1]) * std::cos(x[3]) / std::cos(aw);
-                               });
+                               [](const std::vector<double>& x) { return geometry::workingCenterDistance(x[0], x[1], x[2], x[3], x[4], x[5]); });
        }},
       // Absolute speeds: the sun drives, the ring stands, a planet turns at
       // w_c (1 - z_r / z_p) about its own axis.

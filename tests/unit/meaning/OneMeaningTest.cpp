@@ -456,14 +456,17 @@ double slidingBalance(double z1, double z2, double mn, double beta, double x1, d
   return zeta2A - zeta1E;
 }
 
-TEST(Geometry, SlidingAtAGivenCentreDistance) {
-  const std::string text = R"(gearbox G {
+// The 20/61 helical pair of the trial, without rating inputs; EXTRA is what a test adds.
+const char* kPair = R"(gearbox G {
   stage h: helical {
     pinion.z = 20;  wheel.z = 61;  normal_module = 3 mm;  helix_angle = 15 deg;  face_width = 30 mm;
-    SHIFTS
+    EXTRA
   }
 }
 )";
+
+TEST(Geometry, SlidingAtAGivenCentreDistance) {
+  const std::string text = replaced(kPair, "EXTRA", "SHIFTS");
   const double beta = 15 * M_PI / 180;
   Solved at128 = solve(replaced(text, "SHIFTS", "center_distance = 128 mm;"));
   EXPECT_NEAR(at128.value("h.sliding_balance"), slidingBalance(20, 61, 3e-3, beta, 0, 0, 0.128), 1e-9);
@@ -482,13 +485,7 @@ TEST(Geometry, SlidingAtAGivenCentreDistance) {
 // A pair with eps_alpha below 1 is said to be one even where no rule or rating reads it; the
 // same pair at its reference distance is not.
 TEST(Geometry, ContactRatioBelowOneIsWarned) {
-  const std::string text = R"(gearbox G {
-  stage h: helical {
-    pinion.z = 20;  wheel.z = 61;  normal_module = 3 mm;  helix_angle = 15 deg;  face_width = 30 mm;
-    DISTANCE
-  }
-}
-)";
+  const std::string text = replaced(kPair, "EXTRA", "DISTANCE");
   std::string r = report(replaced(text, "DISTANCE", "center_distance = 128 mm;"));
   EXPECT_NE(r.find("warning: stage `h` of design 1 has eps_alpha 0.9433, below 1"), std::string::npos) << r;
   std::string json = report(replaced(text, "DISTANCE", "center_distance = 128 mm;"), "json");
