@@ -8,72 +8,66 @@ namespace {
 
 using cat::Effect;
 
-double param(const ir::Effect& e, Q key, double dflt, const std::vector<double>& locals = {}) {
-  const ir::Setting* s = effectParam(&e, key);
-  return s ? settingValue(*s, locals) : dflt;
-}
-
 // A function-local table: ready whenever it is first asked for.
 const std::vector<EffectRow>& kRowsTable() {
   static const std::vector<EffectRow> rows = {
     {Effect::VaryingStiffness,
-     [](const ir::Effect& e, const SceneOverrides& ov, MeshParameters& p, MeshEffects& fx, std::vector<std::string>&) {
+     [](const SceneEffects& e, const SceneOverrides& ov, MeshParameters& p, MeshEffects& fx, std::vector<std::string>&) {
        fx.varyingStiffness = true;
-       fx.harmonics = ov.harmonics ? *ov.harmonics : static_cast<int>(param(e, Q::Harmonics, 5));
-       if (effectParam(&e, Q::Stiffness)) p.meanStiffness = param(e, Q::Stiffness, p.meanStiffness);
+       fx.harmonics = ov.harmonics ? *ov.harmonics : e.varying->harmonics;
+       if (e.varying->stiffness) p.meanStiffness = *e.varying->stiffness;
      },
-     false, true},
+     false, true, true},
     {Effect::Damping,
-     [](const ir::Effect& e, const SceneOverrides&, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
+     [](const SceneEffects& e, const SceneOverrides&, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
        fx.damping = true;
-       fx.dampingRatio = param(e, Q::DampingRatio, 0);
-       fx.dampingCoefficient = effectParam(&e, Q::Coefficient) ? param(e, Q::Coefficient, 0) : -1;
+       fx.dampingRatio = e.damping->ratio;
+       fx.dampingCoefficient = e.damping->coefficient.value_or(-1);
      },
-     false, true},
+     false, true, true},
     {Effect::TransmissionError,
-     [](const ir::Effect& e, const SceneOverrides&, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
+     [](const SceneEffects& e, const SceneOverrides&, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
        fx.transmissionError = true;
-       fx.teMean = param(e, Q::Mean, 0);
-       fx.teAmplitude = param(e, Q::Amplitude, 0);
-       fx.tePhase = param(e, Q::Phase, 0);
+       fx.teMean = e.transmissionError->mean;
+       fx.teAmplitude = e.transmissionError->amplitude;
+       fx.tePhase = e.transmissionError->phase;
      },
-     false, true},
+     false, true, false},
     {Effect::Backlash,
-     [](const ir::Effect& e, const SceneOverrides&, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
+     [](const SceneEffects& e, const SceneOverrides&, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
        fx.backlash = true;
-       fx.clearance = param(e, Q::Clearance, 0);
+       fx.clearance = e.backlash->clearance;
      },
-     false, true},
+     false, true, true},
     {Effect::HertzContact,
-     [](const ir::Effect& e, const SceneOverrides&, MeshParameters& p, MeshEffects& fx, std::vector<std::string>& prov) {
+     [](const SceneEffects& e, const SceneOverrides&, MeshParameters& p, MeshEffects& fx, std::vector<std::string>& prov) {
        fx.hertz = true;
-       fx.hertzExponent = param(e, Q::Exponent, 1.5);
-       fx.penetrationRamp = param(e, Q::PenetrationRamp, 0);
+       fx.hertzExponent = e.hertz->exponent;
+       fx.penetrationRamp = e.hertz->penetrationRamp;
        // The damping may be written over the contact stiffness (`0.01 * stiffness`).
-       fx.hertzDamping = param(e, Q::Damping, 0, {adamsStiffness(p.hertzStiffness, fx.hertzExponent)});
+       fx.hertzDamping = e.hertz->damping({adamsStiffness(p.hertzStiffness, fx.hertzExponent)});
        prov.push_back(fmt::format("Hertz stiffness {:.6g} N/m^{} = 4/3 sqrt(R) E*, R = {:.4g} mm", p.hertzStiffness, fx.hertzExponent,
                                   p.hertzRadius * 1e3));
      },
-     false, true},
-    {Effect::SpeedFluctuation, nullptr, true, true},
+     false, true, true},
+    {Effect::SpeedFluctuation, nullptr, true, true, true},
     {Effect::TorqueFluctuation,
-     [](const ir::Effect& e, const SceneOverrides&, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
+     [](const SceneEffects& e, const SceneOverrides&, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
        fx.torqueFluctuation = true;
-       fx.torqueMean = param(e, Q::Mean, 0);
-       fx.torqueAmplitude = param(e, Q::Amplitude, 0);
-       fx.torqueOmega = angularFrequency(*effectParam(&e, Q::Frequency));
+       fx.torqueMean = e.torque->mean;
+       fx.torqueAmplitude = e.torque->amplitude;
+       fx.torqueOmega = e.torque->omega;
      },
-     false, true},
+     false, true, true},
     // The tables need the flank geometry: the scene computes them once the effects are read.
     {Effect::LoadedMesh,
-     [](const ir::Effect& e, const SceneOverrides& ov, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
+     [](const SceneEffects& e, const SceneOverrides& ov, MeshParameters&, MeshEffects& fx, std::vector<std::string>&) {
        fx.loadedMesh = true;
-       fx.slices = static_cast<int>(param(e, Q::Slices, 40)) * ov.loadedRefine;
-       fx.positions = static_cast<int>(param(e, Q::Positions, 64)) * ov.loadedRefine;
-       int h = effectParam(&e, Q::Harmonics) ? static_cast<int>(param(e, Q::Harmonics, 16)) : static_cast<int>(param(e, Q::Positions, 64)) / 4;
-       fx.loadedHarmonics = ov.harmonics ? *ov.harmonics : h;
+       fx.slices = e.loaded->slices * ov.loadedRefine;
+       fx.positions = e.loaded->positions * ov.loadedRefine;
+       fx.loadedHarmonics = ov.harmonics ? *ov.harmonics : e.loaded->tableHarmonics();
      },
-     false, false},
+     false, false, true},
   };
   return rows;
 }

@@ -10,7 +10,8 @@
 
 namespace gbx::rt::dyn {
 
-using MeshApply = void (*)(const ir::Effect& e, const SceneOverrides& ov, MeshParameters& p, MeshEffects& fx,
+// Reads the effect's own row of the planned effects.
+using MeshApply = void (*)(const SceneEffects& e, const SceneOverrides& ov, MeshParameters& p, MeshEffects& fx,
                            std::vector<std::string>& provenance);
 
 struct EffectRow {
@@ -18,6 +19,7 @@ struct EffectRow {
   MeshApply mesh;   // nullptr: the effect acts through the drive (sceneDrive)
   bool drive;       // shapes the drive's speed
   bool planetary;   // the planetary model implements it
+  bool gearbox;     // the whole-gearbox model implements it
 };
 
 const std::vector<EffectRow>& effectRows();

@@ -11,6 +11,7 @@
 #include "catalogue/StageKinds.h"
 #include "dynamics/Dispatch.h"
 #include "dynamics/Drive.h"
+#include "dynamics/Effects.h"
 #include "dynamics/LoadedMesh.h"
 #include "dynamics/LoadedMeshInputs.h"
 #include "dynamics/Lumped.h"
@@ -20,7 +21,6 @@ namespace gbx::rt::dyn {
 
 namespace {
 
-using cat::Effect;
 
 // One mesh: its deflection along the line of action is sum coef[k] q[dof[k]] over at most
 // three members (dof -1: the driven input, whose angle is prescribed).
@@ -273,7 +273,7 @@ double need(const Value& v, const std::string& what) { return needNumber(v, what
 // tables, the damping, the modes at the static load, and the integration.
 class GearboxAssembly {
 public:
-  GearboxAssembly(const Model& model, const Evaluator& evaluator, const Assignment& design, const ir::Scene& sc, Accuracy accuracy,
+  GearboxAssembly(const Model& model, const Evaluator& evaluator, const Assignment& design, const ScenePlan& sc, Accuracy accuracy,
                   const SceneOverrides& overrides)
       : m(model), ev(evaluator), a(design), scene(sc), acc(accuracy), ov(overrides), prov(run.provenance) {}
 
@@ -302,12 +302,18 @@ private:
   const Model& m;
   const Evaluator& ev;
   const Assignment& a;
-  const ir::Scene& scene;
+  const ScenePlan& scene;
   Accuracy acc;
   const SceneOverrides& ov;
   GearboxRun run;
   std::vector<std::string>& prov;
-  const ir::Effect *hertz = nullptr, *varying = nullptr, *damping = nullptr, *torqueFx = nullptr, *backlash = nullptr, *loadedFx = nullptr;
+  // The listed effects, each null where the scene does not list it.
+  const SceneEffects::Hertz* hertz = nullptr;
+  const SceneEffects::Varying* varying = nullptr;
+  const SceneEffects::Damping* damping = nullptr;
+  const SceneEffects::Fluctuation* torqueFx = nullptr;
+  const SceneEffects::Backlash* backlash = nullptr;
+  const SceneEffects::Loaded* loadedFx = nullptr;
   Params P;
   int harmonics = 0;
   // Members: the driven input shaft first (prescribed), then one per shaft, carrier, planet, idler.
@@ -329,19 +335,19 @@ private:
   // ---- effects ----------------------------------------------------------------------------
 
   void effects() {
-    for (const auto& fx : scene.effects)
-      if (fx.kind != Effect::HertzContact && fx.kind != Effect::Backlash && fx.kind != Effect::VaryingStiffness && fx.kind != Effect::Damping &&
-          fx.kind != Effect::SpeedFluctuation && fx.kind != Effect::TorqueFluctuation && fx.kind != Effect::LoadedMesh)
+    for (const auto& fx : scene.listed)
+      if (const EffectRow* row = effectRow(fx.kind); !row || !row->gearbox)
         throw SceneFailure{fmt::format("effect `{}` is not modelled in a whole-gearbox scene (it takes hertz_contact, backlash, "
                                        "varying_stiffness, loaded_mesh, damping, speed_fluctuation and torque_fluctuation)",
                                        fx.name)};
     if (!m.gearbox.splits.empty()) throw SceneFailure{"a whole-gearbox scene of a power split is not modelled: run the scene on a stage"};
-    hertz = scene.findEffect(Effect::HertzContact);
-    varying = scene.findEffect(Effect::VaryingStiffness);
-    damping = scene.findEffect(Effect::Damping);
-    torqueFx = scene.findEffect(Effect::TorqueFluctuation);
-    backlash = scene.findEffect(Effect::Backlash);
-    loadedFx = scene.findEffect(Effect::LoadedMesh);
+    auto listed = [](const auto& fx) { return fx ? &*fx : nullptr; };
+    hertz = listed(scene.fx.hertz);
+    varying = listed(scene.fx.varying);
+    damping = listed(scene.fx.damping);
+    torqueFx = listed(scene.fx.torque);
+    backlash = listed(scene.fx.backlash);
+    loadedFx = listed(scene.fx.loaded);
     if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
     if (loadedFx && (hertz || backlash || varying))
       throw SceneFailure{"`loaded_mesh` gives every mesh its stiffness and separation from the flanks: list it without hertz_contact, backlash "
@@ -351,11 +357,11 @@ private:
         if (st.ir->kind != ir::StageKind::Spur && st.ir->kind != ir::StageKind::Helical)
           throw SceneFailure{fmt::format("`loaded_mesh` models spur and helical pairs; stage `{}` is {}", st.ir->name, ir::stageKindName(st.ir->kind))};
     if (hertz) {
-      if (const auto* s = effectParam(hertz, Q::Exponent)) P.e = settingValue(*s);
-      if (const auto* s = effectParam(hertz, Q::PenetrationRamp)) P.ramp = settingValue(*s);
+      P.e = hertz->exponent;
+      P.ramp = hertz->penetrationRamp;
     }
-    if (backlash) P.halfClearance = 0.5 * settingValue(*effectParam(backlash, Q::Clearance));
-    harmonics = varying ? (ov.harmonics ? *ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)))) : 0;
+    if (backlash) P.halfClearance = 0.5 * backlash->clearance;
+    harmonics = varying ? (ov.harmonics ? *ov.harmonics : varying->harmonics) : 0;
     run.harmonics = harmonics;
   }
 
@@ -396,8 +402,7 @@ private:
     me.phaseGain = sense * gain;
     me.phase0 = phase0;
     me.meshFrequency = at.fz;
-    if (hertz)
-      if (const auto* hd = effectParam(hertz, Q::Damping)) me.hertzDamping = settingValue(*hd, {adamsStiffness(K, P.e)});
+    if (hertz) me.hertzDamping = hertz->damping({adamsStiffness(K, P.e)});
     P.meshes.push_back(me);
   }
   double width(const StageAt& at, double mod) {
@@ -570,9 +575,9 @@ private:
   void load() {
     P.tMean = need(ev.gearboxQuantity(Q::OutputTorque, a), "an output torque (`operating`)");
     if (torqueFx) {
-      P.tMean = settingValue(*effectParam(torqueFx, Q::Mean));
-      P.tAmp = settingValue(*effectParam(torqueFx, Q::Amplitude));
-      P.tOmega = angularFrequency(*effectParam(torqueFx, Q::Frequency));
+      P.tMean = torqueFx->mean;
+      P.tAmp = torqueFx->amplitude;
+      P.tOmega = torqueFx->omega;
       prov.push_back("load torque mean + amplitude sin(frequency t) on the output");
     }
     speed = need(ev.gearboxQuantity(Q::InputSpeed, a), "an input speed (`operating`)");
@@ -613,12 +618,8 @@ private:
 
   // loaded_mesh: each pair's thin-slice tables at its static load; the mesh force k (x - u).
   void loadedMeshes() {
-    auto param = [&](Q key, int dflt) {
-      const auto* s = effectParam(loadedFx, key);
-      return s ? static_cast<int>(settingValue(*s)) : dflt;
-    };
-    int slices = param(Q::Slices, 40) * ov.loadedRefine, positions = param(Q::Positions, 64) * ov.loadedRefine;
-    int H = ov.harmonics ? *ov.harmonics : param(Q::Harmonics, param(Q::Positions, 64) / 4);
+    int slices = loadedFx->slices * ov.loadedRefine, positions = loadedFx->positions * ov.loadedRefine;
+    int H = ov.harmonics ? *ov.harmonics : loadedFx->tableHarmonics();
     run.harmonics = H;
     for (long i = 0; i < nm; ++i) {
       GMesh& me = P.meshes[static_cast<size_t>(i)];
@@ -643,14 +644,14 @@ private:
   // along its line of action.
   void meshDamping() {
     for (auto& me : P.meshes) {
-      if (const auto* s = effectParam(damping, Q::Coefficient)) {
-        me.c = settingValue(*s);
+      if (damping->coefficient) {
+        me.c = *damping->coefficient;
         continue;
       }
       double inv = 0;
       for (int k = 0; k < me.n; ++k)
         if (me.dof[static_cast<size_t>(k)] >= 0) inv += me.coef[static_cast<size_t>(k)] * me.coef[static_cast<size_t>(k)] / P.J[static_cast<size_t>(me.dof[static_cast<size_t>(k)])];
-      me.c = 2.0 * settingValue(*effectParam(damping, Q::DampingRatio)) * std::sqrt(me.kLinear / inv);
+      me.c = 2.0 * damping->ratio * std::sqrt(me.kLinear / inv);
     }
   }
 
@@ -775,7 +776,7 @@ private:
 
 } // namespace
 
-GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ir::Scene& scene, Accuracy acc,
+GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ScenePlan& scene, Accuracy acc,
                       const SceneOverrides& ov) {
   return GearboxAssembly(m, ev, a, scene, acc, ov).build();
 }

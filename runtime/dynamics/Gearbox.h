@@ -36,7 +36,7 @@ struct GearboxRun {
   std::string failure;
 };
 
-GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ir::Scene& scene, Accuracy acc,
+GearboxRun runGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ScenePlan& scene, Accuracy acc,
                       const SceneOverrides& ov);
 
 } // namespace gbx::rt::dyn

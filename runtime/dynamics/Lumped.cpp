@@ -69,11 +69,7 @@ private:
   int splitStage = -1, branches = 1;
   std::vector<int> shaft;
 
-  double density(int st) const {
-    if (const auto* x = m.material(st))
-      if (const auto* s = ir::findSetting(x->properties, Q::Density); s && s->value) return s->value->toDouble();
-    return 7850.0;
-  }
+  double density(int st) const { return m.info(st).elastic.density; }
   double faceWidth(int st) const {
     Value b = ev.attribute(st, Q::FaceWidth, a);
     if (b.isNumber()) return b.mid();

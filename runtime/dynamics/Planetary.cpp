@@ -261,7 +261,7 @@ public:
     const Evaluator& ev;
     const Assignment& a;
     int st;
-    const ir::Scene& scene;
+    const ScenePlan& scene;
     Accuracy acc;
     const SceneOverrides& ov;
     double upstream, downstream, speed, E, nu, density;
@@ -292,7 +292,7 @@ private:
   const Evaluator& ev;
   const Assignment& a;
   const int st;
-  const ir::Scene& scene;
+  const ScenePlan& scene;
   Accuracy acc;  // its maximum step is set from the modes
   PlanetaryRun run;
   std::vector<std::string>& prov;
@@ -302,7 +302,13 @@ private:
   double Jp = 0, JcEff = 0;
   // Contact.
   double Ksp = 0, Krp = 0, e = 1.5, ramp = 0, hertzDampingSp = 0, hertzDampingRp = 0, kLinSp = 0, kLinRp = 0;
-  const ir::Effect *hertz = nullptr, *varying = nullptr, *damping = nullptr, *torqueFx = nullptr, *te = nullptr, *backlash = nullptr;
+  // The listed effects, each null where the scene does not list it.
+  const SceneEffects::Hertz* hertz = nullptr;
+  const SceneEffects::Varying* varying = nullptr;
+  const SceneEffects::Damping* damping = nullptr;
+  const SceneEffects::Fluctuation* torqueFx = nullptr;
+  const SceneEffects::TransmissionError* te = nullptr;
+  const SceneEffects::Backlash* backlash = nullptr;
   // Load, drive, time scales.
   double tMean = 0, tAmp = 0, tOmega = 0, ratio = 1, Tz = 0, Tn = 0, F0 = 0;
   Drive drive;
@@ -350,29 +356,27 @@ private:
   // subtract (the source paper adds them; DOMAIN.md §2). Every listed effect must be one the
   // planetary model implements (its registry row says).
   void contact() {
-    using cat::Effect;
     double Estar = in_.E / (2.0 * (1.0 - in_.nu * in_.nu));
     double rhoS = rbs * std::tan(alpha), rhoP = rbp * std::tan(alpha), rhoR = rbr * std::tan(alpha);
     double Rsp = 1.0 / (1.0 / rhoS + 1.0 / rhoP), Rrp = 1.0 / (1.0 / rhoP - 1.0 / rhoR);
     Ksp = 4.0 / 3.0 * std::sqrt(Rsp) * Estar;
     Krp = 4.0 / 3.0 * std::sqrt(Rrp) * Estar;
-    for (const auto& fx : scene.effects)
+    for (const auto& fx : scene.listed)
       if (const EffectRow* row = effectRow(fx.kind); !row || !row->planetary)
         throw SceneFailure{fmt::format("effect `{}` is not modelled on planetary stages", fx.name)};
-    hertz = scene.findEffect(Effect::HertzContact);
-    varying = scene.findEffect(Effect::VaryingStiffness);
-    damping = scene.findEffect(Effect::Damping);
-    torqueFx = scene.findEffect(Effect::TorqueFluctuation);
-    te = scene.findEffect(Effect::TransmissionError);
-    backlash = scene.findEffect(Effect::Backlash);
+    auto listed = [](const auto& fx) { return fx ? &*fx : nullptr; };
+    hertz = listed(scene.fx.hertz);
+    varying = listed(scene.fx.varying);
+    damping = listed(scene.fx.damping);
+    torqueFx = listed(scene.fx.torque);
+    te = listed(scene.fx.transmissionError);
+    backlash = listed(scene.fx.backlash);
     if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
     if (hertz) {
-      if (const auto* s = effectParam(hertz, Q::Exponent)) e = settingValue(*s);
-      if (const auto* s = effectParam(hertz, Q::PenetrationRamp)) ramp = settingValue(*s);
-      if (const auto* s = effectParam(hertz, Q::Damping)) {
-        hertzDampingSp = settingValue(*s, {adamsStiffness(Ksp, e)});
-        hertzDampingRp = settingValue(*s, {adamsStiffness(Krp, e)});
-      }
+      e = hertz->exponent;
+      ramp = hertz->penetrationRamp;
+      hertzDampingSp = hertz->damping({adamsStiffness(Ksp, e)});
+      hertzDampingRp = hertz->damping({adamsStiffness(Krp, e)});
       prov.push_back(fmt::format("Hertz stiffness sun-planet {:.4g}, ring-planet {:.4g} N/m^{} (R = {:.3f} / {:.3f} mm, internal curvature subtracted)",
                                  Ksp, Krp, e, Rsp * 1e3, Rrp * 1e3));
     }
@@ -384,9 +388,9 @@ private:
     double outTorque = need(ev.gearboxQuantity(Q::OutputTorque, a), "an output torque (`operating`)");
     tMean = outTorque / in_.downstream;
     if (torqueFx) {
-      tMean = settingValue(*effectParam(torqueFx, Q::Mean)) / in_.downstream;
-      tAmp = settingValue(*effectParam(torqueFx, Q::Amplitude)) / in_.downstream;
-      tOmega = angularFrequency(*effectParam(torqueFx, Q::Frequency));
+      tMean = torqueFx->mean / in_.downstream;
+      tAmp = torqueFx->amplitude / in_.downstream;
+      tOmega = torqueFx->omega;
       prov.push_back("load torque mean + amplitude sin(frequency t) at the gearbox output, brought to the carrier");
     }
     ratio = 1.0 + zr / zs;
@@ -409,7 +413,7 @@ private:
 
   void variation() {
     if (!varying) return;
-    int harmonics = in_.ov.harmonics ? *in_.ov.harmonics : static_cast<int>(settingValue(*effectParam(varying, Q::Harmonics)));
+    int harmonics = in_.ov.harmonics ? *in_.ov.harmonics : varying->harmonics;
     run.harmonics = harmonics;
     double eSp = epsAlphaStandard(zs, zp, mod, alpha, false);
     fourier = contactLineSeries(eSp, 0.0, harmonics);
@@ -425,19 +429,19 @@ private:
       meshes.push_back({Ksp, std::fmod(zs * i / static_cast<double>(N), 1.0), false, i});
       meshes.push_back({Krp, 1.0 - std::fmod(zr * i / static_cast<double>(N), 1.0), true, i});
     }
-    halfClearance = backlash ? 0.5 * settingValue(*effectParam(backlash, Q::Clearance)) : 0.0;
+    halfClearance = backlash ? 0.5 * backlash->clearance : 0.0;
     if (te) {
-      teMean = settingValue(*effectParam(te, Q::Mean));
-      teAmp = settingValue(*effectParam(te, Q::Amplitude));
-      tePhase = settingValue(*effectParam(te, Q::Phase));
+      teMean = te->mean;
+      teAmp = te->amplitude;
+      tePhase = te->phase;
       prov.push_back("transmission error on every mesh, F = dk(t) e(t), phased with the mesh");
     }
     double cSp = 0, cRp = 0;
     if (damping) {
       double mEq = Jp / (rbp * rbp);
-      if (const auto* s = effectParam(damping, Q::Coefficient)) cSp = cRp = settingValue(*s);
+      if (damping->coefficient) cSp = cRp = *damping->coefficient;
       else {
-        double z = settingValue(*effectParam(damping, Q::DampingRatio));
+        double z = damping->ratio;
         cSp = 2 * z * std::sqrt(kLinSp * mEq);
         cRp = 2 * z * std::sqrt(kLinRp * mEq);
       }
@@ -631,7 +635,7 @@ private:
 
 } // namespace
 
-PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, const ir::Scene& scene, Accuracy acc,
+PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int st, const ScenePlan& scene, Accuracy acc,
                           const SceneOverrides& ov, double upstream, double downstream, double speed, double E, double nu,
                           double density, bool materialAssumed, bool periodic) {
   return PlanetaryAssembly({ev, a, st, scene, acc, ov, upstream, downstream, speed, E, nu, density, materialAssumed, periodic}).build();

@@ -33,7 +33,7 @@ struct PlanetaryRun {
   int harmonics = 0;                                // of the stiffness series, 0 without varying_stiffness
 };
 
-PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int stage, const ir::Scene& scene,
+PlanetaryRun runPlanetary(const Evaluator& ev, const Assignment& a, int stage, const ScenePlan& scene,
                           Accuracy acc, const SceneOverrides& ov, double upstream, double downstream, double speed, double E,
                           double nu, double density, bool materialAssumed, bool periodic = false);
 

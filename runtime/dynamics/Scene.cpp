@@ -81,12 +81,12 @@ struct Samples {
 };
 
 // The scene's `accuracy { … }` with a study's overrides.
-Accuracy sceneAccuracy(const ir::Scene& scene, const SceneOverrides& ov) {
+Accuracy sceneAccuracy(const ScenePlan& scene, const SceneOverrides& ov) {
   Accuracy acc;
-  acc.method = scene.method();
-  if (const auto* s = ir::findSetting(scene.accuracy, Q::Rtol); s && s->value) acc.rtol = s->value->toDouble();
-  if (const auto* s = ir::findSetting(scene.accuracy, Q::Atol); s && s->value) acc.atol = s->value->toDouble();
-  if (const auto* s = ir::findSetting(scene.accuracy, Q::MaxSteps); s && s->value) acc.maxSteps = static_cast<long>(s->value->toDouble());
+  acc.method = scene.method;
+  if (scene.rtol) acc.rtol = *scene.rtol;
+  if (scene.atol) acc.atol = *scene.atol;
+  if (scene.maxSteps) acc.maxSteps = *scene.maxSteps;
   if (ov.method) acc.method = *ov.method;
   if (ov.rtol) acc.rtol = *ov.rtol;
   return acc;
@@ -125,7 +125,7 @@ void loadMesh(const Evaluator& ev, const Assignment& a, int st, MeshParameters& 
   p.meanStiffness = tab.meanStiffness;
 }
 
-MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov, Accuracy acc,
+MeshScene meshSceneOf(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov, Accuracy acc,
                       std::vector<std::string>& prov) {
   Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
   int st = scene.stage;
@@ -179,8 +179,8 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
 
   // Each listed effect adds its own terms; what the scene does not list is never built.
   MeshEffects fx;
-  for (const auto& e : scene.effects)
-    if (const EffectRow* row = effectRow(e.kind); row && row->mesh) row->mesh(e, ov, p, fx, prov);
+  for (const auto& e : scene.listed)
+    if (const EffectRow* row = effectRow(e.kind); row && row->mesh) row->mesh(scene.fx, ov, p, fx, prov);
   if (fx.loadedMesh) loadMesh(ev, a, st, p, fx, prov);
   MeshModel model(p, fx);
   if (fx.damping) prov.push_back(fmt::format("damping coefficient {:.6g} N*s/m", model.dampingCoefficient()));
@@ -194,15 +194,15 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ir::Scene& scen
     acc.maxStep = model.naturalPeriod() / 20.0;
     rule = "Tn/20 (natural period, a contact's time scale)";
   }
-  if (const auto* s = ir::findSetting(scene.accuracy, Q::MaxStep); s && s->value) {
-    acc.maxStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+  if (auto given = scene.maxStep.at(Tz)) {
+    acc.maxStep = *given;
     rule = "given";
   }
   if (ov.maxStepFactor) {
     acc.maxStep *= *ov.maxStepFactor;
     rule += fmt::format(" x {:g}", *ov.maxStepFactor);
   }
-  if (const auto* s = ir::findSetting(scene.accuracy, Q::MinStep); s && s->value) acc.minStep = s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
+  if (auto given = scene.minStep.at(Tz)) acc.minStep = *given;
   MeshScene out;
   out.params = p;
   out.effects = fx;
@@ -233,7 +233,7 @@ SceneSeries recorded(const ir::SceneOutput& o, Dim dim, const std::vector<double
 }
 
 // A whole-gearbox scene in time (LANGUAGE.md §14): the outputs of its meshes by name.
-SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov,
+SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov,
                             SceneResult r) {
   Accuracy acc = sceneAccuracy(scene, ov);
   r.method = std::string(cat::methodSpec(acc.method).name);
@@ -302,7 +302,7 @@ SceneResult wholeGearboxModes(const Model& m, const Assignment& a, SceneResult r
 
 // The periodic orbit of a single-mesh scene, from the model's initial state or the caller's
 // guess; false (with r.failure) where it is not found.
-bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, const ir::Scene& scene, const SceneOverrides& ov,
+bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, const ScenePlan& scene, const SceneOverrides& ov,
                  const Accuracy& acc, SceneResult& r, std::vector<double>& y) {
   double Tz = 1.0 / ms.meshFrequency, T = model.excitationPeriod();
   if (T <= 0)
@@ -365,7 +365,7 @@ void checkSettled(const MeshModel& model, const TimePlan& tp, const Accuracy& ac
 
 // A scene on a spur or helical stage: its mesh model run, the signals recorded; the failure,
 // or "".
-std::string runSingleMesh(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov, Accuracy& acc,
+std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov, Accuracy& acc,
                           SceneResult& r, Samples& samples, TimePlan& tp) {
   auto record = [&](Signal k, double v) { series(samples.signals, k).push_back(v); };
   MeshScene ms = meshSceneOf(m, a, scene, ov, acc, r.model);
@@ -408,13 +408,13 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ir::Scene& 
 }
 
 // A scene on a planetary stage; the failure, or "".
-std::string runPlanetaryScene(const Model& m, const Evaluator& ev, const Assignment& a, int st, const ir::Scene& scene,
+std::string runPlanetaryScene(const Model& m, const Evaluator& ev, const Assignment& a, int st, const ScenePlan& scene,
                               const SceneOverrides& ov, const Accuracy& acc, SceneResult& r, Samples& samples, TimePlan& tp) {
   double upstream = num(ev.ratioProduct(0, st, a), "the ratios upstream");
   double downstream = num(ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a), "the ratios downstream");
   double speed = num(ev.derived(st, Q::InputSpeed, a), "an input speed (`operating`)");
   Elastic mat = materialOf(m, st);
-  bool periodic = ov.forcePeriodic || steadyMethod(scene, ov.settlePeriods) == SteadyMethod::Periodic;
+  bool periodic = ov.forcePeriodic || scene.steady(ov.settlePeriods) == SteadyMethod::Periodic;
   PlanetaryRun pr = runPlanetary(ev, a, st, scene, acc, ov, upstream, downstream, speed, mat.E, mat.nu, mat.density,
                                  mat.assumed, periodic);
   r.model = pr.provenance;
@@ -442,7 +442,7 @@ std::string runPlanetaryScene(const Model& m, const Evaluator& ev, const Assignm
 }
 
 // What the run says about itself: an unstable orbit, a linear mesh in tension.
-void runWarnings(const ir::Scene& scene, const SceneOverrides& ov, const Samples& samples, SceneResult& r) {
+void runWarnings(const ScenePlan& scene, const SceneOverrides& ov, const Samples& samples, SceneResult& r) {
   r.stabilityNumber = {"stability", r.stability, {}, cat::SignalFn::Max, Signal::Stability};
   if (r.unstable && !ov.keepUnstable)
     r.warnings.push_back(fmt::format("scene `{}` has no steady response: its periodic solution is unstable (largest Floquet multiplier "
@@ -451,7 +451,7 @@ void runWarnings(const ir::Scene& scene, const SceneOverrides& ov, const Samples
                                      scene.name, r.stability, r.period * 1e3));
   // A linear mesh carries tension when the force changes sign: the teeth would separate,
   // which only a contact law (backlash, Hertz contact) models.
-  if (!scene.findEffect(cat::Effect::Backlash) && !scene.findEffect(cat::Effect::HertzContact)) {
+  if (!scene.fx.backlash && !scene.fx.hertz) {
     const auto& f = series(samples.signals, Signal::MeshForce);
     auto [lo, hi] = std::minmax_element(f.begin(), f.end());
     if (lo != f.end() && *lo < 0 && *hi > 0)
@@ -463,7 +463,7 @@ void runWarnings(const ir::Scene& scene, const SceneOverrides& ov, const Samples
 }
 
 // The scene's outputs over the statistics window.
-void sceneOutputs(const ir::Scene& scene, const SceneOverrides& ov, const Samples& samples, const TimePlan& tp, SceneResult& r) {
+void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Samples& samples, const TimePlan& tp, SceneResult& r) {
   // Outputs over the statistics window.
   size_t first = static_cast<size_t>(std::lower_bound(samples.t.begin(), samples.t.end(), tp.statsFrom - 1e-12) - samples.t.begin());
   auto window = [&](Signal sig) {
@@ -508,15 +508,14 @@ void sceneOutputs(const ir::Scene& scene, const SceneOverrides& ov, const Sample
   }
 }
 
-SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
+SceneResult runOnce(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov) {
   SceneResult r;
   r.name = scene.name;
   r.target = scene.target;
   Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
   int st = scene.stage;
   if (st < 0) {
-    bool timeDomain = std::any_of(scene.outputs.begin(), scene.outputs.end(), [](const ir::SceneOutput& o) { return o.id != Signal::Modes; });
-    if (timeDomain) return runWholeGearbox(m, ev, a, scene, ov, std::move(r));
+    if (scene.timeDomain) return runWholeGearbox(m, ev, a, scene, ov, std::move(r));
     return wholeGearboxModes(m, a, std::move(r));
   }
   const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
@@ -549,68 +548,12 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ir::Scene& scene,
 
 // ---- shared by the scene models --------------------------------------------------------
 
-Elastic materialOf(const Model& m, int st) {
-  Elastic e;
-  const ir::Material* x = m.material(st);
-  if (!x) return e;
-  auto get = [&](Q key, double& out) {
-    if (const auto* s = ir::findSetting(x->properties, key); s && s->value) out = s->value->toDouble();
-  };
-  get(Q::YoungsModulus, e.E);
-  get(Q::Poisson, e.nu);
-  get(Q::Density, e.density);
-  e.assumed = false;
-  return e;
-}
+const Elastic& materialOf(const Model& m, int st) { return m.info(st).elastic; }
 
 
 double needNumber(const Value& v, const std::string& what) {
   if (!v.isNumber() || !std::isfinite(v.lo)) throw SceneFailure{fmt::format("the scene needs {}, which this design does not give", what)};
   return v.mid();
-}
-
-const ir::Setting* effectParam(const ir::Effect* e, Q key) { return e ? ir::findSetting(e->params, key) : nullptr; }
-
-double angularFrequency(const ir::Setting& s) {
-  return s.value->toDouble() * (s.dim == units::dims::frequency ? 2.0 * M_PI : 1.0);
-}
-
-// A setting's SI value; effect-local words (`stiffness`) are bound by the caller.
-double settingValue(const ir::Setting& s, const std::vector<double>& locals) {
-  if (s.value) return s.value->toDouble();
-  if (!s.expr) return 0;
-  std::function<double(const ir::Expr&)> ev = [&](const ir::Expr& e) -> double {
-    switch (e.op) {
-    case ir::Op::Const: return e.value.toDouble();
-    case ir::Op::Symbol: {
-      if (e.let < 0 || static_cast<size_t>(e.let) >= locals.size()) throw SceneFailure{fmt::format("`{}` has no value here", e.name)};
-      return locals[static_cast<size_t>(e.let)];
-    }
-    case ir::Op::Neg: return -ev(*e.args[0]);
-    case ir::Op::Add: return ev(*e.args[0]) + ev(*e.args[1]);
-    case ir::Op::Sub: return ev(*e.args[0]) - ev(*e.args[1]);
-    case ir::Op::Mul: return ev(*e.args[0]) * ev(*e.args[1]);
-    case ir::Op::Div: return ev(*e.args[0]) / ev(*e.args[1]);
-    default: throw SceneFailure{"a setting's expression can use numbers and the effect's own words only"};
-    }
-  };
-  return ev(*s.expr);
-}
-
-namespace {
-int samplesPerPeriod(const ir::Scene& scene) {
-  const ir::Setting* ns = ir::findSetting(scene.settings, Q::Samples);
-  return ns && ns->value ? static_cast<int>(ns->value->toDouble()) : 160;
-}
-} // namespace
-
-SteadyMethod steadyMethod(const ir::Scene& scene, std::optional<long> settlePeriods) {
-  // The periodic steady state when the scene asks for it, and by default when it neither
-  // settles nor runs from rest (LANGUAGE.md §12).
-  bool written = ir::findSetting(scene.settings, Q::SteadyState) != nullptr;
-  bool settle = settlePeriods || ir::findSetting(scene.settings, Q::Settle);
-  if (!settlePeriods && (written || (!settle && !ir::findSetting(scene.settings, Q::Duration)))) return SteadyMethod::Periodic;
-  return ir::findSetting(scene.settings, Q::Record) ? SteadyMethod::Settle : SteadyMethod::FromRest;
 }
 
 namespace {
@@ -635,10 +578,9 @@ bool widenToPeriod(TimePlan& plan, double period) {
   return true;
 }
 
-TimePlan periodicPlan(const ir::Scene& scene, double Tz) {
-  int perPeriod = samplesPerPeriod(scene);
-  const ir::Setting* rec = ir::findSetting(scene.settings, Q::Record);
-  double window = rec && rec->value ? rec->value->toDouble() * (rec->meshPeriods ? Tz : 1.0) : Tz;
+TimePlan periodicPlan(const ScenePlan& scene, double Tz) {
+  int perPeriod = scene.samplesPerPeriod;
+  double window = scene.record.at(Tz).value_or(Tz);
   TimePlan p;
   p.dt = Tz / perPeriod;
   long n = recordedSamples(window / Tz * perPeriod, "the recorded window");
@@ -646,30 +588,25 @@ TimePlan periodicPlan(const ir::Scene& scene, double Tz) {
   p.end = p.samples.back();
   p.statsFrom = 0;
   p.steady = SteadyMethod::Periodic;
-  p.periodicWritten = ir::findSetting(scene.settings, Q::SteadyState) != nullptr;
+  p.periodicWritten = scene.periodicWritten;
   return p;
 }
 
-TimePlan timePlan(const ir::Scene& scene, double Tz, std::optional<long> settlePeriods) {
-  auto get = [&](Q key) -> std::optional<double> {
-    if (key == Q::Settle && settlePeriods) return static_cast<double>(*settlePeriods) * Tz;
-    const ir::Setting* s = ir::findSetting(scene.settings, key);
-    if (!s || !s->value) return std::nullopt;
-    return s->value->toDouble() * (s->meshPeriods ? Tz : 1.0);
-  };
-  if (steadyMethod(scene, settlePeriods) == SteadyMethod::Periodic) return periodicPlan(scene, Tz);
-  int perPeriod = samplesPerPeriod(scene);
+TimePlan timePlan(const ScenePlan& scene, double Tz, std::optional<long> settlePeriods) {
+  if (scene.steady(settlePeriods) == SteadyMethod::Periodic) return periodicPlan(scene, Tz);
+  int perPeriod = scene.samplesPerPeriod;
   TimePlan p;
   p.dt = Tz / perPeriod;
-  double settle = get(Q::Settle).value_or(0), ramp = get(Q::Ramp).value_or(0);
-  if (auto rec = get(Q::Record)) {
+  double settle = settlePeriods ? static_cast<double>(*settlePeriods) * Tz : scene.settle.at(Tz).value_or(0);
+  double ramp = scene.ramp.at(Tz).value_or(0);
+  if (auto rec = scene.record.at(Tz)) {
     long n = recordedSamples(*rec / Tz * perPeriod, "the recorded window");
     for (long i = 0; i < n; ++i) p.samples.push_back(settle + static_cast<double>(i) * p.dt);
     p.end = p.samples.back();
     p.statsFrom = settle;
     p.steady = SteadyMethod::Settle;
   } else {
-    double duration = get(Q::Duration).value_or(0);
+    double duration = scene.duration.at(Tz).value_or(0);
     long n = duration > 0 ? recordedSamples(std::floor(duration / p.dt), "the run from rest") : 0;
     for (long i = 1; i <= n; ++i) p.samples.push_back(static_cast<double>(i) * p.dt);
     p.end = duration;
@@ -680,24 +617,26 @@ TimePlan timePlan(const ir::Scene& scene, double Tz, std::optional<long> settleP
   return p;
 }
 
-Drive sceneDrive(const ir::Scene& scene, double nominal, double upstream, double Tz) {
+Drive sceneDrive(const ScenePlan& scene, double nominal, double upstream, double Tz) {
   Drive d;
   d.speed0 = nominal;
-  const ir::Setting* ramp = ir::findSetting(scene.settings, Q::Ramp);
-  if (ramp && ramp->value) d.ramp = ramp->value->toDouble() * (ramp->meshPeriods ? Tz : 1.0);
-  for (const auto& e : scene.effects)
-    if (const EffectRow* row = effectRow(e.kind); row && row->drive) {
-      d.fluctuates = true;
-      d.mean = settingValue(*effectParam(&e, Q::Mean)) / upstream;
-      d.amplitude = settingValue(*effectParam(&e, Q::Amplitude)) / upstream;
-      d.omega = angularFrequency(*effectParam(&e, Q::Frequency));
-    }
+  if (auto ramp = scene.ramp.at(Tz)) d.ramp = *ramp;
+  if (const auto& f = scene.fx.speed) {
+    d.fluctuates = true;
+    d.mean = f->mean / upstream;
+    d.amplitude = f->amplitude / upstream;
+    d.omega = f->omega;
+  }
   return d;
 }
 
-MeshScene meshScene(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
+MeshScene meshScene(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov) {
   std::vector<std::string> prov;
   return meshSceneOf(m, a, scene, ov, sceneAccuracy(scene, ov), prov);
+}
+
+MeshScene meshScene(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
+  return meshScene(m, a, planScene(scene), ov);
 }
 
 namespace {
@@ -729,7 +668,7 @@ double largest(const std::vector<double>& d) {
 // a hundredth of the tolerance with half the maximum step, so the two step sequences can
 // never coincide), the truncation of the stiffness series (N against 2N harmonics) and,
 // for the periodic steady state, Newton's residual. The parts add up.
-static void estimateError(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov, SceneResult& r) {
+static void estimateError(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov, SceneResult& r) {
   SceneOverrides tight = ov;
   tight.rtol = r.rtol / 100.0;
   tight.maxStepFactor = 0.5 * ov.maxStepFactor.value_or(1.0);
@@ -760,7 +699,7 @@ static void estimateError(const Model& m, const Assignment& a, const ir::Scene& 
     }
   }
   // The loaded mesh's discretisation: twice the slices and positions.
-  if (scene.findEffect(cat::Effect::LoadedMesh)) {
+  if (scene.fx.loaded) {
     SceneOverrides fine = tight;
     fine.rtol = ov.rtol;
     fine.maxStepFactor = ov.maxStepFactor;
@@ -797,7 +736,7 @@ static void estimateError(const Model& m, const Assignment& a, const ir::Scene& 
   }
 }
 
-SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
+SceneResult runScene(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov) {
   SceneResult r;
   try {
     r = runOnce(m, a, scene, ov);
@@ -809,6 +748,17 @@ SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene
     r.failure = fmt::format("scene `{}`: {}", scene.name, f.what);
   }
   return r;
+}
+
+SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
+  try {
+    return runScene(m, a, planScene(scene), ov);
+  } catch (const Failure& f) {
+    SceneResult r;
+    r.name = scene.name;
+    r.failure = fmt::format("scene `{}`: {}", scene.name, f.what);
+    return r;
+  }
 }
 
 } // namespace gbx::rt::dyn

@@ -93,8 +93,13 @@ struct MeshScene {
   std::string stepRule;
   int harmonics = 0;  // of the stiffness series, 0 without varying_stiffness
 };
-MeshScene meshScene(const Model& m, const Assignment& design, const ir::Scene& scene, const SceneOverrides& ov = {});
+MeshScene meshScene(const Model& m, const Assignment& design, const ScenePlan& scene, const SceneOverrides& ov = {});
 
+// Runs one of the model's planned scenes (Model::scenes).
+SceneResult runScene(const Model& m, const Assignment& design, const ScenePlan& scene, const SceneOverrides& ov = {});
+
+// Plans a scene first: one outside the model's own (a test's, a modified copy).
+MeshScene meshScene(const Model& m, const Assignment& design, const ir::Scene& scene, const SceneOverrides& ov = {});
 SceneResult runScene(const Model& m, const Assignment& design, const ir::Scene& scene, const SceneOverrides& ov = {});
 
 } // namespace gbx::rt::dyn

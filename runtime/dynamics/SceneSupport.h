@@ -9,12 +9,13 @@
 #include <optional>
 
 #include "dynamics/Drive.h"
-#include "ir/Ir.h"
+#include "model/ScenePlan.h"
 #include "model/Value.h"
 
 namespace gbx::rt {
 class Evaluator;
 class Model;
+struct Elastic;
 }
 
 namespace gbx::rt::dyn {
@@ -44,12 +45,8 @@ struct SceneOverrides {
   bool energyAudit = false;   // a whole-gearbox scene also integrates its energy balance (tests)
 };
 
-// How a scene reaches its steady state (LANGUAGE.md §12).
-enum class SteadyMethod {
-  FromRest,   // `duration`: a run from rest, start-up included
-  Settle,     // `settle = N mesh_periods`: exactly N periods, then record
-  Periodic,   // `steady_state = periodic`, or the default where the excitation is periodic
-};
+using SteadyMethod = rt::SteadyMethod;
+using SceneFailure = rt::SceneFailure;
 
 // Recorded samples of every signal of a scene, by signal.
 inline constexpr size_t kSignalCount = static_cast<size_t>(cat::Signal::Modes) + 1;
@@ -57,16 +54,9 @@ using SignalSeries = std::array<std::vector<double>, kSignalCount>;
 inline std::vector<double>& series(SignalSeries& s, cat::Signal id) { return s[static_cast<size_t>(id)]; }
 inline const std::vector<double>& series(const SignalSeries& s, cat::Signal id) { return s[static_cast<size_t>(id)]; }
 
-struct SceneFailure {
-  std::string what;
-};
-
-// A stage's elastic constants and density: its material's, or steel's (assumed = true).
-struct Elastic {
-  double E = 206e9, nu = 0.3, density = 7850;
-  bool assumed = true;
-};
-Elastic materialOf(const Model& m, int stage);
+using Elastic = rt::Elastic;
+// A stage's elastic constants and density, as the model read them from its material.
+const Elastic& materialOf(const Model& m, int stage);
 
 struct TimePlan {
   double end = 0, statsFrom = 0, dt = 0;
@@ -78,22 +68,15 @@ struct TimePlan {
 // A number the model needs: its value, or a SceneFailure naming what is missing.
 double needNumber(const Value& v, const std::string& what);
 
-TimePlan timePlan(const ir::Scene& scene, double meshPeriod, std::optional<long> settlePeriods = std::nullopt);
+TimePlan timePlan(const ScenePlan& scene, double meshPeriod, std::optional<long> settlePeriods = std::nullopt);
 // The plan of a periodic steady state: the record window from t = 0 on the orbit.
-TimePlan periodicPlan(const ir::Scene& scene, double meshPeriod);
-// How the scene reaches its steady state (what timePlan decides, without building a plan).
-SteadyMethod steadyMethod(const ir::Scene& scene, std::optional<long> settlePeriods = std::nullopt);
+TimePlan periodicPlan(const ScenePlan& scene, double meshPeriod);
 // Widens a periodic plan's record window to a whole orbit of the given period; true when it did.
 bool widenToPeriod(TimePlan& plan, double period);
-Drive sceneDrive(const ir::Scene& scene, double nominal, double upstream, double meshPeriod);
-// A setting's SI value; `locals` are the values of the effect's own words (`stiffness`).
-double settingValue(const ir::Setting& s, const std::vector<double>& locals = {});
-const ir::Setting* effectParam(const ir::Effect* e, Q key);
+Drive sceneDrive(const ScenePlan& scene, double nominal, double upstream, double meshPeriod);
 // `damping = 0.01 * stiffness` in hertz_contact follows the multibody code of the source
 // paper (ADAMS, model units mm-kg-s): K read in N/mm^e gives C in N*s/mm. This returns the
 // value of the word `stiffness` such that the expression comes out in N*s/m.
 inline double adamsStiffness(double K, double exponent) { return K * std::pow(1e-3, exponent) * 1e3; }
-// A fluctuation's angular frequency in rad/s (given as an angular speed or in Hz).
-double angularFrequency(const ir::Setting& s);
 
 } // namespace gbx::rt::dyn

@@ -61,8 +61,18 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
     }
     if (const ir::Attribute* mat = info.entry(-1, Q::Material).attr; mat && !mat->symbol.empty())
       info.material = p.findMaterial(mat->symbol);
+    if (info.material) {
+      auto get = [&](Q key, double& out) {
+        if (const auto* s = ir::findSetting(info.material->properties, key); s && s->value) out = s->value->toDouble();
+      };
+      get(Q::YoungsModulus, info.elastic.E);
+      get(Q::Poisson, info.elastic.nu);
+      get(Q::Density, info.elastic.density);
+      info.elastic.assumed = false;
+    }
     stages.push_back(std::move(info));
   }
+  for (const auto& sc : g.scenes) scenes.push_back(planScene(sc));
 }
 
 std::optional<double> Model::operating(Q key) const {

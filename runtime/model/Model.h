@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ir/Ir.h"
+#include "model/ScenePlan.h"
 #include "model/Value.h"
 
 namespace gbx::rt {
@@ -32,10 +33,17 @@ struct Freedom {
   double lo = 0, hi = 0;
 };
 
+// A stage's elastic constants and density: its material's, or steel's (assumed = true).
+struct Elastic {
+  double E = 206e9, nu = 0.3, density = 7850;
+  bool assumed = true;
+};
+
 struct StageInfo {
   const ir::Stage* ir = nullptr;
   const StageKindImpl* kind = nullptr;
   const ir::Material* material = nullptr;  // the material it names, found once
+  Elastic elastic;                         // read from it once
   std::vector<int> slots;
   std::vector<int> freedoms;
   // (gear + 1) * kKeyCount + key: what gives the attribute.
@@ -61,6 +69,7 @@ public:
   std::vector<StageInfo> stages;
   std::vector<Slot> slots;
   std::vector<Freedom> freedoms;
+  std::vector<ScenePlan> scenes;  // the gearbox's scenes, planned once, in its order
 
   int stageIndex(const std::string& name) const { return gearbox.stageIndex(name); }
   const ir::Attribute* attribute(int stage, int gear, Q key) const { return info(stage).entry(gear, key).attr; }

@@ -148,7 +148,7 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
       *design = point;
     }
     int scene = e.output.scene;
-    if (scene < 0 || static_cast<size_t>(scene) >= m.gearbox.scenes.size()) return Value::invalid();
+    if (scene < 0 || static_cast<size_t>(scene) >= m.scenes.size()) return Value::invalid();
     Key k{scene, asking.offsetKey()};
     auto it = cache->find(k);
     if (it == cache->end()) {
@@ -157,7 +157,7 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
       ov.estimateError = false;
       ov.keepSeries = false;
       if (!asking.offsets().empty()) ov.evaluator = &asking;
-      it = cache->emplace(k, dyn::runScene(m, a, m.gearbox.scenes[static_cast<size_t>(scene)], ov)).first;
+      it = cache->emplace(k, dyn::runScene(m, a, m.scenes[static_cast<size_t>(scene)], ov)).first;
     }
     const auto* n = it->second.find(e.output.fn, e.output.signal);
     return n ? Value::number(n->value) : Value::invalid();
@@ -190,8 +190,7 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
 // own tolerance is no tighter than the optimiser's, or fewer than two are ranked.
 std::string rankCheck(const Model& m, const Model* baseline, const Assignment* baseDesign, const std::vector<OptCandidate>& ranked,
                       const OptimiseOptions& opt) {
-  const ir::Setting* own = m.gearbox.scenes.empty() ? nullptr : ir::findSetting(m.gearbox.scenes[0].accuracy, Q::Rtol);
-  double tight = own && own->value ? own->value->toDouble() : 1e-9;
+  double tight = m.scenes.empty() ? 1e-9 : m.scenes[0].rtol.value_or(1e-9);
   size_t k = std::min(opt.rankCheck, ranked.size());
   if (k >= 2 && tight < opt.sceneRtol) {
     Evaluator ev(m);

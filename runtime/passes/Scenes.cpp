@@ -12,7 +12,7 @@ namespace gbx::rt::passes {
 
 namespace {
 
-SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
+SceneReport sceneReport(const dyn::SceneResult& r, const ScenePlan& scene) {
   SceneReport s;
   s.name = r.name.empty() ? scene.name : r.name;
   s.target = scene.target;
@@ -79,7 +79,7 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ir::Scene& scene) {
 SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns) {
   SceneRuns out;
   std::vector<dyn::SceneResult> results;
-  for (const auto& sc : m.gearbox.scenes) {
+  for (const auto& sc : m.scenes) {
     auto res = dyn::runScene(m, best, sc);
     if (!res.failure.empty()) out.errors.push_back(res.failure);
     out.scenes.push_back(sceneReport(res, sc));
@@ -101,7 +101,7 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns)
         ov.evaluator = &asking;
         ov.estimateError = false;
         ov.keepSeries = false;
-        it = corners.emplace(std::make_pair(sc, key), dyn::runScene(m, a, m.gearbox.scenes[static_cast<size_t>(sc)], ov)).first;
+        it = corners.emplace(std::make_pair(sc, key), dyn::runScene(m, a, m.scenes[static_cast<size_t>(sc)], ov)).first;
       }
       r = &it->second;
     }

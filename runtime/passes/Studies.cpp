@@ -12,7 +12,7 @@ std::vector<StudyReport> studies(const Model& m, const Assignment& best, std::fu
       out.push_back({sweep(m, best, st), {}});
       continue;
     }
-    const ir::Scene* scene = st.scene >= 0 ? &m.gearbox.scenes[static_cast<size_t>(st.scene)] : nullptr;
+    const ScenePlan* scene = st.scene >= 0 ? &m.scenes[static_cast<size_t>(st.scene)] : nullptr;
     if (scene) out.push_back({workPrecision(m, best, st, *scene, progress), {}});
   }
   return out;

@@ -25,7 +25,7 @@ using Eigen::VectorXd;
 // at lambda, the swept quantity's position in [lo, hi]; S scales the state.
 class Shooting {
 public:
-  Shooting(const Model& m, const Assignment& a, const ir::Study& st, const ir::Scene& scene)
+  Shooting(const Model& m, const Assignment& a, const ir::Study& st, const ScenePlan& scene)
       : m_(m), a_(a), st_(st), scene_(scene), lo_(st.lo->toDouble()), hi_(st.hi->toDouble()) {}
 
   double x(double lambda) const { return lo_ + lambda * (hi_ - lo_); }
@@ -89,7 +89,7 @@ private:
   const Model& m_;
   const Assignment& a_;
   const ir::Study& st_;
-  const ir::Scene& scene_;
+  const ScenePlan& scene_;
   double lo_, hi_;
 };
 
@@ -98,7 +98,7 @@ private:
 // points found where the Floquet multipliers say so and gaps where the branch cannot be followed.
 class Continuer {
 public:
-  Continuer(const Model& model, const Assignment& design, const ir::Study& study, const ir::Scene& sc, SweepStudy& result)
+  Continuer(const Model& model, const Assignment& design, const ir::Study& study, const ScenePlan& sc, SweepStudy& result)
       : m(model), a(design), st(study), scene(sc), out(result), sh(model, design, study, sc) {
     double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
     dLambda = step / std::fabs(hi - lo);
@@ -136,7 +136,7 @@ private:
   const Model& m;
   const Assignment& a;
   const ir::Study& st;
-  const ir::Scene& scene;
+  const ScenePlan& scene;
   SweepStudy& out;
   Shooting sh;
   double dLambda = 0, ds = 0, dsMax = 0, dsMin = 0, edge = 0;
@@ -397,7 +397,7 @@ private:
 
 } // namespace
 
-bool continuation(const Model& m, const Assignment& a, const ir::Study& st, const ir::Scene& scene, SweepStudy& out) {
+bool continuation(const Model& m, const Assignment& a, const ir::Study& st, const ScenePlan& scene, SweepStudy& out) {
   if (scene.stage < 0 || m.info(scene.stage).kind->scene != SceneModel::SingleMesh) {
     out.failure = fmt::format("study `{}`: `continuation = arclength` follows the periodic response of a scene on a spur or helical "
                               "stage; scene `{}` is not one (use a plain sweep)",

@@ -11,6 +11,6 @@ namespace gbx::rt {
 
 // Returns false, doing nothing, for a linear scene: its response has no turning points (only
 // poles where a Floquet multiplier passes 1), so the sweep follows it point by point.
-bool continuation(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene, SweepStudy& out);
+bool continuation(const Model& m, const Assignment& design, const ir::Study& study, const ScenePlan& scene, SweepStudy& out);
 
 } // namespace gbx::rt

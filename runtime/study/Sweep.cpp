@@ -21,25 +21,6 @@ units::DisplayUnit unitFor(const ir::Expr& e) {
   return units::displayUnitFor(e.type.dim);
 }
 
-// The scene with one effect parameter set to x (a sweep of `scene.effect.parameter`).
-ir::Scene withEffectParam(const ir::Scene& scene, const ir::Study::EffectParam& p, double x, units::Dim dim) {
-  ir::Scene s = scene.clone();
-  ir::Effect& fx = s.effects[static_cast<size_t>(p.effect)];
-  for (auto& set : fx.params)
-    if (set.key == p.key) {
-      set.value = units::Number::approx(x);
-      set.dim = dim;  // the sweep's own unit (a frequency swept in rad/s is not in Hz)
-      set.expr.reset();
-      return s;
-    }
-  ir::Setting set;
-  set.key = p.key;
-  set.dim = dim;
-  set.value = units::Number::approx(x);
-  fx.params.push_back(std::move(set));
-  return s;
-}
-
 // A length output whose every value lies below 0.1 mm reads in um (a transmission error).
 void smallLengths(SweepStudy& r, const ir::Study& st) {
   for (size_t i = 0; i < r.outputs.size() && i < st.outputs.size(); ++i) {
@@ -95,10 +76,10 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
     return r;
   }
   if (fxp.scene >= 0 && !scenes.count(fxp.scene)) scenes.insert(fxp.scene);
-  if (!scenes.empty()) r.stabilityScene = m.gearbox.scenes[static_cast<size_t>(*scenes.begin())].name;
+  if (!scenes.empty()) r.stabilityScene = m.scenes[static_cast<size_t>(*scenes.begin())].name;
   // The checker made sure an arclength study's outputs read exactly one scene (E0225).
   if (arclength) {
-    if (continuation(m, a, st, m.gearbox.scenes[static_cast<size_t>(*scenes.begin())], r)) {
+    if (continuation(m, a, st, m.scenes[static_cast<size_t>(*scenes.begin())], r)) {
       smallLengths(r, st);
       return r;
     }
@@ -120,8 +101,9 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
       ov.evaluator = &ev;
       ov.keepSeries = false;
       if (guesses.count(s)) ov.guess = guesses[s];
-      const ir::Scene& declared = m.gearbox.scenes[static_cast<size_t>(s)];
-      dyn::SceneResult res = s == fxp.scene ? dyn::runScene(m, a, withEffectParam(declared, fxp, x, st.dim.value_or(units::Dim{})), ov) : dyn::runScene(m, a, declared, ov);
+      const ScenePlan& declared = m.scenes[static_cast<size_t>(s)];
+      dyn::SceneResult res = s == fxp.scene ? dyn::runScene(m, a, declared.withEffectParam(fxp.effect, fxp.key, x, st.dim.value_or(units::Dim{})), ov)
+                                            : dyn::runScene(m, a, declared, ov);
       if (!res.failure.empty()) {
         r.failure = fmt::format("study `{}` at {} = {:.6g} {}: {}", st.name, st.target, x / r.unit.scale, r.unit.name, res.failure);
         return r;
@@ -146,8 +128,8 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
           ov.keepSeries = false;
           ov.estimateError = false;
           if (guesses.count(e.output.scene)) ov.guess = guesses[e.output.scene];
-          const ir::Scene& declared = m.gearbox.scenes[static_cast<size_t>(e.output.scene)];
-          corner = e.output.scene == fxp.scene ? dyn::runScene(m, aa, withEffectParam(declared, fxp, x, st.dim.value_or(units::Dim{})), ov)
+          const ScenePlan& declared = m.scenes[static_cast<size_t>(e.output.scene)];
+          corner = e.output.scene == fxp.scene ? dyn::runScene(m, aa, declared.withEffectParam(fxp.effect, fxp.key, x, st.dim.value_or(units::Dim{})), ov)
                                                : dyn::runScene(m, aa, declared, ov);
           r = &corner;
         }

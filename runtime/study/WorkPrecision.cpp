@@ -11,7 +11,7 @@
 
 namespace gbx::rt {
 
-WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene,
+WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ScenePlan& scene,
                                  const std::function<void(double)>& progress) {
   WorkPrecisionStudy r;
   r.name = study.name;
@@ -31,15 +31,14 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
   }
   if (rtols.empty()) rtols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
   std::sort(rtols.begin(), rtols.end(), std::greater<>());
-  bool varying = scene.findEffect(cat::Effect::VaryingStiffness);
+  bool varying = scene.fx.varying.has_value();
   if (harmonics.empty() || !varying) harmonics = {0};
-  if (methods.empty()) methods = {scene.method()};
+  if (methods.empty()) methods = {scene.method};
   double tightest = rtols.back();
   // The periodic steady state against settling a transient, both drawn: the scene's own
   // `settle = N`, or 200 periods when the scene is periodic by default.
-  const ir::Setting* settleSetting = ir::findSetting(scene.settings, Q::Settle);
-  bool fromRest = ir::findSetting(scene.settings, Q::Duration) && !ir::findSetting(scene.settings, Q::Record);
-  long settle = settleSetting && settleSetting->value && settleSetting->meshPeriods ? std::lround(settleSetting->value->toDouble()) : 200;
+  bool fromRest = scene.duration && !scene.record;
+  long settle = scene.settle.value && scene.settle.meshPeriods ? std::lround(*scene.settle.value) : 200;
   struct Steady {
     std::string name;
     bool periodic;
@@ -47,7 +46,7 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
   std::vector<Steady> steadies;
   if (!fromRest) steadies.push_back({"periodic", true});
   if (fromRest) steadies.push_back({"from rest", false});
-  else if (!settleSetting || settleSetting->meshPeriods) steadies.push_back({fmt::format("settle {}", settle), false});
+  else if (!scene.settle || scene.settle.meshPeriods) steadies.push_back({fmt::format("settle {}", settle), false});
   auto steadyOv = [&](dyn::SceneOverrides ov, const Steady& s) {
     if (s.periodic) ov.forcePeriodic = true;
     else if (!fromRest) ov.settlePeriods = settle;

@@ -9,7 +9,7 @@
 
 namespace gbx::rt {
 
-WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ir::Scene& scene,
+WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ScenePlan& scene,
                                  const std::function<void(double)>& progress = {});
 
 } // namespace gbx::rt

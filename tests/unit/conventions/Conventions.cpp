@@ -103,6 +103,21 @@ std::vector<Hit> upwardIncludes(const fs::path& root) {
   return hits;
 }
 
+std::vector<Hit> sceneReadsOutsideThePlan(const fs::path& root) {
+  static const std::set<std::string> allowed = {"runtime/model/ScenePlan.h", "runtime/model/ScenePlan.cpp", "runtime/dynamics/Scene.h",
+                                                "runtime/dynamics/Scene.cpp"};
+  static const std::regex read(R"re(\bir::Scene\b|gearbox\.scenes\b|\bir::Effect\b|findEffect\(|effectParam\(|\.accuracy\b.*findSetting)re");
+  std::vector<Hit> hits;
+  for (const auto& f : sources(root / "runtime")) {
+    std::string rel = fs::relative(f, root).string();
+    if (allowed.count(rel)) continue;
+    eachLine(f, [&](int n, const std::string& line) {
+      if (std::regex_search(line, read)) hits.push_back({rel + ":" + std::to_string(n), line});
+    });
+  }
+  return hits;
+}
+
 std::vector<Hit> longFunctions(const std::string& ctagsOutput, int most) {
   std::vector<Hit> hits;
   std::istringstream in(ctagsOutput);

@@ -22,6 +22,11 @@ std::vector<Hit> literalComparisons(const std::filesystem::path& dir);
 // tools/; in runtime/, one of tools/.
 std::vector<Hit> upwardIncludes(const std::filesystem::path& root);
 
+// Lines of runtime/ that read a scene from the IR (`ir::Scene`, `gearbox.scenes`, an
+// ir::Effect's parameters) outside the files allowed to: the planner (model/ScenePlan.*)
+// and the two entries that plan a scene for a caller (dynamics/Scene.*).
+std::vector<Hit> sceneReadsOutsideThePlan(const std::filesystem::path& root);
+
 // The functions of a u-ctags listing (with `line:` and `end:` fields) longer than `most` lines.
 std::vector<Hit> longFunctions(const std::string& ctagsOutput, int most);
 

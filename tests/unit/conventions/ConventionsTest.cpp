@@ -54,6 +54,13 @@ TEST(Conventions, LayersIncludeDownwardsOnly) {
   EXPECT_TRUE(up.empty()) << "includes that run up a layer:\n" << listed(up);
 }
 
+// A scene is resolved once into its plan (model/ScenePlan.h): the scene models, the passes
+// and the studies read the plan, never the scene's settings or effects in the IR.
+TEST(Conventions, ScenesAreReadThroughTheirPlan) {
+  auto reads = sceneReadsOutsideThePlan(kRoot);
+  EXPECT_TRUE(reads.empty()) << "scene reads outside model/ScenePlan:\n" << listed(reads);
+}
+
 // No function in compiler/ or runtime/ runs over 120 lines, as Universal Ctags measures them
 // (its end line of each function definition): a function a newcomer must scroll through is
 // split by what it does.

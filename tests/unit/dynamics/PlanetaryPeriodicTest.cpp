@@ -46,10 +46,10 @@ PlanetaryRun runStage(const std::string& effects, const std::string& timing, boo
   rt::Model m(c->program, c->program.gearboxes[0]);
   rt::Assignment a(m);
   rt::Evaluator ev(m);
-  const ir::Scene& scene = m.gearbox.scenes[0];
+  const rt::ScenePlan& scene = m.scenes[0];
   int st = scene.stage;
   Accuracy acc;
-  acc.method = scene.method();
+  acc.method = scene.method;
   acc.rtol = rtol;
   double upstream = ev.ratioProduct(0, st, a).mid();
   double downstream = ev.ratioProduct(st + 1, static_cast<int>(m.stages.size()), a).mid();

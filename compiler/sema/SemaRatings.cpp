@@ -1,0 +1,182 @@
+#include "sema/Analyser.h"
+
+// Rating blocks and what a rating needs: materials, operating points, inputs.
+
+namespace gbx::sema {
+
+// `rating { … }`: its settings become the stage's `rating.…` attributes, so that a
+// variant overrides them (`hs.rating.life = …`) like any other attribute.
+void Analyser::ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen) {
+  if (m.kind && !findAttr(*m.kind, "rating.life")) {
+    diags_.error("E0235", nameOr(b),
+                 fmt::format("{} {} stage has no load-capacity rating yet{}", m.kind->name[0] == 'i' ? "an" : "a", m.kind->name,
+                             m.kind->kind == ir::StageKind::Bevel ? " (bevel gears are rated by ISO 10300, which gbxc does not implement)"
+                                                                  : " (ISO 6336 rating covers spur, helical, idler and planetary stages)"));
+    return;
+  }
+  if (m.rated) {
+    diags_.error("E0202", nameOr(b), fmt::format("duplicate declaration: stage `{}` already has a `rating` block", m.name));
+    return;
+  }
+  std::vector<std::pair<std::string, Binding>> items;
+  flatten(b.body, std::string(kRatingBlock) + ".", fmt::format("the `rating` of stage `{}`", m.name), items,
+          {"rating.lubricant", "rating.roughness", "rating.basic_rack", "rating.min_safety"});
+  for (auto& [p, bind] : items) {
+    if (auto it = seen.find(p); it != seen.end()) {
+      auto& d = diags_.error("E0202", bind.stmt->path.span, fmt::format("duplicate declaration: `{}` is already given in stage `{}`", p, m.name));
+      d.notes.push_back({it->second->path.span, "first given here"});
+      continue;
+    }
+    seen[p] = bind.stmt;
+    m.setAttr(p, {bind.stmt, "stage"});
+  }
+  m.rated = true;
+}
+
+// A rated stage needs its service life and a material with the ISO 6336-5 numbers.
+void Analyser::ratingInputs(const StageModel& st, Span where) {
+  for (const char* need : {"rating.life", "rating.lubricant.viscosity_40", "rating.roughness.flank", "rating.roughness.root"}) {
+    std::string rz = std::string(need) + "_rz";
+    if (!st.findAttr(need) && !st.findAttr(rz))
+      diags_.error("E0225", where,
+                   fmt::format("the `rating` of stage `{}` does not give `{}` ({})", st.name, std::string(need).substr(7),
+                               findAttr(*st.kind, need)->meaning));
+  }
+  bool plainModule = st.kind->kind == ir::StageKind::Idler || st.kind->kind == ir::StageKind::Planetary;
+  for (const char* need : {plainModule ? "module" : "normal_module", "face_width"})
+    if (!st.findAttr(need))
+      diags_.error("E0225", where, fmt::format("stage `{}` is rated but does not give `{}` ({})", st.name, need, findAttr(*st.kind, need)->meaning));
+  if (!st.findAttr("accuracy")) {
+    std::vector<std::string> missing;
+    for (const auto& g : st.kind->gears)
+      for (const char* dev : {"pitch_deviation", "profile_form_deviation", "helix_slope_deviation"})
+        if (!st.findAttr(g + "." + dev)) missing.push_back("`" + g + "." + dev + "`");
+    if (!missing.empty())
+      diags_.error("E0225", where,
+                   fmt::format("stage `{}` is rated but gives no `accuracy` (ISO 1328-1 grade) from which to take {}", st.name,
+                               fmt::join(missing, ", ")));
+  }
+  for (const auto& g : st.kind->gears)
+    if (st.findAttr(g + ".web_thickness") && !st.findAttr(g + ".rim_thickness"))
+      diags_.error("E0225", where, fmt::format("`{}.web_thickness` needs `{}.rim_thickness` (C_R of a webbed blank)", g, g));
+  const Binding* mat = st.findAttr(std::string(keyName(Q::Material)));
+  if (!mat) {
+    diags_.error("E0233", where, fmt::format("stage `{}` is rated but names no `material` (the rating needs its E, nu, sigma_hlim, sigma_flim and treatment)", st.name));
+    return;
+  }
+  const ast::Expr* v = mat->stmt->value.get();
+  if (!v || v->kind != ast::ExprKind::Name) return;
+  auto it = globals_.materials.find(v->text);
+  if (it == globals_.materials.end()) return;  // reported as an unknown material
+  std::vector<std::string> missing;
+  for (Q need : {Q::SigmaHlim, Q::SigmaFlim, Q::Treatment}) {
+    std::string n(keyName(need));
+    if (std::none_of(it->second->body.begin(), it->second->body.end(), [&](const Stmt& b) { return b.path.str() == n; }))
+      missing.push_back("`" + n + "`");
+  }
+  if (!missing.empty())
+    diags_.error("E0233", mat->stmt->value->span,
+                 fmt::format("stage `{}` is rated, but material `{}` does not give {}", st.name, v->text, fmt::join(missing, ", ")));
+}
+
+// A gear pair's mass needs its material's density: say so at check time, not as `n/a`.
+void Analyser::requireMaterial(const ir::Gearbox& g, const GearboxModel& m) {
+  std::set<std::pair<int, int>> reported;
+  auto visit = [&](const ir::Expr* e, const char* where) {
+    if (!e) return;
+    walk(*e, [&](const ir::Expr& x) {
+      if (x.op != Op::Quantity || !x.type.isNumber() || keyOf(lastPart(x.name)) != Q::Mass) return;
+      auto dot = x.name.find('.');
+      const StageModel* st = dot == std::string::npos ? nullptr : m.findStage(x.name.substr(0, dot));
+      if (!st || !st->kind || st->findAttr(std::string(keyName(Q::Material))) || x.name.find('.', dot + 1) != std::string::npos) return;
+      if (!reported.insert({x.span.line, x.span.col}).second) return;
+      diags_.error("E0233", x.span,
+                   fmt::format("`{}` needs the density of the stage's material, but stage `{}` names no `material` ({})", x.name,
+                               st->name, where));
+    });
+  };
+  for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
+  for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
+  if (g.report)
+    for (const auto& c : g.report->columns) visit(c.get(), "reported");
+}
+
+// A safety or an influence factor needs the stage's `rating` inputs.
+void Analyser::requireRating(const ir::Gearbox& g, const GearboxModel& m) {
+  std::set<std::pair<int, int>> reported;
+  auto visit = [&](const ir::Expr* e, const char* where) {
+    if (!e) return;
+    walk(*e, [&](const ir::Expr& x) {
+      if (x.op != Op::Quantity || !x.type.isNumber()) return;
+      auto k = keyOf(lastPart(x.name));
+      if (!k || !isRatingQuantity(*k)) return;
+      auto dot = x.name.find('.');
+      const StageModel* st = dot == std::string::npos ? nullptr : m.findStage(x.name.substr(0, dot));
+      if (!st || !st->kind) return;
+      if (st->rated) {
+        // An internal gear's tooth root: ISO 6336-3 for internal gears is not implemented.
+        static const std::set<Q> root = {Q::BendingSafety, Q::BendingStress, Q::PermissibleBendingStress, Q::YF, Q::YS, Q::Ybeta,
+                                         Q::YNT, Q::YdeltarelT, Q::YRrelT, Q::YX};
+        bool ring = st->kind->kind == ir::StageKind::Planetary && x.name.find("." + st->kind->gears[2] + ".") != std::string::npos;
+        if (ring && root.count(*k) && reported.insert({x.span.line, x.span.col}).second)
+          diags_.error("E0235", x.span,
+                       fmt::format("`{}`: the tooth root of an internal gear is not rated (ISO 6336-3 for internal gears is not "
+                                   "implemented; its contact is rated) ({})",
+                                   x.name, where));
+        return;
+      }
+      if (!reported.insert({x.span.line, x.span.col}).second) return;
+      diags_.error("E0236", x.span,
+                   fmt::format("`{}` is a load-capacity result, but stage `{}` has no `rating {{ … }}` block with its inputs ({})",
+                               x.name, st->name, where));
+    });
+  };
+  for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
+  for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
+  for (const auto& l : g.lets) visit(l.expr.get(), "used in a let");
+  if (g.report) {
+    for (const auto& c : g.report->columns) visit(c.get(), "reported");
+    visit(g.report->sortBy.get(), "used to sort");
+  }
+  for (const auto& st : g.studies)
+    for (const auto& o : st.outputs) visit(o.get(), "output of a study");
+}
+
+void Analyser::requireOperating(const ir::Gearbox& g) {
+  std::set<std::pair<int, int>> reported;
+  auto visit = [&](const ir::Expr* e, const char* where) {
+    if (!e) return;
+    walk(*e, [&](const ir::Expr& x) {
+      if (x.op != Op::Quantity || !x.type.isNumber() || !needsOperating(x.name)) return;
+      if (!reported.insert({x.span.line, x.span.col}).second) return;
+      diags_.error("E0231", x.span,
+                   fmt::format("`{}` depends on the operating point, but gearbox `{}` has no `operating` block ({})",
+                               x.name, g.name, where));
+    });
+  };
+  for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
+  for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
+  for (const auto& l : g.lets) visit(l.expr.get(), "used in a let");
+  if (g.report) {
+    for (const auto& c : g.report->columns) visit(c.get(), "reported");
+    visit(g.report->sortBy.get(), "used to sort");
+  }
+  for (const auto& md : g.modifies)
+    for (const auto& r : md.rules) visit(r.value.get(), "used in a modification rule");
+  for (const auto& st : g.studies)
+    for (const auto& o : st.outputs) visit(o.get(), "output of a study");
+}
+
+void Analyser::checkOperating(const GearboxModel& m, const std::vector<ir::Setting>& op, const Stmt* decl) {
+  auto has = [&](const char* n) { return ir::findSetting(op, n) != nullptr; };
+  Span where = decl ? decl->span : nameOr(*m.decl);
+  if (!has("input_speed") && !has("output_speed"))
+    diags_.error("E0226", where, "`operating` needs a speed: `input_speed` or `output_speed`");
+  if (has("input_speed") && has("output_speed"))
+    diags_.error("E0226", where, "`operating` gives both `input_speed` and `output_speed`; the ratio fixes one from the other");
+  int loads = has("input_torque") + has("output_torque") + has("power");
+  if (loads > 1)
+    diags_.error("E0226", where, "`operating` gives more than one of `input_torque`, `output_torque` and `power`; give one");
+}
+
+} // namespace gbx::sema
