@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs what a fresh Debian machine lacks, then configures and builds gbxc.
 #   scripts/setup.sh              release build in build/
-#   scripts/setup.sh --sanitize   AddressSanitizer + UBSan build in build-asan/
-#   scripts/setup.sh --fuzz       libFuzzer targets (clang, ASan + UBSan) in build-fuzz/
+#   scripts/setup.sh --sanitize   AddressSanitizer + UBSan build in build-asan/: the whole suite
+#                                 and the libFuzzer targets (clang), one build for both
+#   scripts/setup.sh --fuzz       the same
 # Idempotent: packages already present are not touched; the build is incremental.
 # Works on a bare Debian bookworm (debootstrap --variant=minbase): as root it needs no sudo;
 # as another user it uses sudo, and only when a package is missing.
@@ -12,13 +13,12 @@ cd "$(dirname "$0")/.."
 build_dir=build
 cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
 extra_packages=()
-if [[ "${1:-}" == "--sanitize" ]]; then
+if [[ "${1:-}" == "--sanitize" || "${1:-}" == "--fuzz" ]]; then
   build_dir=build-asan
-  cmake_args=(-DCMAKE_BUILD_TYPE=Debug -DGBX_SANITIZE=ON)
-elif [[ "${1:-}" == "--fuzz" ]]; then
-  build_dir=build-fuzz
-  # -O1 with assertions kept: fast enough to fuzz, and an assertion is a finding.
-  cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" -DGBX_FUZZ=ON
+  # clang, so that the fuzz targets link libFuzzer; every library instrumented for its
+  # coverage as well. -O1 with assertions kept: fast enough to fuzz and to run the suite
+  # under the sanitizers, and an assertion is a finding.
+  cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" -DGBX_FUZZ=ON
               -DCMAKE_CXX_COMPILER=clang++)
   extra_packages=(clang libclang-rt-dev)
 fi

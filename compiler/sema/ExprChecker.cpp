@@ -451,8 +451,10 @@ ir::ExprPtr ExprChecker::binary(const ast::Expr& e, const Scope& s) {
   if (bop == ast::BinOp::And || bop == ast::BinOp::Or) {
     auto a = check(e.args[0].get(), s);
     auto b = check(e.args[1].get(), s);
-    bool ok = requireBool(*a, bop == ast::BinOp::And ? "an operand of `and`" : "an operand of `or`") &
-              requireBool(*b, bop == ast::BinOp::And ? "an operand of `and`" : "an operand of `or`");
+    // Both operands are checked, so that each wrong one is reported.
+    bool okA = requireBool(*a, bop == ast::BinOp::And ? "an operand of `and`" : "an operand of `or`");
+    bool okB = requireBool(*b, bop == ast::BinOp::And ? "an operand of `and`" : "an operand of `or`");
+    bool ok = okA && okB;
     if (!ok || a->type.isError() || b->type.isError()) return error(e.span);
     auto n = make(bop == ast::BinOp::And ? Op::And : Op::Or, Type::boolean(), e.span);
     n->args.push_back(std::move(a));

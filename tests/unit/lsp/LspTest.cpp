@@ -13,7 +13,9 @@
 
 // GCC 12 at -O2 warns of a maybe-uninitialized std::string inside copies of std::variant
 // built from initializer lists (a known false positive); the sanitizers run this file too.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 
 #include "driver/Driver.h"
 #include "lsp/Json.h"
