@@ -4,6 +4,27 @@
 
 namespace gbx::sema {
 
+namespace {
+
+// The expressions a gearbox reads, each with where it is used: its rules, objectives, lets,
+// report columns and sort key, modification rules (with `modifications`), study outputs.
+void eachUse(const ir::Gearbox& g, bool modifications, const std::function<void(const ir::Expr*, const char*)>& visit) {
+  for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
+  for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
+  for (const auto& l : g.lets) visit(l.expr.get(), "used in a let");
+  if (g.report) {
+    for (const auto& c : g.report->columns) visit(c.get(), "reported");
+    visit(g.report->sortBy.get(), "used to sort");
+  }
+  if (modifications)
+    for (const auto& md : g.modifies)
+      for (const auto& r : md.rules) visit(r.value.get(), "used in a modification rule");
+  for (const auto& st : g.studies)
+    for (const auto& o : st.outputs) visit(o.get(), "output of a study");
+}
+
+} // namespace
+
 // `rating { … }`: its settings become the stage's `rating.…` attributes, so that a
 // variant overrides them (`hs.rating.life = …`) like any other attribute.
 void Analyser::ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen) {
@@ -131,15 +152,7 @@ void Analyser::requireRating(const ir::Gearbox& g, const GearboxModel& m) {
                                x.name, st->name, where));
     });
   };
-  for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
-  for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
-  for (const auto& l : g.lets) visit(l.expr.get(), "used in a let");
-  if (g.report) {
-    for (const auto& c : g.report->columns) visit(c.get(), "reported");
-    visit(g.report->sortBy.get(), "used to sort");
-  }
-  for (const auto& st : g.studies)
-    for (const auto& o : st.outputs) visit(o.get(), "output of a study");
+  eachUse(g, false, visit);
 }
 
 void Analyser::requireOperating(const ir::Gearbox& g) {
@@ -154,17 +167,7 @@ void Analyser::requireOperating(const ir::Gearbox& g) {
                                x.name, g.name, where));
     });
   };
-  for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
-  for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
-  for (const auto& l : g.lets) visit(l.expr.get(), "used in a let");
-  if (g.report) {
-    for (const auto& c : g.report->columns) visit(c.get(), "reported");
-    visit(g.report->sortBy.get(), "used to sort");
-  }
-  for (const auto& md : g.modifies)
-    for (const auto& r : md.rules) visit(r.value.get(), "used in a modification rule");
-  for (const auto& st : g.studies)
-    for (const auto& o : st.outputs) visit(o.get(), "output of a study");
+  eachUse(g, true, visit);
 }
 
 void Analyser::checkOperating(const GearboxModel& m, const std::vector<ir::Setting>& op, const Stmt* decl) {

@@ -127,6 +127,7 @@ void loadMesh(const Evaluator& ev, const Assignment& a, int st, MeshParameters& 
 
 MeshScene meshSceneOf(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov, Accuracy acc,
                       std::vector<std::string>& prov) {
+  if (!scene.failure.empty()) throw Failure{scene.failure};
   Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
   int st = scene.stage;
   const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
@@ -509,6 +510,7 @@ void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Sample
 }
 
 SceneResult runOnce(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov) {
+  if (!scene.failure.empty()) throw Failure{scene.failure};
   SceneResult r;
   r.name = scene.name;
   r.target = scene.target;

@@ -139,10 +139,24 @@ SteadyMethod ScenePlan::steady(std::optional<long> settlePeriods) const {
   return record ? SteadyMethod::Settle : SteadyMethod::FromRest;
 }
 
+namespace {
+
+void resolveEffects(ScenePlan& p) {
+  p.failure.clear();
+  try {
+    p.fx = effectsOf(p.listed);
+  } catch (const SceneFailure& f) {
+    p.fx = {};
+    p.failure = f.what;
+  }
+}
+
+} // namespace
+
 ScenePlan ScenePlan::withEffectParam(int effect, Q key, double si, units::Dim dim) const {
   ScenePlan p = *this;
   p.listed[static_cast<size_t>(effect)].set(key, si, dim);
-  p.fx = effectsOf(p.listed);
+  resolveEffects(p);
   return p;
 }
 
@@ -173,7 +187,7 @@ ScenePlan planScene(const ir::Scene& scene) {
     for (const auto& s : e.params) l.params.emplace_back(s.key, valueOf(s));
     p.listed.push_back(std::move(l));
   }
-  p.fx = effectsOf(p.listed);
+  resolveEffects(p);
   p.outputs = scene.outputs;
   p.timeDomain = std::any_of(p.outputs.begin(), p.outputs.end(), [](const ir::SceneOutput& o) { return o.id != cat::Signal::Modes; });
   return p;

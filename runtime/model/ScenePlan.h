@@ -121,6 +121,10 @@ struct ScenePlan {
   SceneEffects fx;
   std::vector<ir::SceneOutput> outputs;
   bool timeDomain = false;  // an output other than `modes`
+  // A parameter the runtime cannot evaluate (an expression over other quantities): the
+  // scene fails with this when it runs, as every scene failure does, and the model is
+  // built all the same.
+  std::string failure;
 
   // How the scene reaches its steady state; `settlePeriods` is a study's forced settle.
   SteadyMethod steady(std::optional<long> settlePeriods = std::nullopt) const;

@@ -563,3 +563,28 @@ TEST(Scenes, LinearMeshWarnsWhenTheForceChangesSign) {
   for (const auto& w : contact.warnings) EXPECT_EQ(w.find("separate"), std::string::npos) << w;
   for (const auto& w : contact.warnings) EXPECT_NE(w.find("not died out"), std::string::npos) << w;
 }
+
+// An effect parameter written over another quantity (`mean = input_speed`) passes the checker
+// but is not a number the runtime can use: the scene fails with a sentence, and the model and
+// the design are built all the same (the plan keeps the failure; nothing throws while planning).
+TEST(Scenes, AParameterOverAnotherQuantityFailsTheSceneNotTheModel) {
+  auto c = driver::compileText("fluct.gbx", R"(
+gearbox One {
+  stage s: spur { pinion.z = 20; wheel.z = 60; normal_module = 5 mm; face_width = 50 mm; }
+  operating { input_speed = 1000 rpm; input_torque = 200 N*m; }
+  scene v on s {
+    effects { speed_fluctuation { mean = input_speed; amplitude = 10 rpm; frequency = 5 Hz; } }
+    duration = 10 mesh_periods;
+    output rms(displacement);
+  }
+}
+)");
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  std::unique_ptr<rt::Model> m;
+  ASSERT_NO_THROW(m = std::make_unique<rt::Model>(c->program, c->program.gearboxes[0]));
+  ASSERT_EQ(m->scenes.size(), 1u);
+  EXPECT_FALSE(m->scenes[0].failure.empty());
+  rt::Assignment a(*m);
+  auto r = runScene(*m, a, m->scenes[0]);
+  EXPECT_EQ(r.failure, "scene `v`: a setting's expression can use numbers and the effect's own words only");
+}
