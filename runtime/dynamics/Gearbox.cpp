@@ -307,13 +307,13 @@ private:
   const SceneOverrides& ov;
   GearboxRun run;
   std::vector<std::string>& prov;
-  // The listed effects, each null where the scene does not list it.
-  const SceneEffects::Hertz* hertz = nullptr;
-  const SceneEffects::Varying* varying = nullptr;
-  const SceneEffects::Damping* damping = nullptr;
-  const SceneEffects::Fluctuation* torqueFx = nullptr;
-  const SceneEffects::Backlash* backlash = nullptr;
-  const SceneEffects::Loaded* loadedFx = nullptr;
+  // The listed effects, each empty where the scene does not list it.
+  const std::optional<SceneEffects::Hertz>& hertz = scene.fx.hertz;
+  const std::optional<SceneEffects::Varying>& varying = scene.fx.varying;
+  const std::optional<SceneEffects::Damping>& damping = scene.fx.damping;
+  const std::optional<SceneEffects::Fluctuation>& torqueFx = scene.fx.torque;
+  const std::optional<SceneEffects::Backlash>& backlash = scene.fx.backlash;
+  const std::optional<SceneEffects::Loaded>& loadedFx = scene.fx.loaded;
   Params P;
   int harmonics = 0;
   // Members: the driven input shaft first (prescribed), then one per shaft, carrier, planet, idler.
@@ -341,13 +341,6 @@ private:
                                        "varying_stiffness, loaded_mesh, damping, speed_fluctuation and torque_fluctuation)",
                                        fx.name)};
     if (!m.gearbox.splits.empty()) throw SceneFailure{"a whole-gearbox scene of a power split is not modelled: run the scene on a stage"};
-    auto listed = [](const auto& fx) { return fx ? &*fx : nullptr; };
-    hertz = listed(scene.fx.hertz);
-    varying = listed(scene.fx.varying);
-    damping = listed(scene.fx.damping);
-    torqueFx = listed(scene.fx.torque);
-    backlash = listed(scene.fx.backlash);
-    loadedFx = listed(scene.fx.loaded);
     if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
     if (loadedFx && (hertz || backlash || varying))
       throw SceneFailure{"`loaded_mesh` gives every mesh its stiffness and separation from the flanks: list it without hertz_contact, backlash "
@@ -719,7 +712,7 @@ private:
   void integrate() {
     int contactKind = loadedFx ? contact::Loaded : backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
     int phaseKind = P.drive.needsState() ? drivephase::State : drivephase::Closed;
-    Compiled model = compile(P, varying != nullptr, damping != nullptr, contactKind, torqueFx != nullptr, phaseKind);
+    Compiled model = compile(P, varying.has_value(), damping.has_value(), contactKind, torqueFx.has_value(), phaseKind);
     System sys;
     size_t extra = (phaseKind == drivephase::State ? 1 : 0) + (P.audit ? 3 : 0);
     sys.dim = 2 * nq + extra;

@@ -302,13 +302,13 @@ private:
   double Jp = 0, JcEff = 0;
   // Contact.
   double Ksp = 0, Krp = 0, e = 1.5, ramp = 0, hertzDampingSp = 0, hertzDampingRp = 0, kLinSp = 0, kLinRp = 0;
-  // The listed effects, each null where the scene does not list it.
-  const SceneEffects::Hertz* hertz = nullptr;
-  const SceneEffects::Varying* varying = nullptr;
-  const SceneEffects::Damping* damping = nullptr;
-  const SceneEffects::Fluctuation* torqueFx = nullptr;
-  const SceneEffects::TransmissionError* te = nullptr;
-  const SceneEffects::Backlash* backlash = nullptr;
+  // The listed effects, each empty where the scene does not list it.
+  const std::optional<SceneEffects::Hertz>& hertz = scene.fx.hertz;
+  const std::optional<SceneEffects::Varying>& varying = scene.fx.varying;
+  const std::optional<SceneEffects::Damping>& damping = scene.fx.damping;
+  const std::optional<SceneEffects::Fluctuation>& torqueFx = scene.fx.torque;
+  const std::optional<SceneEffects::TransmissionError>& te = scene.fx.transmissionError;
+  const std::optional<SceneEffects::Backlash>& backlash = scene.fx.backlash;
   // Load, drive, time scales.
   double tMean = 0, tAmp = 0, tOmega = 0, ratio = 1, Tz = 0, Tn = 0, F0 = 0;
   Drive drive;
@@ -364,13 +364,6 @@ private:
     for (const auto& fx : scene.listed)
       if (const EffectRow* row = effectRow(fx.kind); !row || !row->planetary)
         throw SceneFailure{fmt::format("effect `{}` is not modelled on planetary stages", fx.name)};
-    auto listed = [](const auto& fx) { return fx ? &*fx : nullptr; };
-    hertz = listed(scene.fx.hertz);
-    varying = listed(scene.fx.varying);
-    damping = listed(scene.fx.damping);
-    torqueFx = listed(scene.fx.torque);
-    te = listed(scene.fx.transmissionError);
-    backlash = listed(scene.fx.backlash);
     if (backlash && hertz) throw SceneFailure{"`backlash` and `hertz_contact` both describe the contact: list one"};
     if (hertz) {
       e = hertz->exponent;
@@ -487,7 +480,7 @@ private:
     int phaseKind = drive.needsState()                   ? drivephase::State
                     : drive.fluctuates || drive.ramp > 0 ? drivephase::ClosedForm
                                                          : drivephase::Constant;
-    model = compile(P, varying != nullptr, damping != nullptr, contactKind, te != nullptr, torqueFx != nullptr, phaseKind);
+    model = compile(P, varying.has_value(), damping.has_value(), contactKind, te.has_value(), torqueFx.has_value(), phaseKind);
     sys.dim = dim;
     sys.rhs = model.rhs;
     sys.dfdy = model.dfdy;
