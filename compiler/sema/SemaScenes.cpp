@@ -168,6 +168,23 @@ void Analyser::effects(const Stmt& block, ir::Scene& out, const Scope& gs) {
     s.context = Scope::EffectParam;
     s.effectLocals = spec->locals;
     fx.params = settings(items, spec->params, s, owner, nameOr(e), "E0215");
+    // A parameter is a number of the scene: a constant, or arithmetic over the effect's own
+    // words (`damping = 0.01 * stiffness`); a quantity of the design has no value there.
+    for (const auto& p : fx.params) {
+      if (p.value || !p.expr) continue;
+      const ir::Expr* other = nullptr;
+      walk(*p.expr, [&](const ir::Expr& x) {
+        bool arithmetic = x.op == Op::Const || x.op == Op::Symbol || x.op == Op::Neg || x.op == Op::Add || x.op == Op::Sub ||
+                          x.op == Op::Mul || x.op == Op::Div;
+        if (!arithmetic && !other) other = &x;
+      });
+      if (other)
+        diags_.error("E0410", other->span,
+                     fmt::format("{}: `{}` must be a constant{}; a quantity of the design has no value inside a scene's effect",
+                                 owner, p.name,
+                                 spec->locals.empty() ? std::string()
+                                                      : fmt::format(" or arithmetic over `{}`", fmt::join(spec->locals, "`, `"))));
+    }
     if (spec->id == Effect::Damping) {
       bool r = ir::findSetting(fx.params, "ratio"), c = ir::findSetting(fx.params, "coefficient");
       if (!r && !c) diags_.error("E0215", nameOr(e), "effect `damping` needs `ratio` (zeta) or `coefficient` (c)");

@@ -564,22 +564,30 @@ TEST(Scenes, LinearMeshWarnsWhenTheForceChangesSign) {
   for (const auto& w : contact.warnings) EXPECT_NE(w.find("not died out"), std::string::npos) << w;
 }
 
-// An effect parameter written over another quantity (`mean = input_speed`) passes the checker
-// but is not a number the runtime can use: the scene fails with a sentence, and the model and
-// the design are built all the same (the plan keeps the failure; nothing throws while planning).
+// An effect parameter over another quantity (`mean = input_speed`) is refused by the checker
+// (E0410); an IR that holds one all the same (built by hand here) fails the scene with a
+// sentence, and the model and the design are built all the same (the plan keeps the
+// failure; nothing throws while planning).
 TEST(Scenes, AParameterOverAnotherQuantityFailsTheSceneNotTheModel) {
   auto c = driver::compileText("fluct.gbx", R"(
 gearbox One {
   stage s: spur { pinion.z = 20; wheel.z = 60; normal_module = 5 mm; face_width = 50 mm; }
   operating { input_speed = 1000 rpm; input_torque = 200 N*m; }
   scene v on s {
-    effects { speed_fluctuation { mean = input_speed; amplitude = 10 rpm; frequency = 5 Hz; } }
+    effects { speed_fluctuation { mean = 1000 rpm; amplitude = 10 rpm; frequency = 5 Hz; } }
     duration = 10 mesh_periods;
     output rms(displacement);
   }
 }
 )");
   ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  for (auto& p : c->program.gearboxes[0].scenes[0].effects[0].params)
+    if (p.key == cat::Q::Mean) {
+      p.value.reset();
+      p.expr = std::make_unique<ir::Expr>();
+      p.expr->op = ir::Op::Quantity;
+      p.expr->name = "input_speed";
+    }
   std::unique_ptr<rt::Model> m;
   ASSERT_NO_THROW(m = std::make_unique<rt::Model>(c->program, c->program.gearboxes[0]));
   ASSERT_EQ(m->scenes.size(), 1u);
