@@ -21,7 +21,6 @@ namespace gbx::rt::dyn {
 
 namespace {
 
-
 // One mesh: its deflection along the line of action is sum coef[k] q[dof[k]] over at most
 // three members (dof -1: the driven input, whose angle is prescribed).
 struct GMesh {

@@ -127,7 +127,6 @@ void loadMesh(const Evaluator& ev, const Assignment& a, int st, MeshParameters& 
 
 MeshScene meshSceneOf(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov, Accuracy acc,
                       std::vector<std::string>& prov) {
-  if (!scene.failure.empty()) throw Failure{scene.failure};
   Evaluator ev = ov.evaluator ? *ov.evaluator : Evaluator(m);
   int st = scene.stage;
   const ir::Stage& stage = *m.stages[static_cast<size_t>(st)].ir;
@@ -633,6 +632,7 @@ Drive sceneDrive(const ScenePlan& scene, double nominal, double upstream, double
 }
 
 MeshScene meshScene(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov) {
+  if (!scene.failure.empty()) throw Failure{scene.failure};
   std::vector<std::string> prov;
   return meshSceneOf(m, a, scene, ov, sceneAccuracy(scene, ov), prov);
 }
@@ -753,14 +753,7 @@ SceneResult runScene(const Model& m, const Assignment& a, const ScenePlan& scene
 }
 
 SceneResult runScene(const Model& m, const Assignment& a, const ir::Scene& scene, const SceneOverrides& ov) {
-  try {
-    return runScene(m, a, planScene(scene), ov);
-  } catch (const Failure& f) {
-    SceneResult r;
-    r.name = scene.name;
-    r.failure = fmt::format("scene `{}`: {}", scene.name, f.what);
-    return r;
-  }
+  return runScene(m, a, planScene(scene), ov);
 }
 
 } // namespace gbx::rt::dyn

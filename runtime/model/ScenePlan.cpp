@@ -111,6 +111,18 @@ SceneEffects effectsOf(const std::vector<ListedEffect>& listed) {
   return fx;
 }
 
+// The typed effects, or the failure of a parameter that cannot be evaluated (kept for the
+// scene's run: planning never throws, so the model is always built).
+void resolveEffects(ScenePlan& p) {
+  p.failure.clear();
+  try {
+    p.fx = effectsOf(p.listed);
+  } catch (const SceneFailure& f) {
+    p.fx = {};
+    p.failure = f.what;
+  }
+}
+
 } // namespace
 
 EffectValue::EffectValue(const ir::Expr& e) : fn_(compile(e)) {}
@@ -138,20 +150,6 @@ SteadyMethod ScenePlan::steady(std::optional<long> settlePeriods) const {
   if (!settlePeriods && (periodicWritten || (!settles && !duration))) return SteadyMethod::Periodic;
   return record ? SteadyMethod::Settle : SteadyMethod::FromRest;
 }
-
-namespace {
-
-void resolveEffects(ScenePlan& p) {
-  p.failure.clear();
-  try {
-    p.fx = effectsOf(p.listed);
-  } catch (const SceneFailure& f) {
-    p.fx = {};
-    p.failure = f.what;
-  }
-}
-
-} // namespace
 
 ScenePlan ScenePlan::withEffectParam(int effect, Q key, double si, units::Dim dim) const {
   ScenePlan p = *this;

@@ -132,6 +132,8 @@ void runCandidate(Task& task, const Model& m, Evaluator& ev, Assignment& a, cons
 
 } // namespace
 
+double ownSceneRtol(const Model& m) { return m.scenes.empty() ? 1e-9 : m.scenes[0].rtol.value_or(1e-9); }
+
 void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const Assignment* baseDesign, double rtol) {
   // One scene run per design point (and tolerance corner): outputs of one scene share it.
   // The cache holds the points of the design being evaluated, so a `worst(…)` read twice
@@ -190,7 +192,7 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
 // own tolerance is no tighter than the optimiser's, or fewer than two are ranked.
 std::string rankCheck(const Model& m, const Model* baseline, const Assignment* baseDesign, const std::vector<OptCandidate>& ranked,
                       const OptimiseOptions& opt) {
-  double tight = m.scenes.empty() ? 1e-9 : m.scenes[0].rtol.value_or(1e-9);
+  double tight = ownSceneRtol(m);
   size_t k = std::min(opt.rankCheck, ranked.size());
   if (k >= 2 && tight < opt.sceneRtol) {
     Evaluator ev(m);

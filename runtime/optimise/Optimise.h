@@ -46,5 +46,7 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
 
 // Installs scene and baseline hooks on an evaluator (scenes at `rtol`).
 void installHooks(class Evaluator& ev, const Model& m, const Model* baseline, const Assignment* baselineDesign, double rtol);
+// The scenes' own tolerance (the first scene's rtol), at which chosen designs are reported.
+double ownSceneRtol(const Model& m);
 
 } // namespace gbx::rt

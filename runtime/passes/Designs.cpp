@@ -29,7 +29,7 @@ public:
     if (!freedoms.empty() || baseline) {
       // Optimised designs, or `relative(x)` columns: scene results and relative values at the
       // scenes' own accuracy.
-      installHooks(ev_, m, baseline, baseDesign, m.scenes.empty() ? 1e-9 : m.scenes[0].rtol.value_or(1e-9));
+      installHooks(ev_, m, baseline, baseDesign, ownSceneRtol(m));
     }
     // Rules `q in a..b` with constant bounds: the part of q's interval a design may use.
     std::function<void(const ir::Expr&)> collect = [&](const ir::Expr& e) {
