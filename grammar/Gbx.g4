@@ -54,7 +54,7 @@ stmt
   | TOP expr ';'                                   # topStmt
   | SORT BY expr ';'                               # sortStmt
   | COLUMNS expr (',' expr)* ';'                   # columnsStmt
-  | path '=' expr (WHEN expr)? ';'                 # assignStmt
+  | path '=' (SCENE ID | expr) (WHEN expr)? ';'    # assignStmt  // also `dynamic_factor = scene vib;`
   | path IN domain ';'                             # domainStmt
   | path PLUSMINUS addExpr ';'                     # scatterStmt  // in `tolerances`
   | ID block                                       # blockStmt

@@ -97,6 +97,7 @@ Stmt Stmt::clone() const {
   s.word = word;
   s.wordSpan = wordSpan;
   s.importIsPath = importIsPath;
+  s.sceneRef = sceneRef;
   s.with = with;
   s.withSpans = withSpans;
   s.base = base;
@@ -186,7 +187,7 @@ void printStmt(std::string& out, const Stmt& s, int depth) {
     break;
   case StmtKind::Of: head += fmt::format(" {} of {}", s.name, s.path.str()); break;
   case StmtKind::Assign:
-    head += fmt::format(" {} = {}", s.path.str(), opt(s.value));
+    head += fmt::format(" {} = {}{}", s.path.str(), s.sceneRef ? "scene " : "", opt(s.value));
     if (s.when) head += " when " + opt(s.when);
     break;
   case StmtKind::Scatter: head += fmt::format(" {} +- {}", s.path.str(), opt(s.value)); break;

@@ -94,6 +94,7 @@ struct Stmt {
   std::string word;  // stage kind, preset target, `material`, `of` word, import target
   Span wordSpan;
   bool importIsPath = false;
+  bool sceneRef = false;  // `x = scene NAME;`: value is the scene's name
   std::vector<std::string> with;  // presets applied to a stage
   std::vector<Span> withSpans;
   std::string base;  // `extends` gearbox

@@ -38,7 +38,8 @@ struct AttrSpec {
   std::string unitHint;                // the unit to suggest for a bare number, when not the display unit
   bool meshPeriods = false;            // may be given in mesh periods
   bool budget = false;                 // atMost is a size budget (E0411), not a physical bound
-  std::vector<std::string> symbols;    // accepted words for ValueKind::Symbol
+  std::vector<std::string> symbols;    // accepted words for ValueKind::Symbol; for a Number, words it takes instead of one
+  bool sceneRef = false;               // a Number that may instead name a scene (`dynamic_factor = scene vib`)
 };
 
 // Row builders shared by the catalogue files.

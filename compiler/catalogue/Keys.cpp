@@ -59,7 +59,9 @@ Better betterOf(Q q) {
   case Q::PitchDeviation:
   case Q::ProfileDeviation:
   case Q::ProfileFormDeviation:
-  case Q::HelixSlopeDeviation: return Better::Smaller;
+  case Q::HelixSlopeDeviation:
+  case Q::ContactDamage:
+  case Q::BendingDamage: return Better::Smaller;
   default: return Better::Unknown;
   }
 }

@@ -168,7 +168,12 @@ namespace gbx::cat {
   X(YdeltarelT, "Y_deltarelT")                                                                  \
   X(YRrelT, "Y_RrelT")                                                                          \
   X(YX, "Y_X")                                                                                  \
-  X(YM, "Y_M")
+  X(YM, "Y_M")                                                                                  \
+  X(HelixHand, "helix_hand")                                                                    \
+  X(TorqueSide, "torque_side")                                                                  \
+  X(BrinellHardness, "brinell_hardness")                                                        \
+  X(ContactDamage, "contact_damage")                                                            \
+  X(BendingDamage, "bending_damage")
 
 enum class Q : std::uint8_t {
 #define GBX_KEY_ENUM(id, name) id,

@@ -40,6 +40,7 @@ const std::vector<AttrSpec>& materialProperties() {
       pos("sigma_hlim", pressure, "ISO 6336-5 allowable contact stress number"),
       pos("sigma_flim", pressure, "ISO 6336-5 nominal bending stress number"),
       pos("hardness", none, "surface hardness (HRC or HV, as the material states)"),
+      pos("brinell_hardness", none, "Brinell hardness HB of a through-hardened steel (Z_W of ISO 6336-2 when it meshes with a harder pinion)"),
       symbol("treatment", {"case_hardened", "nitrided", "through_hardened"},
              "heat treatment: selects the ISO 6336 life curves, running-in, notch sensitivity and size factors"),
   };
@@ -178,7 +179,7 @@ bool dependsOnOperatingPoint(Q key) {
 
 bool isRatingQuantity(Q key) {
   auto k = static_cast<int>(key);
-  return k >= static_cast<int>(Q::ContactSafety) && k <= static_cast<int>(Q::YM);
+  return (k >= static_cast<int>(Q::ContactSafety) && k <= static_cast<int>(Q::YM)) || key == Q::ContactDamage || key == Q::BendingDamage;
 }
 
 const std::vector<FlagSpec>& flags() {

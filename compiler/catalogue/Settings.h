@@ -70,6 +70,17 @@ inline constexpr int CaseHardened = 0, Nitrided = 1, ThroughHardened = 2;
 namespace lifeCurve {
 inline constexpr int Normal = 0, Optimum = 1;
 }
+// The pinion's helix hand and the end of its face where the torque enters (LANGUAGE.md §16),
+// and the word `rating.face_load_factor` takes instead of a number.
+namespace helixHand {
+inline constexpr int Right = 0, Left = 1;
+}
+namespace torqueSide {
+inline constexpr int Coupling = 0, Free = 1;
+}
+namespace faceLoad {
+inline constexpr int ContactAnalysis = 0;
+}
 
 // Install choices of a split, by their position in the `install` row's words.
 namespace install {

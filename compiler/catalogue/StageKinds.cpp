@@ -35,8 +35,8 @@ std::vector<AttrSpec> cylindricalGearAttrs() {
       in("shift", none, "profile shift coefficient"),
       pos("pitch_deviation", length, "single (base) pitch deviation"),
       pos("profile_deviation", length, "total profile deviation"),
-      pos("bending_deflection", length, "shaft bending deflection across the face"),
-      pos("torsion_deflection", length, "torsional wind-up across the face"),
+      bounded(in("bending_deflection", length, "shaft bending deflection across the face (0: a stiff shaft)"), num(0), std::nullopt),
+      bounded(in("torsion_deflection", length, "torsional wind-up across the face (0: a stiff shaft)"), num(0), std::nullopt),
       pos("inertia", inertia, "mass moment of inertia about the gear axis"),
       pos("bearing_span", length, "distance between the gear's bearings"),
       pos("shaft_diameter", length, "diameter of the gear's shaft"),
@@ -81,8 +81,17 @@ std::vector<AttrSpec> ratingInputs() {
       pos("rating.basic_rack.addendum", none, "basic rack addendum h_aP* (default 1.0)"),
       pos("rating.basic_rack.dedendum", none, "basic rack dedendum h_fP* (default 1.25)"),
       pos("rating.basic_rack.root_radius", none, "basic rack root radius rho_fP* (default 0.38)"),
-      factor("rating.face_load_factor", "face load factor K_Hbeta, given (computed when absent)"),
-      factor("rating.dynamic_factor", "dynamic factor K_v, given (method B when absent)"),
+      [&] {
+        auto a = factor("rating.face_load_factor",
+                        "face load factor K_Hbeta: given, or `contact_analysis` (from the loaded mesh's line load); method B when absent");
+        a.symbols = {"contact_analysis"};
+        return a;
+      }(),
+      [&] {
+        auto a = factor("rating.dynamic_factor", "dynamic factor K_v: given, or `scene NAME` (method A from that periodic scene); method B when absent");
+        a.sceneRef = true;
+        return a;
+      }(),
       factor("rating.transverse_load_factor", "transverse load factor K_Halpha, given (method B when absent)"),
       factor("rating.mesh_load_factor", "mesh load factor K_gamma of multi-path drives (default 1.0; planetary: by the number of planets, IEC 61400-4)"),
       hinted(in("rating.mesh_misalignment", length, "mesh misalignment from manufacture f_ma (default the helix slope tolerance f_Hbeta)"), "um"),
@@ -107,7 +116,10 @@ std::vector<AttrSpec> ratingStageQuantities() {
 
 // Gear inputs only the rating reads.
 std::vector<AttrSpec> ratingGearExtras() {
+  auto own = material();
+  own.meaning = "this gear's material, where it differs from the stage's `material` (its limits, life curves and Z_W)";
   return {
+      own,
       pos("tip_diameter", length, "tip diameter, given (else from the basic rack, the shift and the tip alteration)"),
       pos("profile_form_deviation", length, "profile form deviation f_f_alpha (else ISO 1328-1 from the grade)"),
       pos("helix_slope_deviation", length, "helix slope deviation f_H_beta (else ISO 1328-1 from the grade)"),
@@ -171,6 +183,9 @@ std::vector<KindSpec> buildKinds() {
     if (helical)
       a.insert(a.begin() + 1, required(bounded(in("helix_angle", angle, "helix angle at the reference circle"), deg(0), deg(45))));
     for (auto& d : commonDerived()) a.push_back(d);
+    // The sense of the pinion's wind-up and bending mismatch across the face (LANGUAGE.md §16).
+    if (helical) a.push_back(symbol("helix_hand", {"right", "left"}, "the pinion's helix hand: the sense of its bending mismatch across the face"));
+    a.push_back(symbol("torque_side", {"coupling", "free"}, "the end of the pinion's face where the torque enters: the sense of its wind-up"));
     for (auto& r : ratingInputs()) a.push_back(r);
     for (auto& r : ratingStageQuantities()) a.push_back(r);
     return a;

@@ -37,6 +37,7 @@ Setting Setting::clone() const {
   s.meshPeriods = meshPeriods;
   s.value = value;
   s.symbol = symbol;
+  s.sceneRef = sceneRef;
   if (expr) s.expr = expr->clone();
   s.members = members;
   s.lo = lo;

@@ -134,6 +134,8 @@ struct Attribute {
   Span span;
   std::string symbol;          // material or other named value
   int choice = -1;             // resolved by lowering: an enumerated value's position in its row's words
+  bool sceneRef = false;       // `dynamic_factor = scene vib`: symbol names a scene
+  int scene = -1;              // resolved by lowering: that scene's index in the gearbox
 };
 
 struct Rule {
@@ -178,7 +180,8 @@ struct Setting {
   bool integer = false;
   bool meshPeriods = false;  // value counts the scene's mesh periods
   std::optional<Number> value;
-  std::string symbol;        // enumerated value: `preloaded`, `rk8pd`, a stage name
+  std::string symbol;        // enumerated value: `preloaded`, `rk8pd`, a stage name, a scene (sceneRef)
+  bool sceneRef = false;
   ExprPtr expr;              // when the value is an expression over other quantities
   std::vector<Number> members;  // `rtol in {…}`
   std::optional<Number> lo, hi;  // `harmonics in 1..8`

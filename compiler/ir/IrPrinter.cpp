@@ -110,7 +110,7 @@ std::string print(const Program& p) {
         switch (a.role) {
         case Attribute::Fixed:
         case Attribute::Default:
-          v = "= " + (!a.symbol.empty() ? a.symbol : (a.value ? print(*a.value) : std::string("<error>")));
+          v = "= " + (!a.symbol.empty() ? (a.sceneRef ? "scene " : "") + a.symbol : (a.value ? print(*a.value) : std::string("<error>")));
           break;
         case Attribute::Decision:
         case Attribute::Freedom:

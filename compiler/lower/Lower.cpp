@@ -143,7 +143,12 @@ public:
   // `g` is the gearbox this resolver reads (`g_`), taken here to be written.
   void gearbox(ir::Gearbox& g) {
     for (auto& st : g.stages)
-      for (auto& a : st.attributes) expr(a.value);
+      for (auto& a : st.attributes) {
+        expr(a.value);
+        if (a.sceneRef)
+          for (size_t k = 0; k < g.scenes.size(); ++k)
+            if (g.scenes[k].name == a.symbol) a.scene = static_cast<int>(k);
+      }
     for (auto& l : g.lets) expr(l.expr);
     for (auto& r : g.rules) expr(r.expr);
     for (auto& o : g.objectives) expr(o.expr);

@@ -349,11 +349,7 @@ private:
       s.kind = K::Columns;
       for (auto* e : c->expr()) s.exprs.push_back(expr(e));
     } else if (auto* c = dynamic_cast<GbxParser::AssignStmtContext*>(ctx)) {
-      s.kind = K::Assign;
-      s.path = path(c->path());
-      auto es = c->expr();
-      if (!es.empty()) s.value = expr(es[0]);
-      if (es.size() > 1) s.when = expr(es[1]);
+      assign(s, c);
     } else if (auto* c = dynamic_cast<GbxParser::DomainStmtContext*>(ctx)) {
       s.kind = K::Domain;
       s.path = path(c->path());
@@ -373,6 +369,21 @@ private:
       return std::nullopt;
     }
     return s;
+  }
+
+  // `x = value (when condition)?;` or `x = scene NAME;`.
+  void assign(ast::Stmt& s, GbxParser::AssignStmtContext* c) {
+    s.kind = ast::StmtKind::Assign;
+    s.path = path(c->path());
+    auto es = c->expr();
+    size_t next = 0;
+    if (c->SCENE() && c->ID()) {
+      s.sceneRef = true;
+      s.value = leaf(ast::ExprKind::Name, span(c->ID()), c->ID()->getText());
+    } else if (!es.empty()) {
+      s.value = expr(es[next++]);
+    }
+    if (es.size() > next) s.when = expr(es[next]);
   }
 
   void domain(ast::Stmt& s, GbxParser::DomainContext* ctx) {

@@ -117,6 +117,7 @@ private:
   void ratingInputs(const StageModel& st, Span where);
   void requireMaterial(const ir::Gearbox& g, const GearboxModel& m);
   void requireRating(const ir::Gearbox& g, const GearboxModel& m);
+  void sceneFactors(const ir::Gearbox& g);
   void requireOperating(const ir::Gearbox& g);
   void checkOperating(const GearboxModel& m, const std::vector<ir::Setting>& op, const Stmt* decl);
 

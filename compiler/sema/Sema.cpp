@@ -170,6 +170,27 @@ ir::Setting Analyser::setting(const std::string& name, const Binding& b, const A
       out.choice = static_cast<int>(w - spec.symbols.begin());
     return out;
   }
+  // A number that may instead be a scene (`dynamic_factor = scene vib`) or one of its row's
+  // words (`face_load_factor = contact_analysis`).
+  if (st.sceneRef) {
+    if (!spec.sceneRef) {
+      diags_.error("E0406", v ? v->span : st.span, fmt::format("`{}` takes {}, not a scene", name, spec.dim.describe()));
+      return out;
+    }
+    if (!scope.gearbox || !scope.gearbox->findScene(v->text)) {
+      diags_.error("E0217", v->span, fmt::format("unknown scene `{}`: `{}` names a scene of this gearbox", v->text, name));
+      return out;
+    }
+    out.symbol = v->text;
+    out.sceneRef = true;
+    return out;
+  }
+  if (!spec.symbols.empty() && v && v->kind == ast::ExprKind::Name)
+    if (auto w = std::find(spec.symbols.begin(), spec.symbols.end(), v->text); w != spec.symbols.end()) {
+      out.symbol = v->text;
+      out.choice = static_cast<int>(w - spec.symbols.begin());
+      return out;
+    }
   Scope s = scope;
   s.meshPeriodsAllowed = spec.meshPeriods;
   auto x = checker_.check(v, s);

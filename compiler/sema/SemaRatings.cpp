@@ -69,9 +69,12 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
       diags_.error("E0225", where, fmt::format("stage `{}` is rated but does not give `{}` ({})", st.name, need, findAttr(*st.kind, need)->meaning));
   if (!st.findAttr("accuracy")) {
     std::vector<std::string> missing;
+    // f_falpha may come from the total `profile_deviation` the loaded mesh reads too.
+    const std::pair<const char*, const char*> devs[] = {
+        {"pitch_deviation", nullptr}, {"profile_form_deviation", "profile_deviation"}, {"helix_slope_deviation", nullptr}};
     for (const auto& g : st.kind->gears)
-      for (const char* dev : {"pitch_deviation", "profile_form_deviation", "helix_slope_deviation"})
-        if (!st.findAttr(g + "." + dev)) missing.push_back("`" + g + "." + dev + "`");
+      for (const auto& [dev, alt] : devs)
+        if (!st.findAttr(g + "." + dev) && !(alt && st.findAttr(g + "." + alt))) missing.push_back("`" + g + "." + dev + "`");
     if (!missing.empty())
       diags_.error("E0225", where,
                    fmt::format("stage `{}` is rated but gives no `accuracy` (ISO 1328-1 grade) from which to take {}", st.name,
@@ -80,24 +83,38 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
   for (const auto& g : st.kind->gears)
     if (st.findAttr(g + ".web_thickness") && !st.findAttr(g + ".rim_thickness"))
       diags_.error("E0225", where, fmt::format("`{}.web_thickness` needs `{}.rim_thickness` (C_R of a webbed blank)", g, g));
-  const Binding* mat = st.findAttr(std::string(keyName(Q::Material)));
-  if (!mat) {
-    diags_.error("E0233", where, fmt::format("stage `{}` is rated but names no `material` (the rating needs its E, nu, sigma_hlim, sigma_flim and treatment)", st.name));
+  // The stage's material, or one per gear (`pinion.material`), each with the numbers the
+  // rating needs.
+  std::string matName(keyName(Q::Material));
+  std::vector<const Binding*> mats;
+  std::vector<std::string> without;
+  for (const auto& g : st.kind->gears) {
+    if (const Binding* b = st.findAttr(g + "." + matName)) mats.push_back(b);
+    else without.push_back("`" + g + "`");
+  }
+  if (const Binding* b = st.findAttr(matName)) mats.push_back(b);
+  else if (!without.empty()) {
+    diags_.error("E0233", where,
+                 fmt::format("stage `{}` is rated but names no `material` for {} (the rating needs its E, nu, sigma_hlim, sigma_flim and "
+                             "treatment)",
+                             st.name, fmt::join(without, ", ")));
     return;
   }
-  const ast::Expr* v = mat->stmt->value.get();
-  if (!v || v->kind != ast::ExprKind::Name) return;
-  auto it = globals_.materials.find(v->text);
-  if (it == globals_.materials.end()) return;  // reported as an unknown material
-  std::vector<std::string> missing;
-  for (Q need : {Q::SigmaHlim, Q::SigmaFlim, Q::Treatment}) {
-    std::string n(keyName(need));
-    if (std::none_of(it->second->body.begin(), it->second->body.end(), [&](const Stmt& b) { return b.path.str() == n; }))
-      missing.push_back("`" + n + "`");
+  for (const Binding* mat : mats) {
+    const ast::Expr* v = mat->stmt->value.get();
+    if (!v || v->kind != ast::ExprKind::Name) continue;
+    auto it = globals_.materials.find(v->text);
+    if (it == globals_.materials.end()) continue;  // reported as an unknown material
+    std::vector<std::string> missing;
+    for (Q need : {Q::SigmaHlim, Q::SigmaFlim, Q::Treatment}) {
+      std::string n(keyName(need));
+      if (std::none_of(it->second->body.begin(), it->second->body.end(), [&](const Stmt& b) { return b.path.str() == n; }))
+        missing.push_back("`" + n + "`");
+    }
+    if (!missing.empty())
+      diags_.error("E0233", mat->stmt->value->span,
+                   fmt::format("stage `{}` is rated, but material `{}` does not give {}", st.name, v->text, fmt::join(missing, ", ")));
   }
-  if (!missing.empty())
-    diags_.error("E0233", mat->stmt->value->span,
-                 fmt::format("stage `{}` is rated, but material `{}` does not give {}", st.name, v->text, fmt::join(missing, ", ")));
 }
 
 // A gear pair's mass needs its material's density: say so at check time, not as `n/a`.
@@ -153,6 +170,38 @@ void Analyser::requireRating(const ir::Gearbox& g, const GearboxModel& m) {
     });
   };
   eachUse(g, false, visit);
+}
+
+// `dynamic_factor = scene NAME`: K_v by method A from a periodic single-mesh scene on the
+// rated stage itself.
+void Analyser::sceneFactors(const ir::Gearbox& g) {
+  for (const auto& st : g.stages)
+    for (const auto& a : st.attributes) {
+      bool cylindrical = st.kind == ir::StageKind::Spur || st.kind == ir::StageKind::Helical;
+      if (!a.sceneRef && !a.symbol.empty() && cat::keyOf(a.name) == Q::RatingFaceLoadFactor && !cylindrical)
+        diags_.error("E0235", a.span,
+                     fmt::format("`{} = {}` of stage `{}`: the contact analysis reads a spur or helical pair's loaded mesh; a {} stage's "
+                                 "is not implemented (give K_Hbeta, or leave it to method B)",
+                                 a.name, a.symbol, st.name, cat::kindSpec(st.kind).name));
+      if (!a.sceneRef) continue;
+      const ir::Scene* sc = nullptr;
+      for (const auto& s : g.scenes)
+        if (s.name == a.symbol) sc = &s;
+      if (!sc) continue;  // reported as an unknown scene
+      if (sc->target != st.name)
+        diags_.error("E0232", a.span,
+                     fmt::format("`{}` of stage `{}` names scene `{}`, which runs on {}: K_v comes from a scene on this stage", a.name,
+                                 st.name, sc->name, sc->target.empty() ? "the whole gearbox" : fmt::format("stage `{}`", sc->target)));
+      else if (!cylindrical)
+        diags_.error("E0235", a.span,
+                     fmt::format("`{}` of stage `{}`: K_v by method A reads a single mesh's scene; a {} stage's is not implemented", a.name,
+                                 st.name, cat::kindSpec(st.kind).name));
+      else if (!ir::findSetting(sc->settings, Q::SteadyState))
+        diags_.error("E0225", a.span,
+                     fmt::format("`{}` of stage `{}` names scene `{}`, which is not periodic: K_v is the peak of the periodic mesh force "
+                                 "(write `steady_state = periodic;` in the scene)",
+                                 a.name, st.name, sc->name));
+    }
 }
 
 void Analyser::requireOperating(const ir::Gearbox& g) {

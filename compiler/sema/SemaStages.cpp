@@ -407,6 +407,7 @@ ir::Attribute Analyser::attribute(const StageModel& st, const std::string& path,
     ir::Setting v = setting(path, b, *spec, scope, fmt::format("stage `{}`", st.name));
     a.value = std::move(v.expr);
     a.symbol = v.symbol;
+    a.sceneRef = v.sceneRef;
     return a;
   }
   // A domain: bounds are constants in the attribute's unit.

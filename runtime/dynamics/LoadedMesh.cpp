@@ -33,12 +33,22 @@ LoadedMeshTable loadedMesh(const LoadedMeshInput& in) {
     if (sep.reliefLength[1] > 0 && s < sep.reliefLength[1]) gap += sep.tipRelief[1] * (sep.reliefLength[1] - s) / sep.reliefLength[1];
     double u = 2.0 * y / b - 1.0;
     gap += sep.leadCrowning * u * u + sep.leadSlope * 0.5 * u;
+    if (sep.endReliefWidth > 0) {
+      double w = sep.endReliefWidth;
+      gap += sep.endRelief * (std::max(0.0, w - y) + std::max(0.0, y - (b - w))) / w;
+    }
     gap += sep.basePitch * (s - 0.5 * path) / p;
     double w = 2.0 * s / path - 1.0;
     gap -= sep.profileForm * w * w;
     return gap;
   };
-  std::vector<std::pair<double, double>> pts;  // (separation, stiffness)
+  struct Point {
+    double gap, c;
+    int slice;
+    bool operator<(const Point& o) const { return gap < o.gap || (gap == o.gap && c < o.c); }
+  };
+  std::vector<Point> pts;
+  if (in.sliceLoads) out.sliceLineLoad.assign(static_cast<size_t>(S), 0.0);
   double rigidSum = 0;
   for (int i = 0; i < P; ++i) {
     double tau = static_cast<double>(i) / P;
@@ -51,7 +61,7 @@ LoadedMeshTable loadedMesh(const LoadedMeshInput& in) {
         double s = (tau + static_cast<double>(k)) * p - off;
         if (s < 0 || s > path) continue;
         double c = in.singleStiffness * singlePairShape(s / path) * db;
-        pts.emplace_back(separation(s, y), c);
+        pts.push_back({separation(s, y), c, j});
         rigidSum += c;
       }
     }
@@ -64,11 +74,14 @@ LoadedMeshTable loadedMesh(const LoadedMeshInput& in) {
     double K = 0, KG = 0, delta = 0;
     size_t n = pts.size();
     for (size_t m = 0; m < n; ++m) {
-      K += pts[m].second;
-      KG += pts[m].second * pts[m].first;
+      K += pts[m].c;
+      KG += pts[m].c * pts[m].gap;
       delta = (in.load + KG) / K;
-      if (m + 1 == n || delta <= pts[m + 1].first) break;
+      if (m + 1 == n || delta <= pts[m + 1].gap) break;
     }
+    if (in.sliceLoads)
+      for (const auto& q : pts)
+        if (delta > q.gap) out.sliceLineLoad[static_cast<size_t>(q.slice)] += q.c * (delta - q.gap) / (db * P);
     out.te.push_back(delta);
     out.stiffness.push_back(K);
   }

@@ -28,6 +28,8 @@ struct FlankSeparations {
   double reliefLength[2] = {0, 0};  // roll length of the relief from each tip
   double leadCrowning = 0;          // both gears' crowning together, parabolic across the face
   double leadSlope = 0;             // a linear separation across the face (shaft wind-up and bending)
+  double endRelief = 0;             // at both ends of the face, linear over endReliefWidth from each end
+  double endReliefWidth = 0;
   double basePitch = 0;             // base pitch deviation: each incoming pair early by this much
   double profileForm = 0;           // both gears' profile form deviations: the ends of the path proud
 };
@@ -38,6 +40,7 @@ struct LoadedMeshInput {
   double singleStiffness = 0;  // c', the single-pair stiffness per unit face width at its maximum, N/m per m
   double load = 0;             // transverse force along the line of action, N
   int slices = 40, positions = 64;
+  bool sliceLoads = false;     // also the line load of each slice, mean over the period
 };
 
 struct LoadedMeshTable {
@@ -46,6 +49,9 @@ struct LoadedMeshTable {
   double pathLength = 0, epsAlpha = 0, epsBeta = 0;
   double meanStiffness = 0, meanTe = 0, peakToPeakTe = 0;
   double lightLoadStiffness = 0;  // the mean of every pair's stiffness, all in contact (for c_gamma)
+  // With sliceLoads: per slice across the face (from y = 0), the force it carries over all
+  // its contact lines, averaged over the mesh period, per unit face width (N/m).
+  std::vector<double> sliceLineLoad;
   std::string failure;            // a position where no tooth pair touches, or a geometry with no path
 };
 

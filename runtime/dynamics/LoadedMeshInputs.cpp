@@ -21,6 +21,7 @@ std::string um(double v) { return fmt::format("{:.4g} um", v * 1e6); }
 // The stage's modifications as its `modify` rules give them, a sweep's value first.
 struct Mods {
   double tipRelief[2] = {0, 0}, height[2] = {-1, -1}, crowning[2] = {0, 0};
+  double endRelief[2] = {0, 0}, endWidth[2] = {0, 0}, helixSlope[2] = {0, 0};
   bool heightGiven[2] = {false, false};
   std::vector<std::string> ignored;
 };
@@ -50,6 +51,9 @@ Mods modifications(const Evaluator& ev, const Assignment& a, int st, std::vector
           if (r.gear < 0 || r.gear == g) m.heightGiven[g] = true;
         break;
       case cat::Mod::LeadCrowning: each(m.crowning); break;
+      case cat::Mod::EndRelief: each(m.endRelief); break;
+      case cat::Mod::EndReliefWidth: each(m.endWidth); break;
+      case cat::Mod::HelixSlope: each(m.helixSlope); break;
       case cat::Mod::ThermalLeadRelief:
         prov.push_back(fmt::format("loaded mesh: `{}` compensates the thermal distortion of the running gear, which the loaded mesh "
                                    "does not model: neither is a separation",
@@ -82,10 +86,85 @@ Mods modifications(const Evaluator& ev, const Assignment& a, int st, std::vector
   return m;
 }
 
+// A stage quantity at the design, NaN where the design does not give it.
+double optionalQuantity(const Evaluator& ev, const Assignment& a, int st, int gear, Q key) {
+  ir::QuantityRef ref;
+  ref.owner = ir::QuantityRef::Stage;
+  ref.index = static_cast<std::int16_t>(st);
+  ref.gear = static_cast<std::int8_t>(gear);
+  ref.key = key;
+  Value v = ev.quantity(ref, a);
+  return v.isNumber() && std::isfinite(v.lo) ? v.mid() : NAN;
+}
+
+// Separations across the face: the lead modifications, the pinion's deflection in the sense
+// its hand and torque side give, and a lead deviation the caller adds.
+void leadSeparations(const Evaluator& ev, const Assignment& a, int st, const Mods& mods, const FlankGeometry& g, const LoadedMeshUse& use,
+                     FlankSeparations& sep, std::vector<std::string>& prov) {
+  auto optional = [&](int gear, Q key) { return optionalQuantity(ev, a, st, gear, key); };
+  // A scene takes the lead deviation the spec gives (`helix_slope_deviation`, the larger of
+  // the two gears'); the rating passes its own f_ma.
+  double leadDeviation = use.leadDeviation;
+  if (!use.leadOnly)
+    for (int gear : {Pinion, Wheel})
+      if (ev.model().attribute(st, gear, Q::HelixSlopeDeviation) || ev.overrides(st, gear, Q::HelixSlopeDeviation)) {
+        double f = optional(gear, Q::HelixSlopeDeviation);
+        if (std::isfinite(f)) leadDeviation = std::max(leadDeviation, f);
+      }
+  sep.leadCrowning = mods.crowning[0] + mods.crowning[1];
+  if (sep.leadCrowning > 0) prov.push_back(fmt::format("loaded mesh: lead crowning {} (both gears), parabolic across the face", um(sep.leadCrowning)));
+  // End relief: both gears' amounts add; it runs over the wider of their widths, else a tenth
+  // of the face.
+  sep.endRelief = mods.endRelief[0] + mods.endRelief[1];
+  if (sep.endRelief > 0) {
+    double w = std::max(mods.endWidth[0], mods.endWidth[1]);
+    sep.endReliefWidth = w > 0 ? std::min(w, 0.5 * g.faceWidth) : 0.1 * g.faceWidth;
+    prov.push_back(fmt::format("loaded mesh: end relief {} at both ends of the face, linear over {:.3f} mm{}", um(sep.endRelief),
+                               sep.endReliefWidth * 1e3, w > 0 ? "" : " (no `end_relief_width`: a tenth of the face)"));
+  }
+  for (const auto& t : mods.ignored) prov.push_back(fmt::format("loaded mesh: `{}` is not one of the separations it models", t));
+  // The pinion's wind-up and bending under the load tilt its flank across the face. Across
+  // the face from the coupling end: the end where the torque enters is wound up ahead of the
+  // other, and a right-hand pinion's bending tilts it the same way as a wind-up from the
+  // coupling end (a left hand the other way). Without `helix_hand` and `torque_side` the two
+  // add, the adverse case.
+  double bend = optional(Pinion, Q::BendingDeflection), twist = optional(Pinion, Q::TorsionDeflection);
+  const ir::Attribute* hand = ev.model().attribute(st, Q::HelixHand);
+  const ir::Attribute* side = ev.model().attribute(st, Q::TorqueSide);
+  double handSign = hand && hand->choice == cat::helixHand::Left ? -1.0 : 1.0;
+  double sideSign = side && side->choice == cat::torqueSide::Free ? -1.0 : 1.0;
+  if (std::isfinite(bend) || std::isfinite(twist)) {
+    double b = std::isfinite(bend) ? bend : 0.0, t = std::isfinite(twist) ? twist : 0.0;
+    sep.leadSlope = handSign * b + sideSign * t;
+    if (!hand && !side)
+      prov.push_back(fmt::format("loaded mesh: pinion bending and torsion deflection {} as a linear separation across the face",
+                                 um(sep.leadSlope)));
+    else
+      prov.push_back(fmt::format("loaded mesh: pinion bending {} ({} hand) and torsion {} (torque at the {} end): {} across the face", um(b),
+                                 handSign > 0 ? "right" : "left", um(t), sideSign > 0 ? "coupling" : "free", um(std::fabs(sep.leadSlope))));
+  }
+  // A helix slope correction takes its amount off the deflection's slope (it is made to
+  // compensate it).
+  double correction = mods.helixSlope[0] + mods.helixSlope[1];
+  if (correction > 0) {
+    sep.leadSlope -= (sep.leadSlope >= 0 ? 1.0 : -1.0) * correction;
+    prov.push_back(fmt::format("loaded mesh: helix slope correction {} against the deflection: {} across the face", um(correction),
+                               um(std::fabs(sep.leadSlope))));
+  }
+  if (leadDeviation > 0) {
+    sep.leadSlope += (sep.leadSlope >= 0 ? 1.0 : -1.0) * leadDeviation;
+    prov.push_back(fmt::format("loaded mesh: lead deviation {} in the adverse sense: {} across the face in all", um(leadDeviation),
+                               um(std::fabs(sep.leadSlope))));
+  }
+  // Deviations, in their adverse forms, each the mean of the two gears' (what seed 003's relief
+  // rule allows for): the incoming pair early by the base pitch deviation, the ends of the
+  // path proud by the profile form deviation.
+}
+
 } // namespace
 
 LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int st, double load, int slices, int positions,
-                                std::vector<std::string>& prov) {
+                                std::vector<std::string>& prov, const LoadedMeshUse& use) {
   auto q = [&](int gear, Q key, const char* what) {
     ir::QuantityRef ref;
     ref.owner = ir::QuantityRef::Stage;
@@ -146,7 +225,7 @@ LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int st
   Mods mods = modifications(ev, a, st, prov);
   double rolls[2] = {roll1, roll2}, ra[2] = {g.ra1, g.ra2}, rb[2] = {g.rb1, g.rb2};
   const char* names[2] = {"pinion", "wheel"};
-  for (int k = 0; k < 2; ++k) {
+  for (int k = 0; k < 2 && !use.leadOnly; ++k) {
     sep.tipRelief[k] = mods.tipRelief[k];
     if (sep.tipRelief[k] <= 0) continue;
     if (mods.heightGiven[k]) {
@@ -162,19 +241,8 @@ LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int st
                                  names[k], um(sep.tipRelief[k]), sep.reliefLength[k] * 1e3));
     }
   }
-  sep.leadCrowning = mods.crowning[0] + mods.crowning[1];
-  if (sep.leadCrowning > 0) prov.push_back(fmt::format("loaded mesh: lead crowning {} (both gears), parabolic across the face", um(sep.leadCrowning)));
-  for (const auto& t : mods.ignored) prov.push_back(fmt::format("loaded mesh: `{}` is not one of the separations it models", t));
-  // The pinion's wind-up and bending under the load tilt its flank across the face.
-  double bend = optional(Pinion, Q::BendingDeflection), twist = optional(Pinion, Q::TorsionDeflection);
-  if (std::isfinite(bend) || std::isfinite(twist)) {
-    sep.leadSlope = (std::isfinite(bend) ? bend : 0.0) + (std::isfinite(twist) ? twist : 0.0);
-    prov.push_back(fmt::format("loaded mesh: pinion bending and torsion deflection {} as a linear separation across the face",
-                               um(sep.leadSlope)));
-  }
-  // Deviations, in their adverse forms, each the mean of the two gears' (what seed 003's relief
-  // rule allows for): the incoming pair early by the base pitch deviation, the ends of the
-  // path proud by the profile form deviation.
+  leadSeparations(ev, a, st, mods, g, use, sep, prov);
+  if (use.leadOnly) return in;
   double fp1 = optional(Pinion, Q::PitchDeviation), fp2 = optional(Wheel, Q::PitchDeviation);
   double ff1 = optional(Pinion, Q::ProfileDeviation), ff2 = optional(Wheel, Q::ProfileDeviation);
   if (std::isfinite(fp1) && std::isfinite(fp2)) sep.basePitch = 0.5 * (fp1 + fp2);

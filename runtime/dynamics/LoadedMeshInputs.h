@@ -10,8 +10,16 @@
 
 namespace gbx::rt::dyn {
 
+// What a caller other than a scene asks of the loaded mesh: the rating's contact analysis
+// adds the lead deviation f_Hbeta (m) across the face in the adverse sense and keeps the lead
+// alone (no tip relief, pitch or profile deviation: those load the pairs along the path).
+struct LoadedMeshUse {
+  double leadDeviation = 0;
+  bool leadOnly = false;
+};
+
 // `load` is the transverse force along the line of action, N. Every choice is said in `prov`.
 LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int stage, double load, int slices, int positions,
-                                std::vector<std::string>& prov);
+                                std::vector<std::string>& prov, const LoadedMeshUse& use = {});
 
 } // namespace gbx::rt::dyn

@@ -506,6 +506,12 @@ void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Sample
     if (dim == units::dims::force && std::isfinite(samples.staticLoad)) scale = std::max(scale, std::fabs(samples.staticLoad));
     r.numbers.push_back({o.key(), over(o.fn, window(o.id)), dim, o.fn, o.id, std::isfinite(scale) ? scale : 0.0});
   }
+  // The rating's K_v by method A reads the dynamic factor of a scene that may not list it.
+  bool listed = std::any_of(scene.outputs.begin(), scene.outputs.end(), [](const auto& o) { return o.id == Signal::DynamicFactor; });
+  if (ov.dynamicFactor && !listed) {
+    double peak = r.unstable && !ov.keepUnstable ? NAN : over(cat::SignalFn::Peak, window(Signal::MeshForce));
+    r.numbers.push_back({"dynamic_factor", peak / samples.staticLoad, {}, cat::SignalFn::Peak, Signal::DynamicFactor});
+  }
 }
 
 SceneResult runOnce(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov) {

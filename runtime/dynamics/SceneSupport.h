@@ -43,6 +43,7 @@ struct SceneOverrides {
   bool keepUnstable = false;  // values on an unstable orbit too (a continuation's middle branch)
   int loadedRefine = 1;       // the loaded mesh's slices and positions times this (an error-estimate rerun)
   bool energyAudit = false;   // a whole-gearbox scene also integrates its energy balance (tests)
+  bool dynamicFactor = false; // also the dynamic factor where the scene does not list it (K_v by method A)
 };
 
 using SteadyMethod = rt::SteadyMethod;

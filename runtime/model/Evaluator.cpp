@@ -267,6 +267,17 @@ std::vector<double> Evaluator::offsetKey() const {
   return k;
 }
 
+std::vector<double> Evaluator::overrideKey() const {
+  std::vector<double> k;
+  for (const auto& [r, v] : overrides_) {
+    k.push_back(static_cast<double>(r.owner) * 1e9 + static_cast<double>(r.index) * 1e6 + static_cast<double>(r.gear) * 1e3 +
+                static_cast<double>(r.key));
+    k.push_back(v.lo);
+    k.push_back(v.hi);
+  }
+  return k;
+}
+
 void Evaluator::addOffset(const ir::QuantityRef& r, double delta) {
   for (auto& [k, x] : offsets_)
     if (k == r) {

@@ -57,6 +57,8 @@ public:
   const std::vector<std::pair<ir::QuantityRef, double>>& offsets() const { return offsets_; }
   // The deviations as a cache key (empty at the nominal design).
   std::vector<double> offsetKey() const;
+  // The sweep's overrides as a cache key (empty without any).
+  std::vector<double> overrideKey() const;
   // `worst(q)` and `mean(q)` read q at the nominal design only (the optimiser's sensitivity
   // evaluates q at each tolerance itself).
   bool nominalOnly = false;

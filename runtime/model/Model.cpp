@@ -61,9 +61,15 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
     }
     if (const ir::Attribute* mat = info.entry(-1, Q::Material).attr; mat && !mat->symbol.empty())
       info.material = p.findMaterial(mat->symbol);
-    if (info.material) {
+    for (size_t gi = 0; gi < st.gears.size(); ++gi) {
+      const ir::Attribute* own = info.entry(static_cast<int>(gi), Q::Material).attr;
+      info.gearMaterial.push_back(own && !own->symbol.empty() ? p.findMaterial(own->symbol) : info.material);
+    }
+    // Elastic constants: the stage's material, else the pinion's own.
+    const ir::Material* elasticOf = info.material ? info.material : info.gearMaterial.empty() ? nullptr : info.gearMaterial[0];
+    if (elasticOf) {
       auto get = [&](Q key, double& out) {
-        if (const auto* s = ir::findSetting(info.material->properties, key); s && s->value) out = s->value->toDouble();
+        if (const auto* s = ir::findSetting(elasticOf->properties, key); s && s->value) out = s->value->toDouble();
       };
       get(Q::YoungsModulus, info.elastic.E);
       get(Q::Poisson, info.elastic.nu);
@@ -82,6 +88,11 @@ std::optional<double> Model::operating(Q key) const {
 }
 
 const ir::Material* Model::material(int stage) const { return info(stage).material; }
+
+const ir::Material* Model::material(int stage, int gear) const {
+  const auto& m = info(stage).gearMaterial;
+  return gear >= 0 && static_cast<size_t>(gear) < m.size() ? m[static_cast<size_t>(gear)] : material(stage);
+}
 
 Assignment::Assignment(const Model& m) : choice(m.slots.size(), -1) {
   for (const auto& f : m.freedoms) box.emplace_back(f.lo, f.hi);

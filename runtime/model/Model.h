@@ -43,6 +43,7 @@ struct StageInfo {
   const ir::Stage* ir = nullptr;
   const StageKindImpl* kind = nullptr;
   const ir::Material* material = nullptr;  // the material it names, found once
+  std::vector<const ir::Material*> gearMaterial;  // per gear: its own (`pinion.material`), else the stage's
   Elastic elastic;                         // read from it once
   std::vector<int> slots;
   std::vector<int> freedoms;
@@ -80,6 +81,8 @@ public:
   std::optional<double> operating(Q key) const;
   // The material a stage names, or nullptr.
   const ir::Material* material(int stage) const;
+  // A gear's material: its own, else the stage's, or nullptr.
+  const ir::Material* material(int stage, int gear) const;
   const StageInfo& info(int stage) const { return stages[static_cast<size_t>(stage)]; }
   bool hasStage(int stage) const { return stage >= 0 && static_cast<size_t>(stage) < stages.size(); }
 };

@@ -1,7 +1,10 @@
 #include "model/RatingRows.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
@@ -122,24 +125,34 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
     return std::nullopt;
   };
   const Model& m = c.ev.model();
-  const ir::Material* mat = m.material(c.stage);
-  if (!mat) return fail("the stage names no material");
-  auto prop = [&](Q k) -> const ir::Setting* { return ir::findSetting(mat->properties, k); };
   PairInput in;
-  for (Q k : {Q::SigmaHlim, Q::SigmaFlim, Q::YoungsModulus, Q::Poisson, Q::Density})
-    if (!prop(k) || !prop(k)->value) return fail("its material does not give " + std::string(cat::keyName(k)));
-  const ir::Setting* t = prop(Q::Treatment);
-  if (!t || t->choice < 0) return fail("its material does not give its treatment");
-  in.treatment = t->choice == cat::treatment::Nitrided          ? Treatment::Nitrided
-                 : t->choice == cat::treatment::ThroughHardened ? Treatment::ThroughHardened
-                                                                : Treatment::CaseHardened;
-  for (auto& g : in.gear) {
+  // Each gear's material: its own (`pinion.material`), else the stage's.
+  for (int slot = 0; slot < 2; ++slot) {
+    const ir::Material* mat = m.material(c.stage, slot == 0 ? mesh.g0 : mesh.g1);
+    if (!mat) return fail("the stage names no material");
+    auto prop = [&](Q k) -> const ir::Setting* { return ir::findSetting(mat->properties, k); };
+    for (Q k : {Q::SigmaHlim, Q::SigmaFlim, Q::YoungsModulus, Q::Poisson, Q::Density})
+      if (!prop(k) || !prop(k)->value) return fail("material `" + mat->name + "` does not give " + std::string(cat::keyName(k)));
+    const ir::Setting* t = prop(Q::Treatment);
+    if (!t || t->choice < 0) return fail("material `" + mat->name + "` does not give its treatment");
+    Treatment tr = t->choice == cat::treatment::Nitrided          ? Treatment::Nitrided
+                   : t->choice == cat::treatment::ThroughHardened ? Treatment::ThroughHardened
+                                                                  : Treatment::CaseHardened;
+    GearInput& g = in.gear[static_cast<size_t>(slot)];
     g.sigmaHlim = prop(Q::SigmaHlim)->value->toDouble();
     g.sigmaFlim = prop(Q::SigmaFlim)->value->toDouble();
+    g.treatment = tr;
+    g.E = prop(Q::YoungsModulus)->value->toDouble();
+    g.nu = prop(Q::Poisson)->value->toDouble();
+    if (const ir::Setting* hb = prop(Q::BrinellHardness); hb && hb->value) g.brinell = hb->value->toDouble();
+    if (slot == 0) {
+      // The pair's own values are the driving gear's (the blank masses of K_v share its density).
+      in.treatment = tr;
+      in.E = g.E;
+      in.nu = g.nu;
+      in.density = prop(Q::Density)->value->toDouble();
+    }
   }
-  in.E = prop(Q::YoungsModulus)->value->toDouble();
-  in.nu = prop(Q::Poisson)->value->toDouble();
-  in.density = prop(Q::Density)->value->toDouble();
   auto num = [&](Q k, double dflt) {
     Value v = c.at(k);
     return v.isNumber() ? v.mid() : dflt;
@@ -233,8 +246,14 @@ std::optional<std::vector<Value>> varyingInputs(const KindContext& c, const Pair
   };
   x[Fpb1] = opt(p, Q::PitchDeviation);
   x[Fpb2] = opt(w, Q::PitchDeviation);
-  x[Ffa1] = opt(p, Q::ProfileFormDeviation);
-  x[Ffa2] = opt(w, Q::ProfileFormDeviation);
+  // f_falpha: given as such, else the spec's total profile deviation (the loaded mesh's
+  // profile deviation too), else the grade's.
+  auto profile = [&](int g) {
+    Value v = opt(g, Q::ProfileFormDeviation);
+    return v.lo != kAbsent ? v : opt(g, Q::ProfileDeviation);
+  };
+  x[Ffa1] = profile(p);
+  x[Ffa2] = profile(w);
   x[Fhb1] = opt(p, Q::HelixSlopeDeviation);
   x[Fhb2] = opt(w, Q::HelixSlopeDeviation);
   x[Da1] = opt(p, Q::TipDiameter);
@@ -314,6 +333,8 @@ struct Rated {
   std::vector<Mesh> meshes;
   std::vector<PairInput> fixed;  // per mesh
   std::vector<std::vector<Value>> varying;
+  std::optional<FaceLoad> faceLoad;
+  std::optional<SceneFactor> kv;
 };
 
 std::optional<Rated> gather(const KindContext& c, std::string* why) {
@@ -360,9 +381,48 @@ std::vector<PairRating> rateAll(const Rated& g, const V& x) {
   return out;
 }
 
+// K_v from a scene and K_Hbeta from a contact analysis, where the stage asks for them: both
+// are computed once at the design (the middle of any freedom's interval) and then enter
+// every corner as given factors. A design whose tooth counts are not all chosen has neither.
+bool modelFactors(const KindContext& c, Rated& g, std::string* why, bool estimate) {
+  const Model& m = c.ev.model();
+  const ir::Attribute* kv = m.attribute(c.stage, Q::RatingDynamicFactor);
+  const ir::Attribute* kh = m.attribute(c.stage, Q::RatingFaceLoadFactor);
+  bool byScene = kv && kv->sceneRef, byContact = kh && kh->choice == cat::faceLoad::ContactAnalysis;
+  if (!byScene && !byContact) return true;
+  auto fail = [&](std::string s) {
+    if (why) *why = std::move(s);
+    return false;
+  };
+  if (std::any_of(c.a.choice.begin(), c.a.choice.end(), [](int x) { return x < 0; }))
+    return fail("its K_v or K_Hbeta comes from a model of the whole design, whose tooth counts are not all chosen");
+  V mid;
+  for (const auto& v : g.varying)
+    for (const auto& x : v) mid.push_back(x.mid());
+  if (byScene) {
+    g.kv = sceneDynamicFactor(c.ev, c.a, kv->scene, estimate);
+    if (!g.kv->failure.empty()) return fail(fmt::format("K_v by method A: {}", g.kv->failure));
+    for (auto& f : g.fixed) f.KvGiven = g.kv->Kv;
+  }
+  if (byContact) {
+    PairRating r;
+    try {
+      r = rateAll(g, mid)[0];
+    } catch (const std::domain_error& e) {
+      return fail(e.what());
+    }
+    const PairInput& in = g.fixed[0];
+    double load = r.Ft * in.KA * in.Kgamma * r.Kv;
+    g.faceLoad = contactAnalysis(c.ev, c.a, c.stage, load, r.fma);
+    if (!g.faceLoad->failure.empty()) return fail(fmt::format("K_Hbeta by contact analysis: {}", g.faceLoad->failure));
+    for (auto& f : g.fixed) f.KHbetaGiven = g.faceLoad->KHbeta;
+  }
+  return true;
+}
+
 Value rated(const KindContext& c, int gear, Side side, double (*select)(const PairRating&, int slot)) {
   auto g = gather(c, nullptr);
-  if (!g) return Value::invalid();
+  if (!g || !modelFactors(c, *g, nullptr, false)) return Value::invalid();
   std::vector<Value> all;
   for (const auto& v : g->varying) all.insert(all.end(), v.begin(), v.end());
   double minH = g->fixed[0].SHmin, minF = g->fixed[0].SFmin;
@@ -394,14 +454,22 @@ DerivedRow gearRow(Q key) {
 
 std::vector<MeshRating> rateStage(const KindContext& c, std::string* why) {
   auto g = gather(c, why);
-  if (!g) return {};
+  if (!g || !modelFactors(c, *g, why, true)) return {};
   V point;
   for (const auto& v : g->varying)
     for (const auto& x : v) point.push_back(x.mid());
   try {
     auto r = rateAll(*g, point);
     std::vector<MeshRating> out;
-    for (size_t k = 0; k < r.size(); ++k) out.push_back({g->meshes[k].g0, g->meshes[k].g1, g->meshes[k].internal, g->fixed[k], r[k]});
+    for (size_t k = 0; k < r.size(); ++k) {
+      out.push_back({g->meshes[k].g0, g->meshes[k].g1, g->meshes[k].internal, g->fixed[k], r[k], g->faceLoad, g->kv, {}});
+      for (int slot = 0; slot < 2; ++slot) {
+        int gear = slot == 0 ? g->meshes[k].g0 : g->meshes[k].g1;
+        auto given = [&](Q key) { return givenOnly(c, gear, key).isNumber(); };
+        out.back().given[static_cast<size_t>(slot)] = {given(Q::PitchDeviation), given(Q::ProfileFormDeviation), given(Q::ProfileDeviation),
+                                                       given(Q::HelixSlopeDeviation)};
+      }
+    }
     return out;
   } catch (const std::domain_error& e) {
     if (why) *why = e.what();

@@ -4,11 +4,13 @@
 // `modify` lead and tip rules at the design, rates each mesh and reads one factor. A gear
 // in two meshes (the idler) takes the mesh that governs its contact or bending safety;
 // a stage factor is that of the stage's governing mesh.
+#include <array>
 #include <optional>
 #include <vector>
 
 #include "model/StageKind.h"
 #include "rating/Iso6336.h"
+#include "rating/ModelFactors.h"
 
 namespace gbx::rt::rating {
 
@@ -20,6 +22,13 @@ struct MeshRating {
   bool internal;  // the driven gear is internal (its tooth root is not rated)
   PairInput input;
   PairRating rating;
+  std::optional<FaceLoad> faceLoad;  // K_Hbeta by contact analysis
+  std::optional<SceneFactor> kv;     // K_v by method A
+  // Where each gear's deviations come from (driving, driven): the spec, else the grade.
+  struct Given {
+    bool pitch = false, profileForm = false, profileTotal = false, helix = false;
+  };
+  std::array<Given, 2> given;
 };
 
 // Every mesh of the stage rated at the design (a freedom spanning an interval is taken at

@@ -26,6 +26,46 @@ const char* rangeName(rating::KvRange r) {
   return "";
 }
 
+// How the factors from the models were found, and the line load across the face.
+void modelNotes(const rating::MeshRating& mr, RatingReport& out) {
+  const PairRating& r = mr.rating;
+  // The deviations rated with, and whose they are.
+  auto dev = [&](double GearRating::*m, auto given, const char* what) {
+    std::string o = what;
+    for (size_t g = 0; g < 2; ++g) o += fmt::format("{} {:.3g} um ({})", g ? "," : "", r.gear[g].*m * 1e6, given(mr.given[g]));
+    return o;
+  };
+  out.model.push_back(
+      "deviations: " +
+      dev(&GearRating::fpb, [](const auto& s) { return s.pitch ? "given" : "the grade's f_pt cos alpha_t"; }, "f_pb") + "; " +
+      dev(&GearRating::ffa,
+          [](const auto& s) { return s.profileForm ? "given" : s.profileTotal ? "the spec's profile_deviation" : "the grade's"; },
+          "f_falpha") +
+      "; " + dev(&GearRating::fHb, [](const auto& s) { return s.helix ? "given" : "the grade's"; }, "f_Hbeta"));
+  if (mr.faceLoad) {
+    const rating::FaceLoad& f = *mr.faceLoad;
+    out.model.push_back(fmt::format("K_Hbeta: the largest line load across the face over one mesh period, {:.4g} N/mm at {:.1f} mm from "
+                                    "the coupling end, over the mean {:.4g} N/mm (the loaded mesh at F_m = F_t K_A K_gamma K_v, "
+                                    "misalignment f_ma {:.3g} um; no running-in allowance)",
+                                    f.KHbeta * f.meanLineLoad * 1e-3, f.peak * f.faceWidth * 1e3, f.meanLineLoad * 1e-3, r.fma * 1e6));
+    for (const auto& line : f.model) out.model.push_back(line);
+    for (size_t j = 0; j < f.lineLoad.size(); ++j) {
+      out.facePosition.push_back((static_cast<double>(j) + 0.5) / static_cast<double>(f.lineLoad.size()) * f.faceWidth * 1e3);
+      out.lineLoad.push_back(f.lineLoad[j] * 1e-3);
+    }
+    out.meanLineLoad = f.meanLineLoad * 1e-3;
+  }
+  if (mr.kv) {
+    // S_H goes with sqrt(K_v), S_F with K_v: the scene's error carried into them.
+    if (mr.kv->error >= 0)
+      out.model.push_back(fmt::format("K_v: the peak periodic mesh force of scene `{}` over its static force; its error estimate {:.1e} "
+                                      "moves S_H by {:.1e} and S_F by {:.1e} (relative)",
+                                      mr.kv->scene, mr.kv->error, 0.5 * mr.kv->error, mr.kv->error));
+    else
+      out.model.push_back(fmt::format("K_v: the peak periodic mesh force of scene `{}` over its static force (no error estimate)", mr.kv->scene));
+  }
+}
+
 RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool several, double minH, double minF, double ka, double kgamma) {
   const PairRating& r = mr.rating;
   RatingReport out;
@@ -34,7 +74,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   if (several) out.mesh = out.gears[0] + "-" + out.gears[1];
   out.minContact = minH;
   out.minBending = minF;
-  out.kvRange = rangeName(r.kvRange);
+  out.kvRange = mr.kv ? "method A, scene " + mr.kv->scene : rangeName(r.kvRange);
   using Row = RatingReport::Row;
   auto mesh = [&](std::string key, double v, const units::Dim& d = units::dims::none) {
     auto u = units::displayUnitFor(d);
@@ -48,42 +88,81 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
     out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, true, {r.gear[0].*m, r.gear[1].*m}, f, min});
   };
   using namespace units::dims;
+  auto method = [&](std::string m) { out.rows.back().method = std::move(m); };
+  const rating::PairInput& in = mr.input;
   mesh("tangential_force", r.Ft, force);
   mesh("pitch_line_velocity", r.v, velocity);
   mesh("eps_alpha", r.epsAlpha);
   mesh("eps_beta", r.epsBeta);
   mesh("resonance_ratio", r.N);
   mesh("K_A", ka);
+  method("application_factor");
   mesh("K_gamma", kgamma);
+  method(mr.internal || in.planets > 0 ? "mesh_load_factor, else IEC 61400-4 by the planets" : "mesh_load_factor, else 1");
   mesh("K_v", r.Kv);
+  method(mr.kv ? fmt::format("method A, scene {}", mr.kv->scene)
+         : std::isfinite(in.KvGiven) ? std::string("given")
+                                     : fmt::format("method B, {}", rangeName(r.kvRange)));
   mesh("K_Hbeta", r.KHbeta);
+  method(mr.faceLoad ? fmt::format("contact analysis, {} slices x {} positions", mr.faceLoad->slices, mr.faceLoad->positions)
+         : std::isfinite(in.KHbetaGiven) ? std::string("given")
+                                         : std::string("method B, F_betay c_gammabeta / (2 F_m/b)"));
+  if (mr.faceLoad) {
+    mesh("line_load_peak", mr.faceLoad->peak * mr.faceLoad->faceWidth, length);
+    method("from the coupling end of the face");
+  }
   mesh("K_Fbeta", r.KFbeta);
+  method("K_Hbeta^N_F");
+  std::string alpha = std::isfinite(in.KHalphaGiven) ? "given" : "method B";
   mesh("K_Halpha", r.KHalpha);
+  method(alpha);
   mesh("K_Falpha", r.KFalpha);
+  method(alpha);
   mesh("Z_H", r.ZH);
+  method("at alpha_wt, beta_b");
   mesh("Z_E", r.ZE);
+  method("from E, nu of both gears");
   mesh("Z_eps", r.Zeps);
+  method("from eps_alpha, eps_beta");
   mesh("Z_beta", r.Zbeta);
+  method("1/sqrt(cos beta), Corrigendum 1");
   gear("tip_diameter", &GearRating::tipDiameter, length);
   gear("load_cycles", &GearRating::cycles, units::dims::none, Row::NoMinimum, Row::Count);
   gear("Z_B", &GearRating::ZBD, units::dims::none, Row::NoMinimum, Row::Plain, "Z_B, Z_D");
+  method(mr.internal ? "1 (internal mesh)" : "M_1, M_2 by eps_beta");
+  std::string curve = in.optimumLife ? "optimum" : "normal";
   gear("Z_NT", &GearRating::ZNT);
+  method(fmt::format("method B, {} curve", curve));
   gear("Z_L", &GearRating::ZL);
+  method("method B");
   gear("Z_v", &GearRating::Zv);
+  method("method B");
   gear("Z_R", &GearRating::ZR);
+  method("method B");
   gear("Z_W", &GearRating::ZW);
+  method(r.gear[0].ZW != 1 || r.gear[1].ZW != 1 ? "1.2 - (HB - 130)/1700 against a surface-hardened mate, else 1"
+                                                 : "1: no through-hardened gear against a surface-hardened one");
   gear("Z_X", &GearRating::ZX);
+  method("1 (ISO 6336-2 for steels of this size)");
   gear("contact_stress", &GearRating::sigmaH, pressure);
   gear("permissible_contact_stress", &GearRating::sigmaHP, pressure);
   gear("contact_safety", &GearRating::SH, units::dims::none, Row::Contact);
   gear("Y_F", &GearRating::YF);
+  method("method B, 30 deg tangent");
   gear("Y_S", &GearRating::YS);
+  method("method B");
   gear("Y_beta", &GearRating::Ybeta);
+  method("1 - eps_beta beta/120 deg");
   gear("Y_NT", &GearRating::YNT);
+  method(fmt::format("method B, {} curve", curve));
   gear("Y_deltarelT", &GearRating::YdeltarelT);
+  method("method B");
   gear("Y_RrelT", &GearRating::YRrelT);
+  method("method B");
   gear("Y_X", &GearRating::YX);
+  method("method B, from m_n");
   gear("Y_M", &GearRating::YM);
+  method("1 one flank loaded, 0.7 both (an idler, a planet)");
   gear("bending_stress", &GearRating::sigmaF, pressure);
   gear("permissible_bending_stress", &GearRating::sigmaFP, pressure);
   gear("bending_safety", &GearRating::SF, units::dims::none, Row::Bending);
@@ -100,6 +179,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
       }
     }
   out.governingRatio = worst;
+  modelNotes(mr, out);
   if (mr.internal) out.note = fmt::format("the {}'s tooth root is not rated (ISO 6336-3 for internal gears is not implemented)", out.gears[1]);
   return out;
 }

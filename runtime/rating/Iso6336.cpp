@@ -23,14 +23,35 @@ double invInverse(double t) {
 }
 double sq(double x) { return x * x; }
 
-// Running-in allowance of a deviation f [um] (ISO 6336-1 y_alpha, y_p, y_f).
-double runIn(double f, const PairInput& in, double sigmaHlim, double v) {
-  if (in.treatment != Treatment::ThroughHardened) return std::min(0.075 * f, 3.0);
+Treatment treatmentOf(const PairInput& in, int i) { return in.gear[static_cast<size_t>(i)].treatment.value_or(in.treatment); }
+bool sameMaterials(const PairInput& in) {
+  const auto &a = in.gear[0], &b = in.gear[1];
+  return treatmentOf(in, 0) == treatmentOf(in, 1) && a.sigmaHlim == b.sigmaHlim;
+}
+
+// Running-in allowance of a deviation f [um] (ISO 6336-1 y_alpha, y_p, y_f) of one gear's
+// material; two materials take the mean of theirs.
+double runInOf(double f, Treatment t, double sigmaHlim, double v) {
+  if (t != Treatment::ThroughHardened) return std::min(0.075 * f, 3.0);
   double y = 160.0 / sigmaHlim * f;
   if (v > 10) return std::min(y, 6400.0 / sigmaHlim);
   if (v > 5) return std::min(y, 12800.0 / sigmaHlim);
   return y;
 }
+double runIn(double f, const PairInput& in, double sigmaHlim, double v) {
+  if (sameMaterials(in)) return runInOf(f, treatmentOf(in, 0), sigmaHlim, v);
+  return 0.5 * (runInOf(f, treatmentOf(in, 0), in.gear[0].sigmaHlim * 1e-6, v) + runInOf(f, treatmentOf(in, 1), in.gear[1].sigmaHlim * 1e-6, v));
+}
+
+// Between a life curve's static point and its knee: 0 at the knee and beyond, 1 at the
+// static point and below, log-linear in the cycles between (ISO 6336-2 cl. 10, -3 cl. 12-14:
+// the factors move from their endurance to their static values on the life curve's span).
+double towardStatic(double n, double nStatic, double nKnee) {
+  if (n >= nKnee) return 0;
+  if (n <= nStatic) return 1;
+  return std::log(nKnee / n) / std::log(nKnee / nStatic);
+}
+double between(double endurance, double staticValue, double t) { return t <= 0 ? endurance : std::pow(endurance, 1 - t) * std::pow(staticValue, t); }
 
 // Log-log life curve through (nStatic, static), (nKnee, 1), (1e10, end), flat beyond.
 double lifeFactor(double n, double nStatic, double fStatic, double nKnee, double fEnd) {
@@ -282,15 +303,17 @@ void faceLoadFactors(const PairInput& in, const Geometry& g, const Deviations& d
   double dPinion = g.internal ? g.d1 : std::min(g.d1, g.d2);
   r.fsh = Fmb * 0.023 * sq(b / dPinion);
   double fma = std::isfinite(in.fma) ? in.fma * 1e6 : dev.fHb;
+  r.fma = fma * 1e-6;
   r.FbetaX = std::max({1.33 * in.B1 * r.fsh + in.B2 * fma, 0.005 * Fmb, 0.5 * dev.fHb});
-  if (in.treatment == Treatment::ThroughHardened) {
-    double y = 320.0 / sigmaHlim * r.FbetaX;
+  auto yBetaOf = [&](Treatment t, double shl) {
+    if (t != Treatment::ThroughHardened) return std::min(0.15 * r.FbetaX, 6.0);
+    double y = 320.0 / shl * r.FbetaX;
     // F_betax limited to 80 um (5 < v <= 10 m/s) and 40 um (v > 10 m/s) in y_beta.
-    double cap = r.v > 10 ? 12800.0 / sigmaHlim : r.v > 5 ? 25600.0 / sigmaHlim : INFINITY;
-    r.yBeta = std::min(y, cap);
-  } else {
-    r.yBeta = std::min(0.15 * r.FbetaX, 6.0);
-  }
+    double cap = r.v > 10 ? 12800.0 / shl : r.v > 5 ? 25600.0 / shl : INFINITY;
+    return std::min(y, cap);
+  };
+  r.yBeta = sameMaterials(in) ? yBetaOf(treatmentOf(in, 0), sigmaHlim)
+                              : 0.5 * (yBetaOf(treatmentOf(in, 0), in.gear[0].sigmaHlim * 1e-6) + yBetaOf(treatmentOf(in, 1), in.gear[1].sigmaHlim * 1e-6));
   r.FbetaY = r.FbetaX - r.yBeta;
   if (std::isfinite(in.KHbetaGiven)) {
     r.KHbeta = in.KHbetaGiven;
@@ -306,8 +329,12 @@ void faceLoadFactors(const PairInput& in, const Geometry& g, const Deviations& d
 void contactFactors(const PairInput& in, const Geometry& g, PairRating& r) {
   const double ea = r.epsAlpha, eb = r.epsBeta;
   r.ZH = std::sqrt(2 * std::cos(g.betaB) * std::cos(g.awt) / (sq(std::cos(g.at)) * std::sin(g.awt)));
-  double E = in.E * 1e-6;
-  r.ZE = std::sqrt(1 / (kPi * 2 * (1 - sq(in.nu)) / E));
+  auto E = [&](int i) { return (std::isfinite(in.gear[static_cast<size_t>(i)].E) ? in.gear[static_cast<size_t>(i)].E : in.E) * 1e-6; };
+  auto nu = [&](int i) { return std::isfinite(in.gear[static_cast<size_t>(i)].nu) ? in.gear[static_cast<size_t>(i)].nu : in.nu; };
+  if (E(0) == E(1) && nu(0) == nu(1))
+    r.ZE = std::sqrt(1 / (kPi * 2 * (1 - sq(nu(0))) / E(0)));
+  else
+    r.ZE = std::sqrt(1 / (kPi * ((1 - sq(nu(0))) / E(0) + (1 - sq(nu(1))) / E(1))));
   r.Zeps = eb < 1 ? std::sqrt((4 - ea) * (1 - eb) / 3 + eb / ea) : std::sqrt(1 / ea);
   r.Zbeta = 1 / std::sqrt(std::cos(g.beta));
 }
@@ -346,7 +373,7 @@ std::array<double, 2> singlePairFactors(const Geometry& g, const PairRating& r) 
 struct Shared {
   double ZL, Zv, ZR;
   std::array<double, 2> ZBD;
-  double Ybeta, YDT, KH, KF, rhoSlip;
+  double Ybeta, YDT, KH, KF;
 };
 
 Shared sharedFactors(const PairInput& in, const Geometry& g, const PairRating& r) {
@@ -370,36 +397,53 @@ Shared sharedFactors(const PairInput& in, const Geometry& g, const PairRating& r
   if (in.grade > 0 && in.grade <= 4 && epsAn > 2.05) s.YDT = epsAn > 2.5 ? 0.7 : 2.366 - 0.666 * epsAn;
   s.KH = in.KA * in.Kgamma * r.Kv * r.KHbeta * r.KHalpha;
   s.KF = in.KA * in.Kgamma * r.Kv * r.KFbeta * r.KFalpha;
-  s.rhoSlip = in.treatment == Treatment::CaseHardened ? 0.0030 : in.treatment == Treatment::Nitrided ? 0.1005 : 0.0064;
   return s;
 }
 
-// Life factors Z_NT and Y_NT, ISO 6336-2 Table 2 and ISO 6336-3 Table 3.
-void lifeFactors(const PairInput& in, GearRating& o) {
-  double end = in.optimumLife ? 1.0 : 0.85;
-  switch (in.treatment) {
-  case Treatment::Nitrided:
-    o.ZNT = lifeFactor(o.cycles, 1e5, 1.3, 2e6, end);
-    o.YNT = lifeFactor(o.cycles, 1e3, 1.6, 3e6, end);
-    break;
-  case Treatment::ThroughHardened:
-    o.ZNT = lifeFactor(o.cycles, 1e5, 1.6, 5e7, end);
-    o.YNT = lifeFactor(o.cycles, 1e4, 2.5, 3e6, end);
-    break;
-  case Treatment::CaseHardened:
-    o.ZNT = lifeFactor(o.cycles, 1e5, 1.6, 5e7, end);
-    o.YNT = lifeFactor(o.cycles, 1e3, 2.5, 3e6, end);
-    break;
+// A life curve's static point and knee (ISO 6336-2 Table 2, ISO 6336-3 Table 3).
+struct Curve {
+  double nStatic, fStatic, nKnee;
+};
+Curve contactCurve(Treatment t) { return t == Treatment::Nitrided ? Curve{1e5, 1.3, 2e6} : Curve{1e5, 1.6, 5e7}; }
+Curve bendingCurve(Treatment t) {
+  switch (t) {
+  case Treatment::Nitrided: return {1e3, 1.6, 3e6};
+  case Treatment::ThroughHardened: return {1e4, 2.5, 3e6};
+  case Treatment::CaseHardened: break;
   }
+  return {1e3, 2.5, 3e6};
+}
+
+// Life factors Z_NT and Y_NT, ISO 6336-2 Table 2 and ISO 6336-3 Table 3.
+void lifeFactors(const PairInput& in, Treatment t, GearRating& o) {
+  double end = in.optimumLife ? 1.0 : 0.85;
+  Curve c = contactCurve(t), b = bendingCurve(t);
+  o.ZNT = lifeFactor(o.cycles, c.nStatic, c.fStatic, c.nKnee, end);
+  o.YNT = lifeFactor(o.cycles, b.nStatic, b.fStatic, b.nKnee, end);
+}
+
+// Z_W of ISO 6336-2 (2006) cl. 13: a through-hardened gear meshing with a surface-hardened
+// (case-hardened or nitrided) mate is work-hardened by it; 1.2 - (HB - 130)/1700 for HB in
+// 130..470.
+double workHardening(const PairInput& in, int i) {
+  Treatment mine = treatmentOf(in, i), mate = treatmentOf(in, 1 - i);
+  if (mine != Treatment::ThroughHardened || mate == Treatment::ThroughHardened) return 1.0;
+  double hb = in.gear[static_cast<size_t>(i)].brinell;
+  if (!std::isfinite(hb))
+    throw std::domain_error("a through-hardened gear meshes with a surface-hardened mate: its Z_W needs its material's `brinell_hardness`");
+  return 1.2 - (std::clamp(hb, 130.0, 470.0) - 130) / 1700;
 }
 
 // A gear's flank (ISO 6336-2), in N/mm^2.
 void rateFlank(const PairInput& in, const PairRating& r, const Shared& s, int i, GearRating& o) {
   const auto& gi = in.gear[static_cast<size_t>(i)];
-  o.ZL = s.ZL;
-  o.Zv = s.Zv;
-  o.ZR = s.ZR;
-  o.ZW = 1;  // both gears of one material
+  // Below the knee Z_L, Z_v and Z_R move toward their static value 1 as Z_NT does.
+  Curve c = contactCurve(treatmentOf(in, i));
+  double t = towardStatic(o.cycles, c.nStatic, c.nKnee);
+  o.ZL = between(s.ZL, 1.0, t);
+  o.Zv = between(s.Zv, 1.0, t);
+  o.ZR = between(s.ZR, 1.0, t);
+  o.ZW = workHardening(in, i);
   o.ZX = 1;
   o.ZBD = s.ZBD[static_cast<size_t>(i)];
   double shl = gi.sigmaHlim * 1e-6;
@@ -424,11 +468,28 @@ void rateRoot(const PairInput& in, const Geometry& g, const PairRating& r, const
   o.YB = 1;
   o.YDT = s.YDT;
   double qs = t.sFn / (2 * t.rhoF);
-  o.YdeltarelT = (1 + std::sqrt(s.rhoSlip * (1 + 2 * qs) / 5)) / (1 + std::sqrt(s.rhoSlip * 1.2));
+  const Treatment tr = treatmentOf(in, i);
+  double rhoSlip = tr == Treatment::CaseHardened ? 0.0030 : tr == Treatment::Nitrided ? 0.1005 : 0.0064;
+  o.YdeltarelT = (1 + std::sqrt(rhoSlip * (1 + 2 * qs) / 5)) / (1 + std::sqrt(rhoSlip * 1.2));
   double Rz = in.RzRoot * 1e6;
-  bool nitr = in.treatment == Treatment::Nitrided;
+  bool nitr = tr == Treatment::Nitrided;
   o.YRrelT = Rz < 1 ? (nitr ? 1.070 : 1.120) : nitr ? 5.306 - 4.203 * std::pow(Rz + 1, 0.01) : 1.674 - 0.529 * std::pow(Rz + 1, 0.1);
-  o.YX = in.treatment == Treatment::ThroughHardened ? std::clamp(1.03 - 0.006 * mn, 0.85, 1.0) : std::clamp(1.05 - 0.01 * mn, 0.8, 1.0);
+  o.YX = tr == Treatment::ThroughHardened ? std::clamp(1.03 - 0.006 * mn, 0.85, 1.0) : std::clamp(1.05 - 0.01 * mn, 0.8, 1.0);
+  // Below the knee the notch, surface and size factors move toward their static values as
+  // Y_NT does (ISO 6336-3 cl. 12-14): Y_deltarelT to 0.44 Y_S + 0.12 (case hardened),
+  // 0.20 Y_S + 0.60 (nitrided), the through-hardened form at sigma_0.2 = 800 N/mm^2; Y_RrelT
+  // and Y_X to 1.
+  Curve b = bendingCurve(tr);
+  double toward = towardStatic(o.cycles, b.nStatic, b.nKnee);
+  if (toward > 0) {
+    double q = std::pow(300.0 / 800.0, 0.25);
+    double deltaStatic = tr == Treatment::CaseHardened ? 0.44 * t.YS + 0.12
+                         : tr == Treatment::Nitrided   ? 0.20 * t.YS + 0.60
+                                                       : (1 + 0.82 * (t.YS - 1) * q) / (1 + 0.82 * q);
+    o.YdeltarelT = between(o.YdeltarelT, deltaStatic, toward);
+    o.YRrelT = between(o.YRrelT, 1.0, toward);
+    o.YX = between(o.YX, 1.0, toward);
+  }
   o.YM = gi.YM;
   o.sigmaF0 = r.Ft / (g.b * mn) * o.YF * o.YS * o.Ybeta * o.YB * o.YDT;
   o.sigmaF = o.sigmaF0 * s.KF;
@@ -443,7 +504,10 @@ void rateGear(const PairInput& in, const Geometry& g, const PairRating& r, const
   o.tipDiameter = std::fabs(g.da[i]) * 1e-3;
   o.rootDiameter = std::fabs(g.df[i]) * 1e-3;
   o.cycles = gi.speed / (2 * kPi) * in.life * gi.cyclesPerRev;
-  lifeFactors(in, o);
+  o.fpb = gi.fpb;
+  o.ffa = gi.ffa;
+  o.fHb = gi.fHb;
+  lifeFactors(in, treatmentOf(in, i), o);
   rateFlank(in, r, s, i, o);
   if (i == 1 && g.internal) {
     // ISO 6336-3 for internal gears is not implemented: the ring's root is not rated.

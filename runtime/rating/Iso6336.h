@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace gbx::rt::rating {
 
@@ -29,6 +30,10 @@ struct GearInput {
   double bore = 0;           // inner diameter of the gear blank [m] (0: solid)
   double sigmaHlim = 0, sigmaFlim = 0;  // [Pa]
   bool internal = false;     // an internal gear (the wheel of the pair only): z, d signed negative inside
+  // A gear of its own material (`pinion.material`): its treatment and elastic constants;
+  // unset, the pair's. brinell: HB of a through-hardened gear (its Z_W against a harder mate).
+  std::optional<Treatment> treatment;
+  double E = kNaN, nu = kNaN, brinell = kNaN;
 };
 
 struct PairInput {
@@ -56,6 +61,7 @@ struct PairInput {
 
 struct GearRating {
   double tipDiameter, rootDiameter, cycles;
+  double fpb, ffa, fHb;  // the deviations rated with [m]
   double ZNT, ZL, Zv, ZR, ZW, ZX, ZBD;
   double sFn, hFe, rhoF, alphaFen, YF, YS, Ybeta, YB, YDT, YNT, YdeltarelT, YRrelT, YX, YM;
   double sigmaH, sigmaHP, SH, sigmaF0, sigmaF, sigmaFP, SF;
@@ -65,7 +71,7 @@ struct PairRating {
   double Ft, v, u, alphaWt, epsAlpha, epsBeta, epsGamma;
   double cprime, cgammaAlpha, cgammaBeta, mred, nE1, N, NS;
   KvRange kvRange;
-  double fsh, FbetaX, FbetaY, yBeta, yAlpha;
+  double fsh, fma, FbetaX, FbetaY, yBeta, yAlpha;  // fma: the manufacturing misalignment used [m]
   double Kv, KHbeta, KFbeta, KHalpha, KFalpha;
   double ZH, ZE, Zeps, Zbeta, sigmaH0;
   std::array<GearRating, 2> gear;

@@ -136,6 +136,20 @@ void workPrecisionChart(const std::string& gearbox, const WorkPrecisionStudy& s,
   add(out, files, fileSafe(gearbox) + "." + s.name + ".svg", chart);
 }
 
+// K_Hbeta by contact analysis: the line load across the face against its mean.
+void faceLoadChart(const std::string& gearbox, RatingReport& r, std::vector<ChartFile>& out) {
+  if (r.lineLoad.empty()) return;
+  SvgChart c;
+  std::string where = r.stage + (r.mesh.empty() ? "" : "." + r.mesh);
+  c.title = fmt::format("{} — stage {}: line load across the face (contact analysis)", gearbox, where);
+  c.xLabel = "position across the face from the coupling end [mm]";
+  c.yLabel = "line load, mean over a mesh period [N/mm]";
+  SvgSeries load{"line load", r.facePosition, r.lineLoad};
+  SvgSeries mean{"mean F/b", {r.facePosition.front(), r.facePosition.back()}, {r.meanLineLoad, r.meanLineLoad}};
+  c.series = {load, mean};
+  add(out, r.files, fileSafe(gearbox + "." + where) + ".line_load.svg", c);
+}
+
 } // namespace
 
 std::vector<ChartFile> drawCharts(std::vector<GearboxReport>& reports) {
@@ -143,6 +157,7 @@ std::vector<ChartFile> drawCharts(std::vector<GearboxReport>& reports) {
   for (auto& g : reports) {
     if (g.optimisation) paretoChart(g.name, *g.optimisation, out);
     for (auto& sc : g.scenes) sceneCharts(g.name, sc, out);
+    for (auto& r : g.ratings) faceLoadChart(g.name, r, out);
     for (auto& st : g.studies) {
       if (const auto* s = std::get_if<SweepStudy>(&st.study)) sweepCharts(g.name, *s, st.files, out);
       else workPrecisionChart(g.name, std::get<WorkPrecisionStudy>(st.study), st.files, out);

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "diag/Diagnostic.h"
+
 namespace gbx::rt {
 
 namespace {
@@ -24,6 +26,7 @@ std::vector<std::string> ratingHeader(const RatingReport& r) {
   std::vector<std::string> h = {"ISO 6336"};
   for (const auto& g : r.gears) h.push_back(g);
   h.push_back("minimum");
+  h.push_back("method");
   return h;
 }
 
@@ -40,6 +43,7 @@ std::vector<std::vector<std::string>> ratingRows(const RatingReport& r) {
     v.push_back(row.minimum == RatingReport::Row::Contact   ? formatNumber(r.minContact)
                 : row.minimum == RatingReport::Row::Bending ? formatNumber(r.minBending)
                                                             : "");
+    v.push_back(row.method);
     rows.push_back(std::move(v));
   }
   return rows;
@@ -71,6 +75,19 @@ std::string ratingJson(const RatingReport& r) {
     o += "}";
   }
   o += fmt::format(", \"min_safety\": {{\"contact\": {}, \"bending\": {}}}", jsonNumber(r.minContact), jsonNumber(r.minBending));
+  o += ", \"methods\": {";
+  first = true;
+  for (const auto& row : r.rows)
+    if (!row.method.empty()) {
+      o += fmt::format("{}\"{}\": \"{}\"", first ? "" : ", ", row.key, row.method);
+      first = false;
+    }
+  o += "}";
+  if (!r.model.empty()) {
+    o += ", \"model\": [";
+    for (size_t i = 0; i < r.model.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", diag::jsonEscape(r.model[i]));
+    o += "]";
+  }
   o += fmt::format(", \"governs\": \"{}\", \"governing_ratio\": {}, \"K_v_range\": \"{}\"}}", r.governs, jsonNumber(r.governingRatio), r.kvRange);
   return o;
 }

@@ -118,7 +118,7 @@ std::string textModification(const ModifyReport& md) {
 }
 
 std::string textRating(const RatingReport& r) {
-  std::string o = fmt::format("  rating {}{} (design 1), ISO 6336-1/-2/-3 method B\n", r.stage, r.mesh.empty() ? "" : ", mesh " + r.mesh);
+  std::string o = fmt::format("  rating {}{} (design 1), ISO 6336-1/-2/-3\n", r.stage, r.mesh.empty() ? "" : ", mesh " + r.mesh);
   if (r.error.empty()) {
     auto rows = ratingRows(r);
     rows.insert(rows.begin(), ratingHeader(r));
@@ -127,12 +127,16 @@ std::string textRating(const RatingReport& r) {
       for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
     for (const auto& row : rows) {
       std::string line = fmt::format("    {:<{}}", row[0], w[0]);
-      for (size_t i = 1; i < row.size(); ++i) line += " " + fmt::format("{:>{}}", row[i], w[i]);
+      // Numbers align right; the method, last, reads left to right.
+      for (size_t i = 1; i < row.size(); ++i) line += " " + (i + 1 == row.size() ? fmt::format("  {}", row[i]) : fmt::format("{:>{}}", row[i], w[i]));
       while (!line.empty() && line.back() == ' ') line.pop_back();
       o += line + "\n";
     }
   }
-  return o + "    " + ratingVerdict(r) + "\n";
+  o += "    " + ratingVerdict(r) + "\n";
+  for (const auto& line : r.model) o += "    " + line + "\n";
+  for (const auto& f : r.files) o += "    chart: " + f + "\n";
+  return o;
 }
 
 std::string textScene(const SceneReport& sc, const GearboxReport& g, const RenderOptions& ro) {

@@ -184,6 +184,7 @@ struct RatingReport {
     std::vector<double> si;  // one value, or one per gear; NaN: not rated (an internal gear's root)
     Format format = Plain;
     Minimum minimum = NoMinimum;
+    std::string method;  // how the factor was found (`method B, subcritical`, `method A, scene vib`)
   };
   std::vector<Row> rows;
   double minContact = 1, minBending = 1;
@@ -192,6 +193,11 @@ struct RatingReport {
   double governingRatio = 0;  // the smallest safety over its minimum
   std::string error;      // why the stage could not be rated
   std::string note;       // how the design was rated, when not at a point
+  std::vector<std::string> model;   // how a factor from the models was found (contact analysis, scene)
+  // K_Hbeta by contact analysis: the line load across the face (the plot with -o).
+  std::vector<double> facePosition, lineLoad;  // mm from the coupling end, N/mm
+  double meanLineLoad = 0;                     // N/mm
+  std::vector<std::string> files;              // its chart, with -o DIR
 };
 
 // Design rows made one at a time: a listing of a million designs is written as it is made

@@ -30,8 +30,9 @@ Fixed fixed(const std::unique_ptr<driver::Compilation>& c, const std::string& ge
 
 } // namespace
 
-// Seed 003: profile and lead modification lower K_Hbeta (crowning halves the effective
-// mismatch), so both the contact and the bending safety rise, on both gears.
+// Seed 003: profile and lead modification lower K_Hbeta (the contact analysis sees 13 um of
+// crowning take the peak off the loaded end of the face), so both the contact and the
+// bending safety rise, on both gears.
 TEST(RatingSpec, TurbineModificationLowersKHbetaAndRaisesBothSafeties) {
   auto c = driver::compileText("turbine_modification.gbx", readSpec("turbine_modification.gbx"));
   ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
@@ -43,11 +44,11 @@ TEST(RatingSpec, TurbineModificationLowersKHbetaAndRaisesBothSafeties) {
     EXPECT_TRUE(v.isPoint()) << path;
     return v.lo;
   };
-  EXPECT_LT(q(ea, after, "hs.K_Hbeta"), q(eb, before, "hs.K_Hbeta") - 0.1);
+  EXPECT_LT(q(ea, after, "hs.K_Hbeta"), q(eb, before, "hs.K_Hbeta") - 0.05);
   EXPECT_LT(q(ea, after, "hs.K_Fbeta"), q(eb, before, "hs.K_Fbeta"));
   EXPECT_LE(q(ea, after, "hs.K_v"), q(eb, before, "hs.K_v"));  // the tip relief replaces running-in in B_k
   for (const char* s : {"hs.pinion.contact_safety", "hs.wheel.contact_safety", "hs.pinion.bending_safety", "hs.wheel.bending_safety"})
-    EXPECT_GT(q(ea, after, s), q(eb, before, s) * 1.03) << s;
+    EXPECT_GT(q(ea, after, s), q(eb, before, s) * 1.02) << s;
 }
 
 // A strength rule is tested after the cheap rules whatever the order written, and the funnel
