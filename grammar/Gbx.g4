@@ -14,6 +14,12 @@ grammar Gbx;
     return prev && op && next && op->getStartIndex() == prev->getStopIndex() + 1 &&
            next->getStartIndex() == op->getStopIndex() + 1;
   }
+  // A word that opens a statement only where it stands first (`bin` in a load spectrum),
+  // without being reserved elsewhere.
+  bool isWord(const char* w) {
+    auto t = _input->LT(1);
+    return t && t->getText() == w;
+  }
   // A unit stands on the number's line: `41` at the end of a line is never `41 normal_module`.
   bool sameLine() {
     auto prev = _input->LT(-1);
@@ -57,6 +63,7 @@ stmt
   | path '=' (SCENE ID | expr) (WHEN expr)? ';'    # assignStmt  // also `dynamic_factor = scene vib;`
   | path IN domain ';'                             # domainStmt
   | path PLUSMINUS addExpr ';'                     # scatterStmt  // in `tolerances`
+  | {isWord("bin")}? ID tolExpr ID? FOR tolExpr (OF ID)? ';' # binStmt  // `bin 130% torque for 0.1% of life;`
   | ID block                                       # blockStmt
   | ID ';'                                         # flagStmt
   ;

@@ -59,6 +59,7 @@ const char* stmtKindName(StmtKind k) {
   case StmtKind::Assign: return "assignment";
   case StmtKind::Domain: return "domain";
   case StmtKind::Scatter: return "tolerance";
+  case StmtKind::Bin: return "spectrum bin";
   case StmtKind::Block: return "block";
   case StmtKind::Flag: return "flag";
   }
@@ -98,6 +99,7 @@ Stmt Stmt::clone() const {
   s.wordSpan = wordSpan;
   s.importIsPath = importIsPath;
   s.sceneRef = sceneRef;
+  s.cycles = cycles;
   s.with = with;
   s.withSpans = withSpans;
   s.base = base;
@@ -191,6 +193,10 @@ void printStmt(std::string& out, const Stmt& s, int depth) {
     if (s.when) head += " when " + opt(s.when);
     break;
   case StmtKind::Scatter: head += fmt::format(" {} +- {}", s.path.str(), opt(s.value)); break;
+  case StmtKind::Bin:
+    head += fmt::format(" {}{} for {}{}", opt(s.value), s.word.empty() ? "" : " " + s.word, opt(s.step),
+                        s.cycles ? " cycles" : s.base.empty() ? "" : " of " + s.base);
+    break;
   case StmtKind::Domain:
     if (s.domain == DomainKind::Range)
       head += fmt::format(" {} in {}..{}", s.path.str(), opt(s.lo), opt(s.hi));

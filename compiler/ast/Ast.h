@@ -79,6 +79,7 @@ enum class StmtKind {
   Stage, Like, Let, Require, Interchangeable, Minimize, Maximize, Operating, Scene, Effects,
   Modify, Split, Study, Report, Output, Sweep, Of, Top, Sort, Columns, Assign, Domain,
   Scatter,  // `main.face_width +- 1 mm;` in `tolerances`
+  Bin,      // `bin 130% torque for 0.1% of life;` in `load_spectrum`: value, word, step, base
   Block, Flag,
 };
 
@@ -95,6 +96,7 @@ struct Stmt {
   Span wordSpan;
   bool importIsPath = false;
   bool sceneRef = false;  // `x = scene NAME;`: value is the scene's name
+  bool cycles = false;    // a bin's duration in load cycles (`for 1e7 cycles`), not a share of the life
   std::vector<std::string> with;  // presets applied to a stage
   std::vector<Span> withSpans;
   std::string base;  // `extends` gearbox

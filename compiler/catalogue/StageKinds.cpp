@@ -153,6 +153,8 @@ std::vector<AttrSpec> ratingGearQuantities() {
       derived("Y_RrelT", none, "relative surface factor"),
       derived("Y_X", none, "size factor for tooth root stress"),
       derived("Y_M", none, "mean stress factor (0.7 for a gear loaded on both flanks)"),
+      derived("contact_damage", none, "Miner's sum for the flank over the life (the load spectrum's, else the operating torque's; 1: used up)"),
+      derived("bending_damage", none, "Miner's sum for the tooth root over the life (the load spectrum's, else the operating torque's; 1: used up)"),
   };
 }
 

@@ -145,6 +145,15 @@ struct Rule {
   Span span;
 };
 
+// One bin of a rating's `load_spectrum` (ISO 6336-6): a load for a duration.
+struct SpectrumBin {
+  Number load;       // a share of the operating torque (share), or a torque [N m]
+  bool share = true;
+  Number duration;   // a share of the life, or load cycles of the driving gear (cycles)
+  bool cycles = false;
+  Span span;
+};
+
 struct Stage {
   std::string name;
   StageKind kind = StageKind::Spur;
@@ -152,6 +161,7 @@ struct Stage {
   std::vector<Attribute> attributes;
   std::vector<std::string> presets;
   std::string likeOf;
+  std::vector<SpectrumBin> spectrum;  // the rating's load spectrum, empty without one
   Span span;
   const Attribute* find(const std::string& name) const;
 };

@@ -145,19 +145,35 @@ private:
     }
     // A word where a statement starts, then something no statement has after a name: a
     // keyword misspelt (`minimise`).
-    if (stmt.size() == 1 && voc.getSymbolicName(stmt[0]->getType()) == "ID" && voc.getSymbolicName(offending.getType()) == "ID") {
+    // (A word that opens a statement of its own, `bin`, makes the parser stop at the first
+    // word already: then the word after it is looked at.)
+    if (stmt.empty() && voc.getSymbolicName(offending.getType()) == "ID") {
+      for (size_t i = offending.getTokenIndex() + 1; i < stream->size(); ++i) {
+        auto* t = stream->get(i);
+        if (t->getChannel() != antlr4::Token::DEFAULT_CHANNEL) continue;
+        if (voc.getSymbolicName(t->getType()) == "ID") stmt.push_back(&offending);
+        break;
+      }
+      if (!stmt.empty()) return unknownStatement(voc, *stmt[0], keywords);
+    }
+    if (stmt.size() == 1 && voc.getSymbolicName(stmt[0]->getType()) == "ID" && voc.getSymbolicName(offending.getType()) == "ID")
+      return unknownStatement(voc, *stmt[0], keywords);
+    return false;
+  }
+
+  bool unknownStatement(const antlr4::dfa::Vocabulary& voc, antlr4::Token& first, const std::vector<std::string>& keywords) {
+    {
       std::vector<std::string> words = keywords;
       for (size_t t = 1; t <= voc.getMaxTokenType(); ++t) {
         std::string lit = voc.getLiteralName(t);
         if (lit.size() > 2 && std::isalpha(static_cast<unsigned char>(lit[1]))) words.push_back(lit.substr(1, lit.size() - 2));
       }
-      std::string word = diag::closest(stmt[0]->getText(), words);
+      std::string word = diag::closest(first.getText(), words);
       if (word.empty()) return false;
-      diags_.error("E0102", tokenSpan(file_, stmt[0]),
-                   fmt::format("syntax error: unknown statement `{}`; did you mean `{}`?", stmt[0]->getText(), word));
+      diags_.error("E0102", tokenSpan(file_, &first),
+                   fmt::format("syntax error: unknown statement `{}`; did you mean `{}`?", first.getText(), word));
       return true;
     }
-    return false;
   }
 
   int file_;
@@ -358,6 +374,8 @@ private:
       s.kind = K::Scatter;
       s.path = path(c->path());
       s.value = addExpr(c->addExpr());
+    } else if (auto* c = dynamic_cast<GbxParser::BinStmtContext*>(ctx)) {
+      bin(s, c);
     } else if (auto* c = dynamic_cast<GbxParser::BlockStmtContext*>(ctx)) {
       s.kind = K::Block;
       setName(s, c->ID());
@@ -384,6 +402,31 @@ private:
       s.value = expr(es[next++]);
     }
     if (es.size() > next) s.when = expr(es[next]);
+  }
+
+  // `bin LOAD [torque] for SHARE of life;` or `bin LOAD [torque] for N cycles;` (the unit
+  // `cycles` marks a count of load cycles).
+  void bin(ast::Stmt& s, GbxParser::BinStmtContext* c) {
+    s.kind = ast::StmtKind::Bin;
+    auto ids = c->ID();
+    setName(s, ids[0]);
+    auto t = c->tolExpr();
+    if (!t.empty()) s.value = tolExpr(t[0]);
+    size_t words = ids.size() - (c->OF() ? 1 : 0);
+    if (words > 1) {
+      s.word = ids[1]->getText();
+      s.wordSpan = span(ids[1]);
+    }
+    if (c->OF() && ids.size() > words) {
+      s.base = ids.back()->getText();
+      s.baseSpan = span(ids.back());
+    }
+    if (t.size() > 1) s.step = tolExpr(t[1]);
+    if (s.step && s.step->kind == ast::ExprKind::Number && s.step->unit && s.step->unit->factors.size() == 1 &&
+        s.step->unit->factors[0].atom == "cycles" && s.step->unit->factors[0].exponent == 1) {
+      s.cycles = true;
+      s.step->unit.reset();
+    }
   }
 
   void domain(ast::Stmt& s, GbxParser::DomainContext* ctx) {

@@ -34,6 +34,8 @@ using source::Span;
 using units::Number;
 
 inline constexpr std::string_view kRatingBlock = "rating";
+// A rating's load spectrum and the words of its bins (`bin 130% torque for 0.1% of life;`).
+inline constexpr std::string_view kSpectrumBlock = "load_spectrum", kBinWord = "bin", kTorqueWord = "torque", kLifeWord = "life";
 
 inline Span nameOr(const Stmt& s) { return s.nameSpan.valid() ? s.nameSpan : s.span; }
 
@@ -74,8 +76,10 @@ private:
   void declare(std::map<std::string, const Stmt*>& table, const Stmt& d);
   void collect(const LoadedProgram& prog);
   void checkConsts();
+  // `skip`: blocks the caller reads itself (a rating's `load_spectrum`).
   void flatten(const std::vector<Stmt>& body, const std::string& prefix, const std::string& owner,
-               std::vector<std::pair<std::string, Binding>>& out, const std::set<std::string>& blocks);
+               std::vector<std::pair<std::string, Binding>>& out, const std::set<std::string>& blocks,
+               const std::set<std::string>& skip = {});
   void notAllowed(const Stmt& st, const std::string& owner);
   ir::Setting setting(const std::string& name, const Binding& b, const AttrSpec& spec, const Scope& scope,
                       const std::string& owner);
@@ -118,6 +122,7 @@ private:
   void requireMaterial(const ir::Gearbox& g, const GearboxModel& m);
   void requireRating(const ir::Gearbox& g, const GearboxModel& m);
   void sceneFactors(const ir::Gearbox& g);
+  std::vector<ir::SpectrumBin> spectrumBins(const StageModel& st);
   void requireOperating(const ir::Gearbox& g);
   void checkOperating(const GearboxModel& m, const std::vector<ir::Setting>& op, const Stmt* decl);
 

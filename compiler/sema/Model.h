@@ -32,6 +32,7 @@ struct StageModel {
   std::vector<ScopedStmt> rules;                       // `require` inside the stage
   std::vector<const ast::Stmt*> lets;                  // `let` inside the stage
   bool rated = false;                                  // has a `rating { … }` block
+  const ast::Stmt* spectrum = nullptr;                 // its `load_spectrum { … }`
 
   Binding* findAttr(const std::string& path);
   const Binding* findAttr(const std::string& path) const;

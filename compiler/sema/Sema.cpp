@@ -91,8 +91,9 @@ void Analyser::checkConsts() {
 }
 
 // Flattens assignments of a settings block (nested blocks become `a.b` paths).
-void Analyser::flatten(const std::vector<Stmt>& body, const std::string& prefix, const std::string& owner, std::vector<std::pair<std::string, Binding>>& out, const std::set<std::string>& blocks) {
+void Analyser::flatten(const std::vector<Stmt>& body, const std::string& prefix, const std::string& owner, std::vector<std::pair<std::string, Binding>>& out, const std::set<std::string>& blocks, const std::set<std::string>& skip) {
   for (const auto& st : body) {
+    if (st.kind == StmtKind::Block && skip.count(prefix + st.name)) continue;
     if (st.kind == StmtKind::Assign) {
       std::string p = prefix + st.path.str();
       bool dup = false;

@@ -40,8 +40,18 @@ void Analyser::ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, c
     return;
   }
   std::vector<std::pair<std::string, Binding>> items;
+  std::string spectrum = std::string(kRatingBlock) + "." + std::string(kSpectrumBlock);
   flatten(b.body, std::string(kRatingBlock) + ".", fmt::format("the `rating` of stage `{}`", m.name), items,
-          {"rating.lubricant", "rating.roughness", "rating.basic_rack", "rating.min_safety"});
+          {"rating.lubricant", "rating.roughness", "rating.basic_rack", "rating.min_safety"}, {spectrum});
+  for (const auto& st : b.body)
+    if (st.kind == StmtKind::Block && st.name == kSpectrumBlock) {
+      if (m.spectrum) {
+        auto& d = diags_.error("E0202", nameOr(st), fmt::format("duplicate declaration: stage `{}` already has a `load_spectrum`", m.name));
+        d.notes.push_back({nameOr(*m.spectrum), "first given here"});
+        continue;
+      }
+      m.spectrum = &st;
+    }
   for (auto& [p, bind] : items) {
     if (auto it = seen.find(p); it != seen.end()) {
       auto& d = diags_.error("E0202", bind.stmt->path.span, fmt::format("duplicate declaration: `{}` is already given in stage `{}`", p, m.name));
@@ -52,6 +62,80 @@ void Analyser::ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, c
     m.setAttr(p, {bind.stmt, "stage"});
   }
   m.rated = true;
+}
+
+// `load_spectrum { bin 130% torque for 0.1% of life; … }` (LANGUAGE.md §16): each bin a
+// share of the operating torque or a torque, for a share of the life or a number of load
+// cycles of the driving gear; the shares of the life add up to the whole life.
+std::vector<ir::SpectrumBin> Analyser::spectrumBins(const StageModel& st) {
+  std::vector<ir::SpectrumBin> out;
+  if (!st.spectrum) return out;
+  Scope scope;
+  scope.context = Scope::ConstExpr;
+  const std::string usage = "a bin is `bin 130% torque for 0.1% of life;` or `bin 12 kN*m for 1e7 cycles;`";
+  auto constant = [&](const ast::Expr* e, const char* what) -> std::optional<ir::ExprPtr> {
+    auto x = checker_.check(e, scope);
+    if (x->type.isError()) return std::nullopt;
+    if (!x->isConst()) {
+      diags_.error("E0410", x->span, fmt::format("a spectrum bin's {} must be a constant", what));
+      return std::nullopt;
+    }
+    if (!x->type.isNumber() || x->value.sign() <= 0) {
+      diags_.error("E0405", x->span, fmt::format("a spectrum bin's {} must be positive", what));
+      return std::nullopt;
+    }
+    return x;
+  };
+  bool anyCycles = false, anyShare = false;
+  double total = 0;
+  for (const auto& b : st.spectrum->body) {
+    if (b.kind != StmtKind::Bin || b.name != kBinWord) {
+      diags_.error("E0110", b.span, fmt::format("`load_spectrum` of stage `{}` holds bins only: {}", st.name, usage));
+      continue;
+    }
+    ir::SpectrumBin bin;
+    bin.span = b.span;
+    auto load = constant(b.value.get(), "load");
+    auto duration = constant(b.step.get(), "duration");
+    if (!load || !duration) continue;
+    bin.share = !b.word.empty();
+    if (bin.share && b.word != kTorqueWord) {
+      diags_.error("E0406", b.wordSpan, fmt::format("`{}`: a bin's load is a share of the operating `torque` or a torque; {}", b.word, usage));
+      continue;
+    }
+    units::Dim want = bin.share ? units::dims::none : units::dims::torque;
+    if ((*load)->type.dim != want) {
+      diags_.error("E0302", (*load)->span,
+                   fmt::format("unit mismatch: a bin's load is {} ({}), got {}", bin.share ? "a share (`130% torque`)" : "a torque",
+                               usage, describe((*load)->type)));
+      continue;
+    }
+    bin.cycles = b.cycles;
+    if (!bin.cycles && b.base != kLifeWord) {
+      diags_.error("E0406", b.base.empty() ? b.span : b.baseSpan,
+                   fmt::format("a bin lasts a share `of life` or a number of `cycles`; {}", usage));
+      continue;
+    }
+    if ((*duration)->type.dim != units::dims::none) {
+      diags_.error("E0302", (*duration)->span, fmt::format("unit mismatch: a bin's duration is a share of the life or a count of cycles, got {}",
+                                                           describe((*duration)->type)));
+      continue;
+    }
+    bin.load = (*load)->value;
+    bin.duration = (*duration)->value;
+    (bin.cycles ? anyCycles : anyShare) = true;
+    if (!bin.cycles) total += bin.duration.toDouble();
+    out.push_back(std::move(bin));
+  }
+  if (anyCycles && anyShare)
+    diags_.error("E0225", nameOr(*st.spectrum),
+                 fmt::format("the `load_spectrum` of stage `{}` mixes shares of the life with counts of cycles: give every bin one kind", st.name));
+  else if (anyShare && std::fabs(total - 1) > 1e-9)
+    diags_.error("E0225", nameOr(*st.spectrum),
+                 fmt::format("the bins of stage `{}`'s `load_spectrum` last {} % of the life, not 100 %", st.name, units::formatDouble(total * 100)));
+  if (out.empty() && !st.spectrum->body.empty()) return out;
+  if (st.spectrum->body.empty()) diags_.error("E0225", nameOr(*st.spectrum), fmt::format("the `load_spectrum` of stage `{}` has no bin; {}", st.name, usage));
+  return out;
 }
 
 // A rated stage needs its service life and a material with the ISO 6336-5 numbers.

@@ -493,6 +493,7 @@ ir::Stage Analyser::stage(const StageModel& st, const Scope& gbScope) {
       if (a.required && !st.findAttr(g + "." + a.name) && !misspelt_.count({st.name, g + "." + a.name}))
         diags_.error("E0225", where, fmt::format("stage `{}` does not give `{}.{}` ({})", st.name, g, a.name, a.meaning));
   if (st.rated) ratingInputs(st, where);
+  out.spectrum = spectrumBins(st);
   return out;
 }
 

@@ -546,6 +546,18 @@ SceneResult runOnce(const Model& m, const Assignment& a, const ScenePlan& scene,
     return r;
   }
   runWarnings(scene, ov, samples, r);
+  // An overlap ratio near a whole number: the contact-line length barely varies, so what the
+  // loaded mesh excites comes from the deviations and the tip engagement alone and moves
+  // steeply with the face width and the helix angle.
+  if (scene.fx.loaded && stage.kind == ir::StageKind::Helical) {
+    Value eb = ev.derived(st, Q::EpsBeta, a);
+    double e = eb.isNumber() ? eb.mid() : NAN, whole = std::round(e);
+    if (whole >= 1 && std::fabs(e - whole) < 0.1)
+      r.warnings.push_back(fmt::format("the overlap ratio eps_beta = {:.4f} is within 0.1 of {:.0f}: the length of the contact lines "
+                                       "barely varies, so the loaded mesh's excitation comes from the deviations and the tip engagement "
+                                       "and changes steeply with the face width and the helix angle",
+                                       e, whole));
+  }
   sceneOutputs(scene, ov, samples, tp, r);
   return r;
 }

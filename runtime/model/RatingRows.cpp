@@ -276,8 +276,8 @@ std::optional<std::vector<Value>> varyingInputs(const KindContext& c, const Pair
   return x;
 }
 
-// The rating at one corner of the varying inputs.
-PairRating rateAt(PairInput in, const V& x) {
+// The inputs at one corner of the varying inputs.
+PairInput inputAt(PairInput in, const V& x) {
   in.gear[0].z = x[Z1];
   in.gear[1].z = x[Z2];
   in.gear[0].x = x[X1];
@@ -305,7 +305,7 @@ PairRating rateAt(PairInput in, const V& x) {
     gi.fHb = pick(Fhb1, q > 0 ? iso::tabulatedHelixSlope(q, d, in.b) : 0);
     gi.tipDiameter = x[static_cast<size_t>(Da1 + g)] == kAbsent ? kNaN : x[static_cast<size_t>(Da1 + g)];
   }
-  return rate(in);
+  return in;
 }
 
 enum class Side { Contact, Bending, Any };
@@ -330,6 +330,7 @@ int governing(const std::vector<PairRating>& r, const std::vector<Mesh>& meshes,
 }
 
 struct Rated {
+  std::vector<SpectrumBin> bins;  // the stage's load spectrum, empty without one
   std::vector<Mesh> meshes;
   std::vector<PairInput> fixed;  // per mesh
   std::vector<std::vector<Value>> varying;
@@ -351,6 +352,12 @@ std::optional<Rated> gather(const KindContext& c, std::string* why) {
     ~Guard() { --n; }
   } guard(active);
   Rated r;
+  for (const auto& b : c.ev.model().info(c.stage).ir->spectrum) {
+    SpectrumBin bin;
+    (b.share ? bin.torqueShare : bin.torque) = b.load.toDouble();
+    (b.cycles ? bin.cycles : bin.lifeShare) = b.duration.toDouble();
+    r.bins.push_back(bin);
+  }
   r.meshes = meshesOf(c);
   if (r.meshes.empty()) {
     if (why) *why = "this stage kind has no ISO 6336 rating";
@@ -367,8 +374,27 @@ std::optional<Rated> gather(const KindContext& c, std::string* why) {
   return r;
 }
 
+// Under a load spectrum the safeties are the spectrum's (ISO 6336-6); `damage` asks for the
+// Miner sums too, of the operating torque alone where there is no spectrum.
+void underSpectrum(const Rated& g, const PairInput& in, PairRating& r, bool damage) {
+  if (g.bins.empty() && !damage) return;
+  std::vector<SpectrumBin> one(1);
+  one[0].torqueShare = one[0].lifeShare = 1;
+  SpectrumRating sp = rateSpectrum(in, g.bins.empty() ? one : g.bins);
+  for (size_t k = 0; k < 2; ++k) {
+    GearRating& o = r.gear[k];
+    o.contactDamage = sp.contact[k].damage;
+    o.bendingDamage = sp.bending[k].damage;
+    if (g.bins.empty()) continue;
+    o.SHoperating = o.SH;
+    o.SFoperating = o.SF;
+    o.SH = sp.contact[k].safety;
+    if (std::isfinite(o.SF)) o.SF = sp.bending[k].safety;
+  }
+}
+
 // Each mesh's rating at one corner of the concatenated varying inputs.
-std::vector<PairRating> rateAll(const Rated& g, const V& x) {
+std::vector<PairRating> rateAll(const Rated& g, const V& x, bool damage = false) {
   std::vector<PairRating> out;
   for (size_t k = 0; k < g.meshes.size(); ++k) {
     auto at = x.begin() + static_cast<long>(k * In::Count);
@@ -376,7 +402,9 @@ std::vector<PairRating> rateAll(const Rated& g, const V& x) {
     // A planet is one gear: in the ring mesh it keeps the tip diameter of the sun mesh
     // (whose tip alteration shortened it), unless the spec gives it.
     if (g.meshes[k].planetary && g.meshes[k].internal && xk[Da1] == kAbsent && !out.empty()) xk[Da1] = out[0].gear[1].tipDiameter;
-    out.push_back(rateAt(g.fixed[k], xk));
+    PairInput in = inputAt(g.fixed[k], xk);
+    out.push_back(rate(in));
+    underSpectrum(g, in, out.back(), damage);
   }
   return out;
 }
@@ -420,7 +448,7 @@ bool modelFactors(const KindContext& c, Rated& g, std::string* why, bool estimat
   return true;
 }
 
-Value rated(const KindContext& c, int gear, Side side, double (*select)(const PairRating&, int slot)) {
+Value rated(const KindContext& c, int gear, Side side, double (*select)(const PairRating&, int slot), bool damage = false) {
   auto g = gather(c, nullptr);
   if (!g || !modelFactors(c, *g, nullptr, false)) return Value::invalid();
   std::vector<Value> all;
@@ -428,7 +456,7 @@ Value rated(const KindContext& c, int gear, Side side, double (*select)(const Pa
   double minH = g->fixed[0].SHmin, minF = g->fixed[0].SFmin;
   return arith::corners(all, [&](const V& v) {
     try {
-      auto r = rateAll(*g, v);
+      auto r = rateAll(*g, v, damage);
       int k = governing(r, g->meshes, gear, side, minH, minF);
       if (k < 0) return kNaN;
       int slot = gear < 0 ? 0 : g->meshes[static_cast<size_t>(k)].g0 == gear ? 0 : 1;
@@ -443,10 +471,10 @@ template <double PairRating::*M>
 DerivedRow stageRow(Q key) {
   return {key, false, [](const KindContext& c, int g) { return rated(c, g, Side::Any, [](const PairRating& r, int) { return r.*M; }); }};
 }
-template <double GearRating::*M, Side S>
+template <double GearRating::*M, Side S, bool Damage = false>
 DerivedRow gearRow(Q key) {
   return {key, true, [](const KindContext& c, int g) {
-            return rated(c, g, S, [](const PairRating& r, int slot) { return r.gear[static_cast<size_t>(slot)].*M; });
+            return rated(c, g, S, [](const PairRating& r, int slot) { return r.gear[static_cast<size_t>(slot)].*M; }, Damage);
           }};
 }
 
@@ -459,7 +487,7 @@ std::vector<MeshRating> rateStage(const KindContext& c, std::string* why) {
   for (const auto& v : g->varying)
     for (const auto& x : v) point.push_back(x.mid());
   try {
-    auto r = rateAll(*g, point);
+    auto r = rateAll(*g, point, true);
     std::vector<MeshRating> out;
     for (size_t k = 0; k < r.size(); ++k) {
       out.push_back({g->meshes[k].g0, g->meshes[k].g1, g->meshes[k].internal, g->fixed[k], r[k], g->faceLoad, g->kv, {}});
@@ -512,6 +540,8 @@ std::vector<DerivedRow> pairRows() {
       gearRow<&G::YRrelT, Side::Bending>(Q::YRrelT),
       gearRow<&G::YX, Side::Bending>(Q::YX),
       gearRow<&G::YM, Side::Contact>(Q::YM),
+      gearRow<&G::contactDamage, Side::Contact, true>(Q::ContactDamage),
+      gearRow<&G::bendingDamage, Side::Bending, true>(Q::BendingDamage),
   };
 }
 

@@ -11,6 +11,7 @@
 #include "model/StageKind.h"
 #include "rating/Iso6336.h"
 #include "rating/ModelFactors.h"
+#include "rating/Spectrum.h"
 
 namespace gbx::rt::rating {
 

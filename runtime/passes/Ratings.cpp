@@ -66,6 +66,68 @@ void modelNotes(const rating::MeshRating& mr, RatingReport& out) {
   }
 }
 
+// The usual speed of an accuracy grade, m/s (helical; spur two thirds of it); none to 4.
+double usualSpeed(int grade) {
+  static const double helical[] = {0, 0, 0, 0, 0, 40, 30, 20, 12, 8, 5, 3, 2};
+  return grade >= 5 && grade <= 12 ? helical[grade] : 0;
+}
+
+// What a rating engineer expects to be told (LANGUAGE.md §16).
+void warnings(const rating::MeshRating& mr, RatingReport& out) {
+  const PairRating& r = mr.rating;
+  double bd = r.b / r.dPinion;
+  if (bd > 1.2)
+    out.warnings.push_back(fmt::format("b/d1 = {:.2f}: beyond the usual 1.2 for a pinion between two bearings; the face load "
+                                       "distribution (K_Hbeta {:.3f}) rests on the shaft's deflection, which a wide pinion magnifies",
+                                       bd, r.KHbeta));
+  if (r.KHbeta > 2)
+    out.warnings.push_back(fmt::format("K_Hbeta = {:.3f} > 2: the flanks carry load over part of the face only", r.KHbeta));
+  if (r.epsAlpha < 1.2)
+    out.warnings.push_back(fmt::format("eps_alpha = {:.3f} < 1.2: little transverse overlap; a tip chamfer, wear or a deflection leaves "
+                                       "single-pair contact at the tips",
+                                       r.epsAlpha));
+  double usual = usualSpeed(mr.input.grade) * (r.epsBeta > 0 ? 1.0 : 2.0 / 3.0);
+  if (usual > 0 && r.v > usual)
+    out.warnings.push_back(fmt::format("pitch-line velocity {:.1f} m/s is beyond the usual {:.0f} m/s of accuracy grade {} for a {} pair", r.v,
+                                       usual, mr.input.grade, r.epsBeta > 0 ? "helical" : "spur"));
+}
+
+// Under a load spectrum the safeties are its own: the operating torque's and the damage
+// sums follow them.
+void spectrumRows(const PairRating& r, size_t contactRow, RatingReport& out) {
+  using Row = RatingReport::Row;
+  auto gear = [&](std::string key, double GearRating::*m, Row::Format f, std::string label) {
+    out.rows.push_back({std::move(key), std::move(label), "", 1.0, true, {r.gear[0].*m, r.gear[1].*m}, f, Row::NoMinimum});
+  };
+  bool spectrum = std::isfinite(r.gear[0].SHoperating);
+  const char* miner = spectrum ? "Miner over the load spectrum" : "Miner, the operating torque over the life";
+  if (spectrum) {
+    out.rows.back().method = out.rows[contactRow].method = "under the load spectrum (ISO 6336-6, Miner)";
+    gear("contact_safety_operating", &GearRating::SHoperating, Row::Plain, "contact_safety at the operating torque");
+    gear("bending_safety_operating", &GearRating::SFoperating, Row::Plain, "bending_safety at the operating torque");
+  }
+  gear("contact_damage", &GearRating::contactDamage, Row::Count, "contact_damage");
+  out.rows.back().method = miner;
+  gear("bending_damage", &GearRating::bendingDamage, Row::Count, "bending_damage");
+  out.rows.back().method = miner;
+}
+
+// The governing side: the smallest safety relative to its minimum.
+void governs(const PairRating& r, double minH, double minF, RatingReport& out) {
+  double worst = 1e300;
+  for (size_t g = 0; g < 2; ++g)
+    for (bool contact : {true, false}) {
+      double s = contact ? r.gear[g].SH : r.gear[g].SF, min = contact ? minH : minF;
+      if (!std::isfinite(s)) continue;  // an internal gear's root: said below
+      if (s / min < worst) {
+        worst = s / min;
+        out.governs = fmt::format("{} of the {}: {} {} against {}{}", contact ? "contact" : "bending", out.gears[g],
+                                  contact ? "S_H" : "S_F", formatNumber(s), formatNumber(min), s < min ? " (below the minimum)" : "");
+      }
+    }
+  out.governingRatio = worst;
+}
+
 RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool several, double minH, double minF, double ka, double kgamma) {
   const PairRating& r = mr.rating;
   RatingReport out;
@@ -146,6 +208,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   method("1 (ISO 6336-2 for steels of this size)");
   gear("contact_stress", &GearRating::sigmaH, pressure);
   gear("permissible_contact_stress", &GearRating::sigmaHP, pressure);
+  size_t contactRow = out.rows.size();
   gear("contact_safety", &GearRating::SH, units::dims::none, Row::Contact);
   gear("Y_F", &GearRating::YF);
   method("method B, 30 deg tangent");
@@ -166,20 +229,12 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   gear("bending_stress", &GearRating::sigmaF, pressure);
   gear("permissible_bending_stress", &GearRating::sigmaFP, pressure);
   gear("bending_safety", &GearRating::SF, units::dims::none, Row::Bending);
-  // The governing side: the smallest safety relative to its minimum.
-  double worst = 1e300;
-  for (size_t g = 0; g < 2; ++g)
-    for (bool contact : {true, false}) {
-      double s = contact ? r.gear[g].SH : r.gear[g].SF, min = contact ? minH : minF;
-      if (!std::isfinite(s)) continue;  // an internal gear's root: said below
-      if (s / min < worst) {
-        worst = s / min;
-        out.governs = fmt::format("{} of the {}: {} {} against {}{}", contact ? "contact" : "bending", out.gears[g],
-                                  contact ? "S_H" : "S_F", formatNumber(s), formatNumber(min), s < min ? " (below the minimum)" : "");
-      }
-    }
-  out.governingRatio = worst;
+  spectrumRows(r, contactRow, out);
+  governs(r, minH, minF, out);
   modelNotes(mr, out);
+  if (mr.internal)
+    out.notRated.push_back({out.gears[1], "tooth root", "ISO 6336-3 for internal gears is not implemented (its flank is rated)"});
+  warnings(mr, out);
   if (mr.internal) out.note = fmt::format("the {}'s tooth root is not rated (ISO 6336-3 for internal gears is not implemented)", out.gears[1]);
   return out;
 }

@@ -540,6 +540,8 @@ PairRating rate(const PairInput& in) {
   r.Ft = 2000.0 * in.torque1 / g.d1;                 // N
   r.v = in.gear[0].speed * in.mn * g.z1 / std::cos(g.beta) / 2;  // m/s
   const double w = in.KA * r.Ft / g.b;                // N/mm
+  r.b = in.b;
+  r.dPinion = (g.internal ? g.d1 : std::min(g.d1, g.d2)) * 1e-3;
   const Deviations dev = deviations(in, g, r);
   meshStiffness(in, g, w, r);
   dynamicFactor(in, g, dev, w, r);

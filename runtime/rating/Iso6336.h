@@ -65,10 +65,14 @@ struct GearRating {
   double ZNT, ZL, Zv, ZR, ZW, ZX, ZBD;
   double sFn, hFe, rhoF, alphaFen, YF, YS, Ybeta, YB, YDT, YNT, YdeltarelT, YRrelT, YX, YM;
   double sigmaH, sigmaHP, SH, sigmaF0, sigmaF, sigmaFP, SF;
+  // Under a load spectrum (rating/Spectrum.h): SH and SF are its safeties, these the
+  // operating torque's; the Miner sums of the spectrum (or of the operating torque alone).
+  double SHoperating = kNaN, SFoperating = kNaN, contactDamage = kNaN, bendingDamage = kNaN;
 };
 
 struct PairRating {
   double Ft, v, u, alphaWt, epsAlpha, epsBeta, epsGamma;
+  double b, dPinion;  // face width and the smaller external gear's reference diameter [m]
   double cprime, cgammaAlpha, cgammaBeta, mred, nE1, N, NS;
   KvRange kvRange;
   double fsh, fma, FbetaX, FbetaY, yBeta, yAlpha;  // fma: the manufacturing misalignment used [m]

@@ -181,7 +181,7 @@ std::string modifications(const std::vector<GearboxReport>& reports) {
 }
 
 std::string ratings(const std::vector<GearboxReport>& reports) {
-  std::string o = row({"gearbox", "stage", "gear", "quantity", "unit", "value"});
+  std::string o = row({"gearbox", "stage", "gear", "quantity", "unit", "value", "method", "note"});
   bool any = false;
   for (const auto& g : reports)
     for (const auto& r : g.ratings)

@@ -49,6 +49,14 @@ std::vector<std::vector<std::string>> ratingRows(const RatingReport& r) {
   return rows;
 }
 
+std::vector<std::string> ratingNotes(const RatingReport& r) {
+  std::vector<std::string> notes;
+  for (const auto& w : r.warnings) notes.push_back("warning: " + w);
+  for (const auto& n : r.notRated) notes.push_back(fmt::format("not rated: the {}'s {}: {}", n.gear, n.what, n.reason));
+  for (const auto& line : r.model) notes.push_back(line);
+  return notes;
+}
+
 std::string ratingVerdict(const RatingReport& r) {
   if (!r.error.empty()) return "not rated: " + r.error;
   return fmt::format("governs: {}; K_v {}{}", r.governs, r.kvRange, r.note.empty() ? "" : "; " + r.note);
@@ -83,6 +91,18 @@ std::string ratingJson(const RatingReport& r) {
       first = false;
     }
   o += "}";
+  if (!r.warnings.empty()) {
+    o += ", \"warnings\": [";
+    for (size_t i = 0; i < r.warnings.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", diag::jsonEscape(r.warnings[i]));
+    o += "]";
+  }
+  if (!r.notRated.empty()) {
+    o += ", \"not_rated\": [";
+    for (size_t i = 0; i < r.notRated.size(); ++i)
+      o += fmt::format("{}{{\"gear\": \"{}\", \"what\": \"{}\", \"reason\": \"{}\"}}", i ? ", " : "", r.notRated[i].gear,
+                       r.notRated[i].what, diag::jsonEscape(r.notRated[i].reason));
+    o += "]";
+  }
   if (!r.model.empty()) {
     o += ", \"model\": [";
     for (size_t i = 0; i < r.model.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", diag::jsonEscape(r.model[i]));
@@ -96,10 +116,18 @@ std::vector<std::vector<std::string>> ratingCsvRows(const std::string& gearbox, 
   std::vector<std::vector<std::string>> out;
   for (const auto& row : r.rows) {
     auto value = [&](double si) { return std::isfinite(si) ? fmt::format("{:.10g}", si / row.scale) : std::string(); };
+    // A value left out names its reason.
+    auto note = [&](size_t g, double si) {
+      if (std::isfinite(si)) return std::string();
+      for (const auto& n : r.notRated)
+        if (g < r.gears.size() && n.gear == r.gears[g]) return "not rated: " + n.reason;
+      return std::string("not a number");
+    };
     std::string stage = r.mesh.empty() ? r.stage : r.stage + "." + r.mesh;
-    if (!row.perGear) out.push_back({gearbox, stage, "", row.key, row.unit, value(row.si[0])});
+    if (!row.perGear) out.push_back({gearbox, stage, "", row.key, row.unit, value(row.si[0]), row.method, note(0, row.si[0])});
     else
-      for (size_t g = 0; g < r.gears.size(); ++g) out.push_back({gearbox, stage, r.gears[g], row.key, row.unit, value(row.si[g])});
+      for (size_t g = 0; g < r.gears.size(); ++g)
+        out.push_back({gearbox, stage, r.gears[g], row.key, row.unit, value(row.si[g]), row.method, note(g, row.si[g])});
   }
   return out;
 }

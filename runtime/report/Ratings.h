@@ -9,6 +9,9 @@
 namespace gbx::rt {
 
 std::vector<std::string> ratingHeader(const RatingReport& r);
+// The lines below a rating's table: its warnings, what it leaves out and why, how the
+// factors from the models were found.
+std::vector<std::string> ratingNotes(const RatingReport& r);
 std::vector<std::vector<std::string>> ratingRows(const RatingReport& r);
 // "governs: …; K_v subcritical"; or why the stage could not be rated.
 std::string ratingVerdict(const RatingReport& r);

@@ -134,6 +134,7 @@ std::string textRating(const RatingReport& r) {
     }
   }
   o += "    " + ratingVerdict(r) + "\n";
+  for (const auto& w : r.warnings) o += "    warning: " + w + "\n";
   for (const auto& line : r.model) o += "    " + line + "\n";
   for (const auto& f : r.files) o += "    chart: " + f + "\n";
   return o;
@@ -483,9 +484,11 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       o += table({"target", "value", "rule", "when", "inputs"}, mr);
     }
     for (const auto& r : g.ratings) {
-      o += heading(3, "Rating of " + r.stage + (r.mesh.empty() ? "" : ", mesh " + r.mesh) + " (ISO 6336 method B)");
+      o += heading(3, "Rating of " + r.stage + (r.mesh.empty() ? "" : ", mesh " + r.mesh) + " (ISO 6336)");
       if (r.error.empty()) o += table(ratingHeader(r), ratingRows(r));
       o += para(ratingVerdict(r));
+      if (auto notes = ratingNotes(r); !notes.empty()) o += list(notes);
+      for (const auto& f : r.files) o += image(f);
     }
     for (const auto& sc : g.scenes) {
       o += heading(3, "Scene " + sc.name);

@@ -194,6 +194,12 @@ struct RatingReport {
   std::string error;      // why the stage could not be rated
   std::string note;       // how the design was rated, when not at a point
   std::vector<std::string> model;   // how a factor from the models was found (contact analysis, scene)
+  std::vector<std::string> warnings;  // what a rating engineer would want said (LANGUAGE.md §16)
+  // Values the rating leaves out, each with its reason (an internal gear's tooth root).
+  struct NotRated {
+    std::string gear, what, reason;
+  };
+  std::vector<NotRated> notRated;
   // K_Hbeta by contact analysis: the line load across the face (the plot with -o).
   std::vector<double> facePosition, lineLoad;  // mm from the coupling end, N/mm
   double meanLineLoad = 0;                     // N/mm

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "Iso6336Reference.h"
 #include "Specs.h"
 
 #include "driver/Driver.h"
@@ -167,4 +168,124 @@ TEST(ModelFactors, DynamicFactorFromAPeriodicScene) {
   EXPECT_NEAR(meshes[0].kv->Kv, kvNear, 1e-12);
   EXPECT_GE(meshes[0].kv->error, 0.0);
   EXPECT_LT(meshes[0].kv->error, 1e-2);
+}
+
+namespace {
+
+// A helical pair at 1500 N m, rated plain or under a load spectrum (`spectrum` inside the
+// rating block), or at another operating torque.
+std::string spectrumSpec(const std::string& spectrum, const std::string& torque = "1500 N*m",
+                         const std::string& materials = "material = steel_18CrNiMo7_6;",
+                         const std::string& life = "20000 h") {
+  return "import materials;\n"
+         "material through_42CrMo4 { youngs_modulus = 206 GPa; poisson = 0.3; density = 7850 kg/m^3; sigma_hlim = 700 "
+         "MPa; "
+         "sigma_flim = 300 MPa; treatment = through_hardened; brinell_hardness = 300; }\n"
+         "gearbox G {\n  stage s: helical {\n    pinion.z = 25; wheel.z = 75; normal_module = 4 mm; helix_angle = 12 "
+         "deg; "
+         "face_width = 60 mm; accuracy = 6; " +
+         materials + "\n    rating { life = " + life +
+         "; lubricant { viscosity_40 = 220 mm^2/s; } roughness { flank = 0.6 um; root = 3 um; } " + spectrum +
+         " }\n  }\n  operating { input_speed = 1500 rpm; input_torque = " + torque + "; }\n}\n";
+}
+
+} // namespace
+
+// ISO 6336-6 over three bins, by hand: each bin's stress from a plain rating at its torque,
+// N_i from the life curve read the other way (the reference header, from the standard's
+// text), the sum of n_i / N_i.
+TEST(ModelFactors, ThreeBinSpectrumDamageByHand) {
+  auto spec = design(spectrumSpec("load_spectrum { bin 130% torque for 0.1% of life; bin 100% torque for 60% of life; "
+                                  "bin 70% torque for 39.9% of life; }",
+                                  "2700 N*m"),
+                     "G");
+  auto plain = design(spectrumSpec("", "2700 N*m"), "G");
+  const double shares[3] = {1.3, 1.0, 0.7}, life[3] = {0.001, 0.6, 0.399};
+  for (const char* gear : {"pinion", "wheel"}) {
+    std::string g = std::string("s.") + gear + ".";
+    // The endurance limits at the knee: sigma_lim times the factors the rating prints (at
+    // 1.8e9 and 6e8 cycles, beyond the knee: their endurance values). At the static point
+    // Z_L Z_v Z_R, Y_RrelT and Y_X are 1 and Y_deltarelT its static value, so the curve's
+    // static factor over the knee is 1.6 / (Z_L Z_v Z_R) and 2.5 Y_deltarelT,static /
+    // (Y_deltarelT Y_RrelT Y_X).
+    double zlvr = plain.q(g + "Z_L") * plain.q(g + "Z_v") * plain.q(g + "Z_R");
+    double hKnee = 1500e6 * zlvr * plain.q(g + "Z_W") * plain.q(g + "Z_X");
+    double yd = plain.q(g + "Y_deltarelT"), yr = plain.q(g + "Y_RrelT"), yx = plain.q(g + "Y_X");
+    double fKnee = 500e6 * 2 * yd * yr * yx * plain.q(g + "Y_M");
+    double hStatic = 1.6 / zlvr;
+    double fStatic = 2.5 * ref6336::YdeltarelTStatic(ref6336::Treat::CaseHardened, plain.q(g + "Y_S")) / (yd * yr * yx);
+    double contact = 0, bending = 0;
+    for (int i = 0; i < 3; ++i) {
+      auto at = design(spectrumSpec("", std::to_string(2700 * shares[i]) + " N*m"), "G");
+      // The gear's load cycles over the life: its speed times the life.
+      double cycles = life[i] * (std::string(gear) == "pinion" ? 1500.0 : 500.0) * 60 * 20000;
+      contact += cycles / ref6336::cyclesToFailure(at.q(g + "contact_stress"), hKnee, hStatic, 1e5, 5e7, 0.85, false);
+      bending += cycles / ref6336::cyclesToFailure(at.q(g + "bending_stress"), fKnee, fStatic, 1e3, 3e6, 0.85, false);
+    }
+    EXPECT_NEAR(spec.q(g + "contact_damage"), contact, 1e-9 * contact + 1e-15) << gear;
+    EXPECT_NEAR(spec.q(g + "bending_damage"), bending, 1e-9 * bending + 1e-15) << gear;
+    EXPECT_GT(contact, 1e-3) << gear;
+    std::printf("%s: contact damage %.6g, bending damage %.6g\n", gear, contact, bending);
+  }
+}
+
+// One bin at 100 % for the whole life is the plain rating.
+TEST(ModelFactors, OneBinSpectrumIsThePlainRating) {
+  auto one = design(spectrumSpec("load_spectrum { bin 100% torque for 100% of life; }"), "G");
+  auto plain = design(spectrumSpec(""), "G");
+  for (const char* q :
+       {"s.pinion.contact_safety", "s.wheel.contact_safety", "s.pinion.bending_safety", "s.wheel.bending_safety"})
+    EXPECT_NEAR(one.q(q), plain.q(q), 1e-9 * plain.q(q)) << q;
+  // At a short life too, where the factors move toward their static values.
+  auto oneShort = design(spectrumSpec("load_spectrum { bin 100% torque for 100% of life; }", "1500 N*m",
+                                      "material = steel_18CrNiMo7_6;", "20 h"),
+                         "G");
+  auto plainShort = design(spectrumSpec("", "1500 N*m", "material = steel_18CrNiMo7_6;", "20 h"), "G");
+  for (const char* q :
+       {"s.pinion.contact_safety", "s.wheel.contact_safety", "s.pinion.bending_safety", "s.wheel.bending_safety"})
+    EXPECT_NEAR(oneShort.q(q), plainShort.q(q), 1e-9 * plainShort.q(q)) << q;
+}
+
+// Two materials on one stage: each gear's permissible stress uses its own sigma_Hlim, life
+// curve and, for the through-hardened wheel against the case-hardened pinion, Z_W.
+TEST(ModelFactors, TwoMaterialsOnOneStage) {
+  auto d = design(spectrumSpec("", "600 N*m", "pinion.material = steel_18CrNiMo7_6; wheel.material = through_42CrMo4;"),
+                  "G");
+  for (const char* gear : {"pinion", "wheel"}) {
+    std::string g = std::string("s.") + gear + ".";
+    bool wheel = std::string(gear) == "wheel";
+    double NL = (wheel ? 500.0 : 1500.0) * 60 * 20000;
+    auto t = wheel ? ref6336::Treat::ThroughHardened : ref6336::Treat::CaseHardened;
+    EXPECT_NEAR(d.q(g + "Z_NT"), ref6336::ZNT(t, NL), 1e-9) << gear;
+    EXPECT_NEAR(d.q(g + "Y_NT"), ref6336::YNT(t, NL), 1e-9) << gear;
+    EXPECT_NEAR(d.q(g + "Z_W"), wheel ? ref6336::ZW(300) : 1.0, 1e-12) << gear;
+    double hLimit = (wheel ? 700e6 : 1500e6) * d.q(g + "Z_NT") * d.q(g + "Z_L") * d.q(g + "Z_v") * d.q(g + "Z_R") *
+                    d.q(g + "Z_W") * d.q(g + "Z_X");
+    EXPECT_NEAR(d.q(g + "permissible_contact_stress"), hLimit, 1e-6 * hLimit) << gear;
+    double fLimit = (wheel ? 300e6 : 500e6) * 2 * d.q(g + "Y_NT") * d.q(g + "Y_deltarelT") * d.q(g + "Y_RrelT") *
+                    d.q(g + "Y_X") * d.q(g + "Y_M");
+    EXPECT_NEAR(d.q(g + "permissible_bending_stress"), fLimit, 1e-6 * fLimit) << gear;
+  }
+  // The softer wheel governs the flank.
+  EXPECT_LT(d.q("s.wheel.contact_safety"), d.q("s.pinion.contact_safety"));
+}
+
+// Short lives: below the knee Z_L, Z_v, Z_R and the root's notch, surface and size factors
+// move to their static values on the life curve's span, log-log (the reference header).
+TEST(ModelFactors, ShortLifeMovesFactorsTowardStatic) {
+  auto endurance = design(spectrumSpec("", "1500 N*m", "material = steel_18CrNiMo7_6;", "20000 h"), "G");
+  auto shortLife = design(spectrumSpec("", "1500 N*m", "material = steel_18CrNiMo7_6;", "2 h"), "G");
+  for (const char* gear : {"pinion", "wheel"}) {
+    std::string g = std::string("s.") + gear + ".";
+    double N = (std::string(gear) == "wheel" ? 500.0 : 1500.0) * 60 * 2;
+    for (const char* f : {"Z_L", "Z_v", "Z_R"})
+      EXPECT_NEAR(shortLife.q(g + f), ref6336::shortLife(endurance.q(g + f), 1.0, N, 1e5, 5e7), 1e-12) << gear << f;
+    double ysStatic = ref6336::YdeltarelTStatic(ref6336::Treat::CaseHardened, endurance.q(g + "Y_S"));
+    EXPECT_NEAR(shortLife.q(g + "Y_deltarelT"),
+                ref6336::shortLife(endurance.q(g + "Y_deltarelT"), ysStatic, N, 1e3, 3e6), 1e-12)
+        << gear;
+    EXPECT_NEAR(shortLife.q(g + "Y_RrelT"), ref6336::shortLife(endurance.q(g + "Y_RrelT"), 1.0, N, 1e3, 3e6), 1e-12)
+        << gear;
+    EXPECT_NEAR(shortLife.q(g + "Z_NT"), ref6336::ZNT(ref6336::Treat::CaseHardened, N), 1e-9) << gear;
+  }
 }

@@ -1,0 +1,114 @@
+#include "rating/Spectrum.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace gbx::rt::rating {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kEnd = 1e10; // the life curves' last point
+
+// The static point and knee of a treatment's curves (as the rating's life factors take them).
+struct Points {
+  double contactStatic, contactKnee, bendingStatic, bendingKnee;
+};
+Points points(Treatment t) {
+  switch (t) {
+  case Treatment::Nitrided: return {1e5, 2e6, 1e3, 3e6};
+  case Treatment::ThroughHardened: return {1e5, 5e7, 1e4, 3e6};
+  case Treatment::CaseHardened: break;
+  }
+  return {1e5, 5e7, 1e3, 3e6};
+}
+
+// The gear's permissible stresses (without S_min) when it has run n cycles.
+std::pair<double, double> limitsAt(PairInput in, int gear, double n) {
+  const GearInput& g = in.gear[static_cast<size_t>(gear)];
+  in.life = n * 2 * kPi / (g.speed * g.cyclesPerRev);
+  PairRating r = rate(in);
+  const GearRating& o = r.gear[static_cast<size_t>(gear)];
+  return {o.sigmaHP * in.SHmin, o.sigmaFP * in.SFmin};
+}
+
+double damageOf(const SnCurve& c, const std::vector<double>& stress, const std::vector<double>& cycles, double k) {
+  double d = 0;
+  for (size_t i = 0; i < stress.size(); ++i) {
+    if (!(cycles[i] > 0)) continue;
+    double n = c.cycles(k * stress[i]);
+    if (n <= 0) return INFINITY;
+    if (std::isfinite(n)) d += cycles[i] / n;
+  }
+  return d;
+}
+
+// The factor on every stress at which Miner's sum reaches 1: D(k) grows with k, so bisect
+// in log k between a factor that leaves every bin below the curve's end and one beyond the
+// static strength.
+double safetyOf(const SnCurve& c, const std::vector<double>& stress, const std::vector<double>& cycles) {
+  double top = 0;
+  for (size_t i = 0; i < stress.size(); ++i)
+    if (cycles[i] > 0) top = std::max(top, stress[i]);
+  if (!(top > 0)) return INFINITY;
+  double hi = 2 * c.sStatic / top, lo = 0.5 * c.sEnd / top;
+  for (int i = 0; i < 200 && hi / lo > 1 + 1e-13; ++i) {
+    double mid = std::sqrt(lo * hi);
+    (damageOf(c, stress, cycles, mid) > 1 ? hi : lo) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+} // namespace
+
+double SnCurve::cycles(double stress) const {
+  if (stress > sStatic * (1 + 1e-12)) return 0;
+  if (stress >= sKnee) {
+    if (sStatic <= sKnee) return nKnee;
+    return std::exp(std::log(nKnee) - std::log(stress / sKnee) / std::log(sStatic / sKnee) * std::log(nKnee / nStatic));
+  }
+  if (stress > sEnd && sKnee > sEnd)
+    return std::exp(std::log(nKnee) + std::log(sKnee / stress) / std::log(sKnee / sEnd) * std::log(kEnd / nKnee));
+  return INFINITY;
+}
+
+SpectrumRating rateSpectrum(const PairInput& in, const std::vector<SpectrumBin>& bins) {
+  SpectrumRating out;
+  if (bins.empty()) throw std::domain_error("an empty load spectrum");
+  PairRating nominal = rate(in);
+  for (int g = 0; g < 2; ++g) {
+    Points p = points(in.gear[static_cast<size_t>(g)].treatment.value_or(in.treatment));
+    auto [hs, fs0] = limitsAt(in, g, p.contactStatic);
+    auto [hk, fk0] = limitsAt(in, g, p.contactKnee);
+    auto [he, fe] = limitsAt(in, g, kEnd);
+    auto [hs1, fs] = limitsAt(in, g, p.bendingStatic);
+    auto [hk1, fk] = limitsAt(in, g, p.bendingKnee);
+    out.contactCurve[static_cast<size_t>(g)] = {p.contactStatic, hs, p.contactKnee, hk, he};
+    out.bendingCurve[static_cast<size_t>(g)] = {p.bendingStatic, fs, p.bendingKnee, fk, fe};
+  }
+  // Each bin's duration in cycles of each gear: a share of the life, or cycles of the driving
+  // gear carried over by the speeds.
+  std::array<std::vector<double>, 2> n, sH, sF;
+  for (const auto& b : bins) {
+    PairInput at = in;
+    at.torque1 = std::isfinite(b.torque) ? b.torque : b.torqueShare * in.torque1;
+    out.bins.push_back(rate(at));
+    const PairRating& r = out.bins.back();
+    for (size_t g = 0; g < 2; ++g) {
+      double cycles = std::isfinite(b.lifeShare) ? b.lifeShare * nominal.gear[g].cycles
+                                                 : b.cycles / nominal.gear[0].cycles * nominal.gear[g].cycles;
+      n[g].push_back(cycles);
+      sH[g].push_back(r.gear[g].sigmaH);
+      sF[g].push_back(r.gear[g].sigmaF);
+    }
+  }
+  for (size_t g = 0; g < 2; ++g) {
+    out.contact[g] = {damageOf(out.contactCurve[g], sH[g], n[g], 1.0), safetyOf(out.contactCurve[g], sH[g], n[g])};
+    if (std::isfinite(nominal.gear[g].SF))
+      out.bending[g] = {damageOf(out.bendingCurve[g], sF[g], n[g], 1.0), safetyOf(out.bendingCurve[g], sF[g], n[g])};
+  }
+  return out;
+}
+
+} // namespace gbx::rt::rating

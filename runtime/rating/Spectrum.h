@@ -1,0 +1,40 @@
+#pragma once
+// Variable load by ISO 6336-6: Miner's rule over a load spectrum. Each gear's S-N curve is
+// its life curve of ISO 6336-2/-3 read the other way (the permissible stress at N cycles,
+// with the life-dependent factors at N); each bin's stresses are a rating at its torque.
+#include <array>
+#include <vector>
+
+#include "rating/Iso6336.h"
+
+namespace gbx::rt::rating {
+
+struct SpectrumBin {
+  double torqueShare = kNaN, torque = kNaN; // a share of the operating torque, or a torque [N m]
+  double lifeShare = kNaN, cycles = kNaN;   // a share of the life, or load cycles of the driving gear
+};
+
+// A gear's S-N curve for one side (contact or bending): log-linear in log N between the
+// static point, the knee and 10^10 cycles, flat beyond (ISO 6336-2 Table 2, -3 Table 3).
+struct SnCurve {
+  double nStatic = 0, sStatic = 0, nKnee = 0, sKnee = 0, sEnd = 0; // stresses [Pa]
+  // Cycles to failure at `stress`: 0 above the static strength, infinity below the curve.
+  double cycles(double stress) const;
+};
+
+struct SpectrumSide {
+  double damage = kNaN; // Miner's sum, 1: the life used up
+  double safety = kNaN; // the factor on every bin's stress at which the sum reaches 1
+};
+
+struct SpectrumRating {
+  std::array<SpectrumSide, 2> contact, bending; // per gear (NaN: a root not rated)
+  std::array<SnCurve, 2> contactCurve, bendingCurve;
+  std::vector<PairRating> bins; // the rating at each bin's torque
+};
+
+// `in` as rated at its operating torque and life; each bin rated at its own torque with the
+// factors the standard computes at that load (a given K_v or K_Hbeta stays as given).
+SpectrumRating rateSpectrum(const PairInput& in, const std::vector<SpectrumBin>& bins);
+
+} // namespace gbx::rt::rating
