@@ -133,8 +133,13 @@ void leadSeparations(const Evaluator& ev, const Assignment& a, int st, const Mod
   const ir::Attribute* side = ev.model().attribute(st, Q::TorqueSide);
   double handSign = hand && hand->choice == cat::helixHand::Left ? -1.0 : 1.0;
   double sideSign = side && side->choice == cat::torqueSide::Free ? -1.0 : 1.0;
+  // One word alone: the other takes the sense that adds, the adverse case.
+  if (hand && !side) sideSign = handSign;
+  if (side && !hand) handSign = sideSign;
   if (std::isfinite(bend) || std::isfinite(twist)) {
-    double b = std::isfinite(bend) ? bend : 0.0, t = std::isfinite(twist) ? twist : 0.0;
+    double b = (std::isfinite(bend) ? bend : 0.0) * use.deflectionScale, t = (std::isfinite(twist) ? twist : 0.0) * use.deflectionScale;
+    if (use.deflectionScale != 1)
+      prov.push_back(fmt::format("loaded mesh: the pinion's deflections at the operating torque times {:.4f} (F_m / F_t)", use.deflectionScale));
     sep.leadSlope = handSign * b + sideSign * t;
     if (!hand && !side)
       prov.push_back(fmt::format("loaded mesh: pinion bending and torsion deflection {} as a linear separation across the face",
@@ -156,9 +161,6 @@ void leadSeparations(const Evaluator& ev, const Assignment& a, int st, const Mod
     prov.push_back(fmt::format("loaded mesh: lead deviation {} in the adverse sense: {} across the face in all", um(leadDeviation),
                                um(std::fabs(sep.leadSlope))));
   }
-  // Deviations, in their adverse forms, each the mean of the two gears' (what seed 003's relief
-  // rule allows for): the incoming pair early by the base pitch deviation, the ends of the
-  // path proud by the profile form deviation.
 }
 
 } // namespace
@@ -243,6 +245,9 @@ LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int st
   }
   leadSeparations(ev, a, st, mods, g, use, sep, prov);
   if (use.leadOnly) return in;
+  // Deviations, in their adverse forms, each the mean of the two gears' (what seed 003's relief
+  // rule allows for): the incoming pair early by the base pitch deviation, the ends of the
+  // path proud by the profile form deviation.
   double fp1 = optional(Pinion, Q::PitchDeviation), fp2 = optional(Wheel, Q::PitchDeviation);
   double ff1 = optional(Pinion, Q::ProfileDeviation), ff2 = optional(Wheel, Q::ProfileDeviation);
   if (std::isfinite(fp1) && std::isfinite(fp2)) sep.basePitch = 0.5 * (fp1 + fp2);

@@ -16,6 +16,7 @@ namespace gbx::rt::dyn {
 struct LoadedMeshUse {
   double leadDeviation = 0;
   bool leadOnly = false;
+  double deflectionScale = 1;  // the pinion's deflections at the operating torque times this (F_m / F_t)
 };
 
 // `load` is the transverse force along the line of action, N. Every choice is said in `prov`.

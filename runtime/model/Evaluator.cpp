@@ -272,6 +272,7 @@ std::vector<double> Evaluator::overrideKey() const {
   for (const auto& [r, v] : overrides_) {
     k.push_back(static_cast<double>(r.owner) * 1e9 + static_cast<double>(r.index) * 1e6 + static_cast<double>(r.gear) * 1e3 +
                 static_cast<double>(r.key));
+    k.push_back(static_cast<double>(v.kind));
     k.push_back(v.lo);
     k.push_back(v.hi);
   }

@@ -1,5 +1,7 @@
 #include "model/Model.h"
 
+#include <atomic>
+
 #include <cmath>
 
 #include "model/StageKind.h"
@@ -15,7 +17,14 @@ Value constant(const units::Number& n) {
 
 } // namespace
 
-Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g) {
+namespace {
+std::uint64_t nextSerial() {
+  static std::atomic<std::uint64_t> n{0};
+  return ++n;
+}
+} // namespace
+
+Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g), serial(nextSerial()) {
   for (const auto& st : g.stages) {
     StageInfo info;
     info.ir = &st;

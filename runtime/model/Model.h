@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 // A gearbox of the IR arranged for search: its integer decision variables as slots with
 // explicit value lists, its continuous freedoms as box dimensions, per stage, and a table
 // from (gear, key) to the attribute, slot or freedom that gives it.
@@ -67,6 +68,9 @@ public:
 
   const ir::Program& program;
   const ir::Gearbox& gearbox;
+  // Unique per model built in this process: a cache keyed on it cannot meet a later model
+  // at the same address.
+  const std::uint64_t serial;
   std::vector<StageInfo> stages;
   std::vector<Slot> slots;
   std::vector<Freedom> freedoms;

@@ -352,10 +352,22 @@ std::optional<Rated> gather(const KindContext& c, std::string* why) {
     ~Guard() { --n; }
   } guard(active);
   Rated r;
+  // Bins as shares of the stage's operating torque and of its life: a torque over the
+  // stage's input torque, cycles as revolutions of its input member over those of the life.
+  // Every mesh of the stage (a planet's, an idler's) then takes its own share.
   for (const auto& b : c.ev.model().info(c.stage).ir->spectrum) {
     SpectrumBin bin;
-    (b.share ? bin.torqueShare : bin.torque) = b.load.toDouble();
-    (b.cycles ? bin.cycles : bin.lifeShare) = b.duration.toDouble();
+    bin.torqueShare = b.load.toDouble();
+    bin.lifeShare = b.duration.toDouble();
+    if (!b.share || b.cycles) {
+      Value torque = c.derived(Q::InputTorque), speed = c.derived(Q::InputSpeed), life = c.at(Q::RatingLife);
+      if (!torque.isNumber() || !speed.isNumber() || !life.isNumber() || torque.mid() == 0 || speed.mid() == 0) {
+        if (why) *why = "its load spectrum's torques or cycles need the stage's input torque, speed and life";
+        return std::nullopt;
+      }
+      if (!b.share) bin.torqueShare = b.load.toDouble() / std::fabs(torque.mid());
+      if (b.cycles) bin.lifeShare = b.duration.toDouble() * 2 * M_PI / (std::fabs(speed.mid()) * life.mid());
+    }
     r.bins.push_back(bin);
   }
   r.meshes = meshesOf(c);
@@ -441,7 +453,7 @@ bool modelFactors(const KindContext& c, Rated& g, std::string* why, bool estimat
     }
     const PairInput& in = g.fixed[0];
     double load = r.Ft * in.KA * in.Kgamma * r.Kv;
-    g.faceLoad = contactAnalysis(c.ev, c.a, c.stage, load, r.fma);
+    g.faceLoad = contactAnalysis(c.ev, c.a, c.stage, load, r.fma, in.KA * in.Kgamma * r.Kv);
     if (!g.faceLoad->failure.empty()) return fail(fmt::format("K_Hbeta by contact analysis: {}", g.faceLoad->failure));
     for (auto& f : g.fixed) f.KHbetaGiven = g.faceLoad->KHbeta;
   }

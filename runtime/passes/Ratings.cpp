@@ -42,6 +42,11 @@ void modelNotes(const rating::MeshRating& mr, RatingReport& out) {
           [](const auto& s) { return s.profileForm ? "given" : s.profileTotal ? "the spec's profile_deviation" : "the grade's"; },
           "f_falpha") +
       "; " + dev(&GearRating::fHb, [](const auto& s) { return s.helix ? "given" : "the grade's"; }, "f_Hbeta"));
+  if (!mr.faceLoad && !std::isfinite(mr.input.KHbetaGiven))
+    out.model.push_back(fmt::format("K_Hbeta method B: f_sh {:.3g} um from 0.023 (F_m/b)(b/d1)^2 (a pinion centred between its bearings; "
+                                    "a spec's bending_deflection and torsion_deflection reach the contact analysis, not this formula), "
+                                    "f_ma {:.3g} um, B1 {:.2g}, B2 {:.2g}: F_betax {:.3g} um, running-in y_beta {:.3g} um",
+                                    r.fsh, r.fma * 1e6, r.B1, r.B2, r.FbetaX, r.yBeta));
   if (mr.faceLoad) {
     const rating::FaceLoad& f = *mr.faceLoad;
     out.model.push_back(fmt::format("K_Hbeta: the largest line load across the face over one mesh period, {:.4g} N/mm at {:.1f} mm from "
@@ -268,7 +273,7 @@ Ratings ratings(const Model& m, const Assignment& best) {
       // Every value is a number except an internal gear's root, which the note names.
       for (const auto& row : result.ratings.back().rows)
         for (size_t g = 0; g < row.si.size(); ++g)
-          if (!std::isfinite(row.si[g]) && !(mr.internal && g == 1))
+          if (std::isnan(row.si[g]) && !(mr.internal && g == 1))
             result.errors.push_back(fmt::format("stage `{}`: the rating's `{}` is not a number at design 1", st.name, row.key));
       // A freedom still spanning an interval (not optimised): rated at its middle, said so.
       for (int f : m.stages[s].freedoms)

@@ -304,6 +304,8 @@ void faceLoadFactors(const PairInput& in, const Geometry& g, const Deviations& d
   r.fsh = Fmb * 0.023 * sq(b / dPinion);
   double fma = std::isfinite(in.fma) ? in.fma * 1e6 : dev.fHb;
   r.fma = fma * 1e-6;
+  r.B1 = in.B1;
+  r.B2 = in.B2;
   r.FbetaX = std::max({1.33 * in.B1 * r.fsh + in.B2 * fma, 0.005 * Fmb, 0.5 * dev.fHb});
   auto yBetaOf = [&](Treatment t, double shl) {
     if (t != Treatment::ThroughHardened) return std::min(0.15 * r.FbetaX, 6.0);

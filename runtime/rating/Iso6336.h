@@ -76,6 +76,7 @@ struct PairRating {
   double cprime, cgammaAlpha, cgammaBeta, mred, nE1, N, NS;
   KvRange kvRange;
   double fsh, fma, FbetaX, FbetaY, yBeta, yAlpha;  // fma: the manufacturing misalignment used [m]
+  double B1, B2;                                   // the lead modification factors used
   double Kv, KHbeta, KFbeta, KHalpha, KFalpha;
   double ZH, ZE, Zeps, Zbeta, sigmaH0;
   std::array<GearRating, 2> gear;

@@ -70,10 +70,14 @@ FaceLoad faceLoad(dyn::LoadedMeshInput in) {
     out.failure = t.failure;
     return out;
   }
+  if (!(in.load > 0)) {
+    out.failure = "the mesh carries no load";
+    return out;
+  }
   out.lineLoad = t.sliceLineLoad;
   out.meanLineLoad = in.load / in.g.faceWidth;
   out.faceWidth = in.g.faceWidth;
-  // Every slice carries load over a period unless the flanks lift off across part of the face.
+  // The slice that carries the most over a period, and where it lies.
   auto top = std::max_element(out.lineLoad.begin(), out.lineLoad.end());
   size_t j = static_cast<size_t>(top - out.lineLoad.begin());
   out.KHbeta = *top / out.meanLineLoad;
@@ -81,12 +85,12 @@ FaceLoad faceLoad(dyn::LoadedMeshInput in) {
   return out;
 }
 
-FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, double load, double fma) {
-  thread_local Recent<std::pair<const Model*, std::vector<double>>, FaceLoad> cache;
+FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, double load, double fma, double deflectionScale) {
+  thread_local Recent<std::pair<std::uint64_t, std::vector<double>>, FaceLoad> cache;
   std::vector<std::string> prov;
   dyn::LoadedMeshInput in;
   try {
-    in = dyn::loadedMeshInput(ev, a, stage, load, kFaceSlices, kFacePositions, prov, {fma, true});
+    in = dyn::loadedMeshInput(ev, a, stage, load, kFaceSlices, kFacePositions, prov, {fma, true, deflectionScale});
   } catch (const dyn::SceneFailure& f) {
     FaceLoad out;
     out.failure = f.what;
@@ -100,7 +104,7 @@ FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, do
       "contact analysis: the slices' stiffness is c_gammabeta = 0.85 c_gammaalpha, as ISO 6336-1 takes it across the "
       "face; the "
       "pitch and profile deviations and the tip relief, which load the pairs along the path (K_Halpha), are left out");
-  auto key = std::make_pair(&ev.model(), keyOf(in));
+  auto key = std::make_pair(ev.model().serial, keyOf(in));
   if (const FaceLoad* hit = cache.find(key)) return *hit;
   FaceLoad out = faceLoad(in);
   out.model = std::move(prov);
@@ -108,7 +112,7 @@ FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, do
 }
 
 SceneFactor sceneDynamicFactor(const Evaluator& ev, const Assignment& a, int scene, bool estimate) {
-  thread_local Recent<std::pair<const Model*, std::vector<double>>, SceneFactor> cache;
+  thread_local Recent<std::pair<std::uint64_t, std::vector<double>>, SceneFactor> cache;
   const Model& m = ev.model();
   SceneFactor out;
   if (scene < 0 || static_cast<size_t>(scene) >= m.scenes.size()) {
@@ -128,7 +132,7 @@ SceneFactor sceneDynamicFactor(const Evaluator& ev, const Assignment& a, int sce
   key.push_back(-2);
   for (double v : ev.overrideKey())
     key.push_back(v);
-  auto k = std::make_pair(&m, std::move(key));
+  auto k = std::make_pair(m.serial, std::move(key));
   if (const SceneFactor* hit = cache.find(k)) return *hit;
   const ScenePlan& plan = m.scenes[static_cast<size_t>(scene)];
   out.scene = plan.name;

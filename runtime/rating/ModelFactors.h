@@ -32,7 +32,9 @@ FaceLoad faceLoad(dyn::LoadedMeshInput in);
 // standard's F_m = F_t K_A K_gamma K_v, the load its stiffnesses and K_Hbeta are defined
 // with), the slices at c_gammabeta, and the lead deviation `fma` (m) in the adverse sense.
 // Repeated calls with the same inputs are answered from a cache.
-FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, double load, double fma);
+// `deflectionScale` (F_m / F_t) brings the pinion's deflections, found at the operating
+// torque, to that load.
+FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, double load, double fma, double deflectionScale);
 
 // K_v by method A: the peak periodic mesh force over the static one, from scene `scene` (an
 // index into the model's scenes) at the design; with `estimate`, its own error estimate

@@ -27,6 +27,7 @@ Points points(Treatment t) {
 // The gear's permissible stresses (without S_min) when it has run n cycles.
 std::pair<double, double> limitsAt(PairInput in, int gear, double n) {
   const GearInput& g = in.gear[static_cast<size_t>(gear)];
+  if (!(g.speed * g.cyclesPerRev > 0)) throw std::domain_error("a gear that does not turn has no life curve to rate a load spectrum on");
   in.life = n * 2 * kPi / (g.speed * g.cyclesPerRev);
   PairRating r = rate(in);
   const GearRating& o = r.gear[static_cast<size_t>(gear)];

@@ -13,6 +13,7 @@ namespace {
 std::string label(const RatingReport::Row& row) { return row.unit.empty() ? row.label : row.label + " [" + row.unit + "]"; }
 
 std::string shown(const RatingReport::Row& row, double si) {
+  if (std::isinf(si)) return "beyond static";  // a damage sum: a bin above the static strength
   if (!std::isfinite(si)) return "not rated";  // an internal gear's root (ISO 6336-3 internal gears)
   if (row.format == RatingReport::Row::Count) return fmt::format("{:.4e}", si);
   return formatNumber(si / row.scale);
@@ -87,7 +88,7 @@ std::string ratingJson(const RatingReport& r) {
   first = true;
   for (const auto& row : r.rows)
     if (!row.method.empty()) {
-      o += fmt::format("{}\"{}\": \"{}\"", first ? "" : ", ", row.key, row.method);
+      o += fmt::format("{}\"{}\": \"{}\"", first ? "" : ", ", row.key, diag::jsonEscape(row.method));
       first = false;
     }
   o += "}";
@@ -99,8 +100,8 @@ std::string ratingJson(const RatingReport& r) {
   if (!r.notRated.empty()) {
     o += ", \"not_rated\": [";
     for (size_t i = 0; i < r.notRated.size(); ++i)
-      o += fmt::format("{}{{\"gear\": \"{}\", \"what\": \"{}\", \"reason\": \"{}\"}}", i ? ", " : "", r.notRated[i].gear,
-                       r.notRated[i].what, diag::jsonEscape(r.notRated[i].reason));
+      o += fmt::format("{}{{\"gear\": \"{}\", \"what\": \"{}\", \"reason\": \"{}\"}}", i ? ", " : "", diag::jsonEscape(r.notRated[i].gear),
+                       diag::jsonEscape(r.notRated[i].what), diag::jsonEscape(r.notRated[i].reason));
     o += "]";
   }
   if (!r.model.empty()) {

@@ -241,6 +241,8 @@ expect('    output rms(transmission_error), plot(acceleration);', 'rms', 'suppor
 expectNot('    output rms(transmission_error), plot(acceleration);', 'transmission_error', 'support.class');
 expect('  tolerances { main.face_width +- 1 mm; }', 'tolerances', 'keyword.other.block.gbx');
 expect('    rating {', 'rating', 'keyword.other.block.gbx');
+expect('      load_spectrum {', 'load_spectrum', 'keyword.other.block.gbx');
+expect('      face_load_factor = contact_analysis;', 'contact_analysis', 'constant.language.symbol.gbx');
 expect('    accuracy { method = rk8pd; rtol = 1e-9; }', 'accuracy', 'keyword.other.block.gbx');
 expect('    accuracy { method = rk8pd; rtol = 1e-9; }', 'rk8pd', 'constant.language.symbol.gbx');
 expect('    install = preloaded;', 'preloaded', 'constant.language.symbol.gbx');

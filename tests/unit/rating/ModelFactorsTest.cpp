@@ -12,6 +12,7 @@
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 #include "model/RatingRows.h"
+#include "passes/Ratings.h"
 
 using namespace gbx;
 
@@ -101,9 +102,13 @@ TEST(ModelFactors, HelixHandAndTorqueSideSetTheSenseOfTheMismatch) {
       design(pair("mesh_misalignment = 0 um;", "1500 N*m", deflect + "helix_hand = right; torque_side = free;"), "G");
   auto mirrored =
       design(pair("mesh_misalignment = 0 um;", "1500 N*m", deflect + "helix_hand = left; torque_side = free;"), "G");
+  // The deflections, given at the operating torque, act at F_m = F_t K_v (K_A 1).
   double Ft = adds.q("s.tangential_force"), Kv = adds.q("s.K_v");
-  EXPECT_NEAR(adds.q("s.K_Hbeta"), closedForm(20, Ft, Kv, 60, 20), 0.02 * closedForm(20, Ft, Kv, 60, 20));
-  EXPECT_NEAR(cancels.q("s.K_Hbeta"), closedForm(4, Ft, Kv, 60, 20), 0.02 * closedForm(4, Ft, Kv, 60, 20));
+  EXPECT_NEAR(adds.q("s.K_Hbeta"), closedForm(20 * Kv, Ft, Kv, 60, 20), 0.02 * closedForm(20 * Kv, Ft, Kv, 60, 20));
+  EXPECT_NEAR(cancels.q("s.K_Hbeta"), closedForm(4 * Kv, Ft, Kv, 60, 20), 0.02 * closedForm(4 * Kv, Ft, Kv, 60, 20));
+  // One word alone takes the other's adverse sense.
+  auto handOnly = design(pair("mesh_misalignment = 0 um;", "1500 N*m", deflect + "helix_hand = left;"), "G");
+  EXPECT_NEAR(handOnly.q("s.K_Hbeta"), mirrored.q("s.K_Hbeta"), 1e-12);
   // Mirrored across the face: the same but for the helix's own asymmetry of the contact lines.
   EXPECT_NEAR(mirrored.q("s.K_Hbeta"), adds.q("s.K_Hbeta"), 1e-3);
 }
@@ -236,6 +241,9 @@ TEST(ModelFactors, OneBinSpectrumIsThePlainRating) {
   for (const char* q :
        {"s.pinion.contact_safety", "s.wheel.contact_safety", "s.pinion.bending_safety", "s.wheel.bending_safety"})
     EXPECT_NEAR(one.q(q), plain.q(q), 1e-9 * plain.q(q)) << q;
+  // A torque and a count of the input member's revolutions that are the operating point's.
+  auto absolute = design(spectrumSpec("load_spectrum { bin 1500 N*m for 1.8e9 cycles; }"), "G");
+  for (const char* q : {"s.pinion.contact_safety", "s.wheel.bending_safety"}) EXPECT_NEAR(absolute.q(q), plain.q(q), 1e-9 * plain.q(q)) << q;
   // At a short life too, where the factors move toward their static values.
   auto oneShort = design(spectrumSpec("load_spectrum { bin 100% torque for 100% of life; }", "1500 N*m",
                                       "material = steel_18CrNiMo7_6;", "20 h"),
@@ -288,4 +296,30 @@ TEST(ModelFactors, ShortLifeMovesFactorsTowardStatic) {
         << gear;
     EXPECT_NEAR(shortLife.q(g + "Z_NT"), ref6336::ZNT(ref6336::Treat::CaseHardened, N), 1e-9) << gear;
   }
+}
+
+// The warnings a rating engineer expects (LANGUAGE.md §16): a wide pinion, partial contact
+// across the face, a short transverse overlap, a speed beyond the grade's; none on a
+// moderate pair.
+TEST(ModelFactors, RatingWarnings) {
+  auto spec = [](const std::string& stage, const std::string& speed) {
+    return "import materials;\ngearbox G {\n  stage s: helical {\n    pinion.z = 17; wheel.z = 50; normal_module = 4 mm; helix_angle = 10 "
+           "deg; material = steel_18CrNiMo7_6; " +
+           stage +
+           "\n    rating { life = 20000 h; lubricant { viscosity_40 = 220 mm^2/s; } roughness { flank = 0.6 um; root = 3 um; } "
+           "basic_rack { addendum = 0.8; dedendum = 1.1; root_radius = 0.3; } }\n  }\n  operating { input_speed = " +
+           speed + "; input_torque = 1500 N*m; }\n}\n";
+  };
+  auto warned = design(spec("face_width = 170 mm; pressure_angle = 25 deg; accuracy = 8;", "12000 rpm"), "G");
+  auto quiet = design(spec("face_width = 60 mm; accuracy = 6;", "1500 rpm"), "G");
+  auto warningsOf = [](const Design& d) {
+    std::string all;
+    for (const auto& r : rt::passes::ratings(*d.model, *d.a).ratings)
+      for (const auto& w : r.warnings) all += w + "\n";
+    return all;
+  };
+  std::string w = warningsOf(warned);
+  for (const char* what : {"b/d1 = 2.46", "K_Hbeta = 2.677 > 2", "eps_alpha = 1.167 < 1.2", "beyond the usual 12 m/s of accuracy grade 8"})
+    EXPECT_NE(w.find(what), std::string::npos) << what << " in\n" << w;
+  EXPECT_EQ(warningsOf(quiet), "");
 }
