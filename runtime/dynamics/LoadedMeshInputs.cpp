@@ -175,15 +175,7 @@ LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int st
     ref.key = key;
     return needNumber(ev.quantity(ref, a), what);
   };
-  auto optional = [&](int gear, Q key) {
-    ir::QuantityRef ref;
-    ref.owner = ir::QuantityRef::Stage;
-    ref.index = static_cast<std::int16_t>(st);
-    ref.gear = static_cast<std::int8_t>(gear);
-    ref.key = key;
-    Value v = ev.quantity(ref, a);
-    return v.isNumber() && std::isfinite(v.lo) ? v.mid() : NAN;
-  };
+  auto optional = [&](int gear, Q key) { return optionalQuantity(ev, a, st, gear, key); };
   const ir::Stage& stage = *ev.model().stages[static_cast<size_t>(st)].ir;
   bool helical = stage.kind == ir::StageKind::Helical;
   LoadedMeshInput in;

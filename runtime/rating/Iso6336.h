@@ -32,7 +32,7 @@ struct GearInput {
   bool internal = false;     // an internal gear (the wheel of the pair only): z, d signed negative inside
   // A gear of its own material (`pinion.material`): its treatment and elastic constants;
   // unset, the pair's. brinell: HB of a through-hardened gear (its Z_W against a harder mate).
-  std::optional<Treatment> treatment;
+  std::optional<Treatment> treatment = std::nullopt;
   double E = kNaN, nu = kNaN, brinell = kNaN;
 };
 

@@ -184,7 +184,7 @@ struct RatingReport {
     std::vector<double> si;  // one value, or one per gear; NaN: not rated (an internal gear's root)
     Format format = Plain;
     Minimum minimum = NoMinimum;
-    std::string method;  // how the factor was found (`method B, subcritical`, `method A, scene vib`)
+    std::string method = {};  // how the factor was found (`method B, subcritical`, `method A, scene vib`)
   };
   std::vector<Row> rows;
   double minContact = 1, minBending = 1;

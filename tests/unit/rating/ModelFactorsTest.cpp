@@ -87,8 +87,12 @@ TEST(ModelFactors, LinearMismatchFollowsTheClosedForm) {
     double got = d.q("s.K_Hbeta");
     EXPECT_NEAR(got, expect, 0.02 * expect) << mis << " um at " << torque;
     // Both regimes are exercised.
-    if (mis == 20.0) EXPECT_LT(expect, 2.0);
-    if (mis == 60.0) EXPECT_GT(expect, 2.0);
+    if (mis == 20.0) {
+      EXPECT_LT(expect, 2.0);
+    }
+    if (mis == 60.0) {
+      EXPECT_GT(expect, 2.0);
+    }
   }
 }
 
