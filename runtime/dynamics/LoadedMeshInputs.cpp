@@ -18,6 +18,16 @@ using cat::gear::Wheel;
 
 std::string um(double v) { return fmt::format("{:.4g} um", v * 1e6); }
 
+// A quantity of the stage (gear -1) or of one of its gears.
+ir::QuantityRef stageRef(int st, int gear, Q key) {
+  ir::QuantityRef ref;
+  ref.owner = ir::QuantityRef::Stage;
+  ref.index = static_cast<std::int16_t>(st);
+  ref.gear = static_cast<std::int8_t>(gear);
+  ref.key = key;
+  return ref;
+}
+
 // The stage's modifications as its `modify` rules give them, a sweep's value first.
 struct Mods {
   double tipRelief[2] = {0, 0}, height[2] = {-1, -1}, crowning[2] = {0, 0};
@@ -66,12 +76,7 @@ Mods modifications(const Evaluator& ev, const Assignment& a, int st, std::vector
   // A sweep of a modification (`sweep hs.tip_relief …`) replaces the rule.
   auto swept = [&](int gear, Q key, double* slot, bool* given) {
     if (!ev.overrides(st, gear, key)) return;
-    ir::QuantityRef ref;
-    ref.owner = ir::QuantityRef::Stage;
-    ref.index = static_cast<std::int16_t>(st);
-    ref.gear = static_cast<std::int8_t>(gear);
-    ref.key = key;
-    Value v = ev.quantity(ref, a);
+    Value v = ev.quantity(stageRef(st, gear, key), a);
     for (int g = 0; g < 2; ++g)
       if (gear < 0 || gear == g) {
         slot[g] = v.mid();
@@ -88,12 +93,7 @@ Mods modifications(const Evaluator& ev, const Assignment& a, int st, std::vector
 
 // A stage quantity at the design, NaN where the design does not give it.
 double optionalQuantity(const Evaluator& ev, const Assignment& a, int st, int gear, Q key) {
-  ir::QuantityRef ref;
-  ref.owner = ir::QuantityRef::Stage;
-  ref.index = static_cast<std::int16_t>(st);
-  ref.gear = static_cast<std::int8_t>(gear);
-  ref.key = key;
-  Value v = ev.quantity(ref, a);
+  Value v = ev.quantity(stageRef(st, gear, key), a);
   return v.isNumber() && std::isfinite(v.lo) ? v.mid() : NAN;
 }
 
@@ -167,14 +167,7 @@ void leadSeparations(const Evaluator& ev, const Assignment& a, int st, const Mod
 
 LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int st, double load, int slices, int positions,
                                 std::vector<std::string>& prov, const LoadedMeshUse& use) {
-  auto q = [&](int gear, Q key, const char* what) {
-    ir::QuantityRef ref;
-    ref.owner = ir::QuantityRef::Stage;
-    ref.index = static_cast<std::int16_t>(st);
-    ref.gear = static_cast<std::int8_t>(gear);
-    ref.key = key;
-    return needNumber(ev.quantity(ref, a), what);
-  };
+  auto q = [&](int gear, Q key, const char* what) { return needNumber(ev.quantity(stageRef(st, gear, key), a), what); };
   auto optional = [&](int gear, Q key) { return optionalQuantity(ev, a, st, gear, key); };
   const ir::Stage& stage = *ev.model().stages[static_cast<size_t>(st)].ir;
   bool helical = stage.kind == ir::StageKind::Helical;
