@@ -8,6 +8,16 @@
 
 namespace gbx::rt::rating {
 
+LifeCurve contactCurve(Treatment t) { return t == Treatment::Nitrided ? LifeCurve{1e5, 1.3, 2e6} : LifeCurve{1e5, 1.6, 5e7}; }
+LifeCurve bendingCurve(Treatment t) {
+  switch (t) {
+  case Treatment::Nitrided: return {1e3, 1.6, 3e6};
+  case Treatment::ThroughHardened: return {1e4, 2.5, 3e6};
+  case Treatment::CaseHardened: break;
+  }
+  return {1e3, 2.5, 3e6};
+}
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -402,24 +412,10 @@ Shared sharedFactors(const PairInput& in, const Geometry& g, const PairRating& r
   return s;
 }
 
-// A life curve's static point and knee (ISO 6336-2 Table 2, ISO 6336-3 Table 3).
-struct Curve {
-  double nStatic, fStatic, nKnee;
-};
-Curve contactCurve(Treatment t) { return t == Treatment::Nitrided ? Curve{1e5, 1.3, 2e6} : Curve{1e5, 1.6, 5e7}; }
-Curve bendingCurve(Treatment t) {
-  switch (t) {
-  case Treatment::Nitrided: return {1e3, 1.6, 3e6};
-  case Treatment::ThroughHardened: return {1e4, 2.5, 3e6};
-  case Treatment::CaseHardened: break;
-  }
-  return {1e3, 2.5, 3e6};
-}
-
 // Life factors Z_NT and Y_NT, ISO 6336-2 Table 2 and ISO 6336-3 Table 3.
 void lifeFactors(const PairInput& in, Treatment t, GearRating& o) {
   double end = in.optimumLife ? 1.0 : 0.85;
-  Curve c = contactCurve(t), b = bendingCurve(t);
+  LifeCurve c = contactCurve(t), b = bendingCurve(t);
   o.ZNT = lifeFactor(o.cycles, c.nStatic, c.fStatic, c.nKnee, end);
   o.YNT = lifeFactor(o.cycles, b.nStatic, b.fStatic, b.nKnee, end);
 }
@@ -440,7 +436,7 @@ double workHardening(const PairInput& in, int i) {
 void rateFlank(const PairInput& in, const PairRating& r, const Shared& s, int i, GearRating& o) {
   const auto& gi = in.gear[static_cast<size_t>(i)];
   // Below the knee Z_L, Z_v and Z_R move toward their static value 1 as Z_NT does.
-  Curve c = contactCurve(treatmentOf(in, i));
+  LifeCurve c = contactCurve(treatmentOf(in, i));
   double t = towardStatic(o.cycles, c.nStatic, c.nKnee);
   o.ZL = between(s.ZL, 1.0, t);
   o.Zv = between(s.Zv, 1.0, t);
@@ -481,7 +477,7 @@ void rateRoot(const PairInput& in, const Geometry& g, const PairRating& r, const
   // Y_NT does (ISO 6336-3 cl. 12-14): Y_deltarelT to 0.44 Y_S + 0.12 (case hardened),
   // 0.20 Y_S + 0.60 (nitrided), the through-hardened form at sigma_0.2 = 800 N/mm^2; Y_RrelT
   // and Y_X to 1.
-  Curve b = bendingCurve(tr);
+  LifeCurve b = bendingCurve(tr);
   double toward = towardStatic(o.cycles, b.nStatic, b.nKnee);
   if (toward > 0) {
     double q = std::pow(300.0 / 800.0, 0.25);

@@ -88,6 +88,14 @@ struct PairRating {
 // implemented): its bending values are NaN.
 PairRating rate(const PairInput& in);
 
+// A treatment's life curve: its static point and its knee (ISO 6336-2 Table 2, ISO 6336-3
+// Table 3); beyond the knee it falls to the end value at 10^10 cycles.
+struct LifeCurve {
+  double nStatic, fStatic, nKnee;
+};
+LifeCurve contactCurve(Treatment t);
+LifeCurve bendingCurve(Treatment t);
+
 // ISO 6336-3 method B for one external gear of the pair: the critical section (30-degree
 // tangent) of the fillet the basic rack generates, the load at the outer point of single
 // pair contact. Lengths in mm, angles in rad.

@@ -11,19 +11,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kEnd = 1e10; // the life curves' last point
 
-// The static point and knee of a treatment's curves (as the rating's life factors take them).
-struct Points {
-  double contactStatic, contactKnee, bendingStatic, bendingKnee;
-};
-Points points(Treatment t) {
-  switch (t) {
-  case Treatment::Nitrided: return {1e5, 2e6, 1e3, 3e6};
-  case Treatment::ThroughHardened: return {1e5, 5e7, 1e4, 3e6};
-  case Treatment::CaseHardened: break;
-  }
-  return {1e5, 5e7, 1e3, 3e6};
-}
-
 // The gear's permissible stresses (without S_min) when it has run n cycles.
 std::pair<double, double> limitsAt(PairInput in, int gear, double n) {
   const GearInput& g = in.gear[static_cast<size_t>(gear)];
@@ -79,27 +66,25 @@ SpectrumRating rateSpectrum(const PairInput& in, const std::vector<SpectrumBin>&
   if (bins.empty()) throw std::domain_error("an empty load spectrum");
   PairRating nominal = rate(in);
   for (int g = 0; g < 2; ++g) {
-    Points p = points(in.gear[static_cast<size_t>(g)].treatment.value_or(in.treatment));
-    auto [hs, fs0] = limitsAt(in, g, p.contactStatic);
-    auto [hk, fk0] = limitsAt(in, g, p.contactKnee);
+    Treatment t = in.gear[static_cast<size_t>(g)].treatment.value_or(in.treatment);
+    LifeCurve c = contactCurve(t), b = bendingCurve(t);
+    auto [hs, fs0] = limitsAt(in, g, c.nStatic);
+    auto [hk, fk0] = limitsAt(in, g, c.nKnee);
     auto [he, fe] = limitsAt(in, g, kEnd);
-    auto [hs1, fs] = limitsAt(in, g, p.bendingStatic);
-    auto [hk1, fk] = limitsAt(in, g, p.bendingKnee);
-    out.contactCurve[static_cast<size_t>(g)] = {p.contactStatic, hs, p.contactKnee, hk, he};
-    out.bendingCurve[static_cast<size_t>(g)] = {p.bendingStatic, fs, p.bendingKnee, fk, fe};
+    auto [hs1, fs] = limitsAt(in, g, b.nStatic);
+    auto [hk1, fk] = limitsAt(in, g, b.nKnee);
+    out.contactCurve[static_cast<size_t>(g)] = {c.nStatic, hs, c.nKnee, hk, he};
+    out.bendingCurve[static_cast<size_t>(g)] = {b.nStatic, fs, b.nKnee, fk, fe};
   }
-  // Each bin's duration in cycles of each gear: a share of the life, or cycles of the driving
-  // gear carried over by the speeds.
+  // Each bin's duration in each gear's load cycles: its share of the life.
   std::array<std::vector<double>, 2> n, sH, sF;
   for (const auto& b : bins) {
     PairInput at = in;
-    at.torque1 = std::isfinite(b.torque) ? b.torque : b.torqueShare * in.torque1;
+    at.torque1 = b.torqueShare * in.torque1;
     out.bins.push_back(rate(at));
     const PairRating& r = out.bins.back();
     for (size_t g = 0; g < 2; ++g) {
-      double cycles = std::isfinite(b.lifeShare) ? b.lifeShare * nominal.gear[g].cycles
-                                                 : b.cycles / nominal.gear[0].cycles * nominal.gear[g].cycles;
-      n[g].push_back(cycles);
+      n[g].push_back(b.lifeShare * nominal.gear[g].cycles);
       sH[g].push_back(r.gear[g].sigmaH);
       sF[g].push_back(r.gear[g].sigmaF);
     }

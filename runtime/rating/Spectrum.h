@@ -9,9 +9,10 @@
 
 namespace gbx::rt::rating {
 
+// A bin as shares of the pair's operating torque and of its life (a spec's torques and
+// cycles are turned into shares of the stage's where the stage is gathered).
 struct SpectrumBin {
-  double torqueShare = kNaN, torque = kNaN; // a share of the operating torque, or a torque [N m]
-  double lifeShare = kNaN, cycles = kNaN;   // a share of the life, or load cycles of the driving gear
+  double torqueShare = kNaN, lifeShare = kNaN;
 };
 
 // A gear's S-N curve for one side (contact or bending): log-linear in log N between the
