@@ -47,7 +47,13 @@ Better betterOf(Q q) {
   case Q::ContactSafety:
   case Q::BendingSafety:
   case Q::PermissibleContactStress:
-  case Q::PermissibleBendingStress: return Better::Larger;
+  case Q::PermissibleBendingStress:
+  case Q::ScuffingSafety:
+  case Q::IntegralScuffingSafety:
+  case Q::ScuffingTemperature:
+  case Q::MicropittingSafety:
+  case Q::SpecificFilmThickness:
+  case Q::PermissibleFilmThickness: return Better::Larger;
   case Q::ContactStress:
   case Q::BendingStress:
   case Q::Mass:
@@ -61,7 +67,10 @@ Better betterOf(Q q) {
   case Q::ProfileFormDeviation:
   case Q::HelixSlopeDeviation:
   case Q::ContactDamage:
-  case Q::BendingDamage: return Better::Smaller;
+  case Q::BendingDamage:
+  case Q::ContactTemperature:
+  case Q::IntegralTemperature:
+  case Q::BulkTemperature: return Better::Smaller;
   default: return Better::Unknown;
   }
 }

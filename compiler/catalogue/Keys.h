@@ -173,7 +173,26 @@ namespace gbx::cat {
   X(TorqueSide, "torque_side")                                                                  \
   X(BrinellHardness, "brinell_hardness")                                                        \
   X(ContactDamage, "contact_damage")                                                            \
-  X(BendingDamage, "bending_damage")
+  X(BendingDamage, "bending_damage")                                                            \
+  X(RatingViscosity100, "rating.lubricant.viscosity_100")                                       \
+  X(RatingOilDensity, "rating.lubricant.density")                                               \
+  X(RatingOilTemperature, "rating.lubricant.oil_temperature")                                   \
+  X(RatingFzgLoadStage, "rating.lubricant.fzg_load_stage")                                      \
+  X(RatingMicropittingLoadStage, "rating.lubricant.micropitting_load_stage")                    \
+  X(RatingOilBase, "rating.lubricant.base")                                                     \
+  X(RatingOilSupply, "rating.lubricant.supply")                                                 \
+  X(RatingMinScuffing, "rating.min_safety.scuffing")                                            \
+  X(RatingMinIntegralScuffing, "rating.min_safety.integral_scuffing")                           \
+  X(RatingMinMicropitting, "rating.min_safety.micropitting")                                    \
+  X(ScuffingSafety, "scuffing_safety")                                                          \
+  X(IntegralScuffingSafety, "integral_scuffing_safety")                                         \
+  X(ContactTemperature, "contact_temperature")                                                  \
+  X(IntegralTemperature, "integral_temperature")                                                \
+  X(ScuffingTemperature, "scuffing_temperature")                                                \
+  X(BulkTemperature, "bulk_temperature")                                                        \
+  X(MicropittingSafety, "micropitting_safety")                                                  \
+  X(SpecificFilmThickness, "specific_film_thickness")                                           \
+  X(PermissibleFilmThickness, "permissible_film_thickness")
 
 enum class Q : std::uint8_t {
 #define GBX_KEY_ENUM(id, name) id,

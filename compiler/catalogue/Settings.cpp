@@ -179,7 +179,15 @@ bool dependsOnOperatingPoint(Q key) {
 
 bool isRatingQuantity(Q key) {
   auto k = static_cast<int>(key);
-  return (k >= static_cast<int>(Q::ContactSafety) && k <= static_cast<int>(Q::YM)) || key == Q::ContactDamage || key == Q::BendingDamage;
+  return (k >= static_cast<int>(Q::ContactSafety) && k <= static_cast<int>(Q::YM)) || key == Q::ContactDamage || key == Q::BendingDamage ||
+         scuffingInput(key) != Q::None;
+}
+
+Q scuffingInput(Q key) {
+  auto k = static_cast<int>(key);
+  if (k >= static_cast<int>(Q::ScuffingSafety) && k <= static_cast<int>(Q::BulkTemperature)) return Q::RatingFzgLoadStage;
+  if (k >= static_cast<int>(Q::MicropittingSafety) && k <= static_cast<int>(Q::PermissibleFilmThickness)) return Q::RatingMicropittingLoadStage;
+  return Q::None;
 }
 
 const std::vector<FlagSpec>& flags() {

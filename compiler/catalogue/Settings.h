@@ -56,6 +56,9 @@ bool dependsOnOperatingPoint(Q key);
 
 // The results of a load-capacity rating: safeties, stresses and influence factors.
 bool isRatingQuantity(Q key);
+// The oil's test result a scuffing or micropitting quantity needs (the FZG or the FVA load
+// stage); Q::None for every other key.
+Q scuffingInput(Q key);
 
 // Modification targets by their position in modificationTargets().
 enum class Mod : int {
@@ -74,6 +77,13 @@ inline constexpr int Normal = 0, Optimum = 1;
 // and the word `rating.face_load_factor` takes instead of a number.
 namespace helixHand {
 inline constexpr int Right = 0, Left = 1;
+}
+// The base oil (friction's lubricant factor) and how the oil reaches the mesh (X_S).
+namespace oilBase {
+inline constexpr int Mineral = 0, Polyalphaolefin = 1, Polyglycol = 2, PhosphateEster = 3, Traction = 4;
+}
+namespace oilSupply {
+inline constexpr int Dip = 0, Injection = 1;
 }
 namespace torqueSide {
 inline constexpr int Coupling = 0, Free = 1;

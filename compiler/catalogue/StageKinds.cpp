@@ -74,6 +74,15 @@ std::vector<AttrSpec> ratingInputs() {
       hinted(pos("rating.life", time, "required service life"), "h"),
       symbol("rating.life_curve", {"normal", "optimum"}, "life-factor curves beyond the endurance knee (default normal: Z_NT, Y_NT >= 0.85)"),
       hinted(pos("rating.lubricant.viscosity_40", viscosity, "lubricant kinematic viscosity at 40 degC"), "mm^2/s"),
+      // Scuffing and micropitting (ISO/TS 6336-20, -21, -22; LANGUAGE.md §17).
+      hinted(pos("rating.lubricant.viscosity_100", viscosity, "lubricant kinematic viscosity at 100 degC (with viscosity_40: the ASTM D341 line)"), "mm^2/s"),
+      hinted(pos("rating.lubricant.density", units::dims::density, "lubricant density at 15 degC (default 890 kg/m^3)"), "kg/m^3"),
+      hinted(pos("rating.lubricant.oil_temperature", units::dims::temperature, "oil temperature: sump (dip) or injection"), "degC"),
+      bounded(count("rating.lubricant.fzg_load_stage", "FZG A/8.3/90 failure load stage of the oil (scuffing)"), num(1), num(14)),
+      bounded(count("rating.lubricant.micropitting_load_stage", "FVA 54/7 failure load stage of the oil (micropitting)"), num(1), num(12)),
+      symbol("rating.lubricant.base", {"mineral", "polyalphaolefin", "polyglycol", "phosphate_ester", "traction"},
+             "base oil (default mineral): the lubricant factor of the friction coefficient"),
+      symbol("rating.lubricant.supply", {"dip", "injection"}, "how the oil reaches the mesh (default dip): the lubrication factor X_S of the bulk temperature"),
       hinted(bounded(pos("rating.roughness.flank", length, "flank arithmetic mean roughness Ra"), std::nullopt, um(25)), "um"),
       hinted(bounded(pos("rating.roughness.root", length, "root arithmetic mean roughness Ra"), std::nullopt, um(25)), "um"),
       hinted(bounded(pos("rating.roughness.flank_rz", length, "flank mean peak-to-valley roughness Rz (default 6 Ra)"), std::nullopt, um(150)), "um"),
@@ -97,6 +106,9 @@ std::vector<AttrSpec> ratingInputs() {
       hinted(in("rating.mesh_misalignment", length, "mesh misalignment from manufacture f_ma (default the helix slope tolerance f_Hbeta)"), "um"),
       pos("rating.min_safety.contact", none, "minimum contact safety S_Hmin (default 1.0)"),
       pos("rating.min_safety.bending", none, "minimum bending safety S_Fmin (default 1.0)"),
+      pos("rating.min_safety.scuffing", none, "minimum scuffing safety S_Bmin, flash temperature (default 1.5)"),
+      pos("rating.min_safety.integral_scuffing", none, "minimum scuffing safety S_intS,min, integral temperature (default 1.8)"),
+      pos("rating.min_safety.micropitting", none, "minimum micropitting safety S_lambda,min (default 1.0)"),
   };
 }
 
@@ -111,6 +123,15 @@ std::vector<AttrSpec> ratingStageQuantities() {
       derived("Z_E", none, "elasticity factor, as a number in sqrt(N/mm^2) (a unit the dimension system has no half powers for)"),
       derived("Z_eps", none, "contact ratio factor"),
       derived("Z_beta", none, "helix angle factor (Corrigendum 1: 1/sqrt(cos beta))"),
+      derived("scuffing_safety", none, "scuffing safety S_B by the flash temperature (ISO/TS 6336-20)"),
+      derived("integral_scuffing_safety", none, "scuffing safety S_intS by the integral temperature (ISO/TS 6336-21)"),
+      derived("contact_temperature", units::dims::temperature, "largest contact temperature theta_B along the path of contact"),
+      derived("integral_temperature", units::dims::temperature, "integral temperature theta_int"),
+      derived("scuffing_temperature", units::dims::temperature, "scuffing temperature theta_S of the oil (FZG load stage)"),
+      derived("bulk_temperature", units::dims::temperature, "bulk temperature theta_M of the flash temperature method"),
+      derived("micropitting_safety", none, "micropitting safety S_lambda (ISO/TS 6336-22 method B)"),
+      derived("specific_film_thickness", none, "smallest specific lubricant film thickness lambda_GF,min along the path of contact"),
+      derived("permissible_film_thickness", none, "permissible specific film thickness lambda_GFP (FVA load stage)"),
   };
 }
 

@@ -63,6 +63,14 @@ bool isPercentUnit(const ast::UnitExpr& u) {
 
 bool isPercentLiteral(const ast::Expr* e) { return e && e->kind == ast::ExprKind::Number && e->unit && isPercentUnit(*e->unit); }
 
+// `-10 degC` is 10 degrees below the unit's zero, not the negated absolute temperature.
+Number negated(const ast::Expr& operand, const Number& si) {
+  Number v = si.neg();
+  if (operand.kind == ast::ExprKind::Number && operand.unit && operand.unit->factors.size() == 1 && operand.unit->factors[0].exponent == 1)
+    if (auto atom = units::lookupAtom(operand.unit->factors[0].atom)) v = v.add(atom->offset.add(atom->offset));
+  return v;
+}
+
 } // namespace
 
 ir::ExprPtr ExprChecker::error(const source::Span& span) { return make(Op::Const, Type::error(), span); }
@@ -72,6 +80,7 @@ ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOv
   Number v = r ? Number::exact(*r) : Number::approx(std::strtod(e.text.c_str(), nullptr));
   const ast::UnitExpr* u = e.unit ? &*e.unit : unitOverride;
   units::Unit unit;
+  Number zero = Number::exact(units::Rational(0));
   bool ok = true;
   if (u) {
     for (const auto& f : u->factors) {
@@ -84,11 +93,14 @@ ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOv
         continue;
       }
       unit = units::multiply(unit, units::powerOf(*atom, f.exponent));
+      if (u->factors.size() == 1 && f.exponent == 1) zero = atom->offset;
     }
   }
   if (!ok) return error(e.span);
   bool integer = !u && r && r->isInteger();
   Number si = v.mul(unit.scale);
+  // `80 degC` alone is an absolute temperature: its unit's zero is added.
+  si = si.add(zero);
   if (!si.isRational()) {
     // Beyond a double either way, in SI: 1e400 is not infinity, 1e-400 (or 1e-320 um) not zero.
     double d = si.toDouble();
@@ -147,7 +159,7 @@ ir::ExprPtr ExprChecker::check(const ast::Expr* e, const Scope& s) {
     auto a = requireNumber(check(e->args[0].get(), s), "the operand of `-`");
     if (a->type.isError()) return a;
     if (a->isConst()) {
-      a->value = a->value.neg();
+      a->value = negated(*e->args[0], a->value);
       a->span = e->span;
       return a;
     }

@@ -147,6 +147,15 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
                    fmt::format("the `rating` of stage `{}` does not give `{}` ({})", st.name, std::string(need).substr(7),
                                findAttr(*st.kind, need)->meaning));
   }
+  // Scuffing and micropitting read the oil's viscosity line and its temperature.
+  for (const char* test : {"rating.lubricant.fzg_load_stage", "rating.lubricant.micropitting_load_stage"}) {
+    if (!st.findAttr(test)) continue;
+    for (const char* need : {"rating.lubricant.viscosity_100", "rating.lubricant.oil_temperature"})
+      if (!st.findAttr(need))
+        diags_.error("E0225", where,
+                     fmt::format("the `rating` of stage `{}` gives `{}` but not `{}` ({})", st.name, std::string(test).substr(7),
+                                 std::string(need).substr(7), findAttr(*st.kind, need)->meaning));
+  }
   bool plainModule = st.kind->kind == ir::StageKind::Idler || st.kind->kind == ir::StageKind::Planetary;
   for (const char* need : {plainModule ? "module" : "normal_module", "face_width"})
     if (!st.findAttr(need))
@@ -245,6 +254,13 @@ void Analyser::requireRating(const ir::Gearbox& g, const GearboxModel& m) {
                        fmt::format("`{}`: the tooth root of an internal gear is not rated (ISO 6336-3 for internal gears is not "
                                    "implemented; its contact is rated) ({})",
                                    x.name, where));
+        // Scuffing needs the oil's FZG load stage, micropitting its FVA load stage.
+        Q test = scuffingInput(*k);
+        std::string testName(keyName(test));
+        if (test != Q::None && !st->findAttr(testName) && reported.insert({x.span.line, x.span.col}).second)
+          diags_.error("E0225", x.span,
+                       fmt::format("`{}` needs the oil's `{}` in stage `{}`'s rating ({}; {})", x.name, testName.substr(7), st->name,
+                                   findAttr(*st->kind, testName)->meaning, where));
         return;
       }
       if (!reported.insert({x.span.line, x.span.col}).second) return;

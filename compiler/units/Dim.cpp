@@ -33,8 +33,8 @@ bool Dim::sqrt(Dim& out) const {
 
 std::string Dim::siUnit() const {
   if (dimensionless()) return "1";
-  static const char* names[Count] = {"m", "kg", "s", "rad"};
-  static const int order[Count] = {Mass, Length, Angle, Time};
+  static const char* names[Count] = {"m", "kg", "s", "rad", "K"};
+  static const int order[Count] = {Mass, Length, Angle, Temperature, Time};
   std::string num, den;
   for (int b : order) {
     int e = e_[b];
@@ -71,6 +71,8 @@ std::string Dim::describe() const {
       {dims::dampingCoeff, "a damping coefficient"},
       {dims::inertia, "a moment of inertia"},
       {dims::area, "an area"},
+      {dims::temperature, "a temperature"},
+      {dims::kinematicViscosity, "a kinematic viscosity"},
   };
   for (const auto& [d, n] : named)
     if (d == *this) return n;

@@ -1,5 +1,5 @@
 #pragma once
-// Physical dimension as integer exponents of length, mass, time and plane angle.
+// Physical dimension as integer exponents of length, mass, time, plane angle and temperature.
 // Angle is kept as a dimension of its own so that an angular speed (rpm, deg/s) is
 // not mistaken for a frequency (Hz) or a torque for an energy-like product.
 #include <array>
@@ -10,9 +10,10 @@ namespace gbx::units {
 
 class Dim {
 public:
-  enum Base { Length, Mass, Time, Angle, Count };
+  enum Base { Length, Mass, Time, Angle, Temperature, Count };
   constexpr Dim() = default;
-  constexpr Dim(int l, int m, int t, int a) : e_{static_cast<int8_t>(l), static_cast<int8_t>(m), static_cast<int8_t>(t), static_cast<int8_t>(a)} {}
+  constexpr Dim(int l, int m, int t, int a, int th = 0)
+      : e_{static_cast<int8_t>(l), static_cast<int8_t>(m), static_cast<int8_t>(t), static_cast<int8_t>(a), static_cast<int8_t>(th)} {}
 
   int exp(Base b) const { return e_[b]; }
   bool dimensionless() const { return e_ == std::array<int8_t, Count>{}; }
@@ -53,6 +54,8 @@ inline constexpr Dim stiffness{0, 1, -2, 0};
 inline constexpr Dim dampingCoeff{0, 1, -1, 0};
 inline constexpr Dim inertia{2, 1, 0, 0};
 inline constexpr Dim area{2, 0, 0, 0};
+inline constexpr Dim temperature{0, 0, 0, 0, 1};
+inline constexpr Dim kinematicViscosity{2, 0, -1, 0};
 } // namespace dims
 
 } // namespace gbx::units

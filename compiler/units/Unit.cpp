@@ -16,6 +16,7 @@ struct AtomEntry {
   Number scale;
   Dim dim;
   bool mesh = false;
+  Number offset = Number::exact(Rational(0));
 };
 
 const std::vector<AtomEntry>& table() {
@@ -57,6 +58,8 @@ const std::vector<AtomEntry>& table() {
       {"g", dec(1, 1000), mass},
       {"t", dec(1000), mass},
       {"%", dec(1, 100), none},
+      {"K", dec(1), temperature},
+      {"degC", dec(1), temperature, false, dec(27315, 100)},
       {"mesh_period", dec(1), time, true},
       {"mesh_periods", dec(1), time, true},
   };
@@ -67,7 +70,7 @@ const std::vector<AtomEntry>& table() {
 
 std::optional<Unit> lookupAtom(const std::string& name) {
   for (const auto& a : table())
-    if (name == a.name) return Unit{a.scale, a.dim, a.mesh};
+    if (name == a.name) return Unit{a.scale, a.dim, a.mesh, a.offset};
   return std::nullopt;
 }
 
@@ -109,6 +112,8 @@ DisplayUnit displayUnitFor(const Dim& d) {
       {stiffness, {"N/m", 1.0}},
       {dampingCoeff, {"N*s/m", 1.0}},
       {inertia, {"kg*m^2", 1.0}},
+      {temperature, {"degC", 1.0, 273.15}},
+      {kinematicViscosity, {"mm^2/s", 1e-6}},
       {none, {"", 1.0}},
   };
   for (const auto& [dim, u] : prefs)
@@ -124,7 +129,7 @@ DisplayUnit displayUnitFor(const Dim& d, double magnitude) {
 std::string showQuantity(const Number& v, const Dim& d) {
   if (d.dimensionless()) return v.str();
   DisplayUnit u = displayUnitFor(d);
-  return formatDouble(v.toDouble() / u.scale) + " " + u.name;
+  return formatDouble(u.shown(v.toDouble())) + " " + u.name;
 }
 
 } // namespace gbx::units

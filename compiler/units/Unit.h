@@ -14,6 +14,9 @@ struct Unit {
   Dim dim;
   // `mesh_period(s)`: a time measured in the scene's own mesh period, resolved at run time.
   bool meshPeriods = false;
+  // SI value of the unit's zero: 273.15 K for `degC`. It applies to a literal in that unit
+  // alone (`80 degC`); a compound unit (`degC/s`) measures differences and drops it.
+  Number offset = Number::exact(Rational(0));
 };
 
 // An atom by its spelling (`mm`, `µm`, `°`, `rpm`, `%`, `mesh_periods`); nullopt if unknown.
@@ -30,6 +33,9 @@ Unit powerOf(const Unit& a, int e);
 struct DisplayUnit {
   std::string name;
   double scale;
+  double offset = 0;  // SI value of the unit's zero (degC)
+  double shown(double si) const { return (si - offset) / scale; }
+  double si(double shownValue) const { return shownValue * scale + offset; }
 };
 DisplayUnit displayUnitFor(const Dim& d);
 // The unit for values of this magnitude (SI): a length below 0.1 mm reads in um.

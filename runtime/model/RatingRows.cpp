@@ -178,6 +178,30 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
   in.fma = num(Q::RatingMeshMisalignment, kNaN);
   in.SHmin = num(Q::RatingMinContact, 1.0);
   in.SFmin = num(Q::RatingMinBending, 1.0);
+  // The oil of scuffing and micropitting (sema has checked that its line and temperature
+  // come with a load stage).
+  int fzg = static_cast<int>(num(Q::RatingFzgLoadStage, 0)), fva = static_cast<int>(num(Q::RatingMicropittingLoadStage, 0));
+
+  if (fzg > 0 || fva > 0) {
+    Lubricant oil;
+    oil.nu40 = in.nu40;
+    oil.nu100 = num(Q::RatingViscosity100, kNaN);
+    oil.density15 = num(Q::RatingOilDensity, 890);
+    oil.oilTemperature = num(Q::RatingOilTemperature, kNaN);
+    oil.fzgStage = fzg;
+    oil.fvaStage = fva;
+    const ir::Attribute* base = m.attribute(c.stage, Q::RatingOilBase);
+    if (base && base->choice >= 0) oil.base = static_cast<OilBase>(base->choice);
+    const ir::Attribute* supply = m.attribute(c.stage, Q::RatingOilSupply);
+    oil.injection = supply && supply->choice == cat::oilSupply::Injection;
+    if (!std::isfinite(oil.nu100) || !std::isfinite(oil.oilTemperature))
+      return fail("its lubricant gives a load stage but not `viscosity_100` and `oil_temperature`");
+    in.oil = oil;
+    in.RaFlank = num(Q::RatingRoughnessFlank, in.RzFlank / 6);
+    in.SBmin = num(Q::RatingMinScuffing, 1.5);
+    in.SintSmin = num(Q::RatingMinIntegralScuffing, 1.8);
+    in.SLmin = num(Q::RatingMinMicropitting, 1.0);
+  }
   const ir::Attribute* curve = m.attribute(c.stage, Q::RatingLifeCurve);
   in.optimumLife = curve && curve->choice == cat::lifeCurve::Optimum;
   Value grade = c.at(Q::Accuracy);
@@ -405,8 +429,9 @@ void underSpectrum(const Rated& g, const PairInput& in, PairRating& r, bool dama
   }
 }
 
-// Each mesh's rating at one corner of the concatenated varying inputs.
-std::vector<PairRating> rateAll(const Rated& g, const V& x, bool damage = false) {
+// Each mesh's rating at one corner of the concatenated varying inputs; `scuffing` adds the
+// scuffing and micropitting ratings where the oil's load stages are given.
+std::vector<PairRating> rateAll(const Rated& g, const V& x, bool damage = false, bool scuffing = false) {
   std::vector<PairRating> out;
   for (size_t k = 0; k < g.meshes.size(); ++k) {
     auto at = x.begin() + static_cast<long>(k * In::Count);
@@ -417,6 +442,7 @@ std::vector<PairRating> rateAll(const Rated& g, const V& x, bool damage = false)
     PairInput in = inputAt(g.fixed[k], xk);
     out.push_back(rate(in));
     underSpectrum(g, in, out.back(), damage);
+    if (scuffing && in.oil && !g.meshes[k].internal) out.back().scuffing = scuffingOf(in, out.back());
   }
   return out;
 }
@@ -460,7 +486,18 @@ bool modelFactors(const KindContext& c, Rated& g, std::string* why, bool estimat
   return true;
 }
 
-Value rated(const KindContext& c, int gear, Side side, double (*select)(const PairRating&, int slot), bool damage = false) {
+// The mesh a stage's scuffing quantity is read from: the one with the smallest scuffing
+// safety (micropitting's where no mesh is rated for scuffing); -1 when none is rated.
+int hottest(const std::vector<PairRating>& r) {
+  int k = -1;
+  auto key = [](const ScuffingRating& s) { return s.scuffing ? s.SB : s.Slambda; };
+  for (size_t i = 0; i < r.size(); ++i)
+    if (r[i].scuffing && (k < 0 || key(*r[i].scuffing) < key(*r[static_cast<size_t>(k)].scuffing))) k = static_cast<int>(i);
+  return k;
+}
+
+Value rated(const KindContext& c, int gear, Side side, double (*select)(const PairRating&, int slot), bool damage = false,
+            bool scuffing = false) {
   auto g = gather(c, nullptr);
   if (!g || !modelFactors(c, *g, nullptr, false)) return Value::invalid();
   std::vector<Value> all;
@@ -468,8 +505,8 @@ Value rated(const KindContext& c, int gear, Side side, double (*select)(const Pa
   double minH = g->fixed[0].SHmin, minF = g->fixed[0].SFmin;
   return arith::corners(all, [&](const V& v) {
     try {
-      auto r = rateAll(*g, v, damage);
-      int k = governing(r, g->meshes, gear, side, minH, minF);
+      auto r = rateAll(*g, v, damage, scuffing);
+      int k = scuffing ? hottest(r) : governing(r, g->meshes, gear, side, minH, minF);
       if (k < 0) return kNaN;
       int slot = gear < 0 ? 0 : g->meshes[static_cast<size_t>(k)].g0 == gear ? 0 : 1;
       return select(r[static_cast<size_t>(k)], slot);
@@ -483,6 +520,16 @@ template <double PairRating::*M>
 DerivedRow stageRow(Q key) {
   return {key, false, [](const KindContext& c, int g) { return rated(c, g, Side::Any, [](const PairRating& r, int) { return r.*M; }); }};
 }
+// A scuffing or micropitting quantity of the stage: that of its mesh with the smallest
+// scuffing safety (NaN where no mesh is rated for it).
+template <double ScuffingRating::*M>
+DerivedRow scuffingRow(Q key) {
+  return {key, false, [](const KindContext& c, int g) {
+            return rated(
+                c, g, Side::Any, [](const PairRating& r, int) { return r.scuffing ? r.scuffing.value().*M : kNaN; }, false, true);
+          }};
+}
+
 template <double GearRating::*M, Side S, bool Damage = false>
 DerivedRow gearRow(Q key) {
   return {key, true, [](const KindContext& c, int g) {
@@ -492,6 +539,49 @@ DerivedRow gearRow(Q key) {
 
 } // namespace
 
+std::optional<ScuffingRating> scuffingOf(const PairInput& in, const PairRating& r, ScuffingEdition edition, std::string* why) {
+  if (!in.oil || in.gear[1].internal) return std::nullopt;
+  ScuffingMesh m;
+  m.z1 = in.gear[0].z;
+  m.z2 = in.gear[1].z;
+  m.mn = in.mn;
+  m.alphaN = in.alphaN;
+  m.beta = in.beta;
+  double alphaT = std::atan(std::tan(in.alphaN) / std::cos(in.beta)), mt = in.mn / std::cos(in.beta);
+  m.a = (m.z1 + m.z2) * mt / 2 * std::cos(alphaT) / std::cos(r.alphaWt);
+  m.b = in.b;
+  m.da1 = r.gear[0].tipDiameter;
+  m.da2 = r.gear[1].tipDiameter;
+  m.Ft = r.Ft;
+  m.KA = in.KA;
+  m.Kgamma = in.Kgamma;
+  m.Kv = r.Kv;
+  m.KHbeta = r.KHbeta;
+  m.KHalpha = r.KHalpha;
+  m.speed1 = std::fabs(in.gear[0].speed);
+  m.power = std::fabs(in.torque1) * m.speed1;
+  for (size_t k = 0; k < 2; ++k) {
+    m.E[k] = std::isfinite(in.gear[k].E) ? in.gear[k].E : in.E;
+    m.nu[k] = std::isfinite(in.gear[k].nu) ? in.gear[k].nu : in.nu;
+    m.Ca[k] = std::isfinite(in.tipRelief) ? in.tipRelief : 0;
+  }
+  m.Ra = in.RaFlank;
+  m.cgamma = r.cgammaAlpha * 1e9;  // the rating keeps c_gamma in N/(mm um)
+  // The structural factor X_W: 1.5 for a nitrided pair, else 1 (carburised, through-hardened).
+  auto nitrided = [&](size_t k) { return in.gear[k].treatment.value_or(in.treatment) == Treatment::Nitrided; };
+  m.XW = nitrided(0) && nitrided(1) ? 1.5 : 1.0;
+  // A gear in n_p meshes heats the bulk by (1 + n_p)/2: the sun among its planets, an idler or
+  // a planet between two mates.
+  m.Xmp = in.planets > 0 ? (1.0 + in.planets) / 2 : (in.gear[0].YM < 1 || in.gear[1].YM < 1) ? 1.5 : 1.0;
+  m.grade = in.grade;
+  try {
+    return rateScuffing(m, *in.oil, edition);
+  } catch (const std::domain_error& e) {
+    if (why) *why = e.what();
+    return std::nullopt;
+  }
+}
+
 std::vector<MeshRating> rateStage(const KindContext& c, std::string* why) {
   auto g = gather(c, why);
   if (!g || !modelFactors(c, *g, why, true)) return {};
@@ -499,10 +589,12 @@ std::vector<MeshRating> rateStage(const KindContext& c, std::string* why) {
   for (const auto& v : g->varying)
     for (const auto& x : v) point.push_back(x.mid());
   try {
-    auto r = rateAll(*g, point, true);
+    auto r = rateAll(*g, point, true, true);
     std::vector<MeshRating> out;
     for (size_t k = 0; k < r.size(); ++k) {
-      out.push_back({g->meshes[k].g0, g->meshes[k].g1, g->meshes[k].internal, g->fixed[k], r[k], g->faceLoad, g->kv, {}});
+      auto at = point.begin() + static_cast<long>(k * In::Count);
+      out.push_back({g->meshes[k].g0, g->meshes[k].g1, g->meshes[k].internal, inputAt(g->fixed[k], V(at, at + In::Count)), r[k], g->faceLoad,
+                     g->kv, {}});
       for (int slot = 0; slot < 2; ++slot) {
         int gear = slot == 0 ? g->meshes[k].g0 : g->meshes[k].g1;
         auto given = [&](Q key) { return givenOnly(c, gear, key).isNumber(); };
@@ -552,6 +644,15 @@ std::vector<DerivedRow> pairRows() {
       gearRow<&G::YRrelT, Side::Bending>(Q::YRrelT),
       gearRow<&G::YX, Side::Bending>(Q::YX),
       gearRow<&G::YM, Side::Contact>(Q::YM),
+      scuffingRow<&ScuffingRating::SB>(Q::ScuffingSafety),
+      scuffingRow<&ScuffingRating::SintS>(Q::IntegralScuffingSafety),
+      scuffingRow<&ScuffingRating::thetaBmax>(Q::ContactTemperature),
+      scuffingRow<&ScuffingRating::thetaInt>(Q::IntegralTemperature),
+      scuffingRow<&ScuffingRating::thetaS>(Q::ScuffingTemperature),
+      scuffingRow<&ScuffingRating::thetaM>(Q::BulkTemperature),
+      scuffingRow<&ScuffingRating::Slambda>(Q::MicropittingSafety),
+      scuffingRow<&ScuffingRating::lambdaMin>(Q::SpecificFilmThickness),
+      scuffingRow<&ScuffingRating::lambdaGFP>(Q::PermissibleFilmThickness),
       gearRow<&G::contactDamage, Side::Contact, true>(Q::ContactDamage),
       gearRow<&G::bendingDamage, Side::Bending, true>(Q::BendingDamage),
   };

@@ -6,6 +6,7 @@
 // a stage factor is that of the stage's governing mesh.
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "model/StageKind.h"
@@ -36,5 +37,11 @@ struct MeshRating {
 // its middle), or none when an input is missing or the geometry admits no rating; the
 // reason then goes to `why`.
 std::vector<MeshRating> rateStage(const KindContext& c, std::string* why = nullptr);
+
+// Scuffing and micropitting of a rated external mesh by one edition of the methods; none for
+// an internal mesh, a mesh without the oil's load stages or one whose path of contact does
+// not pass the pitch point.
+std::optional<ScuffingRating> scuffingOf(const PairInput& in, const PairRating& r, ScuffingEdition edition = ScuffingEdition::TS,
+                                         std::string* why = nullptr);
 
 } // namespace gbx::rt::rating

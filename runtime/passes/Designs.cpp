@@ -134,18 +134,18 @@ public:
         cell.lo = v.lo;
         cell.hi = v.hi;
         double sc = columns_[c].scale;
+        auto shown = [&](double si) { return formatNumber((si - columns_[c].offset) / sc); };
         if (!text) {
           row.cells.push_back(std::move(cell));
           continue;
         }
-        cell.text = v.lo == v.hi ? formatNumber(v.lo / sc)
-                                 : "[" + formatNumber(v.lo / sc) + ", " + formatNumber(v.hi / sc) + "]";
+        cell.text = v.lo == v.hi ? shown(v.lo) : "[" + shown(v.lo) + ", " + shown(v.hi) + "]";
         auto b = exprs_[c]->op == ir::Op::Quantity ? bounds_.find(exprs_[c]->name) : bounds_.end();
         if (b != bounds_.end() && v.lo != v.hi) {
           cell.feasible = true;
           cell.flo = std::max(v.lo, b->second.first);
           cell.fhi = std::min(v.hi, b->second.second);
-          cell.text += " feasible [" + formatNumber(cell.flo / sc) + ", " + formatNumber(cell.fhi / sc) + "]";
+          cell.text += " feasible [" + shown(cell.flo) + ", " + shown(cell.fhi) + "]";
         }
       } else {
         cell.text = "n/a";
@@ -236,6 +236,7 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
     if (columnExprs[i]->op == ir::Op::Quantity && columnExprs[i]->ref.key == Q::Imbalance) u = {"%", 0.01};
     c.unit = u.name;
     c.scale = u.scale;
+    c.offset = u.offset;
     g.columns.push_back(c);
   }
   auto rows = std::make_shared<DesignRows>(m, &r.designs, columnExprs, g.columns, freedoms, baseline, baseDesign);
@@ -456,7 +457,7 @@ void setSceneColumns(GearboxReport& table, const std::vector<SceneColumn>& value
     Cell& c = table.rows[0].cells[v.column];
     c.valid = true;
     c.lo = c.hi = v.value;
-    c.text = formatNumber(v.value / table.columns[v.column].scale);
+    c.text = formatNumber((v.value - table.columns[v.column].offset) / table.columns[v.column].scale);
   }
 }
 

@@ -43,8 +43,8 @@ std::vector<OptimisationSummary::Optimum::Margin> margins(const Model& m, const 
     auto u = units::displayUnitFor(e.args[0]->type.dim);
     OptimisationSummary::Optimum::Margin mg;
     mg.rule = text;
-    mg.value = q.mid() / u.scale;
-    mg.bound = bound / u.scale;
+    mg.value = u.shown(q.mid());
+    mg.bound = u.shown(bound);
     mg.unit = u.name;
     mg.margin = (ge ? q.mid() - bound : bound - q.mid()) / std::fabs(bound);
     out.push_back(mg);
@@ -98,7 +98,7 @@ std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& 
     auto du = units::displayUnitFor(e.type.dim);
     s.unit = du.name;
     auto at = [&](const std::vector<double>& deltas) {
-      double v = atSI(e, deltas) / du.scale;
+      double v = du.shown(atSI(e, deltas));
       if (!std::isfinite(v)) ++s.failed;
       return v;
     };

@@ -117,6 +117,76 @@ void spectrumRows(const PairRating& r, size_t contactRow, RatingReport& out) {
   out.rows.back().method = miner;
 }
 
+// Scuffing (ISO/TS 6336-20, -21) and micropitting (ISO/TS 6336-22 method B) of the mesh, with
+// the ISO/TR edition's safety beside the TS's where the editions differ.
+void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
+  const rating::PairInput& in = mr.input;
+  if (!in.oil) return;
+  if (mr.internal) {
+    out.notRated.push_back({out.gears[1], "scuffing and micropitting",
+                            "the flash temperature and film thickness along the path are implemented for external meshes"});
+    return;
+  }
+  std::string why;
+  auto ts = rating::scuffingOf(in, mr.rating, rating::ScuffingEdition::TS, &why);
+  if (!ts) {
+    out.notRated.push_back({out.gears[0], "scuffing and micropitting", why});
+    return;
+  }
+  auto tr = rating::scuffingOf(in, mr.rating, rating::ScuffingEdition::TR);
+  using Row = RatingReport::Row;
+  auto row = [&](std::string key, double v, std::string unit, double scale, std::string method, Row::Minimum min = Row::NoMinimum,
+                 double offset = 0) {
+    Row r{key, key, std::move(unit), scale, false, {v}, Row::Plain, min, std::move(method)};
+    r.offset = offset;
+    out.rows.push_back(std::move(r));
+  };
+  auto temperature = [&](std::string key, double K, std::string method, Row::Minimum min = Row::NoMinimum) {
+    row(std::move(key), K, "degC", 1, std::move(method), min, 273.15);
+  };
+  auto trBeside = [&](double tsValue, double trValue) {
+    return std::fabs(trValue / tsValue - 1) > 0.03 ? fmt::format("; ISO/TR 13989: {}", formatNumber(trValue)) : std::string();
+  };
+  const rating::ScuffingRating& s = *ts;
+  std::string supply = in.oil->injection ? "injection" : "dip";
+  row("K_Bgamma", s.KBgamma, "", 1, "helical load factor from eps_gamma");
+  row("w_Bt", s.wBt * 1e3, "N/mm", 1e3, "K_A K_gamma K_v K_Hbeta K_Halpha F_t / b");
+  row("mu_m", s.muM, "", 1, "ISO/TS 6336-20, at the pitch point" + trBeside(s.muM, tr->muM));
+  row("X_M", s.XM, "", 1, "thermo-elastic factor, steel");
+  row("X_alphabeta", s.XalphaBeta, "", 1, "angle factor");
+  row("X_L", s.XL, "", 1, "lubricant factor of the base oil" + trBeside(s.XL, tr->XL));
+  row("theta_flm", s.thetaFlm, "K", 1, "mean flash temperature over the path");
+  temperature("bulk_temperature", s.thetaM, fmt::format("oil + 0.47 X_S X_mp theta_flm, {} lubrication", supply));
+  temperature("contact_temperature", s.thetaBmax, fmt::format("largest along the path, at Gamma {}", formatNumber(s.gammaMax)));
+  if (s.scuffing) {
+    temperature("scuffing_temperature", s.thetaS, fmt::format("FZG A/8.3/90 load stage {}", in.oil->fzgStage) + trBeside(s.thetaS - 273.15, tr->thetaS - 273.15));
+    row("scuffing_safety", s.SB, "", 1, "flash temperature, ISO/TS 6336-20" + trBeside(s.SB, tr->SB), Row::Scuffing);
+    row("theta_flaint", s.thetaFlaInt, "K", 1, "mean flash temperature, ISO/TS 6336-21");
+    temperature("integral_temperature", s.thetaInt, "theta_M + 1.5 theta_flaint");
+    temperature("integral_scuffing_temperature", s.thetaIntS, fmt::format("FZG load stage {}", in.oil->fzgStage));
+    row("integral_scuffing_safety", s.SintS, "", 1, "theta_intS / theta_int in degC, ISO/TS 6336-21", Row::IntegralScuffing);
+  }
+  if (s.micropitting) {
+    temperature("bulk_temperature_micropitting", s.thetaMmp, "ISO/TS 6336-22: from the power loss");
+    row("specific_film_thickness", s.lambdaMin, "", 1, fmt::format("smallest along the path, at Gamma {}", formatNumber(s.gammaLambdaMin)));
+    row("permissible_film_thickness", s.lambdaGFP, "", 1,
+        fmt::format("1.4 W_W lambda_GFT, FVA 54/7 load stage {} (lambda_GFT {})", in.oil->fvaStage, formatNumber(s.lambdaGFT)));
+    row("micropitting_safety", s.Slambda, "", 1, "method B, ISO/TS 6336-22", Row::Micropitting);
+  }
+  out.scuffing = s.scuffing;
+  out.micropitting = s.micropitting;
+  out.minScuffing = in.SBmin;
+  out.minIntegralScuffing = in.SintSmin;
+  out.minMicropitting = in.SLmin;
+  out.bulkTemperature = s.thetaM - 273.15;
+  out.scuffingTemperature = s.scuffing ? s.thetaS - 273.15 : 0;
+  for (const auto& p : s.path) {
+    out.pathGamma.push_back(p.gamma);
+    out.contactTemperature.push_back(p.thetaB - 273.15);
+    if (s.micropitting) out.filmThickness.push_back(p.h * 1e6);
+  }
+}
+
 // The governing side: the smallest safety relative to its minimum.
 void governs(const PairRating& r, double minH, double minF, RatingReport& out) {
   double worst = 1e300;
@@ -130,6 +200,20 @@ void governs(const PairRating& r, double minH, double minF, RatingReport& out) {
                                   contact ? "S_H" : "S_F", formatNumber(s), formatNumber(min), s < min ? " (below the minimum)" : "");
       }
     }
+  // Scuffing and micropitting are the mesh's.
+  for (const auto& row : out.rows) {
+    if (row.minimum != RatingReport::Row::Scuffing && row.minimum != RatingReport::Row::IntegralScuffing &&
+        row.minimum != RatingReport::Row::Micropitting)
+      continue;
+    double min = row.minimum == RatingReport::Row::Scuffing ? out.minScuffing
+                 : row.minimum == RatingReport::Row::IntegralScuffing ? out.minIntegralScuffing
+                                                                       : out.minMicropitting;
+    double s = row.si[0];
+    if (std::isfinite(s) && s / min < worst) {
+      worst = s / min;
+      out.governs = fmt::format("{} of the mesh: {} against {}{}", row.key, formatNumber(s), formatNumber(min), s < min ? " (below the minimum)" : "");
+    }
+  }
   out.governingRatio = worst;
 }
 
@@ -235,6 +319,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   gear("permissible_bending_stress", &GearRating::sigmaFP, pressure);
   gear("bending_safety", &GearRating::SF, units::dims::none, Row::Bending);
   spectrumRows(r, contactRow, out);
+  scuffingRows(mr, out);
   governs(r, minH, minF, out);
   modelNotes(mr, out);
   if (mr.internal)

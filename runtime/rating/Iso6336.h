@@ -9,6 +9,8 @@
 #include <limits>
 #include <optional>
 
+#include "rating/Scuffing.h"
+
 namespace gbx::rt::rating {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -57,6 +59,11 @@ struct PairInput {
   double B1 = 1, B2 = 1;      // lead modification factors of F_betax (crowning, helix correction)
   double SHmin = 1, SFmin = 1;
   int planets = 0;            // a sun meshing with this many planets (reduced mass of K_v)
+  // Scuffing and micropitting (ISO/TS 6336-20, -21, -22; rating/Scuffing.h): the oil, with its
+  // FZG or FVA load stage; without one, neither is rated.
+  std::optional<Lubricant> oil = std::nullopt;
+  double RaFlank = kNaN;      // [m]
+  double SBmin = 1.5, SintSmin = 1.8, SLmin = 1.0;
 };
 
 struct GearRating {
@@ -80,6 +87,7 @@ struct PairRating {
   double Kv, KHbeta, KFbeta, KHalpha, KFalpha;
   double ZH, ZE, Zeps, Zbeta, sigmaH0;
   std::array<GearRating, 2> gear;
+  std::optional<ScuffingRating> scuffing = std::nullopt;  // when the oil's load stages are given
 };
 
 // Every factor and both safeties of the mesh. Throws std::domain_error with a sentence

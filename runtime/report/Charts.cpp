@@ -92,11 +92,11 @@ void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<st
       // stretch the continuation did not follow.
       for (; j < s.points.size() && unstable(j) == u && (j == k || !s.points[j].afterGap); ++j) {
         part.x.push_back(s.points[j].x / s.unit.scale);
-        part.y.push_back(s.points[j].y[i] / s.outputs[i].unit.scale);
+        part.y.push_back(s.outputs[i].unit.shown(s.points[j].y[i]));
       }
       if (j < s.points.size() && !s.points[j].afterGap) {
         part.x.push_back(s.points[j].x / s.unit.scale);
-        part.y.push_back(s.points[j].y[i] / s.outputs[i].unit.scale);
+        part.y.push_back(s.outputs[i].unit.shown(s.points[j].y[i]));
       }
       if (s.scene && !u && !labelledStable) {
         part.label = s.outputs[i].text + ", stable";
@@ -150,6 +150,29 @@ void faceLoadChart(const std::string& gearbox, RatingReport& r, std::vector<Char
   add(out, r.files, fileSafe(gearbox + "." + where) + ".line_load.svg", c);
 }
 
+// Scuffing and micropitting: the contact temperature and the film thickness along the path
+// of contact, A to E (Gamma 0 at the pitch point).
+void pathCharts(const std::string& gearbox, RatingReport& r, std::vector<ChartFile>& out) {
+  if (r.pathGamma.empty()) return;
+  std::string where = r.stage + (r.mesh.empty() ? "" : "." + r.mesh);
+  const double a = r.pathGamma.front(), e = r.pathGamma.back();
+  SvgChart t;
+  t.title = fmt::format("{} — stage {}: contact temperature along the path of contact", gearbox, where);
+  t.xLabel = "Gamma on the path of contact (0: pitch point)";
+  t.yLabel = "temperature [degC]";
+  t.series = {{"contact temperature theta_B", r.pathGamma, r.contactTemperature},
+              {"bulk temperature theta_M", {a, e}, {r.bulkTemperature, r.bulkTemperature}}};
+  if (r.scuffing) t.series.push_back({"scuffing temperature theta_S", {a, e}, {r.scuffingTemperature, r.scuffingTemperature}});
+  add(out, r.files, fileSafe(gearbox + "." + where) + ".contact_temperature.svg", t);
+  if (r.filmThickness.empty()) return;
+  SvgChart f;
+  f.title = fmt::format("{} — stage {}: lubricant film thickness along the path of contact", gearbox, where);
+  f.xLabel = t.xLabel;
+  f.yLabel = "film thickness [um]";
+  f.series = {{"film thickness h", r.pathGamma, r.filmThickness}};
+  add(out, r.files, fileSafe(gearbox + "." + where) + ".film_thickness.svg", f);
+}
+
 } // namespace
 
 std::vector<ChartFile> drawCharts(std::vector<GearboxReport>& reports) {
@@ -157,7 +180,10 @@ std::vector<ChartFile> drawCharts(std::vector<GearboxReport>& reports) {
   for (auto& g : reports) {
     if (g.optimisation) paretoChart(g.name, *g.optimisation, out);
     for (auto& sc : g.scenes) sceneCharts(g.name, sc, out);
-    for (auto& r : g.ratings) faceLoadChart(g.name, r, out);
+    for (auto& r : g.ratings) {
+      faceLoadChart(g.name, r, out);
+      pathCharts(g.name, r, out);
+    }
     for (auto& st : g.studies) {
       if (const auto* s = std::get_if<SweepStudy>(&st.study)) sweepCharts(g.name, *s, st.files, out);
       else workPrecisionChart(g.name, std::get<WorkPrecisionStudy>(st.study), st.files, out);

@@ -91,10 +91,10 @@ std::string designs(const std::vector<GearboxReport>& reports) {
         const Cell& c = r.cells[i];
         double sc = g.columns[i].scale;
         o += ',';
-        if (c.valid) num(c.lo / sc);
+        if (c.valid) num((c.lo - g.columns[i].offset) / sc);
         if (wide[i]) {
           o += ',';
-          if (c.valid) num(c.hi / sc);
+          if (c.valid) num((c.hi - g.columns[i].offset) / sc);
         }
       }
       o += ',';
@@ -142,7 +142,7 @@ std::string sweeps(const std::vector<GearboxReport>& reports) {
           for (size_t i = 0; i < s->outputs.size() && i < p.y.size(); ++i) {
             any = true;
             o += row({g.name, s->name, s->target, number(p.x / s->unit.scale), s->unit.name, s->outputs[i].text,
-                      number(p.y[i] / s->outputs[i].unit.scale), s->outputs[i].unit.name, number(p.stability),
+                      number(s->outputs[i].unit.shown(p.y[i])), s->outputs[i].unit.name, number(p.stability),
                       s->continuation == "arclength" ? std::to_string(p.branch) : ""});
           }
   return any ? o : "";

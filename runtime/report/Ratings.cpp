@@ -16,7 +16,20 @@ std::string shown(const RatingReport::Row& row, double si) {
   if (std::isinf(si)) return "beyond static";  // a damage sum: a bin above the static strength
   if (!std::isfinite(si)) return "not rated";  // an internal gear's root (ISO 6336-3 internal gears)
   if (row.format == RatingReport::Row::Count) return fmt::format("{:.4e}", si);
-  return formatNumber(si / row.scale);
+  return formatNumber((si - row.offset) / row.scale);
+}
+
+double minimumOf(const RatingReport& r, RatingReport::Row::Minimum m) {
+  using Row = RatingReport::Row;
+  switch (m) {
+  case Row::Contact: return r.minContact;
+  case Row::Bending: return r.minBending;
+  case Row::Scuffing: return r.minScuffing;
+  case Row::IntegralScuffing: return r.minIntegralScuffing;
+  case Row::Micropitting: return r.minMicropitting;
+  case Row::NoMinimum: break;
+  }
+  return 1;
 }
 
 std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
@@ -41,9 +54,7 @@ std::vector<std::vector<std::string>> ratingRows(const RatingReport& r) {
       v.push_back(shown(row, row.si[0]));
       v.push_back("");
     }
-    v.push_back(row.minimum == RatingReport::Row::Contact   ? formatNumber(r.minContact)
-                : row.minimum == RatingReport::Row::Bending ? formatNumber(r.minBending)
-                                                            : "");
+    v.push_back(row.minimum == RatingReport::Row::NoMinimum ? "" : formatNumber(minimumOf(r, row.minimum)));
     v.push_back(row.method);
     rows.push_back(std::move(v));
   }
@@ -83,7 +94,10 @@ std::string ratingJson(const RatingReport& r) {
       }
     o += "}";
   }
-  o += fmt::format(", \"min_safety\": {{\"contact\": {}, \"bending\": {}}}", jsonNumber(r.minContact), jsonNumber(r.minBending));
+  o += fmt::format(", \"min_safety\": {{\"contact\": {}, \"bending\": {}", jsonNumber(r.minContact), jsonNumber(r.minBending));
+  if (r.scuffing) o += fmt::format(", \"scuffing\": {}, \"integral_scuffing\": {}", jsonNumber(r.minScuffing), jsonNumber(r.minIntegralScuffing));
+  if (r.micropitting) o += fmt::format(", \"micropitting\": {}", jsonNumber(r.minMicropitting));
+  o += "}";
   o += ", \"methods\": {";
   first = true;
   for (const auto& row : r.rows)
@@ -116,7 +130,7 @@ std::string ratingJson(const RatingReport& r) {
 std::vector<std::vector<std::string>> ratingCsvRows(const std::string& gearbox, const RatingReport& r) {
   std::vector<std::vector<std::string>> out;
   for (const auto& row : r.rows) {
-    auto value = [&](double si) { return std::isfinite(si) ? fmt::format("{:.10g}", si / row.scale) : std::string(); };
+    auto value = [&](double si) { return std::isfinite(si) ? fmt::format("{:.10g}", (si - row.offset) / row.scale) : std::string(); };
     // A value left out names its reason.
     auto note = [&](size_t g, double si) {
       if (std::isfinite(si)) return std::string();

@@ -27,6 +27,7 @@ struct Column {
   std::string unit;  // display unit
   double scale = 1;  // SI per display unit
   bool exact = true; // intervals are exact images (monotone catalogue quantities), else enclosures
+  double offset = 0; // SI value of the display unit's zero (degC)
 };
 
 struct DesignRow {
@@ -175,7 +176,7 @@ struct RatingReport {
   std::vector<std::string> gears;
   struct Row {
     enum Format { Plain, Count };             // a count (load cycles) prints in exponent form
-    enum Minimum { NoMinimum, Contact, Bending };  // a safety: its minimum goes beside it
+    enum Minimum { NoMinimum, Contact, Bending, Scuffing, IntegralScuffing, Micropitting };  // a safety: its minimum goes beside it
     std::string key;     // the quantity's name (`K_v`, `contact_safety`) or a geometry term
     std::string label;   // as the table heads it (`Z_B, Z_D`)
     std::string unit;    // display unit
@@ -185,9 +186,12 @@ struct RatingReport {
     Format format = Plain;
     Minimum minimum = NoMinimum;
     std::string method = {};  // how the factor was found (`method B, subcritical`, `method A, scene vib`)
+    double offset = 0;        // SI value of the display unit's zero (degC)
   };
   std::vector<Row> rows;
   double minContact = 1, minBending = 1;
+  double minScuffing = 1.5, minIntegralScuffing = 1.8, minMicropitting = 1;
+  bool scuffing = false, micropitting = false;  // rated for them (their minima go in the JSON)
   std::string kvRange;    // the K_v range (subcritical, …) or "given"
   std::string governs;    // "bending of the wheel: S_F 1.48 against 1.56 (below the minimum)"
   double governingRatio = 0;  // the smallest safety over its minimum
@@ -203,6 +207,9 @@ struct RatingReport {
   // K_Hbeta by contact analysis: the line load across the face (the plot with -o).
   std::vector<double> facePosition, lineLoad;  // mm from the coupling end, N/mm
   double meanLineLoad = 0;                     // N/mm
+  // Scuffing and micropitting along the path of contact (the plots with -o).
+  std::vector<double> pathGamma, contactTemperature, filmThickness;  // Gamma, degC, um
+  double bulkTemperature = 0, scuffingTemperature = 0;               // degC
   std::vector<std::string> files;              // its chart, with -o DIR
 };
 

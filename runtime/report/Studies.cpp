@@ -24,7 +24,7 @@ StudyTable table(const SweepStudy& s) {
     bool unstable = std::isfinite(p.stability) && p.stability >= 1.0;
     for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i) {
       bool u = i < p.unstable.size() ? p.unstable[i] : unstable;
-      row.push_back(std::isfinite(p.y[i]) ? formatNumber(p.y[i] / s.outputs[i].unit.scale) : u ? "unstable" : "n/a");
+      row.push_back(std::isfinite(p.y[i]) ? formatNumber(s.outputs[i].unit.shown(p.y[i])) : u ? "unstable" : "n/a");
     }
     if (s.scene) row.push_back(std::isfinite(p.stability) ? fmt::format("{:.4f}{}", p.stability, unstable ? " (unstable)" : "") : "-");
     if (arclength) row.push_back(std::to_string(p.branch));

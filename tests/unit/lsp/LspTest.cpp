@@ -603,7 +603,8 @@ TEST(Lsp, CompletesWhatCanStandThere) {
   auto gear = labels("pinion.", "stage");
   EXPECT_TRUE(gear.count("z") && gear.count("shift"));
   EXPECT_FALSE(gear.count("pinion.z") || gear.count("normal_module"));
-  EXPECT_EQ(labels("rating.lubricant.", "stage"), (std::set<std::string>{"viscosity_40"}));
+  EXPECT_EQ(labels("rating.lubricant.", "stage"), (std::set<std::string>{"base", "density", "fzg_load_stage", "micropitting_load_stage",
+                                                                       "oil_temperature", "supply", "viscosity_100", "viscosity_40"}));
   auto kinds = labels("stage extra: ", "gearbox");
   EXPECT_TRUE(kinds.count("spur") && kinds.count("planetary") && kinds.count("helical"));
   EXPECT_FALSE(kinds.count("gearbox"));
