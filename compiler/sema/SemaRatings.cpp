@@ -156,6 +156,18 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
                      fmt::format("the `rating` of stage `{}` gives `{}` but not `{}` ({})", st.name, std::string(test).substr(7),
                                  std::string(need).substr(7), findAttr(*st.kind, need)->meaning));
   }
+  // Micropitting's pressure-viscosity law is known for mineral and polyalphaolefin oils.
+  const Binding* base = st.findAttr("rating.lubricant.base");
+  if (base && base->stmt->value && st.findAttr("rating.lubricant.micropitting_load_stage")) {
+    const auto& words = findAttr(*st.kind, "rating.lubricant.base")->symbols;
+    auto it = std::find(words.begin(), words.end(), base->stmt->value->text);
+    auto choice = it - words.begin();
+    if (it != words.end() && choice != cat::oilBase::Mineral && choice != cat::oilBase::Polyalphaolefin)
+      diags_.error("E0235", base->stmt->value->span,
+                   fmt::format("micropitting of stage `{}`: the pressure-viscosity coefficient of a {} oil is not implemented (ISO/TS "
+                               "6336-22 gives it for mineral and polyalphaolefin oils)",
+                               st.name, *it));
+  }
   bool plainModule = st.kind->kind == ir::StageKind::Idler || st.kind->kind == ir::StageKind::Planetary;
   for (const char* need : {plainModule ? "module" : "normal_module", "face_width"})
     if (!st.findAttr(need))

@@ -173,6 +173,13 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
         fmt::format("1.4 W_W lambda_GFT, FVA 54/7 load stage {} (lambda_GFT {})", in.oil->fvaStage, formatNumber(s.lambdaGFT)));
     row("micropitting_safety", s.Slambda, "", 1, "method B, ISO/TS 6336-22", Row::Micropitting);
   }
+  // ISO/TS 6336-20's running tests reach 80 m/s on the working pitch circle.
+  double alphaT = std::atan(std::tan(in.alphaN) / std::cos(in.beta));
+  double vw = mr.rating.v * std::cos(alphaT) / std::cos(mr.rating.alphaWt);
+  if (vw > 80)
+    out.warnings.push_back(fmt::format("the pitch-line velocity on the working circle, {} m/s, is beyond the 80 m/s of the running tests "
+                                       "behind the scuffing methods (ISO/TS 6336-20): their results are less certain here",
+                                       formatNumber(vw)));
   out.scuffing = s.scuffing;
   out.micropitting = s.micropitting;
   out.minScuffing = in.SBmin;

@@ -217,3 +217,27 @@ gearbox G { stage s: spur { pinion.z in 11..25; wheel.z in 17..46; }
   EXPECT_EQ(ir::print(*g.rules[1].expr), "(ratio == (3.952 +- 0.02 relative))");
   EXPECT_EQ(ir::print(*g.rules[2].expr), "(ratio == (3.952 +- 0.01))");
 }
+
+// `80 degC` is an absolute temperature (its unit's zero is added), `-10 degC` ten degrees
+// below that zero; a compound unit (`degC/s`) measures differences.
+TEST(Sema, CelsiusLiteralsAreAbsoluteTemperatures) {
+  auto c = compile(R"(
+import materials;
+gearbox G {
+  stage s: spur { pinion.z = 20; wheel.z = 40; normal_module = 3 mm; face_width = 30 mm; material = steel_18CrNiMo7_6; accuracy = 6;
+    rating { life = 1000 h; roughness { flank = 0.8 um; root = 3 um; }
+             lubricant { viscosity_40 = 220 mm^2/s; viscosity_100 = 19 mm^2/s; oil_temperature = 80 degC; fzg_load_stage = 12; } } }
+  operating { input_speed = 1500 rpm; input_torque = 100 N*m; }
+  require s.contact_temperature < 150 degC;
+  require s.bulk_temperature > -10 degC;
+  require s.bulk_temperature < 400 K;
+}
+)");
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  const auto& g = gearbox(*c, "G");
+  EXPECT_EQ(g.rules[0].expr->args[1]->value.rational().str(), "8463/20");  // 423.15 K
+  EXPECT_EQ(g.rules[1].expr->args[1]->value.rational().str(), "5263/20");  // 263.15 K
+  EXPECT_EQ(g.rules[2].expr->args[1]->value.rational().str(), "400");
+  auto bad = compile("gearbox G { stage s: spur { pinion.z = 20; wheel.z = 40; } require s.pinion.z > 3 degC; }");
+  EXPECT_FALSE(bad->ok());
+}

@@ -52,3 +52,19 @@ TEST(Units, DisplayUnits) {
   EXPECT_EQ(displayUnitFor(dims::length).name, "mm");
   EXPECT_EQ(displayUnitFor(dims::angularSpeed).name, "rpm");
 }
+
+TEST(Units, TemperaturesInKelvinInsideAndCelsiusInReports) {
+  EXPECT_EQ(atom("K").dim, dims::temperature);
+  EXPECT_EQ(atom("degC").dim, dims::temperature);
+  EXPECT_EQ(atom("degC").offset.str(), "273.15");
+  EXPECT_EQ(atom("K").offset.str(), "0");
+  // A compound unit measures differences: no zero.
+  EXPECT_EQ(divide(atom("degC"), atom("s")).offset.str(), "0");
+  DisplayUnit u = displayUnitFor(dims::temperature);
+  EXPECT_EQ(u.name, "degC");
+  EXPECT_DOUBLE_EQ(u.shown(373.15), 100.0);
+  EXPECT_DOUBLE_EQ(u.si(20.0), 293.15);
+  EXPECT_EQ(dims::temperature.siUnit(), "K");
+  EXPECT_EQ(dims::temperature.describe(), "a temperature");
+  EXPECT_EQ(showQuantity(Number::exact(Rational::make(70315, 100)), dims::temperature), "430 degC");
+}
