@@ -599,7 +599,7 @@ TEST(Lsp, CompletesWhatCanStandThere) {
     for (size_t i = 0; i < r[2]["items"].size(); ++i) out.insert(r[2]["items"].at(i)["label"].string());
     return out;
   };
-  EXPECT_EQ(labels("", "import"), (std::set<std::string>{"gleason", "klingelnberg", "materials", "modules"}));
+  EXPECT_EQ(labels("", "import"), (std::set<std::string>{"gleason", "klingelnberg", "materials", "modules", "oils"}));
   auto gear = labels("pinion.", "stage");
   EXPECT_TRUE(gear.count("z") && gear.count("shift"));
   EXPECT_FALSE(gear.count("pinion.z") || gear.count("normal_module"));
