@@ -333,6 +333,8 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
     out.notRated.push_back({out.gears[1], "tooth root", "ISO 6336-3 for internal gears is not implemented (its flank is rated)"});
   warnings(mr, out);
   if (mr.internal) out.note = fmt::format("the {}'s tooth root is not rated (ISO 6336-3 for internal gears is not implemented)", out.gears[1]);
+  if (mr.internal && in.oil)
+    out.note += "; nor its scuffing and micropitting (the flash temperature and film along the path are implemented for external meshes)";
   return out;
 }
 

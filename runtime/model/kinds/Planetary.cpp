@@ -61,10 +61,27 @@ std::vector<DerivedRow> rows() {
 
 std::vector<ImplicitRule> rules() {
   return {
-      {"concentric: ring.z == sun.z + 2 * planet.z",
+      // Without profile shifts the tooth counts fix the concentricity. A stage whose gears
+      // carry shifts (NREL 5 MW: 19/17/56) is concentric on its working centre distances: the
+      // sun-planet mesh's equals the planet-ring mesh's (the ring's shift in ISO 21771's
+      // convention for an internal gear), each mesh at its own working pressure angle.
+      {"concentric: ring.z == sun.z + 2 * planet.z, or equal working centre distances with profile shifts",
        [](const KindContext& c) {
-         Value want = arith::add(c.at(Sun, Q::Z), arith::mul(Value::rational(Rational(2)), c.at(Planet, Q::Z)));
-         return arith::equal(c.at(Ring, Q::Z), want);
+         bool shifted = c.at(Sun, Q::Shift).isNumber() || c.at(Planet, Q::Shift).isNumber() || c.at(Ring, Q::Shift).isNumber();
+         if (!shifted) {
+           Value want = arith::add(c.at(Sun, Q::Z), arith::mul(Value::rational(Rational(2)), c.at(Planet, Q::Z)));
+           return arith::equal(c.at(Ring, Q::Z), want);
+         }
+         std::vector<Value> v = {c.at(Sun, Q::Z), c.at(Planet, Q::Z), c.at(Ring, Q::Z), c.at(Q::Module), c.at(Q::PressureAngle),
+                                 c.orZero(Sun, Q::Shift), c.orZero(Planet, Q::Shift), c.orZero(Ring, Q::Shift)};
+         for (const auto& x : v)
+           if (!x.isPoint()) return Truth::Unknown;
+         double zs = v[0].lo, zp = v[1].lo, zr = v[2].lo, m = v[3].lo, alpha = v[4].lo;
+         if (!(zr > zp)) return Truth::False;
+         double sunPlanet = geometry::workingCenterDistance(zs, zp, m, alpha, v[5].lo, v[6].lo);
+         double planetRing = std::fabs(geometry::workingCenterDistance(zp, -zr, m, alpha, v[6].lo, v[7].lo));
+         // Shifts are given to four decimals: 1e-3 m_n is the centre distance that rounding moves.
+         return truth(std::fabs(sunPlanet - planetRing) <= 1e-3 * m);
        }},
       {"assembly: (sun.z + ring.z) / planets is whole",
        [](const KindContext& c) {
