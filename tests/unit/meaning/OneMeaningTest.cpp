@@ -525,15 +525,15 @@ gearbox P {
   const double alpha = 20 * M_PI / 180, inv = std::tan(alpha) - alpha;
   double alphaW = inverseInvolute(inv + 2 * std::tan(alpha) * (0.3 + 0.2) / (21 + 30));
   double aw = 0.5 * 2e-3 * (21 + 30) * std::cos(alpha) / std::cos(alphaW);
-  Solved s = solve(replaced(text, "SHIFTS", "sun.shift = 0.3;  planet.shift = 0.2;"));
+  Solved s = solve(replaced(text, "SHIFTS", "sun.shift = 0.3;  planet.shift = 0.2;  ring.shift = -0.7;"));
   EXPECT_NEAR(s.value("p.center_distance"), aw, 1e-12);
   EXPECT_NEAR(aw * 1e3, 51.9386, 1e-4);
   // The rating's sun tip: d/2 + m (1 + x - k), k the tip shortening of that distance.
   double k = (0.3 + 0.2) - (aw - 0.051) / 2e-3;
-  std::string r = report(replaced(text, "SHIFTS", "sun.shift = 0.3;  planet.shift = 0.2;"));
+  std::string r = report(replaced(text, "SHIFTS", "sun.shift = 0.3;  planet.shift = 0.2;  ring.shift = -0.7;"));
   EXPECT_NE(r.find(fmt::format("{:.4f}", 2e3 * (0.021 + 2e-3 * (1 + 0.3 - k)))), std::string::npos) << r;
   // Shifts that sum to zero keep the exact reference distance.
-  Solved zero = solve(replaced(text, "SHIFTS", "sun.shift = 0.2;  planet.shift = -0.2;"));
+  Solved zero = solve(replaced(text, "SHIFTS", "sun.shift = 0.2;  planet.shift = -0.2;  ring.shift = 0.2;"));
   EXPECT_EQ(zero.value("p.center_distance"), 0.051);
 }
 
