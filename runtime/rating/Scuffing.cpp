@@ -187,7 +187,22 @@ Film film(const ScuffingMesh& m, const Path& p, const Lubricant& oil, double the
 }
 
 // The FVA 54/7 test (gear C-GF at 8.3 m/s, 90 degC, dip lubrication) at a load stage,
-// with the service oil: lambda_GF,min of the test.
+// with the service oil: lambda_GF,min of the test. It depends on the oil alone, so a search
+// rating many designs on one oil computes it once per thread.
+double testFilmThickness(const Lubricant& oil, int stage, double Er, double BM, int points);
+
+double cachedTestFilmThickness(const Lubricant& oil, int stage, double Er, double BM, int points) {
+  using Key = std::array<double, 7>;
+  thread_local std::vector<std::pair<Key, double>> cache;
+  Key k{oil.nu40, oil.nu100, oil.density15, static_cast<double>(oil.base), static_cast<double>(stage), Er, BM};
+  for (const auto& [key, v] : cache)
+    if (key == k) return v;
+  double v = testFilmThickness(oil, stage, Er, BM, points);
+  if (cache.size() > 64) cache.clear();
+  cache.emplace_back(k, v);
+  return v;
+}
+
 double testFilmThickness(const Lubricant& oil, int stage, double Er, double BM, int points) {
   ScuffingMesh t;
   t.z1 = 16;
@@ -316,7 +331,7 @@ ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, Scuffin
       r.path[i].h = f.h[i];
       r.path[i].lambda = f.lambda[i];
     }
-    r.lambdaGFT = testFilmThickness(oil, oil.fvaStage, Er, BM, points);
+    r.lambdaGFT = cachedTestFilmThickness(oil, oil.fvaStage, Er, BM, points);
     r.lambdaGFP = 1.4 * m.WW * r.lambdaGFT;
     r.Slambda = r.lambdaMin / r.lambdaGFP;
     r.micropitting = true;
