@@ -75,7 +75,13 @@ Number negated(const ast::Expr& operand, const Number& si) {
 
 ir::ExprPtr ExprChecker::error(const source::Span& span) { return make(Op::Const, Type::error(), span); }
 
-ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOverride) {
+bool ExprChecker::celsiusLiteral(const ast::Expr* e) {
+  if (!e || e->kind != ast::ExprKind::Number || !e->unit || e->unit->factors.size() != 1 || e->unit->factors[0].exponent != 1) return false;
+  auto atom = units::lookupAtom(e->unit->factors[0].atom);
+  return atom && !atom->offset.isZero();
+}
+
+ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOverride, bool difference) {
   auto r = units::Rational::parseDecimal(e.text);
   Number v = r ? Number::exact(*r) : Number::approx(std::strtod(e.text.c_str(), nullptr));
   const ast::UnitExpr* u = e.unit ? &*e.unit : unitOverride;
@@ -93,7 +99,7 @@ ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOv
         continue;
       }
       unit = units::multiply(unit, units::powerOf(*atom, f.exponent));
-      if (u->factors.size() == 1 && f.exponent == 1) zero = atom->offset;
+      if (u->factors.size() == 1 && f.exponent == 1 && !difference) zero = atom->offset;
     }
   }
   if (!ok) return error(e.span);
@@ -487,6 +493,16 @@ ir::ExprPtr ExprChecker::binary(const ast::Expr& e, const Scope& s) {
       return n;
     }
   }
+  // A Celsius temperature has its zero at 273.15 K: a sum, a multiple or a quotient of one
+  // would carry that zero along.
+  for (const auto* x : {e.args[0].get(), e.args[1].get()})
+    if (bop != ast::BinOp::Sub && celsiusLiteral(x)) {
+      diags_.error("E0302", x->span,
+                   fmt::format("`{} {}` is a temperature on the Celsius scale (its zero is 273.15 K): it can be compared or subtracted, "
+                               "not used in `{}`; write a temperature difference in K",
+                               x->text, x->unit->text, sym));
+      return error(e.span);
+    }
   a = requireNumber(std::move(a), fmt::format("the left operand of `{}`", sym).c_str());
   b = requireNumber(std::move(b), fmt::format("the right operand of `{}`", sym).c_str());
   if (a->type.isError() || b->type.isError()) return error(e.span);
@@ -573,6 +589,12 @@ ir::ExprPtr ExprChecker::tolerance(const ast::Expr& e, const Scope& s) {
   auto centre = requireNumber(check(e.args[0].get(), s), "the target of a tolerance");
   auto tol = requireNumber(check(e.args[1].get(), s), "a tolerance");
   if (centre->type.isError() || tol->type.isError()) return error(e.span);
+  if (celsiusLiteral(e.args[1].get())) {
+    diags_.error("E0302", e.args[1]->span,
+                 fmt::format("a tolerance is a temperature difference: write it in K (`{} K`), not `{} {}` (which is {} K above zero)",
+                             e.args[1]->text, e.args[1]->text, e.args[1]->unit->text, units::formatDouble(tol->value.toDouble())));
+    return error(e.span);
+  }
   bool relative = isPercentLiteral(e.args[1].get()) || (tol->isConst() && tol->marker == ir::Marker::Percent);
   if (!relative && tol->type.dim != centre->type.dim) {
     diags_.error("E0302", tol->span,

@@ -35,7 +35,12 @@ public:
   // A range `lo..hi`: a bare number on the left takes the unit written on the right.
   std::pair<ir::ExprPtr, ir::ExprPtr> checkRange(const ast::Expr* lo, const ast::Expr* hi, const Scope& scope);
   // Converts a literal with its unit to SI; reports unknown units.
-  ir::ExprPtr literal(const ast::Expr& e, const ast::UnitExpr* unitOverride = nullptr);
+  // `difference`: the literal is a difference (a sweep's step), so a unit's zero (`degC`) is
+  // not added.
+  ir::ExprPtr literal(const ast::Expr& e, const ast::UnitExpr* unitOverride = nullptr, bool difference = false);
+  // `20 degC`: a literal on a scale whose zero is not SI's (a Celsius temperature). Such a
+  // value can be compared and subtracted, not added, scaled or used as a tolerance or step.
+  static bool celsiusLiteral(const ast::Expr* e);
 
   // Resolves a `let` lazily, so lets may refer to each other in any order.
   void setLetResolver(std::function<ir::Type(const std::string& gearboxLet, const StageModel* stage)> f) {

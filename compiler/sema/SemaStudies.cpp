@@ -98,8 +98,13 @@ void Analyser::sweepOf(const Stmt& b, const GearboxModel& m, const Scope& gs, co
   const AttrSpec* swept = nullptr;
   out.dim = sweepTarget(b.path, m, &swept);
   auto [lo, hi] = checker_.checkRange(b.lo.get(), b.hi.get(), gs);
+  // A step is a difference: it takes the end's unit without that unit's zero (`degC`).
+  if (ExprChecker::celsiusLiteral(b.step.get()))
+    diags_.error("E0302", b.step->span,
+                 fmt::format("a sweep's step is a temperature difference: write it in K (`{} K`), not `{} {}`", b.step->text, b.step->text,
+                             b.step->unit->text));
   auto step = b.step && b.step->kind == ast::ExprKind::Number && !b.step->unit && b.hi && b.hi->unit
-                  ? checker_.literal(*b.step, &*b.hi->unit)
+                  ? checker_.literal(*b.step, &*b.hi->unit, true)
                   : checker_.check(b.step.get(), gs);
   // `limit`: a start or an end, which take the swept attribute's limits (a step does not).
   auto bound = [&](ir::ExprPtr x, const char* what, bool limit) -> std::optional<Number> {

@@ -121,6 +121,12 @@ DisplayUnit displayUnitFor(const Dim& d) {
   return {d.siUnit(), 1.0};
 }
 
+DisplayUnit differenceUnitFor(const Dim& d) {
+  DisplayUnit u = displayUnitFor(d);
+  if (u.offset != 0) return {d.siUnit(), 1.0};
+  return u;
+}
+
 DisplayUnit displayUnitFor(const Dim& d, double magnitude) {
   if (d == dims::length && std::isfinite(magnitude) && std::fabs(magnitude) < 1e-4) return {"um", 1e-6};
   return displayUnitFor(d);

@@ -486,18 +486,13 @@ bool modelFactors(const KindContext& c, Rated& g, std::string* why, bool estimat
   return true;
 }
 
-// The mesh a stage's scuffing quantity is read from: the one with the smallest scuffing
-// safety (micropitting's where no mesh is rated for scuffing); -1 when none is rated.
-int hottest(const std::vector<PairRating>& r) {
-  int k = -1;
-  auto key = [](const ScuffingRating& s) { return s.scuffing ? s.SB : s.Slambda; };
-  for (size_t i = 0; i < r.size(); ++i)
-    if (r[i].scuffing && (k < 0 || key(*r[i].scuffing) < key(*r[static_cast<size_t>(k)].scuffing))) k = static_cast<int>(i);
-  return k;
-}
+// `Scuffing`: a scuffing or micropitting quantity of the stage, the worst over its meshes
+// rated for it (the smallest of a safety or film thickness, the largest of a temperature).
+enum class Worst { Governing, Smallest, Largest };
 
 Value rated(const KindContext& c, int gear, Side side, double (*select)(const PairRating&, int slot), bool damage = false,
-            bool scuffing = false) {
+            Worst worst = Worst::Governing) {
+  bool scuffing = worst != Worst::Governing;
   auto g = gather(c, nullptr);
   if (!g || !modelFactors(c, *g, nullptr, false)) return Value::invalid();
   std::vector<Value> all;
@@ -506,7 +501,16 @@ Value rated(const KindContext& c, int gear, Side side, double (*select)(const Pa
   return arith::corners(all, [&](const V& v) {
     try {
       auto r = rateAll(*g, v, damage, scuffing);
-      int k = scuffing ? hottest(r) : governing(r, g->meshes, gear, side, minH, minF);
+      if (scuffing) {
+        double out = kNaN;
+        for (const auto& m : r) {
+          double x = m.scuffing ? select(m, 0) : kNaN;
+          if (std::isnan(x)) continue;
+          if (std::isnan(out) || (worst == Worst::Smallest ? x < out : x > out)) out = x;
+        }
+        return out;
+      }
+      int k = governing(r, g->meshes, gear, side, minH, minF);
       if (k < 0) return kNaN;
       int slot = gear < 0 ? 0 : g->meshes[static_cast<size_t>(k)].g0 == gear ? 0 : 1;
       return select(r[static_cast<size_t>(k)], slot);
@@ -520,13 +524,14 @@ template <double PairRating::*M>
 DerivedRow stageRow(Q key) {
   return {key, false, [](const KindContext& c, int g) { return rated(c, g, Side::Any, [](const PairRating& r, int) { return r.*M; }); }};
 }
-// A scuffing or micropitting quantity of the stage: that of its mesh with the smallest
-// scuffing safety (NaN where no mesh is rated for it).
-template <double ScuffingRating::*M>
+// A scuffing or micropitting quantity of the stage: the worst of its meshes' (NaN where no
+// mesh is rated for it). `Larger`: a safety or a film thickness, better the larger.
+template <double ScuffingRating::*M, bool Larger>
 DerivedRow scuffingRow(Q key) {
   return {key, false, [](const KindContext& c, int g) {
             return rated(
-                c, g, Side::Any, [](const PairRating& r, int) { return r.scuffing ? r.scuffing.value().*M : kNaN; }, false, true);
+                c, g, Side::Any, [](const PairRating& r, int) { return r.scuffing ? r.scuffing.value().*M : kNaN; }, false,
+                Larger ? Worst::Smallest : Worst::Largest);
           }};
 }
 
@@ -644,15 +649,15 @@ std::vector<DerivedRow> pairRows() {
       gearRow<&G::YRrelT, Side::Bending>(Q::YRrelT),
       gearRow<&G::YX, Side::Bending>(Q::YX),
       gearRow<&G::YM, Side::Contact>(Q::YM),
-      scuffingRow<&ScuffingRating::SB>(Q::ScuffingSafety),
-      scuffingRow<&ScuffingRating::SintS>(Q::IntegralScuffingSafety),
-      scuffingRow<&ScuffingRating::thetaBmax>(Q::ContactTemperature),
-      scuffingRow<&ScuffingRating::thetaInt>(Q::IntegralTemperature),
-      scuffingRow<&ScuffingRating::thetaS>(Q::ScuffingTemperature),
-      scuffingRow<&ScuffingRating::thetaM>(Q::BulkTemperature),
-      scuffingRow<&ScuffingRating::Slambda>(Q::MicropittingSafety),
-      scuffingRow<&ScuffingRating::lambdaMin>(Q::SpecificFilmThickness),
-      scuffingRow<&ScuffingRating::lambdaGFP>(Q::PermissibleFilmThickness),
+      scuffingRow<&ScuffingRating::SB, true>(Q::ScuffingSafety),
+      scuffingRow<&ScuffingRating::SintS, true>(Q::IntegralScuffingSafety),
+      scuffingRow<&ScuffingRating::thetaBmax, false>(Q::ContactTemperature),
+      scuffingRow<&ScuffingRating::thetaInt, false>(Q::IntegralTemperature),
+      scuffingRow<&ScuffingRating::thetaS, true>(Q::ScuffingTemperature),
+      scuffingRow<&ScuffingRating::thetaM, false>(Q::BulkTemperature),
+      scuffingRow<&ScuffingRating::Slambda, true>(Q::MicropittingSafety),
+      scuffingRow<&ScuffingRating::lambdaMin, true>(Q::SpecificFilmThickness),
+      scuffingRow<&ScuffingRating::lambdaGFP, true>(Q::PermissibleFilmThickness),
       gearRow<&G::contactDamage, Side::Contact, true>(Q::ContactDamage),
       gearRow<&G::bendingDamage, Side::Bending, true>(Q::BendingDamage),
   };

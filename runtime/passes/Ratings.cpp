@@ -124,7 +124,7 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
   if (!in.oil) return;
   if (mr.internal) {
     out.notRated.push_back({out.gears[1], "scuffing and micropitting",
-                            "the flash temperature and film thickness along the path are implemented for external meshes"});
+                            "the flash temperature and film thickness along the path are implemented for external meshes", true});
     return;
   }
   std::string why;
@@ -173,6 +173,10 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
         fmt::format("1.4 W_W lambda_GFT, FVA 54/7 load stage {} (lambda_GFT {})", in.oil->fvaStage, formatNumber(s.lambdaGFT)));
     row("micropitting_safety", s.Slambda, "", 1, "method B, ISO/TS 6336-22", Row::Micropitting);
   }
+  if (s.epsAlpha >= 2)
+    out.warnings.push_back(fmt::format("eps_alpha = {} is 2 or more: the scuffing methods hold for eps_alpha below 2 (ISO/TS 6336-20); "
+                                       "the load is taken as shared evenly along the path",
+                                       formatNumber(s.epsAlpha)));
   // ISO/TS 6336-20's running tests reach 80 m/s on the working pitch circle.
   double alphaT = std::atan(std::tan(in.alphaN) / std::cos(in.beta));
   double vw = mr.rating.v * std::cos(alphaT) / std::cos(mr.rating.alphaWt);
@@ -330,7 +334,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   governs(r, minH, minF, out);
   modelNotes(mr, out);
   if (mr.internal)
-    out.notRated.push_back({out.gears[1], "tooth root", "ISO 6336-3 for internal gears is not implemented (its flank is rated)"});
+    out.notRated.push_back({out.gears[1], "tooth root", "ISO 6336-3 for internal gears is not implemented (its flank is rated)", true});
   warnings(mr, out);
   if (mr.internal) out.note = fmt::format("the {}'s tooth root is not rated (ISO 6336-3 for internal gears is not implemented)", out.gears[1]);
   if (mr.internal && in.oil)

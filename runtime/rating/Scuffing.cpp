@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 namespace gbx::rt::rating {
 
 namespace {
@@ -78,6 +80,7 @@ double loadSharing(const Path& p, double g, int grade) {
   double end = (q - 2) / 15;
   double spur = g < p.gB ? end + (g - p.gA) / (p.gB - p.gA) / 3 : g > p.gD ? end + (p.gE - g) / (p.gE - p.gD) / 3 : 1.0;
   if (p.gB <= p.gA || p.gD >= p.gE) spur = 1.0;  // eps_alpha <= 1: one pair carries the load
+  if (p.gD <= p.gB) spur = 1 / p.epsAlpha;       // eps_alpha >= 2: never one pair alone (beyond the methods' range)
   double x = p.epsBeta >= 1 ? 1 / p.epsAlpha : (1 - p.epsBeta) * spur + p.epsBeta / p.epsAlpha;
   double buttress = p.epsBeta >= 1 ? 1.3 : 1 + 0.3 * p.epsBeta;
   double zone = 0.2 * std::sin(p.betaB);
@@ -160,6 +163,7 @@ Film film(const ScuffingMesh& m, const Path& p, const Lubricant& oil, double the
   double etaM = oil.dynamic(f.thetaM + kZeroC), alphaM = pressureViscosity(oil, f.thetaM);
   double load = m.KA * m.Kgamma * m.Kv * m.KHalpha * m.KHbeta;
   f.lambdaMin = INFINITY;
+  f.gammaMin = p.gA;
   for (double g : grid(p, points)) {
     double rho = p.rhoN(g), XY = loadSharing(p, g, grade);
     double pH = std::sqrt(Er / (2 * kPi)) * std::sqrt(m.Ft * XY / (m.b * 1e3 * rho * std::cos(p.alphaT) * std::cos(p.betaB)));
@@ -175,6 +179,10 @@ Film film(const ScuffingMesh& m, const Path& p, const Lubricant& oil, double the
     double S = pressureViscosity(oil, thetaB) * oil.dynamic(thetaB + kZeroC) / (alphaM * etaM);
     double h = 1600 * rho * std::pow(G, 0.6) * std::pow(U, 0.7) * std::pow(W, -0.13) * std::pow(S, 0.22);  // um
     double lam = h / (m.Ra * 1e6);
+    if (!std::isfinite(lam) || !std::isfinite(thetaB))
+      throw std::domain_error(fmt::format("the film thickness is not finite at Gamma {:.4g} (contact temperature {:.4g} degC): the oil's "
+                                          "viscosity or pressure-viscosity line does not reach that temperature",
+                                          g, thetaB));
     f.gamma.push_back(g);
     f.h.push_back(h * 1e-6);
     f.lambda.push_back(lam);
@@ -296,8 +304,14 @@ ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, Scuffin
       r.XGammaMax = XG[i];
     }
   }
+  for (const auto& q : r.path)
+    if (!std::isfinite(q.thetaB))
+      throw std::domain_error(fmt::format("the contact temperature is not finite at Gamma {:.4g}", q.gamma));
   const double LS2 = sq(oil.fzgStage);
   r.thetaS = 80 + (0.85 + 1.4 * m.XW) * r.XL * LS2;
+  if (oil.fzgStage > 0 && !(r.thetaS > thetaOil))
+    throw std::domain_error(fmt::format("the scuffing temperature of FZG load stage {} ({:.4g} degC) is not above the oil's {:.4g} degC",
+                                        oil.fzgStage, r.thetaS, thetaOil));
   r.SB = (r.thetaS - thetaOil) / (r.thetaBmax - thetaOil);
   // Integral temperature (ISO/TS 6336-21), run in (Phi_E = 1: X_E = 1).
   {
@@ -316,6 +330,11 @@ ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, Scuffin
     double T1T = fzgPinionTorque(oil.fzgStage);
     double thetaMT = 80 + 0.23 * T1T * Ltype, thetaFlaIntT = 0.2 * T1T * std::pow(100 / (oil.nu40 * 1e6), 0.02) * Ltype;
     r.thetaIntS = thetaMT + 1.5 * thetaFlaIntT;
+    // S_intS is a ratio of Celsius temperatures, as the standard states it: it needs both above 0 degC.
+    if (!(r.thetaInt > 0))
+      throw std::domain_error(fmt::format("the integral temperature {:.4g} degC is not above 0 degC, where S_intS (a ratio of Celsius "
+                                          "temperatures) has no meaning",
+                                          r.thetaInt));
     r.SintS = r.thetaIntS / r.thetaInt;
   }
   r.scuffing = oil.fzgStage > 0;

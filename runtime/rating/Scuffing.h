@@ -27,7 +27,7 @@ struct Lubricant {
   // The ASTM D341 line through (40 degC, nu40) and (100 degC, nu100): log log (nu + 0.7)
   // linear in log T, nu in mm^2/s. T in K; results SI.
   double kinematic(double T) const;
-  double density(double T) const;  // ISO/TS 6336-22: rho15 (1 - 0.0007 (theta - 15))
+  double density(double T) const;  // ISO/TS 6336-22: rho15 - 0.7 kg/m^3 per K above 289 K
   double dynamic(double T) const;  // [Pa s]
 };
 

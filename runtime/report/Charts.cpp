@@ -91,11 +91,11 @@ void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<st
       // A part ends where the stability changes or a gap begins: no line is drawn across a
       // stretch the continuation did not follow.
       for (; j < s.points.size() && unstable(j) == u && (j == k || !s.points[j].afterGap); ++j) {
-        part.x.push_back(s.points[j].x / s.unit.scale);
+        part.x.push_back(s.unit.shown(s.points[j].x));
         part.y.push_back(s.outputs[i].unit.shown(s.points[j].y[i]));
       }
       if (j < s.points.size() && !s.points[j].afterGap) {
-        part.x.push_back(s.points[j].x / s.unit.scale);
+        part.x.push_back(s.unit.shown(s.points[j].x));
         part.y.push_back(s.outputs[i].unit.shown(s.points[j].y[i]));
       }
       if (s.scene && !u && !labelledStable) {
@@ -110,8 +110,8 @@ void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<st
       c.series.push_back(std::move(part));
       k = j;
     }
-    for (const auto& [x, label] : s.marks) c.xMarks.emplace_back(x / s.unit.scale, label);
-    for (double f : s.folds) c.xMarks.emplace_back(f / s.unit.scale, "jump");
+    for (const auto& [x, label] : s.marks) c.xMarks.emplace_back(s.unit.shown(x), label);
+    for (double f : s.folds) c.xMarks.emplace_back(s.unit.shown(f), "jump");
     add(out, files, fileSafe(gearbox) + "." + s.name + (s.outputs.size() > 1 ? fmt::format(".{}", i + 1) : "") + ".svg", c);
   }
 }

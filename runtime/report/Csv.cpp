@@ -141,7 +141,7 @@ std::string sweeps(const std::vector<GearboxReport>& reports) {
         for (const auto& p : s->points)
           for (size_t i = 0; i < s->outputs.size() && i < p.y.size(); ++i) {
             any = true;
-            o += row({g.name, s->name, s->target, number(p.x / s->unit.scale), s->unit.name, s->outputs[i].text,
+            o += row({g.name, s->name, s->target, number(s->unit.shown(p.x)), s->unit.name, s->outputs[i].text,
                       number(s->outputs[i].unit.shown(p.y[i])), s->outputs[i].unit.name, number(p.stability),
                       s->continuation == "arclength" ? std::to_string(p.branch) : ""});
           }

@@ -134,6 +134,8 @@ std::string textRating(const RatingReport& r) {
     }
   }
   o += "    " + ratingVerdict(r) + "\n";
+  for (const auto& n : r.notRated)
+    if (!n.inNote) o += fmt::format("    not rated: the {}'s {}: {}\n", n.gear, n.what, n.reason);
   for (const auto& w : r.warnings) o += "    warning: " + w + "\n";
   for (const auto& line : r.model) o += "    " + line + "\n";
   for (const auto& f : r.files) o += "    chart: " + f + "\n";

@@ -202,6 +202,7 @@ struct RatingReport {
   // Values the rating leaves out, each with its reason (an internal gear's tooth root).
   struct NotRated {
     std::string gear, what, reason;
+    bool inNote = false;  // the verdict's note already says it (text)
   };
   std::vector<NotRated> notRated;
   // K_Hbeta by contact analysis: the line load across the face (the plot with -o).

@@ -20,7 +20,7 @@ StudyTable table(const SweepStudy& s) {
   if (s.scene) t.header.push_back("stability of " + s.stabilityScene);
   if (arclength) t.header.push_back("branch");
   for (const auto& p : s.points) {
-    std::vector<std::string> row = {fmt::format("{:.6g}", p.x / s.unit.scale)};
+    std::vector<std::string> row = {fmt::format("{:.6g}", s.unit.shown(p.x))};
     bool unstable = std::isfinite(p.stability) && p.stability >= 1.0;
     for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i) {
       bool u = i < p.unstable.size() ? p.unstable[i] : unstable;
@@ -30,12 +30,12 @@ StudyTable table(const SweepStudy& s) {
     if (arclength) row.push_back(std::to_string(p.branch));
     t.rows.push_back(std::move(row));
   }
-  for (double f : s.folds) t.notes.push_back(fmt::format("turning point (jump) at {} = {:.6g} {}", s.target, f / s.unit.scale, s.unit.name));
+  for (double f : s.folds) t.notes.push_back(fmt::format("turning point (jump) at {} = {:.6g} {}", s.target, s.unit.shown(f), s.unit.name));
   for (const auto& [from, to] : s.gaps)
     t.warnings.push_back(fmt::format("the continuation did not follow {} from {:.6g} to {:.6g} {} (a gap; no line is drawn across it)", s.target,
-                                     from / s.unit.scale, to / s.unit.scale, s.unit.name));
+                                     s.unit.shown(from), s.unit.shown(to), s.unit.name));
   for (const auto& [x, label] : s.marks)
-    t.notes.push_back(fmt::format("{}: {} = {:.6g} {}", label, s.target, x / s.unit.scale, s.unit.name));
+    t.notes.push_back(fmt::format("{}: {} = {:.6g} {}", label, s.target, s.unit.shown(x), s.unit.name));
   for (const auto& n : s.notes) t.notes.push_back(n);
   return t;
 }

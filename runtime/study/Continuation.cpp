@@ -292,7 +292,7 @@ private:
     if (!o2.converged) throw dyn::SceneFailure{fmt::format("the periodic response at {} = {:.6g} was not found after a gap: {}", st.target, sh.x(resume), o2.failure)};
     out.gaps.emplace_back(sh.x(std::max(from(n), reached)), sh.x(resume));
     out.notes.push_back(fmt::format("gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh",
-                                    st.target, sh.x(std::max(from(n), reached)) / out.unit.scale, sh.x(resume) / out.unit.scale,
+                                    st.target, out.unit.shown(sh.x(std::max(from(n), reached))), out.unit.shown(sh.x(resume)),
                                     out.unit.name, why));
     for (long i = 0; i < n; ++i) z(i) = o2.y0[static_cast<size_t>(i)] / s[static_cast<size_t>(i)];
     z(n) = resume;

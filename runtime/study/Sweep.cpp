@@ -18,7 +18,8 @@ namespace {
 // Imbalances and other fractions read best in percent.
 units::DisplayUnit unitFor(const ir::Expr& e) {
   if (e.op == ir::Op::Quantity && e.ref.key == Q::Imbalance) return {"%", 0.01};
-  return units::displayUnitFor(e.type.dim);
+  // Only a temperature quantity itself is absolute; a difference or a combination reads in K.
+  return e.op == ir::Op::Quantity ? units::displayUnitFor(e.type.dim) : units::differenceUnitFor(e.type.dim);
 }
 
 // A length output whose every value lies below 0.1 mm reads in um (a transmission error).
@@ -105,7 +106,7 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
       dyn::SceneResult res = s == fxp.scene ? dyn::runScene(m, a, declared.withEffectParam(fxp.effect, fxp.key, x, st.dim.value_or(units::Dim{})), ov)
                                             : dyn::runScene(m, a, declared, ov);
       if (!res.failure.empty()) {
-        r.failure = fmt::format("study `{}` at {} = {:.6g} {}: {}", st.name, st.target, x / r.unit.scale, r.unit.name, res.failure);
+        r.failure = fmt::format("study `{}` at {} = {:.6g} {}: {}", st.name, st.target, r.unit.shown(x), r.unit.name, res.failure);
         return r;
       }
       if (!res.orbit.empty()) guesses[s] = res.orbit;
@@ -152,7 +153,7 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
     if (std::isfinite(p.error) && (!worst || p.error > worst->error)) worst = &p;
   if (worst)
     r.notes.push_back(fmt::format("error estimate of scene `{}` at every point, at most {:.2e} (at {} = {:.6g}{})", r.stabilityScene,
-                                  worst->error, st.target, worst->x / r.unit.scale, r.unit.name.empty() ? "" : " " + r.unit.name));
+                                  worst->error, st.target, r.unit.shown(worst->x), r.unit.name.empty() ? "" : " " + r.unit.name));
   return r;
 }
 

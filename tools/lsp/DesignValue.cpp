@@ -97,11 +97,11 @@ std::optional<std::string> designValue(const ir::Program& p, const ir::Gearbox& 
   if (!v.isPoint() || !std::isfinite(v.lo)) return std::nullopt;
   units::DisplayUnit u = units::displayUnitFor(dim, v.lo);
   std::string shown =
-      dim.dimensionless() && v.exact && v.exact->isInteger() ? v.exact->str() : rt::formatNumber(v.lo / u.scale);
+      dim.dimensionless() && v.exact && v.exact->isInteger() ? v.exact->str() : rt::formatNumber(u.shown(v.lo));
   if (!u.name.empty()) shown += " " + u.name;
   // A ratio reads as the reports write it, with its exact fraction.
   if (r.key == cat::Q::Ratio && v.exact && !v.exact->isInteger()) shown += " (" + v.exact->str() + ")";
-  if (u.scale != 1) shown += fmt::format(" ({:.6g} {} in SI)", v.lo, dim.siUnit());
+  if (u.scale != 1 || u.offset != 0) shown += fmt::format(" ({:.6g} {} in SI)", v.lo, dim.siUnit());
   return fmt::format("= {} for the design of {}", shown, g.name);
 }
 

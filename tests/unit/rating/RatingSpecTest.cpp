@@ -6,6 +6,7 @@
 
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
+#include "model/RatingRows.h"
 #include "search/Search.h"
 
 using namespace gbx;
@@ -174,4 +175,38 @@ TEST(RatingSpec, ShiftedPlanetaryStageIsConcentricOnWorkingCentreDistances) {
   ASSERT_NE(at, std::string::npos);
   run(text.replace(at, 20, "ring.shift = -0.4000"), &off);
   EXPECT_EQ(off, 0u);
+}
+
+// A stage's scuffing quantity is the worst of its meshes': the smallest safety, the largest
+// temperature, each by its own mesh (an idler's two meshes differ).
+TEST(RatingSpec, StageScuffingQuantitiesAreTheWorstOfTheMeshes) {
+  std::string text = R"(import materials;
+gearbox I { stage t: idler { driver.z = 19; idler.z = 60; driven.z = 23; module = 3 mm; face_width = 30 mm;
+  material = steel_18CrNiMo7_6; accuracy = 6;
+  rating { life = 20000 h; roughness { flank = 0.8 um; root = 3 um; }
+           lubricant { viscosity_40 = 100 mm^2/s; viscosity_100 = 11 mm^2/s; oil_temperature = 70 degC; fzg_load_stage = 8;
+                       micropitting_load_stage = 8; } } }
+  operating { input_speed = 3000 rpm; input_torque = 150 N*m; } }
+)";
+  auto c = driver::compileText("idler3.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  auto i = fixed(c, "I");
+  rt::Evaluator ev(*i.model);
+  rt::KindContext kc{ev, 0, *i.design};
+  auto meshes = rt::rating::rateStage(kc);
+  ASSERT_EQ(meshes.size(), 2u);
+  std::vector<rt::rating::ScuffingRating> s;
+  for (const auto& m : meshes) {
+    auto r = rt::rating::scuffingOf(m.input, m.rating);
+    ASSERT_TRUE(r.has_value());
+    s.push_back(*r);
+  }
+  auto q = [&](const char* p) { return ev.quantity(p, *i.design).lo; };
+  EXPECT_DOUBLE_EQ(q("t.scuffing_safety"), std::min(s[0].SB, s[1].SB));
+  EXPECT_DOUBLE_EQ(q("t.integral_scuffing_safety"), std::min(s[0].SintS, s[1].SintS));
+  EXPECT_DOUBLE_EQ(q("t.contact_temperature"), std::max(s[0].thetaBmax, s[1].thetaBmax));
+  EXPECT_DOUBLE_EQ(q("t.integral_temperature"), std::max(s[0].thetaInt, s[1].thetaInt));
+  EXPECT_DOUBLE_EQ(q("t.micropitting_safety"), std::min(s[0].Slambda, s[1].Slambda));
+  // The idler meshes twice: X_mp 1.5 heats both meshes' bulk above a single pair's.
+  EXPECT_GT(s[0].thetaM, 343.15);
 }
