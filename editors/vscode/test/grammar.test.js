@@ -277,6 +277,8 @@ expect('pinion.z in 11..25;', '11', 'constant.numeric.gbx');
 expect('pinion.z in 11..25;', '..', 'keyword.operator.range.gbx');
 expect('pinion.z in 11..25;', '25', 'constant.numeric.gbx');
 expect('spiral_angle in 30..35 deg;', 'deg', 'keyword.other.unit.gbx');
+expect('lubricant { oil_temperature = 80 degC; }', 'degC', 'keyword.other.unit.gbx');
+expect('require hs.contact_temperature - 20 degC < 150 K;', 'K', 'keyword.other.unit.gbx');
 expect('require ratio == 3.952 +- 1%;', '+-', 'keyword.operator.tolerance.gbx');
 expect('require ratio == 3.952 +- 1%;', '%', 'keyword.other.unit.gbx');
 expect('require ratio == 3.952 ± 0.01;', '±', 'keyword.operator.tolerance.gbx');
