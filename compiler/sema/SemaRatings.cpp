@@ -156,6 +156,23 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
                      fmt::format("the `rating` of stage `{}` gives `{}` but not `{}` ({})", st.name, std::string(test).substr(7),
                                  std::string(need).substr(7), findAttr(*st.kind, need)->meaning));
   }
+  // An input only scuffing or micropitting reads, given where neither is rated, does nothing.
+  bool fzg = st.findAttr("rating.lubricant.fzg_load_stage"), fva = st.findAttr("rating.lubricant.micropitting_load_stage");
+  const std::pair<const char*, int> only[] = {{"rating.lubricant.viscosity_100", 3},  {"rating.lubricant.oil_temperature", 3},
+                                              {"rating.lubricant.density", 3},        {"rating.lubricant.base", 3},
+                                              {"rating.lubricant.supply", 3},         {"rating.min_safety.scuffing", 1},
+                                              {"rating.min_safety.integral_scuffing", 1}, {"rating.min_safety.micropitting", 2}};
+  for (const auto& [name, uses] : only) {
+    const Binding* b = st.findAttr(name);
+    bool used = ((uses & 1) && fzg) || ((uses & 2) && fva);
+    if (b && !used)
+      diags_.warning("W0502", b->stmt->path.span,
+                     fmt::format("`{}` of stage `{}` does nothing: it is read by {} only, and the oil gives no {}", std::string(name).substr(7),
+                                 st.name, uses == 1 ? "scuffing" : uses == 2 ? "micropitting" : "scuffing and micropitting",
+                                 uses == 2   ? "`micropitting_load_stage`"
+                                 : uses == 1 ? "`fzg_load_stage`"
+                                             : "`fzg_load_stage` or `micropitting_load_stage`"));
+  }
   // Micropitting's pressure-viscosity law is known for mineral and polyalphaolefin oils.
   const Binding* base = st.findAttr("rating.lubricant.base");
   if (base && base->stmt->value && st.findAttr("rating.lubricant.micropitting_load_stage")) {
