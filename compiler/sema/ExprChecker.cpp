@@ -830,6 +830,13 @@ ir::ExprPtr ExprChecker::argumentsByRule(const FunctionSpec& specRef, std::vecto
                    "`relative(x)` divides by x of the baseline gearbox, but this gearbox extends none");
       return error(e.span);
     }
+    // A ratio of absolute temperatures is one of kelvins: 10 K cooler at 150 degC reads 0.98.
+    if (args[0]->type.dim == units::dims::temperature && args[0]->op != Op::Sub) {
+      diags_.error("E0302", args[0]->span,
+                   "`relative()` of a temperature would be a ratio of kelvins; take it of a temperature difference, such as the rise "
+                   "above the oil (`relative(hs.contact_temperature - 80 degC)`)");
+      return error(e.span);
+    }
     auto n = make(Op::Relative, Type::number({}), e.span);
     n->args = std::move(args);
     return n;

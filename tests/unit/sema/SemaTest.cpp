@@ -240,4 +240,13 @@ gearbox G {
   EXPECT_EQ(g.rules[2].expr->args[1]->value.rational().str(), "400");
   auto bad = compile("gearbox G { stage s: spur { pinion.z = 20; wheel.z = 40; } require s.pinion.z > 3 degC; }");
   EXPECT_FALSE(bad->ok());
+  // relative() of an absolute temperature is refused; of a difference it is a plain ratio.
+  std::string base = "import materials;\ngearbox A { stage s: spur { pinion.z = 20; wheel.z = 40; normal_module = 3 mm; face_width = 30 mm; "
+                     "material = steel_18CrNiMo7_6; accuracy = 6; rating { life = 1000 h; roughness { flank = 0.8 um; root = 3 um; } "
+                     "lubricant { viscosity_40 = 220 mm^2/s; viscosity_100 = 19 mm^2/s; oil_temperature = 80 degC; fzg_load_stage = 12; } } }"
+                     " operating { input_speed = 1500 rpm; input_torque = 100 N*m; } }\n";
+  auto ratio = compile(base + "gearbox B extends A { report { columns relative(s.contact_temperature); } }");
+  EXPECT_EQ(codes(*ratio), std::vector<std::string>{"E0302"});
+  auto rise = compile(base + "gearbox B extends A { report { columns relative(s.contact_temperature - 80 degC); } }");
+  EXPECT_TRUE(rise->ok()) << rise->diags.renderText(rise->sources);
 }
