@@ -543,6 +543,15 @@ Value Evaluator::materialProperty(int stage, Q prop) const {
 
 // ---- what a kind's formulas see ----------------------------------------------------------
 
+units::DisplayUnit valueUnitOf(const ir::Expr& e) {
+  return e.op == ir::Op::Quantity ? units::displayUnitFor(e.type.dim) : units::differenceUnitFor(e.type.dim);
+}
+
+units::DisplayUnit displayUnitOf(const ir::Expr& e) {
+  if (e.op == ir::Op::Quantity && e.ref.key == Q::Imbalance) return {"%", 0.01};
+  return valueUnitOf(e);
+}
+
 Value KindContext::at(Q key) const { return ev.attribute(stage, -1, key, a); }
 Value KindContext::at(int gear, Q key) const { return ev.attribute(stage, gear, key, a); }
 Value KindContext::orZero(int gear, Q key) const {

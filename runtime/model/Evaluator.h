@@ -12,6 +12,7 @@
 #include "ir/Ir.h"
 #include "model/Model.h"
 #include "model/Value.h"
+#include "units/Unit.h"
 
 namespace gbx::rt {
 
@@ -86,6 +87,13 @@ private:
   std::vector<std::pair<ir::QuantityRef, Value>> overrides_;
   std::vector<std::pair<ir::QuantityRef, double>> offsets_;
 };
+
+// The unit an expression's values read in: its dimension's display unit, except that only a
+// temperature quantity reads in degC; any other temperature expression (a difference, a
+// sum) is no absolute temperature and reads in K.
+units::DisplayUnit valueUnitOf(const ir::Expr& e);
+// The unit a table or a sweep shows an expression in: valueUnitOf, an imbalance in percent.
+units::DisplayUnit displayUnitOf(const ir::Expr& e);
 
 // Interval and exact arithmetic used by the evaluator (exposed for tests).
 namespace arith {

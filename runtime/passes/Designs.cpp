@@ -231,11 +231,7 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
     // So are both ends of a `worst` over the tolerance corners.
     c.exact =
         columnExprs[i]->op == ir::Op::Quantity || columnExprs[i]->isConst() || columnExprs[i]->op == ir::Op::Scatter;
-    // Only a temperature quantity itself is absolute; a difference or a combination reads in K.
-    auto u = columnExprs[i]->op == ir::Op::Quantity ? units::displayUnitFor(columnExprs[i]->type.dim)
-                                                    : units::differenceUnitFor(columnExprs[i]->type.dim);
-    // Imbalances read best in percent.
-    if (columnExprs[i]->op == ir::Op::Quantity && columnExprs[i]->ref.key == Q::Imbalance) u = {"%", 0.01};
+    auto u = displayUnitOf(*columnExprs[i]);
     c.unit = u.name;
     c.scale = u.scale;
     c.offset = u.offset;

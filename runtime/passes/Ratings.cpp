@@ -178,12 +178,10 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
                                        "the load is taken as shared evenly along the path",
                                        formatNumber(s.epsAlpha)));
   // ISO/TS 6336-20's running tests reach 80 m/s on the working pitch circle.
-  double alphaT = std::atan(std::tan(in.alphaN) / std::cos(in.beta));
-  double vw = mr.rating.v * std::cos(alphaT) / std::cos(mr.rating.alphaWt);
-  if (vw > 80)
+  if (s.vw > 80)
     out.warnings.push_back(fmt::format("the pitch-line velocity on the working circle, {} m/s, is beyond the 80 m/s of the running tests "
                                        "behind the scuffing methods (ISO/TS 6336-20): their results are less certain here",
-                                       formatNumber(vw)));
+                                       formatNumber(s.vw)));
   out.scuffing = s.scuffing;
   out.micropitting = s.micropitting;
   out.minScuffing = in.SBmin;
@@ -216,9 +214,7 @@ void governs(const PairRating& r, double minH, double minF, RatingReport& out) {
     if (row.minimum != RatingReport::Row::Scuffing && row.minimum != RatingReport::Row::IntegralScuffing &&
         row.minimum != RatingReport::Row::Micropitting)
       continue;
-    double min = row.minimum == RatingReport::Row::Scuffing ? out.minScuffing
-                 : row.minimum == RatingReport::Row::IntegralScuffing ? out.minIntegralScuffing
-                                                                       : out.minMicropitting;
+    double min = out.minimumOf(row.minimum);
     double s = row.si[0];
     if (std::isfinite(s) && s / min < worst) {
       worst = s / min;

@@ -141,30 +141,32 @@ std::vector<double> grid(const Path& p, int points) {
   return g;
 }
 
+// w_Bt [N/mm]: the tangential force per face width with its load factors.
+double lineLoad(const ScuffingMesh& m) { return m.loadFactor() * m.Ft / (m.b * 1e3); }
+
 struct Film {
   double thetaM, mu, lambdaMin, gammaMin;
-  std::vector<double> gamma, h, lambda;
+  std::vector<double> h, lambda;  // at each of the positions given
 };
 
-// Film thickness along the path (ISO/TS 6336-22 method B) at the oil temperature thetaOil
-// [degC]: the bulk temperature, each point's flash and contact temperature, and the
-// Dowson-Higginson film with the local temperature's viscosity.
-Film film(const ScuffingMesh& m, const Path& p, const Lubricant& oil, double thetaOil, double Er, double BM, int grade, int points) {
+// Film thickness at the positions `gammas` on the path (ISO/TS 6336-22 method B) at the oil
+// temperature thetaOil [degC]: the bulk temperature, each point's flash and contact
+// temperature, and the Dowson-Higginson film with the local temperature's viscosity.
+Film film(const ScuffingMesh& m, const Path& p, const Lubricant& oil, double thetaOil, double Er, double BM, int grade,
+          const std::vector<double>& gammas) {
   Film f;
-  double wBt = m.KA * m.Kgamma * m.Kv * m.KHbeta * m.KHalpha * m.Ft / (m.b * 1e3);
   double KBg = helicalLoadFactor(p.epsAlpha + p.epsBeta);
-  f.mu = friction(p, wBt, KBg, oil.dynamic(thetaOil + kZeroC) * 1e3, m.Ra * 1e6, oilTypeFactor(oil.base), true);
+  f.mu = friction(p, lineLoad(m), KBg, oil.dynamic(thetaOil + kZeroC) * 1e3, m.Ra * 1e6, oilTypeFactor(oil.base), true);
   double HV = (sq(p.eps1) + sq(p.eps2) + 1 - p.epsAlpha) * (1 / m.z1 + 1 / m.z2) * kPi / std::cos(p.betaB);
-  double Ceff = m.KA * m.Ft / (m.b * 1e3 * m.cgamma * 1e-9);
   double emax = std::max(p.eps1, p.eps2);
-  double XCa = std::min(m.Ca[0], m.Ca[1]) * 1e6 >= Ceff ? 1 + 0.24 * emax + 0.71 * sq(emax) : 1.0;
+  double XCa = std::min(m.Ca[0], m.Ca[1]) * 1e6 >= m.effectiveRelief() ? 1 + 0.24 * emax + 0.71 * sq(emax) : 1.0;
   double XS = oil.injection ? 1.2 : 1.0;
   f.thetaM = thetaOil + 7400 * std::pow(m.power * 1e-3 * f.mu * HV / (m.a * 1e3 * m.b * 1e3), 0.72) * XS / (1.2 * XCa);
   double etaM = oil.dynamic(f.thetaM + kZeroC), alphaM = pressureViscosity(oil, f.thetaM);
-  double load = m.KA * m.Kgamma * m.Kv * m.KHalpha * m.KHbeta;
+  double load = m.loadFactor();
   f.lambdaMin = INFINITY;
   f.gammaMin = p.gA;
-  for (double g : grid(p, points)) {
+  for (double g : gammas) {
     double rho = p.rhoN(g), XY = loadSharing(p, g, grade);
     double pH = std::sqrt(Er / (2 * kPi)) * std::sqrt(m.Ft * XY / (m.b * 1e3 * rho * std::cos(p.alphaT) * std::cos(p.betaB)));
     double pdyn = pH * std::sqrt(load);
@@ -183,7 +185,6 @@ Film film(const ScuffingMesh& m, const Path& p, const Lubricant& oil, double the
       throw std::domain_error(fmt::format("the film thickness is not finite at Gamma {:.4g} (contact temperature {:.4g} degC): the oil's "
                                           "viscosity or pressure-viscosity line does not reach that temperature",
                                           g, thetaB));
-    f.gamma.push_back(g);
     f.h.push_back(h * 1e-6);
     f.lambda.push_back(lam);
     if (lam < f.lambdaMin) {
@@ -195,22 +196,7 @@ Film film(const ScuffingMesh& m, const Path& p, const Lubricant& oil, double the
 }
 
 // The FVA 54/7 test (gear C-GF at 8.3 m/s, 90 degC, dip lubrication) at a load stage,
-// with the service oil: lambda_GF,min of the test. It depends on the oil alone, so a search
-// rating many designs on one oil computes it once per thread.
-double testFilmThickness(const Lubricant& oil, int stage, double Er, double BM, int points);
-
-double cachedTestFilmThickness(const Lubricant& oil, int stage, double Er, double BM, int points) {
-  using Key = std::array<double, 7>;
-  thread_local std::vector<std::pair<Key, double>> cache;
-  Key k{oil.nu40, oil.nu100, oil.density15, static_cast<double>(oil.base), static_cast<double>(stage), Er, BM};
-  for (const auto& [key, v] : cache)
-    if (key == k) return v;
-  double v = testFilmThickness(oil, stage, Er, BM, points);
-  if (cache.size() > 64) cache.clear();
-  cache.emplace_back(k, v);
-  return v;
-}
-
+// with the service oil: lambda_GF,min of the test.
 double testFilmThickness(const Lubricant& oil, int stage, double Er, double BM, int points) {
   ScuffingMesh t;
   t.z1 = 16;
@@ -229,7 +215,21 @@ double testFilmThickness(const Lubricant& oil, int stage, double Er, double BM, 
   Lubricant test = oil;
   test.injection = false;
   Path p = pathOf(t);
-  return film(t, p, test, 90, Er, BM, 5, points).lambdaMin;
+  return film(t, p, test, 90, Er, BM, 5, grid(p, points)).lambdaMin;
+}
+
+// The test depends on the oil alone, so a search rating many designs on one oil computes
+// it once per thread.
+double cachedTestFilmThickness(const Lubricant& oil, int stage, double Er, double BM, int points) {
+  using Key = std::array<double, 7>;
+  thread_local std::vector<std::pair<Key, double>> cache;
+  Key k{oil.nu40, oil.nu100, oil.density15, static_cast<double>(oil.base), static_cast<double>(stage), Er, BM};
+  for (const auto& [key, v] : cache)
+    if (key == k) return v;
+  double v = testFilmThickness(oil, stage, Er, BM, points);
+  if (cache.size() > 64) cache.clear();
+  cache.emplace_back(k, v);
+  return v;
 }
 
 } // namespace
@@ -265,7 +265,8 @@ ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, Scuffin
   const double BM = (m.BM[0] + m.BM[1]) / 2;
   const int grade = m.grade;
   const int points = 400;
-  r.wBt = m.KA * m.Kgamma * m.Kv * m.KHbeta * m.KHalpha * m.Ft / (m.b * 1e3);
+  r.wBt = lineLoad(m);
+  r.vw = p.v * std::cos(p.alphaT) / std::cos(p.alphaWt);
   r.KBgamma = helicalLoadFactor(p.epsAlpha + p.epsBeta);
   r.XalphaBeta = 1.22 * std::pow(std::sin(p.alphaWt), 0.25) * std::pow(std::cos(m.alphaN), 0.25) * std::pow(std::cos(m.beta), 0.25) /
                  (std::sqrt(std::cos(p.alphaWt)) * std::sqrt(std::cos(p.alphaT)));
@@ -276,9 +277,11 @@ ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, Scuffin
   r.XL = tr ? Ltype * std::pow(etaMPas, -0.05) : Ltype;
   r.XR = 2.2 * std::pow(m.Ra * 1e6 / p.rhoRedC, 0.25);
   r.XS = oil.injection ? 1.2 : 1.0;
+  // The friction of the integral and micropitting parts, and of the TS's flash temperature;
   // ISO/TR 13989-1 writes the viscosity term into X_L and has no roughness factor.
-  r.muM = friction(p, r.wBt, r.KBgamma, etaMPas, m.Ra * 1e6, Ltype, !tr);
-  const double Ceff = m.KA * m.Ft / (m.b * 1e3 * m.cgamma * 1e-9);  // um
+  const double muC = friction(p, r.wBt, r.KBgamma, etaMPas, m.Ra * 1e6, Ltype, true);
+  r.muM = tr ? friction(p, r.wBt, r.KBgamma, etaMPas, m.Ra * 1e6, Ltype, false) : muC;
+  const double Ceff = m.effectiveRelief();  // um
   r.Ceff = Ceff;
   const double a = m.a * 1e3;
   // Flash temperature along the path (pinion driving: the approach is Gamma < 0).
@@ -315,7 +318,6 @@ ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, Scuffin
   r.SB = (r.thetaS - thetaOil) / (r.thetaBmax - thetaOil);
   // Integral temperature (ISO/TS 6336-21), run in (Phi_E = 1: X_E = 1).
   {
-    double muC = friction(p, r.wBt, r.KBgamma, etaMPas, m.Ra * 1e6, Ltype, true);
     double XBE = geometryFactor(p, p.gE);
     double ratio = p.eps2 / std::max(p.eps1, 1e-12);  // approach over recess, pinion driving
     double XQ = ratio <= 1.5 ? 1.0 : ratio < 3 ? 1.4 - 4.0 / 15 * ratio : 0.6;
@@ -341,12 +343,12 @@ ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, Scuffin
   if (!r.scuffing) r.thetaS = r.SB = r.thetaIntS = r.SintS = std::numeric_limits<double>::quiet_NaN();
   // Micropitting (ISO/TS 6336-22 method B).
   if (oil.fvaStage > 0) {
-    Film f = film(m, p, oil, thetaOil, Er, BM, grade, points);
+    Film f = film(m, p, oil, thetaOil, Er, BM, grade, gammas);
     r.muMmp = f.mu;
     r.thetaMmp = f.thetaM + kZeroC;
     r.lambdaMin = f.lambdaMin;
     r.gammaLambdaMin = f.gammaMin;
-    for (size_t i = 0; i < r.path.size() && i < f.h.size(); ++i) {
+    for (size_t i = 0; i < r.path.size(); ++i) {
       r.path[i].h = f.h[i];
       r.path[i].lambda = f.lambda[i];
     }

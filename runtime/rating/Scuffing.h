@@ -51,6 +51,11 @@ struct ScuffingMesh {
   double WW = 1;                  // material factor (micropitting)
   double Xmp = 1;                 // multiple mating factor (1 + n_p)/2 of a gear in n_p meshes
   int grade = 0;                  // ISO 1328-1 grade (a spur mesh's load sharing; 0: unknown, as 7)
+
+  // K_A K_gamma K_v K_Hbeta K_Halpha, the load factors of w_Bt and of the local pressure.
+  double loadFactor() const { return KA * Kgamma * Kv * KHbeta * KHalpha; }
+  // The effective tip relief C_eff = K_A F_t / (b c_gamma) [um].
+  double effectiveRelief() const { return KA * Ft / (b * 1e3 * cgamma * 1e-9); }
 };
 
 struct PathPoint {
@@ -68,6 +73,7 @@ struct ScuffingRating {
   double gammaA = 0, gammaB = 0, gammaD = 0, gammaE = 0, epsAlpha = 0, epsBeta = 0;
   // Flash temperature (TS 6336-20).
   double wBt = 0, KBgamma = 1, XalphaBeta = 0, XM = 0, XL = 0, XS = 1, XR = 0, etaOil = 0, muM = 0, Ceff = 0;
+  double vw = 0;  // pitch-line velocity on the working circle [m/s] (the methods' tests reach 80)
   double thetaFlm = 0, thetaM = 0, thetaS = 0, thetaBmax = 0, gammaMax = 0, XGammaMax = 0, SB = 0;
   // Integral temperature (TS 6336-21).
   double thetaFlaInt = 0, thetaMInt = 0, thetaInt = 0, thetaIntS = 0, SintS = 0;

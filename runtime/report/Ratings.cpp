@@ -19,19 +19,6 @@ std::string shown(const RatingReport::Row& row, double si) {
   return formatNumber((si - row.offset) / row.scale);
 }
 
-double minimumOf(const RatingReport& r, RatingReport::Row::Minimum m) {
-  using Row = RatingReport::Row;
-  switch (m) {
-  case Row::Contact: return r.minContact;
-  case Row::Bending: return r.minBending;
-  case Row::Scuffing: return r.minScuffing;
-  case Row::IntegralScuffing: return r.minIntegralScuffing;
-  case Row::Micropitting: return r.minMicropitting;
-  case Row::NoMinimum: break;
-  }
-  return 1;
-}
-
 std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
 
 } // namespace
@@ -54,7 +41,7 @@ std::vector<std::vector<std::string>> ratingRows(const RatingReport& r) {
       v.push_back(shown(row, row.si[0]));
       v.push_back("");
     }
-    v.push_back(row.minimum == RatingReport::Row::NoMinimum ? "" : formatNumber(minimumOf(r, row.minimum)));
+    v.push_back(row.minimum == RatingReport::Row::NoMinimum ? "" : formatNumber(r.minimumOf(row.minimum)));
     v.push_back(row.method);
     rows.push_back(std::move(v));
   }

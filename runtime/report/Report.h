@@ -192,6 +192,18 @@ struct RatingReport {
   double minContact = 1, minBending = 1;
   double minScuffing = 1.5, minIntegralScuffing = 1.8, minMicropitting = 1;
   bool scuffing = false, micropitting = false;  // rated for them (their minima go in the JSON)
+  // The minimum a safety row stands against (1 for a row that has none).
+  double minimumOf(Row::Minimum m) const {
+    switch (m) {
+    case Row::Contact: return minContact;
+    case Row::Bending: return minBending;
+    case Row::Scuffing: return minScuffing;
+    case Row::IntegralScuffing: return minIntegralScuffing;
+    case Row::Micropitting: return minMicropitting;
+    case Row::NoMinimum: break;
+    }
+    return 1;
+  }
   std::string kvRange;    // the K_v range (subcritical, …) or "given"
   std::string governs;    // "bending of the wheel: S_F 1.48 against 1.56 (below the minimum)"
   double governingRatio = 0;  // the smallest safety over its minimum

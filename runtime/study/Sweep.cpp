@@ -15,12 +15,6 @@
 namespace gbx::rt {
 
 namespace {
-// Imbalances and other fractions read best in percent.
-units::DisplayUnit unitFor(const ir::Expr& e) {
-  if (e.op == ir::Op::Quantity && e.ref.key == Q::Imbalance) return {"%", 0.01};
-  // Only a temperature quantity itself is absolute; a difference or a combination reads in K.
-  return e.op == ir::Op::Quantity ? units::displayUnitFor(e.type.dim) : units::differenceUnitFor(e.type.dim);
-}
 
 // A length output whose every value lies below 0.1 mm reads in um (a transmission error).
 void smallLengths(SweepStudy& r, const ir::Study& st) {
@@ -56,7 +50,7 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   r.plot = st.plot;
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
   r.unit = units::displayUnitFor(st.dim.value_or(units::Dim{}), std::max(std::fabs(lo), std::fabs(hi)));
-  for (size_t i = 0; i < st.outputs.size(); ++i) r.outputs.push_back({st.outputTexts[i], unitFor(*st.outputs[i])});
+  for (size_t i = 0; i < st.outputs.size(); ++i) r.outputs.push_back({st.outputTexts[i], displayUnitOf(*st.outputs[i])});
   long n = static_cast<long>(std::floor(std::fabs(hi - lo) / step * (1 + 1e-12))) + 1;
   if (hi < lo) step = -step;  // a down-sweep
   std::set<int> scenes;
