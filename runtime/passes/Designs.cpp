@@ -403,7 +403,7 @@ std::optional<std::string> cornerNote(const Model& m, const Evaluator& ev, const
   std::string at;
   for (size_t i = 0; i < tol.size(); ++i) {
     if ((*where)[i] == 0) continue;
-    auto u = units::displayUnitFor(tol[i].dim);
+    auto u = units::differenceUnitFor(tol[i].dim);  // an offset from the nominal value
     at += fmt::format("{}{} {:+g}{}", at.empty() ? "" : ", ", tol[i].target, (*where)[i] / u.scale,
                       u.name.empty() ? "" : " " + u.name);
   }

@@ -40,7 +40,7 @@ std::vector<OptimisationSummary::Optimum::Margin> margins(const Model& m, const 
     if (!q.isNumber()) return;
     double bound = e.args[1]->value.toDouble();
     if (bound == 0) return;
-    auto u = units::displayUnitFor(e.args[0]->type.dim);
+    auto u = valueUnitOf(*e.args[0]);  // a temperature difference reads in K, without degC's zero
     OptimisationSummary::Optimum::Margin mg;
     mg.rule = text;
     mg.value = u.shown(q.mid());
@@ -95,7 +95,7 @@ std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& 
     const ir::Expr& e = *expr;
     OptimisationSummary::Optimum::Sensitivity s;
     s.objective = text;
-    auto du = units::displayUnitFor(e.type.dim);
+    auto du = valueUnitOf(e);
     s.unit = du.name;
     auto at = [&](const std::vector<double>& deltas) {
       double v = du.shown(atSI(e, deltas));
@@ -105,7 +105,7 @@ std::vector<OptimisationSummary::Optimum::Sensitivity> sensitivity(const Model& 
     std::vector<double> zero(tol.size(), 0.0);
     s.nominal = s.lo = s.hi = at(zero);
     for (size_t i = 0; i < tol.size(); ++i) {
-      auto u = units::displayUnitFor(tol[i].dim);
+      auto u = units::differenceUnitFor(tol[i].dim);  // a tolerance is a difference
       OptimisationSummary::Optimum::Sensitivity::Line line{tol[i].target, tol[i].amount / u.scale, u.name, 0, 0};
       std::vector<double> d = zero;
       d[i] = -tol[i].amount;
