@@ -442,7 +442,7 @@ std::vector<PairRating> rateAll(const Rated& g, const V& x, bool damage = false,
     PairInput in = inputAt(g.fixed[k], xk);
     out.push_back(rate(in));
     underSpectrum(g, in, out.back(), damage);
-    if (scuffing && in.oil && !g.meshes[k].internal) out.back().scuffing = scuffingOf(in, out.back());
+    if (scuffing) out.back().scuffing = scuffingOf(in, out.back());
   }
   return out;
 }
@@ -525,13 +525,13 @@ DerivedRow stageRow(Q key) {
   return {key, false, [](const KindContext& c, int g) { return rated(c, g, Side::Any, [](const PairRating& r, int) { return r.*M; }); }};
 }
 // A scuffing or micropitting quantity of the stage: the worst of its meshes' (NaN where no
-// mesh is rated for it). `Larger`: a safety or a film thickness, better the larger.
-template <double ScuffingRating::*M, bool Larger>
-DerivedRow scuffingRow(Q key) {
-  return {key, false, [](const KindContext& c, int g) {
+// mesh is rated for it), by the quantity's direction (LANGUAGE.md §15).
+template <double ScuffingRating::*M, Q K>
+DerivedRow scuffingRow() {
+  return {K, false, [](const KindContext& c, int g) {
             return rated(
                 c, g, Side::Any, [](const PairRating& r, int) { return r.scuffing ? r.scuffing.value().*M : kNaN; }, false,
-                Larger ? Worst::Smallest : Worst::Largest);
+                cat::betterOf(K) == cat::Better::Smaller ? Worst::Largest : Worst::Smallest);
           }};
 }
 
@@ -649,15 +649,15 @@ std::vector<DerivedRow> pairRows() {
       gearRow<&G::YRrelT, Side::Bending>(Q::YRrelT),
       gearRow<&G::YX, Side::Bending>(Q::YX),
       gearRow<&G::YM, Side::Contact>(Q::YM),
-      scuffingRow<&ScuffingRating::SB, true>(Q::ScuffingSafety),
-      scuffingRow<&ScuffingRating::SintS, true>(Q::IntegralScuffingSafety),
-      scuffingRow<&ScuffingRating::thetaBmax, false>(Q::ContactTemperature),
-      scuffingRow<&ScuffingRating::thetaInt, false>(Q::IntegralTemperature),
-      scuffingRow<&ScuffingRating::thetaS, true>(Q::ScuffingTemperature),
-      scuffingRow<&ScuffingRating::thetaM, false>(Q::BulkTemperature),
-      scuffingRow<&ScuffingRating::Slambda, true>(Q::MicropittingSafety),
-      scuffingRow<&ScuffingRating::lambdaMin, true>(Q::SpecificFilmThickness),
-      scuffingRow<&ScuffingRating::lambdaGFP, true>(Q::PermissibleFilmThickness),
+      scuffingRow<&ScuffingRating::SB, Q::ScuffingSafety>(),
+      scuffingRow<&ScuffingRating::SintS, Q::IntegralScuffingSafety>(),
+      scuffingRow<&ScuffingRating::thetaBmax, Q::ContactTemperature>(),
+      scuffingRow<&ScuffingRating::thetaInt, Q::IntegralTemperature>(),
+      scuffingRow<&ScuffingRating::thetaS, Q::ScuffingTemperature>(),
+      scuffingRow<&ScuffingRating::thetaM, Q::BulkTemperature>(),
+      scuffingRow<&ScuffingRating::Slambda, Q::MicropittingSafety>(),
+      scuffingRow<&ScuffingRating::lambdaMin, Q::SpecificFilmThickness>(),
+      scuffingRow<&ScuffingRating::lambdaGFP, Q::PermissibleFilmThickness>(),
       gearRow<&G::contactDamage, Side::Contact, true>(Q::ContactDamage),
       gearRow<&G::bendingDamage, Side::Bending, true>(Q::BendingDamage),
   };

@@ -127,8 +127,9 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
                             "the flash temperature and film thickness along the path are implemented for external meshes", true});
     return;
   }
+  // The rating of the stage has the TS's; without it, asking again gives the reason.
   std::string why;
-  auto ts = rating::scuffingOf(in, mr.rating, rating::ScuffingEdition::TS, &why);
+  auto ts = mr.rating.scuffing ? mr.rating.scuffing : rating::scuffingOf(in, mr.rating, rating::ScuffingEdition::TS, &why);
   if (!ts) {
     out.notRated.push_back({out.gears[0], "scuffing and micropitting", why});
     return;
