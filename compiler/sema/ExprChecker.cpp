@@ -63,23 +63,26 @@ bool isPercentUnit(const ast::UnitExpr& u) {
 
 bool isPercentLiteral(const ast::Expr* e) { return e && e->kind == ast::ExprKind::Number && e->unit && isPercentUnit(*e->unit); }
 
+// The SI value of the zero of a literal's own unit (273.15 K for `20 degC`); 0 for any other
+// expression or unit, a compound unit included.
+Number literalZero(const ast::Expr* e) {
+  Number none = Number::exact(units::Rational(0));
+  if (!e || e->kind != ast::ExprKind::Number || !e->unit || e->unit->factors.size() != 1 || e->unit->factors[0].exponent != 1) return none;
+  auto atom = units::lookupAtom(e->unit->factors[0].atom);
+  return atom ? atom->offset : none;
+}
+
 // `-10 degC` is 10 degrees below the unit's zero, not the negated absolute temperature.
 Number negated(const ast::Expr& operand, const Number& si) {
-  Number v = si.neg();
-  if (operand.kind == ast::ExprKind::Number && operand.unit && operand.unit->factors.size() == 1 && operand.unit->factors[0].exponent == 1)
-    if (auto atom = units::lookupAtom(operand.unit->factors[0].atom)) v = v.add(atom->offset.add(atom->offset));
-  return v;
+  Number zero = literalZero(&operand);
+  return zero.isZero() ? si.neg() : si.neg().add(zero.add(zero));
 }
 
 } // namespace
 
 ir::ExprPtr ExprChecker::error(const source::Span& span) { return make(Op::Const, Type::error(), span); }
 
-bool ExprChecker::celsiusLiteral(const ast::Expr* e) {
-  if (!e || e->kind != ast::ExprKind::Number || !e->unit || e->unit->factors.size() != 1 || e->unit->factors[0].exponent != 1) return false;
-  auto atom = units::lookupAtom(e->unit->factors[0].atom);
-  return atom && !atom->offset.isZero();
-}
+bool ExprChecker::celsiusLiteral(const ast::Expr* e) { return !literalZero(e).isZero(); }
 
 ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOverride, bool difference) {
   auto r = units::Rational::parseDecimal(e.text);
