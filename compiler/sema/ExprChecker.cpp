@@ -84,6 +84,14 @@ ir::ExprPtr ExprChecker::error(const source::Span& span) { return make(Op::Const
 
 bool ExprChecker::celsiusLiteral(const ast::Expr* e) { return !literalZero(e).isZero(); }
 
+bool ExprChecker::refuseCelsiusDifference(const ast::Expr* e, const char* what) {
+  if (!celsiusLiteral(e)) return false;
+  diags_.error("E0302", e->span,
+               fmt::format("{} is a temperature difference: write it in K (`{} K`), not `{} {}` (which is {} K above zero)", what, e->text,
+                           e->text, e->unit->text, units::formatDouble(literal(*e)->value.toDouble())));
+  return true;
+}
+
 ir::ExprPtr ExprChecker::literal(const ast::Expr& e, const ast::UnitExpr* unitOverride, bool difference) {
   auto r = units::Rational::parseDecimal(e.text);
   Number v = r ? Number::exact(*r) : Number::approx(std::strtod(e.text.c_str(), nullptr));
@@ -592,12 +600,7 @@ ir::ExprPtr ExprChecker::tolerance(const ast::Expr& e, const Scope& s) {
   auto centre = requireNumber(check(e.args[0].get(), s), "the target of a tolerance");
   auto tol = requireNumber(check(e.args[1].get(), s), "a tolerance");
   if (centre->type.isError() || tol->type.isError()) return error(e.span);
-  if (celsiusLiteral(e.args[1].get())) {
-    diags_.error("E0302", e.args[1]->span,
-                 fmt::format("a tolerance is a temperature difference: write it in K (`{} K`), not `{} {}` (which is {} K above zero)",
-                             e.args[1]->text, e.args[1]->text, e.args[1]->unit->text, units::formatDouble(tol->value.toDouble())));
-    return error(e.span);
-  }
+  if (refuseCelsiusDifference(e.args[1].get(), "a tolerance")) return error(e.span);
   bool relative = isPercentLiteral(e.args[1].get()) || (tol->isConst() && tol->marker == ir::Marker::Percent);
   if (!relative && tol->type.dim != centre->type.dim) {
     diags_.error("E0302", tol->span,

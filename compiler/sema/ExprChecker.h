@@ -41,6 +41,9 @@ public:
   // `20 degC`: a literal on a scale whose zero is not SI's (a Celsius temperature). Such a
   // value can be compared and subtracted, not added, scaled or used as a tolerance or step.
   static bool celsiusLiteral(const ast::Expr* e);
+  // `what` (a tolerance, a step) is a difference: a Celsius literal there is E0302, naming the
+  // K to write; true when it was refused.
+  bool refuseCelsiusDifference(const ast::Expr* e, const char* what);
 
   // Resolves a `let` lazily, so lets may refer to each other in any order.
   void setLetResolver(std::function<ir::Type(const std::string& gearboxLet, const StageModel* stage)> f) {

@@ -135,12 +135,7 @@ std::vector<ir::Tolerance> Analyser::tolerances(const GearboxModel& m, const Sco
       continue;
     }
     tol.dim = a->dim;
-    if (ExprChecker::celsiusLiteral(t->value.get())) {
-      diags_.error("E0302", t->value->span,
-                   fmt::format("a tolerance is a temperature difference: write it in K (`{} K`), not `{} {}`", t->value->text,
-                               t->value->text, t->value->unit->text));
-      continue;
-    }
+    if (checker_.refuseCelsiusDifference(t->value.get(), "a tolerance")) continue;
     auto x = checker_.check(t->value.get(), gs);
     if (x->type.isError()) continue;
     if (!x->isConst() || !x->type.isNumber()) {

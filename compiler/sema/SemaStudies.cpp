@@ -99,10 +99,7 @@ void Analyser::sweepOf(const Stmt& b, const GearboxModel& m, const Scope& gs, co
   out.dim = sweepTarget(b.path, m, &swept);
   auto [lo, hi] = checker_.checkRange(b.lo.get(), b.hi.get(), gs);
   // A step is a difference: it takes the end's unit without that unit's zero (`degC`).
-  if (ExprChecker::celsiusLiteral(b.step.get()))
-    diags_.error("E0302", b.step->span,
-                 fmt::format("a sweep's step is a temperature difference: write it in K (`{} K`), not `{} {}`", b.step->text, b.step->text,
-                             b.step->unit->text));
+  checker_.refuseCelsiusDifference(b.step.get(), "a sweep's step");
   auto step = b.step && b.step->kind == ast::ExprKind::Number && !b.step->unit && b.hi && b.hi->unit
                   ? checker_.literal(*b.step, &*b.hi->unit, true)
                   : checker_.check(b.step.get(), gs);
