@@ -142,8 +142,10 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
     r.offset = offset;
     out.rows.push_back(std::move(r));
   };
+  // An absolute temperature in the report's unit (degC), a rise (theta_flm) in K.
+  const units::DisplayUnit absolute = units::displayUnitFor(units::dims::temperature), rise = units::differenceUnitFor(units::dims::temperature);
   auto temperature = [&](std::string key, double K, std::string method, Row::Minimum min = Row::NoMinimum) {
-    row(std::move(key), K, "degC", 1, std::move(method), min, 273.15);
+    row(std::move(key), K, absolute.name, absolute.scale, std::move(method), min, absolute.offset);
   };
   auto trBeside = [&](double tsValue, double trValue) {
     return std::fabs(trValue / tsValue - 1) > 0.03 ? fmt::format("; ISO/TR 13989: {}", formatNumber(trValue)) : std::string();
@@ -156,13 +158,13 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
   row("X_M", s.XM, "", 1, "thermo-elastic factor, steel");
   row("X_alphabeta", s.XalphaBeta, "", 1, "angle factor");
   row("X_L", s.XL, "", 1, "lubricant factor of the base oil" + trBeside(s.XL, tr->XL));
-  row("theta_flm", s.thetaFlm, "K", 1, "mean flash temperature over the path");
+  row("theta_flm", s.thetaFlm, rise.name, rise.scale, "mean flash temperature over the path");
   temperature("bulk_temperature", s.thetaM, fmt::format("oil + 0.47 X_S X_mp theta_flm, {} lubrication", supply));
   temperature("contact_temperature", s.thetaBmax, fmt::format("largest along the path, at Gamma {}", formatNumber(s.gammaMax)));
   if (s.scuffing) {
     temperature("scuffing_temperature", s.thetaS, fmt::format("FZG A/8.3/90 load stage {}", in.oil->fzgStage) + trBeside(s.thetaS - 273.15, tr->thetaS - 273.15));
     row("scuffing_safety", s.SB, "", 1, "flash temperature, ISO/TS 6336-20" + trBeside(s.SB, tr->SB), Row::Scuffing);
-    row("theta_flaint", s.thetaFlaInt, "K", 1, "mean flash temperature, ISO/TS 6336-21");
+    row("theta_flaint", s.thetaFlaInt, rise.name, rise.scale, "mean flash temperature, ISO/TS 6336-21");
     temperature("integral_temperature", s.thetaInt, "theta_M + 1.5 theta_flaint");
     temperature("integral_scuffing_temperature", s.thetaIntS, fmt::format("FZG load stage {}", in.oil->fzgStage));
     row("integral_scuffing_safety", s.SintS, "", 1, "theta_intS / theta_int in degC, ISO/TS 6336-21", Row::IntegralScuffing);
