@@ -148,8 +148,11 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
                                findAttr(*st.kind, need)->meaning));
   }
   // Scuffing and micropitting read the oil's viscosity line and its temperature.
-  for (const char* test : {"rating.lubricant.fzg_load_stage", "rating.lubricant.micropitting_load_stage"}) {
-    if (!st.findAttr(test)) continue;
+  const char* fzgStage = "rating.lubricant.fzg_load_stage";
+  const char* fvaStage = "rating.lubricant.micropitting_load_stage";
+  bool fzg = st.findAttr(fzgStage), fva = st.findAttr(fvaStage);
+  for (const auto& [test, given] : {std::pair{fzgStage, fzg}, std::pair{fvaStage, fva}}) {
+    if (!given) continue;
     for (const char* need : {"rating.lubricant.viscosity_100", "rating.lubricant.oil_temperature"})
       if (!st.findAttr(need))
         diags_.error("E0225", where,
@@ -157,7 +160,6 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
                                  std::string(need).substr(7), findAttr(*st.kind, need)->meaning));
   }
   // An input only scuffing or micropitting reads, given where neither is rated, does nothing.
-  bool fzg = st.findAttr("rating.lubricant.fzg_load_stage"), fva = st.findAttr("rating.lubricant.micropitting_load_stage");
   const std::pair<const char*, int> only[] = {{"rating.lubricant.viscosity_100", 3},  {"rating.lubricant.oil_temperature", 3},
                                               {"rating.lubricant.density", 3},        {"rating.lubricant.base", 3},
                                               {"rating.lubricant.supply", 3},         {"rating.min_safety.scuffing", 1},
@@ -175,7 +177,7 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
   }
   // Micropitting's pressure-viscosity law is known for mineral and polyalphaolefin oils.
   const Binding* base = st.findAttr("rating.lubricant.base");
-  if (base && base->stmt->value && st.findAttr("rating.lubricant.micropitting_load_stage")) {
+  if (base && base->stmt->value && fva) {
     const auto& words = findAttr(*st.kind, "rating.lubricant.base")->symbols;
     auto it = std::find(words.begin(), words.end(), base->stmt->value->text);
     auto choice = it - words.begin();
