@@ -73,6 +73,56 @@ double lifeFactor(double n, double nStatic, double fStatic, double nKnee, double
 
 } // namespace
 
+double runningIn(double f, Treatment t, double sigmaHlim, double v) { return runInOf(f, t, sigmaHlim, v); }
+
+double lifeFactorOf(double cycles, const LifeCurve& c, bool optimum) {
+  return lifeFactor(cycles, c.nStatic, c.fStatic, c.nKnee, optimum ? 1.0 : 0.85);
+}
+
+FlankFactors flankFactors(double sigmaHlim, double nu40, double v, double Rz, double rhoRed) {
+  FlankFactors f{};
+  double CZL = sigmaHlim < 850 ? 0.83 : sigmaHlim > 1200 ? 0.91 : 0.83 + 0.08 * (sigmaHlim - 850) / 350;
+  f.ZL = CZL + 4 * (1 - CZL) / sq(1.2 + 134 / nu40);
+  double CZv = CZL + 0.02;
+  f.Zv = CZv + 2 * (1 - CZv) / std::sqrt(0.8 + 32 / v);
+  double Rz10 = Rz * std::cbrt(10 / rhoRed);
+  double CZR = sigmaHlim < 850 ? 0.15 : sigmaHlim > 1200 ? 0.08 : 0.32 - 0.0002 * sigmaHlim;
+  f.ZR = std::pow(3 / Rz10, CZR);
+  return f;
+}
+
+RootFactors rootFactors(Treatment tr, double qs, double YS, double RzRoot, double mn, double cycles) {
+  RootFactors o{};
+  double rhoSlip = tr == Treatment::CaseHardened ? 0.0030 : tr == Treatment::Nitrided ? 0.1005 : 0.0064;
+  o.YdeltarelT = (1 + std::sqrt(rhoSlip * (1 + 2 * qs) / 5)) / (1 + std::sqrt(rhoSlip * 1.2));
+  double Rz = RzRoot;
+  bool nitr = tr == Treatment::Nitrided;
+  o.YRrelT = Rz < 1 ? (nitr ? 1.070 : 1.120) : nitr ? 5.306 - 4.203 * std::pow(Rz + 1, 0.01) : 1.674 - 0.529 * std::pow(Rz + 1, 0.1);
+  o.YX = tr == Treatment::ThroughHardened ? std::clamp(1.03 - 0.006 * mn, 0.85, 1.0) : std::clamp(1.05 - 0.01 * mn, 0.8, 1.0);
+  // Below the knee the notch, surface and size factors move toward their static values as
+  // Y_NT does (ISO 6336-3 cl. 12-14): Y_deltarelT to 0.44 Y_S + 0.12 (case hardened),
+  // 0.20 Y_S + 0.60 (nitrided), the through-hardened form at sigma_0.2 = 800 N/mm^2; Y_RrelT
+  // and Y_X to 1.
+  LifeCurve b = bendingCurve(tr);
+  double toward = towardStatic(cycles, b.nStatic, b.nKnee);
+  if (toward > 0) {
+    double q = std::pow(300.0 / 800.0, 0.25);
+    double deltaStatic = tr == Treatment::CaseHardened ? 0.44 * YS + 0.12
+                         : tr == Treatment::Nitrided   ? 0.20 * YS + 0.60
+                                                       : (1 + 0.82 * (YS - 1) * q) / (1 + 0.82 * q);
+    o.YdeltarelT = between(o.YdeltarelT, deltaStatic, toward);
+    o.YRrelT = between(o.YRrelT, 1.0, toward);
+    o.YX = between(o.YX, 1.0, toward);
+  }
+  return o;
+}
+
+FlankFactors flankFactorsAt(const FlankFactors& endurance, double cycles, Treatment t) {
+  LifeCurve c = contactCurve(t);
+  double w = towardStatic(cycles, c.nStatic, c.nKnee);
+  return {between(endurance.ZL, 1.0, w), between(endurance.Zv, 1.0, w), between(endurance.ZR, 1.0, w)};
+}
+
 ToothForm toothForm(double z, double x, double da, double mn, double alphaN, double beta, double epsAlpha, double hfP, double rhoFP) {
   double betaB = std::asin(std::sin(beta) * std::cos(alphaN));
   double zn = z / (sq(std::cos(betaB)) * std::cos(beta));
@@ -392,16 +442,11 @@ Shared sharedFactors(const PairInput& in, const Geometry& g, const PairRating& r
   Shared s{};
   const double sigmaHlim = g.sigmaHlim, ea = r.epsAlpha, eb = r.epsBeta;
   // Lubricant, velocity and roughness factors (clause 11), from the softer flank.
-  double CZL = sigmaHlim < 850 ? 0.83 : sigmaHlim > 1200 ? 0.91 : 0.83 + 0.08 * (sigmaHlim - 850) / 350;
-  double nu40 = in.nu40 * 1e6;  // mm^2/s
-  s.ZL = CZL + 4 * (1 - CZL) / sq(1.2 + 134 / nu40);
-  double CZv = CZL + 0.02;
-  s.Zv = CZv + 2 * (1 - CZv) / std::sqrt(0.8 + 32 / r.v);
   double rho1 = 0.5 * g.db1 * std::tan(g.awt), rho2 = 0.5 * g.db2 * std::tan(g.awt);
-  double rhoRed = rho1 * rho2 / (rho1 + rho2);
-  double Rz10 = in.RzFlank * 1e6 * std::cbrt(10 / rhoRed);
-  double CZR = sigmaHlim < 850 ? 0.15 : sigmaHlim > 1200 ? 0.08 : 0.32 - 0.0002 * sigmaHlim;
-  s.ZR = std::pow(3 / Rz10, CZR);
+  FlankFactors f = flankFactors(sigmaHlim, in.nu40 * 1e6, r.v, in.RzFlank * 1e6, rho1 * rho2 / (rho1 + rho2));
+  s.ZL = f.ZL;
+  s.Zv = f.Zv;
+  s.ZR = f.ZR;
   s.ZBD = singlePairFactors(g, r);
   s.Ybeta = 1 - std::min(eb, 1.0) * std::min(g.beta * 180 / kPi, 30.0) / 120;
   double epsAn = ea / sq(std::cos(g.betaB));
@@ -414,10 +459,8 @@ Shared sharedFactors(const PairInput& in, const Geometry& g, const PairRating& r
 
 // Life factors Z_NT and Y_NT, ISO 6336-2 Table 2 and ISO 6336-3 Table 3.
 void lifeFactors(const PairInput& in, Treatment t, GearRating& o) {
-  double end = in.optimumLife ? 1.0 : 0.85;
-  LifeCurve c = contactCurve(t), b = bendingCurve(t);
-  o.ZNT = lifeFactor(o.cycles, c.nStatic, c.fStatic, c.nKnee, end);
-  o.YNT = lifeFactor(o.cycles, b.nStatic, b.fStatic, b.nKnee, end);
+  o.ZNT = lifeFactorOf(o.cycles, contactCurve(t), in.optimumLife);
+  o.YNT = lifeFactorOf(o.cycles, bendingCurve(t), in.optimumLife);
 }
 
 // Z_W of ISO 6336-2 (2006) cl. 13: a through-hardened gear meshing with a surface-hardened
@@ -436,11 +479,10 @@ double workHardening(const PairInput& in, int i) {
 void rateFlank(const PairInput& in, const PairRating& r, const Shared& s, int i, GearRating& o) {
   const auto& gi = in.gear[static_cast<size_t>(i)];
   // Below the knee Z_L, Z_v and Z_R move toward their static value 1 as Z_NT does.
-  LifeCurve c = contactCurve(treatmentOf(in, i));
-  double t = towardStatic(o.cycles, c.nStatic, c.nKnee);
-  o.ZL = between(s.ZL, 1.0, t);
-  o.Zv = between(s.Zv, 1.0, t);
-  o.ZR = between(s.ZR, 1.0, t);
+  FlankFactors f = flankFactorsAt({s.ZL, s.Zv, s.ZR}, o.cycles, treatmentOf(in, i));
+  o.ZL = f.ZL;
+  o.Zv = f.Zv;
+  o.ZR = f.ZR;
   o.ZW = workHardening(in, i);
   o.ZX = 1;
   o.ZBD = s.ZBD[static_cast<size_t>(i)];
@@ -465,29 +507,10 @@ void rateRoot(const PairInput& in, const Geometry& g, const PairRating& r, const
   o.Ybeta = s.Ybeta;
   o.YB = 1;
   o.YDT = s.YDT;
-  double qs = t.sFn / (2 * t.rhoF);
-  const Treatment tr = treatmentOf(in, i);
-  double rhoSlip = tr == Treatment::CaseHardened ? 0.0030 : tr == Treatment::Nitrided ? 0.1005 : 0.0064;
-  o.YdeltarelT = (1 + std::sqrt(rhoSlip * (1 + 2 * qs) / 5)) / (1 + std::sqrt(rhoSlip * 1.2));
-  double Rz = in.RzRoot * 1e6;
-  bool nitr = tr == Treatment::Nitrided;
-  o.YRrelT = Rz < 1 ? (nitr ? 1.070 : 1.120) : nitr ? 5.306 - 4.203 * std::pow(Rz + 1, 0.01) : 1.674 - 0.529 * std::pow(Rz + 1, 0.1);
-  o.YX = tr == Treatment::ThroughHardened ? std::clamp(1.03 - 0.006 * mn, 0.85, 1.0) : std::clamp(1.05 - 0.01 * mn, 0.8, 1.0);
-  // Below the knee the notch, surface and size factors move toward their static values as
-  // Y_NT does (ISO 6336-3 cl. 12-14): Y_deltarelT to 0.44 Y_S + 0.12 (case hardened),
-  // 0.20 Y_S + 0.60 (nitrided), the through-hardened form at sigma_0.2 = 800 N/mm^2; Y_RrelT
-  // and Y_X to 1.
-  LifeCurve b = bendingCurve(tr);
-  double toward = towardStatic(o.cycles, b.nStatic, b.nKnee);
-  if (toward > 0) {
-    double q = std::pow(300.0 / 800.0, 0.25);
-    double deltaStatic = tr == Treatment::CaseHardened ? 0.44 * t.YS + 0.12
-                         : tr == Treatment::Nitrided   ? 0.20 * t.YS + 0.60
-                                                       : (1 + 0.82 * (t.YS - 1) * q) / (1 + 0.82 * q);
-    o.YdeltarelT = between(o.YdeltarelT, deltaStatic, toward);
-    o.YRrelT = between(o.YRrelT, 1.0, toward);
-    o.YX = between(o.YX, 1.0, toward);
-  }
+  RootFactors rf = rootFactors(treatmentOf(in, i), t.sFn / (2 * t.rhoF), t.YS, in.RzRoot * 1e6, mn, o.cycles);
+  o.YdeltarelT = rf.YdeltarelT;
+  o.YRrelT = rf.YRrelT;
+  o.YX = rf.YX;
   o.YM = gi.YM;
   o.sigmaF0 = r.Ft / (g.b * mn) * o.YF * o.YS * o.Ybeta * o.YB * o.YDT;
   o.sigmaF = o.sigmaF0 * s.KF;

@@ -104,6 +104,27 @@ struct LifeCurve {
 LifeCurve contactCurve(Treatment t);
 LifeCurve bendingCurve(Treatment t);
 
+// The material and lubrication factors ISO 10300 takes from ISO 6336 (the standards' units:
+// N/mm^2, mm^2/s, m/s, um, mm). Life factor Z_NT or Y_NT on a life curve ("normal" ends at
+// 0.85 at 10^10 cycles, "optimum" at 1).
+double lifeFactorOf(double cycles, const LifeCurve& c, bool optimum);
+// The running-in allowance of a deviation f [um] on a flank of this treatment (y_alpha, y_p).
+double runningIn(double f, Treatment t, double sigmaHlim, double v);
+// Z_L, Z_v, Z_R at endurance from the softer flank's sigma_Hlim, nu40, the pitch-line
+// velocity, the mean flank Rz and the relative radius of curvature; then at a gear's cycles
+// (below the knee they move toward 1 as Z_NT does).
+struct FlankFactors {
+  double ZL, Zv, ZR;
+};
+FlankFactors flankFactors(double sigmaHlim, double nu40, double v, double Rz, double rhoRed);
+FlankFactors flankFactorsAt(const FlankFactors& endurance, double cycles, Treatment t);
+// Y_deltarelT (method B, from the notch parameter q_s), Y_RrelT and Y_X (from the module) at
+// a gear's cycles.
+struct RootFactors {
+  double YdeltarelT, YRrelT, YX;
+};
+RootFactors rootFactors(Treatment t, double qs, double YS, double RzRoot, double mn, double cycles);
+
 // ISO 6336-3 method B for one external gear of the pair: the critical section (30-degree
 // tangent) of the fillet the basic rack generates, the load at the outer point of single
 // pair contact. Lengths in mm, angles in rad.
