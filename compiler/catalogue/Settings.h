@@ -91,6 +91,10 @@ inline constexpr int Coupling = 0, Free = 1;
 namespace faceLoad {
 inline constexpr int ContactAnalysis = 0;
 }
+// How a bevel pair is mounted (ISO 10300-1 K_Hbeta-be): straddle or cantilever bearings.
+namespace mounting {
+inline constexpr int BothStraddle = 0, OneCantilever = 1, BothCantilever = 2;
+}
 
 // Install choices of a split, by their position in the `install` row's words.
 namespace install {

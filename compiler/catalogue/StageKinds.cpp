@@ -183,6 +183,107 @@ std::vector<AttrSpec> ratingGearQuantities() {
   };
 }
 
+// Bevel stages (LANGUAGE.md §18): the ISO 23509 geometry the rating needs, the ISO 10300
+// rating inputs that apply to bevel gears, and the quantities the rating computes.
+std::vector<AttrSpec> bevelStageAttrs() {
+  std::vector<AttrSpec> a = {
+      pos("outer_cone_distance", length, "outer cone distance R_e (else from face_width and face_ratio, or from mean_normal_module)"),
+      derived("mean_cone_distance", length, "mean cone distance R_m = R_e - b/2"),
+      bounded(pos("coast_pressure_angle", angle, "normal pressure angle of the coast flank (default: the drive flank's)"), deg(10), deg(35)),
+      pos("cutter_radius", length, "cutter radius r_c0 (reported with the geometry; method B1 does not read it)"),
+      bounded(in("offset", length, "hypoid offset a; only 0: the rating of hypoid gears (ISO 10300 with offset) is not implemented"), num(0), num(0)),
+      derived("virtual_eps_alpha", none, "transverse contact ratio of the virtual cylindrical gears eps_valpha"),
+      derived("virtual_eps_beta", none, "face contact ratio of the virtual cylindrical gears eps_vbeta"),
+      derived("virtual_contact_ratio", none, "total contact ratio of the virtual cylindrical gears eps_vgamma"),
+      derived("tangential_force", force, "nominal tangential force at the mean diameter F_mt"),
+      derived("pitch_line_velocity", velocity, "pitch-line velocity at the mean diameter v_mt"),
+  };
+  for (auto& r : ratingInputs()) {
+    // What ISO 10300 method B1 reads of the `rating` block; scuffing, micropitting, mesh load
+    // sharing and the cylindrical rack's root radius belong to ISO 6336.
+    switch (r.key) {
+    case Q::RatingApplicationFactor:
+    case Q::RatingLife:
+    case Q::RatingLifeCurve:
+    case Q::RatingViscosity40:
+    case Q::RatingRoughnessFlank:
+    case Q::RatingRoughnessRoot:
+    case Q::RatingRoughnessFlankRz:
+    case Q::RatingRoughnessRootRz:
+    case Q::RatingRackAddendum:
+    case Q::RatingRackDedendum:
+    case Q::RatingTransverseLoadFactor:
+    case Q::RatingMinContact:
+    case Q::RatingMinBending: a.push_back(r); break;
+    case Q::RatingFaceLoadFactor:
+    case Q::RatingDynamicFactor:
+      r.symbols.clear();
+      r.sceneRef = false;
+      r.meaning = r.key == Q::RatingDynamicFactor ? "dynamic factor K_v, given (ISO 10300-1 method B when absent)"
+                                                  : "face load factor K_Hbeta, given (K_Hbeta-C from the mounting when absent)";
+      a.push_back(r);
+      break;
+    default: break;
+    }
+  }
+  a.push_back(symbol("rating.mounting", {"both_straddle", "one_cantilever", "both_cantilever"},
+                     "bearing arrangement of the pair (default both_straddle): K_Hbeta-be of ISO 10300-1"));
+  a.push_back(bounded(pos("rating.contact_pattern", none, "effective face width over face width b_eff/b, checked under light load (default 0.85)"),
+                      num(85, 100), num(1)));
+  for (auto& q : std::vector<AttrSpec>{
+           derived("K_v", none, "dynamic factor (ISO 10300-1 method B)"),
+           derived("K_Hbeta", none, "face load factor for contact stress K_Hbeta-C"),
+           derived("K_Fbeta", none, "face load factor for tooth root stress"),
+           derived("K_Halpha", none, "transverse load factor for contact stress (method B)"),
+           derived("K_Falpha", none, "transverse load factor for tooth root stress (method B)"),
+           derived("Z_MB", none, "mid-zone factor Z_M-B"),
+           derived("Z_LS", none, "load sharing factor for contact stress"),
+           derived("Z_E", none, "elasticity factor, as a number in sqrt(N/mm^2)"),
+           derived("Z_beta", none, "spiral angle factor for contact stress"),
+           derived("Y_eps", none, "contact ratio factor for bending"),
+           derived("Y_LS", none, "load sharing factor for bending"),
+           derived("Y_BS", none, "bevel spiral angle factor"),
+       })
+    a.push_back(q);
+  return a;
+}
+
+std::vector<AttrSpec> bevelGearAttrs() {
+  auto own = material();
+  own.meaning = "this gear's material, where it differs from the stage's `material`";
+  std::vector<AttrSpec> g = {
+      in("shift", none, "mean profile shift coefficient x_hm (the wheel's is usually the pinion's negative)"),
+      in("thickness_modification", none, "thickness modification coefficient x_sm"),
+      pos("tool_edge_radius", length, "edge radius of the cutter blade rho_a0 (default 0.2 m_mn)"),
+      pos("pitch_deviation", length, "single pitch deviation f_pt"),
+      own,
+      derived("mean_diameter", length, "mean pitch diameter d_m"),
+      derived("outer_pitch_diameter", length, "outer pitch diameter d_e"),
+      derived("mean_addendum", length, "mean addendum h_am"),
+      derived("mean_dedendum", length, "mean dedendum h_fm"),
+      derived("virtual_z", none, "tooth count of the virtual cylindrical gear z_v = z / cos(delta)"),
+      derived("contact_safety", none, "safety factor for contact stress S_H"),
+      derived("bending_safety", none, "safety factor for bending stress S_F"),
+      derived("contact_stress", pressure, "contact stress sigma_H"),
+      derived("bending_stress", pressure, "tooth root stress sigma_F"),
+      derived("permissible_contact_stress", pressure, "permissible contact stress sigma_HP"),
+      derived("permissible_bending_stress", pressure, "permissible bending stress sigma_FP"),
+      derived("Z_NT", none, "life factor for contact stress"),
+      derived("Z_L", none, "lubricant factor"),
+      derived("Z_v", none, "velocity factor"),
+      derived("Z_R", none, "roughness factor for contact stress"),
+      derived("Z_W", none, "work hardening factor"),
+      derived("Z_X", none, "size factor for contact stress"),
+      derived("Y_Fa", none, "tooth form factor for load at the tip"),
+      derived("Y_Sa", none, "stress correction factor for load at the tip"),
+      derived("Y_NT", none, "life factor for tooth root stress"),
+      derived("Y_deltarelT", none, "relative notch sensitivity factor"),
+      derived("Y_RrelT", none, "relative surface factor"),
+      derived("Y_X", none, "size factor for tooth root stress"),
+  };
+  return g;
+}
+
 std::vector<KindSpec> buildKinds() {
   std::vector<KindSpec> k;
   auto cylStage = [](bool helical) {
@@ -234,12 +335,13 @@ std::vector<KindSpec> buildKinds() {
         count("blade_groups", "cutter blade groups (face hobbing)"),
         pos("mean_normal_module", length, "mean normal module"),
         pos("face_width", length, "face width"),
-        withDefault(pos("pressure_angle", angle, "normal pressure angle"), deg(20)),
+        withDefault(pos("pressure_angle", angle, "normal pressure angle (the drive flank's)"), deg(20)),
         material(),
         accuracyRow(),
         derived("mmn_b", none, "mean normal module over face width (DOMAIN.md §1)"),
     };
     for (auto& d : commonDerived()) a.push_back(d);
+    for (auto& r : bevelStageAttrs()) a.push_back(r);
     std::vector<AttrSpec> g = {
         required(count("z", "tooth count")),
         derived("cone_angle", angle, "pitch cone angle"),
@@ -247,6 +349,7 @@ std::vector<KindSpec> buildKinds() {
         derived("torque", torque, "transmitted torque"),
         pos("inertia", inertia, "mass moment of inertia about the gear axis"),
     };
+    for (auto& r : bevelGearAttrs()) g.push_back(r);
     k.push_back({ir::StageKind::Bevel, "bevel", {"pinion", "wheel"}, a, g});
   }
   {

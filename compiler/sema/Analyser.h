@@ -119,6 +119,7 @@ private:
   // ---- SemaRatings.cpp: ratings and what they need ----------------------------------------------
   void ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen);
   void ratingInputs(const StageModel& st, Span where);
+  void bevelRatingInputs(const StageModel& st, Span where);
   void requireMaterial(const ir::Gearbox& g, const GearboxModel& m);
   void requireRating(const ir::Gearbox& g, const GearboxModel& m);
   void sceneFactors(const ir::Gearbox& g);

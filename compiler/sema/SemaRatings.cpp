@@ -138,6 +138,32 @@ std::vector<ir::SpectrumBin> Analyser::spectrumBins(const StageModel& st) {
   return out;
 }
 
+// A rated bevel stage (ISO 10300 method B1) needs its size (an outer cone distance, or a mean
+// normal module, and a face width or face ratio) and each gear's single pitch deviation.
+void Analyser::bevelRatingInputs(const StageModel& st, Span where) {
+  bool re = st.findAttr("outer_cone_distance"), mmn = st.findAttr("mean_normal_module"), b = st.findAttr("face_width"),
+       ratio = st.findAttr("face_ratio");
+  if (!re && !mmn)
+    diags_.error("E0225", where,
+                 fmt::format("bevel stage `{}` is rated but gives neither `outer_cone_distance` nor `mean_normal_module`: the rating needs "
+                             "the size of the gears",
+                             st.name));
+  if (!b && !(ratio && re))
+    diags_.error("E0225", where,
+                 fmt::format("bevel stage `{}` is rated but gives no `face_width` (nor `face_ratio` with `outer_cone_distance`)", st.name));
+  if (!b && !re && ratio && mmn)
+    diags_.error("E0225", where,
+                 fmt::format("bevel stage `{}` gives `face_ratio` and `mean_normal_module`: give `face_width` or `outer_cone_distance` too, "
+                             "from which the other follows",
+                             st.name));
+  for (const auto& g : st.kind->gears)
+    if (!st.findAttr(g + ".pitch_deviation"))
+      diags_.error("E0225", where,
+                   fmt::format("bevel stage `{}` is rated but does not give `{}.pitch_deviation` (the single pitch deviation f_pt that "
+                               "K_v and K_Halpha read)",
+                               st.name, g));
+}
+
 // A rated stage needs its service life and a material with the ISO 6336-5 numbers.
 void Analyser::ratingInputs(const StageModel& st, Span where) {
   for (const char* need : {"rating.life", "rating.lubricant.viscosity_40", "rating.roughness.flank", "rating.roughness.root"}) {
@@ -187,11 +213,15 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
                                "6336-22 gives it for mineral and polyalphaolefin oils)",
                                st.name, *it));
   }
-  bool plainModule = st.kind->kind == ir::StageKind::Idler || st.kind->kind == ir::StageKind::Planetary;
-  for (const char* need : {plainModule ? "module" : "normal_module", "face_width"})
-    if (!st.findAttr(need))
-      diags_.error("E0225", where, fmt::format("stage `{}` is rated but does not give `{}` ({})", st.name, need, findAttr(*st.kind, need)->meaning));
-  if (!st.findAttr("accuracy")) {
+  if (st.kind->kind == ir::StageKind::Bevel) {
+    bevelRatingInputs(st, where);
+  } else {
+    bool plainModule = st.kind->kind == ir::StageKind::Idler || st.kind->kind == ir::StageKind::Planetary;
+    for (const char* need : {plainModule ? "module" : "normal_module", "face_width"})
+      if (!st.findAttr(need))
+        diags_.error("E0225", where, fmt::format("stage `{}` is rated but does not give `{}` ({})", st.name, need, findAttr(*st.kind, need)->meaning));
+  }
+  if (st.kind->kind != ir::StageKind::Bevel && !st.findAttr("accuracy")) {
     std::vector<std::string> missing;
     // f_falpha may come from the total `profile_deviation` the loaded mesh reads too.
     const std::pair<const char*, const char*> devs[] = {

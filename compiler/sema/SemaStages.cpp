@@ -80,7 +80,8 @@ std::string Analyser::asWritten(const ast::Expr* v, const ir::Expr& x) {
 bool Analyser::outsideLimits(const AttrSpec& spec, const std::string& name, const ir::Expr& x, const ast::Expr* v) {
   if (!((spec.atLeast && x.value.compare(*spec.atLeast) < 0) || (spec.atMost && x.value.compare(*spec.atMost) > 0)))
     return false;
-  std::string range = spec.atLeast && spec.atMost ? fmt::format("between {} and {}", units::showQuantity(*spec.atLeast, spec.dim),
+  std::string range = spec.atLeast && spec.atMost && spec.atLeast->compare(*spec.atMost) == 0 ? units::showQuantity(*spec.atLeast, spec.dim)
+                      : spec.atLeast && spec.atMost ? fmt::format("between {} and {}", units::showQuantity(*spec.atLeast, spec.dim),
                                                                 units::showQuantity(*spec.atMost, spec.dim))
                       : spec.atLeast ? fmt::format("at least {}", units::showQuantity(*spec.atLeast, spec.dim))
                                      : fmt::format("at most {}", units::showQuantity(*spec.atMost, spec.dim));

@@ -118,6 +118,40 @@ Lead lead(const KindContext& c) {
   return out;
 }
 
+} // namespace
+
+std::optional<std::array<GearMaterial, 2>> materialsOf(const KindContext& c, int g0, int g1, std::string* why) {
+  auto fail = [&](std::string s) -> std::optional<std::array<GearMaterial, 2>> {
+    if (why) *why = std::move(s);
+    return std::nullopt;
+  };
+  const Model& m = c.ev.model();
+  std::array<GearMaterial, 2> out{};
+  // Each gear's material: its own (`pinion.material`), else the stage's.
+  for (int slot = 0; slot < 2; ++slot) {
+    const ir::Material* mat = m.material(c.stage, slot == 0 ? g0 : g1);
+    if (!mat) return fail("the stage names no material");
+    auto prop = [&](Q k) -> const ir::Setting* { return ir::findSetting(mat->properties, k); };
+    for (Q k : {Q::SigmaHlim, Q::SigmaFlim, Q::YoungsModulus, Q::Poisson, Q::Density})
+      if (!prop(k) || !prop(k)->value) return fail("material `" + mat->name + "` does not give " + std::string(cat::keyName(k)));
+    const ir::Setting* t = prop(Q::Treatment);
+    if (!t || t->choice < 0) return fail("material `" + mat->name + "` does not give its treatment");
+    GearMaterial& g = out[static_cast<size_t>(slot)];
+    g.treatment = t->choice == cat::treatment::Nitrided          ? Treatment::Nitrided
+                  : t->choice == cat::treatment::ThroughHardened ? Treatment::ThroughHardened
+                                                                 : Treatment::CaseHardened;
+    g.sigmaHlim = prop(Q::SigmaHlim)->value->toDouble();
+    g.sigmaFlim = prop(Q::SigmaFlim)->value->toDouble();
+    g.E = prop(Q::YoungsModulus)->value->toDouble();
+    g.nu = prop(Q::Poisson)->value->toDouble();
+    g.density = prop(Q::Density)->value->toDouble();
+    if (const ir::Setting* hb = prop(Q::BrinellHardness); hb && hb->value) g.brinell = hb->value->toDouble();
+  }
+  return out;
+}
+
+namespace {
+
 // The inputs that do not vary with the design; nullopt when one the rating needs is missing.
 std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std::string* why) {
   auto fail = [&](std::string s) -> std::optional<PairInput> {
@@ -126,33 +160,23 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
   };
   const Model& m = c.ev.model();
   PairInput in;
-  // Each gear's material: its own (`pinion.material`), else the stage's.
-  for (int slot = 0; slot < 2; ++slot) {
-    const ir::Material* mat = m.material(c.stage, slot == 0 ? mesh.g0 : mesh.g1);
-    if (!mat) return fail("the stage names no material");
-    auto prop = [&](Q k) -> const ir::Setting* { return ir::findSetting(mat->properties, k); };
-    for (Q k : {Q::SigmaHlim, Q::SigmaFlim, Q::YoungsModulus, Q::Poisson, Q::Density})
-      if (!prop(k) || !prop(k)->value) return fail("material `" + mat->name + "` does not give " + std::string(cat::keyName(k)));
-    const ir::Setting* t = prop(Q::Treatment);
-    if (!t || t->choice < 0) return fail("material `" + mat->name + "` does not give its treatment");
-    Treatment tr = t->choice == cat::treatment::Nitrided          ? Treatment::Nitrided
-                   : t->choice == cat::treatment::ThroughHardened ? Treatment::ThroughHardened
-                                                                  : Treatment::CaseHardened;
-    GearInput& g = in.gear[static_cast<size_t>(slot)];
-    g.sigmaHlim = prop(Q::SigmaHlim)->value->toDouble();
-    g.sigmaFlim = prop(Q::SigmaFlim)->value->toDouble();
-    g.treatment = tr;
-    g.E = prop(Q::YoungsModulus)->value->toDouble();
-    g.nu = prop(Q::Poisson)->value->toDouble();
-    if (const ir::Setting* hb = prop(Q::BrinellHardness); hb && hb->value) g.brinell = hb->value->toDouble();
-    if (slot == 0) {
-      // The pair's own values are the driving gear's (the blank masses of K_v share its density).
-      in.treatment = tr;
-      in.E = g.E;
-      in.nu = g.nu;
-      in.density = prop(Q::Density)->value->toDouble();
-    }
+  auto mats = materialsOf(c, mesh.g0, mesh.g1, why);
+  if (!mats) return std::nullopt;
+  for (size_t slot = 0; slot < 2; ++slot) {
+    const GearMaterial& gm = (*mats)[slot];
+    GearInput& g = in.gear[slot];
+    g.sigmaHlim = gm.sigmaHlim;
+    g.sigmaFlim = gm.sigmaFlim;
+    g.treatment = gm.treatment;
+    g.E = gm.E;
+    g.nu = gm.nu;
+    g.brinell = gm.brinell;
   }
+  // The pair's own values are the driving gear's (the blank masses of K_v share its density).
+  in.treatment = (*mats)[0].treatment;
+  in.E = (*mats)[0].E;
+  in.nu = (*mats)[0].nu;
+  in.density = (*mats)[0].density;
   auto num = [&](Q k, double dflt) {
     Value v = c.at(k);
     return v.isNumber() ? v.mid() : dflt;

@@ -18,6 +18,14 @@ namespace gbx::rt::rating {
 
 std::vector<DerivedRow> pairRows();
 
+// What the rating reads of a gear's material (its own, else the stage's), SI.
+struct GearMaterial {
+  double sigmaHlim = 0, sigmaFlim = 0, E = 0, nu = 0, density = 0, brinell = kNaN;
+  Treatment treatment = Treatment::CaseHardened;
+};
+// The materials of two gears of the stage; nullopt, with the reason, when one lacks a number.
+std::optional<std::array<GearMaterial, 2>> materialsOf(const KindContext& c, int g0, int g1, std::string* why);
+
 // One mesh of a stage rated: its driving and driven gear's positions in the stage.
 struct MeshRating {
   int driving, driven;

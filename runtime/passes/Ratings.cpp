@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "model/BevelRows.h"
 #include "model/Evaluator.h"
 #include "model/RatingRows.h"
 #include "units/Unit.h"
@@ -199,29 +200,25 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
   }
 }
 
-// The governing side: the smallest safety relative to its minimum.
-void governs(const PairRating& r, double minH, double minF, RatingReport& out) {
+// The governing side: the smallest safety relative to its minimum, a gear's (contact,
+// bending) or the mesh's (scuffing, micropitting).
+void governs(RatingReport& out) {
+  using Row = RatingReport::Row;
   double worst = 1e300;
-  for (size_t g = 0; g < 2; ++g)
-    for (bool contact : {true, false}) {
-      double s = contact ? r.gear[g].SH : r.gear[g].SF, min = contact ? minH : minF;
-      if (!std::isfinite(s)) continue;  // an internal gear's root: said below
-      if (s / min < worst) {
-        worst = s / min;
-        out.governs = fmt::format("{} of the {}: {} {} against {}{}", contact ? "contact" : "bending", out.gears[g],
-                                  contact ? "S_H" : "S_F", formatNumber(s), formatNumber(min), s < min ? " (below the minimum)" : "");
-      }
-    }
-  // Scuffing and micropitting are the mesh's.
   for (const auto& row : out.rows) {
-    if (row.minimum != RatingReport::Row::Scuffing && row.minimum != RatingReport::Row::IntegralScuffing &&
-        row.minimum != RatingReport::Row::Micropitting)
-      continue;
+    if (row.minimum == Row::NoMinimum) continue;
     double min = out.minimumOf(row.minimum);
-    double s = row.si[0];
-    if (std::isfinite(s) && s / min < worst) {
+    for (size_t g = 0; g < row.si.size(); ++g) {
+      double s = row.si[g];
+      if (!std::isfinite(s) || s / min >= worst) continue;  // an internal gear's root: said below
       worst = s / min;
-      out.governs = fmt::format("{} of the mesh: {} against {}{}", row.key, formatNumber(s), formatNumber(min), s < min ? " (below the minimum)" : "");
+      const char* below = s < min ? " (below the minimum)" : "";
+      bool contact = row.minimum == Row::Contact;
+      if (row.perGear && (contact || row.minimum == Row::Bending))
+        out.governs = fmt::format("{} of the {}: {} {} against {}{}", contact ? "contact" : "bending", out.gears[g], contact ? "S_H" : "S_F",
+                                  formatNumber(s), formatNumber(min), below);
+      else
+        out.governs = fmt::format("{} of the mesh: {} against {}{}", row.key, formatNumber(s), formatNumber(min), below);
     }
   }
   out.governingRatio = worst;
@@ -330,7 +327,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   gear("bending_safety", &GearRating::SF, units::dims::none, Row::Bending);
   spectrumRows(r, contactRow, out);
   scuffingRows(mr, out);
-  governs(r, minH, minF, out);
+  governs(out);
   modelNotes(mr, out);
   if (mr.internal)
     out.notRated.push_back({out.gears[1], "tooth root", "ISO 6336-3 for internal gears is not implemented (its flank is rated)", true});
@@ -338,6 +335,102 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   if (mr.internal) out.note = fmt::format("the {}'s tooth root is not rated (ISO 6336-3 for internal gears is not implemented)", out.gears[1]);
   if (mr.internal && in.oil)
     out.note += "; nor its scuffing and micropitting (the flash temperature and film along the path are implemented for external meshes)";
+  return out;
+}
+
+// The rating table of a bevel pair (ISO 10300 method B1): the cone, the virtual cylindrical
+// gears, every factor and each safety against its minimum.
+RatingReport bevelTable(const ir::Stage& st, const rating::BevelStageRating& br) {
+  using rating::BevelGearRating;
+  const rating::BevelRating& r = br.rating;
+  const rating::BevelInput& in = br.input;
+  RatingReport out;
+  out.stage = st.name;
+  out.standard = "ISO 10300";
+  out.gears = {st.gears[0], st.gears[1]};
+  out.minContact = in.SHmin;
+  out.minBending = in.SFmin;
+  out.kvRange = rangeName(r.kvRange);
+  using Row = RatingReport::Row;
+  using namespace units::dims;
+  auto mesh = [&](std::string key, double v, std::string method, const units::Dim& d = units::dims::none) {
+    auto u = units::displayUnitFor(d);
+    std::string label = key;
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, false, {v}, Row::Plain, Row::NoMinimum, std::move(method)});
+  };
+  auto gear = [&](std::string key, double BevelGearRating::*m, std::string method, const units::Dim& d = units::dims::none,
+                  Row::Minimum min = Row::NoMinimum, Row::Format f = Row::Plain) {
+    auto u = units::displayUnitFor(d);
+    std::string label = key;
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, true, {r.gear[0].*m, r.gear[1].*m}, f, min, std::move(method)});
+  };
+  mesh("outer_cone_distance", r.Re, std::isfinite(in.Re) ? "given" : "from the mean normal module", length);
+  mesh("mean_cone_distance", r.Rm, "R_e - b/2", length);
+  mesh("face_width", r.b, std::isfinite(in.b) ? "given" : "face_ratio R_e", length);
+  mesh("effective_face_width", r.bEff, "contact_pattern b", length);
+  mesh("mean_normal_module", r.mmn, "from the cone: d_m1 cos(beta_m) / z1", length);
+  gear("cone_angle", &BevelGearRating::cone, "ISO 23509", angle);
+  gear("mean_diameter", &BevelGearRating::dm, "2 R_m sin(delta)", length);
+  gear("mean_addendum", &BevelGearRating::ham, "m_mn (k_hap + x_hm)", length);
+  gear("mean_dedendum", &BevelGearRating::hfm, "m_mn (k_hfp - x_hm)", length);
+  gear("virtual_diameter", &BevelGearRating::dv, "d_m / cos(delta)", length);
+  gear("virtual_tip_diameter", &BevelGearRating::dva, "d_v + 2 h_am", length);
+  gear("virtual_z", &BevelGearRating::zv, "z / cos(delta)");
+  gear("virtual_z_normal", &BevelGearRating::zvn, "z_v / (cos^2(beta_vb) cos(beta_m))");
+  mesh("virtual_eps_alpha", r.epsVa, "virtual cylindrical gears");
+  mesh("virtual_eps_beta", r.epsVb, "b_eff sin(beta_m) / (pi m_mn)");
+  mesh("virtual_contact_ratio", r.epsVg, "eps_valpha + eps_vbeta");
+  mesh("relative_curvature_radius", r.rhoRel, "at the pitch point, normal to the contact line", length);
+  mesh("middle_contact_line", r.lbm, "l_bm in the zone of action, reduced to the contact pattern", length);
+  mesh("tangential_force", r.Ft, "F_mt at the mean diameter", force);
+  mesh("pitch_line_velocity", r.v, "v_mt at the mean diameter", velocity);
+  mesh("resonance_ratio", r.N, fmt::format("n1 / n_E1 (n_E1 {} rpm)", formatNumber(r.nE1)));
+  mesh("K_A", in.KA, "application_factor");
+  mesh("K_v", r.Kv, std::isfinite(in.KvGiven) ? std::string("given") : fmt::format("method B, {}", rangeName(r.kvRange)));
+  static const char* mountings[] = {"both members straddle mounted", "one member cantilever mounted", "both members cantilever mounted"};
+  mesh("K_Hbeta", r.KHbeta,
+       std::isfinite(in.KHbetaGiven) ? std::string("given")
+                                     : fmt::format("K_Hbeta-C = 1.5 K_Hbeta-be, {} ({})", formatNumber(r.KHbetaBe), mountings[static_cast<int>(in.mounting)]));
+  mesh("K_Fbeta", r.KFbeta, fmt::format("K_Hbeta / K_F0, K_F0 {}", formatNumber(r.KF0)));
+  std::string alpha = std::isfinite(in.KHalphaGiven) ? "given" : "method B";
+  mesh("K_Halpha", r.KHalpha, alpha);
+  mesh("K_Falpha", r.KFalpha, alpha);
+  mesh("Z_MB", r.ZMB, "mid-zone factor");
+  mesh("Z_LS", r.ZLS, "load sharing over the tip, middle and root contact lines");
+  mesh("Z_E", r.ZE, "from E, nu of both gears");
+  mesh("Z_beta", r.Zbeta, "method B1: the spiral angle is in the contact lines");
+  mesh("Z_K", r.ZK, "bevel gear factor on the permissible stress (ISO 10300-2:2023)");
+  mesh("nominal_contact_stress", r.sigmaH0, "sqrt(F_n / (l_bm rho_rel)) Z_MB Z_LS Z_E", pressure);
+  gear("load_cycles", &BevelGearRating::cycles, "over the life", units::dims::none, Row::NoMinimum, Row::Count);
+  std::string curve = in.optimumLife ? "optimum" : "normal";
+  gear("Z_NT", &BevelGearRating::ZNT, fmt::format("{} curve", curve));
+  gear("Z_L", &BevelGearRating::ZL, "as ISO 6336-2");
+  gear("Z_v", &BevelGearRating::Zv, "as ISO 6336-2, at v_mt");
+  gear("Z_R", &BevelGearRating::ZR, "as ISO 6336-2, at rho_rel");
+  gear("Z_W", &BevelGearRating::ZW, "work hardening");
+  gear("Z_X", &BevelGearRating::ZX, "1");
+  gear("contact_stress", &BevelGearRating::sigmaH, "sigma_H0 sqrt(K_A K_v K_Hbeta K_Halpha)", pressure);
+  gear("permissible_contact_stress", &BevelGearRating::sigmaHP, "sigma_Hlim Z_NT Z_X Z_L Z_v Z_R Z_W Z_K / S_Hmin", pressure);
+  gear("contact_safety", &BevelGearRating::SH, "sigma_HP S_Hmin / sigma_H", units::dims::none, Row::Contact);
+  gear("Y_Fa", &BevelGearRating::YFa, "method B1, 30 deg tangent, load at the tip");
+  gear("Y_Sa", &BevelGearRating::YSa, "method B1");
+  mesh("Y_eps", r.Yeps, "from eps_valpha, eps_vbeta");
+  mesh("Y_LS", r.YLS, "Z_LS^2");
+  mesh("Y_BS", r.YBS, "bevel spiral angle factor");
+  gear("Y_NT", &BevelGearRating::YNT, fmt::format("{} curve", curve));
+  gear("Y_deltarelT", &BevelGearRating::YdeltarelT, "as ISO 6336-3 method B");
+  gear("Y_RrelT", &BevelGearRating::YRrelT, "as ISO 6336-3 method B");
+  gear("Y_X", &BevelGearRating::YX, "as ISO 6336-3, from m_mn");
+  gear("bending_stress", &BevelGearRating::sigmaF, "F_mt/(b m_mn) Y_Fa Y_Sa Y_eps Y_BS Y_LS K_A K_v K_Fbeta K_Falpha", pressure);
+  gear("permissible_bending_stress", &BevelGearRating::sigmaFP, "2 sigma_Flim Y_NT Y_deltarelT Y_RrelT Y_X / S_Fmin", pressure);
+  gear("bending_safety", &BevelGearRating::SF, "sigma_FP S_Fmin / sigma_F", units::dims::none, Row::Bending);
+  governs(out);
+  out.model.push_back(fmt::format("K_v method B: c_gamma {} N/(mm um), reduced mass at the mean point {} kg/mm, f_pt {} um less running-in "
+                                  "{} um",
+                                  formatNumber(r.cgamma), formatNumber(r.mred), formatNumber(std::max(in.gear[0].fpt, in.gear[1].fpt) * 1e6),
+                                  formatNumber(r.yAlpha)));
+  if (r.epsVa < 1.1)
+    out.warnings.push_back(fmt::format("eps_valpha = {}: little transverse overlap of the virtual gears", formatNumber(r.epsVa)));
   return out;
 }
 
@@ -351,6 +444,23 @@ Ratings ratings(const Model& m, const Assignment& best) {
     if (!m.attribute(static_cast<int>(s), Q::RatingLife)) continue;
     KindContext c{ev, static_cast<int>(s), best};
     std::string why;
+    if (st.kind == ir::StageKind::Bevel) {
+      auto br = rating::rateBevelStage(c, &why);
+      if (!br) {
+        RatingReport failed;
+        failed.stage = st.name;
+        failed.standard = "ISO 10300";
+        failed.error = why;
+        result.errors.push_back(fmt::format("stage `{}` cannot be rated: {}", st.name, why));
+        result.ratings.push_back(std::move(failed));
+        continue;
+      }
+      result.ratings.push_back(bevelTable(st, *br));
+      for (const auto& row : result.ratings.back().rows)
+        for (double v : row.si)
+          if (std::isnan(v)) result.errors.push_back(fmt::format("stage `{}`: the rating's `{}` is not a number at design 1", st.name, row.key));
+      continue;
+    }
     auto meshes = rating::rateStage(c, &why);
     if (meshes.empty()) {
       RatingReport failed;

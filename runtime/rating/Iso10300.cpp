@@ -254,16 +254,6 @@ double workHardening(const BevelInput& in, int i) {
 void rateGear(const BevelInput& in, const Pair& p, const BevelRating& r, const FlankFactors& flank, int i, BevelGearRating& o) {
   const auto& gi = in.gear[static_cast<size_t>(i)];
   const Treatment t = treatmentOf(in, i);
-  o.cone = p.delta[i];
-  o.dm = p.dm[i] * 1e-3;
-  o.de = p.de[i] * 1e-3;
-  o.ham = p.ham[i] * 1e-3;
-  o.hfm = p.hfm[i] * 1e-3;
-  o.dv = p.dv[i] * 1e-3;
-  o.dva = p.dva[i] * 1e-3;
-  o.dvb = p.dvb[i] * 1e-3;
-  o.zv = p.zv[i];
-  o.zvn = p.zvn[i];
   o.cycles = gi.speed / (2 * kPi) * in.life;
   o.ZNT = lifeFactorOf(o.cycles, contactCurve(t), in.optimumLife);
   o.YNT = lifeFactorOf(o.cycles, bendingCurve(t), in.optimumLife);
@@ -298,8 +288,9 @@ void rateGear(const BevelInput& in, const Pair& p, const BevelRating& r, const F
 
 } // namespace
 
-BevelRating rateBevel(const BevelInput& in) {
-  const Pair p = pairOf(in);
+namespace {
+
+BevelRating geometryOf(const Pair& p) {
   BevelRating r{};
   r.Re = p.Re * 1e-3;
   r.Rm = p.Rm * 1e-3;
@@ -316,6 +307,35 @@ BevelRating rateBevel(const BevelInput& in) {
   r.epsVb = p.epsVb;
   r.epsVg = p.epsVg;
   r.rhoRel = p.rhoRel * 1e-3;
+  for (int i = 0; i < 2; ++i) {
+    BevelGearRating& o = r.gear[static_cast<size_t>(i)];
+    o.cone = p.delta[i];
+    o.dm = p.dm[i] * 1e-3;
+    o.de = p.de[i] * 1e-3;
+    o.ham = p.ham[i] * 1e-3;
+    o.hfm = p.hfm[i] * 1e-3;
+    o.dv = p.dv[i] * 1e-3;
+    o.dva = p.dva[i] * 1e-3;
+    o.dvb = p.dvb[i] * 1e-3;
+    o.zv = p.zv[i];
+    o.zvn = p.zvn[i];
+  }
+  return r;
+}
+
+} // namespace
+
+BevelRating bevelGeometry(const BevelInput& in) {
+  const Pair p = pairOf(in);
+  BevelRating r = geometryOf(p);
+  r.Ft = 2000 * in.torque1 / p.dm[0];
+  r.v = in.gear[0].speed * p.dm[0] * 1e-3 / 2;
+  return r;
+}
+
+BevelRating rateBevel(const BevelInput& in) {
+  const Pair p = pairOf(in);
+  BevelRating r = geometryOf(p);
   r.Ft = 2000 * in.torque1 / p.dm[0];
   r.Fn = r.Ft / (std::cos(in.alphaN) * std::cos(in.betaM));
   r.v = in.gear[0].speed * p.dm[0] * 1e-3 / 2;

@@ -76,5 +76,8 @@ struct BevelRating {
 // Every factor and both safeties of the pair. Throws std::domain_error with a sentence when
 // the geometry admits no rating.
 BevelRating rateBevel(const BevelInput& in);
+// The geometry alone (the cone, the virtual gears and their contact ratios) and the nominal
+// load F_mt and speed v_mt, for a stage that is not rated: the rest of the rating is zero.
+BevelRating bevelGeometry(const BevelInput& in);
 
 } // namespace gbx::rt::rating

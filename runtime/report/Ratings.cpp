@@ -24,7 +24,7 @@ std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{:.10g
 } // namespace
 
 std::vector<std::string> ratingHeader(const RatingReport& r) {
-  std::vector<std::string> h = {"ISO 6336"};
+  std::vector<std::string> h = {r.standard};
   for (const auto& g : r.gears) h.push_back(g);
   h.push_back("minimum");
   h.push_back("method");

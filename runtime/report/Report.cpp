@@ -118,7 +118,7 @@ std::string textModification(const ModifyReport& md) {
 }
 
 std::string textRating(const RatingReport& r) {
-  std::string o = fmt::format("  rating {}{} (design 1), ISO 6336-1/-2/-3\n", r.stage, r.mesh.empty() ? "" : ", mesh " + r.mesh);
+  std::string o = fmt::format("  rating {}{} (design 1), {}-1/-2/-3\n", r.stage, r.mesh.empty() ? "" : ", mesh " + r.mesh, r.standard);
   if (r.error.empty()) {
     auto rows = ratingRows(r);
     rows.insert(rows.begin(), ratingHeader(r));
@@ -486,7 +486,7 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       o += table({"target", "value", "rule", "when", "inputs"}, mr);
     }
     for (const auto& r : g.ratings) {
-      o += heading(3, "Rating of " + r.stage + (r.mesh.empty() ? "" : ", mesh " + r.mesh) + " (ISO 6336)");
+      o += heading(3, "Rating of " + r.stage + (r.mesh.empty() ? "" : ", mesh " + r.mesh) + " (" + r.standard + ")");
       if (r.error.empty()) o += table(ratingHeader(r), ratingRows(r));
       o += para(ratingVerdict(r));
       if (auto notes = ratingNotes(r); !notes.empty()) o += list(notes);

@@ -172,6 +172,7 @@ struct ModifyReport {
 // safeties against their minimums, and which one governs.
 struct RatingReport {
   std::string stage;
+  std::string standard = "ISO 6336";  // ISO 10300 for a bevel pair
   std::string mesh;       // "driver-idler" when the stage has several meshes, else ""
   std::vector<std::string> gears;
   struct Row {

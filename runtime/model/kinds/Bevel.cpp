@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "catalogue/StageKinds.h"
+#include "model/BevelRows.h"
 #include "model/Evaluator.h"
 #include "model/StageKind.h"
 
@@ -35,6 +36,8 @@ std::vector<DerivedRow> rows() {
        }},
   };
   r.insert(r.end(), own.begin(), own.end());
+  auto rating = rating::bevelRows();
+  r.insert(r.end(), rating.begin(), rating.end());
   return r;
 }
 
