@@ -187,7 +187,11 @@ std::vector<AttrSpec> ratingGearQuantities() {
 // rating inputs that apply to bevel gears, and the quantities the rating computes.
 std::vector<AttrSpec> bevelStageAttrs() {
   std::vector<AttrSpec> a = {
-      pos("outer_cone_distance", length, "outer cone distance R_e (else from face_width and face_ratio, or from mean_normal_module)"),
+      [] {
+        auto a = pos("outer_cone_distance", length, "outer cone distance R_e (else from face_width and face_ratio, or from mean_normal_module)");
+        a.role = AttrRole::Either;
+        return a;
+      }(),
       derived("mean_cone_distance", length, "mean cone distance R_m = R_e - b/2"),
       bounded(pos("coast_pressure_angle", angle, "normal pressure angle of the coast flank (default: the drive flank's)"), deg(10), deg(35)),
       pos("cutter_radius", length, "cutter radius r_c0 (reported with the geometry; method B1 does not read it)"),
@@ -333,13 +337,14 @@ std::vector<KindSpec> buildKinds() {
         pos("face_ratio", none, "face width over outer cone distance b/Re"),
         withDefault(pos("shaft_angle", angle, "shaft angle"), deg(90)),
         count("blade_groups", "cutter blade groups (face hobbing)"),
-        pos("mean_normal_module", length, "mean normal module"),
-        pos("face_width", length, "face width"),
+        pos("mean_normal_module", length, "mean normal module (else from the outer cone distance)"),
+        pos("face_width", length, "face width (else face_ratio times the outer cone distance)"),
         withDefault(pos("pressure_angle", angle, "normal pressure angle (the drive flank's)"), deg(20)),
         material(),
         accuracyRow(),
         derived("mmn_b", none, "mean normal module over face width (DOMAIN.md §1)"),
     };
+    a[4].role = a[5].role = AttrRole::Either;
     for (auto& d : commonDerived()) a.push_back(d);
     for (auto& r : bevelStageAttrs()) a.push_back(r);
     std::vector<AttrSpec> g = {

@@ -22,7 +22,7 @@ constexpr double kAbsent = -1;  // an optional positive input left out (corner v
 enum In { Z1, Z2, X1, X2, Xs1, Xs2, Rho1, Rho2, Fpt1, Fpt2, Beta, AlphaN, Coast, Shaft, Re, Mmn, B, Ratio, Cutter, T1, N1, N2, Count };
 
 Value optional(const KindContext& c, int gear, Q k) {
-  Value v = c.at(gear, k);
+  Value v = givenOnly(c, gear, k);
   return v.isNumber() ? v : Value::number(kAbsent);
 }
 
@@ -197,6 +197,10 @@ std::vector<DerivedRow> bevelRows() {
   using R = BevelRating;
   using G = BevelGearRating;
   return {
+      // Given, or from the rest of the cone (an absent attribute reads its row).
+      stageRow<&R::Re, Geometry>(Q::OuterConeDistance),
+      stageRow<&R::mmn, Geometry>(Q::MeanNormalModule),
+      stageRow<&R::b, Geometry>(Q::FaceWidth),
       stageRow<&R::Rm, Geometry>(Q::MeanConeDistance),
       stageRow<&R::epsVa, Geometry>(Q::VirtualEpsAlpha),
       stageRow<&R::epsVb, Geometry>(Q::VirtualEpsBeta),

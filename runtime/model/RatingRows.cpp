@@ -21,13 +21,6 @@ using V = std::vector<double>;
 
 constexpr double kAbsent = -1;  // an optional input left out (corner values must be numbers)
 
-// A value the spec gives (fixed, chosen or free), not the one a kind derives when absent.
-Value givenOnly(const KindContext& c, int gear, Q k) {
-  const auto& en = c.ev.model().info(c.stage).entry(gear, k);
-  if (!en.attr && en.slot < 0 && en.freedom < 0 && !c.ev.overrides(c.stage, gear, k)) return Value::invalid();
-  return c.at(gear, k);
-}
-
 double num2(const KindContext& c, int gear, Q k, double dflt) {
   Value v = c.at(gear, k);
   return v.isNumber() ? v.mid() : dflt;
@@ -119,6 +112,12 @@ Lead lead(const KindContext& c) {
 }
 
 } // namespace
+
+Value givenOnly(const KindContext& c, int gear, Q k) {
+  const auto& en = c.ev.model().info(c.stage).entry(gear, k);
+  if (!en.attr && en.slot < 0 && en.freedom < 0 && !c.ev.overrides(c.stage, gear, k)) return Value::invalid();
+  return c.at(gear, k);
+}
 
 std::optional<std::array<GearMaterial, 2>> materialsOf(const KindContext& c, int g0, int g1, std::string* why) {
   auto fail = [&](std::string s) -> std::optional<std::array<GearMaterial, 2>> {

@@ -18,6 +18,9 @@ namespace gbx::rt::rating {
 
 std::vector<DerivedRow> pairRows();
 
+// A value the spec gives (fixed, chosen or free), not the one a kind derives when absent.
+Value givenOnly(const KindContext& c, int gear, Q k);
+
 // What the rating reads of a gear's material (its own, else the stage's), SI.
 struct GearMaterial {
   double sigmaHlim = 0, sigmaFlim = 0, E = 0, nu = 0, density = 0, brinell = kNaN;

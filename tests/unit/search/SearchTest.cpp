@@ -119,6 +119,15 @@ TEST(Search, ThrusterTwoStageReproducesTheCorrectedCounts) {
   auto p = twoStageOrbits(pinned);
   for (auto [w1, p1, w2, p2] : std::vector<std::array<long long, 4>>{{31, 11, 37, 18}, {32, 13, 33, 14}, {37, 12, 32, 17}, {34, 13, 31, 14}})
     EXPECT_TRUE(p.count(orbitOf(p1, w1, p2, w2))) << w1 << "/" << p1 << " " << w2 << "/" << p2;
+
+  // Rated by ISO 10300: 37/12*32/17 puts its 12-tooth pinion in the lower stage whichever way
+  // its wheels go, and its contact safety there is below 1.15.
+  auto rated = solveText(spec("thruster_two_stage.gbx"), "ThrusterTwoStageRated");
+  EXPECT_EQ(rated.result.count, 3u);
+  auto r = twoStageOrbits(rated);
+  for (auto [w1, p1, w2, p2] : std::vector<std::array<long long, 4>>{{31, 11, 37, 18}, {32, 13, 33, 14}, {34, 13, 31, 14}})
+    EXPECT_TRUE(r.count(orbitOf(p1, w1, p2, w2))) << w1 << "/" << p1 << " " << w2 << "/" << p2;
+  EXPECT_FALSE(r.count(orbitOf(12, 37, 17, 32)));
 }
 
 TEST(Search, ElectricCylinder) {
