@@ -334,7 +334,7 @@ std::vector<KindSpec> buildKinds() {
   {
     std::vector<AttrSpec> a = {
         in("spiral_angle", angle, "mean spiral angle beta_m"),
-        pos("face_ratio", none, "face width over outer cone distance b/Re"),
+        pos("face_ratio", none, "face width over outer cone distance b/Re (else from both)"),
         withDefault(pos("shaft_angle", angle, "shaft angle"), deg(90)),
         count("blade_groups", "cutter blade groups (face hobbing)"),
         pos("mean_normal_module", length, "mean normal module (else from the outer cone distance)"),
@@ -344,7 +344,7 @@ std::vector<KindSpec> buildKinds() {
         accuracyRow(),
         derived("mmn_b", none, "mean normal module over face width (DOMAIN.md §1)"),
     };
-    a[4].role = a[5].role = AttrRole::Either;
+    a[1].role = a[4].role = a[5].role = AttrRole::Either;
     for (auto& d : commonDerived()) a.push_back(d);
     for (auto& r : bevelStageAttrs()) a.push_back(r);
     std::vector<AttrSpec> g = {

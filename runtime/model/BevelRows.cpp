@@ -201,6 +201,8 @@ std::vector<DerivedRow> bevelRows() {
       stageRow<&R::Re, Geometry>(Q::OuterConeDistance),
       stageRow<&R::mmn, Geometry>(Q::MeanNormalModule),
       stageRow<&R::b, Geometry>(Q::FaceWidth),
+      {Q::FaceRatio, false,
+       [](const KindContext& c, int g) { return value(c, g, [](const BevelRating& r, int) { return r.b / r.Re; }, Geometry); }},
       stageRow<&R::Rm, Geometry>(Q::MeanConeDistance),
       stageRow<&R::epsVa, Geometry>(Q::VirtualEpsAlpha),
       stageRow<&R::epsVb, Geometry>(Q::VirtualEpsBeta),

@@ -110,7 +110,8 @@ std::string ratingJson(const RatingReport& r) {
     for (size_t i = 0; i < r.model.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", diag::jsonEscape(r.model[i]));
     o += "]";
   }
-  o += fmt::format(", \"governs\": \"{}\", \"governing_ratio\": {}, \"K_v_range\": \"{}\"}}", r.governs, jsonNumber(r.governingRatio), r.kvRange);
+  o += fmt::format(", \"governs\": \"{}\", \"governing_ratio\": {}, \"K_v_range\": \"{}\", \"standard\": \"{}\"}}", r.governs,
+                   jsonNumber(r.governingRatio), r.kvRange, r.standard);
   return o;
 }
 

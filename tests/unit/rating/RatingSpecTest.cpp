@@ -4,6 +4,8 @@
 
 #include "Specs.h"
 
+#include "catalogue/Settings.h"
+#include "catalogue/StageKinds.h"
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 #include "model/RatingRows.h"
@@ -209,4 +211,63 @@ gearbox I { stage t: idler { driver.z = 19; idler.z = 60; driven.z = 23; module 
   EXPECT_DOUBLE_EQ(q("t.micropitting_safety"), std::min(s[0].Slambda, s[1].Slambda));
   // The idler meshes twice: X_mp 1.5 heats both meshes' bulk above a single pair's.
   EXPECT_GT(s[0].thetaM, 343.15);
+}
+
+// ISO/TR 10300-30 Sample 1 written as LANGUAGE.md §18 writes a bevel stage: the published
+// values through the language (BevelRatingTest holds the rest of the table).
+TEST(RatingSpec, BevelSampleOneThroughTheLanguage) {
+  auto c = driver::compileText("iso_tr_10300_sample1.gbx", readSpec("iso_tr_10300_sample1.gbx"));
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  auto f = fixed(c, "Sample1");
+  ASSERT_TRUE(f.model);
+  rt::Evaluator ev(*f.model);
+  auto q = [&](const char* path) {
+    rt::Value v = ev.quantity(path, *f.design);
+    EXPECT_TRUE(v.isPoint()) << path;
+    return v.lo;
+  };
+  EXPECT_NEAR(q("upper.K_v"), 1.020, 5e-4);
+  EXPECT_NEAR(q("upper.K_Hbeta"), 1.650, 5e-4);
+  EXPECT_NEAR(q("upper.K_Halpha"), 1.161, 5e-4);
+  EXPECT_NEAR(q("upper.Z_MB"), 0.916, 5e-4);
+  EXPECT_NEAR(q("upper.virtual_contact_ratio"), 2.392, 5e-4);
+  EXPECT_NEAR(q("upper.pinion.virtual_z"), 14.875, 5e-4);
+  EXPECT_NEAR(q("upper.pinion.permissible_contact_stress") * 1e-6, 1617.8, 0.05);
+  EXPECT_NEAR(q("upper.pinion.contact_safety") / 0.944, 1, 0.0015);  // Z_LS 0.12 % (BevelRatingTest)
+  EXPECT_NEAR(q("upper.pinion.bending_safety") / 1.385, 1, 0.0015);
+  EXPECT_NEAR(q("upper.wheel.bending_safety") / 1.328, 1, 0.0015);
+  // Given beside the cone distance, the mean normal module reads as written; the rating takes
+  // the cone's 3.2133 mm, which it must agree with to 0.5 %.
+  EXPECT_DOUBLE_EQ(q("upper.mean_normal_module") * 1e3, 3.213);
+}
+
+// A bevel stage without a rating block computes its geometry and load; every quantity that
+// then has no value is one the catalogue calls a rating quantity (so that sema asks for the
+// `rating` block, the search tests it last, and a report says which rating refused it).
+TEST(RatingSpec, WhatABevelStageCannotComputeUnratedIsARatingQuantity) {
+  std::string text = readSpec("iso_tr_10300_sample1.gbx");
+  auto from = text.find("    rating {"), to = text.find("  operating");
+  ASSERT_NE(from, std::string::npos);
+  text = text.substr(0, from) + "  }\n" + text.substr(to);
+  text = text.substr(0, text.find("  report {")) + "}\n";
+  auto c = driver::compileText("unrated.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  auto f = fixed(c, "Sample1");
+  ASSERT_TRUE(f.model);
+  rt::Evaluator ev(*f.model);
+  const cat::KindSpec* bevel = nullptr;
+  for (const auto& k : cat::stageKinds())
+    if (k.kind == ir::StageKind::Bevel) bevel = &k;
+  ASSERT_TRUE(bevel);
+  int rated = 0;
+  auto check = [&](const cat::AttrSpec& a, const std::string& path) {
+    if (a.role == cat::AttrRole::Input || a.value != cat::ValueKind::Number) return;
+    bool value = ev.quantity(path, *f.design).isNumber();
+    EXPECT_EQ(!value, cat::isRatingQuantity(a.key)) << path << (value ? " computes unrated but is called a rating quantity"
+                                                                       : " needs the rating but is not called a rating quantity");
+    rated += value ? 0 : 1;
+  };
+  for (const auto& a : bevel->stage) check(a, "upper." + a.name);
+  for (const auto& a : bevel->gear) check(a, "upper.pinion." + a.name);
+  EXPECT_GT(rated, 20);
 }
