@@ -176,7 +176,10 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
   // Scuffing and micropitting read the oil's viscosity line and its temperature.
   const char* fzgStage = "rating.lubricant.fzg_load_stage";
   const char* fvaStage = "rating.lubricant.micropitting_load_stage";
-  bool fzg = st.findAttr(fzgStage), fva = st.findAttr(fvaStage);
+  // A kind without them (bevel: ISO/TS 10300-20 is not implemented) has its own message
+  // for each such input, as an attribute it does not take.
+  bool oil = findAttr(*st.kind, fzgStage);
+  bool fzg = oil && st.findAttr(fzgStage), fva = oil && st.findAttr(fvaStage);
   for (const auto& [test, given] : {std::pair{fzgStage, fzg}, std::pair{fvaStage, fva}}) {
     if (!given) continue;
     for (const char* need : {"rating.lubricant.viscosity_100", "rating.lubricant.oil_temperature"})
@@ -193,7 +196,7 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
   for (const auto& [name, uses] : only) {
     const Binding* b = st.findAttr(name);
     bool used = ((uses & 1) && fzg) || ((uses & 2) && fva);
-    if (b && !used)
+    if (b && !used && oil)
       diags_.warning("W0502", b->stmt->path.span,
                      fmt::format("`{}` of stage `{}` does nothing: it is read by {} only, and the oil gives no {}", std::string(name).substr(7),
                                  st.name, uses == 1 ? "scuffing" : uses == 2 ? "micropitting" : "scuffing and micropitting",
