@@ -192,30 +192,30 @@ namespace gbx::cat {
   X(BulkTemperature, "bulk_temperature")                                                        \
   X(MicropittingSafety, "micropitting_safety")                                                  \
   X(SpecificFilmThickness, "specific_film_thickness")                                           \
-  X(PermissibleFilmThickness, "permissible_film_thickness")                                           \
-  X(OuterConeDistance, "outer_cone_distance")                                                         \
-  X(MeanConeDistance, "mean_cone_distance")                                                           \
-  X(CoastPressureAngle, "coast_pressure_angle")                                                       \
-  X(CutterRadius, "cutter_radius")                                                                    \
-  X(HypoidOffset, "offset")                                                                           \
-  X(ThicknessModification, "thickness_modification")                                                  \
-  X(ToolEdgeRadius, "tool_edge_radius")                                                               \
-  X(MeanDiameter, "mean_diameter")                                                                    \
-  X(OuterPitchDiameter, "outer_pitch_diameter")                                                       \
-  X(MeanAddendum, "mean_addendum")                                                                    \
-  X(MeanDedendum, "mean_dedendum")                                                                    \
-  X(VirtualZ, "virtual_z")                                                                            \
-  X(VirtualEpsAlpha, "virtual_eps_alpha")                                                             \
-  X(VirtualEpsBeta, "virtual_eps_beta")                                                               \
-  X(VirtualContactRatio, "virtual_contact_ratio")                                                     \
-  X(ZMB, "Z_MB")                                                                                      \
-  X(ZLS, "Z_LS")                                                                                      \
-  X(Yeps, "Y_eps")                                                                                    \
-  X(YLS, "Y_LS")                                                                                      \
-  X(YBS, "Y_BS")                                                                                      \
-  X(YFa, "Y_Fa")                                                                                      \
-  X(YSa, "Y_Sa")                                                                                      \
-  X(RatingMounting, "rating.mounting")                                                                \
+  X(PermissibleFilmThickness, "permissible_film_thickness")                                     \
+  X(OuterConeDistance, "outer_cone_distance")                                                   \
+  X(MeanConeDistance, "mean_cone_distance")                                                     \
+  X(CoastPressureAngle, "coast_pressure_angle")                                                 \
+  X(CutterRadius, "cutter_radius")                                                              \
+  X(HypoidOffset, "offset")                                                                     \
+  X(ThicknessModification, "thickness_modification")                                            \
+  X(ToolEdgeRadius, "tool_edge_radius")                                                         \
+  X(MeanDiameter, "mean_diameter")                                                              \
+  X(OuterPitchDiameter, "outer_pitch_diameter")                                                 \
+  X(MeanAddendum, "mean_addendum")                                                              \
+  X(MeanDedendum, "mean_dedendum")                                                              \
+  X(VirtualZ, "virtual_z")                                                                      \
+  X(VirtualEpsAlpha, "virtual_eps_alpha")                                                       \
+  X(VirtualEpsBeta, "virtual_eps_beta")                                                         \
+  X(VirtualContactRatio, "virtual_contact_ratio")                                               \
+  X(ZMB, "Z_MB")                                                                                \
+  X(ZLS, "Z_LS")                                                                                \
+  X(Yeps, "Y_eps")                                                                              \
+  X(YLS, "Y_LS")                                                                                \
+  X(YBS, "Y_BS")                                                                                \
+  X(YFa, "Y_Fa")                                                                                \
+  X(YSa, "Y_Sa")                                                                                \
+  X(RatingMounting, "rating.mounting")                                                          \
   X(RatingContactPattern, "rating.contact_pattern")
 
 enum class Q : std::uint8_t {

