@@ -411,7 +411,10 @@ RatingReport bevelTable(const ir::Stage& st, const rating::BevelStageRating& br)
   gear("Z_X", &BevelGearRating::ZX, "1");
   gear("contact_stress", &BevelGearRating::sigmaH, "sigma_H0 sqrt(K_A K_v K_Hbeta K_Halpha)", pressure);
   gear("permissible_contact_stress", &BevelGearRating::sigmaHP, "sigma_Hlim Z_NT Z_X Z_L Z_v Z_R Z_W Z_K / S_Hmin", pressure);
-  gear("contact_safety", &BevelGearRating::SH, "sigma_HP S_Hmin / sigma_H", units::dims::none, Row::Contact);
+  gear("contact_safety", &BevelGearRating::SH,
+       fmt::format("sigma_HP S_Hmin / sigma_H; ISO 10300-2:2014 (no Z_K): {}, {}", formatNumber(r.gear[0].SH / r.ZK),
+                   formatNumber(r.gear[1].SH / r.ZK)),
+       units::dims::none, Row::Contact);
   gear("Y_Fa", &BevelGearRating::YFa, "method B1, 30 deg tangent, load at the tip");
   gear("Y_Sa", &BevelGearRating::YSa, "method B1");
   mesh("Y_eps", r.Yeps, "from eps_valpha, eps_vbeta");

@@ -26,7 +26,7 @@ struct Pair {
 };
 
 // The size of the pair: R_e given, else from the mean normal module; b given, else b/R_e.
-void size(const BevelInput& in, Pair& p) {
+void size(const BevelInput& in, Pair& p, bool strict) {
   double z1 = in.gear[0].z;
   bool haveB = std::isfinite(in.b);
   if (std::isfinite(in.Re)) {
@@ -49,18 +49,20 @@ void size(const BevelInput& in, Pair& p) {
   p.mmn = p.mmt * std::cos(in.betaM);
   // A face ratio given beside the face width must be the one they make with the cone distance
   // (the search's m_mn/b window reads the ratio, the rating the width).
-  if (haveB && std::isfinite(in.faceRatio) && std::fabs(p.b / p.Re / in.faceRatio - 1) > 0.005)
+  if (strict && haveB && std::isfinite(in.faceRatio) && std::fabs(p.b / p.Re / in.faceRatio - 1) > 0.005)
     throw std::domain_error(fmt::format("the face ratio {:.4g} disagrees with the {:.4g} the face width {:.4g} mm and outer cone distance "
                                         "{:.4g} mm make",
                                         in.faceRatio, p.b / p.Re, p.b, p.Re));
   // A mean normal module given beside the cone distance must be the one the cone gives.
-  if (std::isfinite(in.mmn) && std::isfinite(in.Re) && std::fabs(in.mmn * 1e3 / p.mmn - 1) > 0.005)
+  if (strict && std::isfinite(in.mmn) && std::isfinite(in.Re) && std::fabs(in.mmn * 1e3 / p.mmn - 1) > 0.005)
     throw std::domain_error(fmt::format("the mean normal module {:.4g} mm disagrees with the {:.4g} mm the outer cone distance, face width, "
                                         "spiral angle {:.4g} deg and tooth counts give",
                                         in.mmn * 1e3, p.mmn, in.betaM * 180 / kPi));
 }
 
-Pair pairOf(const BevelInput& in) {
+// `strict`: the rating's checks of what the spec over-determines (the geometry quantities read
+// the cone as the cone distance and face width make it; the rating refuses a disagreement).
+Pair pairOf(const BevelInput& in, bool strict = true) {
   Pair p{};
   double z1 = in.gear[0].z, z2 = in.gear[1].z;
   if (!(z1 > 0 && z2 > 0)) throw std::domain_error("the rating needs positive tooth counts");
@@ -73,13 +75,13 @@ Pair pairOf(const BevelInput& in) {
       throw std::domain_error(fmt::format("the {}'s pitch cone angle is {:.3f} deg: method B1's virtual cylindrical gears need cone angles "
                                           "below 90 deg (a smaller shaft angle or ratio)",
                                           i ? "wheel" : "pinion", p.delta[i] * 180 / kPi));
-  if (std::isfinite(in.alphaNCoast) && std::fabs(in.alphaNCoast - in.alphaN) > 1e-9)
+  if (strict && std::isfinite(in.alphaNCoast) && std::fabs(in.alphaNCoast - in.alphaN) > 1e-9)
     throw std::domain_error(fmt::format("the coast flank's pressure angle {:.4g} deg differs from the drive flank's {:.4g} deg: the rating of "
                                         "bevel gears with unequal flank angles is not implemented",
                                         in.alphaNCoast * 180 / kPi, in.alphaN * 180 / kPi));
   p.betaM = in.betaM;
   p.alphaN = in.alphaN;
-  size(in, p);
+  size(in, p, strict);
   p.bEff = in.contactPattern * p.b;
   for (int i = 0; i < 2; ++i) {
     double x = in.gear[static_cast<size_t>(i)].xhm;
@@ -354,7 +356,7 @@ BevelRating geometryOf(const Pair& p) {
 } // namespace
 
 BevelRating bevelGeometry(const BevelInput& in) {
-  const Pair p = pairOf(in);
+  const Pair p = pairOf(in, false);
   BevelRating r = geometryOf(p);
   r.Ft = 2000 * in.torque1 / p.dm[0];
   r.v = in.gear[0].speed * p.dm[0] * 1e-3 / 2;
