@@ -106,20 +106,7 @@ std::optional<BevelInput> fixedInputs(const KindContext& c, std::string* why) {
   BevelInput in = geometryInputs(c);
   auto mats = materialsOf(c, Pinion, Wheel, why);
   if (!mats) return std::nullopt;
-  for (size_t k = 0; k < 2; ++k) {
-    const GearMaterial& m = (*mats)[k];
-    BevelGearInput& g = in.gear[k];
-    g.sigmaHlim = m.sigmaHlim;
-    g.sigmaFlim = m.sigmaFlim;
-    g.treatment = m.treatment;
-    g.E = m.E;
-    g.nu = m.nu;
-    g.brinell = m.brinell;
-  }
-  in.treatment = (*mats)[0].treatment;
-  in.E = (*mats)[0].E;
-  in.nu = (*mats)[0].nu;
-  in.density = (*mats)[0].density;
+  applyMaterials(in, *mats);
   in.life = num(c, Q::RatingLife, kNaN);
   in.nu40 = num(c, Q::RatingViscosity40, kNaN);
   if (!std::isfinite(in.life)) return fail("its rating gives no `life`");

@@ -161,21 +161,7 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
   PairInput in;
   auto mats = materialsOf(c, mesh.g0, mesh.g1, why);
   if (!mats) return std::nullopt;
-  for (size_t slot = 0; slot < 2; ++slot) {
-    const GearMaterial& gm = (*mats)[slot];
-    GearInput& g = in.gear[slot];
-    g.sigmaHlim = gm.sigmaHlim;
-    g.sigmaFlim = gm.sigmaFlim;
-    g.treatment = gm.treatment;
-    g.E = gm.E;
-    g.nu = gm.nu;
-    g.brinell = gm.brinell;
-  }
-  // The pair's own values are the driving gear's (the blank masses of K_v share its density).
-  in.treatment = (*mats)[0].treatment;
-  in.E = (*mats)[0].E;
-  in.nu = (*mats)[0].nu;
-  in.density = (*mats)[0].density;
+  applyMaterials(in, *mats);
   auto num = [&](Q k, double dflt) {
     Value v = c.at(k);
     return v.isNumber() ? v.mid() : dflt;

@@ -29,6 +29,26 @@ struct GearMaterial {
 // The materials of two gears of the stage; nullopt, with the reason, when one lacks a number.
 std::optional<std::array<GearMaterial, 2>> materialsOf(const KindContext& c, int g0, int g1, std::string* why);
 
+// Each gear's material into a pair's inputs (cylindrical or bevel); the pair's own values are
+// the driving gear's (the blank masses of K_v share its density).
+template <class Pair>
+void applyMaterials(Pair& in, const std::array<GearMaterial, 2>& mats) {
+  for (size_t k = 0; k < 2; ++k) {
+    const GearMaterial& m = mats[k];
+    auto& g = in.gear[k];
+    g.sigmaHlim = m.sigmaHlim;
+    g.sigmaFlim = m.sigmaFlim;
+    g.treatment = m.treatment;
+    g.E = m.E;
+    g.nu = m.nu;
+    g.brinell = m.brinell;
+  }
+  in.treatment = mats[0].treatment;
+  in.E = mats[0].E;
+  in.nu = mats[0].nu;
+  in.density = mats[0].density;
+}
+
 // One mesh of a stage rated: its driving and driven gear's positions in the stage.
 struct MeshRating {
   int driving, driven;

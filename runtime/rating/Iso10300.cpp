@@ -269,16 +269,6 @@ double spiralFactor(const Pair& p, double lbm) {
   return a / c * sq(lbb / ba - 1.05 * b) + 1;
 }
 
-// Z_W of ISO 6336-2 (which ISO 10300-2 takes): a through-hardened gear against a surface-hardened mate.
-double workHardening(const BevelInput& in, int i) {
-  Treatment mine = treatmentOf(in, i), mate = treatmentOf(in, 1 - i);
-  if (mine != Treatment::ThroughHardened || mate == Treatment::ThroughHardened) return 1.0;
-  double hb = in.gear[static_cast<size_t>(i)].brinell;
-  if (!std::isfinite(hb))
-    throw std::domain_error("a through-hardened gear meshes with a surface-hardened mate: its Z_W needs its material's `brinell_hardness`");
-  return 1.2 - (std::clamp(hb, 130.0, 470.0) - 130) / 1700;
-}
-
 // One gear: flank (ISO 10300-2) and root (ISO 10300-3); stresses in N/mm^2 until the end.
 void rateGear(const BevelInput& in, const Pair& p, const BevelRating& r, const FlankFactors& flank, int i, BevelGearRating& o) {
   const auto& gi = in.gear[static_cast<size_t>(i)];
@@ -290,7 +280,7 @@ void rateGear(const BevelInput& in, const Pair& p, const BevelRating& r, const F
   o.ZL = f.ZL;
   o.Zv = f.Zv;
   o.ZR = f.ZR;
-  o.ZW = workHardening(in, i);
+  o.ZW = workHardeningFactor(t, treatmentOf(in, 1 - i), gi.brinell);  // as ISO 6336-2
   o.ZX = 1;
   o.sigmaH = r.sigmaH;
   o.sigmaHG = gi.sigmaHlim * 1e-6 * o.ZNT * o.ZX * o.ZL * o.Zv * o.ZR * o.ZW * r.ZK;

@@ -75,6 +75,13 @@ double lifeFactor(double n, double nStatic, double fStatic, double nKnee, double
 
 double runningIn(double f, Treatment t, double sigmaHlim, double v) { return runInOf(f, t, sigmaHlim, v); }
 
+double workHardeningFactor(Treatment mine, Treatment mate, double brinell) {
+  if (mine != Treatment::ThroughHardened || mate == Treatment::ThroughHardened) return 1.0;
+  if (!std::isfinite(brinell))
+    throw std::domain_error("a through-hardened gear meshes with a surface-hardened mate: its Z_W needs its material's `brinell_hardness`");
+  return 1.2 - (std::clamp(brinell, 130.0, 470.0) - 130) / 1700;
+}
+
 double lifeFactorOf(double cycles, const LifeCurve& c, bool optimum) {
   return lifeFactor(cycles, c.nStatic, c.fStatic, c.nKnee, optimum ? 1.0 : 0.85);
 }
@@ -467,12 +474,7 @@ void lifeFactors(const PairInput& in, Treatment t, GearRating& o) {
 // (case-hardened or nitrided) mate is work-hardened by it; 1.2 - (HB - 130)/1700 for HB in
 // 130..470.
 double workHardening(const PairInput& in, int i) {
-  Treatment mine = treatmentOf(in, i), mate = treatmentOf(in, 1 - i);
-  if (mine != Treatment::ThroughHardened || mate == Treatment::ThroughHardened) return 1.0;
-  double hb = in.gear[static_cast<size_t>(i)].brinell;
-  if (!std::isfinite(hb))
-    throw std::domain_error("a through-hardened gear meshes with a surface-hardened mate: its Z_W needs its material's `brinell_hardness`");
-  return 1.2 - (std::clamp(hb, 130.0, 470.0) - 130) / 1700;
+  return workHardeningFactor(treatmentOf(in, i), treatmentOf(in, 1 - i), in.gear[static_cast<size_t>(i)].brinell);
 }
 
 // A gear's flank (ISO 6336-2), in N/mm^2.

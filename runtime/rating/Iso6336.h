@@ -110,6 +110,8 @@ LifeCurve bendingCurve(Treatment t);
 double lifeFactorOf(double cycles, const LifeCurve& c, bool optimum);
 // The running-in allowance of a deviation f [um] on a flank of this treatment (y_alpha, y_p).
 double runningIn(double f, Treatment t, double sigmaHlim, double v);
+// Z_W: a through-hardened gear of Brinell hardness HB against a surface-hardened mate.
+double workHardeningFactor(Treatment mine, Treatment mate, double brinell);
 // Z_L, Z_v, Z_R at endurance from the softer flank's sigma_Hlim, nu40, the pitch-line
 // velocity, the mean flank Rz and the relative radius of curvature; then at a gear's cycles
 // (below the knee they move toward 1 as Z_NT does).
