@@ -266,25 +266,21 @@ std::vector<AttrSpec> bevelGearAttrs() {
       derived("mean_addendum", length, "mean addendum h_am"),
       derived("mean_dedendum", length, "mean dedendum h_fm"),
       derived("virtual_z", none, "tooth count of the virtual cylindrical gear z_v = z / cos(delta)"),
-      derived("contact_safety", none, "safety factor for contact stress S_H"),
-      derived("bending_safety", none, "safety factor for bending stress S_F"),
-      derived("contact_stress", pressure, "contact stress sigma_H"),
-      derived("bending_stress", pressure, "tooth root stress sigma_F"),
-      derived("permissible_contact_stress", pressure, "permissible contact stress sigma_HP"),
-      derived("permissible_bending_stress", pressure, "permissible bending stress sigma_FP"),
-      derived("Z_NT", none, "life factor for contact stress"),
-      derived("Z_L", none, "lubricant factor"),
-      derived("Z_v", none, "velocity factor"),
-      derived("Z_R", none, "roughness factor for contact stress"),
-      derived("Z_W", none, "work hardening factor"),
-      derived("Z_X", none, "size factor for contact stress"),
       derived("Y_Fa", none, "tooth form factor for load at the tip"),
       derived("Y_Sa", none, "stress correction factor for load at the tip"),
-      derived("Y_NT", none, "life factor for tooth root stress"),
-      derived("Y_deltarelT", none, "relative notch sensitivity factor"),
-      derived("Y_RrelT", none, "relative surface factor"),
-      derived("Y_X", none, "size factor for tooth root stress"),
   };
+  // The cylindrical gear's safeties, stresses and material factors that ISO 10300 shares.
+  for (auto& q : ratingGearQuantities()) switch (q.key) {
+    case Q::ZB:
+    case Q::ZD:
+    case Q::YF:
+    case Q::YS:
+    case Q::Ybeta:
+    case Q::YM:
+    case Q::ContactDamage:
+    case Q::BendingDamage: break;
+    default: g.push_back(q);
+    }
   return g;
 }
 
