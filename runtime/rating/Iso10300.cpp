@@ -12,7 +12,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 double sq(double x) { return x * x; }
-double inv(double a) { return std::tan(a) - a; }
 
 Treatment treatmentOf(const BevelInput& in, int i) { return in.gear[static_cast<size_t>(i)].treatment.value_or(in.treatment); }
 
@@ -210,44 +209,28 @@ void loadFactors(const BevelInput& in, const Pair& p, double fpt, double ZLS, Be
   r.KFalpha = std::clamp(K, 1.0, e / (0.25 * p.epsVa + 0.75));
 }
 
-// Y_Fa and Y_Sa of ISO 10300-3 method B1: the 30-degree tangent in the fillet the cutter
-// (tool addendum h_a0 = k_hfp m_mn, edge radius rho_a0) generates on the normal section's
-// virtual gear, the load at the tip. Lengths in mm.
+// Y_Fa and Y_Sa of ISO 10300-3 method B1: ISO 6336-3's 30-degree tangent in the fillet the
+// cutter (tool addendum h_a0 = k_hfp m_mn, edge radius rho_a0) generates on the normal
+// section's virtual gear, the load at the tip. Lengths in mm.
 struct TipForm {
   double sFn, hFa, rhoF, YFa, YSa, qs, sAn;
 };
 
 TipForm tipForm(const Pair& p, int i, double xhm, double xsm, double rhoA0, double khfp) {
-  const double m = p.mmn, an = p.alphaN, zn = p.zvn[i];
-  const double ha0 = khfp * m;
-  double E = (kPi / 4 - xsm) * m - ha0 * std::tan(an) - rhoA0 * (1 - std::sin(an)) / std::cos(an);
-  double G = rhoA0 / m - ha0 / m + xhm;
-  double H = 2 / zn * (kPi / 2 - E / m) - kPi / 3;
-  double th = kPi / 6;
-  for (int k = 0; k < 100; ++k) {
-    double f = th - 2 * G / zn * std::tan(th) + H, df = 1 - 2 * G / zn / sq(std::cos(th));
-    double next = th - f / df;
-    bool done = std::fabs(next - th) < 1e-14;
-    th = next;
-    if (done) break;
-  }
+  const double m = p.mmn;
+  ToothForm f = filletForm(p.zvn[i], m, p.alphaN, xhm, xsm, khfp, rhoA0 / m, p.dvan[i]);
   TipForm t{};
-  t.sFn = m * (zn * std::sin(kPi / 3 - th) + std::sqrt(3.0) * (G / std::cos(th) - rhoA0 / m));
-  t.rhoF = rhoA0 + 2 * m * G * G / (std::cos(th) * (zn * sq(std::cos(th)) - 2 * G));
-  double alphaAn = std::acos(p.dvbn[i] / p.dvan[i]);
-  double gammaA = (kPi / 2 + 2 * (xhm * std::tan(an) + xsm)) / zn + inv(an) - inv(alphaAn);
-  t.sAn = gammaA * p.dvan[i];
+  t.sAn = f.gamma * p.dvan[i];
   if (!(t.sAn > 0))
     throw std::domain_error(fmt::format("the {}'s teeth are pointed: no tooth thickness is left at the virtual gear's tip (shift {:.4g}, "
                                         "thickness modification {:.4g})",
                                         i ? "wheel" : "pinion", xhm, xsm));
-  double alphaFan = alphaAn - gammaA;
-  t.hFa = m / 2 * ((std::cos(gammaA) - std::sin(gammaA) * std::tan(alphaFan)) * p.dvan[i] / m - zn * std::cos(kPi / 3 - th) - G / std::cos(th) +
-                   rhoA0 / m);
-  t.YFa = 6 * (t.hFa / m) * std::cos(alphaFan) / (sq(t.sFn / m) * std::cos(an));
-  double L = t.sFn / t.hFa;
-  t.qs = t.sFn / (2 * t.rhoF);
-  t.YSa = (1.2 + 0.13 * L) * std::pow(t.qs, 1 / (1.21 + 2.3 / L));
+  t.sFn = f.sFn;
+  t.hFa = f.hFe;
+  t.rhoF = f.rhoF;
+  t.YFa = f.YF;
+  t.YSa = f.YS;
+  t.qs = f.sFn / (2 * f.rhoF);
   if (!(t.sFn > 0 && t.hFa > 0 && t.rhoF > 0 && std::isfinite(t.YFa) && std::isfinite(t.YSa)))
     throw std::domain_error(fmt::format("the {}'s tooth root has no 30-degree tangent section (check the shift and the cutter edge radius)",
                                         i ? "wheel" : "pinion"));
@@ -305,10 +288,6 @@ void rateGear(const BevelInput& in, const Pair& p, const BevelRating& r, const F
   o.SF = o.sigmaFG / o.sigmaF;
   for (double* s : {&o.sigmaH, &o.sigmaHG, &o.sigmaHP, &o.sigmaF0, &o.sigmaF, &o.sigmaFG, &o.sigmaFP}) *s *= 1e6;
 }
-
-} // namespace
-
-namespace {
 
 BevelRating geometryOf(const Pair& p) {
   BevelRating r{};

@@ -130,12 +130,9 @@ FlankFactors flankFactorsAt(const FlankFactors& endurance, double cycles, Treatm
   return {between(endurance.ZL, 1.0, w), between(endurance.Zv, 1.0, w), between(endurance.ZR, 1.0, w)};
 }
 
-ToothForm toothForm(double z, double x, double da, double mn, double alphaN, double beta, double epsAlpha, double hfP, double rhoFP) {
-  double betaB = std::asin(std::sin(beta) * std::cos(alphaN));
-  double zn = z / (sq(std::cos(betaB)) * std::cos(beta));
-  double d = z * mn / std::cos(beta);
+ToothForm filletForm(double zn, double mn, double alphaN, double x, double xsm, double hfP, double rhoFP, double dLoad) {
   double G = rhoFP - hfP + x;
-  double E = kPi / 4 * mn - hfP * mn * std::tan(alphaN) - (1 - std::sin(alphaN)) * rhoFP * mn / std::cos(alphaN);
+  double E = (kPi / 4 - xsm) * mn - hfP * mn * std::tan(alphaN) - (1 - std::sin(alphaN)) * rhoFP * mn / std::cos(alphaN);
   double H = 2.0 / zn * (kPi / 2 - E / mn) - kPi / 3;
   // theta = 2G/zn tan(theta) - H, by Newton from pi/6.
   double th = kPi / 6;
@@ -153,24 +150,35 @@ ToothForm toothForm(double z, double x, double da, double mn, double alphaN, dou
   t.theta = th;
   double sFn = mn * (zn * std::sin(kPi / 3 - th) + std::sqrt(3.0) * (G / std::cos(th) - rhoFP));
   double rhoF = mn * (rhoFP + 2 * G * G / (std::cos(th) * (zn * sq(std::cos(th)) - 2 * G)));
-  double dn = mn * zn, dbn = dn * std::cos(alphaN), dan = dn + da - d;
-  double epsAn = epsAlpha / sq(std::cos(betaB));
-  double den = 2 * std::sqrt(sq(std::sqrt(sq(dan / 2) - sq(dbn / 2)) - kPi * d * std::cos(beta) * std::cos(alphaN) / z * (epsAn - 1)) +
-                             sq(dbn / 2));
-  double alphaEn = std::acos(dbn / den);
-  double gammaE = (kPi / 2 + 2 * x * std::tan(alphaN)) / zn + inv(alphaN) - inv(alphaEn);
+  double dbn = mn * zn * std::cos(alphaN);
+  double alphaEn = std::acos(dbn / dLoad);
+  double gammaE = (kPi / 2 + 2 * (x * std::tan(alphaN) + xsm)) / zn + inv(alphaN) - inv(alphaEn);
   double alphaFen = alphaEn - gammaE;
   double hFe = 0.5 * mn *
-               ((std::cos(gammaE) - std::sin(gammaE) * std::tan(alphaFen)) * den / mn - zn * std::cos(kPi / 3 - th) - G / std::cos(th) +
+               ((std::cos(gammaE) - std::sin(gammaE) * std::tan(alphaFen)) * dLoad / mn - zn * std::cos(kPi / 3 - th) - G / std::cos(th) +
                 rhoFP);
   t.sFn = sFn;
   t.rhoF = rhoF;
   t.hFe = hFe;
   t.alphaFen = alphaFen;
+  t.gamma = gammaE;
   t.YF = 6 * (hFe / mn) * std::cos(alphaFen) / (sq(sFn / mn) * std::cos(alphaN));
   double L = sFn / hFe, qs = sFn / (2 * rhoF);
   t.YS = (1.2 + 0.13 * L) * std::pow(qs, 1.0 / (1.21 + 2.3 / L));
-  if (!(sFn > 0 && rhoF > 0 && hFe > 0 && std::isfinite(t.YF) && std::isfinite(t.YS)))
+  return t;
+}
+
+ToothForm toothForm(double z, double x, double da, double mn, double alphaN, double beta, double epsAlpha, double hfP, double rhoFP) {
+  double betaB = std::asin(std::sin(beta) * std::cos(alphaN));
+  double zn = z / (sq(std::cos(betaB)) * std::cos(beta));
+  double d = z * mn / std::cos(beta);
+  double dn = mn * zn, dbn = dn * std::cos(alphaN), dan = dn + da - d;
+  double epsAn = epsAlpha / sq(std::cos(betaB));
+  // The outer point of single pair contact on the normal section's virtual gear.
+  double den = 2 * std::sqrt(sq(std::sqrt(sq(dan / 2) - sq(dbn / 2)) - kPi * d * std::cos(beta) * std::cos(alphaN) / z * (epsAn - 1)) +
+                             sq(dbn / 2));
+  ToothForm t = filletForm(zn, mn, alphaN, x, 0, hfP, rhoFP, den);
+  if (!(t.sFn > 0 && t.rhoF > 0 && t.hFe > 0 && std::isfinite(t.YF) && std::isfinite(t.YS)))
     throw std::domain_error("the tooth root has no 30-degree tangent section (check the basic rack and the profile shift)");
   return t;
 }

@@ -132,7 +132,13 @@ RootFactors rootFactors(Treatment t, double qs, double YS, double RzRoot, double
 // pair contact. Lengths in mm, angles in rad.
 struct ToothForm {
   double sFn, hFe, rhoF, alphaFen, YF, YS, theta;
+  double gamma;  // half the tooth's angle at the load diameter (its thickness there: gamma d)
 };
+// The same construction for any load diameter d_load of the normal section's virtual gear of
+// z_n teeth, with a thickness modification x_sm (ISO 10300-3 takes it at the tip); the rack's
+// dedendum and root radius as multiples of m_n. Unchecked: the caller refuses a section
+// without a tangent.
+ToothForm filletForm(double zn, double mn, double alphaN, double x, double xsm, double hfP, double rhoFP, double dLoad);
 ToothForm toothForm(double z, double x, double tipDiameter, double mn, double alphaN, double beta, double epsAlpha,
                     double hfP, double rhoFP);
 
