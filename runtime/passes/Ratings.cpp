@@ -458,52 +458,44 @@ Ratings ratings(const Model& m, const Assignment& best) {
     if (!m.attribute(static_cast<int>(s), Q::RatingLife)) continue;
     KindContext c{ev, static_cast<int>(s), best};
     std::string why;
-    if (st.kind == ir::StageKind::Bevel) {
-      auto br = rating::rateBevelStage(c, &why);
-      if (!br) {
-        RatingReport failed;
-        failed.stage = st.name;
-        failed.standard = "ISO 10300";
-        failed.error = why;
-        result.errors.push_back(fmt::format("stage `{}` cannot be rated: {}", st.name, why));
-        result.ratings.push_back(std::move(failed));
-        continue;
-      }
-      result.ratings.push_back(bevelTable(st, *br));
-      for (const auto& row : result.ratings.back().rows)
-        for (double v : row.si)
-          if (std::isnan(v)) result.errors.push_back(fmt::format("stage `{}`: the rating's `{}` is not a number at design 1", st.name, row.key));
-      continue;
-    }
-    auto meshes = rating::rateStage(c, &why);
-    if (meshes.empty()) {
+    bool bevel = st.kind == ir::StageKind::Bevel;
+    auto refused = [&] {
       RatingReport failed;
       failed.stage = st.name;
+      if (bevel) failed.standard = "ISO 10300";
       failed.error = why;
       result.errors.push_back(fmt::format("stage `{}` cannot be rated: {}", st.name, why));
       result.ratings.push_back(std::move(failed));
+    };
+    // Every value is a number except an internal gear's root, which the note names; a freedom
+    // still spanning an interval (not optimised) is rated at its middle, said so.
+    auto keep = [&](RatingReport r, bool internalRoot) {
+      for (const auto& row : r.rows)
+        for (size_t g = 0; g < row.si.size(); ++g)
+          if (std::isnan(row.si[g]) && !(internalRoot && g == 1))
+            result.errors.push_back(fmt::format("stage `{}`: the rating's `{}` is not a number at design 1", st.name, row.key));
+      for (int f : m.stages[s].freedoms)
+        if (best.box[static_cast<size_t>(f)].first != best.box[static_cast<size_t>(f)].second) {
+          r.note += std::string(r.note.empty() ? "" : "; ") + "rated at the middle of each free attribute's interval";
+          break;
+        }
+      result.ratings.push_back(std::move(r));
+    };
+    if (bevel) {
+      auto br = rating::rateBevelStage(c, &why);
+      if (br) keep(bevelTable(st, *br), false);
+      else refused();
       continue;
     }
+    auto meshes = rating::rateStage(c, &why);
+    if (meshes.empty()) refused();
     auto minOf = [&](Q k) {
       Value v = c.at(k);
       return v.isNumber() ? v.mid() : 1.0;
     };
-    for (const auto& mr : meshes) {
-      result.ratings.push_back(table(st, mr, meshes.size() > 1, minOf(Q::RatingMinContact), minOf(Q::RatingMinBending), mr.input.KA,
-                                     mr.input.Kgamma));
-      // Every value is a number except an internal gear's root, which the note names.
-      for (const auto& row : result.ratings.back().rows)
-        for (size_t g = 0; g < row.si.size(); ++g)
-          if (std::isnan(row.si[g]) && !(mr.internal && g == 1))
-            result.errors.push_back(fmt::format("stage `{}`: the rating's `{}` is not a number at design 1", st.name, row.key));
-      // A freedom still spanning an interval (not optimised): rated at its middle, said so.
-      for (int f : m.stages[s].freedoms)
-        if (best.box[static_cast<size_t>(f)].first != best.box[static_cast<size_t>(f)].second) {
-          auto& note = result.ratings.back().note;
-          note += std::string(note.empty() ? "" : "; ") + "rated at the middle of each free attribute's interval";
-          break;
-        }
-    }
+    for (const auto& mr : meshes)
+      keep(table(st, mr, meshes.size() > 1, minOf(Q::RatingMinContact), minOf(Q::RatingMinBending), mr.input.KA, mr.input.Kgamma),
+           mr.internal);
   }
   return result;
 }
