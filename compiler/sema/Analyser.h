@@ -120,6 +120,7 @@ private:
   void ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen);
   void ratingInputs(const StageModel& st, Span where);
   void bevelRatingInputs(const StageModel& st, Span where);
+  static bool rateable(const cat::KindSpec& kind);
   void requireMaterial(const ir::Gearbox& g, const GearboxModel& m);
   void requireRating(const ir::Gearbox& g, const GearboxModel& m);
   void sceneFactors(const ir::Gearbox& g);

@@ -25,14 +25,15 @@ void eachUse(const ir::Gearbox& g, bool modifications, const std::function<void(
 
 } // namespace
 
+// A kind whose stages take a `rating` (its catalogue row lists `rating.life`).
+bool Analyser::rateable(const cat::KindSpec& kind) { return findAttr(kind, "rating.life"); }
+
 // `rating { … }`: its settings become the stage's `rating.…` attributes, so that a
 // variant overrides them (`hs.rating.life = …`) like any other attribute.
 void Analyser::ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen) {
-  if (m.kind && !findAttr(*m.kind, "rating.life")) {
+  if (m.kind && !rateable(*m.kind)) {
     diags_.error("E0235", nameOr(b),
-                 fmt::format("{} {} stage has no load-capacity rating yet{}", m.kind->name[0] == 'i' ? "an" : "a", m.kind->name,
-                             m.kind->kind == ir::StageKind::Bevel ? " (bevel gears are rated by ISO 10300, which gbxc does not implement)"
-                                                                  : " (ISO 6336 rating covers spur, helical, idler and planetary stages)"));
+                 fmt::format("{} {} stage has no load-capacity rating yet", m.kind->name[0] == 'i' ? "an" : "a", m.kind->name));
     return;
   }
   if (m.rated) {

@@ -306,7 +306,7 @@ void Analyser::override(GearboxModel& m, const Stmt& st, const std::string& orig
     std::string rest = st.path.str().substr(parts[0].size() + 1);
     stage->setAttr(rest, {&st, origin});
     // A variant may rate a stage its base does not: `upper.rating.life = …` and the rest.
-    if (parts.size() > 2 && parts[1] == kRatingBlock && stage->kind && findAttr(*stage->kind, "rating.life")) stage->rated = true;
+    if (parts.size() > 2 && parts[1] == kRatingBlock && stage->kind && rateable(*stage->kind)) stage->rated = true;
     return;
   }
   if (parts.size() > 1 && m.findSplit(parts[0])) {
