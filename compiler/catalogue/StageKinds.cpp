@@ -253,14 +253,11 @@ std::vector<AttrSpec> bevelStageAttrs() {
 }
 
 std::vector<AttrSpec> bevelGearAttrs() {
-  auto own = material();
-  own.meaning = "this gear's material, where it differs from the stage's `material`";
   std::vector<AttrSpec> g = {
       in("shift", none, "mean profile shift coefficient x_hm (the wheel's is usually the pinion's negative)"),
       in("thickness_modification", none, "thickness modification coefficient x_sm"),
       pos("tool_edge_radius", length, "edge radius of the cutter blade rho_a0 (default 0.2 m_mn)"),
       pos("pitch_deviation", length, "single pitch deviation f_pt"),
-      own,
       derived("mean_diameter", length, "mean pitch diameter d_m"),
       derived("outer_pitch_diameter", length, "outer pitch diameter d_e"),
       derived("mean_addendum", length, "mean addendum h_am"),
@@ -269,7 +266,10 @@ std::vector<AttrSpec> bevelGearAttrs() {
       derived("Y_Fa", none, "tooth form factor for load at the tip"),
       derived("Y_Sa", none, "stress correction factor for load at the tip"),
   };
-  // The cylindrical gear's safeties, stresses and material factors that ISO 10300 shares.
+  // A gear's own material, and the cylindrical gear's safeties, stresses and material factors
+  // that ISO 10300 shares.
+  for (auto& q : ratingGearExtras())
+    if (q.key == Q::Material) g.push_back(q);
   for (auto& q : ratingGearQuantities()) switch (q.key) {
     case Q::ZB:
     case Q::ZD:
