@@ -26,9 +26,10 @@ fi
 # uuid-dev: the ANTLR runtime's CMake target links -luuid, and libantlr4-runtime-dev does
 # not depend on it.
 # chromium: the tests render every example's HTML report in a real (headless) browser.
+# python3-jsonschema: a test validates every spec's JSON report against docs/report.schema.json.
 # universal-ctags: a test measures every function's length (Conventions.NoFunctionOver…).
 packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
-          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium universal-ctags ${extra_packages[@]+"${extra_packages[@]}"})
+          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium python3-jsonschema universal-ctags ${extra_packages[@]+"${extra_packages[@]}"})
 missing=()
 for p in "${packages[@]}"; do
   # Installed, not merely known to dpkg (a removed package keeps its config-files state).

@@ -11,10 +11,6 @@
 
 #include "parse/Parser.h"
 
-#ifndef GBX_STDLIB_DIR
-#define GBX_STDLIB_DIR "stdlib"
-#endif
-
 namespace gbx::sema {
 
 namespace fs = std::filesystem;
@@ -22,21 +18,53 @@ namespace fs = std::filesystem;
 // A library folder's modules are its files with this extension.
 constexpr std::string_view kSpecExtension = ".gbx";
 
-std::vector<std::string> stdlibSearchPath() {
+namespace {
+
+// A colon-separated list of folders from the environment, empty entries skipped.
+std::vector<std::string> folderList(const char* variable) {
   std::vector<std::string> dirs;
-  if (const char* env = std::getenv("GBX_STDLIB_PATH")) {
+  if (const char* env = std::getenv(variable)) {
     std::stringstream ss(env);
     std::string d;
     while (std::getline(ss, d, ':'))
       if (!d.empty()) dirs.push_back(d);
   }
-  dirs.push_back(GBX_STDLIB_DIR);
+  return dirs;
+}
+
+// The stdlib that travels with the running program: share/gbxc/stdlib in the folder of the
+// executable or one above it. An installed gbxc (PREFIX/bin/gbxc) finds PREFIX/share/gbxc/stdlib,
+// the build tree's (build/gbxc) build/share/gbxc/stdlib, a test program deeper in the build
+// tree the same folder a few levels up. Nothing depends on where the sources were.
+std::string stdlibBesideProgram() {
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  fs::path dir = exe.parent_path();
+  for (int up = 0; up < 4 && !dir.empty(); ++up, dir = dir.parent_path()) {
+    fs::path candidate = dir / "share" / "gbxc" / "stdlib";
+    if (fs::is_directory(candidate, ec)) return candidate.string();
+    if (dir == dir.parent_path()) break;
+  }
+  return {};
+}
+
+} // namespace
+
+std::vector<std::string> modulePath() { return folderList("GBX_PATH"); }
+
+std::vector<std::string> stdlibSearchPath() {
+  std::vector<std::string> dirs = folderList("GBX_STDLIB_PATH");
+  static const std::string beside = stdlibBesideProgram();
+  if (!beside.empty()) dirs.push_back(beside);
   return dirs;
 }
 
 std::vector<std::string> stdlibModules() {
   std::set<std::string> names;
-  for (const auto& dir : stdlibSearchPath()) {
+  std::vector<std::string> dirs = modulePath();
+  for (const auto& dir : stdlibSearchPath()) dirs.push_back(dir);
+  for (const auto& dir : dirs) {
     std::error_code ec;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
       if (it->path().extension() == kSpecExtension) names.insert(it->path().stem().string());
@@ -112,18 +140,32 @@ public:
       }
       return sm_.add(display.lexically_normal().string(), abs, std::move(text));
     }
-    std::vector<std::string> looked;
-    for (const auto& dir : stdlibSearchPath()) {
-      fs::path target = fs::path(dir) / (d.word + ".gbx");
+    // GBX_PATH's folders first, as a compiler searches its include paths before its own.
+    std::vector<std::string> user = modulePath();
+    for (const auto& dir : user) {
+      fs::path target = fs::path(dir) / (d.word + std::string(kSpecExtension));
+      std::string abs = canonicalPath(target);
+      if (int id = sm_.find(abs); id >= 0) return id;
+      std::string text;
+      if (readFile(target, text)) return sm_.add(target.lexically_normal().string(), abs, std::move(text));
+    }
+    std::vector<std::string> stdlib = stdlibSearchPath();
+    for (const auto& dir : stdlib) {
+      fs::path target = fs::path(dir) / (d.word + std::string(kSpecExtension));
       std::string abs = canonicalPath(target);
       if (int id = sm_.find(abs); id >= 0) return id;
       std::string text;
       if (readFile(target, text)) return sm_.add("<stdlib>/" + d.word + ".gbx", abs, std::move(text));
-      looked.push_back(dir);
     }
-    diags_.error("E0203", d.wordSpan.valid() ? d.wordSpan : d.span,
-                 fmt::format("cannot import `{}`: no stdlib module of that name (modules: {})", d.word,
-                             fmt::join(stdlibModules(), ", ")));
+    source::Span at = d.wordSpan.valid() ? d.wordSpan : d.span;
+    std::vector<std::string> modules = stdlibModules();
+    if (modules.empty())
+      diags_.error("E0203", at,
+                   fmt::format("cannot import `{}`: no module folder was found (no share/gbxc/stdlib beside the gbxc program, "
+                               "and GBX_PATH names none); reinstall gbxc or set GBX_PATH to a folder of .gbx modules",
+                               d.word));
+    else
+      diags_.error("E0203", at, fmt::format("cannot import `{}`: no module of that name (modules: {})", d.word, fmt::join(modules, ", ")));
     return -1;
   }
 

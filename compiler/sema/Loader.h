@@ -24,10 +24,12 @@ struct LoadedProgram {
   bool mainMissing = false;
 };
 
-// Directories searched for stdlib modules: $GBX_STDLIB_PATH (colon-separated), then the
-// stdlib the compiler was built with.
+// Folders of modules named by $GBX_PATH (colon-separated), searched first.
+std::vector<std::string> modulePath();
+// Folders searched for stdlib modules: $GBX_STDLIB_PATH (colon-separated), then the stdlib
+// installed beside the program (share/gbxc/stdlib next to or above its folder).
 std::vector<std::string> stdlibSearchPath();
-// The stdlib modules found there, by name, sorted.
+// The modules found in all of them, by name, sorted.
 std::vector<std::string> stdlibModules();
 
 LoadedProgram load(const std::string& mainPath, source::SourceManager& sm, diag::DiagnosticEngine& diags);

@@ -313,7 +313,7 @@ std::string jsonModification(const ModifyReport& md) {
 
 std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
   using diag::jsonEscape;
-  std::string o = "{\"gearboxes\": [";
+  std::string o = fmt::format("{{\"schema\": \"{}\", \"gearboxes\": [", kReportSchemaVersion);
   for (size_t gi = 0; gi < reports.size(); ++gi) {
     const auto& g = reports[gi];
     o += gi ? ",\n" : "\n";

@@ -286,6 +286,9 @@ void forEachRow(const GearboxReport& g, F&& f) {
   }
 }
 
+// The version of docs/report.schema.json the JSON report follows (its top-level "schema").
+inline constexpr const char* kReportSchemaVersion = "1.0";
+
 std::string formatNumber(double v);
 // A length as a gear engineer reads it: um below a millimetre, mm above.
 std::string formatLength(double metres);

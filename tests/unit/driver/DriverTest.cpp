@@ -60,6 +60,27 @@ TEST(Cli, ExitStatuses) {
   EXPECT_NE(missing.err.find("E0001"), std::string::npos);
 }
 
+// GBX_PATH names folders of modules that `import NAME` finds before the stdlib, as a compiler
+// takes include paths; without it the same import is an error naming the modules there are.
+TEST(Cli, GbxPathAddsModuleFolders) {
+  fs::path d = tempDir("gbx-path");
+  fs::create_directories(d / "shop");
+  write(d / "shop" / "shopstd.gbx", "import materials;\nconst shop_ratio_tolerance = 1 %;\n");
+  write(d / "main.gbx", "import shopstd;\ngearbox G {\n  stage s: spur { pinion.z in 17..19; wheel.z in 50..60; normal_module = 2 mm; }\n"
+                        "  require s.ratio == 3 +- shop_ratio_tolerance;\n}\n");
+  ::unsetenv("GBX_PATH");
+  auto without = gbxc({"check", (d / "main.gbx").string()});
+  EXPECT_EQ(without.status, 1);
+  EXPECT_NE(without.err.find("cannot import `shopstd`: no module of that name (modules: gleason, klingelnberg"), std::string::npos) << without.err;
+  ::setenv("GBX_PATH", ("/no/such/folder:" + (d / "shop").string()).c_str(), 1);
+  auto with = gbxc({"check", (d / "main.gbx").string()});
+  auto listed = gbxc({"solve", (d / "main.gbx").string(), "--no-timings"});
+  ::unsetenv("GBX_PATH");
+  EXPECT_EQ(with.status, 0) << with.err;
+  EXPECT_EQ(listed.status, 0) << listed.err;
+  EXPECT_NE(listed.out.find("gearbox G:"), std::string::npos) << listed.out;
+}
+
 // A file with no gearbox is solved to nothing, and `solve` says so.
 TEST(Cli, SolvingAFileWithoutAGearboxSaysSo) {
   fs::path d = tempDir("no-gearbox");
