@@ -75,4 +75,26 @@ Better betterOf(Q q) {
   }
 }
 
+bool readsInMicrometres(Q q) {
+  switch (q) {
+  case Q::PitchDeviation:
+  case Q::ProfileDeviation:
+  case Q::ProfileFormDeviation:
+  case Q::HelixSlopeDeviation:
+  case Q::BendingDeflection:
+  case Q::TorsionDeflection:
+  case Q::LoadDeflection:
+  case Q::TipRelief:
+  case Q::LeadCrowning:
+  case Q::RatingMeshMisalignment:
+  case Q::RatingRoughnessFlank:
+  case Q::RatingRoughnessRoot:
+  case Q::RatingRoughnessFlankRz:
+  case Q::RatingRoughnessRootRz:
+  case Q::SpecificFilmThickness:
+  case Q::PermissibleFilmThickness: return true;
+  default: return false;
+  }
+}
+
 } // namespace gbx::cat

@@ -237,5 +237,8 @@ enum class Better : std::int8_t { Unknown, Larger, Smaller };
 Better betterOf(Q q);
 // The id of a word; `ratio` is the quantity (the damping ratio is resolved by its effect).
 std::optional<Q> keyOf(std::string_view name);
+// Lengths of the micrometre scale (deviations, deflections, modifications, roughness, oil
+// films): every report format shows them in um, whatever a value's size (LANGUAGE.md §20).
+bool readsInMicrometres(Q q);
 
 } // namespace gbx::cat

@@ -9,6 +9,7 @@
 
 #include "catalogue/Effects.h"
 #include "units/Dim.h"
+#include "units/Unit.h"
 
 namespace gbx::cat {
 
@@ -63,6 +64,13 @@ inline const SignalSpec* findSignal(std::string_view name) {
 }
 
 inline const SignalSpec& signalSpec(Signal id) { return sceneSignals()[static_cast<size_t>(id)]; }
+
+// The unit a signal and the numbers read from it show in: its lengths (the mesh's
+// displacement, the transmission errors) are micrometres in every format, whatever their size.
+inline units::DisplayUnit signalUnit(Signal id) {
+  const units::Dim& d = signalSpec(id).dim;
+  return d == units::dims::length ? units::micrometres() : units::displayUnitFor(d);
+}
 
 // Functions of a signal: a number over the recorded window, or an artefact.
 enum class SignalFn : std::uint8_t { Rms, Peak, Mean, Min, Max, PeakToPeak, Spectrum, Plot };

@@ -127,11 +127,6 @@ DisplayUnit differenceUnitFor(const Dim& d) {
   return u;
 }
 
-DisplayUnit displayUnitFor(const Dim& d, double magnitude) {
-  if (d == dims::length && std::isfinite(magnitude) && std::fabs(magnitude) < 1e-4) return {"um", 1e-6};
-  return displayUnitFor(d);
-}
-
 std::string showQuantity(const Number& v, const Dim& d) {
   if (d.dimensionless()) return v.str();
   DisplayUnit u = displayUnitFor(d);

@@ -38,12 +38,12 @@ struct DisplayUnit {
   double si(double shownValue) const { return shownValue * scale + offset; }
 };
 DisplayUnit displayUnitFor(const Dim& d);
+// Transmission errors, deviations and the other micrometre-scale lengths (LANGUAGE.md §20).
+inline DisplayUnit micrometres() { return {"um", 1e-6}; }
 // The display unit of a difference of this dimension: a temperature difference reads in K
 // (degC's zero does not apply to it). Reports show an expression that is not an absolute
 // temperature quantity this way.
 DisplayUnit differenceUnitFor(const Dim& d);
-// The unit for values of this magnitude (SI): a length below 0.1 mm reads in um.
-DisplayUnit displayUnitFor(const Dim& d, double magnitude);
 // A value in its display unit, for messages: "3000 kW", "-3 mm", "0.29".
 std::string showQuantity(const Number& v, const Dim& d);
 

@@ -543,7 +543,30 @@ Value Evaluator::materialProperty(int stage, Q prop) const {
 
 // ---- what a kind's formulas see ----------------------------------------------------------
 
+namespace {
+
+// A length of the micrometre scale: such a quantity, a number read from a length signal, or
+// an extreme, mean or tolerance scatter of one.
+bool micrometreLength(const ir::Expr& e) {
+  if (e.type.dim != units::dims::length) return false;
+  switch (e.op) {
+  case ir::Op::Quantity: return cat::readsInMicrometres(e.ref.key);
+  case ir::Op::SceneOutput: return true;  // a length signal: displacement or transmission error
+  case ir::Op::Scatter:
+  case ir::Op::Neg:
+  case ir::Op::Call:
+    if (e.args.empty()) return false;
+    for (const auto& a : e.args)
+      if (!a || (a->op != ir::Op::Const && !micrometreLength(*a))) return false;
+    return true;
+  default: return false;
+  }
+}
+
+} // namespace
+
 units::DisplayUnit valueUnitOf(const ir::Expr& e) {
+  if (micrometreLength(e)) return units::micrometres();
   return e.op == ir::Op::Quantity ? units::displayUnitFor(e.type.dim) : units::differenceUnitFor(e.type.dim);
 }
 

@@ -255,29 +255,6 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
   g.rows.resize(rows->size());
   for (size_t i = 0; i < rows->size(); ++i)
     rows->row(i, g.rows[i], true);
-  // A length column whose every value is below 0.1 mm reads in um (1.1602 um, not 0.0012 mm).
-  bool rescaled = false;
-  for (size_t i = 0; i < g.columns.size(); ++i) {
-    if (columnExprs[i]->type.dim != units::dims::length || g.rows.empty()) continue;
-    double most = 0;
-    bool any = false;
-    for (const auto& row : g.rows)
-      if (row.cells[i].valid) {
-        most = std::max({most, std::fabs(row.cells[i].lo), std::fabs(row.cells[i].hi)});
-        any = true;
-      }
-    auto u = units::displayUnitFor(units::dims::length, most);
-    if (any && u.name != g.columns[i].unit) {
-      g.columns[i].unit = u.name;
-      g.columns[i].scale = u.scale;
-      rescaled = true;
-    }
-  }
-  if (rescaled) {
-    rows = std::make_shared<DesignRows>(m, &r.designs, columnExprs, g.columns, freedoms, baseline, baseDesign);
-    for (size_t i = 0; i < rows->size(); ++i)
-      rows->row(i, g.rows[i], true);
-  }
   // Only a column that shows intervals can show enclosures.
   for (size_t i = 0; i < g.columns.size(); ++i) {
     bool interval = false;

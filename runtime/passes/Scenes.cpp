@@ -37,13 +37,11 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ScenePlan& scene) {
   s.model = r.model;
   s.warnings = r.warnings;
   for (const auto& n : r.numbers) {
-    auto u = units::displayUnitFor(n.dim, n.value);
+    auto u = n.dim == units::dims::length ? cat::signalUnit(n.signal) : units::displayUnitFor(n.dim);
     s.outputs.push_back({n.key, u.name, n.value, n.value / u.scale, n.error});
   }
   for (const auto& ser : r.series) {
-    double largest = 0;
-    for (double v : ser.isSpectrum ? std::vector<double>{} : ser.v) largest = std::max(largest, std::fabs(v));
-    auto u = ser.isSpectrum ? units::displayUnitFor(ser.dim) : units::displayUnitFor(ser.dim, largest);
+    auto u = ser.dim == units::dims::length ? units::micrometres() : units::displayUnitFor(ser.dim);
     if (ser.isSpectrum) {
       SceneReport::SpectrumRow row{ser.key, u.name, u.scale, {}};
       for (const auto& p : ser.spectrum.peaks) row.peaks.push_back({p.frequency, p.amplitude, p.harmonic});

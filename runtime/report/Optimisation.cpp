@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include <fmt/format.h>
+
+#include "diag/Diagnostic.h"
 #include <fmt/ranges.h>
 
 namespace gbx::rt {
@@ -74,35 +76,36 @@ std::string optimisationTiming(const OptimisationSummary& s) {
 
 std::string optimisationJson(const OptimisationSummary& s) {
   std::string json = fmt::format(R"({{"candidates": {}, "infeasible": {}, "evaluations": {}, "scene_rtol": {}, )", s.candidates, s.infeasible,
-                                 s.evaluations, s.sceneRtol);
+                                 s.evaluations, jsonNumber(s.sceneRtol));
   if (s.best) {
     const auto& best = *s.best;
-    json += fmt::format(R"("objective": {}, "terms": {{)", best.objective);
+    json += fmt::format(R"("objective": {}, "terms": {{)", jsonNumber(best.objective));
     for (size_t t = 0; t < s.termNames.size() && t < best.terms.size(); ++t) {
       double rel = best.terms[t] / s.baselineTerms[t];
-      json += fmt::format("{}\"{}\": {{\"value\": {}, \"baseline\": {}, \"relative\": {}}}", t ? ", " : "", s.termNames[t], best.terms[t],
-                          s.baselineTerms[t], rel);
+      json += fmt::format("{}\"{}\": {{\"value\": {}, \"baseline\": {}, \"relative\": {}}}", t ? ", " : "", diag::jsonEscape(s.termNames[t]),
+                          jsonNumber(best.terms[t]), jsonNumber(s.baselineTerms[t]), jsonNumber(rel));
     }
     json += "}, \"margins\": [";
     for (size_t i = 0; i < best.margins.size(); ++i)
-      json += fmt::format("{}{{\"rule\": \"{}\", \"margin\": {}, \"binds\": {}}}", i ? ", " : "", best.margins[i].rule, best.margins[i].margin,
+      json += fmt::format("{}{{\"rule\": \"{}\", \"margin\": {}, \"binds\": {}}}", i ? ", " : "", diag::jsonEscape(best.margins[i].rule),
+                          jsonNumber(best.margins[i].margin),
                           best.margins[i].margin <= 1e-3 ? "true" : "false");
     json += "], \"sensitivity\": [";
     for (size_t i = 0; i < best.sensitivity.size(); ++i) {
       const auto& sv = best.sensitivity[i];
-      auto num = [](double x) { return std::isfinite(x) ? fmt::format("{}", x) : std::string("null"); };
+      auto num = jsonNumber;
       json += fmt::format("{}{{\"objective\": \"{}\", \"unit\": \"{}\", \"nominal\": {}, \"box\": [{}, {}], \"singular\": {}, \"failed\": {}, "
                           "\"tolerances\": [",
-                          i ? ", " : "", sv.objective, sv.unit, num(sv.nominal), num(sv.lo), num(sv.hi), sv.singular() ? "true" : "false", sv.failed);
+                          i ? ", " : "", diag::jsonEscape(sv.objective), diag::jsonEscape(sv.unit), num(sv.nominal), num(sv.lo), num(sv.hi), sv.singular() ? "true" : "false", sv.failed);
       for (size_t j = 0; j < sv.lines.size(); ++j)
         json += fmt::format("{}{{\"target\": \"{}\", \"amount\": {}, \"unit\": \"{}\", \"minus\": {}, \"plus\": {}}}", j ? ", " : "",
-                            sv.lines[j].target, sv.lines[j].amount, sv.lines[j].unit, num(sv.lines[j].minus), num(sv.lines[j].plus));
+                            diag::jsonEscape(sv.lines[j].target), num(sv.lines[j].amount), diag::jsonEscape(sv.lines[j].unit), num(sv.lines[j].minus), num(sv.lines[j].plus));
       json += "]}";
     }
     json += "], ";
   }
-  json += fmt::format(R"("rank_check": "{}", "pareto": [)", s.rankCheck);
-  for (size_t i = 0; i < s.pareto.size(); ++i) json += fmt::format("{}[{}, {}]", i ? ", " : "", s.pareto[i].first, s.pareto[i].second);
+  json += fmt::format(R"("rank_check": "{}", "pareto": [)", diag::jsonEscape(s.rankCheck));
+  for (size_t i = 0; i < s.pareto.size(); ++i) json += fmt::format("{}[{}, {}]", i ? ", " : "", jsonNumber(s.pareto[i].first), jsonNumber(s.pareto[i].second));
   json += "]}";
   return json;
 }

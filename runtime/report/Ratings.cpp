@@ -19,7 +19,8 @@ std::string shown(const RatingReport::Row& row, double si) {
   return formatNumber((si - row.offset) / row.scale);
 }
 
-std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
+// Rating values to ten significant digits, the precision of the standard's check values.
+std::string ratingNumber(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
 
 } // namespace
 
@@ -62,34 +63,34 @@ std::string ratingVerdict(const RatingReport& r) {
 }
 
 std::string ratingJson(const RatingReport& r) {
-  if (!r.error.empty()) return fmt::format("{{\"error\": \"{}\"}}", r.error);
+  if (!r.error.empty()) return fmt::format("{{\"error\": \"{}\"}}", diag::jsonEscape(r.error));
   std::string o = "{\"mesh\": {";
   bool first = true;
   for (const auto& row : r.rows)
     if (!row.perGear) {
-      o += fmt::format("{}\"{}\": {}", first ? "" : ", ", row.key, jsonNumber(row.si[0]));
+      o += fmt::format("{}\"{}\": {}", first ? "" : ", ", diag::jsonEscape(row.key), ratingNumber(row.si[0]));
       first = false;
     }
   o += "}";
   for (size_t g = 0; g < r.gears.size(); ++g) {
-    o += fmt::format(", \"{}\": {{", r.gears[g]);
+    o += fmt::format(", \"{}\": {{", diag::jsonEscape(r.gears[g]));
     first = true;
     for (const auto& row : r.rows)
       if (row.perGear) {
-        o += fmt::format("{}\"{}\": {}", first ? "" : ", ", row.key, jsonNumber(row.si[g]));
+        o += fmt::format("{}\"{}\": {}", first ? "" : ", ", diag::jsonEscape(row.key), ratingNumber(row.si[g]));
         first = false;
       }
     o += "}";
   }
-  o += fmt::format(", \"min_safety\": {{\"contact\": {}, \"bending\": {}", jsonNumber(r.minContact), jsonNumber(r.minBending));
-  if (r.scuffing) o += fmt::format(", \"scuffing\": {}, \"integral_scuffing\": {}", jsonNumber(r.minScuffing), jsonNumber(r.minIntegralScuffing));
-  if (r.micropitting) o += fmt::format(", \"micropitting\": {}", jsonNumber(r.minMicropitting));
+  o += fmt::format(", \"min_safety\": {{\"contact\": {}, \"bending\": {}", ratingNumber(r.minContact), ratingNumber(r.minBending));
+  if (r.scuffing) o += fmt::format(", \"scuffing\": {}, \"integral_scuffing\": {}", ratingNumber(r.minScuffing), ratingNumber(r.minIntegralScuffing));
+  if (r.micropitting) o += fmt::format(", \"micropitting\": {}", ratingNumber(r.minMicropitting));
   o += "}";
   o += ", \"methods\": {";
   first = true;
   for (const auto& row : r.rows)
     if (!row.method.empty()) {
-      o += fmt::format("{}\"{}\": \"{}\"", first ? "" : ", ", row.key, diag::jsonEscape(row.method));
+      o += fmt::format("{}\"{}\": \"{}\"", first ? "" : ", ", diag::jsonEscape(row.key), diag::jsonEscape(row.method));
       first = false;
     }
   o += "}";
@@ -110,8 +111,8 @@ std::string ratingJson(const RatingReport& r) {
     for (size_t i = 0; i < r.model.size(); ++i) o += fmt::format("{}\"{}\"", i ? ", " : "", diag::jsonEscape(r.model[i]));
     o += "]";
   }
-  o += fmt::format(", \"governs\": \"{}\", \"governing_ratio\": {}, \"K_v_range\": \"{}\", \"standard\": \"{}\"}}", r.governs,
-                   jsonNumber(r.governingRatio), r.kvRange, r.standard);
+  o += fmt::format(", \"governs\": \"{}\", \"governing_ratio\": {}, \"K_v_range\": \"{}\", \"standard\": \"{}\"}}",
+                   diag::jsonEscape(r.governs), ratingNumber(r.governingRatio), diag::jsonEscape(r.kvRange), diag::jsonEscape(r.standard));
   return o;
 }
 

@@ -30,7 +30,7 @@ namespace {
 
 std::string ratioText(const Rational& r) { return formatNumber(r.toDouble()) + " (" + r.str() + ")"; }
 
-std::string count(double x) { return fmt::format("{:.0f}", x); }
+std::string count(double x) { return fmt::format("{:.0f}", x + 0.0); }  // + 0.0: a zero prints without its sign
 
 std::vector<std::string> header(const GearboxReport& g) {
   std::vector<std::string> h = {"rank"};
@@ -199,9 +199,9 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
   return o;
 }
 
-namespace {
-
 std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); }
+
+namespace {
 
 // One listed design: teeth, choices, ratio, column values and their feasible ranges.
 std::string jsonCandidate(const GearboxReport& g, const DesignRow& r) {
@@ -222,7 +222,7 @@ std::string jsonCandidate(const GearboxReport& g, const DesignRow& r) {
                    r.ratio.str(), r.undecided ? "true" : "false");
   for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
     const Cell& c = r.cells[i];
-    std::string v = !c.valid ? "null" : c.lo == c.hi ? num(c.lo) : fmt::format("[{}, {}]", num(c.lo), num(c.hi));
+    std::string v = !c.valid || (std::isnan(c.lo) && std::isnan(c.hi)) ? "null" : c.lo == c.hi ? num(c.lo) : fmt::format("[{}, {}]", num(c.lo), num(c.hi));
     o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(g.columns[i].name), v);
   }
   o += "}";
@@ -253,7 +253,7 @@ std::string jsonScene(const SceneReport& sc, const RenderOptions& ro) {
   }
   o += fmt::format("\"target\": \"{}\", \"method\": \"{}\", \"rtol\": {}, \"atol\": {}, \"steps\": {}, \"rejected\": {}, "
                    "\"rhs_evaluations\": {}, \"jacobian_evaluations\": {}, \"events\": {}, ",
-                   jsonEscape(sc.target), sc.method, num(sc.rtol), num(sc.atol), sc.steps, sc.rejected, sc.rhs, sc.jacobians, sc.events);
+                   jsonEscape(sc.target), jsonEscape(sc.method), num(sc.rtol), num(sc.atol), sc.steps, sc.rejected, sc.rhs, sc.jacobians, sc.events);
   if (ro.timings) o += fmt::format("\"cpu_seconds\": {}, ", num(sc.cpu));
   o += fmt::format("\"steady_state\": \"{}\", \"max_step_rule\": \"{}\", ", jsonEscape(sc.steady), jsonEscape(sc.stepRule));
   o += fmt::format("\"error_estimate\": {}, \"error_method\": \"{}\", \"error_parts\": {{", sc.errorEstimate >= 0 ? num(sc.errorEstimate) : "null",

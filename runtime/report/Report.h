@@ -290,6 +290,8 @@ void forEachRow(const GearboxReport& g, F&& f) {
 inline constexpr const char* kReportSchemaVersion = "1.0";
 
 std::string formatNumber(double v);
+// A JSON number, shortest round-trip; null where the value is not finite (never nan or inf).
+std::string jsonNumber(double v);
 // A length as a gear engineer reads it: um below a millimetre, mm above.
 std::string formatLength(double metres);
 std::string renderText(const std::vector<GearboxReport>& r, const RenderOptions& o = {});

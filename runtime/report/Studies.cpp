@@ -80,10 +80,10 @@ std::string json(const SweepStudy& s) {
     const auto& p = s.points[k];
     std::string outs;
     for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i)
-      outs += fmt::format("{}\"{}\": {}", i ? ", " : "", s.outputs[i].text, std::isfinite(p.y[i]) ? fmt::format("{}", p.y[i]) : "null");
+      outs += fmt::format("{}\"{}\": {}", i ? ", " : "", diag::jsonEscape(s.outputs[i].text), jsonNumber(p.y[i]));
     std::string extra;
     if (s.scene)
-      extra += fmt::format(", \"stability\": {}", std::isfinite(p.stability) ? fmt::format("{}", p.stability) : "null");
+      extra += fmt::format(", \"stability\": {}", jsonNumber(p.stability));
     if (s.continuation == "arclength") extra += fmt::format(", \"branch\": {}", p.branch);
     if (s.scene) {
       std::string flags;
@@ -92,15 +92,15 @@ std::string json(const SweepStudy& s) {
       extra += ", \"unstable\": [" + flags + "]";
     }
     // The swept quantity under its own name too (LANGUAGE.md §12).
-    points += fmt::format("{}{{\"x\": {}, \"{}\": {}{}, \"outputs\": {{{}}}}}", k ? ", " : "", p.x, s.target, p.x, extra, outs);
+    points += fmt::format("{}{{\"x\": {}, \"{}\": {}{}, \"outputs\": {{{}}}}}", k ? ", " : "", jsonNumber(p.x), diag::jsonEscape(s.target), jsonNumber(p.x), extra, outs);
   }
   std::string folds, marks, notes, gaps;
-  for (size_t i = 0; i < s.folds.size(); ++i) folds += fmt::format("{}{}", i ? ", " : "", s.folds[i]);
-  for (size_t i = 0; i < s.gaps.size(); ++i) gaps += fmt::format("{}[{}, {}]", i ? ", " : "", s.gaps[i].first, s.gaps[i].second);
+  for (size_t i = 0; i < s.folds.size(); ++i) folds += fmt::format("{}{}", i ? ", " : "", jsonNumber(s.folds[i]));
+  for (size_t i = 0; i < s.gaps.size(); ++i) gaps += fmt::format("{}[{}, {}]", i ? ", " : "", jsonNumber(s.gaps[i].first), jsonNumber(s.gaps[i].second));
   for (size_t i = 0; i < s.marks.size(); ++i)
-    marks += fmt::format("{}{{\"at\": {}, \"label\": \"{}\"}}", i ? ", " : "", s.marks[i].first, diag::jsonEscape(s.marks[i].second));
+    marks += fmt::format("{}{{\"at\": {}, \"label\": \"{}\"}}", i ? ", " : "", jsonNumber(s.marks[i].first), diag::jsonEscape(s.marks[i].second));
   for (size_t i = 0; i < s.notes.size(); ++i) notes += fmt::format("{}\"{}\"", i ? ", " : "", diag::jsonEscape(s.notes[i]));
-  return fmt::format("{{\"sweep\": \"{}\", \"unit\": \"SI\"{}, \"points\": [{}]}}", s.target,
+  return fmt::format("{{\"sweep\": \"{}\", \"unit\": \"SI\"{}, \"points\": [{}]}}", diag::jsonEscape(s.target),
                      s.scene ? fmt::format(", \"continuation\": \"{}\", \"stability_of\": \"{}\", \"folds\": [{}], \"gaps\": [{}], \"marks\": [{}], \"notes\": [{}]",
                                            s.continuation, diag::jsonEscape(s.stabilityScene), folds, gaps, marks, notes)
                              : "",
@@ -114,16 +114,18 @@ std::string json(const WorkPrecisionStudy& s, bool timings) {
     if (!r.ok) continue;
     key = r.output;
     refs += fmt::format("{}{{\"harmonics\": {}, \"rtol\": {}, \"value\": {}, \"checked_against_rtol\": {}, \"difference\": {}}}",
-                        refs.empty() ? "" : ", ", r.harmonics, r.rtol, r.value, r.checkRtol, r.difference);
+                        refs.empty() ? "" : ", ", r.harmonics, jsonNumber(r.rtol), jsonNumber(r.value), jsonNumber(r.checkRtol),
+                        jsonNumber(r.difference));
   }
   for (const auto& c : s.curves)
     for (const auto& run : c.runs) {
       if (!run.ok) continue;
       runs += fmt::format("{}{{\"harmonics\": {}, \"method\": \"{}\", \"steady_state\": \"{}\", \"rtol\": {}, \"error\": {}, \"steps\": {}, \"rhs_evaluations\": {}{}}}",
-                          runs.empty() ? "" : ", ", c.harmonics, c.method, c.steady, run.rtol, run.error, run.steps, run.rhsEvaluations,
-                          timings ? fmt::format(", \"cpu_seconds\": {}", run.cpuSeconds) : "");
+                          runs.empty() ? "" : ", ", c.harmonics, diag::jsonEscape(c.method), diag::jsonEscape(c.steady), jsonNumber(run.rtol),
+                          jsonNumber(run.error), run.steps, run.rhsEvaluations,
+                          timings ? fmt::format(", \"cpu_seconds\": {}", jsonNumber(run.cpuSeconds)) : "");
     }
-  return fmt::format("{{\"scene\": \"{}\", \"output\": \"{}\", \"references\": [{}], \"runs\": [{}]}}", s.scene, key, refs, runs);
+  return fmt::format("{{\"scene\": \"{}\", \"output\": \"{}\", \"references\": [{}], \"runs\": [{}]}}", diag::jsonEscape(s.scene), diag::jsonEscape(key), refs, runs);
 }
 
 } // namespace

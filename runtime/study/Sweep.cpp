@@ -16,17 +16,6 @@ namespace gbx::rt {
 
 namespace {
 
-// A length output whose every value lies below 0.1 mm reads in um (a transmission error).
-void smallLengths(SweepStudy& r, const ir::Study& st) {
-  for (size_t i = 0; i < r.outputs.size() && i < st.outputs.size(); ++i) {
-    if (st.outputs[i]->op == ir::Op::Quantity && st.outputs[i]->ref.key == Q::Imbalance) continue;
-    double largest = 0;
-    for (const auto& p : r.points)
-      if (i < p.y.size() && std::isfinite(p.y[i])) largest = std::max(largest, std::fabs(p.y[i]));
-    if (!r.points.empty()) r.outputs[i].unit = units::displayUnitFor(st.outputs[i]->type.dim, largest);
-  }
-}
-
 void scenesOf(const ir::Expr& e, std::set<int>& out) {
   if (e.op == ir::Op::SceneOutput && e.output.scene >= 0) out.insert(e.output.scene);
   for (const auto& x : e.args)
@@ -49,7 +38,11 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   r.target = st.target;
   r.plot = st.plot;
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
-  r.unit = units::displayUnitFor(st.dim.value_or(units::Dim{}), std::max(std::fabs(lo), std::fabs(hi)));
+  // The swept quantity in its one display unit (LANGUAGE.md §20): a deviation, a modification
+  // or an effect's length (a clearance, an error amplitude) in um.
+  units::Dim sweptDim = st.dim.value_or(units::Dim{});
+  bool micro = sweptDim == units::dims::length && (st.sweptEffect.scene >= 0 || cat::readsInMicrometres(st.swept.key));
+  r.unit = micro ? units::micrometres() : units::displayUnitFor(sweptDim);
   for (size_t i = 0; i < st.outputs.size(); ++i) r.outputs.push_back({st.outputTexts[i], displayUnitOf(*st.outputs[i])});
   long n = static_cast<long>(std::floor(std::fabs(hi - lo) / step * (1 + 1e-12))) + 1;
   if (hi < lo) step = -step;  // a down-sweep
@@ -75,7 +68,6 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   // The checker made sure an arclength study's outputs read exactly one scene (E0225).
   if (arclength) {
     if (continuation(m, a, st, m.scenes[static_cast<size_t>(*scenes.begin())], r)) {
-      smallLengths(r, st);
       return r;
     }
     r.continuation = "natural";
@@ -140,7 +132,6 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
     }
     r.points.push_back(std::move(p));
   }
-  smallLengths(r, st);
   // Every point's scene estimated its error; the report gives the largest.
   const SweepStudy::Point* worst = nullptr;
   for (const auto& p : r.points)

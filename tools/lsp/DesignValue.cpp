@@ -95,7 +95,7 @@ std::optional<std::string> designValue(const ir::Program& p, const ir::Gearbox& 
     return std::nullopt; // a spec the runtime cannot evaluate: the hover goes without
   }
   if (!v.isPoint() || !std::isfinite(v.lo)) return std::nullopt;
-  units::DisplayUnit u = units::displayUnitFor(dim, v.lo);
+  units::DisplayUnit u = dim == units::dims::length && cat::readsInMicrometres(r.key) ? units::micrometres() : units::displayUnitFor(dim);
   std::string shown =
       dim.dimensionless() && v.exact && v.exact->isInteger() ? v.exact->str() : rt::formatNumber(u.shown(v.lo));
   if (!u.name.empty()) shown += " " + u.name;
