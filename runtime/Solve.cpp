@@ -127,6 +127,10 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
   ro.charts = !o.outDir.empty();
   passes::Rendered rendered = passes::render(std::move(reports), *format, ro);
   out << rendered.report;
+  // CSV on stdout is the design table alone: a note says which tables are not in it.
+  if (!rendered.unwritten.empty() && !o.quiet)
+    err << fmt::format("gbxc: note: stdout holds the design table only; {} {} written with -o DIR\n",
+                       fmt::join(rendered.unwritten, ", "), rendered.unwritten.size() == 1 ? "is" : "are");
   if (!o.outDir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(o.outDir, ec);

@@ -11,6 +11,7 @@ Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, 
   r.report = format.render(reports, ro);
   r.reportFile = "report." + std::string(format.extension);
   if (o.charts && format.tables) r.tables = format.tables(reports, o);
+  if (!o.charts && format.tables) r.unwritten = csvOtherTables(reports, o);
   return r;
 }
 

@@ -14,6 +14,9 @@ struct Rendered {
   std::string reportFile;         // its name in the output folder
   std::vector<ChartFile> charts;  // drawn only when the options ask for charts
   std::vector<TableFile> tables;  // further files of the format (CSV tables), with charts
+  // Without an output folder: the format's further tables that have rows and were not
+  // written (stdout holds one table), for a note that names them.
+  std::vector<std::string> unwritten;
 };
 
 Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, const RenderOptions& options);

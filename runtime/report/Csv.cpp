@@ -196,12 +196,14 @@ std::string ratings(const std::vector<GearboxReport>& reports) {
 
 std::string renderCsv(const std::vector<GearboxReport>& reports, const RenderOptions&) { return designs(reports); }
 
-std::vector<TableFile> csvTables(const std::vector<GearboxReport>& reports, const RenderOptions& o) {
+namespace {
+
+// Every table but the design table (which a million-row listing makes as it is written).
+std::vector<TableFile> otherTables(const std::vector<GearboxReport>& reports, const RenderOptions& o) {
   std::vector<TableFile> out;
   auto add = [&](const char* name, std::string text) {
     if (!text.empty()) out.push_back({name, std::move(text)});
   };
-  add("designs.csv", designs(reports));
   add("scenes.csv", scenes(reports));
   add("spectra.csv", spectra(reports));
   add("sweeps.csv", sweeps(reports));
@@ -209,6 +211,21 @@ std::vector<TableFile> csvTables(const std::vector<GearboxReport>& reports, cons
   add("modifications.csv", modifications(reports));
   add("ratings.csv", ratings(reports));
   return out;
+}
+
+} // namespace
+
+std::vector<TableFile> csvTables(const std::vector<GearboxReport>& reports, const RenderOptions& o) {
+  std::vector<TableFile> out;
+  if (std::string d = designs(reports); !d.empty()) out.push_back({"designs.csv", std::move(d)});
+  for (auto& t : otherTables(reports, o)) out.push_back(std::move(t));
+  return out;
+}
+
+std::vector<std::string> csvOtherTables(const std::vector<GearboxReport>& reports, const RenderOptions& o) {
+  std::vector<std::string> names;
+  for (const auto& t : otherTables(reports, o)) names.push_back(t.name);
+  return names;
 }
 
 } // namespace gbx::rt

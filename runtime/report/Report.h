@@ -303,6 +303,8 @@ struct TableFile {
   std::string name, text;
 };
 std::vector<TableFile> csvTables(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
+// The names of those tables, other than the design table, that have rows.
+std::vector<std::string> csvOtherTables(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderMarkdown(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderHtml(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 

@@ -81,6 +81,28 @@ TEST(Cli, GbxPathAddsModuleFolders) {
   EXPECT_NE(listed.out.find("gearbox G:"), std::string::npos) << listed.out;
 }
 
+// CSV on stdout is the design table alone; a note on stderr names the tables it leaves out
+// and how to get them (README, "Reports"). With -o DIR they are files, and no note is given.
+TEST(Cli, CsvOnStdoutIsTheDesignTableAndSaysWhatElseThereIs) {
+  std::string spec = std::string(GBX_SOURCE_DIR) + "/specs/spur_resonance.gbx";
+  auto r = gbxc({"solve", spec, "--format", "csv", "--no-timings"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("gearbox,rank,", 0), 0u) << r.out;
+  EXPECT_EQ(r.out.find("# table"), std::string::npos);
+  EXPECT_NE(r.err.find("note: stdout holds the design table only; scenes.csv, sweeps.csv are written with -o DIR"), std::string::npos)
+      << r.err;
+  auto quiet = gbxc({"solve", spec, "--format", "csv", "--no-timings", "--quiet"});
+  EXPECT_EQ(quiet.err, "");
+  fs::path d = tempDir("csv-out");
+  auto files = gbxc({"solve", spec, "--format", "csv", "--no-timings", "-o", d.string()});
+  EXPECT_EQ(files.err, "");
+  EXPECT_TRUE(fs::exists(d / "scenes.csv"));
+  EXPECT_TRUE(fs::exists(d / "sweeps.csv"));
+  // A spec with nothing but designs: no note.
+  auto plain = gbxc({"solve", std::string(GBX_SOURCE_DIR) + "/specs/thruster_one_stage.gbx", "--format", "csv"});
+  EXPECT_EQ(plain.err, "");
+}
+
 // A file with no gearbox is solved to nothing, and `solve` says so.
 TEST(Cli, SolvingAFileWithoutAGearboxSaysSo) {
   fs::path d = tempDir("no-gearbox");
