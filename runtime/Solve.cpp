@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <ctime>
 
 #include <atomic>
 #include <filesystem>
@@ -27,6 +28,7 @@
 #include "passes/Scenes.h"
 #include "passes/Search.h"
 #include "passes/Studies.h"
+#include "passes/Summary.h"
 
 namespace gbx::rt {
 
@@ -120,10 +122,18 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       fail(gb.name, rated.errors);
       rep.ratings = std::move(rated.ratings);
     }
+    rep.inputs = passes::decisiveInputs(gb);
     reports.push_back(std::move(rep));
   }
   RenderOptions ro;
   ro.timings = o.timings;
+  ro.title = o.title;
+  ro.version = o.version;
+  if (o.timings) {
+    std::time_t now = std::time(nullptr);
+    char day[16];
+    if (std::strftime(day, sizeof day, "%Y-%m-%d", std::gmtime(&now))) ro.date = day;
+  }
   ro.charts = !o.outDir.empty();
   passes::Rendered rendered = passes::render(std::move(reports), *format, ro);
   out << rendered.report;

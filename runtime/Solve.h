@@ -16,6 +16,8 @@ struct SolveOptions {
   bool timings = true;  // CPU times in reports (off for golden files)
   double maxDesigns = 1e9;  // the search budget (`--max-designs`)
   double timeLimit = 0;     // seconds of wall time (`--time-limit`); 0: none
+  std::string title;    // the spec's file name, for the report's header
+  std::string version;  // gbxc's
   int optimiserIterations = 0;  // a test setting: Nelder-Mead iterations per candidate; 0: its own
 };
 

@@ -228,6 +228,7 @@ SceneSeries recorded(const ir::SceneOutput& o, Dim dim, const std::vector<double
   if (o.fn == cat::SignalFn::Spectrum) {
     s.isSpectrum = true;
     s.spectrum = spectrum(s.v, dt, fz);
+    s.meshFrequency = fz;
   }
   return s;
 }

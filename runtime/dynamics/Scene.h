@@ -35,6 +35,7 @@ struct SceneSeries {
   std::vector<double> t, v;
   bool isSpectrum = false;
   Spectrum spectrum;
+  double meshFrequency = 0;  // a spectrum: the mesh whose orders its harmonics count, Hz
 };
 
 struct SceneResult {

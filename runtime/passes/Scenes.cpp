@@ -52,9 +52,9 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ScenePlan& scene) {
     line.signal = ser.signal;
     line.unit = u.name;
     line.spectrum = ser.isSpectrum;
-    line.meshFrequency = r.meshFrequency;
+    line.meshFrequency = ser.meshFrequency > 0 ? ser.meshFrequency : r.meshFrequency;
     if (ser.isSpectrum) {
-      double fmax = r.meshFrequency > 0 ? 10.5 * r.meshFrequency : INFINITY;
+      double fmax = line.meshFrequency > 0 ? 10.5 * line.meshFrequency : INFINITY;
       for (size_t i = 0; i < ser.spectrum.frequency.size() && ser.spectrum.frequency[i] <= fmax; ++i) {
         line.x.push_back(ser.spectrum.frequency[i]);
         line.y.push_back(ser.spectrum.amplitude[i] / u.scale);

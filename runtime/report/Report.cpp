@@ -9,6 +9,7 @@
 #include "report/Optimisation.h"
 #include "report/Ratings.h"
 #include "report/Studies.h"
+#include "report/Summary.h"
 
 namespace gbx::rt {
 
@@ -28,29 +29,11 @@ std::string formatLength(double m) {
 
 namespace {
 
-std::string ratioText(const Rational& r) { return formatNumber(r.toDouble()) + " (" + r.str() + ")"; }
-
 std::string count(double x) { return fmt::format("{:.0f}", x + 0.0); }  // + 0.0: a zero prints without its sign
 
-std::vector<std::string> header(const GearboxReport& g) {
-  std::vector<std::string> h = {"rank"};
-  if (!g.rows.empty()) {
-    for (const auto& [n, _] : g.rows[0].teeth) h.push_back(n);
-    for (const auto& [n, _] : g.rows[0].choices) h.push_back(n);
-  }
-  h.push_back("ratio");
-  for (const auto& c : g.columns) h.push_back(c.unit.empty() ? c.name : c.name + " [" + c.unit + "]");
-  return h;
-}
+std::vector<std::string> header(const GearboxReport& g) { return designHeader(g); }
 
-std::vector<std::string> cells(const DesignRow& r) {
-  std::vector<std::string> v = {std::to_string(r.rank) + (r.undecided ? "?" : "")};
-  for (const auto& [_, z] : r.teeth) v.push_back(std::to_string(z));
-  for (const auto& [_, c] : r.choices) v.push_back(c);
-  v.push_back(ratioText(r.ratio));
-  for (const auto& c : r.cells) v.push_back(c.text);
-  return v;
-}
+std::vector<std::string> cells(const DesignRow& r) { return designCells(r); }
 
 } // namespace
 
@@ -70,13 +53,40 @@ std::string aligned(const std::vector<std::vector<std::string>>& table, const st
   return o;
 }
 
-// The design list: its headline, table, funnel, notes and warnings, and the optimisation.
+// The summary that opens a gearbox's part of the report: what it was solved for, design 1
+// and its key results, each safety against its minimum, and every warning of the report.
+std::string textSummary(const GearboxReport& g) {
+  GearboxSummary s = summarise(g);
+  std::string o;
+  std::vector<std::string> operating;
+  for (const auto& in : s.inputs) {
+    if (in.stage) continue;
+    operating.push_back(in.label + " " + in.value);
+  }
+  if (!operating.empty()) o += fmt::format("  operating point: {}\n", fmt::join(operating, ", "));
+  for (const auto& in : s.inputs)
+    if (in.stage) o += fmt::format("  {}: {}\n", in.label, in.value);
+  if (!s.design.empty() && !s.results.empty()) {  // the table below lists it too; here beside its results
+    std::vector<std::string> parts;
+    for (const auto& [n, v] : s.design) parts.push_back(n + " " + v);
+    o += fmt::format("  design 1: {}\n", fmt::join(parts, ", "));
+  }
+  for (const auto& r : s.results) o += "  result: " + r + "\n";
+  for (const auto& sf : s.safeties)
+    o += fmt::format("  safety: {} {} {} against {} ({})\n", sf.where, sf.label, formatNumber(sf.value), formatNumber(sf.minimum),
+                     sf.ok() ? "met" : "BELOW the minimum");
+  for (const auto& w : s.warnings) o += "  warning: " + w + "\n";
+  return o;
+}
+
+// The design list: its headline, table, funnel, notes, and the optimisation.
 std::string textDesigns(const GearboxReport& g, const RenderOptions& ro) {
   std::string o = fmt::format("gearbox {}: {} design{}", g.name, g.count, g.count == 1 ? "" : "s");
   if (g.undecided) o += fmt::format(" ({} undecided)", g.undecided);
   if (g.count > g.rows.size()) o += fmt::format(", best {} shown", g.rows.size());
   o += "\n";
   if (!g.window.empty()) o += "  ratio window " + g.window + "\n";
+  o += textSummary(g);
   if (!g.rows.empty()) {
     auto h = header(g);
     std::vector<std::vector<std::string>> table = {h};
@@ -96,7 +106,6 @@ std::string textDesigns(const GearboxReport& g, const RenderOptions& ro) {
   for (const auto& c : g.columns)
     if (!c.exact) o += "  note: intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images\n";
   for (const auto& n : g.notes) o += "  note: " + n + "\n";
-  for (const auto& w : g.warnings) o += "  warning: " + w + "\n";
   if (g.undecided) o += "  ? = feasibility undecided at the freedom resolution (kept, not proven)\n";
   if (g.optimisation) {
     for (const auto& l : optimisationLines(*g.optimisation)) o += "  " + l + "\n";
@@ -398,31 +407,9 @@ std::vector<std::string> sceneItems(const SceneReport& sc) {
   return items;
 }
 
-std::string markdown(const std::vector<GearboxReport>& reports, const RenderOptions& ro, bool html) {
-  auto esc = [&](const std::string& x) {
-    if (!html) return x;
-    std::string o;
-    for (char c : x) o += c == '<' ? std::string("&lt;") : c == '>' ? std::string("&gt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
-    return o;
-  };
+std::string markdown(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
   auto table = [&](const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
-    std::string o;
-    if (html) {
-      o += "<table>\n<tr>";
-      for (const auto& h : head) o += "<th>" + esc(h) + "</th>";
-      o += "</tr>\n";
-      for (const auto& r : rows) {
-        o += "<tr>";
-        // Numbers right-aligned, words (rules, inputs, targets) left.
-        for (const auto& c : r) {
-          bool number = !c.empty() && (std::isdigit(static_cast<unsigned char>(c[0])) || c[0] == '-' || c[0] == '[');
-          o += (number ? "<td>" : "<td class=\"t\">") + esc(c) + "</td>";
-        }
-        o += "</tr>\n";
-      }
-      return o + "</table>\n";
-    }
-    o += "|";
+    std::string o = "|";
     for (const auto& h : head) o += " " + h + " |";
     o += "\n|";
     for (size_t i = 0; i < head.size(); ++i) o += " ---: |";
@@ -434,24 +421,15 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
     }
     return o + "\n";
   };
-  auto heading = [&](int level, const std::string& t) {
-    return html ? fmt::format("<h{}>{}</h{}>\n", level, esc(t), level) : std::string(static_cast<size_t>(level), '#') + " " + t + "\n\n";
-  };
-  auto para = [&](const std::string& t) { return html ? "<p>" + esc(t) + "</p>\n" : t + "\n\n"; };
-  auto image = [&](const std::string& f) {
-    if (html && ro.inlineCharts)
-      for (const auto& c : *ro.inlineCharts)
-        if (c.name == f) return fmt::format("<figure>\n{}</figure>\n", c.svg);
-    return html ? fmt::format("<p><img src=\"{}\" alt=\"{}\"></p>\n", f, f) : fmt::format("![{}]({})\n\n", f, f);
-  };
+  auto heading = [&](int level, const std::string& t) { return std::string(static_cast<size_t>(level), '#') + " " + t + "\n\n"; };
+  auto para = [&](const std::string& t) { return t + "\n\n"; };
+  auto image = [&](const std::string& f) { return fmt::format("![{}]({})\n\n", f, f); };
   auto list = [&](const std::vector<std::string>& items) {
-    std::string o = html ? "<ul>\n" : "";
-    for (const auto& i : items) o += html ? "<li>" + esc(i) + "</li>\n" : "- " + i + "\n";
-    return o + (html ? "</ul>\n" : "\n");
+    std::string o;
+    for (const auto& i : items) o += "- " + i + "\n";
+    return o + "\n";
   };
-  std::string o = html ? "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>gbxc report</title>"
-                         "<style>body{font-family:sans-serif}td,th{padding:2px 8px;text-align:right}td.t{text-align:left}</style></head><body>\n"
-                       : "";
+  std::string o;
   for (const auto& g : reports) {
     o += heading(2, g.name);
     o += para(fmt::format("{} design{}{}", g.count, g.count == 1 ? "" : "s", g.window.empty() ? "" : ", ratio window " + g.window));
@@ -472,7 +450,7 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       o += heading(3, "Elimination funnel") + list(f);
     }
     if (g.optimisation) {
-      o += heading(3, "Optimisation") + list(optimisationLines(*g.optimisation, !(html && ro.inlineCharts)));
+      o += heading(3, "Optimisation") + list(optimisationLines(*g.optimisation, true));
       for (const auto& f : g.optimisation->files) o += image(f);
     }
     for (const auto& md : g.modifications) {
@@ -514,14 +492,12 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       for (const auto& f : study.files) o += image(f);
     }
   }
-  if (html) o += "</body></html>\n";
   return o;
 }
 
 } // namespace
 
-std::string renderMarkdown(const std::vector<GearboxReport>& reports, const RenderOptions& o) { return markdown(reports, o, false); }
+std::string renderMarkdown(const std::vector<GearboxReport>& reports, const RenderOptions& o) { return markdown(reports, o); }
 
-std::string renderHtml(const std::vector<GearboxReport>& reports, const RenderOptions& o) { return markdown(reports, o, true); }
 
 } // namespace gbx::rt

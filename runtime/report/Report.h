@@ -241,6 +241,12 @@ public:
 
 struct GearboxReport {
   std::string name;
+  // The operating point and the inputs that decide the answer, for the summary.
+  struct Input {
+    std::string label, value;
+    bool stage = false;  // a stage's inputs, else the operating point's
+  };
+  std::vector<Input> inputs;
   unsigned long long count = 0;
   unsigned long long undecided = 0;
   std::string window;
@@ -267,6 +273,9 @@ struct ChartFile {
 
 struct RenderOptions {
   bool timings = true;  // CPU times: off for golden files
+  // The document's header: the spec's file name, gbxc's version, and the date (left out
+  // with the timings, so golden files stay the same from day to day).
+  std::string title, version, date;
   bool charts = false;  // SVG charts beside the report (an output folder is given)
   // Charts to draw inside the report itself (HTML: one file that travels alone).
   const std::vector<ChartFile>* inlineCharts = nullptr;

@@ -222,6 +222,8 @@ int solve(const Options& o, std::ostream& out, std::ostream& err) {
   so.maxDesigns = o.maxDesigns;
   so.timeLimit = o.timeLimit;
   so.optimiserIterations = o.test.optimiserIterations;
+  so.title = std::filesystem::path(o.files[0]).filename().string();
+  so.version = GBX_VERSION;
   return rt::solve(c->program, so, out, err);
 }
 

@@ -878,3 +878,33 @@ TEST(Geometry, APairThatDoesNotMeshIsSaidToBeOne) {
 )");
   EXPECT_NE(r.find("warning: stage `s` of design 1 does not mesh"), std::string::npos) << r;
 }
+
+// LANGUAGE.md §20: one display unit per quantity in every format. A deviation, a modification
+// or a transmission error reads in um whatever its size (a 0.2 mm tip relief as 200 um, not as
+// 0.2 mm in one table and um in another); other lengths in mm, however small.
+TEST(OneMeaning, MicrometreQuantitiesReadInMicrometresWhateverTheirSize) {
+  auto quantity = [](cat::Q key) {
+    ir::Expr e;
+    e.op = ir::Op::Quantity;
+    e.type.dim = units::dims::length;
+    e.ref.key = key;
+    return e;
+  };
+  for (cat::Q key : {cat::Q::PitchDeviation, cat::Q::ProfileDeviation, cat::Q::TipRelief, cat::Q::LeadCrowning, cat::Q::LoadDeflection})
+    EXPECT_EQ(rt::displayUnitOf(quantity(key)).name, "um") << cat::keyName(key);
+  for (cat::Q key : {cat::Q::CenterDistance, cat::Q::FaceWidth, cat::Q::TipReliefHeight})
+    EXPECT_EQ(rt::displayUnitOf(quantity(key)).name, "mm") << cat::keyName(key);
+  ir::Expr te;
+  te.op = ir::Op::SceneOutput;
+  te.type.dim = units::dims::length;
+  EXPECT_EQ(rt::displayUnitOf(te).name, "um") << "a number read from a transmission error";
+  // worst(), max() of a micrometre quantity keep its unit.
+  ir::Expr worst;
+  worst.op = ir::Op::Scatter;
+  worst.type.dim = units::dims::length;
+  worst.args.push_back(std::make_unique<ir::Expr>(std::move(te)));
+  EXPECT_EQ(rt::displayUnitOf(worst).name, "um");
+  for (auto signal : {cat::Signal::TransmissionError, cat::Signal::StaticTransmissionError, cat::Signal::Displacement})
+    EXPECT_EQ(cat::signalUnit(signal).name, "um");
+  EXPECT_EQ(cat::signalUnit(cat::Signal::MeshForce).name, "N");
+}

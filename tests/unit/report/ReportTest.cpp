@@ -85,3 +85,57 @@ TEST(Svg, SpectrumTicksAtMeshOrders) {
   EXPECT_EQ(svg.find(">20x<"), std::string::npos);
   EXPECT_EQ(svg.find(">1000<"), std::string::npos) << "no round-value ticks beside the orders";
 }
+
+namespace {
+
+struct Label {
+  double left, right, top, bottom;
+  std::string text;
+};
+
+// Every horizontal text of an SVG with its box, from its anchor and about 6.6 px a character
+// (12 px type; 14 px for the title); rotated text (the y label) is left out.
+std::vector<Label> labels(const std::string& svg) {
+  std::vector<Label> out;
+  for (size_t at = svg.find("<text "); at != std::string::npos; at = svg.find("<text ", at + 1)) {
+    size_t close = svg.find('>', at), end = svg.find("</text>", at);
+    std::string tag = svg.substr(at, close - at), text = svg.substr(close + 1, end - close - 1);
+    if (tag.find("rotate") != std::string::npos) continue;
+    auto attr = [&](const char* name) {
+      size_t p = tag.find(std::string(" ") + name + "=\"");
+      return p == std::string::npos ? 0.0 : std::stod(tag.substr(p + std::char_traits<char>::length(name) + 3));
+    };
+    double x = attr("x"), y = attr("y"), size = tag.find("font-size=\"14\"") != std::string::npos ? 14 : 12;
+    double w = 0.55 * size * static_cast<double>(text.size());
+    double left = tag.find("\"middle\"") != std::string::npos ? x - w / 2 : tag.find("\"end\"") != std::string::npos ? x - w : x;
+    out.push_back({left, left + w, y - size * 0.8, y + size * 0.2, text});
+  }
+  return out;
+}
+
+} // namespace
+
+// A sweep's marks close together (two jumps and a resonance within a few percent of the axis)
+// and a legend of long entries: no label lies on another, on the legend, or off the picture.
+TEST(Svg, LabelsNeverOverlapEachOtherOrTheLegend) {
+  rt::SvgChart c;
+  c.title = "resonance: mesh.dynamic_factor against input_speed";
+  c.xLabel = "input_speed [rpm]";
+  c.yLabel = "mesh.dynamic_factor";
+  c.series.push_back({"mesh.dynamic_factor, stable", {9000, 12000, 13100, 18000}, {1.9, 2.1, 3.3, 1.9}});
+  c.series.push_back({"unstable (dashed)", {11300, 13100}, {3.3, 2.1}, false, true, true});
+  c.series.push_back({"a third entry whose label is rather long to force a second legend row", {9000, 18000}, {2, 2}});
+  c.xMarks = {{13106, "jump"}, {11281, "jump"}, {13846, "f_mesh = f_n"}, {13500, "f_mesh = 2 f_n (parametric)"}};
+  std::string svg = rt::renderSvg(c);
+  auto ls = labels(svg);
+  ASSERT_GE(ls.size(), 10u);
+  double width = 720;
+  for (size_t i = 0; i < ls.size(); ++i) {
+    EXPECT_GE(ls[i].left, 0) << ls[i].text;
+    EXPECT_LE(ls[i].right, width) << ls[i].text;
+    for (size_t j = i + 1; j < ls.size(); ++j) {
+      bool apart = ls[i].right <= ls[j].left || ls[j].right <= ls[i].left || ls[i].bottom <= ls[j].top || ls[j].bottom <= ls[i].top;
+      EXPECT_TRUE(apart) << "`" << ls[i].text << "` overlaps `" << ls[j].text << "`";
+    }
+  }
+}

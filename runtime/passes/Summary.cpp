@@ -1,0 +1,57 @@
+#include "passes/Summary.h"
+
+#include <fmt/format.h>
+
+#include "units/Unit.h"
+
+namespace gbx::rt::passes {
+
+namespace {
+
+// A number in its display unit to ten significant digits (12000 rpm, not 12000.000000000002);
+// a service life in hours, as ratings state it.
+std::string quantity(const units::Number& v, const units::Dim& d, cat::Q key) {
+  units::DisplayUnit u = key == cat::Q::RatingLife ? units::DisplayUnit{"h", 3600} : units::displayUnitFor(d);
+  std::string n = fmt::format("{:.10g}", u.shown(v.toDouble()));
+  return u.name.empty() ? n : n + " " + u.name;
+}
+
+// A fixed value as the summary shows it: a number in its display unit, a word as written.
+std::string shown(const ir::Attribute& a) {
+  if (!a.symbol.empty()) return a.symbol;
+  if (a.role != ir::Attribute::Fixed || !a.value || a.value->op != ir::Op::Const) return "";
+  return quantity(a.value->value, a.dim, a.key);
+}
+
+// `rating.lubricant.viscosity_40` reads as `viscosity_40` beside its stage.
+std::string_view shortName(cat::Q key) {
+  std::string_view n = cat::keyName(key);
+  size_t dot = n.rfind('.');
+  return dot == std::string_view::npos ? n : n.substr(dot + 1);
+}
+
+// The stage inputs the summary names, in this order (the rest is in the tables).
+constexpr cat::Q kStageInputs[] = {cat::Q::Material, cat::Q::Accuracy, cat::Q::RatingApplicationFactor, cat::Q::RatingLife,
+                                   cat::Q::RatingViscosity40, cat::Q::RatingOilTemperature};
+
+} // namespace
+
+std::vector<GearboxReport::Input> decisiveInputs(const ir::Gearbox& gearbox) {
+  std::vector<GearboxReport::Input> inputs;
+  for (const auto& s : gearbox.operating) {
+    if (!s.value) continue;
+    inputs.push_back({s.name, s.symbol.empty() ? quantity(*s.value, s.dim, s.key) : s.symbol});
+  }
+  for (const auto& st : gearbox.stages) {
+    std::vector<std::string> parts = {ir::stageKindName(st.kind)};
+    for (cat::Q key : kStageInputs)
+      for (const auto& a : st.attributes)
+        if (a.key == key && a.gear < 0)
+          if (std::string v = shown(a); !v.empty()) parts.push_back(fmt::format("{} {}", shortName(key), v));
+    if (parts.size() == 1) continue;  // nothing beyond its kind: the tables say it
+    inputs.push_back({"stage " + st.name, fmt::format("{}", fmt::join(parts, ", ")), true});
+  }
+  return inputs;
+}
+
+} // namespace gbx::rt::passes

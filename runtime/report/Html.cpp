@@ -1,0 +1,315 @@
+// The HTML report as a document an engineer sends on: a summary first (per gearbox what it
+// was solved for, the chosen design, its key results, each safety against its minimum, the
+// warnings), then every plot, then the tables, long ones folded; one embedded stylesheet for
+// screen and print (A4). LANGUAGE.md §20.
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "report/Optimisation.h"
+#include "report/Ratings.h"
+#include "report/Report.h"
+#include "report/Studies.h"
+#include "report/Summary.h"
+
+namespace gbx::rt {
+
+namespace {
+
+// Tables longer than this fold: their first rows show, the rest open on demand.
+constexpr size_t kFoldRows = 30;
+constexpr size_t kShownWhenFolded = 12;
+// A design table of a few designs and many columns reads better turned: a row per quantity.
+constexpr size_t kTurnColumns = 10;
+constexpr size_t kTurnRows = 3;
+
+const char* kStyle = R"(<style>
+:root{--line:#d0d7de;--muted:#57606a;--ok:#1a7f37;--ok-bg:#dafbe1;--low:#cf222e;--low-bg:#ffebe9;--warn:#9a6700;--warn-bg:#fff8c5}
+*{box-sizing:border-box}
+body{font:14px/1.45 system-ui,-apple-system,"Segoe UI",sans-serif;color:#1f2328;margin:0 auto;max-width:1200px;padding:20px 28px}
+h1{font-size:22px;margin:0 0 2px}h2{font-size:18px;margin:28px 0 8px;border-bottom:1px solid var(--line);padding-bottom:4px}
+h3{font-size:15px;margin:18px 0 6px}h4{font-size:13px;margin:10px 0 4px;color:var(--muted);text-transform:uppercase;letter-spacing:.04em}
+.meta{color:var(--muted);margin:0 0 12px}
+section.summary{margin-bottom:8px}
+.card{border:1px solid var(--line);border-radius:6px;padding:10px 16px 12px;margin:12px 0}
+.card h3{margin-top:4px}
+.cols{display:flex;flex-wrap:wrap;gap:8px 40px}.cols>div{flex:1 1 320px;min-width:0}
+dl.kv{display:grid;grid-template-columns:max-content minmax(0,1fr);gap:1px 14px;margin:0}
+dl.kv dt{color:var(--muted)}dl.kv dd{margin:0;overflow-wrap:anywhere}
+ul.results{margin:0;padding-left:18px}ul.results li{overflow-wrap:anywhere}
+table{border-collapse:collapse;font-variant-numeric:tabular-nums}
+th,td{padding:3px 9px;text-align:right;border-bottom:1px solid #eaeef2;vertical-align:bottom}
+th{background:#f6f8fa;font-weight:600;max-width:16em}
+td{white-space:nowrap}td.t,th.t{text-align:left;white-space:normal;overflow-wrap:anywhere}
+.scroll{overflow-x:auto;max-width:100%;margin:6px 0}
+table.safety td.v{font-weight:600}
+tr.ok td.v{color:var(--ok);background:var(--ok-bg)}tr.low td.v{color:var(--low);background:var(--low-bg)}
+.verdict{font-weight:600}.verdict.ok{color:var(--ok)}.verdict.low{color:var(--low)}
+.warnings{border-left:4px solid #d4a72c;background:var(--warn-bg);padding:6px 14px;margin:10px 0;border-radius:0 6px 6px 0}
+.warnings h4{color:var(--warn);margin-top:4px}.warnings ul{margin:4px 0;padding-left:18px}
+.plots{display:flex;flex-wrap:wrap;gap:14px}
+figure{margin:6px 0;max-width:100%}figure svg{width:100%;height:auto;display:block}
+.plots figure{flex:1 1 520px;max-width:720px}
+figcaption{color:var(--muted);font-size:12px;margin-top:2px}
+details{margin:6px 0}details>summary{cursor:pointer;color:#0969da}
+ul.model{color:var(--muted);font-size:13px;padding-left:18px}
+@media print{
+ @page{size:A4;margin:14mm 12mm}
+ body{max-width:none;padding:0;font-size:9.5pt}
+ h2{break-after:avoid;margin-top:14pt}h3,h4{break-after:avoid}
+ .card,figure,tr,.warnings{break-inside:avoid}
+ .scroll{overflow:visible}
+ table{font-size:8pt}th{max-width:10em}
+ figure svg{max-height:120mm;width:auto}
+ details>summary{color:var(--muted)}
+}
+</style>
+)";
+
+std::string esc(const std::string& x) {
+  std::string o;
+  o.reserve(x.size());
+  for (char c : x) {
+    if (c == '<') o += "&lt;";
+    else if (c == '>') o += "&gt;";
+    else if (c == '&') o += "&amp;";
+    else if (c == '"') o += "&quot;";
+    else o += c;
+  }
+  return o;
+}
+
+bool numberLike(const std::string& c) {
+  return !c.empty() && (std::isdigit(static_cast<unsigned char>(c[0])) || c[0] == '-' || c[0] == '[');
+}
+
+// A column heading may break after a dot, an underscore or an opening parenthesis
+// (`planet_stage.sun.z`), never inside a word.
+std::string heading(const std::string& h) {
+  std::string o;
+  for (char c : esc(h)) {
+    o += c;
+    if (c == '.' || c == '_' || c == '(') o += "<wbr>";
+  }
+  return o;
+}
+
+std::string tableHtml(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows, size_t from, size_t to) {
+  std::string o = "<div class=\"scroll\"><table>\n<tr>";
+  for (size_t i = 0; i < head.size(); ++i) o += (i == 0 ? "<th class=\"t\">" : "<th>") + heading(head[i]) + "</th>";
+  o += "</tr>\n";
+  for (size_t r = from; r < to && r < rows.size(); ++r) {
+    o += "<tr>";
+    // Numbers right-aligned, words (rules, inputs, names) left.
+    for (const auto& c : rows[r]) o += (numberLike(c) ? "<td>" : "<td class=\"t\">") + esc(c) + "</td>";
+    o += "</tr>\n";
+  }
+  return o + "</table></div>\n";
+}
+
+// A table; over kFoldRows rows its first rows show and the whole table folds below them.
+std::string table(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
+  if (rows.size() <= kFoldRows) return tableHtml(head, rows, 0, rows.size());
+  return tableHtml(head, rows, 0, kShownWhenFolded) +
+         fmt::format("<details><summary>all {} rows (the first {} above)</summary>\n{}</details>\n", rows.size(), kShownWhenFolded,
+                     tableHtml(head, rows, 0, rows.size()));
+}
+
+std::string list(const std::vector<std::string>& items, const char* cls = nullptr) {
+  if (items.empty()) return "";
+  std::string o = cls ? fmt::format("<ul class=\"{}\">\n", cls) : "<ul>\n";
+  for (const auto& i : items) o += "<li>" + esc(i) + "</li>\n";
+  return o + "</ul>\n";
+}
+
+std::string warningBox(const std::vector<std::string>& warnings) {
+  if (warnings.empty()) return "";
+  return fmt::format("<div class=\"warnings\"><h4>{} warning{}</h4>\n{}</div>\n", warnings.size(), warnings.size() == 1 ? "" : "s",
+                     list(warnings));
+}
+
+std::string anchor(const std::string& name) {
+  std::string o = "gb-";
+  for (char c : name) o += std::isalnum(static_cast<unsigned char>(c)) ? c : '-';
+  return o;
+}
+
+std::string summaryCard(const GearboxReport& g) {
+  GearboxSummary s = summarise(g);
+  std::string o = fmt::format("<div class=\"card\">\n<h3><a href=\"#{}\">{}</a></h3>\n<p class=\"meta\">{}</p>\n<div class=\"cols\">\n",
+                              anchor(g.name), esc(g.name), esc(s.headline));
+  if (!s.inputs.empty()) {
+    o += "<div><h4>Solved for</h4><dl class=\"kv\">\n";
+    for (const auto& in : s.inputs) o += fmt::format("<dt>{}</dt><dd>{}</dd>\n", esc(in.label), esc(in.value));
+    o += "</dl></div>\n";
+  }
+  if (!s.design.empty()) {
+    o += fmt::format("<div><h4>{}</h4><dl class=\"kv\">\n", g.count > 1 ? "Design 1" : "The design");
+    for (const auto& [n, v] : s.design) o += fmt::format("<dt>{}</dt><dd>{}</dd>\n", esc(n), esc(v));
+    o += "</dl></div>\n";
+  }
+  o += "</div>\n";
+  if (!s.results.empty()) o += "<h4>Key results</h4>\n" + list(s.results, "results");
+  if (!s.safeties.empty()) {
+    o += "<h4>Safeties</h4>\n<div class=\"scroll\"><table class=\"safety\">\n<tr><th class=\"t\">where</th><th class=\"t\">safety</th>"
+         "<th>value</th><th>minimum</th><th class=\"t\"></th></tr>\n";
+    for (const auto& sf : s.safeties)
+      o += fmt::format("<tr class=\"{}\"><td class=\"t\">{}</td><td class=\"t\">{}</td><td class=\"v\">{}</td><td>{}</td><td class=\"t\">{}</td></tr>\n",
+                       sf.ok() ? "ok" : "low", esc(sf.where), esc(sf.label), formatNumber(sf.value), formatNumber(sf.minimum),
+                       sf.ok() ? "met" : "below the minimum");
+    o += "</table></div>\n";
+  }
+  o += warningBox(s.warnings);
+  return o + "</div>\n";
+}
+
+struct Figure {
+  std::string file, caption;
+};
+
+// Every chart of the gearbox, in the order of the parts it belongs to.
+std::vector<Figure> figures(const GearboxReport& g) {
+  std::vector<Figure> f;
+  for (const auto& sc : g.scenes)
+    for (const auto& x : sc.files) f.push_back({x, "scene " + sc.name});
+  for (const auto& st : g.studies)
+    for (const auto& x : st.files) f.push_back({x, "study " + studyName(st)});
+  for (const auto& r : g.ratings)
+    for (const auto& x : r.files) f.push_back({x, "rating of " + r.stage});
+  if (g.optimisation)
+    for (const auto& x : g.optimisation->files) f.push_back({x, "optimisation"});
+  return f;
+}
+
+std::string figureHtml(const Figure& f, const RenderOptions& ro) {
+  if (ro.inlineCharts)
+    for (const auto& c : *ro.inlineCharts)
+      if (c.name == f.file) return fmt::format("<figure>\n{}<figcaption>{}</figcaption></figure>\n", c.svg, esc(f.caption));
+  return fmt::format("<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n", esc(f.file), esc(f.file), esc(f.caption));
+}
+
+std::string designsHtml(const GearboxReport& g) {
+  if (g.rows.empty()) return "";
+  auto head = designHeader(g);
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& r : g.rows) rows.push_back(designCells(r));
+  std::string o = "<h3>Designs</h3>\n";
+  if (head.size() > kTurnColumns && rows.size() <= kTurnRows) {
+    // Turned: a row per quantity, a column per design.
+    std::vector<std::string> th = {"quantity"};
+    for (const auto& r : rows) th.push_back("design " + r[0]);
+    std::vector<std::vector<std::string>> tr;
+    for (size_t c = 1; c < head.size(); ++c) {
+      std::vector<std::string> line = {head[c]};
+      for (const auto& r : rows) line.push_back(c < r.size() ? r[c] : "");
+      tr.push_back(line);
+    }
+    return o + table(th, tr);
+  }
+  return o + table(head, rows);
+}
+
+std::string sceneHtml(const SceneReport& sc, const GearboxReport& g) {
+  std::string o = fmt::format("<h3>Scene {} on {}</h3>\n", esc(sc.name), esc(sc.target.empty() ? g.name : sc.target));
+  if (!sc.failure.empty()) return o + "<p class=\"verdict low\">failed: " + esc(sc.failure) + "</p>\n";
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& out : sc.outputs)
+    rows.push_back({out.key, std::isfinite(out.shown) ? formatNumber(out.shown) : "none", out.unit,
+                    SceneReport::ownError(out, sc.errorEstimate) ? fmt::format("{:.2e}", out.error) : ""});
+  if (!rows.empty()) o += tableHtml({"output", "value", "unit", "own error estimate"}, rows, 0, rows.size());
+  std::vector<std::string> items;
+  if (sc.eigen) items.push_back("accuracy: generalised eigenproblem (Eigen), double precision");
+  else
+    items.push_back(fmt::format("accuracy: {}, rtol {:.0e}, atol {:.0e}{}; steady state: {}", sc.method, sc.rtol, sc.atol,
+                                sc.stepRule.empty() ? "" : ", " + sc.stepRule, sc.steady));
+  if (sc.errorEstimate >= 0) items.push_back(fmt::format("error estimate {:.2e} relative = {}", sc.errorEstimate, sc.errorMethod));
+  if (!sc.eigen)
+    items.push_back(fmt::format("cost: {} steps, {} rejected, {} RHS evaluations, {} Jacobians, {} events located", sc.steps, sc.rejected,
+                                sc.rhs, sc.jacobians, sc.events));
+  for (const auto& sp : sc.spectra) {
+    std::vector<std::string> peaks;
+    for (const auto& p : sp.peaks)
+      peaks.push_back(fmt::format("{:.2f} Hz{} {}{}", p.frequency, p.harmonic ? fmt::format(" ({}x mesh)", p.harmonic) : "",
+                                  formatNumber(p.amplitude / sp.scale), sp.unit.empty() ? "" : " " + sp.unit));
+    items.push_back(fmt::format("{} peaks: {}", sp.key, fmt::join(peaks, "; ")));
+  }
+  o += list(items);
+  o += warningBox(sc.warnings);
+  if (!sc.model.empty())
+    o += fmt::format("<details><summary>the model, {} lines</summary>\n{}</details>\n", sc.model.size(), list(sc.model, "model"));
+  return o;
+}
+
+std::string ratingHtml(const RatingReport& r) {
+  std::string o = fmt::format("<h3>Rating of {}{} ({})</h3>\n", esc(r.stage), r.mesh.empty() ? "" : ", mesh " + esc(r.mesh), esc(r.standard));
+  bool ok = r.error.empty() && r.governingRatio >= 1;
+  o += fmt::format("<p class=\"verdict {}\">{}</p>\n", ok ? "ok" : "low", esc(ratingVerdict(r)));
+  if (r.error.empty()) o += table(ratingHeader(r), ratingRows(r));
+  std::vector<std::string> notes = ratingNotes(r);
+  if (!notes.empty()) o += list(notes, "model");
+  return o;
+}
+
+std::string gearboxDetails(const GearboxReport& g, const RenderOptions& ro) {
+  std::string o = fmt::format("<section class=\"gearbox\" id=\"{}\">\n<h2>{}</h2>\n", anchor(g.name), esc(g.name));
+  // Plots before any table.
+  auto figs = figures(g);
+  if (!figs.empty()) {
+    o += "<div class=\"plots\">\n";
+    for (const auto& f : figs) o += figureHtml(f, ro);
+    o += "</div>\n";
+  }
+  o += designsHtml(g);
+  std::vector<std::string> notes;
+  for (const auto& c : g.columns)
+    if (!c.exact) notes.push_back("intervals of `" + c.name + "` are enclosures (interval arithmetic), not exact images");
+  for (const auto& n : g.notes) notes.push_back(n);
+  o += list(notes, "model");
+  if (g.count == 0 || g.undecided) {
+    std::vector<std::vector<std::string>> f;
+    for (const auto& x : g.funnel)
+      f.push_back(x.domain ? std::vector<std::string>{"stage " + x.scope, "candidates", fmt::format("{:.0f}", -x.removed + 0.0), ""}
+                           : std::vector<std::string>{x.scope, x.rule, fmt::format("{:.0f}", x.before), fmt::format("{:.0f}", x.removed)});
+    o += "<h3>Elimination funnel</h3>\n" + table({"scope", "rule", "before", "removed"}, f);
+  }
+  if (g.optimisation) o += "<h3>Optimisation</h3>\n" + list(optimisationLines(*g.optimisation, false));
+  for (const auto& r : g.ratings) o += ratingHtml(r);
+  for (const auto& md : g.modifications) {
+    o += "<h3>Modification of " + esc(md.stage) + "</h3>\n";
+    std::vector<std::vector<std::string>> mr;
+    for (const auto& r : md.rows) {
+      std::string inputs;
+      for (const auto& in : r.inputs) inputs += (inputs.empty() ? "" : "; ") + in;
+      mr.push_back({r.target, !r.error.empty() ? "not computed: " + r.error : r.present ? r.shown : "absent", r.text, r.condition, inputs});
+    }
+    o += table({"target", "value", "rule", "when", "inputs"}, mr);
+  }
+  for (const auto& sc : g.scenes) o += sceneHtml(sc, g);
+  for (const auto& study : g.studies) {
+    StudyTable st = studyTable(study, ro);
+    o += "<h3>Study " + esc(st.name) + "</h3>\n" + table(st.header, st.rows) + list(st.notes, "model") + warningBox(st.warnings);
+  }
+  return o + "</section>\n";
+}
+
+} // namespace
+
+std::string renderHtml(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
+  std::string title = ro.title.empty() ? "gbxc report" : ro.title;
+  std::string o = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+                  "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
+                  esc(title) + " · gbxc</title>\n" + kStyle + "</head><body>\n";
+  // LANGUAGE.md §20: the body opens with the summary.
+  o += "<section class=\"summary\">\n<header><h1>" + esc(title) + "</h1>\n";
+  std::vector<std::string> meta;
+  if (!ro.version.empty()) meta.push_back("gbxc " + ro.version);
+  if (!ro.date.empty()) meta.push_back(ro.date);
+  meta.push_back(fmt::format("{} gearbox{}", reports.size(), reports.size() == 1 ? "" : "es"));
+  o += "<p class=\"meta\">" + esc(fmt::format("{}", fmt::join(meta, " · "))) + "</p></header>\n";
+  for (const auto& g : reports) o += summaryCard(g);
+  o += "</section>\n";
+  for (const auto& g : reports) o += gearboxDetails(g, ro);
+  return o + "</body></html>\n";
+}
+
+} // namespace gbx::rt

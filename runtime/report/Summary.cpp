@@ -1,0 +1,108 @@
+#include "report/Summary.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace gbx::rt {
+
+std::vector<std::string> designHeader(const GearboxReport& g) {
+  std::vector<std::string> h = {"rank"};
+  if (!g.rows.empty()) {
+    for (const auto& [n, _] : g.rows[0].teeth) h.push_back(n);
+    for (const auto& [n, _] : g.rows[0].choices) h.push_back(n);
+  }
+  h.push_back("ratio");
+  for (const auto& c : g.columns) h.push_back(c.unit.empty() ? c.name : c.name + " [" + c.unit + "]");
+  return h;
+}
+
+std::vector<std::string> designCells(const DesignRow& r) {
+  std::vector<std::string> v = {std::to_string(r.rank) + (r.undecided ? "?" : "")};
+  for (const auto& [_, z] : r.teeth) v.push_back(std::to_string(z));
+  for (const auto& [_, c] : r.choices) v.push_back(c);
+  v.push_back(formatNumber(r.ratio.toDouble()) + " (" + r.ratio.str() + ")");
+  for (const auto& c : r.cells) v.push_back(c.text);
+  return v;
+}
+
+namespace {
+
+void sceneResults(const GearboxReport& g, GearboxSummary& s) {
+  for (const auto& sc : g.scenes) {
+    if (!sc.failure.empty()) {
+      s.warnings.push_back(fmt::format("scene {} failed: {}", sc.name, sc.failure));
+      continue;
+    }
+    // The first few outputs; the scene's own table has them all.
+    constexpr size_t kMost = 4;
+    std::vector<std::string> outs;
+    for (const auto& out : sc.outputs)
+      if (outs.size() < kMost)
+        outs.push_back(std::isfinite(out.shown) ? fmt::format("{} = {}{}", out.key, formatNumber(out.shown), out.unit.empty() ? "" : " " + out.unit)
+                                              : fmt::format("{} = none (no steady response)", out.key));
+    std::string accuracy = sc.eigen ? "eigenvalues" : fmt::format("{} at rtol {:.0e}", sc.method, sc.rtol);
+    if (sc.errorEstimate >= 0) accuracy += fmt::format(", error estimate {:.2e}", sc.errorEstimate);
+    if (sc.outputs.size() > kMost) outs.push_back(fmt::format("{} more in its table", sc.outputs.size() - kMost));
+    if (!outs.empty()) s.results.push_back(fmt::format("scene {}: {} ({})", sc.name, fmt::join(outs, "; "), accuracy));
+    for (const auto& w : sc.warnings) s.warnings.push_back(fmt::format("scene {}: {}", sc.name, w));
+  }
+}
+
+void studyResults(const GearboxReport& g, GearboxSummary& s) {
+  for (const auto& st : g.studies) {
+    const auto* sweep = std::get_if<SweepStudy>(&st.study);
+    if (!sweep) continue;
+    for (double f : sweep->folds)
+      s.results.push_back(fmt::format("study {}: turning point (jump) at {} = {:.6g} {}", sweep->name, sweep->target, sweep->unit.shown(f),
+                                      sweep->unit.name));
+    for (const auto& [at, label] : sweep->marks)
+      s.results.push_back(fmt::format("study {}: {} at {} = {:.6g} {}", sweep->name, label, sweep->target, sweep->unit.shown(at), sweep->unit.name));
+    for (const auto& [a, b] : sweep->gaps)
+      s.warnings.push_back(fmt::format("study {}: the continuation did not follow {} from {:.6g} to {:.6g} {}", sweep->name, sweep->target,
+                                       sweep->unit.shown(a), sweep->unit.shown(b), sweep->unit.name));
+  }
+}
+
+void ratingResults(const GearboxReport& g, GearboxSummary& s) {
+  for (const auto& r : g.ratings) {
+    std::string where = r.stage + (r.mesh.empty() ? "" : ", mesh " + r.mesh);
+    if (!r.error.empty()) {
+      s.warnings.push_back(fmt::format("rating {}: not rated: {}", where, r.error));
+      continue;
+    }
+    s.results.push_back(fmt::format("rating {} ({}): governs {}", where, r.standard, r.governs));
+    for (const auto& row : r.rows) {
+      if (row.minimum == RatingReport::Row::NoMinimum) continue;
+      for (size_t k = 0; k < row.si.size(); ++k) {
+        if (!std::isfinite(row.si[k])) continue;
+        std::string gear = row.perGear && k < r.gears.size() ? ", " + r.gears[k] : "";
+        s.safeties.push_back({where + gear, row.label, row.si[k] / row.scale, r.minimumOf(row.minimum)});
+      }
+    }
+    for (const auto& w : r.warnings) s.warnings.push_back(fmt::format("rating {}: {}", where, w));
+  }
+}
+
+} // namespace
+
+GearboxSummary summarise(const GearboxReport& g) {
+  GearboxSummary s;
+  s.headline = fmt::format("{} design{}", g.count, g.count == 1 ? "" : "s");
+  if (g.undecided) s.headline += fmt::format(" ({} undecided)", g.undecided);
+  if (g.count > g.rows.size()) s.headline += fmt::format(", best {} shown", g.rows.size());
+  if (!g.window.empty()) s.headline += "; ratio window " + g.window;
+  s.inputs = g.inputs;
+  if (!g.rows.empty()) {
+    auto h = designHeader(g);
+    auto c = designCells(g.rows[0]);
+    for (size_t i = 1; i < h.size() && i < c.size(); ++i) s.design.emplace_back(h[i], c[i]);
+  }
+  for (const auto& w : g.warnings) s.warnings.push_back(w);
+  sceneResults(g, s);
+  studyResults(g, s);
+  ratingResults(g, s);
+  return s;
+}
+
+} // namespace gbx::rt

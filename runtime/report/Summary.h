@@ -1,0 +1,33 @@
+#pragma once
+// A gearbox's summary, as the text and HTML reports open with it: what it was solved for,
+// the chosen design and its key results, each safety against its minimum, and every warning
+// of the report in one place.
+#include <string>
+#include <vector>
+
+#include "report/Report.h"
+
+namespace gbx::rt {
+
+struct GearboxSummary {
+  std::string headline;  // "31 designs, best 10 shown; ratio window [579/100, 581/100]"
+  std::vector<GearboxReport::Input> inputs;
+  std::vector<std::pair<std::string, std::string>> design;  // the chosen design: name, value as the table shows it
+  std::vector<std::string> results;                         // "scene mesh: rms(acceleration) = 5081.4161 m/s^2"
+  struct Safety {
+    std::string where;  // "hs, pinion"
+    std::string label;  // "contact_safety"
+    double value = 0, minimum = 1;
+    bool ok() const { return value >= minimum; }
+  };
+  std::vector<Safety> safeties;
+  std::vector<std::string> warnings;  // each with where it comes from
+};
+
+GearboxSummary summarise(const GearboxReport& g);
+
+// The design table's header and a row's cells, as every table-shaped format shows them.
+std::vector<std::string> designHeader(const GearboxReport& g);
+std::vector<std::string> designCells(const DesignRow& r);
+
+} // namespace gbx::rt
