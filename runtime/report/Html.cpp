@@ -34,8 +34,8 @@ section.summary{margin-bottom:8px}
 .card{border:1px solid var(--line);border-radius:6px;padding:10px 16px 12px;margin:12px 0}
 .card h3{margin-top:4px}
 .cols{display:flex;flex-wrap:wrap;gap:8px 40px}.cols>div{flex:1 1 320px;min-width:0}
-dl.kv{display:grid;grid-template-columns:max-content minmax(0,1fr);gap:1px 14px;margin:0}
-dl.kv dt{color:var(--muted)}dl.kv dd{margin:0;overflow-wrap:anywhere}
+dl.kv{display:grid;grid-template-columns:minmax(0,max-content) minmax(7em,1fr);gap:1px 14px;margin:0}
+dl.kv dt{color:var(--muted);overflow-wrap:anywhere}dl.kv dd{margin:0;overflow-wrap:anywhere}
 ul.results{margin:0;padding-left:18px}ul.results li{overflow-wrap:anywhere}
 table{border-collapse:collapse;font-variant-numeric:tabular-nums}
 th,td{padding:3px 9px;text-align:right;border-bottom:1px solid #eaeef2;vertical-align:bottom}
@@ -57,7 +57,8 @@ ul.model{color:var(--muted);font-size:13px;padding-left:18px}
  @page{size:A4;margin:14mm 12mm}
  body{max-width:none;padding:0;font-size:9.5pt}
  h2{break-after:avoid;margin-top:14pt}h3,h4{break-after:avoid}
- .card,figure,tr,.warnings{break-inside:avoid}
+ figure,tr,.warnings,dl.kv>*{break-inside:avoid}
+ .cols{display:block}.cols>div{margin-bottom:6px}
  .scroll{overflow:visible}
  table{font-size:8pt}th{max-width:10em}
  figure svg{max-height:120mm;width:auto}

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -72,5 +74,86 @@ TEST(Browser, EverySpecsHtmlRendersWithItsSectionsAndPlots) {
     EXPECT_EQ(count(parsed, "</svg>"), count(page, "<svg")) << name << ": a plot is not closed";
   }
   EXPECT_GE(specs, 6);
+  fs::remove_all(d);
+}
+
+namespace {
+
+// Pages of a PDF: its page objects.
+int pdfPages(const std::string& pdf) {
+  int n = 0;
+  for (size_t at = pdf.find("/Type"); at != std::string::npos; at = pdf.find("/Type", at + 1)) {
+    size_t p = at + 5;
+    while (p < pdf.size() && (pdf[p] == ' ' || pdf[p] == '\n' || pdf[p] == '\r')) ++p;
+    if (pdf.compare(p, 5, "/Page") == 0 && (p + 5 >= pdf.size() || pdf[p + 5] != 's')) ++n;
+  }
+  return n;
+}
+
+// The measurement a test adds to a copy of a report: the right edge of the widest element
+// that is not inside a scrolling box, at a 1280 px window.
+const char* kMeasure = R"(<script>
+(function(){var w=0;document.querySelectorAll('body *').forEach(function(e){if(e.parentElement&&e.parentElement.closest('.scroll'))return;
+var r=e.getBoundingClientRect();if(r.width>0)w=Math.max(w,r.right);});
+document.body.setAttribute('data-widest',String(Math.ceil(w)));
+document.body.setAttribute('data-page-width',String(document.documentElement.scrollWidth));})();
+</script>)";
+
+int attribute(const std::string& dom, const std::string& name) {
+  size_t at = dom.find(name + "=\"");
+  return at == std::string::npos ? -1 : std::stoi(dom.substr(at + name.size() + 2));
+}
+
+} // namespace
+
+// LANGUAGE.md §20 in a browser, for the reports the README shows: the body opens with the
+// summary; in each gearbox's part its plots come before its tables; nothing is wider than a
+// 1280 px window (wide tables scroll inside their box); printed to PDF (A4) the report takes a
+// bounded number of pages.
+TEST(Browser, ReportsReadAsDocumentsOnScreenAndOnPaper) {
+  ASSERT_EQ(std::system("command -v chromium >/dev/null 2>&1"), 0) << "chromium is missing: run scripts/setup.sh";
+  fs::path d = fs::temp_directory_path() / ("gbxc-document-" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  // Spec, and the pages its print layout may take (fonts differ between machines).
+  const std::vector<std::tuple<std::string, int, int>> specs = {
+      {"spur_resonance", 2, 5}, {"turbine_modification", 6, 18}, {"electric_cylinder", 6, 16}};
+  for (const auto& [name, fewest, most] : specs) {
+    std::ostringstream out, err;
+    int status = driver::run({"solve", "--format", "html", "--no-timings", "--quiet", std::string(GBX_SOURCE_DIR) + "/specs/" + name + ".gbx"},
+                             out, err);
+    ASSERT_EQ(status, 0) << name << ": " << err.str();
+    std::string page = out.str();
+    // The summary first, then each gearbox's plots before its tables.
+    size_t body = page.find("<body>");
+    ASSERT_NE(body, std::string::npos);
+    const std::string opening = "<body>\n<section class=\"summary\">";
+    EXPECT_EQ(page.compare(body, opening.size(), opening), 0) << name << ": the body does not open with the summary";
+    size_t summaryEnd = page.find("</section>", body);
+    for (size_t at = page.find("<section class=\"gearbox\"", summaryEnd); at != std::string::npos;
+         at = page.find("<section class=\"gearbox\"", at + 1)) {
+      size_t end = page.find("</section>", at);
+      std::string part = page.substr(at, end - at);
+      size_t svg = part.find("<svg"), table = part.find("<table");
+      if (svg != std::string::npos && table != std::string::npos) EXPECT_LT(svg, table) << name << ": a table comes before a plot";
+    }
+    // Nothing wider than the window.
+    fs::path html = d / (name + ".html"), measured = d / (name + ".measured.html"), dom = d / (name + ".dom"), pdf = d / (name + ".pdf");
+    std::ofstream(html, std::ios::binary) << page;
+    std::string copy = page;
+    copy.insert(copy.rfind("</body>"), kMeasure);
+    std::ofstream(measured, std::ios::binary) << copy;
+    ASSERT_EQ(chromium("--window-size=1280,1000 --dump-dom file://" + measured.string() + " > " + dom.string() + " 2>/dev/null; true"), 0);
+    std::string parsed = read(dom);
+    int widest = attribute(parsed, "data-widest"), pageWidth = attribute(parsed, "data-page-width");
+    ASSERT_GT(widest, 0) << name << ": the measurement did not run";
+    EXPECT_LE(widest, 1280) << name << ": an element reaches past the window's right edge";
+    EXPECT_LE(pageWidth, 1280) << name << ": the page scrolls sideways";
+    // On paper.
+    ASSERT_EQ(chromium("--no-pdf-header-footer --print-to-pdf=" + pdf.string() + " file://" + html.string()), 0) << name;
+    int pages = pdfPages(read(pdf));
+    EXPECT_GE(pages, fewest) << name;
+    EXPECT_LE(pages, most) << name;
+  }
   fs::remove_all(d);
 }
