@@ -412,7 +412,13 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
     std::string o = "|";
     for (const auto& h : head) o += " " + h + " |";
     o += "\n|";
-    for (size_t i = 0; i < head.size(); ++i) o += " ---: |";
+    // Numbers right-aligned; a column of words (safeties, methods, rules) left.
+    for (size_t i = 0; i < head.size(); ++i) {
+      bool words = false;
+      for (const auto& r : rows)
+        if (i < r.size() && !r[i].empty()) words = words || !(std::isdigit(static_cast<unsigned char>(r[i][0])) || r[i][0] == '-' || r[i][0] == '[');
+      o += words ? " :--- |" : " ---: |";
+    }
     o += "\n";
     for (const auto& r : rows) {
       o += "|";
@@ -432,16 +438,29 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
   std::string o;
   for (const auto& g : reports) {
     o += heading(2, g.name);
-    o += para(fmt::format("{} design{}{}", g.count, g.count == 1 ? "" : "s", g.window.empty() ? "" : ", ratio window " + g.window));
+    GearboxSummary sum = summarise(g);
+    o += para(sum.headline);
+    // The summary first, as in every format.
+    std::vector<std::string> solved;
+    for (const auto& in : sum.inputs) solved.push_back(fmt::format("**{}**: {}", in.label, in.value));
+    if (!solved.empty()) o += list(solved);
+    for (const auto& r : sum.results) o += "- " + r + "\n";
+    if (!sum.results.empty()) o += "\n";
+    if (!sum.safeties.empty()) {
+      std::vector<std::vector<std::string>> sr;
+      for (const auto& sf : sum.safeties)
+        sr.push_back({sf.where, sf.label, formatNumber(sf.value), formatNumber(sf.minimum), sf.ok() ? "met" : "**below the minimum**"});
+      o += table({"where", "safety", "value", "minimum", ""}, sr);
+    }
+    if (!sum.warnings.empty()) {
+      std::vector<std::string> w;
+      for (const auto& x : sum.warnings) w.push_back("**warning:** " + x);
+      o += list(w);
+    }
     std::vector<std::vector<std::string>> rows;
     for (const auto& r : g.rows) rows.push_back(cells(r));
     if (!rows.empty()) o += table(header(g), rows);
     if (!g.notes.empty()) o += list(g.notes);
-    if (!g.warnings.empty()) {
-      std::vector<std::string> w;
-      for (const auto& x : g.warnings) w.push_back("warning: " + x);
-      o += list(w);
-    }
     if (g.count == 0) {
       std::vector<std::string> f;
       for (const auto& x : g.funnel)
