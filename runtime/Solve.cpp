@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <ctime>
 
 #include <atomic>
@@ -130,7 +131,9 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
   ro.title = o.title;
   ro.version = o.version;
   if (o.timings) {
+    // SOURCE_DATE_EPOCH, where set, fixes the date (reproducible builds of documents).
     std::time_t now = std::time(nullptr);
+    if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch && *epoch) now = static_cast<std::time_t>(std::strtoll(epoch, nullptr, 10));
     char day[16];
     if (std::strftime(day, sizeof day, "%Y-%m-%d", std::gmtime(&now))) ro.date = day;
   }

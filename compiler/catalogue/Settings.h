@@ -65,6 +65,11 @@ enum class Mod : int {
   TipRelief, TipReliefHeight, RootRelief, RootReliefHeight, ProfileCrowning,
   LeadCrowning, ThermalLeadRelief, EndRelief, EndReliefWidth, HelixSlope,
 };
+// A modification's amount (a relief, a crowning, a slope) reads in um; where it starts (a
+// height, a width) in mm (LANGUAGE.md §20).
+inline bool modificationReadsInMicrometres(Mod m) {
+  return m != Mod::TipReliefHeight && m != Mod::RootReliefHeight && m != Mod::EndReliefWidth;
+}
 
 // Heat treatments of a material and the rating's life curves, by their words' positions.
 namespace treatment {

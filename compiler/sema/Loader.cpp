@@ -39,6 +39,10 @@ std::vector<std::string> folderList(const char* variable) {
 std::string stdlibBesideProgram() {
   std::error_code ec;
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+#ifdef GBX_INSTALL_DATADIR
+  // Without /proc (a bare container): where the installation put it.
+  if (ec) return fs::is_directory(fs::path(GBX_INSTALL_DATADIR) / "gbxc" / "stdlib", ec) ? (fs::path(GBX_INSTALL_DATADIR) / "gbxc" / "stdlib").string() : "";
+#endif
   if (ec) return {};
   fs::path dir = exe.parent_path();
   for (int up = 0; up < 4 && !dir.empty(); ++up, dir = dir.parent_path()) {
@@ -159,13 +163,21 @@ public:
     }
     source::Span at = d.wordSpan.valid() ? d.wordSpan : d.span;
     std::vector<std::string> modules = stdlibModules();
-    if (modules.empty())
+    if (modules.empty()) {
+      std::error_code ec;
+      std::vector<std::string> missing;
+      for (const auto& dir : user)
+        if (!fs::is_directory(dir, ec)) missing.push_back(dir);
       diags_.error("E0203", at,
-                   fmt::format("cannot import `{}`: no module folder was found (no share/gbxc/stdlib beside the gbxc program, "
-                               "and GBX_PATH names none); reinstall gbxc or set GBX_PATH to a folder of .gbx modules",
-                               d.word));
-    else
-      diags_.error("E0203", at, fmt::format("cannot import `{}`: no module of that name (modules: {})", d.word, fmt::join(modules, ", ")));
+                   fmt::format("cannot import `{}`: no folder of modules was found (no share/gbxc/stdlib beside {}{}); reinstall "
+                               "gbxc, or set GBX_PATH to folders of .gbx modules",
+                               d.word, fs::read_symlink("/proc/self/exe", ec).parent_path().string(),
+                               missing.empty() ? "" : fmt::format("; GBX_PATH names {}, which {} not exist", fmt::join(missing, ", "),
+                                                                   missing.size() == 1 ? "does" : "do")));
+    } else
+      diags_.error("E0203", at,
+                   fmt::format("cannot import `{}`: no module of that name (modules: {}; GBX_PATH adds folders of your own)", d.word,
+                               fmt::join(modules, ", ")));
     return -1;
   }
 

@@ -546,7 +546,7 @@ Value Evaluator::materialProperty(int stage, Q prop) const {
 namespace {
 
 // A length of the micrometre scale: such a quantity, a number read from a length signal, or
-// an extreme, mean or tolerance scatter of one.
+// an extreme, mean, tolerance scatter, sum or multiple of them (constants aside).
 bool micrometreLength(const ir::Expr& e) {
   if (e.type.dim != units::dims::length) return false;
   switch (e.op) {
@@ -554,11 +554,25 @@ bool micrometreLength(const ir::Expr& e) {
   case ir::Op::SceneOutput: return true;  // a length signal: displacement or transmission error
   case ir::Op::Scatter:
   case ir::Op::Neg:
-  case ir::Op::Call:
-    if (e.args.empty()) return false;
-    for (const auto& a : e.args)
-      if (!a || (a->op != ir::Op::Const && !micrometreLength(*a))) return false;
-    return true;
+  case ir::Op::Add:
+  case ir::Op::Sub:
+  case ir::Op::Call: {
+    bool any = false;
+    for (const auto& a : e.args) {
+      if (!a) return false;
+      if (a->op == ir::Op::Const) continue;
+      if (!micrometreLength(*a)) return false;
+      any = true;
+    }
+    return any;
+  }
+  case ir::Op::Mul:
+  case ir::Op::Div: {
+    // A micrometre length times or over a dimensionless factor.
+    if (e.args.size() != 2 || !e.args[0] || !e.args[1]) return false;
+    if (e.args[1]->type.dim.dimensionless() && micrometreLength(*e.args[0])) return true;
+    return e.op == ir::Op::Mul && e.args[0]->type.dim.dimensionless() && micrometreLength(*e.args[1]);
+  }
   default: return false;
   }
 }

@@ -16,6 +16,7 @@ std::vector<ModOutcome> evaluateModify(const Model& m, const Assignment& a, cons
   for (const auto& rule : mod.rules) {
     ModOutcome o;
     o.target = rule.target;
+    o.modTarget = rule.modTarget;
     o.text = rule.text;
     // The inputs: every quantity the rule (and its condition) reads, per gear where it differs.
     std::set<std::string> seen;

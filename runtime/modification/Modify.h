@@ -19,6 +19,7 @@ struct ModInput {
 
 struct ModOutcome {
   std::string target, text;
+  int modTarget = -1;         // its position in cat::modificationTargets()
   bool present = true;        // false when `when` is false
   std::optional<double> value;  // SI
   std::string condition;      // the `when` condition as evaluated

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "catalogue/Settings.h"
 #include "modification/Modify.h"
 #include "units/Unit.h"
 
@@ -18,10 +19,11 @@ Modifications modifications(const Model& m, const Assignment& best) {
       row.text = out.text;
       row.present = out.present;
       row.error = out.error;
+      if (out.modTarget >= 0 && cat::modificationReadsInMicrometres(static_cast<cat::Mod>(out.modTarget))) row.unit = units::micrometres();
       if (out.value) {
         row.valid = true;
         row.si = *out.value;
-        row.shown = formatLength(*out.value);
+        row.shown = fmt::format("{:.2f} {}", row.unit.shown(*out.value), row.unit.name);
       }
       if (!out.condition.empty()) row.condition = out.condition;
       for (const auto& in : out.inputs) {

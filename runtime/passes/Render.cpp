@@ -11,7 +11,7 @@ Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, 
   r.report = format.render(reports, ro);
   r.reportFile = "report." + std::string(format.extension);
   if (o.charts && format.tables) r.tables = format.tables(reports, o);
-  if (!o.charts && format.tables) r.unwritten = csvOtherTables(reports, o);
+  if (!o.charts && format.unwritten) r.unwritten = format.unwritten(reports, o);
   return r;
 }
 

@@ -54,7 +54,9 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ScenePlan& scene) {
     line.spectrum = ser.isSpectrum;
     line.meshFrequency = ser.meshFrequency > 0 ? ser.meshFrequency : r.meshFrequency;
     if (ser.isSpectrum) {
+      // Up to the tenth mesh order, or further where a listed peak lies beyond it.
       double fmax = line.meshFrequency > 0 ? 10.5 * line.meshFrequency : INFINITY;
+      for (const auto& p : ser.spectrum.peaks) fmax = std::max(fmax, 1.05 * p.frequency);
       for (size_t i = 0; i < ser.spectrum.frequency.size() && ser.spectrum.frequency[i] <= fmax; ++i) {
         line.x.push_back(ser.spectrum.frequency[i]);
         line.y.push_back(ser.spectrum.amplitude[i] / u.scale);

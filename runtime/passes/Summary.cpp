@@ -44,10 +44,18 @@ std::vector<GearboxReport::Input> decisiveInputs(const ir::Gearbox& gearbox) {
   }
   for (const auto& st : gearbox.stages) {
     std::vector<std::string> parts = {ir::stageKindName(st.kind)};
-    for (cat::Q key : kStageInputs)
-      for (const auto& a : st.attributes)
-        if (a.key == key && a.gear < 0)
-          if (std::string v = shown(a); !v.empty()) parts.push_back(fmt::format("{} {}", shortName(key), v));
+    for (cat::Q key : kStageInputs) {
+      // The stage's value, or each gear's where the gears differ (`pinion.material = …`).
+      std::vector<std::string> gears;
+      for (const auto& a : st.attributes) {
+        if (a.key != key) continue;
+        std::string v = shown(a);
+        if (v.empty()) continue;
+        if (a.gear < 0) parts.push_back(fmt::format("{} {}", shortName(key), v));
+        else if (static_cast<size_t>(a.gear) < st.gears.size()) gears.push_back(st.gears[static_cast<size_t>(a.gear)] + " " + v);
+      }
+      if (!gears.empty()) parts.push_back(fmt::format("{} {}", shortName(key), fmt::join(gears, " / ")));
+    }
     if (parts.size() == 1) continue;  // nothing beyond its kind: the tables say it
     inputs.push_back({"stage " + st.name, fmt::format("{}", fmt::join(parts, ", ")), true});
   }

@@ -59,7 +59,11 @@ void sceneCharts(const std::string& gearbox, SceneReport& sc, std::vector<ChartF
     // A spectrum reads by mesh orders: ticks at 1x, 2x, … the mesh frequency.
     if (p.spectrum && p.meshFrequency > 0) {
       chart.xLabel = fmt::format("frequency [Hz], ticks at mesh orders ({:.2f} Hz)", p.meshFrequency);
-      for (int k = 1; k <= 10; ++k) chart.xTicks.emplace_back(k * p.meshFrequency, fmt::format("{}x", k));
+      // Every order up to the tenth; beyond it (a listed peak far up) every second, fifth, …
+      double top = p.x.empty() ? 10.5 * p.meshFrequency : p.x.back();
+      int orders = std::max(10, static_cast<int>(top / p.meshFrequency));
+      int step = orders <= 12 ? 1 : orders <= 24 ? 2 : orders <= 60 ? 5 : 10;
+      for (int k = step == 1 ? 1 : step; k <= orders; k += step) chart.xTicks.emplace_back(k * p.meshFrequency, fmt::format("{}x", k));
     }
     add(out, sc.files, fileSafe(gearbox + "." + sc.name + "." + p.key) + ".svg", chart);
   }

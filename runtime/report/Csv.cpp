@@ -169,13 +169,15 @@ std::string workPrecision(const std::vector<GearboxReport>& reports, bool timing
 }
 
 std::string modifications(const std::vector<GearboxReport>& reports) {
-  std::string o = row({"gearbox", "stage", "target", "present", "value [um]", "rule", "condition", "error"});
+  // Each row in its target's unit: um for an amount, mm for a height or a width.
+  std::string o = row({"gearbox", "stage", "target", "present", "value", "unit", "rule", "condition", "error"});
   bool any = false;
   for (const auto& g : reports)
     for (const auto& m : g.modifications)
       for (const auto& r : m.rows) {
         any = true;
-        o += row({g.name, m.stage, r.target, r.present ? "yes" : "no", r.valid ? number(r.si * 1e6) : "", r.text, r.condition, r.error});
+        o += row({g.name, m.stage, r.target, r.present ? "yes" : "no", r.valid ? fmt::format("{:.10g}", r.unit.shown(r.si)) : "",
+                    r.unit.name, r.text, r.condition, r.error});
       }
   return any ? o : "";
 }

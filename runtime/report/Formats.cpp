@@ -9,7 +9,7 @@ namespace {
 const std::array<ReportFormat, 5> kFormats = {{
     {"text", "txt", renderText, true},
     {"json", "json", renderJson, true},
-    {"csv", "csv", renderCsv, false, csvTables},
+    {"csv", "csv", renderCsv, false, csvTables, false, csvOtherTables},
     {"md", "md", renderMarkdown, false},
     {"html", "html", renderHtml, false, nullptr, true},
 }};

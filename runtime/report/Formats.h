@@ -18,6 +18,8 @@ struct ReportFormat {
   // With -o DIR, further files beside the report (CSV: one table per kind of result).
   std::vector<TableFile> (*tables)(const std::vector<GearboxReport>&, const RenderOptions&) = nullptr;
   bool inlineCharts = false;   // the charts go inside the report, with or without -o DIR
+  // Without -o DIR: the names of those further files that have rows (left out on stdout).
+  std::vector<std::string> (*unwritten)(const std::vector<GearboxReport>&, const RenderOptions&) = nullptr;
 };
 
 // The first row, text, is the default.

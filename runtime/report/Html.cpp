@@ -40,7 +40,7 @@ ul.results{margin:0;padding-left:18px}ul.results li{overflow-wrap:anywhere}
 table{border-collapse:collapse;font-variant-numeric:tabular-nums}
 th,td{padding:3px 9px;text-align:right;border-bottom:1px solid #eaeef2;vertical-align:bottom}
 th{background:#f6f8fa;font-weight:600;max-width:16em}
-td{white-space:nowrap}td.t,th.t{text-align:left;white-space:normal;overflow-wrap:anywhere}
+td{white-space:nowrap}td.t,th.t{text-align:left;white-space:normal;overflow-wrap:break-word}
 .scroll{overflow-x:auto;max-width:100%;margin:6px 0}
 table.safety td.v{font-weight:600}
 tr.ok td.v{color:var(--ok);background:var(--ok-bg)}tr.low td.v{color:var(--low);background:var(--low-bg)}
@@ -52,6 +52,7 @@ figure{margin:6px 0;max-width:100%}figure svg{width:100%;height:auto;display:blo
 .plots figure{flex:1 1 520px;max-width:720px}
 figcaption{color:var(--muted);font-size:12px;margin-top:2px}
 details{margin:6px 0}details>summary{cursor:pointer;color:#0969da}
+.print{display:none}
 ul.model{color:var(--muted);font-size:13px;padding-left:18px}
 @media print{
  @page{size:A4;margin:14mm 12mm}
@@ -62,7 +63,8 @@ ul.model{color:var(--muted);font-size:13px;padding-left:18px}
  .scroll{overflow:visible}
  table{font-size:8pt}th{max-width:10em}
  figure svg{max-height:120mm;width:auto}
- details>summary{color:var(--muted)}
+ thead{display:table-header-group}
+ .screen{display:none}.print{display:block}
 }
 </style>
 )";
@@ -96,9 +98,9 @@ std::string heading(const std::string& h) {
 }
 
 std::string tableHtml(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows, size_t from, size_t to) {
-  std::string o = "<div class=\"scroll\"><table>\n<tr>";
+  std::string o = "<div class=\"scroll\"><table>\n<thead><tr>";
   for (size_t i = 0; i < head.size(); ++i) o += (i == 0 ? "<th class=\"t\">" : "<th>") + heading(head[i]) + "</th>";
-  o += "</tr>\n";
+  o += "</tr></thead>\n";
   for (size_t r = from; r < to && r < rows.size(); ++r) {
     o += "<tr>";
     // Numbers right-aligned, words (rules, inputs, names) left.
@@ -108,12 +110,14 @@ std::string tableHtml(const std::vector<std::string>& head, const std::vector<st
   return o + "</table></div>\n";
 }
 
-// A table; over kFoldRows rows its first rows show and the whole table folds below them.
+// A table; over kFoldRows rows its first rows show on screen and the whole table folds below
+// them. Paper cannot unfold: the printed page has the whole table instead.
 std::string table(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
   if (rows.size() <= kFoldRows) return tableHtml(head, rows, 0, rows.size());
-  return tableHtml(head, rows, 0, kShownWhenFolded) +
-         fmt::format("<details><summary>all {} rows (the first {} above)</summary>\n{}</details>\n", rows.size(), kShownWhenFolded,
-                     tableHtml(head, rows, 0, rows.size()));
+  std::string all = tableHtml(head, rows, 0, rows.size());
+  return "<div class=\"screen\">\n" + tableHtml(head, rows, 0, kShownWhenFolded) +
+         fmt::format("<details><summary>all {} rows (the first {} above)</summary>\n{}</details>\n</div>\n", rows.size(), kShownWhenFolded, all) +
+         "<div class=\"print\">\n" + all + "</div>\n";
 }
 
 std::string list(const std::vector<std::string>& items, const char* cls = nullptr) {
@@ -156,8 +160,8 @@ std::string summaryCard(const GearboxReport& g) {
          "<th>value</th><th>minimum</th><th class=\"t\"></th></tr>\n";
     for (const auto& sf : s.safeties)
       o += fmt::format("<tr class=\"{}\"><td class=\"t\">{}</td><td class=\"t\">{}</td><td class=\"v\">{}</td><td>{}</td><td class=\"t\">{}</td></tr>\n",
-                       sf.ok() ? "ok" : "low", esc(sf.where), esc(sf.label), formatNumber(sf.value), formatNumber(sf.minimum),
-                       sf.ok() ? "met" : "below the minimum");
+                       sf.ok() ? "ok" : "low", esc(sf.where), esc(sf.label), sf.computed() ? formatNumber(sf.value) : "not rated",
+                       formatNumber(sf.minimum), !sf.computed() ? "see the rating" : sf.ok() ? "met" : "below the minimum");
     o += "</table></div>\n";
   }
   o += warningBox(s.warnings);
@@ -246,8 +250,13 @@ std::string ratingHtml(const RatingReport& r) {
   bool ok = r.error.empty() && r.governingRatio >= 1;
   o += fmt::format("<p class=\"verdict {}\">{}</p>\n", ok ? "ok" : "low", esc(ratingVerdict(r)));
   if (r.error.empty()) o += table(ratingHeader(r), ratingRows(r));
-  std::vector<std::string> notes = ratingNotes(r);
-  if (!notes.empty()) o += list(notes, "model");
+  // Its warnings in a box, as everywhere; what it leaves out and how the model factors were
+  // found as lines.
+  std::vector<std::string> rest;
+  for (const auto& n : r.notRated) rest.push_back(fmt::format("not rated: the {}'s {}: {}", n.gear, n.what, n.reason));
+  for (const auto& line : r.model) rest.push_back(line);
+  o += warningBox(r.warnings);
+  o += list(rest, "model");
   return o;
 }
 

@@ -73,8 +73,9 @@ std::string textSummary(const GearboxReport& g) {
   }
   for (const auto& r : s.results) o += "  result: " + r + "\n";
   for (const auto& sf : s.safeties)
-    o += fmt::format("  safety: {} {} {} against {} ({})\n", sf.where, sf.label, formatNumber(sf.value), formatNumber(sf.minimum),
-                     sf.ok() ? "met" : "BELOW the minimum");
+    o += sf.computed() ? fmt::format("  safety: {} {} {} against {} ({})\n", sf.where, sf.label, formatNumber(sf.value),
+                                     formatNumber(sf.minimum), sf.ok() ? "met" : "BELOW the minimum")
+                       : fmt::format("  safety: {} {} not rated (the rating below says why)\n", sf.where, sf.label);
   for (const auto& w : s.warnings) o += "  warning: " + w + "\n";
   return o;
 }
@@ -449,7 +450,8 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
     if (!sum.safeties.empty()) {
       std::vector<std::vector<std::string>> sr;
       for (const auto& sf : sum.safeties)
-        sr.push_back({sf.where, sf.label, formatNumber(sf.value), formatNumber(sf.minimum), sf.ok() ? "met" : "**below the minimum**"});
+        sr.push_back({sf.where, sf.label, sf.computed() ? formatNumber(sf.value) : "not rated", formatNumber(sf.minimum),
+                      !sf.computed() ? "see the rating" : sf.ok() ? "met" : "**below the minimum**"});
       o += table({"where", "safety", "value", "minimum", ""}, sr);
     }
     if (!sum.warnings.empty()) {

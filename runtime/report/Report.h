@@ -157,6 +157,7 @@ struct ModRow {
   std::string target, text, condition;
   bool present = true, valid = false;
   double si = 0;
+  units::DisplayUnit unit{"mm", 1e-3}; // its display unit: um for an amount, mm for a height or width
   std::string shown;                   // value in its display unit
   std::vector<std::string> inputs;     // "hs.load_deflection 19.04 um"
   std::vector<std::pair<std::string, double>> inputsSI;

@@ -64,6 +64,15 @@ void studyResults(const GearboxReport& g, GearboxSummary& s) {
   }
 }
 
+void modificationResults(const GearboxReport& g, GearboxSummary& s) {
+  for (const auto& md : g.modifications) {
+    std::vector<std::string> parts;
+    for (const auto& r : md.rows)
+      if (r.present && r.valid) parts.push_back(r.target + " " + r.shown);
+    if (!parts.empty()) s.results.push_back(fmt::format("modify {}: {}", md.stage, fmt::join(parts, ", ")));
+  }
+}
+
 void ratingResults(const GearboxReport& g, GearboxSummary& s) {
   for (const auto& r : g.ratings) {
     std::string where = r.stage + (r.mesh.empty() ? "" : ", mesh " + r.mesh);
@@ -75,7 +84,6 @@ void ratingResults(const GearboxReport& g, GearboxSummary& s) {
     for (const auto& row : r.rows) {
       if (row.minimum == RatingReport::Row::NoMinimum) continue;
       for (size_t k = 0; k < row.si.size(); ++k) {
-        if (!std::isfinite(row.si[k])) continue;
         std::string gear = row.perGear && k < r.gears.size() ? ", " + r.gears[k] : "";
         s.safeties.push_back({where + gear, row.label, row.si[k] / row.scale, r.minimumOf(row.minimum)});
       }
@@ -94,11 +102,18 @@ GearboxSummary summarise(const GearboxReport& g) {
   if (!g.window.empty()) s.headline += "; ratio window " + g.window;
   s.inputs = g.inputs;
   if (!g.rows.empty()) {
-    auto h = designHeader(g);
-    auto c = designCells(g.rows[0]);
-    for (size_t i = 1; i < h.size() && i < c.size(); ++i) s.design.emplace_back(h[i], c[i]);
+    // Each value with its unit after it: `hs.contact_temperature 145.2128 degC`.
+    const DesignRow& r = g.rows[0];
+    for (const auto& [n, z] : r.teeth) s.design.emplace_back(n, std::to_string(z));
+    for (const auto& [n, c] : r.choices) s.design.emplace_back(n, c);
+    s.design.emplace_back("ratio", formatNumber(r.ratio.toDouble()) + " (" + r.ratio.str() + ")");
+    for (size_t i = 0; i < g.columns.size() && i < r.cells.size(); ++i)
+      s.design.emplace_back(g.columns[i].name, r.cells[i].text + (g.columns[i].unit.empty() ? "" : " " + g.columns[i].unit));
   }
+  if (g.count == 0)
+    s.warnings.push_back("no design satisfies every rule: the elimination funnel below shows what each rule removed");
   for (const auto& w : g.warnings) s.warnings.push_back(w);
+  modificationResults(g, s);
   sceneResults(g, s);
   studyResults(g, s);
   ratingResults(g, s);

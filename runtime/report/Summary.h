@@ -2,6 +2,7 @@
 // A gearbox's summary, as the text and HTML reports open with it: what it was solved for,
 // the chosen design and its key results, each safety against its minimum, and every warning
 // of the report in one place.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,10 @@ struct GearboxSummary {
   struct Safety {
     std::string where;  // "hs, pinion"
     std::string label;  // "contact_safety"
-    double value = 0, minimum = 1;
-    bool ok() const { return value >= minimum; }
+    double value = 0, minimum = 1;  // value NaN: it could not be computed
+    // Met as the report shows the two, to four decimals.
+    bool computed() const { return std::isfinite(value); }
+    bool ok() const { return computed() && std::round(value * 1e4) >= std::round(minimum * 1e4); }
   };
   std::vector<Safety> safeties;
   std::vector<std::string> warnings;  // each with where it comes from

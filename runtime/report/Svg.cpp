@@ -33,13 +33,15 @@ std::string tick(double v) {
   return fmt::format("{:.4g}", v);
 }
 
-constexpr double kCharWidth = 6.6;  // about, at 12 px
+constexpr double kCharWidth = 7.8;  // the widest Chromium gives a 12 px sans-serif character
 double labelWidth(const std::string& s) { return kCharWidth * static_cast<double>(s.size()) + 8; }
 
 // Ticks: round values in steps of 1, 2 or 5 times a power of ten on a linear axis (about
 // five of them), the decades on a logarithmic one.
 std::vector<double> axisTicks(double lo, double hi, bool log) {
   std::vector<double> t;
+  // A range of a few ulps has no round steps to speak of: its ends alone.
+  if (!(hi - lo > 1e-9 * std::max({std::fabs(lo), std::fabs(hi), 1e-300}))) return {lo, hi};
   if (log && hi - lo >= 1.0) {
     for (double d = std::ceil(lo); d <= hi + 1e-9; d += std::max(1.0, std::floor((hi - lo) / 6.0))) t.push_back(d);
     return t;
@@ -50,7 +52,12 @@ std::vector<double> axisTicks(double lo, double hi, bool log) {
       step = m * p;
       break;
     }
-  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step) t.push_back(std::fabs(v) < 1e-12 * step ? 0.0 : v);
+  double first = std::ceil(lo / step - 1e-9);
+  for (int k = 0; k < 40; ++k) {  // about five; the bound guards against a step lost in rounding
+    double v = (first + k) * step;
+    if (v > hi + 1e-9 * step) break;
+    t.push_back(std::fabs(v) < 1e-12 * step ? 0.0 : v);
+  }
   return t;
 }
 
@@ -135,7 +142,9 @@ std::string renderSvg(const SvgChart& c) {
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" font-family=\"sans-serif\" "
       "font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
       W, H, W, H);
-  o += fmt::format("<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n", W / 2, esc(c.title));
+  // The title in 14 px type, smaller where a long one would not fit the width.
+  double titleSize = std::clamp((W - 20) / (0.65 * static_cast<double>(std::max<size_t>(c.title.size(), 1))), 8.0, 14.0);
+  o += fmt::format("<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"{:.1f}\">{}</text>\n", W / 2, titleSize, esc(c.title));
   o += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n", L, T, W - L - R, H - T - B);
   std::vector<std::pair<double, std::string>> xt;
   if (!c.xTicks.empty() && !c.logX) {
@@ -171,7 +180,7 @@ std::string renderSvg(const SvgChart& c) {
     const char* col = kColours[(s.colour >= 0 ? static_cast<size_t>(s.colour) : k) % 10];
     std::string pts;
     for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-      if ((c.logX && s.x[i] <= 0) || (c.logY && s.y[i] <= 0) || !std::isfinite(s.y[i])) continue;
+      if ((c.logX && s.x[i] <= 0) || (c.logY && s.y[i] <= 0) || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       pts += fmt::format("{:.2f},{:.2f} ", px(s.x[i]), py(s.y[i]));
       // A series of one or two points is a marked design: draw it large.
       double radius = s.x.size() <= 2 ? 6.0 : 2.5;

@@ -10,6 +10,14 @@ deb=$(ls "$work"/gbxc_*.deb)
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "package: $(basename "$deb"); Depends: $depends"
 [[ $depends == *libc6* ]] || { echo "FAIL: the package declares no dependency on libc6" >&2; exit 1; }
+# The libc6 it asks for is at least the newest glibc symbol version the program uses: a
+# smaller one lets the package install on a system where gbxc cannot start.
+needed=$(objdump -T "$build/gbxc" | grep -o 'GLIBC_[0-9.]*' | sed 's/GLIBC_//' | sort -V | tail -1)
+declared=$(grep -o 'libc6 (>= [0-9.]*' <<<"$depends" | grep -o '[0-9.]*$')
+if [[ -z $declared || $(printf '%s\n%s\n' "$needed" "$declared" | sort -V | tail -1) != "$declared" ]]; then
+  echo "FAIL: the package asks for libc6 >= ${declared:-nothing}, but gbxc uses GLIBC_$needed" >&2
+  exit 1
+fi
 contents=$(dpkg-deb -c "$deb")
 for f in ./usr/bin/gbxc ./usr/share/gbxc/stdlib/klingelnberg.gbx ./usr/share/doc/gbxc/README.md; do
   grep -q " $f\$" <<<"$contents" || { echo "FAIL: the package lacks $f" >&2; exit 1; }

@@ -76,7 +76,7 @@ options:
   --max-designs N          (solve) the search budget (default 1e9)
   --time-limit S           (solve) stop with exit 3 after S seconds
   --quiet                  no progress output
-  --no-timings             leave CPU times out of reports (for golden files)
+  --no-timings             leave CPU times and the date out of reports (for golden files)
   --update                 (test) rewrite the expected files
   --timings                (test) compare CPU times too (left out by default: they vary)
   --check                  (fmt) change nothing: show a diff of each file not laid out
@@ -102,7 +102,7 @@ options:
   --time-limit S           stop with exit 3 after S seconds of wall time, saying how far
                            the work got and how long the whole would take
   --quiet                  no progress bar
-  --no-timings             leave CPU times out of reports
+  --no-timings             leave CPU times and the date out of reports
 
 exit status: 0 solved (an empty design list too), 1 the spec has errors, 2 usage,
 3 a runtime failure (a scene that fails, a value that cannot be computed, a budget reached)

@@ -75,7 +75,19 @@ TEST(Cli, GbxPathAddsModuleFolders) {
   ::setenv("GBX_PATH", ("/no/such/folder:" + (d / "shop").string()).c_str(), 1);
   auto with = gbxc({"check", (d / "main.gbx").string()});
   auto listed = gbxc({"solve", (d / "main.gbx").string(), "--no-timings"});
+  // A folder of GBX_PATH comes before the stdlib: a module of the stdlib's name shadows it.
+  write(d / "shop" / "materials.gbx", "const shadowed = 1;\n");
+  write(d / "uses.gbx", "import materials;\nconst x = shadowed;\n");
+  auto shadow = gbxc({"check", (d / "uses.gbx").string()});
+  // A relative folder is taken from the working folder, as a compiler takes -I.
+  fs::path here = fs::current_path();
+  fs::current_path(d);
+  ::setenv("GBX_PATH", "shop", 1);
+  auto relative = gbxc({"check", (d / "main.gbx").string()});
+  fs::current_path(here);
   ::unsetenv("GBX_PATH");
+  EXPECT_EQ(shadow.status, 0) << shadow.err;
+  EXPECT_EQ(relative.status, 0) << relative.err;
   EXPECT_EQ(with.status, 0) << with.err;
   EXPECT_EQ(listed.status, 0) << listed.err;
   EXPECT_NE(listed.out.find("gearbox G:"), std::string::npos) << listed.out;
@@ -304,8 +316,12 @@ TEST(Csv, NumbersInTheHeadersUnitIntervalsAsLoHi) {
   std::string mhead, first;
   std::getline(mods, mhead);
   std::getline(mods, first);
-  EXPECT_EQ(mhead, "gearbox,stage,target,present,value [um],rule,condition,error");
-  EXPECT_NE(first.find("tip_relief,yes,30"), std::string::npos) << first;
+  EXPECT_EQ(mhead, "gearbox,stage,target,present,value,unit,rule,condition,error");
+  EXPECT_NE(first.find("tip_relief,yes,30,um,"), std::string::npos) << first;
+  // A height reads in mm, as in every other format (LANGUAGE.md §20), not as 3217.5 um.
+  std::string second;
+  std::getline(mods, second);
+  EXPECT_NE(second.find("tip_relief_height,yes,3.2175,mm,"), std::string::npos) << second;
   fs::remove_all(d);
 }
 

@@ -135,7 +135,16 @@ TEST(Browser, ReportsReadAsDocumentsOnScreenAndOnPaper) {
       size_t end = page.find("</section>", at);
       std::string part = page.substr(at, end - at);
       size_t svg = part.find("<svg"), table = part.find("<table");
-      if (svg != std::string::npos && table != std::string::npos) EXPECT_LT(svg, table) << name << ": a table comes before a plot";
+      if (svg != std::string::npos && table != std::string::npos) {
+        EXPECT_LT(svg, table) << name << ": a table comes before a plot";
+      }
+    }
+    // A folded table is whole on paper: its print copy holds every row.
+    if (page.find("<details><summary>all ") != std::string::npos) {
+      size_t print = page.find("<div class=\"print\">");
+      ASSERT_NE(print, std::string::npos) << name << ": a folded table has no copy for print";
+      size_t rows = count(page.substr(print, page.find("</div>", print) - print), "<tr>");
+      EXPECT_GT(rows, 31u) << name << ": the printed table is cut";
     }
     // Nothing wider than the window.
     fs::path html = d / (name + ".html"), measured = d / (name + ".measured.html"), dom = d / (name + ".dom"), pdf = d / (name + ".pdf");
