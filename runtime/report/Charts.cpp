@@ -1,6 +1,7 @@
 #include "report/Charts.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 
 #include <fmt/format.h>
@@ -116,6 +117,7 @@ void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<st
     }
     for (const auto& [x, label] : s.marks) c.xMarks.emplace_back(s.unit.shown(x), label);
     for (double f : s.folds) c.xMarks.emplace_back(s.unit.shown(f), "jump");
+    if (std::isfinite(s.nominal)) c.xMarks.emplace_back(s.unit.shown(s.nominal), "design");
     add(out, files, fileSafe(gearbox) + "." + s.name + (s.outputs.size() > 1 ? fmt::format(".{}", i + 1) : "") + ".svg", c);
   }
 }

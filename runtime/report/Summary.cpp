@@ -1,5 +1,6 @@
 #include "report/Summary.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -58,6 +59,17 @@ void studyResults(const GearboxReport& g, GearboxSummary& s) {
                                       sweep->unit.name));
     for (const auto& [at, label] : sweep->marks)
       s.results.push_back(fmt::format("study {}: {} at {} = {:.6g} {}", sweep->name, label, sweep->target, sweep->unit.shown(at), sweep->unit.name));
+    // Between two turning points several steady responses coexist: the scene found one of
+    // them at the design's own point, and which one the gearbox runs on depends on its history.
+    if (sweep->folds.size() >= 2 && std::isfinite(sweep->nominal)) {
+      auto [lo, hi] = std::minmax_element(sweep->folds.begin(), sweep->folds.end());
+      if (sweep->nominal > *lo && sweep->nominal < *hi)
+        s.warnings.push_back(fmt::format("study {}: the design's {} = {:.6g} {} lies between the turning points at {:.6g} and {:.6g} {}: "
+                                         "more than one steady response exists there (see the plot), and the scenes report only the "
+                                         "one they reached",
+                                         sweep->name, sweep->target, sweep->unit.shown(sweep->nominal), sweep->unit.name,
+                                         sweep->unit.shown(*lo), sweep->unit.shown(*hi), sweep->unit.name));
+    }
     for (const auto& [a, b] : sweep->gaps)
       s.warnings.push_back(fmt::format("study {}: the continuation did not follow {} from {:.6g} to {:.6g} {}", sweep->name, sweep->target,
                                        sweep->unit.shown(a), sweep->unit.shown(b), sweep->unit.name));

@@ -36,6 +36,7 @@ struct SweepStudy {
   std::string stabilityScene;           // whose stability the points carry (the first scene read)
   std::string continuation;             // "", "natural" or "arclength"
   std::vector<double> folds;            // turning points of the continuation, in SI of X
+  double nominal = NAN;                 // X at the design as specified (the operating point), SI
   std::vector<std::pair<double, double>> gaps;  // stretches the continuation could not follow, SI of X
   // Where an order of the mesh frequency meets the mesh's natural frequency (f_mesh = f_n / k),
   // in SI of X: the resonance speeds of a speed sweep.

@@ -35,6 +35,11 @@ void resonanceMarks(SweepStudy& r, const ir::Study& st, double x, double fm, dou
 SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   SweepStudy r;
   r.name = st.name;
+  // Where the design itself stands on the swept axis, when the axis is one of its quantities.
+  if (st.sweptEffect.scene < 0 && st.swept.owner != ir::QuantityRef::Unresolved) {
+    Value at = Evaluator(m).quantity(st.swept, a);
+    if (at.isNumber() && at.isPoint()) r.nominal = at.mid();
+  }
   r.target = st.target;
   r.plot = st.plot;
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
