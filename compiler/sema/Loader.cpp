@@ -144,23 +144,22 @@ public:
       }
       return sm_.add(display.lexically_normal().string(), abs, std::move(text));
     }
-    // GBX_PATH's folders first, as a compiler searches its include paths before its own.
+    // GBX_PATH's folders first, as a compiler searches its include paths before its own; a
+    // stdlib module is shown as <stdlib>/NAME.gbx, one of GBX_PATH by its path.
+    auto findIn = [&](const std::vector<std::string>& dirs, bool stdlib) {
+      for (const auto& dir : dirs) {
+        fs::path target = fs::path(dir) / (d.word + std::string(kSpecExtension));
+        std::string abs = canonicalPath(target);
+        if (int id = sm_.find(abs); id >= 0) return id;
+        std::string text;
+        if (readFile(target, text))
+          return sm_.add(stdlib ? "<stdlib>/" + d.word + std::string(kSpecExtension) : target.lexically_normal().string(), abs, std::move(text));
+      }
+      return -1;
+    };
     std::vector<std::string> user = modulePath();
-    for (const auto& dir : user) {
-      fs::path target = fs::path(dir) / (d.word + std::string(kSpecExtension));
-      std::string abs = canonicalPath(target);
-      if (int id = sm_.find(abs); id >= 0) return id;
-      std::string text;
-      if (readFile(target, text)) return sm_.add(target.lexically_normal().string(), abs, std::move(text));
-    }
-    std::vector<std::string> stdlib = stdlibSearchPath();
-    for (const auto& dir : stdlib) {
-      fs::path target = fs::path(dir) / (d.word + std::string(kSpecExtension));
-      std::string abs = canonicalPath(target);
-      if (int id = sm_.find(abs); id >= 0) return id;
-      std::string text;
-      if (readFile(target, text)) return sm_.add("<stdlib>/" + d.word + ".gbx", abs, std::move(text));
-    }
+    if (int id = findIn(user, false); id >= 0) return id;
+    if (int id = findIn(stdlibSearchPath(), true); id >= 0) return id;
     source::Span at = d.wordSpan.valid() ? d.wordSpan : d.span;
     std::vector<std::string> modules = stdlibModules();
     if (modules.empty()) {

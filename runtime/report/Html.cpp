@@ -285,14 +285,7 @@ std::string gearboxDetails(const GearboxReport& g, const RenderOptions& ro) {
   if (g.optimisation) o += "<h3>Optimisation</h3>\n" + list(optimisationLines(*g.optimisation, false));
   for (const auto& r : g.ratings) o += ratingHtml(r);
   for (const auto& md : g.modifications) {
-    o += "<h3>Modification of " + esc(md.stage) + "</h3>\n";
-    std::vector<std::vector<std::string>> mr;
-    for (const auto& r : md.rows) {
-      std::string inputs;
-      for (const auto& in : r.inputs) inputs += (inputs.empty() ? "" : "; ") + in;
-      mr.push_back({r.target, !r.error.empty() ? "not computed: " + r.error : r.present ? r.shown : "absent", r.text, r.condition, inputs});
-    }
-    o += table({"target", "value", "rule", "when", "inputs"}, mr);
+    o += "<h3>Modification of " + esc(md.stage) + "</h3>\n" + table(modificationHeader(), modificationRows(md));
   }
   for (const auto& sc : g.scenes) o += sceneHtml(sc, g);
   for (const auto& study : g.studies) {

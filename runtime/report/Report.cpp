@@ -475,14 +475,7 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       for (const auto& f : g.optimisation->files) o += image(f);
     }
     for (const auto& md : g.modifications) {
-      o += heading(3, "Modification of " + md.stage);
-      std::vector<std::vector<std::string>> mr;
-      for (const auto& r : md.rows) {
-        std::string inputs;
-        for (const auto& in : r.inputs) inputs += (inputs.empty() ? "" : "; ") + in;
-        mr.push_back({r.target, !r.error.empty() ? "not computed: " + r.error : r.present ? r.shown : "absent", r.text, r.condition, inputs});
-      }
-      o += table({"target", "value", "rule", "when", "inputs"}, mr);
+      o += heading(3, "Modification of " + md.stage) + table(modificationHeader(), modificationRows(md));
     }
     for (const auto& r : g.ratings) {
       o += heading(3, "Rating of " + r.stage + (r.mesh.empty() ? "" : ", mesh " + r.mesh) + " (" + r.standard + ")");

@@ -27,6 +27,18 @@ std::vector<std::string> designCells(const DesignRow& r) {
   return v;
 }
 
+std::vector<std::string> modificationHeader() { return {"target", "value", "rule", "when", "inputs"}; }
+
+std::vector<std::vector<std::string>> modificationRows(const ModifyReport& md) {
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& r : md.rows) {
+    std::string inputs;
+    for (const auto& in : r.inputs) inputs += (inputs.empty() ? "" : "; ") + in;
+    rows.push_back({r.target, !r.error.empty() ? "not computed: " + r.error : r.present ? r.shown : "absent", r.text, r.condition, inputs});
+  }
+  return rows;
+}
+
 namespace {
 
 void sceneResults(const GearboxReport& g, GearboxSummary& s) {

@@ -29,6 +29,10 @@ struct GearboxSummary {
 
 GearboxSummary summarise(const GearboxReport& g);
 
+// A stage's modification rules as a table: target, value, rule, when, inputs.
+std::vector<std::string> modificationHeader();
+std::vector<std::vector<std::string>> modificationRows(const ModifyReport& md);
+
 // The design table's header and a row's cells, as every table-shaped format shows them.
 std::vector<std::string> designHeader(const GearboxReport& g);
 std::vector<std::string> designCells(const DesignRow& r);
