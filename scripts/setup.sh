@@ -27,10 +27,11 @@ fi
 # not depend on it.
 # chromium: the tests render every example's HTML report in a real (headless) browser.
 # python3-jsonschema: a test validates every spec's JSON report against docs/report.schema.json.
-# dpkg-dev: `cpack -G DEB` reads the program's shared libraries with dpkg-shlibdeps for the .deb's Depends.
+# dpkg-dev, file: `cpack -G DEB` reads the program's shared libraries (dpkg-shlibdeps, and
+# CPack's own check with `file`) for the .deb's Depends.
 # universal-ctags: a test measures every function's length (Conventions.NoFunctionOver…).
 packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
-          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium python3-jsonschema dpkg-dev universal-ctags ${extra_packages[@]+"${extra_packages[@]}"})
+          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium python3-jsonschema dpkg-dev file universal-ctags ${extra_packages[@]+"${extra_packages[@]}"})
 missing=()
 for p in "${packages[@]}"; do
   # Installed, not merely known to dpkg (a removed package keeps its config-files state).
