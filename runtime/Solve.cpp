@@ -20,6 +20,7 @@
 
 #include "WriteWhole.h"
 #include "model/Deadline.h"
+#include "parallel/Ranks.h"
 #include "passes/Designs.h"
 #include "report/Progress.h"
 #include "passes/Modifications.h"
@@ -48,6 +49,14 @@ std::function<void(double)> progressBar(std::ostream& err, std::string label) {
   };
 }
 
+// The report's date; SOURCE_DATE_EPOCH, where set, fixes it (reproducible builds of documents).
+std::string today() {
+  std::time_t now = std::time(nullptr);
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch && *epoch) now = static_cast<std::time_t>(std::strtoll(epoch, nullptr, 10));
+  char day[16];
+  return std::strftime(day, sizeof day, "%Y-%m-%d", std::gmtime(&now)) ? std::string(day) : std::string();
+}
+
 } // namespace
 
 int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, std::ostream& err) {
@@ -59,6 +68,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
   auto progress = [&](const std::string& label) { return tty ? progressBar(err, label) : std::function<void(double)>(); };
   // The time limit runs from here; it is lifted when the solve returns.
   Deadline::start(o.timeLimit);
+  par::setJobs(o.jobs);
   struct Lift {
     ~Lift() { Deadline::clear(); }
   } lift;
@@ -102,10 +112,12 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     rep.optimisation = std::move(designs.summary);
     // The table holds every listed design now; the search's copies are not read again.
     std::vector<Design>().swap(designs.designs.designs);
+    passes::SceneRuns scenes;
     if (best && (!gb.scenes.empty() || !gb.studies.empty() || !gb.modifies.empty())) {
-      passes::SceneRuns scenes = passes::scenes(m, *best, columns);
+      scenes = passes::scenes(m, *best, columns, o.jobs);
       fail(gb.name, scenes.errors);
       rep.scenes = std::move(scenes.scenes);
+      scenes.scenes.clear();
       passes::setSceneColumns(rep, scenes.columns);
       rep.notes.insert(rep.notes.end(), scenes.notes.begin(), scenes.notes.end());
       passes::Modifications mods = passes::modifications(m, *best);
@@ -119,6 +131,8 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       if (timeUp(gb.name, "its scenes and studies")) return 3;
     }
     if (best) {
+      rep.monteCarlo = passes::monteCarlo(m, *best, columns, scenes.samples.get(), scenes.results);
+      if (rep.monteCarlo && !rep.monteCarlo->failure.empty()) fail(gb.name, {rep.monteCarlo->failure});
       passes::Ratings rated = passes::ratings(m, *best);
       fail(gb.name, rated.errors);
       rep.ratings = std::move(rated.ratings);
@@ -130,15 +144,11 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
   ro.timings = o.timings;
   ro.title = o.title;
   ro.version = o.version;
-  if (o.timings) {
-    // SOURCE_DATE_EPOCH, where set, fixes the date (reproducible builds of documents).
-    std::time_t now = std::time(nullptr);
-    if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch && *epoch) now = static_cast<std::time_t>(std::strtoll(epoch, nullptr, 10));
-    char day[16];
-    if (std::strftime(day, sizeof day, "%Y-%m-%d", std::gmtime(&now))) ro.date = day;
-  }
+  if (o.timings) ro.date = today();
   ro.charts = !o.outDir.empty();
   passes::Rendered rendered = passes::render(std::move(reports), *format, ro);
+  // Under mpirun every rank has solved the same; rank 0 alone writes.
+  if (!par::root()) return status;
   out << rendered.report;
   // CSV on stdout is the design table alone: a note says which tables are not in it.
   if (!rendered.unwritten.empty() && !o.quiet)

@@ -4,6 +4,9 @@
 #   scripts/setup.sh --sanitize   AddressSanitizer + UBSan build in build-asan/: the whole suite
 #                                 and the libFuzzer targets (clang), one build for both
 #   scripts/setup.sh --fuzz       the same
+#   scripts/setup.sh --mpi        gbxc over Open MPI in build-mpi/: `mpirun -n N build-mpi/gbxc solve FILE`
+#                                 shares the work over N ranks (the release build has it too, as
+#                                 build/gbxc-mpi, beside a gbxc that needs no MPI)
 # Idempotent: packages already present are not touched; the build is incremental.
 # Works on a bare Debian bookworm (debootstrap --variant=minbase): as root it needs no sudo;
 # as another user it uses sudo, and only when a package is missing.
@@ -21,6 +24,9 @@ if [[ "${1:-}" == "--sanitize" || "${1:-}" == "--fuzz" ]]; then
   cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" -DGBX_FUZZ=ON
               -DCMAKE_CXX_COMPILER=clang++)
   extra_packages=(clang libclang-rt-dev)
+elif [[ "${1:-}" == "--mpi" ]]; then
+  build_dir=build-mpi
+  cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DGBX_MPI=ON)
 fi
 
 # uuid-dev: the ANTLR runtime's CMake target links -luuid, and libantlr4-runtime-dev does
@@ -30,8 +36,11 @@ fi
 # dpkg-dev, file: `cpack -G DEB` reads the program's shared libraries (dpkg-shlibdeps, and
 # CPack's own check with `file`) for the .deb's Depends.
 # universal-ctags: a test measures every function's length (Conventions.NoFunctionOver…).
+# libopenmpi-dev, openmpi-bin: build/gbxc-mpi, and the test that four MPI ranks write the
+# same report as one thread.
 packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
-          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium python3-jsonschema dpkg-dev file universal-ctags ${extra_packages[@]+"${extra_packages[@]}"})
+          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium python3-jsonschema dpkg-dev file universal-ctags
+          libopenmpi-dev openmpi-bin ${extra_packages[@]+"${extra_packages[@]}"})
 missing=()
 for p in "${packages[@]}"; do
   # Installed, not merely known to dpkg (a removed package keeps its config-files state).

@@ -20,6 +20,7 @@ inline constexpr std::int64_t kMaxSteps = 1'000'000'000;      // accuracy { max_
 inline constexpr std::int64_t kPlanets = 32;                  // planets of a planetary stage
 inline constexpr std::int64_t kSweepPoints = 10'000;          // points of one sweep
 inline constexpr std::int64_t kWorkPrecisionRuns = 200;       // runs of one work-precision study
+inline constexpr std::int64_t kToleranceSamples = 1'000'000;  // Monte Carlo samples of a `tolerances` block
 inline constexpr std::int64_t kBranches = 64;                 // branches of a split
 inline constexpr double kDefaultMaxDesigns = 1e9;             // search space, `--max-designs`
 inline constexpr double kMostMaxDesigns = 4e9;                // the largest `--max-designs` (32-bit indices)

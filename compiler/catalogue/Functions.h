@@ -11,7 +11,7 @@ namespace gbx::cat {
 
 enum class Fn : std::uint8_t {
   Abs, Sqrt, Sin, Cos, Tan, Asin, Acos, Atan, Atan2, Exp, Log,
-  Min, Max, Mean, Round, Floor, Ceil, Coprime, Gcd, Relative, Worst,
+  Min, Max, Mean, Round, Floor, Ceil, Coprime, Gcd, Relative, Worst, Quantile,
 };
 
 enum class ArgRule : std::uint8_t {
@@ -23,6 +23,7 @@ enum class ArgRule : std::uint8_t {
   Reduction,     // two or more numbers of one dimension, or one per-gear quantity
   Baseline,      // one number, divided by its value in the baseline gearbox
   Scatter,       // one number, evaluated over the gearbox's `tolerances`
+  Sampled,       // one number and a constant probability, over the `tolerances` samples
 };
 
 enum class ResultRule : std::uint8_t {
@@ -68,6 +69,8 @@ inline constexpr FunctionSpec kFunctions[] = {
     // worst(q): q at the corner of the tolerance box that is worst where q stands (mean(q), one
     // number, is the mean over the box: a Reduction row that the checker tells apart).
     {Fn::Worst, "worst", 1, 1, ArgRule::Scatter, ResultRule::Like},
+    // quantile(q, p): the p-quantile of q over the Monte Carlo samples (LANGUAGE.md §19).
+    {Fn::Quantile, "quantile", 2, 2, ArgRule::Sampled, ResultRule::Dim},
 };
 
 inline constexpr int kFunctionCount = static_cast<int>(sizeof(kFunctions) / sizeof(kFunctions[0]));

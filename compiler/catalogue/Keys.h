@@ -88,6 +88,8 @@ namespace gbx::cat {
   X(Ramp, "ramp")                                                                                      \
   X(SteadyState, "steady_state")                                                                       \
   X(Continuation, "continuation")                                                                      \
+  X(Distribution, "distribution")                                                                      \
+  X(Seed, "seed")                                                                                      \
   X(Method, "method")                                                                                  \
   X(Rtol, "rtol")                                                                                      \
   X(Atol, "atol")                                                                                      \

@@ -122,6 +122,22 @@ const std::vector<AttrSpec>& sweepSettings() {
   return s;
 }
 
+const std::vector<AttrSpec>& toleranceSettings() {
+  static const std::vector<AttrSpec> s = [] {
+    auto seed = in("seed", none, "the random stream's seed: the same seed draws the same samples");
+    seed.integer = true;
+    return std::vector<AttrSpec>{
+        budgeted(bounded(count("samples", "Monte Carlo samples drawn instead of the box's corners"), num(2), std::nullopt),
+                 budget::kToleranceSamples),
+        symbol("distribution", {"normal", "uniform"},
+               "how a deviation is drawn (normal unless given): normal with the amount as three standard deviations, "
+               "or uniform between the bounds"),
+        bounded(seed, num(0), num(4294967295)),
+    };
+  }();
+  return s;
+}
+
 const std::vector<AttrSpec>& workPrecisionSettings() {
   static const std::vector<AttrSpec> s = {
       pos("rtol", none, "relative tolerances to run"),

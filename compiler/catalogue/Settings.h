@@ -19,6 +19,11 @@ const std::vector<AttrSpec>& splitSettings();
 const std::vector<AttrSpec>& splitOutputs();
 const std::vector<AttrSpec>& workPrecisionSettings();
 const std::vector<AttrSpec>& sweepSettings();
+// `tolerances { …; samples = N; distribution = normal; seed = 1; }` (LANGUAGE.md §19).
+const std::vector<AttrSpec>& toleranceSettings();
+namespace distribution {
+inline constexpr int Normal = 0, Uniform = 1;
+}
 
 // Sweep continuation choices, by their position in the `continuation` row's words.
 namespace continuation {

@@ -316,6 +316,7 @@ struct Gearbox {
   std::vector<Split> splits;
   std::vector<Study> studies;
   std::vector<Tolerance> tolerances;
+  std::vector<Setting> toleranceSettings;  // samples, distribution, seed: Monte Carlo (LANGUAGE.md §19)
   std::optional<Report> report;
   Span span;
   const Stage* findStage(const std::string& name) const;

@@ -85,7 +85,9 @@ std::string print(const Expr& e) {
   case Op::Tol: return "(" + a(0) + " +- " + a(1) + (e.relative ? " relative" : "") + ")";
   case Op::Call: return e.name + "(" + join(e.args, 0, ", ") + ")";
   case Op::Relative: return "relative(" + a(0) + ")";
-  case Op::Scatter: return std::string(e.fn == cat::Fn::Worst ? "worst(" : "mean(") + a(0) + ")";
+  case Op::Scatter:
+    if (e.fn == cat::Fn::Quantile) return "quantile(" + join(e.args, 0, ", ") + ")";
+    return std::string(e.fn == cat::Fn::Worst ? "worst(" : "mean(") + a(0) + ")";
   case Op::Forall: return "forall " + e.name + " in " + e.type.detail + " [" + join(e.args, 0, "; ") + "]";
   default: return "(" + a(0) + " " + opText(e.op) + " " + a(1) + ")";
   }

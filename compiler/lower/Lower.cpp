@@ -187,6 +187,7 @@ public:
     }
     for (auto& sp : g.splits) settings(sp.settings, cat::splitSettings());
     for (auto& t : g.tolerances) t.ref = quantity(t.target);
+    settings(g.toleranceSettings, cat::toleranceSettings());
     for (auto& st : g.studies) {
       if (st.kind == ir::Study::Sweep) {
         st.swept = quantity(st.target);

@@ -133,6 +133,7 @@ private:
   bool readsWorst(const ir::Expr& e, int depth = 0) const;
   void worstSense(ir::Expr& e, int sense, bool condition = false, bool negated = false);
   std::vector<ir::Tolerance> tolerances(const GearboxModel& m, const Scope& gs);
+  std::vector<ir::Setting> toleranceSettings(const GearboxModel& m, const Scope& gs);
   void selfDefined(const ir::Gearbox& g);
   ir::Objective objective(const Stmt& st, const Scope& gs);
 

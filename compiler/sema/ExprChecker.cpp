@@ -596,6 +596,12 @@ ir::ExprPtr ExprChecker::binary(const ast::Expr& e, const Scope& s) {
   return n;
 }
 
+// The quantity a `worst`, `mean` or `quantile` reads over the tolerances, as written (the
+// Monte Carlo report heads its statistics with it).
+static std::string scatteredText(const ast::Expr& call) {
+  return call.args.size() > 1 && call.args[1] ? ast::print(*call.args[1]) : std::string();
+}
+
 ir::ExprPtr ExprChecker::tolerance(const ast::Expr& e, const Scope& s) {
   auto centre = requireNumber(check(e.args[0].get(), s), "the target of a tolerance");
   auto tol = requireNumber(check(e.args[1].get(), s), "a tolerance");
@@ -785,6 +791,35 @@ ir::ExprPtr ExprChecker::sceneResult(const ast::Expr& e, const ast::Expr& callee
   return make(Op::SceneOutput, t, e.span, obj->name + "." + key);
 }
 
+// `worst(q)` over the tolerances; `quantile(q, p)` over their Monte Carlo samples.
+ir::ExprPtr ExprChecker::scatterCall(const FunctionSpec& spec, std::vector<ir::ExprPtr>& args, const ast::Expr& e, const Scope& s) {
+  const std::string fn = e.args[0]->text;
+  const bool sampled = spec.args == ArgRule::Sampled;
+  if (!s.hasTolerances || (sampled && !s.hasSamples)) {
+    std::string why =
+        !sampled ? fmt::format("`{}(q)` evaluates q over the gearbox's manufacturing scatter, but this gearbox has no `tolerances` block", fn)
+        : s.hasTolerances
+            ? fmt::format("`{}(q, p)` reads q over Monte Carlo samples; add `samples = N;` to the `tolerances` block", fn)
+            : fmt::format("`{}(q, p)` reads q over Monte Carlo samples of the gearbox's `tolerances`, but this gearbox has no "
+                          "`tolerances` block",
+                          fn);
+    diags_.error("E0237", e.span, why);
+    return error(e.span);
+  }
+  if (sampled) {
+    const ir::Expr& p = *args[1];
+    if (!p.isConst() || !p.type.dim.dimensionless() || !(p.value.toDouble() > 0 && p.value.toDouble() < 1)) {
+      diags_.error("E0306", p.span, fmt::format("`{}(q, p)` takes a constant probability p between 0 and 1, as in `{}(q, 0.95)`", fn, fn));
+      return error(e.span);
+    }
+  }
+  auto n = make(Op::Scatter, sampled ? Type::number(args[0]->type.dim) : args[0]->type, e.span, fn);
+  n->fn = spec.id;
+  n->name = scatteredText(e);
+  n->args = std::move(args);
+  return n;
+}
+
 ir::ExprPtr ExprChecker::argumentsByRule(const FunctionSpec& specRef, std::vector<ir::ExprPtr>& args, const ast::Expr& e, const Scope& s) {
   const FunctionSpec* spec = &specRef;
   const std::string fn = e.args[0]->text;
@@ -847,24 +882,17 @@ ir::ExprPtr ExprChecker::argumentsByRule(const FunctionSpec& specRef, std::vecto
     n->args = std::move(args);
     return n;
   }
-  case ArgRule::Scatter: {
+  case ArgRule::Scatter:
+  case ArgRule::Sampled:
     if (!arity() || !numbers()) return error(e.span);
-    if (!s.hasTolerances) {
-      diags_.error("E0237", e.span,
-                   fmt::format("`{}(q)` evaluates q over the gearbox's manufacturing scatter, but this gearbox has no `tolerances` block", fn));
-      return error(e.span);
-    }
-    auto n = make(Op::Scatter, args[0]->type, e.span, fn);
-    n->fn = spec->id;
-    n->args = std::move(args);
-    return n;
-  }
+    return scatterCall(*spec, args, e, s);
   case ArgRule::Reduction: {
     if (!arity()) return error(e.span);
     // `mean(q)` of one number in a gearbox with `tolerances`: its mean over the tolerance box.
     if (spec->id == Fn::Mean && args.size() == 1 && args[0]->type.isNumber() && s.hasTolerances) {
       auto n = make(Op::Scatter, Type::number(args[0]->type.dim), e.span, fn);
       n->fn = Fn::Mean;
+    n->name = scatteredText(e);
       n->args = std::move(args);
       return n;
     }

@@ -24,6 +24,7 @@ struct Scope {
   std::vector<std::string> effectLocals;   // `stiffness` inside hertz_contact
   bool hasBaseline = false;                // `relative(x)` allowed
   bool hasTolerances = false;              // `worst(q)` and `mean(q)` over `tolerances` allowed
+  bool hasSamples = false;                 // `quantile(q, p)` too: the tolerances are sampled
   bool meshPeriodsAllowed = false;
 };
 
@@ -67,6 +68,7 @@ private:
   // rule makes it (relative, worst, a per-gear reduction) or an error node; nullptr when a
   // plain call follows.
   ir::ExprPtr argumentsByRule(const cat::FunctionSpec& spec, std::vector<ir::ExprPtr>& args, const ast::Expr& e, const Scope& s);
+  ir::ExprPtr scatterCall(const cat::FunctionSpec& spec, std::vector<ir::ExprPtr>& args, const ast::Expr& e, const Scope& s);
   // The result's type from the row's rule; false (reported) where it has none.
   bool resultType(const cat::FunctionSpec& spec, const std::vector<ir::ExprPtr>& args, ir::Type& t);
   ir::ExprPtr binary(const ast::Expr& e, const Scope& s);

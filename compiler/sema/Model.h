@@ -56,6 +56,7 @@ struct GearboxModel {
   std::map<std::string, std::vector<std::pair<std::string, Binding>>> splitOverrides;
   std::vector<const ast::Stmt*> studies;
   std::vector<const ast::Stmt*> tolerances;  // the lines of `tolerances { … }`, a variant's replacing by target
+  std::vector<const ast::Stmt*> toleranceSettings;  // its `samples = N;` and the like, replaced by name
   const ast::Stmt* report = nullptr;
 
   const StageModel* findStage(const std::string& n) const;

@@ -28,6 +28,8 @@ ir::Gearbox Analyser::lowerGearbox(const GearboxModel& m) {
   gs.gearbox = &m;
   gs.hasBaseline = !m.base.empty();
   gs.hasTolerances = !m.tolerances.empty();
+  g.toleranceSettings = toleranceSettings(m, gs);
+  gs.hasSamples = gs.hasTolerances && ir::findSetting(g.toleranceSettings, Q::Samples);
   g.tolerances = tolerances(m, gs);
 
   std::map<std::string, Type> letTypes;

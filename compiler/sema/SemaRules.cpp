@@ -4,6 +4,10 @@
 
 namespace gbx::sema {
 
+// Monte Carlo samples draw every tolerance at once, so the corners' limit of 6 does not
+// hold; this one keeps a sample's deviations a short list.
+constexpr size_t kMostSampledTolerances = 64;
+
 ir::Rule Analyser::rule(const Stmt& st, const Scope& s, const std::string& scopeName) {
   ir::Rule r;
   r.expr = checker_.check(st.value.get(), s);
@@ -161,11 +165,41 @@ std::vector<ir::Tolerance> Analyser::tolerances(const GearboxModel& m, const Sco
     tol.amount = x->value.toDouble();
     out.push_back(std::move(tol));
   }
+  if (gs.hasSamples) {
+    if (out.size() > kMostSampledTolerances)
+      diags_.error("E0237", m.tolerances[kMostSampledTolerances]->span,
+                   fmt::format("gearbox `{}` lists {} tolerances; Monte Carlo samples draw at most {}", m.name, out.size(),
+                               kMostSampledTolerances));
+    return out;
+  }
   if (out.size() > 6 && !m.tolerances.empty())
     diags_.error("E0237", m.tolerances[6]->span,
                  fmt::format("gearbox `{}` lists {} tolerances; `worst` and `mean` visit every corner of their box, so at most 6 "
                              "(64 corners) are taken",
                              m.name, out.size()));
+  return out;
+}
+
+// `samples = N; distribution = normal; seed = 1;` beside the tolerance lines: Monte Carlo
+// samples instead of the box's corners (LANGUAGE.md §19).
+std::vector<ir::Setting> Analyser::toleranceSettings(const GearboxModel& m, const Scope& gs) {
+  if (m.toleranceSettings.empty()) return {};
+  const std::string owner = "the `tolerances` block";
+  std::vector<std::pair<std::string, Binding>> items;
+  for (const Stmt* t : m.toleranceSettings) flattenOne(*t, items, owner);
+  auto out = settings(items, cat::toleranceSettings(), gs, owner, m.toleranceSettings.front()->span, "E0237");
+  bool shaped = std::any_of(items.begin(), items.end(), [](const auto& i) {
+    auto k = cat::keyOf(i.first);
+    return k == Q::Distribution || k == Q::Seed;
+  });
+  if (shaped && !ir::findSetting(out, Q::Samples))
+    diags_.error("E0237", m.toleranceSettings.front()->span,
+                 "`distribution` and `seed` shape Monte Carlo samples; say how many with `samples = N;` (without it, "
+                 "`worst` and `mean` visit the box's corners)");
+  else if (ir::findSetting(out, Q::Samples) && m.tolerances.empty())
+    diags_.error("E0237", m.toleranceSettings.front()->span,
+                 "Monte Carlo samples scatter the tolerances, but this block lists none; add lines such as "
+                 "`main.face_width +- 1 mm;`");
   return out;
 }
 

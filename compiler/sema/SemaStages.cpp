@@ -283,8 +283,12 @@ void Analyser::statementsOf(GearboxModel& model, const Stmt& decl, std::map<std:
       seen["tolerances"] = &st;
       // A variant's line replaces the baseline's line for the same quantity.
       for (const auto& t : st.body) {
+        if (t.kind == StmtKind::Assign && t.path.parts.size() == 1) {
+          replaceOrAdd(model.toleranceSettings, &t, [](const Stmt* x) { return x->path.str(); });
+          continue;
+        }
         if (t.kind != StmtKind::Scatter) {
-          notAllowed(t, "`tolerances` (it lists `stage.attribute +- amount;`)");
+          notAllowed(t, "`tolerances` (it lists `stage.attribute +- amount;`, and for Monte Carlo `samples = N;`)");
           continue;
         }
         replaceOrAdd(model.tolerances, &t, [](const Stmt* x) { return x->path.str(); });

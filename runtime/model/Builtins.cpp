@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "model/Evaluator.h"
+#include "model/Sampling.h"
 
 namespace gbx::rt {
 
@@ -143,6 +144,14 @@ const std::vector<BuiltinRow>& kRowsTable() {
     // worst(q) over the tolerance box: v[0] the sense (+1 the largest is worst, -1 the
     // smallest, 0 not known: both ends, as an interval), v[1] the nominal value, then the
     // corners.
+    // quantile(q, p) over the Monte Carlo samples: v[0] p, then the samples.
+    {Fn::Quantile,
+     [](const V& v) {
+       std::vector<double> xs;
+       for (size_t i = 1; i < v.size(); ++i) xs.push_back(v[i].mid());
+       std::sort(xs.begin(), xs.end());
+       return xs.empty() ? Value::invalid() : Value::number(sortedQuantile(xs, v[0].mid()));
+     }},
     {Fn::Worst,
      [](const V& v) {
        double sense = v[0].mid();

@@ -1,11 +1,16 @@
 #include "model/Evaluator.h"
 
 #include "model/Builtins.h"
+#include "model/Sampling.h"
+#include "parallel/Ranks.h"
 #include "model/Split.h"
 #include "model/StageKind.h"
 #include "lower/Lower.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <deque>
+#include <mutex>
 #include <cmath>
 #include <functional>
 #include <numeric>
@@ -298,7 +303,7 @@ Value Evaluator::withOffset(int stage, int gear, Q key, Value v) const {
 // Where the context of a `worst(q)` gives no direction (a report column): q's own. A
 // catalogue quantity's better direction, every scene output smaller; 0 where none is known
 // (then both ends are reported).
-static int betterSense(const ir::Expr& q) {
+int betterSense(const ir::Expr& q) {
   if (q.op == ir::Op::SceneOutput) return 1;
   if (q.op != ir::Op::Quantity) return 0;
   switch (cat::betterOf(q.ref.key)) {
@@ -319,6 +324,7 @@ Value Evaluator::scatter(const ir::Expr& e, const Assignment& a) const {
   // Already at a corner (a `worst` inside a `mean`, or through a `let`): q there, not a box
   // around the corner.
   if (nominalOnly || tol.empty() || !offsets_.empty() || !nominal.isNumber()) return nominal;
+  if (Sampling::of(m_.gearbox).on()) return sampled(e, a);
   std::vector<Value> v;
   if (e.fn == cat::Fn::Worst) v.push_back(Value::number(e.sense != 0 ? e.sense : betterSense(*e.args[0])));
   v.push_back(nominal);
@@ -332,11 +338,108 @@ Value Evaluator::scatter(const ir::Expr& e, const Assignment& a) const {
   return builtin(e.fn)(v);
 }
 
-std::optional<std::vector<double>> Evaluator::worstCorner(const ir::Expr& e, const Assignment& a) const {
+namespace {
+
+// The last quantities read over the samples: a column, its note, a rule and the Monte Carlo
+// report read the same q at the same design, and each sample may run a scene.
+class SampleMemo {
+public:
+  using Key = std::vector<double>;
+  std::optional<std::optional<std::vector<double>>> find(const Key& k) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [key, v] : entries_)
+      if (key == k) return v;
+    return std::nullopt;
+  }
+  void put(Key k, std::optional<std::vector<double>> v) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (entries_.size() >= 32) entries_.pop_front();
+    entries_.emplace_back(std::move(k), std::move(v));
+  }
+
+private:
+  std::mutex mutex_;
+  std::deque<std::pair<Key, std::optional<std::vector<double>>>> entries_;
+};
+
+SampleMemo& sampleMemo() {
+  static SampleMemo memo;
+  return memo;
+}
+
+} // namespace
+
+std::optional<std::vector<double>> Evaluator::overSamples(const ir::Expr& q, const Assignment& a) const {
+  const auto& tol = m_.gearbox.tolerances;
+  Sampling s = Sampling::of(m_.gearbox);
+  if (!s.on() || tol.empty()) return std::nullopt;
+  // Only an evaluator with a scene hook of its own reads scenes; one without reads none, so
+  // both kinds share the memo only where q reads no scene.
+  SampleMemo::Key key = {static_cast<double>(m_.serial), static_cast<double>(reinterpret_cast<std::uintptr_t>(&q)),
+                         sceneOutput && ir::uses(&q, {ir::Op::SceneOutput, ir::Op::Let}) ? 1.0 : 0.0};
+  for (int c : a.choice) key.push_back(c);
+  key.push_back(-1);
+  for (const auto& [lo, hi] : a.box) {
+    key.push_back(lo);
+    key.push_back(hi);
+  }
+  key.push_back(-2);
+  for (double v : overrideKey()) key.push_back(v);
+  if (auto hit = sampleMemo().find(key)) return *hit;
+  // The samples over the threads and, under mpirun, the ranks: an empty result marks a
+  // sample where q has no value.
+  auto values = par::map(static_cast<size_t>(s.samples), par::jobs(), [&](size_t k) {
+    Evaluator at(*this);
+    std::vector<double> d = s.deviations(tol, static_cast<long>(k));
+    for (size_t i = 0; i < tol.size(); ++i) at.addOffset(tol[i].ref, d[i]);
+    Value x = at.eval(q, a);
+    return x.isNumber() ? std::vector<double>{x.mid()} : std::vector<double>{};
+  });
+  std::optional<std::vector<double>> out(std::vector<double>(values.size()));
+  for (size_t k = 0; k < values.size() && out; ++k) {
+    if (values[k].size() != 1) out.reset();
+    else (*out)[k] = values[k][0];
+  }
+  sampleMemo().put(std::move(key), out);
+  return out;
+}
+
+// `worst`, `mean` and `quantile` over the Monte Carlo samples (not the nominal design: the
+// samples stand for the production).
+Value Evaluator::sampled(const ir::Expr& e, const Assignment& a) const {
+  auto xs = overSamples(*e.args[0], a);
+  if (!xs || xs->empty()) return Value::invalid();
+  switch (e.fn) {
+  case cat::Fn::Mean: return Value::number(sampleMean(*xs));
+  case cat::Fn::Quantile: {
+    if (e.args.size() < 2) return Value::invalid();
+    Value p = eval(*e.args[1], a);
+    if (!p.isNumber()) return Value::invalid();
+    std::sort(xs->begin(), xs->end());
+    return Value::number(sortedQuantile(*xs, p.mid()));
+  }
+  default: {
+    std::vector<Value> v{Value::number(e.sense != 0 ? e.sense : betterSense(*e.args[0]))};
+    for (double x : *xs) v.push_back(Value::number(x));
+    return builtin(cat::Fn::Worst)(v);
+  }
+  }
+}
+
+std::optional<Evaluator::Where> Evaluator::worstCorner(const ir::Expr& e, const Assignment& a) const {
   const auto& tol = m_.gearbox.tolerances;
   if (e.op != ir::Op::Scatter || e.fn != cat::Fn::Worst || tol.empty() || e.args.empty()) return std::nullopt;
   int sense = e.sense != 0 ? e.sense : betterSense(*e.args[0]);
   if (sense == 0) return std::nullopt;
+  if (Sampling s = Sampling::of(m_.gearbox); s.on()) {
+    auto xs = overSamples(*e.args[0], a);
+    if (!xs || xs->empty()) return std::nullopt;
+    // The same choice as `worst` makes: the first of the worst values.
+    size_t k = 0;
+    for (size_t i = 1; i < xs->size(); ++i)
+      if (sense > 0 ? (*xs)[i] > (*xs)[k] : (*xs)[i] < (*xs)[k]) k = i;
+    return Where{s.deviations(tol, static_cast<long>(k)), static_cast<long>(k)};
+  }
   Evaluator atNominal(*this);
   atNominal.nominalOnly = true;
   Value best = atNominal.eval(*e.args[0], a);
@@ -357,7 +460,7 @@ std::optional<std::vector<double>> Evaluator::worstCorner(const ir::Expr& e, con
       where = d;
     }
   }
-  return where;
+  return Where{where, -1};
 }
 
 const Value* Evaluator::overridden(const ir::QuantityRef& r) const {

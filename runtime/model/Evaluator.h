@@ -66,7 +66,14 @@ public:
   // Where `worst(q)` (a Scatter of fn Worst) finds its worst value at this design: each
   // tolerance's deviation (SI; all 0 at the nominal design), or nothing where it reads both
   // ends or there are no tolerances.
-  std::optional<std::vector<double>> worstCorner(const ir::Expr& scatter, const Assignment& a) const;
+  struct Where {
+    std::vector<double> deviations;  // each tolerance's, SI
+    long sample = -1;                // the Monte Carlo sample, or -1 at a corner
+  };
+  std::optional<Where> worstCorner(const ir::Expr& scatter, const Assignment& a) const;
+  // q at every Monte Carlo sample of the gearbox's `tolerances` (LANGUAGE.md §19), in sample
+  // order; nothing where the tolerances are not sampled or q has no value at some sample.
+  std::optional<std::vector<double>> overSamples(const ir::Expr& q, const Assignment& a) const;
 
   // Scene results (`vibration.rms(acceleration)`) and `relative(x)` need the dynamics
   // and the baseline gearbox: the optimiser provides them. The scene is built with the
@@ -80,6 +87,7 @@ private:
   Value withOffset(int stage, int gear, Q key, Value v) const;
   Value givenAttribute(int stage, int gear, Q key, const Assignment& a) const;
   Value scatter(const ir::Expr& e, const Assignment& a) const;
+  Value sampled(const ir::Expr& e, const Assignment& a) const;
   Value perGear(const ir::Expr& e, int gear, const Assignment& a) const;
   Value perGearReduce(const ir::Expr& call, const Assignment& a) const;
   Value call(const ir::Expr& e, const Assignment& a) const;
@@ -94,6 +102,9 @@ private:
 units::DisplayUnit valueUnitOf(const ir::Expr& e);
 // The unit a table or a sweep shows an expression in: valueUnitOf, an imbalance in percent.
 units::DisplayUnit displayUnitOf(const ir::Expr& e);
+// Which end of q is the worse: +1 its largest (stresses, vibration), -1 its smallest
+// (safeties, margins), 0 not known.
+int betterSense(const ir::Expr& q);
 
 // Interval and exact arithmetic used by the evaluator (exposed for tests).
 namespace arith {

@@ -1,5 +1,7 @@
 #include "passes/Designs.h"
 
+#include "model/Sampling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -379,11 +381,16 @@ std::optional<std::string> cornerNote(const Model& m, const Evaluator& ev, const
   const auto& tol = m.gearbox.tolerances;
   std::string at;
   for (size_t i = 0; i < tol.size(); ++i) {
-    if ((*where)[i] == 0) continue;
+    double d = where->deviations[i];
+    if (d == 0) continue;
     auto u = units::differenceUnitFor(tol[i].dim);  // an offset from the nominal value
-    at += fmt::format("{}{} {:+g}{}", at.empty() ? "" : ", ", tol[i].target, (*where)[i] / u.scale,
-                      u.name.empty() ? "" : " " + u.name);
+    // A sample's deviation to four figures; a corner's is the amount as written.
+    std::string amount = where->sample >= 0 ? fmt::format("{:+.4g}", d / u.scale) : fmt::format("{:+g}", d / u.scale);
+    at += fmt::format("{}{} {}{}", at.empty() ? "" : ", ", tol[i].target, amount, u.name.empty() ? "" : " " + u.name);
   }
+  if (where->sample >= 0)
+    return fmt::format("`{}` of design 1 is found at sample {} of {} ({})", name, where->sample + 1,
+                       Sampling::of(m.gearbox).samples, at);
   return fmt::format("`{}` of design 1 is found {}", name, at.empty() ? "at the nominal design" : "at " + at);
 }
 

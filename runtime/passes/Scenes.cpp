@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <mutex>
 
 #include "dynamics/Scene.h"
 #include "model/Evaluator.h"
@@ -76,9 +77,9 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ScenePlan& scene) {
 
 } // namespace
 
-SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns) {
+SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns, int jobs) {
   SceneRuns out;
-  std::vector<dyn::SceneResult> results;
+  std::vector<dyn::SceneResult>& results = out.results;
   for (const auto& sc : m.scenes) {
     auto res = dyn::runScene(m, best, sc);
     if (!res.failure.empty()) out.errors.push_back(res.failure);
@@ -88,12 +89,23 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns)
   // Columns over scene results: read from the runs above; at a corner of the tolerance box
   // (`worst(…)`, `mean(…)`) the scene runs again with that corner's deviations.
   std::map<std::pair<int, std::vector<double>>, dyn::SceneResult> corners;
+  std::mutex cornersMutex;
+  // Monte Carlo: every sample's scenes first, shared over the threads and ranks.
+  std::vector<const ir::Expr*> sampled = columns.exprs;
+  for (const auto& rule : m.gearbox.rules) sampled.push_back(rule.expr.get());
+  for (const auto& ob : m.gearbox.objectives) sampled.push_back(ob.expr.get());
+  out.samples = std::make_shared<SampleScenes>(m, best, sampled, results, jobs);
   Evaluator ev(m);
   ev.sceneOutput = [&](const ir::Expr& e, const Assignment& a, const Evaluator& asking) -> Value {
     int sc = e.output.scene;
     if (sc < 0 || static_cast<size_t>(sc) >= results.size()) return Value::invalid();
     const dyn::SceneResult* r = &results[static_cast<size_t>(sc)];
     if (!asking.offsets().empty()) {
+      if (const auto* at = out.samples->find(sc, asking)) r = at;
+    }
+    if (!asking.offsets().empty() && r == &results[static_cast<size_t>(sc)]) {
+      // Samples may ask from several threads (a scene the sample runs above left out).
+      std::lock_guard<std::mutex> lock(cornersMutex);
       std::vector<double> key = asking.offsetKey();
       auto it = corners.find({sc, key});
       if (it == corners.end()) {

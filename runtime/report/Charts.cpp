@@ -179,12 +179,41 @@ void pathCharts(const std::string& gearbox, RatingReport& r, std::vector<ChartFi
   add(out, r.files, fileSafe(gearbox + "." + where) + ".film_thickness.svg", f);
 }
 
+// Each sampled quantity's histogram (the bins' outline), its mean and quantiles marked.
+void monteCarloCharts(const std::string& gearbox, MonteCarloReport& r, std::vector<ChartFile>& out) {
+  for (const auto& o : r.outputs) {
+    if (o.counts.empty()) continue;
+    SvgChart c;
+    c.title = fmt::format("{}: {} over {} samples", gearbox, o.quantity, r.samples);
+    c.xLabel = withUnit(o.quantity, o.unit.name);
+    c.yLabel = "samples per bin";
+    SvgSeries bars{"samples", {}, {}, false, true};
+    bars.x.push_back(o.unit.shown(o.edges.front()));
+    bars.y.push_back(0);
+    for (size_t b = 0; b < o.counts.size(); ++b) {
+      double y = static_cast<double>(o.counts[b]);
+      for (double x : {o.edges[b], o.edges[b + 1]}) {
+        bars.x.push_back(o.unit.shown(x));
+        bars.y.push_back(y);
+      }
+    }
+    bars.x.push_back(o.unit.shown(o.edges.back()));
+    bars.y.push_back(0);
+    c.series = {bars};
+    c.xMarks.push_back({o.unit.shown(o.mean), "mean"});
+    for (const auto& q : o.quantiles)
+      if (q.p != 0.5) c.xMarks.push_back({o.unit.shown(q.value), fmt::format("q {:g}", q.p)});
+    add(out, r.files, fmt::format("{}.monte_carlo.{}.svg", fileSafe(gearbox), fileSafe(o.quantity)), c);
+  }
+}
+
 } // namespace
 
 std::vector<ChartFile> drawCharts(std::vector<GearboxReport>& reports) {
   std::vector<ChartFile> out;
   for (auto& g : reports) {
     if (g.optimisation) paretoChart(g.name, *g.optimisation, out);
+    if (g.monteCarlo) monteCarloCharts(g.name, *g.monteCarlo, out);
     for (auto& sc : g.scenes) sceneCharts(g.name, sc, out);
     for (auto& r : g.ratings) {
       faceLoadChart(g.name, r, out);

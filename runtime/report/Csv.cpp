@@ -6,6 +6,7 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include "report/MonteCarlo.h"
 #include "report/Ratings.h"
 #include "report/Report.h"
 
@@ -194,6 +195,29 @@ std::string ratings(const std::vector<GearboxReport>& reports) {
   return any ? o : "";
 }
 
+std::string monteCarlo(const std::vector<GearboxReport>& reports) {
+  std::string o = row({"gearbox", "quantity", "unit", "statistic", "value", "standard_error", "sample"});
+  bool any = false;
+  for (const auto& g : reports)
+    if (g.monteCarlo)
+      for (const auto& v : monteCarloCsvRows(g.name, *g.monteCarlo)) {
+        any = true;
+        o += row(v);
+      }
+  return any ? o : "";
+}
+
+// Every sample of each gearbox that has them: its deviations and each quantity's value.
+std::string samples(const std::vector<GearboxReport>& reports) {
+  std::string o;
+  for (const auto& g : reports) {
+    if (!g.monteCarlo || g.monteCarlo->outputs.empty()) continue;
+    o += row(sampleCsvHeader(*g.monteCarlo));
+    for (const auto& v : sampleCsvRows(g.name, *g.monteCarlo)) o += row(v);
+  }
+  return o;
+}
+
 } // namespace
 
 std::string renderCsv(const std::vector<GearboxReport>& reports, const RenderOptions&) { return designs(reports); }
@@ -212,6 +236,8 @@ std::vector<TableFile> otherTables(const std::vector<GearboxReport>& reports, co
   add("work_precision.csv", workPrecision(reports, o.timings));
   add("modifications.csv", modifications(reports));
   add("ratings.csv", ratings(reports));
+  add("monte_carlo.csv", monteCarlo(reports));
+  add("samples.csv", samples(reports));
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "report/Optimisation.h"
+#include "report/MonteCarlo.h"
 #include "report/Ratings.h"
 #include "report/Report.h"
 #include "report/Studies.h"
@@ -183,6 +184,8 @@ std::vector<Figure> figures(const GearboxReport& g) {
     for (const auto& x : r.files) f.push_back({x, "rating of " + r.stage});
   if (g.optimisation)
     for (const auto& x : g.optimisation->files) f.push_back({x, "optimisation"});
+  if (g.monteCarlo)
+    for (const auto& x : g.monteCarlo->files) f.push_back({x, "Monte Carlo histogram"});
   return f;
 }
 
@@ -283,6 +286,11 @@ std::string gearboxDetails(const GearboxReport& g, const RenderOptions& ro) {
     o += "<h3>Elimination funnel</h3>\n" + table({"scope", "rule", "before", "removed"}, f);
   }
   if (g.optimisation) o += "<h3>Optimisation</h3>\n" + list(optimisationLines(*g.optimisation, false));
+  if (g.monteCarlo) {
+    const auto& mc = *g.monteCarlo;
+    o += "<h3>Monte Carlo over the tolerances</h3>\n<p>" + esc(monteCarloHeadline(mc)) + "; tolerances " + esc(monteCarloTolerances(mc)) +
+         ".</p>\n" + table(monteCarloHeader(), monteCarloRows(mc)) + list(monteCarloNotes(mc), "model");
+  }
   for (const auto& r : g.ratings) o += ratingHtml(r);
   for (const auto& md : g.modifications) {
     o += "<h3>Modification of " + esc(md.stage) + "</h3>\n" + table(modificationHeader(), modificationRows(md));

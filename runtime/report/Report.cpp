@@ -7,6 +7,7 @@
 
 #include "diag/Diagnostic.h"
 #include "report/Optimisation.h"
+#include "report/MonteCarlo.h"
 #include "report/Ratings.h"
 #include "report/Studies.h"
 #include "report/Summary.h"
@@ -195,12 +196,24 @@ std::string textStudy(const StudyReport& study, const RenderOptions& ro) {
   return o;
 }
 
+// Monte Carlo over the tolerances: what was sampled, the statistics, how far to trust them.
+std::string textMonteCarlo(const MonteCarloReport& r) {
+  std::string o = "  monte carlo: " + monteCarloHeadline(r) + "\n    tolerances: " + monteCarloTolerances(r) + "\n";
+  std::vector<std::vector<std::string>> t = {monteCarloHeader()};
+  for (auto& row : monteCarloRows(r)) t.push_back(std::move(row));
+  o += aligned(t, "   ", t.front().size());
+  for (const auto& n : monteCarloNotes(r)) o += "    note: " + n + "\n";
+  for (const auto& f : r.files) o += "    histogram: " + f + "\n";
+  return o;
+}
+
 } // namespace
 
 std::string renderText(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
   std::string o;
   for (const auto& g : reports) {
     o += textDesigns(g, ro);
+    if (g.monteCarlo) o += textMonteCarlo(*g.monteCarlo);
     for (const auto& md : g.modifications) o += textModification(md);
     for (const auto& r : g.ratings) o += textRating(r);
     for (const auto& sc : g.scenes) o += textScene(sc, g, ro);
@@ -376,6 +389,7 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
       o += fmt::format("{}\n    \"{}\": {}", ri ? "," : "",
                        jsonEscape(g.ratings[ri].stage + (g.ratings[ri].mesh.empty() ? "" : "." + g.ratings[ri].mesh)), ratingJson(g.ratings[ri]));
     o += g.ratings.empty() ? "}, " : "\n   }, ";
+    if (g.monteCarlo) o += "\"monte_carlo\": " + monteCarloJson(*g.monteCarlo) + ", ";
     o += "\"studies\": {";
     for (size_t si = 0; si < g.studies.size(); ++si)
       o += fmt::format("{}\n    \"{}\": {}", si ? "," : "", jsonEscape(studyName(g.studies[si])), studyJson(g.studies[si], ro));
@@ -473,6 +487,12 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
     if (g.optimisation) {
       o += heading(3, "Optimisation") + list(optimisationLines(*g.optimisation, true));
       for (const auto& f : g.optimisation->files) o += image(f);
+    }
+    if (g.monteCarlo) {
+      const auto& mc = *g.monteCarlo;
+      o += heading(3, "Monte Carlo over the tolerances") + para(monteCarloHeadline(mc) + "; tolerances " + monteCarloTolerances(mc) + ".");
+      o += table(monteCarloHeader(), monteCarloRows(mc)) + list(monteCarloNotes(mc));
+      for (const auto& f : mc.files) o += image(f);
     }
     for (const auto& md : g.modifications) {
       o += heading(3, "Modification of " + md.stage) + table(modificationHeader(), modificationRows(md));

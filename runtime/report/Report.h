@@ -228,6 +228,40 @@ struct RatingReport {
   std::vector<std::string> files;              // its chart, with -o DIR
 };
 
+// Monte Carlo over the tolerances at design 1 (LANGUAGE.md §19): each quantity that a
+// `worst`, `mean` or `quantile` reads, at every sample, and its statistics.
+struct MonteCarloReport {
+  long samples = 0;
+  std::string distribution;  // "normal" (the amount is 3 sigma) or "uniform"
+  bool uniform = false;      // the deviations drawn uniformly between the bounds
+  unsigned long long seed = 1;
+  struct Tolerance {
+    std::string target;
+    double amount = 0;  // in the display unit
+    std::string unit;
+    double si = 0;
+  };
+  std::vector<Tolerance> tolerances;
+  std::vector<std::vector<double>> deviations;  // per sample, each tolerance's in its display unit
+  struct Quantile {
+    double p = 0, value = 0, error = 0;  // value and its standard error, SI
+  };
+  struct Output {
+    std::string quantity;  // as written inside `worst(…)`, `mean(…)`, `quantile(…)`
+    units::DisplayUnit unit{"", 1};
+    std::vector<double> values;    // SI, in sample order
+    double mean = 0, meanError = 0, stdDev = 0, min = 0, max = 0;
+    std::vector<Quantile> quantiles;  // the spec's, and the 5 %, 50 % and 95 % ones, by p
+    int sense = 0;          // +1: larger is worse, -1: smaller is worse, 0: not known
+    long worstSample = -1;  // 0-based; -1 where sense is 0
+    std::vector<double> edges;  // histogram bin edges, SI
+    std::vector<long> counts;
+  };
+  std::vector<Output> outputs;
+  std::string failure;  // why the samples gave no numbers (a scene that failed at a sample)
+  std::vector<std::string> files;  // histograms written, set by the render step
+};
+
 // Design rows made one at a time: a listing of a million designs is written as it is made
 // instead of being held.
 class RowSource {
@@ -265,6 +299,7 @@ struct GearboxReport {
   std::vector<ModifyReport> modifications;
   std::vector<RatingReport> ratings;
   std::optional<OptimisationSummary> optimisation;
+  std::optional<MonteCarloReport> monteCarlo;
 };
 
 struct ChartFile {
@@ -297,7 +332,7 @@ void forEachRow(const GearboxReport& g, F&& f) {
 }
 
 // The version of docs/report.schema.json the JSON report follows (its top-level "schema").
-inline constexpr const char* kReportSchemaVersion = "1.0";
+inline constexpr const char* kReportSchemaVersion = "1.1";
 
 std::string formatNumber(double v);
 // A JSON number, shortest round-trip; null where the value is not finite (never nan or inf).

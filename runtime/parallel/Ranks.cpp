@@ -1,0 +1,118 @@
+#include "parallel/Ranks.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <thread>
+
+#ifdef GBX_MPI
+#include <mpi.h>
+#endif
+
+namespace gbx::rt::par {
+
+namespace {
+
+int gRank = 0, gRanks = 1;
+bool gStarted = false;
+std::atomic<int> gJobs{1};
+// Static initialisation runs on the main thread.
+const std::thread::id gMain = std::this_thread::get_id();
+
+// The iterations of this rank, over the threads, each result in its slot.
+void runShare(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f, std::vector<std::vector<double>>& out) {
+  std::vector<size_t> mine;
+  for (size_t i = static_cast<size_t>(gRank); i < n; i += static_cast<size_t>(gRanks)) mine.push_back(i);
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    for (size_t j = next++; j < mine.size(); j = next++) out[mine[j]] = f(mine[j]);
+  };
+  size_t threads = std::min<size_t>(static_cast<size_t>(std::max(1, jobs)), mine.size());
+  if (threads <= 1) {
+    work();
+    return;
+  }
+  std::vector<std::thread> pool;
+  for (size_t t = 0; t < threads; ++t) pool.emplace_back(work);
+  for (auto& t : pool) t.join();
+}
+
+#ifdef GBX_MPI
+// Every rank's results to every rank: each packs (index, length, values…) of its own.
+void gather(std::vector<std::vector<double>>& out) {
+  std::vector<double> pack;
+  for (size_t i = static_cast<size_t>(gRank); i < out.size(); i += static_cast<size_t>(gRanks)) {
+    pack.push_back(static_cast<double>(i));
+    pack.push_back(static_cast<double>(out[i].size()));
+    pack.insert(pack.end(), out[i].begin(), out[i].end());
+  }
+  int mine = static_cast<int>(pack.size());
+  std::vector<int> counts(static_cast<size_t>(gRanks)), offsets(static_cast<size_t>(gRanks));
+  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  int total = 0;
+  for (int r = 0; r < gRanks; ++r) {
+    offsets[static_cast<size_t>(r)] = total;
+    total += counts[static_cast<size_t>(r)];
+  }
+  std::vector<double> all(static_cast<size_t>(total));
+  MPI_Allgatherv(pack.data(), mine, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+  for (size_t p = 0; p + 1 < all.size();) {
+    size_t i = static_cast<size_t>(all[p]), len = static_cast<size_t>(all[p + 1]);
+    p += 2;
+    if (i < out.size()) out[i].assign(all.begin() + static_cast<std::ptrdiff_t>(p), all.begin() + static_cast<std::ptrdiff_t>(p + len));
+    p += len;
+  }
+}
+
+// Started by mpirun (Open MPI's launcher sets these): a plain run stays a plain process.
+bool underMpirun() { return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK"); }
+#endif
+
+} // namespace
+
+Session::Session([[maybe_unused]] int* argc, [[maybe_unused]] char*** argv) {
+#ifdef GBX_MPI
+  if (!underMpirun()) return;
+  int provided = 0;
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+  MPI_Comm_rank(MPI_COMM_WORLD, &gRank);
+  MPI_Comm_size(MPI_COMM_WORLD, &gRanks);
+  gStarted = true;
+#endif
+}
+
+Session::~Session() {
+#ifdef GBX_MPI
+  if (gStarted) MPI_Finalize();
+#endif
+  gStarted = false;
+}
+
+int rank() { return gRank; }
+int ranks() { return gRanks; }
+
+bool built() {
+#ifdef GBX_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+void setJobs(int jobs) { gJobs = std::max(1, jobs); }
+int jobs() { return gJobs; }
+
+std::vector<std::vector<double>> map(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f) {
+  std::vector<std::vector<double>> out(n);
+  if (std::this_thread::get_id() != gMain) {
+    for (size_t i = 0; i < n; ++i) out[i] = f(i);
+    return out;
+  }
+  runShare(n, jobs, f, out);
+#ifdef GBX_MPI
+  if (gStarted && gRanks > 1) gather(out);
+#endif
+  return out;
+}
+
+} // namespace gbx::rt::par
