@@ -101,10 +101,16 @@ bool RatioFn::emit(const ir::Expr& e) {
 std::optional<RatioFn> RatioFn::compile(const ir::Expr& e) {
   RatioFn f;
   if (!f.emit(e)) return std::nullopt;
+  // `abs(ratio - c)`, the usual ranking by closeness to a target: evaluated without the
+  // interpreter (the same operations, so the same numbers).
+  const auto& c = f.code_;
+  f.absDiff_ = c.size() == 4 && c[0].k == K::Ratio && c[1].k == K::Const && c[2].k == K::Sub && c[3].k == K::Abs;
+  if (f.absDiff_) f.target_ = c[1].c;
   return f;
 }
 
 double RatioFn::at(double r) const {
+  if (absDiff_) return std::fabs(r - target_);
   std::array<double, 64> st;
   size_t n = 0;
   for (const Node& x : code_) {
@@ -194,10 +200,22 @@ std::optional<Rational> RatioFn::exactAt(const Rational& ratio) const {
 }
 
 std::pair<double, double> RatioFn::over(double lo, double hi) const {
-  std::array<Iv, 64> st;
+  if (absDiff_) {
+    double a = lo - target_, b = hi - target_;
+    if (std::isnan(a) || std::isnan(b)) return {-kInf, kInf};
+    return a >= 0 ? Iv{a, b} : b <= 0 ? Iv{-b, -a} : Iv{0, std::max(-a, b)};
+  }
+  // Uninitialised: the join asks this a million times, and zeroing 64 pairs each time cost
+  // more than the program.
+  union Stack {
+    Stack() {}
+    Iv v[64];
+  } stack;
+  Iv* st = stack.v;
+  constexpr size_t depth = 64;
   size_t n = 0;
   for (const Node& x : code_) {
-    if (n + 1 >= st.size()) return {-kInf, kInf};
+    if (n + 1 >= depth) return {-kInf, kInf};
     switch (x.k) {
     case K::Const: st[n++] = {x.c, x.c}; break;
     case K::Ratio: st[n++] = {lo, hi}; break;

@@ -38,6 +38,8 @@ private:
   };
   bool emit(const ir::Expr& e);
   std::vector<Node> code_;
+  bool absDiff_ = false;  // the program is abs(ratio - target_)
+  double target_ = 0;
 };
 
 class FastKey {

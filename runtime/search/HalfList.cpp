@@ -34,9 +34,17 @@ template <class F> void HalfList::forEach(const std::vector<std::pair<int, int>>
     const auto &r0 = R[static_cast<size_t>(from)], &r1 = R[static_cast<size_t>(from + 1)];
     bool canon = std::find(ordered.begin(), ordered.end(), std::make_pair(from, from + 1)) != ordered.end();
     const int s1 = shift_[1];
-    for (std::uint64_t i = 0; i < r0.size(); ++i)
-      for (std::uint64_t j = canon ? i : 0; j < r1.size(); ++j)
+    for (std::uint64_t i = 0; i < r0.size(); ++i) {
+      std::uint64_t j0 = canon ? i : 0, j1 = r1.size();
+      if (reach_ && i < reach_->size()) {
+        // The second stage's ratios ascend: the reachable ones are one run of them.
+        auto [lo, hi] = (*reach_)[i];
+        j0 = std::max<std::uint64_t>(j0, static_cast<std::uint64_t>(std::lower_bound(r1.begin(), r1.end(), lo / r0[i]) - r1.begin()));
+        j1 = static_cast<std::uint64_t>(std::upper_bound(r1.begin(), r1.end(), hi / r0[i]) - r1.begin());
+      }
+      for (std::uint64_t j = j0; j < j1; ++j)
         f(i | (j << s1), r0[i] * r1[j]);
+    }
     return;
   }
   const size_t w = static_cast<size_t>(width_);
@@ -62,6 +70,8 @@ template <class F> void HalfList::forEach(const std::vector<std::pair<int, int>>
         code |= cur[s] << shift_[s];
       }
     }
+    if (valid && reach_ && cur[0] < reach_->size())
+      valid = prod >= (*reach_)[cur[0]].first && prod <= (*reach_)[cur[0]].second;
     if (valid) f(code, prod);
     // Odometer, last stage fastest; a stage restarts at its canonical lower bound.
     int s = to - 1;
@@ -89,6 +99,18 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
     lo *= r.front();
     hi *= r.back();
     upper *= static_cast<double>(r.size());
+  }
+  if (reach_ && positive) {
+    // Only the reachable entries: their count and the span of their ratios.
+    double least = INFINITY, most = 0, kept = 0;
+    for (const auto& [a, b] : *reach_) {
+      least = std::min(least, a);
+      most = std::max(most, b);
+    }
+    lo = std::max(lo, least);
+    hi = std::max(lo, std::min(hi, most));
+    forEach(ordered, [&](std::uint64_t, double) { kept += 1; });
+    upper = std::max(1.0, kept);
   }
   size_t buckets = static_cast<size_t>(std::clamp(upper / 4, 1.0, static_cast<double>(1 << 22)));
   std::uint64_t k0 = orderKey(lo), span = positive ? orderKey(hi) - k0 : 0;
@@ -127,6 +149,11 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
     for (size_t i = 0; i < scratch.size(); ++i)
       first[static_cast<std::ptrdiff_t>(i)] = scratch[i].second;
   }
+  if (n <= kHeldRatios) {
+    held_.resize(n);
+    for (size_t e = 0; e < n; ++e)
+      held_[e] = codeRatio(out[e]);
+  }
   // The coarse index: every 2^d fine buckets, about four entries each.
   int d = 0;
   while ((buckets >> d) > std::max<size_t>(1, n / 4))
@@ -149,6 +176,19 @@ size_t HalfList::bound(double v, bool strict) const {
     lo = index_[b];
     hi = index_[b + 1];
   }
+  if (!held_.empty() && lo < hi) {
+    // Branchless over the held ratios: the join asks this once per row, and the bucket's
+    // few entries would mispredict a branchy search about every other step.
+    const double* base = held_.data() + lo;
+    size_t len = hi - lo;
+    while (len > 1) {
+      size_t half = len / 2;
+      base += (strict ? base[half - 1] <= v : base[half - 1] < v) ? half : 0;
+      len -= half;
+    }
+    size_t at = static_cast<size_t>(base - held_.data());
+    return at + ((strict ? *base <= v : *base < v) ? 1 : 0);
+  }
   while (lo < hi) {
     size_t mid = (lo + hi) / 2;
     double r = ratio(mid);
@@ -161,9 +201,11 @@ size_t HalfList::bound(double v, bool strict) const {
 }
 
 HalfList HalfList::build(const std::vector<std::vector<double>>& ratios,
-                         const std::vector<std::pair<int, int>>& ordered, int from, int to) {
+                         const std::vector<std::pair<int, int>>& ordered, int from, int to,
+                         const std::vector<std::pair<double, double>>* reach) {
   HalfList H;
   H.ratios_ = &ratios;
+  H.reach_ = reach;
   H.from_ = from;
   H.width_ = to - from;
   for (int s = from; s < to; ++s)
@@ -215,6 +257,7 @@ HalfList HalfList::build(const std::vector<std::vector<double>>& ratios,
     H.fill(ordered, H.codes_);
   else
     H.fill(ordered, H.wide_);
+  H.reach_ = nullptr;
   return H;
 }
 

@@ -2,10 +2,12 @@
 // One half of the meet-in-the-middle join: every tuple of candidates of stages [from, to),
 // canonical within interchangeable blocks, in ascending order of its ratio product. An
 // entry is the tuple's candidate indices packed into one integer (4 bytes when they fit);
-// the ratio is recomputed from the stages' candidate ratios when the sweep reads it, so
-// the list costs no more than its codes. Sorted by a counting sort over buckets of the
+// a list of up to 4M entries holds each entry's ratio beside it, a longer one recomputes
+// it from the stages' candidate ratios when the sweep reads it (so it costs no more than
+// its codes). Sorted by a counting sort over buckets of the
 // ratio's bits (monotone in the ratio, about uniform in its logarithm), then within each
 // bucket: no per-entry allocation, no copies of keys.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -26,14 +28,16 @@ public:
   HalfList() = default;
   // ratios[s]: the candidate ratios of stage s, ascending. ordered: pairs (a, b) of stages
   // whose candidate indices must not decrease (interchangeable stages, enumerated once).
+  // reach: where given, entry ratios outside reach[c] (c the entry's index in its first
+  // stage) are left out: no other half can complete them into the window.
   static HalfList build(const std::vector<std::vector<double>>& ratios, const std::vector<std::pair<int, int>>& ordered,
-                        int from, int to);
+                        int from, int to, const std::vector<std::pair<double, double>>* reach = nullptr);
 
   size_t size() const { return n_; }
   int width() const { return width_; }
   // Candidate index of the half's s-th stage (0-based within the half) for entry e.
   std::uint32_t index(size_t e, int s) const { return field(code(e), s); }
-  double ratio(size_t e) const { return codeRatio(code(e)); }
+  double ratio(size_t e) const { return held_.empty() ? codeRatio(code(e)) : held_[e]; }
   // First entry whose ratio is >= v (lowerBound) or > v (upperBound): a jump through a
   // coarse index of the ratio buckets, then a binary search inside one bucket.
   size_t lowerBound(double v) const { return bound(v, false); }
@@ -44,7 +48,10 @@ public:
     if (!index_.empty()) __builtin_prefetch(&index_[bucketOf(v)]);
   }
   void prefetchEntries(double v) const {
-    if (!index_.empty() && wide_.empty()) __builtin_prefetch(&codes_[index_[bucketOf(v)]]);
+    if (index_.empty()) return;
+    size_t e = index_[bucketOf(v)];
+    if (!held_.empty()) __builtin_prefetch(&held_[std::min(e, held_.size() - 1)]);
+    if (wide_.empty() && e < codes_.size()) __builtin_prefetch(&codes_[e]);
   }
   // Why the list could not be built (the tuples do not fit a 64-bit code), or empty.
   const std::string& error() const { return error_; }
@@ -66,10 +73,15 @@ private:
   template <class F> void forEach(const std::vector<std::pair<int, int>>& ordered, F&& f) const;
 
   const std::vector<std::vector<double>>* ratios_ = nullptr;
+  const std::vector<std::pair<double, double>>* reach_ = nullptr;  // during build only
   int from_ = 0, width_ = 0;
   size_t n_ = 0;
   bool identity_ = false; // one stage: entry e is candidate e (the candidates are sorted)
   std::vector<std::uint32_t> codes_;
+  // Each entry's ratio, held where the list is short enough (the join reads it a few times
+  // per entry, and recomputing it costs two table reads and a product each time).
+  std::vector<double> held_;
+  static constexpr size_t kHeldRatios = size_t{1} << 22;
   std::vector<std::uint64_t> wide_;
   std::vector<int> shift_;
   std::vector<std::uint64_t> mask_;

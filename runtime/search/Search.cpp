@@ -858,7 +858,8 @@ private:
       for (const auto& c : stages[static_cast<size_t>(s)].candidates)
         ratios[static_cast<size_t>(s)].push_back(c.r);
     if (!rows) leftList = HalfList::build(ratios, ordered, 0, h);
-    if (!same) rightList = HalfList::build(ratios, ordered, h, k);
+    std::vector<std::pair<double, double>> reach = rightReach();
+    if (!same) rightList = HalfList::build(ratios, ordered, h, k, reach.empty() ? nullptr : &reach);
     for (const HalfList* H : {&leftList, &rightList})
       if (!H->error().empty()) res.errors.push_back(H->error());
     if (!res.errors.empty()) return false;
@@ -871,6 +872,43 @@ private:
       if (sa < h && sb >= h) crossing.emplace_back(sa, sb);
     floorOnly = right->width() <= 1;
     return true;
+  }
+
+  // For each candidate c of the right half's first stage, the ratios its entries must have
+  // for some left entry to bring the product into the window: the left stages whose index
+  // the canonical order bounds by c reach at most their ratio at c, the others their
+  // largest; every left stage at least its least. Widened by 1e-6 of themselves (a screen:
+  // entries outside could never be counted). Empty where the window or a ratio is unknown.
+  std::vector<std::pair<double, double>> rightReach() const {
+    if (!rows || k - h < 2 || !window.lo || !window.hi) return {};
+    const double wlo = window.lo->toDouble(), whi = window.hi->toDouble();
+    if (!(wlo > 0) || !std::isfinite(whi)) return {};
+    for (int s = 0; s < k; ++s) {
+      const auto& r = ratios[static_cast<size_t>(s)];
+      if (r.empty() || !(r.front() > 0) || !std::isfinite(r.back())) return {};
+    }
+    // bounded[t]: the left stage's index is at most the first right stage's (directly or
+    // through another left stage).
+    std::vector<bool> bounded(static_cast<size_t>(h), false);
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const auto& [sa, sb] : ordered)
+        if (sa < h && !bounded[static_cast<size_t>(sa)] && (sb == h || (sb < h && bounded[static_cast<size_t>(sb)])))
+          bounded[static_cast<size_t>(sa)] = changed = true;
+    }
+    double least = 1;
+    for (int t = 0; t < h; ++t) least *= ratios[static_cast<size_t>(t)].front();
+    const auto& first = ratios[static_cast<size_t>(h)];
+    std::vector<std::pair<double, double>> reach(first.size());
+    for (size_t c = 0; c < first.size(); ++c) {
+      double most = 1;
+      for (int t = 0; t < h; ++t) {
+        const auto& r = ratios[static_cast<size_t>(t)];
+        most *= bounded[static_cast<size_t>(t)] ? r[std::min(c, r.size() - 1)] : r.back();
+      }
+      reach[c] = {wlo / most * (1 - 1e-6), whi / least * (1 + 1e-6)};
+    }
+    return reach;
   }
 
   std::uint32_t leftIndex(size_t le, int s) const {
@@ -1234,6 +1272,11 @@ private:
     visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, true);
   }
 
+  // How many rows ahead the long right list's index and entries are fetched: a row takes
+  // about as long as a load from memory, so the index must arrive before the entries'
+  // fetch reads it.
+  static constexpr size_t kIndexAhead = 8, kEntriesAhead = 4;
+
   // Three to five stages: the first two walked row by row; the tight loop reads raw ratio
   // arrays, and the floor of a one-stage right half from flags.
   bool sweepRows(Walk& w) {
@@ -1250,12 +1293,16 @@ private:
     // A wider right half: the least ratio its canonical entries can have, from the least
     // index each of its stages may take (ratios ascend with the index).
     std::vector<size_t> fl(kk, 0);
+    // The stages each right stage's index may not fall below, found once.
+    std::vector<std::vector<int>> floorsOf(kk);
+    for (const auto& [sa, sb] : ordered)
+      if (sb >= 2) floorsOf[static_cast<size_t>(sb)].push_back(sa);
     auto leastRight = [&](size_t i, size_t j) {
       double r = 1;
       for (int s = 2; s < k; ++s) {
         size_t f = 0;
-        for (const auto& [sa, sb] : ordered)
-          if (sb == s) f = std::max(f, sa == 0 ? i : sa == 1 ? j : fl[static_cast<size_t>(sa)]);
+        for (int sa : floorsOf[static_cast<size_t>(s)])
+          f = std::max(f, sa == 0 ? i : sa == 1 ? j : fl[static_cast<size_t>(sa)]);
         fl[static_cast<size_t>(s)] = f;
         const auto& list = ratios[static_cast<size_t>(s)];
         if (f >= list.size()) return static_cast<double>(INFINITY);
@@ -1292,8 +1339,8 @@ private:
         } else {
           // A long one: its index jumps to them.
           // The queries two and one rows ahead are known: their memory is fetched now.
-          if (j + 2 < m1) right->prefetchIndex(wantLoC / (r0[i] * r1[j + 2]));
-          if (j + 1 < m1) right->prefetchEntries(wantLoC / (r0[i] * r1[j + 1]));
+          if (j + kIndexAhead < m1) right->prefetchIndex(wantLoC / (r0[i] * r1[j + kIndexAhead]));
+          if (j + kEntriesAhead < m1) right->prefetchEntries(wantLoC / (r0[i] * r1[j + kEntriesAhead]));
           loP = right->lowerBound(wl);
           for (hiP = loP; hiP < rn && right->ratio(hiP) <= wh;)
             ++hiP;
