@@ -134,10 +134,16 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
   n_ = n;
   // Within a bucket, by ratio and then by code (a fixed order for equal ratios); each
   // entry's ratio computed once, into a scratch the size of the bucket.
+  // The held ratios (a short list) come from the same products.
+  const bool hold = n <= kHeldRatios;
+  if (hold) held_.resize(n);
   std::vector<std::pair<double, Code>> scratch;
   for (size_t b = 0; b < buckets; ++b) {
     auto first = out.begin() + start[b], last = out.begin() + start[b + 1];
-    if (last - first < 2) continue;
+    if (last - first < 2) {
+      if (hold && last != first) held_[start[b]] = codeRatio(*first);
+      continue;
+    }
     scratch.clear();
     for (auto it = first; it != last; ++it)
       scratch.emplace_back(codeRatio(*it), *it);
@@ -146,13 +152,10 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
     } else {
       std::sort(scratch.begin(), scratch.end());
     }
-    for (size_t i = 0; i < scratch.size(); ++i)
+    for (size_t i = 0; i < scratch.size(); ++i) {
       first[static_cast<std::ptrdiff_t>(i)] = scratch[i].second;
-  }
-  if (n <= kHeldRatios) {
-    held_.resize(n);
-    for (size_t e = 0; e < n; ++e)
-      held_[e] = codeRatio(out[e]);
+      if (hold) held_[start[b] + i] = scratch[i].first;
+    }
   }
   // The coarse index: every 2^d fine buckets, about four entries each.
   int d = 0;

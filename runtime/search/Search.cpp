@@ -1180,7 +1180,7 @@ private:
   // One left entry against the right entries [from, to): each in the window counted (unless
   // `counted` says arithmetic did), then keyed and kept when it may rank among the best.
   void visit(Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from, size_t to,
-             bool counted) const {
+             bool counted, bool keyed = true) const {
     // The left indices the canonical order compares, read once.
     const bool checkCanon = !floorOnly && !crossing.empty();
     auto& leftAt = lo.leftAt;
@@ -1213,7 +1213,7 @@ private:
           lo.undecided += undecided;
         }
       }
-      if (keep == 0) continue;
+      if (keep == 0 || !keyed) continue;
       if (fastKey && full(lo)) {
         // Screen in doubles: only a design that may beat the worst kept one is keyed exactly.
         double w = worst0(lo);
@@ -1261,7 +1261,9 @@ private:
       lo.walked += static_cast<double>(to - from);
       // The exhaustive reference (tests, benchmarks) visits everything by design.
       if (lo.walked > walkBudget && !opt.exhaustive) overWalked = true;
-      visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, false);
+      // Counted one by one; keyed only where the window's bound lets a design in.
+      bool keyed = keep > 0 && !bounded(lo, partial, x * right->ratio(from), x * right->ratio(to - 1));
+      visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, false, keyed);
       return;
     }
     unsigned long long c = exactCount(w.cand.data(), x, from, to);
@@ -1275,7 +1277,63 @@ private:
   // How many rows ahead the long right list's index and entries are fetched: a row takes
   // about as long as a load from memory, so the index must arrive before the entries'
   // fetch reads it.
-  static constexpr size_t kIndexAhead = 8, kEntriesAhead = 4;
+  static constexpr size_t kIndexAhead = 1, kEntriesAhead = 1;
+
+  // Which log-ratio buckets of the long right list hold an entry, a bit each: most rows'
+  // windows fall between the entries, and a bit read from a small table tells so without
+  // the index's search. Buckets a quarter of a row window wide (fewer for a short list); any()
+  // errs only towards looking (a margin of a millionth of a bucket each side).
+  struct Occupancy {
+    double base = 0, perLog = 0;
+    std::vector<std::uint64_t> bits;
+    size_t buckets = 0;
+    bool any(double lo, double hi) const {
+      if (bits.empty()) return true;
+      double a = (lo - base) * perLog - 1e-6, b = (hi - base) * perLog + 1e-6;
+      if (!(a >= 0 && b < static_cast<double>(buckets) && b - a < 62)) {
+        // Off the table's ends (or wide, or not a number): clamp, or look.
+        if (!(a <= b)) return true;
+        if (b < 0 || a >= static_cast<double>(buckets)) return false;
+        if (b - a >= 62) return true;
+        a = std::max(a, 0.0);
+        b = std::min(b, static_cast<double>(buckets - 1));
+      }
+      // The bits from k0 to k1 of two adjacent words (the table has one spare word).
+      size_t k0 = static_cast<size_t>(a), span = static_cast<size_t>(b) - k0 + 1;
+      __extension__ using u128 = unsigned __int128;
+      size_t w = k0 >> 6;
+      std::uint64_t v = static_cast<std::uint64_t>((static_cast<u128>(bits[w + 1]) << 64 | bits[w]) >> (k0 & 63));
+      return (v & ((std::uint64_t{1} << span) - 1)) != 0;
+    }
+  };
+  Occupancy occupancy;
+  std::vector<std::vector<double>> logRatios;
+
+  void buildOccupancy() {
+    logRatios.assign(kk, {});
+    for (int s = 0; s < k; ++s)
+      for (double r : ratios[static_cast<size_t>(s)]) logRatios[static_cast<size_t>(s)].push_back(std::log(r));
+    if (!rows || right->width() < 1 || rn == 0 || !(wantLoC > 0) || !std::isfinite(wantHiC)) return;
+    auto entryLog = [&](size_t e) {
+      double l = 0;
+      for (int s = h; s < k; ++s) l += logRatios[static_cast<size_t>(s)][rightIndex(e, s)];
+      return l;
+    };
+    double lo = entryLog(0), hi = entryLog(rn - 1), width = std::log(wantHiC / wantLoC);
+    if (!(hi >= lo) || !(width > 0)) return;
+    // A quarter of a window each, but no more than 64 per entry (a short list's table stays
+    // in the first-level cache) nor 2^25.
+    double buckets = std::min({4 * (hi - lo) / width + 1, 64.0 * static_cast<double>(rn), 33554432.0});
+    occupancy.base = lo;
+    occupancy.perLog = buckets / (hi - lo + width);
+    occupancy.buckets = static_cast<size_t>(buckets) + 1;
+    occupancy.bits.assign((occupancy.buckets + 63) / 64 + 1, 0);  // a spare word: any() reads two
+    for (size_t e = 0; e < rn; ++e) {
+      double b = (entryLog(e) - lo) * occupancy.perLog;
+      size_t kb = b < 0 ? 0 : std::min(occupancy.buckets - 1, static_cast<size_t>(b));
+      occupancy.bits[kb >> 6] |= std::uint64_t{1} << (kb & 63);
+    }
+  }
 
   // Three to five stages: the first two walked row by row; the tight loop reads raw ratio
   // arrays, and the floor of a one-stage right half from flags.
@@ -1315,6 +1373,14 @@ private:
     if (fastKey)
       for (int s = 2; s < k; ++s)
         rightLeast += fastKey->least(s);
+    // Reciprocals once: a row's window then costs products, not divisions (its rounding is
+    // far inside the window's margin eps, and every border entry is confirmed exactly).
+    std::vector<double> inv0(ratios[0].size()), inv1(m1);
+    for (size_t i = 0; i < inv0.size(); ++i) inv0[i] = 1 / r0[i];
+    for (size_t j = 0; j < m1; ++j) inv1[j] = 1 / r1[j];
+    const std::vector<double>& lr0 = logRatios[0];
+    const std::vector<double>& lr1 = logRatios[1];
+    const double logLo = std::log(wantLoC), logHi = std::log(wantHiC);
     auto& cand = w.cand;
     for (size_t i = w.begin; i < w.end; ++i) {
       if (due(w, (i - w.begin) % 64 == 0) && stopHere(w.t, i, w.begin, w.end)) return false;
@@ -1328,19 +1394,25 @@ private:
       for (size_t j = j0; j < m1; ++j) {
         if (due(w, false) && stopHere(w.t, i, w.begin, w.end)) return false;
         double x = r0[i] * r1[j];
-        double inv = 1 / x;
+        double inv = inv0[i] * inv1[j];
         double wl = wantLoC * inv, wh = wantHiC * inv;
         if (r2) {
-          // A short list: the window's bounds walk down it.
-          while (loP > 0 && r2[loP - 1] >= wl)
-            --loP;
-          while (hiP > 0 && r2[hiP - 1] > wh)
-            --hiP;
+          // A short list: the row ends where its floor's entry is past the window (the
+          // window only falls along a row); a window over buckets that hold no entry is
+          // passed over; else two binary searches find it.
+          size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
+          if (floor >= rn || r2[floor] > wh) break;
+          if (!occupancy.any(logLo - lr0[i] - lr1[j], logHi - lr0[i] - lr1[j])) continue;
+          loP = static_cast<size_t>(std::lower_bound(r2, r2 + rn, wl) - r2);
+          hiP = static_cast<size_t>(std::upper_bound(r2, r2 + rn, wh) - r2);
         } else {
-          // A long one: its index jumps to them.
+          // A long one: the row's window ends the row past its least entry; a window over
+          // log-ratio buckets that hold no entry is passed over; else the index jumps to it.
+          if (x * leastRight(i, j) > wantHiC) break;
+          if (!occupancy.any(logLo - lr0[i] - lr1[j], logHi - lr0[i] - lr1[j])) continue;
           // The queries two and one rows ahead are known: their memory is fetched now.
-          if (j + kIndexAhead < m1) right->prefetchIndex(wantLoC / (r0[i] * r1[j + kIndexAhead]));
-          if (j + kEntriesAhead < m1) right->prefetchEntries(wantLoC / (r0[i] * r1[j + kEntriesAhead]));
+          if (j + kIndexAhead < m1) right->prefetchIndex(wantLoC * inv0[i] * inv1[j + kIndexAhead]);
+          if (j + kEntriesAhead < m1) right->prefetchEntries(wantLoC * inv0[i] * inv1[j + kEntriesAhead]);
           loP = right->lowerBound(wl);
           for (hiP = loP; hiP < rn && right->ratio(hiP) <= wh;)
             ++hiP;
@@ -1428,6 +1500,7 @@ private:
     // design in a window counts: no rule across stages, no orbit test, no undecided freedom,
     // and the canonical order at most a floor.
     arith = !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny && (floorOnly || crossing.empty());
+    buildOccupancy();
     locals.resize(static_cast<size_t>(threads));
     walkBudget = opt.maxDesigns * kCheckedShare / static_cast<double>(threads);
     joinDone.assign(static_cast<size_t>(threads), 1.0);
