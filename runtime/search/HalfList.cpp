@@ -130,31 +130,56 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
   for (size_t b = 0; b + 2 < start.size(); ++b)
     start[b + 2] += start[b + 1];
   out.resize(n);
-  forEach(ordered, [&](std::uint64_t code, double r) { out[start[bucketOf(r) + 1]++] = static_cast<Code>(code); });
   n_ = n;
-  // Within a bucket, by ratio and then by code (a fixed order for equal ratios); each
-  // entry's ratio computed once, into a scratch the size of the bucket.
-  // The held ratios (a short list) come from the same products.
+  // A short list holds each entry's ratio: placed with its code (the product forEach made,
+  // the same number codeRatio gives), then each bucket put in order by (ratio, code) in
+  // place, a fixed order for equal ratios.
   const bool hold = n <= kHeldRatios;
-  if (hold) held_.resize(n);
-  std::vector<std::pair<double, Code>> scratch;
-  for (size_t b = 0; b < buckets; ++b) {
-    auto first = out.begin() + start[b], last = out.begin() + start[b + 1];
-    if (last - first < 2) {
-      if (hold && last != first) held_[start[b]] = codeRatio(*first);
-      continue;
+  if (hold) {
+    held_.resize(n);
+    forEach(ordered, [&](std::uint64_t code, double r) {
+      std::uint32_t at = start[bucketOf(r) + 1]++;
+      out[at] = static_cast<Code>(code);
+      held_[at] = r;
+    });
+    std::vector<std::pair<double, Code>> scratch;
+    for (size_t b = 0; b < buckets; ++b) {
+      if (start[b + 1] - start[b] > 32) {
+        // A crowded bucket: sorted whole (insertion would take its square).
+        scratch.clear();
+        for (size_t e = start[b]; e < start[b + 1]; ++e) scratch.emplace_back(held_[e], out[e]);
+        std::sort(scratch.begin(), scratch.end());
+        for (size_t i = 0; i < scratch.size(); ++i) {
+          held_[start[b] + i] = scratch[i].first;
+          out[start[b] + i] = scratch[i].second;
+        }
+        continue;
+      }
+      for (size_t e = start[b] + 1; e < start[b + 1]; ++e) {
+        double r = held_[e];
+        Code c = out[e];
+        size_t at = e;
+        for (; at > start[b] && (held_[at - 1] > r || (held_[at - 1] == r && out[at - 1] > c)); --at) {
+          held_[at] = held_[at - 1];
+          out[at] = out[at - 1];
+        }
+        held_[at] = r;
+        out[at] = c;
+      }
     }
-    scratch.clear();
-    for (auto it = first; it != last; ++it)
-      scratch.emplace_back(codeRatio(*it), *it);
-    if (scratch.size() == 2) {
-      if (scratch[1] < scratch[0]) std::swap(scratch[0], scratch[1]);
-    } else {
+  } else {
+    forEach(ordered, [&](std::uint64_t code, double r) { out[start[bucketOf(r) + 1]++] = static_cast<Code>(code); });
+    // Each entry's ratio computed once, into a scratch the size of the bucket.
+    std::vector<std::pair<double, Code>> scratch;
+    for (size_t b = 0; b < buckets; ++b) {
+      auto first = out.begin() + start[b], last = out.begin() + start[b + 1];
+      if (last - first < 2) continue;
+      scratch.clear();
+      for (auto it = first; it != last; ++it)
+        scratch.emplace_back(codeRatio(*it), *it);
       std::sort(scratch.begin(), scratch.end());
-    }
-    for (size_t i = 0; i < scratch.size(); ++i) {
-      first[static_cast<std::ptrdiff_t>(i)] = scratch[i].second;
-      if (hold) held_[start[b] + i] = scratch[i].first;
+      for (size_t i = 0; i < scratch.size(); ++i)
+        first[static_cast<std::ptrdiff_t>(i)] = scratch[i].second;
     }
   }
   // The coarse index: every 2^d fine buckets, about four entries each.

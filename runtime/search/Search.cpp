@@ -1279,58 +1279,62 @@ private:
   // fetch reads it.
   static constexpr size_t kIndexAhead = 1, kEntriesAhead = 1;
 
-  // Which log-ratio buckets of the long right list hold an entry, a bit each: most rows'
-  // windows fall between the entries, and a bit read from a small table tells so without
-  // the index's search. Buckets a quarter of a row window wide (fewer for a short list); any()
-  // errs only towards looking (a margin of a millionth of a bucket each side).
+  // Which buckets of the right list's ratios hold an entry, a bit each: most rows' windows
+  // fall between the entries, and a bit read from a small table tells so without the
+  // index's search. A bucket is a run of the ratio's order keys (orderKey: monotone in the
+  // ratio, about uniform in its logarithm), about a quarter of a row's window wide, at most
+  // 64 per entry (a short list's table stays in the first-level cache) and 2^25 in all;
+  // an entry in [lo, hi] has its bucket between theirs, so the test is exact.
   struct Occupancy {
-    double base = 0, perLog = 0;
-    std::vector<std::uint64_t> bits;
+    std::uint64_t key0 = 0;
+    int shift = 0;
     size_t buckets = 0;
+    std::vector<std::uint64_t> bits;
+    size_t bucket(double r) const {
+      std::uint64_t k = orderKey(r);
+      return k <= key0 ? 0 : static_cast<size_t>(std::min<std::uint64_t>((k - key0) >> shift, buckets - 1));
+    }
     bool any(double lo, double hi) const {
-      if (bits.empty()) return true;
-      double a = (lo - base) * perLog - 1e-6, b = (hi - base) * perLog + 1e-6;
-      if (!(a >= 0 && b < static_cast<double>(buckets) && b - a < 62)) {
-        // Off the table's ends (or wide, or not a number): clamp, or look.
-        if (!(a <= b)) return true;
-        if (b < 0 || a >= static_cast<double>(buckets)) return false;
-        if (b - a >= 62) return true;
-        a = std::max(a, 0.0);
-        b = std::min(b, static_cast<double>(buckets - 1));
-      }
+      if (bits.empty() || !(lo <= hi)) return true;
+      // Positive ratios (the table is built only for them): their bits order them.
+      std::int64_t a, b;
+      std::memcpy(&a, &lo, sizeof a);
+      std::memcpy(&b, &hi, sizeof b);
+      const std::int64_t top = static_cast<std::int64_t>(buckets - 1), base = static_cast<std::int64_t>(key0 & ~(std::uint64_t{1} << 63));
+      std::int64_t q0 = (a - base) >> shift, q1 = (b - base) >> shift;
+      if (lo <= 0) return true;
+      if (q1 < 0 || q0 > top) return false;  // wholly below or above the list
+      q0 = std::max<std::int64_t>(q0, 0);
+      q1 = std::min(q1, top);
+      if (q1 - q0 > 62) return true;
+      size_t k0 = static_cast<size_t>(q0), k1 = static_cast<size_t>(q1);
       // The bits from k0 to k1 of two adjacent words (the table has one spare word).
-      size_t k0 = static_cast<size_t>(a), span = static_cast<size_t>(b) - k0 + 1;
       __extension__ using u128 = unsigned __int128;
-      size_t w = k0 >> 6;
+      size_t w = k0 >> 6, span = k1 - k0 + 1;
       std::uint64_t v = static_cast<std::uint64_t>((static_cast<u128>(bits[w + 1]) << 64 | bits[w]) >> (k0 & 63));
       return (v & ((std::uint64_t{1} << span) - 1)) != 0;
     }
   };
   Occupancy occupancy;
-  std::vector<std::vector<double>> logRatios;
 
   void buildOccupancy() {
-    logRatios.assign(kk, {});
-    for (int s = 0; s < k; ++s)
-      for (double r : ratios[static_cast<size_t>(s)]) logRatios[static_cast<size_t>(s)].push_back(std::log(r));
     if (!rows || right->width() < 1 || rn == 0 || !(wantLoC > 0) || !std::isfinite(wantHiC)) return;
-    auto entryLog = [&](size_t e) {
-      double l = 0;
-      for (int s = h; s < k; ++s) l += logRatios[static_cast<size_t>(s)][rightIndex(e, s)];
-      return l;
-    };
-    double lo = entryLog(0), hi = entryLog(rn - 1), width = std::log(wantHiC / wantLoC);
-    if (!(hi >= lo) || !(width > 0)) return;
-    // A quarter of a window each, but no more than 64 per entry (a short list's table stays
-    // in the first-level cache) nor 2^25.
-    double buckets = std::min({4 * (hi - lo) / width + 1, 64.0 * static_cast<double>(rn), 33554432.0});
-    occupancy.base = lo;
-    occupancy.perLog = buckets / (hi - lo + width);
-    occupancy.buckets = static_cast<size_t>(buckets) + 1;
+    const double lo = right->ratio(0), hi = right->ratio(rn - 1);
+    if (!(lo > 0) || !(hi >= lo) || !std::isfinite(hi)) return;
+    // A quarter of a window's keys per bucket (the window measured where the keys are
+    // densest, at the list's largest ratio), and no more buckets than the caps allow.
+    std::uint64_t k0 = orderKey(lo), span = orderKey(hi) - k0;
+    std::uint64_t window = orderKey(hi * (wantHiC / wantLoC)) - orderKey(hi);
+    int shift = 0;
+    while (shift < 62 && (std::uint64_t{1} << (shift + 1)) <= window / 4) ++shift;
+    const std::uint64_t most = std::min<std::uint64_t>(std::uint64_t{64} * rn, std::uint64_t{1} << 25);
+    while (shift < 63 && (span >> shift) + 1 > most) ++shift;
+    occupancy.key0 = k0;
+    occupancy.shift = shift;
+    occupancy.buckets = static_cast<size_t>(span >> shift) + 1;
     occupancy.bits.assign((occupancy.buckets + 63) / 64 + 1, 0);  // a spare word: any() reads two
     for (size_t e = 0; e < rn; ++e) {
-      double b = (entryLog(e) - lo) * occupancy.perLog;
-      size_t kb = b < 0 ? 0 : std::min(occupancy.buckets - 1, static_cast<size_t>(b));
+      size_t kb = occupancy.bucket(right->ratio(e));
       occupancy.bits[kb >> 6] |= std::uint64_t{1} << (kb & 63);
     }
   }
@@ -1368,6 +1372,14 @@ private:
       }
       return r;
     };
+    // Where no right stage's floor is the first stage's index, the least right ratio
+    // depends on j alone: one table for every row.
+    std::vector<double> byJ;
+    bool fromI = false;
+    for (int s = 2; s < k; ++s)
+      for (int sa : floorsOf[static_cast<size_t>(s)]) fromI = fromI || sa == 0;
+    if (!fromI && !r2)
+      for (size_t j = 0; j < m1; ++j) byJ.push_back(leastRight(0, j));
     const double base = fastKey ? fastKey->constant() : 0;
     double rightLeast = 0;
     if (fastKey)
@@ -1378,9 +1390,6 @@ private:
     std::vector<double> inv0(ratios[0].size()), inv1(m1);
     for (size_t i = 0; i < inv0.size(); ++i) inv0[i] = 1 / r0[i];
     for (size_t j = 0; j < m1; ++j) inv1[j] = 1 / r1[j];
-    const std::vector<double>& lr0 = logRatios[0];
-    const std::vector<double>& lr1 = logRatios[1];
-    const double logLo = std::log(wantLoC), logHi = std::log(wantHiC);
     auto& cand = w.cand;
     for (size_t i = w.begin; i < w.end; ++i) {
       if (due(w, (i - w.begin) % 64 == 0) && stopHere(w.t, i, w.begin, w.end)) return false;
@@ -1402,14 +1411,14 @@ private:
           // passed over; else two binary searches find it.
           size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
           if (floor >= rn || r2[floor] > wh) break;
-          if (!occupancy.any(logLo - lr0[i] - lr1[j], logHi - lr0[i] - lr1[j])) continue;
+          if (!occupancy.any(wl, wh)) continue;
           loP = static_cast<size_t>(std::lower_bound(r2, r2 + rn, wl) - r2);
           hiP = static_cast<size_t>(std::upper_bound(r2, r2 + rn, wh) - r2);
         } else {
           // A long one: the row's window ends the row past its least entry; a window over
           // log-ratio buckets that hold no entry is passed over; else the index jumps to it.
-          if (x * leastRight(i, j) > wantHiC) break;
-          if (!occupancy.any(logLo - lr0[i] - lr1[j], logHi - lr0[i] - lr1[j])) continue;
+          if (x * (byJ.empty() ? leastRight(i, j) : byJ[j]) > wantHiC) break;
+          if (!occupancy.any(wl, wh)) continue;
           // The queries two and one rows ahead are known: their memory is fetched now.
           if (j + kIndexAhead < m1) right->prefetchIndex(wantLoC * inv0[i] * inv1[j + kIndexAhead]);
           if (j + kEntriesAhead < m1) right->prefetchEntries(wantLoC * inv0[i] * inv1[j + kEntriesAhead]);
@@ -1423,8 +1432,6 @@ private:
           size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
           if (hiP <= floor) break;
           from = std::max(loP, floor);
-        } else if (x * leastRight(i, j) > wantHiC) {
-          break;
         }
         if (from >= hiP) continue;
         cand[1] = static_cast<std::uint32_t>(j);
