@@ -40,6 +40,8 @@ inline FastResult mitmFast(int stages, int maxTeeth, size_t top) {
     for (int w = p + 1; w <= maxTeeth; ++w)
       if (std::gcd(p, w) == 1) pairs.push_back({p, w, static_cast<double>(w) / p, std::log(static_cast<double>(w) / p)});
   std::sort(pairs.begin(), pairs.end(), [](const FastPair& x, const FastPair& y) { return x.r < y.r; });
+  // Codes pack two pair indices in 16 bits each.
+  if (pairs.empty() || pairs.size() > 65535) return res;
   const std::uint32_t n = static_cast<std::uint32_t>(pairs.size());
   const double target = 13.36838, lo = target * (1 - 1e-6), hi = target * (1 + 1e-6);
   const double logLo = std::log(lo), logHi = std::log(hi), width = logHi - logLo;

@@ -10,8 +10,8 @@
 int main(int argc, char** argv) {
   int stages = argc > 1 ? std::atoi(argv[1]) : 4, maxTeeth = argc > 2 ? std::atoi(argv[2]) : 100;
   size_t top = argc > 3 ? static_cast<size_t>(std::atol(argv[3])) : 100;
-  if (stages != 3 && stages != 4) {
-    std::fprintf(stderr, "usage: mitm_program 3|4 [MAX_TEETH] [TOP]\n");
+  if ((stages != 3 && stages != 4) || maxTeeth < 14 || maxTeeth > 300) {
+    std::fprintf(stderr, "usage: mitm_program 3|4 [MAX_TEETH 14..300] [TOP]\n");
     return 2;
   }
   bench::FastResult r = bench::mitmFast(stages, maxTeeth, top);

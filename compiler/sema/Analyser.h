@@ -134,6 +134,7 @@ private:
   void worstSense(ir::Expr& e, int sense, bool condition = false, bool negated = false);
   std::vector<ir::Tolerance> tolerances(const GearboxModel& m, const Scope& gs);
   std::vector<ir::Setting> toleranceSettings(const GearboxModel& m, const Scope& gs);
+  bool toleranceSettingMisspelt_ = false;  // the last block named a setting it does not take
   void selfDefined(const ir::Gearbox& g);
   ir::Objective objective(const Stmt& st, const Scope& gs);
 

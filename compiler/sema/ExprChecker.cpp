@@ -892,7 +892,7 @@ ir::ExprPtr ExprChecker::argumentsByRule(const FunctionSpec& specRef, std::vecto
     if (spec->id == Fn::Mean && args.size() == 1 && args[0]->type.isNumber() && s.hasTolerances) {
       auto n = make(Op::Scatter, Type::number(args[0]->type.dim), e.span, fn);
       n->fn = Fn::Mean;
-    n->name = scatteredText(e);
+      n->name = scatteredText(e);
       n->args = std::move(args);
       return n;
     }

@@ -29,7 +29,9 @@ ir::Gearbox Analyser::lowerGearbox(const GearboxModel& m) {
   gs.hasBaseline = !m.base.empty();
   gs.hasTolerances = !m.tolerances.empty();
   g.toleranceSettings = toleranceSettings(m, gs);
-  gs.hasSamples = gs.hasTolerances && ir::findSetting(g.toleranceSettings, Q::Samples);
+  // A misspelt setting (E0214 already) counts as the samples it meant: no cascade of
+  // "add `samples`" errors after it.
+  gs.hasSamples = gs.hasTolerances && (ir::findSetting(g.toleranceSettings, Q::Samples) || toleranceSettingMisspelt_);
   g.tolerances = tolerances(m, gs);
 
   std::map<std::string, Type> letTypes;

@@ -175,19 +175,25 @@ std::vector<ir::Tolerance> Analyser::tolerances(const GearboxModel& m, const Sco
   if (out.size() > 6 && !m.tolerances.empty())
     diags_.error("E0237", m.tolerances[6]->span,
                  fmt::format("gearbox `{}` lists {} tolerances; `worst` and `mean` visit every corner of their box, so at most 6 "
-                             "(64 corners) are taken",
-                             m.name, out.size()));
+                             "(64 corners) are taken; with `samples = N;` in the block they draw samples instead, for up to {} "
+                             "tolerances",
+                             m.name, out.size(), kMostSampledTolerances));
   return out;
 }
 
 // `samples = N; distribution = normal; seed = 1;` beside the tolerance lines: Monte Carlo
 // samples instead of the box's corners (LANGUAGE.md §19).
 std::vector<ir::Setting> Analyser::toleranceSettings(const GearboxModel& m, const Scope& gs) {
+  toleranceSettingMisspelt_ = false;
   if (m.toleranceSettings.empty()) return {};
   const std::string owner = "the `tolerances` block";
   std::vector<std::pair<std::string, Binding>> items;
   for (const Stmt* t : m.toleranceSettings) flattenOne(*t, items, owner);
+  toleranceSettingMisspelt_ = std::any_of(items.begin(), items.end(), [](const auto& i) {
+    return std::none_of(cat::toleranceSettings().begin(), cat::toleranceSettings().end(), [&](const auto& spec) { return spec.name == i.first; });
+  });
   auto out = settings(items, cat::toleranceSettings(), gs, owner, m.toleranceSettings.front()->span, "E0237");
+  if (toleranceSettingMisspelt_) return out;
   bool shaped = std::any_of(items.begin(), items.end(), [](const auto& i) {
     auto k = cat::keyOf(i.first);
     return k == Q::Distribution || k == Q::Seed;

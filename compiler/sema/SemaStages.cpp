@@ -1,5 +1,7 @@
 #include "sema/Analyser.h"
 
+#include <set>
+
 // Gearbox models (extends, presets, like) and their stages and attributes in the IR.
 
 namespace gbx::sema {
@@ -274,16 +276,23 @@ void Analyser::statementsOf(GearboxModel& model, const Stmt& decl, std::map<std:
       break;
     case StmtKind::Assign:
     case StmtKind::Domain: override(model, st, origin); break;
-    case StmtKind::Block:
+    case StmtKind::Block: {
       if (cat::blockOf(st.name) != cat::Block::Tolerances) {
         notAllowed(st, fmt::format("gearbox `{}`", name));
         break;
       }
       if (seen.count("tolerances")) diags_.error("E0202", st.span, "duplicate declaration: this gearbox already has a `tolerances` block");
       seen["tolerances"] = &st;
-      // A variant's line replaces the baseline's line for the same quantity.
+      // A variant's line replaces the baseline's line for the same quantity; a setting given
+      // twice in one block is an error.
+      std::set<std::string> setHere;
       for (const auto& t : st.body) {
         if (t.kind == StmtKind::Assign && t.path.parts.size() == 1) {
+          if (!setHere.insert(t.path.str()).second) {
+            diags_.error("E0202", t.path.span,
+                         fmt::format("duplicate declaration: `{}` is already set in this `tolerances` block", t.path.str()));
+            continue;
+          }
           replaceOrAdd(model.toleranceSettings, &t, [](const Stmt* x) { return x->path.str(); });
           continue;
         }
@@ -294,6 +303,7 @@ void Analyser::statementsOf(GearboxModel& model, const Stmt& decl, std::map<std:
         replaceOrAdd(model.tolerances, &t, [](const Stmt* x) { return x->path.str(); });
       }
       break;
+    }
     default: notAllowed(st, fmt::format("gearbox `{}`", name));
     }
   }

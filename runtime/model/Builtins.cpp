@@ -141,9 +141,6 @@ const std::vector<BuiltinRow>& kRowsTable() {
     {Fn::Gcd, [](const V& v) { return gcdOf(v, false); }},
     // relative(x): x over its value in the baseline gearbox, given as the second argument.
     {Fn::Relative, [](const V& v) { return arith::div(v[0], v[1]); }},
-    // worst(q) over the tolerance box: v[0] the sense (+1 the largest is worst, -1 the
-    // smallest, 0 not known: both ends, as an interval), v[1] the nominal value, then the
-    // corners.
     // quantile(q, p) over the Monte Carlo samples: v[0] p, then the samples.
     {Fn::Quantile,
      [](const V& v) {
@@ -152,6 +149,9 @@ const std::vector<BuiltinRow>& kRowsTable() {
        std::sort(xs.begin(), xs.end());
        return xs.empty() ? Value::invalid() : Value::number(sortedQuantile(xs, v[0].mid()));
      }},
+    // worst(q) over the tolerance box: v[0] the sense (+1 the largest is worst, -1 the
+    // smallest, 0 not known: both ends, as an interval), v[1] the nominal value, then the
+    // corners (or the Monte Carlo samples).
     {Fn::Worst,
      [](const V& v) {
        double sense = v[0].mid();

@@ -369,14 +369,15 @@ SampleMemo& sampleMemo() {
 
 } // namespace
 
-std::optional<std::vector<double>> Evaluator::overSamples(const ir::Expr& q, const Assignment& a) const {
+std::optional<std::vector<double>> Evaluator::overSamples(const ir::Expr& q, const Assignment& a, bool shareRanks) const {
   const auto& tol = m_.gearbox.tolerances;
   Sampling s = Sampling::of(m_.gearbox);
   if (!s.on() || tol.empty()) return std::nullopt;
-  // Only an evaluator with a scene hook of its own reads scenes; one without reads none, so
-  // both kinds share the memo only where q reads no scene.
-  SampleMemo::Key key = {static_cast<double>(m_.serial), static_cast<double>(reinterpret_cast<std::uintptr_t>(&q)),
-                         sceneOutput && ir::uses(&q, {ir::Op::SceneOutput, ir::Op::Let}) ? 1.0 : 0.0};
+  // The memo holds quantities that read no scene: a scene's result depends on more than the
+  // key says (a sweep's effect parameter, the pass's runs). A call shared over the ranks
+  // never asks it (whether it hits must not decide whether the ranks exchange).
+  const bool memo = !(sceneOutput && ir::uses(&q, {ir::Op::SceneOutput, ir::Op::Let}));
+  SampleMemo::Key key = {static_cast<double>(m_.serial), static_cast<double>(reinterpret_cast<std::uintptr_t>(&q))};
   for (int c : a.choice) key.push_back(c);
   key.push_back(-1);
   for (const auto& [lo, hi] : a.box) {
@@ -385,7 +386,8 @@ std::optional<std::vector<double>> Evaluator::overSamples(const ir::Expr& q, con
   }
   key.push_back(-2);
   for (double v : overrideKey()) key.push_back(v);
-  if (auto hit = sampleMemo().find(key)) return *hit;
+  if (memo && !shareRanks)
+    if (auto hit = sampleMemo().find(key)) return *hit;
   // The samples over the threads and, under mpirun, the ranks: an empty result marks a
   // sample where q has no value.
   auto values = par::map(static_cast<size_t>(s.samples), par::jobs(), [&](size_t k) {
@@ -394,13 +396,13 @@ std::optional<std::vector<double>> Evaluator::overSamples(const ir::Expr& q, con
     for (size_t i = 0; i < tol.size(); ++i) at.addOffset(tol[i].ref, d[i]);
     Value x = at.eval(q, a);
     return x.isNumber() ? std::vector<double>{x.mid()} : std::vector<double>{};
-  });
+  }, shareRanks);
   std::optional<std::vector<double>> out(std::vector<double>(values.size()));
   for (size_t k = 0; k < values.size() && out; ++k) {
     if (values[k].size() != 1) out.reset();
     else (*out)[k] = values[k][0];
   }
-  sampleMemo().put(std::move(key), out);
+  if (memo) sampleMemo().put(std::move(key), out);
   return out;
 }
 
@@ -415,8 +417,9 @@ Value Evaluator::sampled(const ir::Expr& e, const Assignment& a) const {
     if (e.args.size() < 2) return Value::invalid();
     Value p = eval(*e.args[1], a);
     if (!p.isNumber()) return Value::invalid();
-    std::sort(xs->begin(), xs->end());
-    return Value::number(sortedQuantile(*xs, p.mid()));
+    std::vector<Value> v{p};
+    for (double x : *xs) v.push_back(Value::number(x));
+    return builtin(cat::Fn::Quantile)(v);
   }
   default: {
     std::vector<Value> v{Value::number(e.sense != 0 ? e.sense : betterSense(*e.args[0]))};
@@ -435,9 +438,7 @@ std::optional<Evaluator::Where> Evaluator::worstCorner(const ir::Expr& e, const 
     auto xs = overSamples(*e.args[0], a);
     if (!xs || xs->empty()) return std::nullopt;
     // The same choice as `worst` makes: the first of the worst values.
-    size_t k = 0;
-    for (size_t i = 1; i < xs->size(); ++i)
-      if (sense > 0 ? (*xs)[i] > (*xs)[k] : (*xs)[i] < (*xs)[k]) k = i;
+    size_t k = worstIndex(*xs, sense);
     return Where{s.deviations(tol, static_cast<long>(k)), static_cast<long>(k)};
   }
   Evaluator atNominal(*this);

@@ -73,7 +73,9 @@ public:
   std::optional<Where> worstCorner(const ir::Expr& scatter, const Assignment& a) const;
   // q at every Monte Carlo sample of the gearbox's `tolerances` (LANGUAGE.md §19), in sample
   // order; nothing where the tolerances are not sampled or q has no value at some sample.
-  std::optional<std::vector<double>> overSamples(const ir::Expr& q, const Assignment& a) const;
+  // shareRanks: under mpirun, the samples are dealt out over the ranks too (a fixed point of
+  // a pass only: see parallel/Ranks.h).
+  std::optional<std::vector<double>> overSamples(const ir::Expr& q, const Assignment& a, bool shareRanks = false) const;
 
   // Scene results (`vibration.rms(acceleration)`) and `relative(x)` need the dynamics
   // and the baseline gearbox: the optimiser provides them. The scene is built with the

@@ -21,7 +21,7 @@ std::uint64_t mix(std::uint64_t x) {
 } // namespace
 
 double sampleUniform(std::uint64_t seed, std::uint64_t sample, std::uint64_t tolerance, std::uint64_t stream) {
-  std::uint64_t h = mix(mix(mix(seed) ^ sample) ^ (tolerance * 2 + stream));
+  std::uint64_t h = mix(mix(mix(mix(seed) ^ sample) ^ tolerance) ^ stream);
   return (static_cast<double>(h >> 11) + 0.5) * 0x1.0p-53;  // never 0 or 1
 }
 
@@ -36,15 +36,21 @@ Sampling Sampling::of(const ir::Gearbox& g) {
 std::vector<double> Sampling::deviations(const std::vector<ir::Tolerance>& tol, long k) const {
   std::vector<double> d(tol.size());
   for (size_t i = 0; i < tol.size(); ++i) {
-    double u1 = sampleUniform(seed, static_cast<std::uint64_t>(k), i, 0);
     if (distribution == cat::distribution::Uniform) {
-      d[i] = tol[i].amount * (2 * u1 - 1);
+      d[i] = tol[i].amount * (2 * sampleUniform(seed, static_cast<std::uint64_t>(k), i, 0) - 1);
       continue;
     }
-    // Box-Muller: the amount is three standard deviations.
-    double u2 = sampleUniform(seed, static_cast<std::uint64_t>(k), i, 1);
-    double z = std::sqrt(-2 * std::log(u1)) * std::cos(2 * std::numbers::pi * u2);
-    d[i] = tol[i].amount / 3 * z;
+    // Box-Muller, the amount three standard deviations; a draw beyond it is drawn again (the
+    // part would fail inspection), so no sample leaves the tolerance and `worst` does not
+    // grow with the number of samples. One draw in 370 is redrawn.
+    double z = 0;
+    for (std::uint64_t attempt = 0; attempt < 64; ++attempt) {
+      double a = sampleUniform(seed, static_cast<std::uint64_t>(k), i, 2 * attempt);
+      double b = sampleUniform(seed, static_cast<std::uint64_t>(k), i, 2 * attempt + 1);
+      z = std::sqrt(-2 * std::log(a)) * std::cos(2 * std::numbers::pi * b);
+      if (std::fabs(z) <= 3) break;
+    }
+    d[i] = tol[i].amount / 3 * std::clamp(z, -3.0, 3.0);
   }
   return d;
 }
@@ -53,7 +59,7 @@ const char* Sampling::distributionName() const { return distribution == cat::dis
 
 double sampleMean(const std::vector<double>& x) {
   if (x.empty()) return NAN;
-  // Pairwise-free but compensated: the same order gives the same bytes.
+  // Compensated (Kahan) in sample order: the same samples give the same bytes.
   double s = 0, c = 0;
   for (double v : x) {
     double y = v - c, t = s + y;
@@ -81,9 +87,22 @@ double sortedQuantile(const std::vector<double>& s, double p) {
 double quantileStandardError(const std::vector<double>& s, double p) {
   if (s.size() < 2) return NAN;
   double n = static_cast<double>(s.size());
+  // Fewer than five samples beyond the quantile: the order statistics do not resolve it.
+  if (n * std::min(p, 1 - p) < 5) return NAN;
   double band = std::sqrt(n * p * (1 - p));
   double lo = std::clamp((n * p - band) / n, 0.0, 1.0), hi = std::clamp((n * p + band) / n, 0.0, 1.0);
   return (sortedQuantile(s, hi) - sortedQuantile(s, lo)) / 2;
+}
+
+} // namespace gbx::rt
+
+namespace gbx::rt {
+
+size_t worstIndex(const std::vector<double>& x, int sense) {
+  size_t k = 0;
+  for (size_t i = 1; i < x.size(); ++i)
+    if (sense > 0 ? x[i] > x[k] : x[i] < x[k]) k = i;
+  return k;
 }
 
 } // namespace gbx::rt

@@ -21,7 +21,8 @@ struct Sampling {
   const char* distributionName() const;
 };
 
-// A uniform number in (0, 1) from the seed, the sample, the tolerance and a stream (0, 1).
+// A uniform number in (0, 1) from the seed, the sample, the tolerance and a stream (the
+// draws of one deviation: two per normal draw and its redraws).
 double sampleUniform(std::uint64_t seed, std::uint64_t sample, std::uint64_t tolerance, std::uint64_t stream);
 
 // Statistics of sample values (NaNs left out by the caller).
@@ -33,5 +34,7 @@ double sortedQuantile(const std::vector<double>& sorted, double p);
 // Its standard error without assuming a distribution: half the spread of the order
 // statistics one binomial standard deviation, sqrt(n p (1 - p)), either side of n p.
 double quantileStandardError(const std::vector<double>& sorted, double p);
+// The first of the worst samples: the largest where sense > 0, else the smallest.
+size_t worstIndex(const std::vector<double>& x, int sense);
 
 } // namespace gbx::rt

@@ -15,14 +15,16 @@ namespace {
 
 int gRank = 0, gRanks = 1;
 bool gStarted = false;
+bool gLoneRank = false;  // under mpirun, in a build without MPI
 std::atomic<int> gJobs{1};
 // Static initialisation runs on the main thread.
 const std::thread::id gMain = std::this_thread::get_id();
 
 // The iterations of this rank, over the threads, each result in its slot.
-void runShare(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f, std::vector<std::vector<double>>& out) {
+void runShare(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f, std::vector<std::vector<double>>& out, int rank,
+              int ranks) {
   std::vector<size_t> mine;
-  for (size_t i = static_cast<size_t>(gRank); i < n; i += static_cast<size_t>(gRanks)) mine.push_back(i);
+  for (size_t i = static_cast<size_t>(rank); i < n; i += static_cast<size_t>(ranks)) mine.push_back(i);
   std::atomic<size_t> next{0};
   auto work = [&] {
     for (size_t j = next++; j < mine.size(); j = next++) out[mine[j]] = f(mine[j]);
@@ -65,12 +67,22 @@ void gather(std::vector<std::vector<double>>& out) {
 }
 
 // Started by mpirun (Open MPI's launcher sets these): a plain run stays a plain process.
-bool underMpirun() { return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK"); }
+bool underMpirun() { return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") || std::getenv("PMI_RANK"); }
 #endif
 
 } // namespace
 
 Session::Session([[maybe_unused]] int* argc, [[maybe_unused]] char*** argv) {
+#ifndef GBX_MPI
+  // Started by mpirun without MPI in this build: every process would solve alone and write
+  // the same report; only the launcher's rank 0 does (rank() says which this is).
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* r = std::getenv(name); r && *r) {
+      gRank = std::atoi(r);
+      gLoneRank = true;
+      break;
+    }
+#endif
 #ifdef GBX_MPI
   if (!underMpirun()) return;
   int provided = 0;
@@ -89,6 +101,7 @@ Session::~Session() {
 }
 
 int rank() { return gRank; }
+bool alone() { return gLoneRank; }
 int ranks() { return gRanks; }
 
 bool built() {
@@ -102,15 +115,16 @@ bool built() {
 void setJobs(int jobs) { gJobs = std::max(1, jobs); }
 int jobs() { return gJobs; }
 
-std::vector<std::vector<double>> map(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f) {
+std::vector<std::vector<double>> map(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f, bool shareRanks) {
   std::vector<std::vector<double>> out(n);
   if (std::this_thread::get_id() != gMain) {
     for (size_t i = 0; i < n; ++i) out[i] = f(i);
     return out;
   }
-  runShare(n, jobs, f, out);
+  const bool ranked = shareRanks && gStarted && gRanks > 1;
+  runShare(n, jobs, f, out, ranked ? gRank : 0, ranked ? gRanks : 1);
 #ifdef GBX_MPI
-  if (gStarted && gRanks > 1) gather(out);
+  if (ranked) gather(out);
 #endif
   return out;
 }

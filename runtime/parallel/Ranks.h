@@ -22,6 +22,8 @@ public:
 int rank();   // 0 without MPI
 int ranks();  // 1 without MPI
 inline bool root() { return rank() == 0; }
+// Started by mpirun in a build without MPI: rank() is the launcher's, and nothing is shared.
+bool alone();
 // Whether this build can share work over ranks.
 bool built();
 
@@ -29,11 +31,13 @@ bool built();
 void setJobs(int jobs);
 int jobs();
 
-// f(i) for every i < n, over `jobs` threads on each rank and the ranks round-robin; the
-// results in index order, on every rank. Called from another thread than the program's
-// main one (a worker of the search or of this very function), it runs on that thread alone
-// and shares nothing with the other ranks: every rank calls the ranks' exchange in the
-// same order only from its main thread.
-std::vector<std::vector<double>> map(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f);
+// f(i) for every i < n, over `jobs` threads; with shareRanks, also over the ranks
+// round-robin, the results gathered to every rank. The results in index order. Every rank
+// must make the same shareRanks calls in the same order, so only fixed points of a pass
+// share (the Monte Carlo samples' scenes and quantities), never a call whose occurrence
+// could depend on timing (a cache hit, a thread pool's share). Called from another thread
+// than the program's main one, it runs on that thread alone.
+std::vector<std::vector<double>> map(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f,
+                                     bool shareRanks = false);
 
 } // namespace gbx::rt::par

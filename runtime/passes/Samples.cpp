@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "catalogue/Settings.h"
+#include "catalogue/StageKinds.h"
 #include "model/Sampling.h"
 #include "parallel/Ranks.h"
 #include "units/Unit.h"
@@ -63,6 +64,60 @@ void histogram(MonteCarloReport::Output& o, const std::vector<double>& sorted) {
   }
 }
 
+// Why q has no value over the samples: the first sample where it has none, and its deviations.
+std::string failureAt(const Model& m, const Evaluator& ev, const ir::Expr& node, const Assignment& best, const Sampling& s) {
+  const auto& tol = m.gearbox.tolerances;
+  for (long k = 0; k < s.samples; ++k) {
+    Evaluator at(ev);
+    std::vector<double> d = s.deviations(tol, k);
+    for (size_t i = 0; i < tol.size(); ++i) at.addOffset(tol[i].ref, d[i]);
+    if (at.eval(*node.args[0], best).isNumber()) continue;
+    std::string where;
+    for (size_t i = 0; i < tol.size(); ++i) {
+      auto u = units::differenceUnitFor(tol[i].dim);
+      where += fmt::format("{}{} {:+.4g}{}", where.empty() ? "" : ", ", tol[i].target, d[i] / u.scale, u.name.empty() ? "" : " " + u.name);
+    }
+    return fmt::format("`{}` has no value at Monte Carlo sample {} of {} ({}); its statistics are left out", node.name, k + 1,
+                       s.samples, where);
+  }
+  return fmt::format("`{}` has no value at some Monte Carlo sample; its statistics are left out", node.name);
+}
+
+// Samples that put an attribute beyond the range its catalogue row allows (a helix angle
+// below zero): said, since such a sample describes no real pair.
+std::vector<std::string> rangeWarnings(const Model& m, const Evaluator& ev, const Assignment& best, const MonteCarloReport& r) {
+  std::vector<std::string> out;
+  const auto& tol = m.gearbox.tolerances;
+  for (size_t i = 0; i < tol.size(); ++i) {
+    const ir::Tolerance& t = tol[i];
+    if (t.ref.owner != ir::QuantityRef::Stage || t.ref.index < 0 || static_cast<size_t>(t.ref.index) >= m.gearbox.stages.size()) continue;
+    const ir::Stage& st = m.gearbox.stages[static_cast<size_t>(t.ref.index)];
+    const cat::AttrSpec* spec = cat::findAttr(cat::kindSpec(st.kind), t.target.substr(st.name.size() + 1));
+    Value v = ev.quantity(t.ref, best);
+    if (!spec || !v.isNumber()) continue;
+    auto u = units::displayUnitFor(t.dim);
+    double lo = spec->atLeast ? spec->atLeast->toDouble() : -INFINITY, hi = spec->atMost ? spec->atMost->toDouble() : INFINITY;
+    long below = 0, above = 0;
+    double least = INFINITY, most = -INFINITY;
+    for (const auto& d : r.deviations) {
+      double x = v.mid() + d[i] * units::differenceUnitFor(t.dim).scale;
+      least = std::min(least, x);
+      most = std::max(most, x);
+      below += x < lo || (spec->positive && x <= 0);
+      above += x > hi;
+    }
+    if (below + above == 0) continue;
+    std::string range = spec->atLeast && spec->atMost ? fmt::format("{:g} to {:g} {}", u.shown(lo), u.shown(hi), u.name)
+                        : spec->atLeast                 ? fmt::format("at least {:g} {}", u.shown(lo), u.name)
+                        : spec->atMost                  ? fmt::format("at most {:g} {}", u.shown(hi), u.name)
+                                                        : std::string("above zero");
+    out.push_back(fmt::format("{} of {} samples put `{}` outside its range, {} (the samples reach {:.4g} to {:.4g} {}): they "
+                              "describe no real pair; narrow the tolerance",
+                              below + above, r.samples, t.target, range, u.shown(least), u.shown(most), u.name));
+  }
+  return out;
+}
+
 } // namespace
 
 SampleScenes::SampleScenes(const Model& m, const Assignment& best, const std::vector<const ir::Expr*>& exprs,
@@ -99,7 +154,7 @@ SampleScenes::SampleScenes(const Model& m, const Assignment& best, const std::ve
       if (!r.failure.empty() || r.numbers.size() != base.numbers.size()) return v;
       for (const auto& n : r.numbers) v.push_back(n.value);
       return v;
-    });
+    }, true);
     auto& runs = runs_[sc];
     runs.reserve(values.size());
     for (size_t k = 0; k < values.size(); ++k) {
@@ -165,13 +220,15 @@ std::optional<MonteCarloReport> monteCarlo(const Model& m, const Assignment& bes
       MonteCarloReport::Output o;
       o.quantity = n->name;
       o.unit = displayUnitOf(*n->args[0]);
-      auto xs = ev.overSamples(*n->args[0], best);
+      auto xs = ev.overSamples(*n->args[0], best, true);
       if (!xs) {
-        r.failure = fmt::format("`{}` has no value at some Monte Carlo sample", n->name);
+        r.failure += (r.failure.empty() ? "" : "; ") + failureAt(m, ev, *n, best, s);
         index.erase(it);
         continue;
       }
       o.values = std::move(*xs);
+      Value at = ev.eval(*n->args[0], best);
+      o.nominal = at.isNumber() ? at.mid() : NAN;
       for (double p : {0.05, 0.5, 0.95}) o.quantiles.push_back({p, 0, 0});
       r.outputs.push_back(std::move(o));
     }
@@ -197,14 +254,13 @@ std::optional<MonteCarloReport> monteCarlo(const Model& m, const Assignment& bes
       q.value = sortedQuantile(sorted, q.p);
       q.error = quantileStandardError(sorted, q.p);
     }
-    if (o.sense != 0) {
-      size_t k = 0;
-      for (size_t i = 1; i < o.values.size(); ++i)
-        if (o.sense > 0 ? o.values[i] > o.values[k] : o.values[i] < o.values[k]) k = i;
-      o.worstSample = static_cast<long>(k);
-    }
+    if (o.sense != 0) o.worstSample = static_cast<long>(worstIndex(o.values, o.sense));
     histogram(o, sorted);
   }
+  // Quantities read over the samples only in studies: no part of its own (each sweep point
+  // reads them there).
+  if (r.outputs.empty() && r.failure.empty()) return std::nullopt;
+  r.warnings = rangeWarnings(m, ev, best, r);
   return r;
 }
 

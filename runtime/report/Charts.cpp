@@ -200,9 +200,9 @@ void monteCarloCharts(const std::string& gearbox, MonteCarloReport& r, std::vect
     bars.x.push_back(o.unit.shown(o.edges.back()));
     bars.y.push_back(0);
     c.series = {bars};
+    c.xMarks.push_back({o.unit.shown(o.nominal), "nominal"});
     c.xMarks.push_back({o.unit.shown(o.mean), "mean"});
-    for (const auto& q : o.quantiles)
-      if (q.p != 0.5) c.xMarks.push_back({o.unit.shown(q.value), fmt::format("q {:g}", q.p)});
+    for (const auto& q : o.quantiles) c.xMarks.push_back({o.unit.shown(q.value), q.p == 0.5 ? "median" : fmt::format("q {:g}", q.p)});
     add(out, r.files, fmt::format("{}.monte_carlo.{}.svg", fileSafe(gearbox), fileSafe(o.quantity)), c);
   }
 }

@@ -121,10 +121,26 @@ std::string table(const std::vector<std::string>& head, const std::vector<std::v
          "<div class=\"print\">\n" + all + "</div>\n";
 }
 
+// Text with `quoted` spec expressions, as the notes write them: the quotes become <code>.
+std::string withCode(const std::string& text) {
+  std::string e = esc(text), o;
+  bool open = false;
+  for (char c : e) {
+    if (c != '`') {
+      o += c;
+      continue;
+    }
+    o += open ? "</code>" : "<code>";
+    open = !open;
+  }
+  if (open) o += "</code>";
+  return o;
+}
+
 std::string list(const std::vector<std::string>& items, const char* cls = nullptr) {
   if (items.empty()) return "";
   std::string o = cls ? fmt::format("<ul class=\"{}\">\n", cls) : "<ul>\n";
-  for (const auto& i : items) o += "<li>" + esc(i) + "</li>\n";
+  for (const auto& i : items) o += "<li>" + withCode(i) + "</li>\n";
   return o + "</ul>\n";
 }
 
@@ -185,7 +201,8 @@ std::vector<Figure> figures(const GearboxReport& g) {
   if (g.optimisation)
     for (const auto& x : g.optimisation->files) f.push_back({x, "optimisation"});
   if (g.monteCarlo)
-    for (const auto& x : g.monteCarlo->files) f.push_back({x, "Monte Carlo histogram"});
+    for (size_t i = 0; i < g.monteCarlo->files.size() && i < g.monteCarlo->outputs.size(); ++i)
+      f.push_back({g.monteCarlo->files[i], "Monte Carlo: " + g.monteCarlo->outputs[i].quantity});
   return f;
 }
 

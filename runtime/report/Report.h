@@ -250,6 +250,7 @@ struct MonteCarloReport {
     std::string quantity;  // as written inside `worst(…)`, `mean(…)`, `quantile(…)`
     units::DisplayUnit unit{"", 1};
     std::vector<double> values;    // SI, in sample order
+    double nominal = 0;            // at the nominal design, SI
     double mean = 0, meanError = 0, stdDev = 0, min = 0, max = 0;
     std::vector<Quantile> quantiles;  // the spec's, and the 5 %, 50 % and 95 % ones, by p
     int sense = 0;          // +1: larger is worse, -1: smaller is worse, 0: not known
@@ -259,6 +260,7 @@ struct MonteCarloReport {
   };
   std::vector<Output> outputs;
   std::string failure;  // why the samples gave no numbers (a scene that failed at a sample)
+  std::vector<std::string> warnings;  // samples beyond an attribute's range, …
   std::vector<std::string> files;  // histograms written, set by the render step
 };
 

@@ -1277,14 +1277,15 @@ private:
   // How many rows ahead the long right list's index and entries are fetched: a row takes
   // about as long as a load from memory, so the index must arrive before the entries'
   // fetch reads it.
-  static constexpr size_t kIndexAhead = 1, kEntriesAhead = 1;
+  static constexpr size_t kIndexAhead = 2, kEntriesAhead = 1;
 
   // Which buckets of the right list's ratios hold an entry, a bit each: most rows' windows
   // fall between the entries, and a bit read from a small table tells so without the
   // index's search. A bucket is a run of the ratio's order keys (orderKey: monotone in the
   // ratio, about uniform in its logarithm), about a quarter of a row's window wide, at most
   // 64 per entry (a short list's table stays in the first-level cache) and 2^25 in all;
-  // an entry in [lo, hi] has its bucket between theirs, so the test is exact.
+  // an entry in [lo, hi] has its bucket between theirs, so the test never misses an entry
+  // (it may send a row to the search that finds none).
   struct Occupancy {
     std::uint64_t key0 = 0;
     int shift = 0;
@@ -1419,7 +1420,8 @@ private:
           // log-ratio buckets that hold no entry is passed over; else the index jumps to it.
           if (x * (byJ.empty() ? leastRight(i, j) : byJ[j]) > wantHiC) break;
           if (!occupancy.any(wl, wh)) continue;
-          // The queries two and one rows ahead are known: their memory is fetched now.
+          // The queries kIndexAhead and kEntriesAhead rows ahead are known: their memory is
+          // fetched now.
           if (j + kIndexAhead < m1) right->prefetchIndex(wantLoC * inv0[i] * inv1[j + kIndexAhead]);
           if (j + kEntriesAhead < m1) right->prefetchEntries(wantLoC * inv0[i] * inv1[j + kEntriesAhead]);
           loP = right->lowerBound(wl);

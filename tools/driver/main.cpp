@@ -1,18 +1,36 @@
 #include <iostream>
-#include <sstream>
+#include <streambuf>
 #include <string>
 #include <vector>
 
 #include "driver/Driver.h"
 #include "parallel/Ranks.h"
 
+namespace {
+
+// Where the other ranks' output goes: nowhere, without holding it.
+class Discard : public std::streambuf {
+protected:
+  int overflow(int c) override { return c == traits_type::eof() ? 0 : c; }
+  std::streamsize xsputn(const char*, std::streamsize n) override { return n; }
+};
+
+} // namespace
+
 int main(int argc, char** argv) {
   // Under mpirun each rank solves; rank 0 alone speaks and writes (runtime/parallel/Ranks.h).
   gbx::rt::par::Session ranks(&argc, &argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (!gbx::rt::par::root()) {
-    std::ostringstream quiet;
+    // Only `solve` shares its work; without MPI in this build nothing is shared at all, and
+    // every command is rank 0's alone.
+    if (gbx::rt::par::alone() || args.empty() || args[0] != "solve") return 0;
+    Discard nothing;
+    std::ostream quiet(&nothing);
     return gbx::driver::run(args, quiet, quiet);
   }
+  if (gbx::rt::par::alone())
+    std::cerr << "gbxc: note: started by mpirun, but this gbxc was built without MPI: rank 0 solves alone; "
+                 "build/gbxc-mpi (or a -DGBX_MPI=ON build) shares the work over the ranks\n";
   return gbx::driver::run(args, std::cout, std::cerr);
 }

@@ -249,6 +249,7 @@ expect('    install = preloaded;', 'preloaded', 'constant.language.symbol.gbx');
 expect('    work_precision of vibration;', 'work_precision', 'keyword.other.study.gbx');
 expect('  minimize 0.6 * relative(worst(vibration.rms(acceleration)));', 'worst', 'support.function.builtin.gbx');
 expect('  minimize 0.6 * relative(worst(vibration.rms(acceleration)));', 'rms', 'support.function.signal.gbx');
+expect('  report { columns quantile(vibration.rms(acceleration), 0.95); }', 'quantile', 'support.function.builtin.gbx');
 
 // numbers and units
 const quantities = [
