@@ -132,6 +132,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     }
     if (best) {
       rep.monteCarlo = passes::monteCarlo(m, *best, columns, scenes.samples.get(), scenes.results);
+      if (timeUp(gb.name, "its Monte Carlo samples")) return 3;
       if (rep.monteCarlo && !rep.monteCarlo->failure.empty()) fail(gb.name, {rep.monteCarlo->failure});
       if (rep.monteCarlo) rep.warnings.insert(rep.warnings.end(), rep.monteCarlo->warnings.begin(), rep.monteCarlo->warnings.end());
       passes::Ratings rated = passes::ratings(m, *best);

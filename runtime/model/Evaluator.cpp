@@ -1,6 +1,7 @@
 #include "model/Evaluator.h"
 
 #include "model/Builtins.h"
+#include "model/Deadline.h"
 #include "model/Sampling.h"
 #include "parallel/Ranks.h"
 #include "model/Split.h"
@@ -391,6 +392,7 @@ std::optional<std::vector<double>> Evaluator::overSamples(const ir::Expr& q, con
   // The samples over the threads and, under mpirun, the ranks: an empty result marks a
   // sample where q has no value.
   auto values = par::map(static_cast<size_t>(s.samples), par::jobs(), [&](size_t k) {
+    if (Deadline::expired()) return std::vector<double>{};  // past the time limit: no value
     Evaluator at(*this);
     std::vector<double> d = s.deviations(tol, static_cast<long>(k));
     for (size_t i = 0; i < tol.size(); ++i) at.addOffset(tol[i].ref, d[i]);

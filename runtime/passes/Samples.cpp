@@ -8,6 +8,7 @@
 
 #include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
+#include "model/Deadline.h"
 #include "model/Sampling.h"
 #include "parallel/Ranks.h"
 #include "units/Unit.h"
@@ -143,6 +144,7 @@ SampleScenes::SampleScenes(const Model& m, const Assignment& best, const std::ve
     const dyn::SceneResult& base = nominal[static_cast<size_t>(sc)];
     // Each sample's numbers in the nominal run's order; none where the run failed.
     auto values = par::map(static_cast<size_t>(s.samples), jobs, [&](size_t k) {
+      if (Deadline::expired()) return std::vector<double>{};  // past the time limit: the run fails
       Evaluator at(m);
       offsetsAt(k, at);
       dyn::SceneOverrides ov;
