@@ -117,7 +117,6 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       scenes = passes::scenes(m, *best, columns, o.jobs);
       fail(gb.name, scenes.errors);
       rep.scenes = std::move(scenes.scenes);
-      scenes.scenes.clear();
       passes::setSceneColumns(rep, scenes.columns);
       rep.notes.insert(rep.notes.end(), scenes.notes.begin(), scenes.notes.end());
       passes::Modifications mods = passes::modifications(m, *best);

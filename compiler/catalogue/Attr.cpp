@@ -18,9 +18,14 @@ AttrSpec pos(std::string n, Dim d, std::string meaning) {
   a.positive = true;
   return a;
 }
-AttrSpec count(std::string n, std::string meaning) {
-  auto a = pos(std::move(n), units::dims::none, std::move(meaning));
+AttrSpec whole(std::string n, std::string meaning) {
+  auto a = in(std::move(n), units::dims::none, std::move(meaning));
   a.integer = true;
+  return a;
+}
+AttrSpec count(std::string n, std::string meaning) {
+  auto a = whole(std::move(n), std::move(meaning));
+  a.positive = true;
   return a;
 }
 AttrSpec derived(std::string n, Dim d, std::string meaning, bool integer) {

@@ -47,6 +47,8 @@ namespace rows {
 AttrSpec in(std::string n, Dim d, std::string meaning);
 AttrSpec pos(std::string n, Dim d, std::string meaning);
 AttrSpec count(std::string n, std::string meaning);
+// A whole number of any sign (its range set by `bounded`).
+AttrSpec whole(std::string n, std::string meaning);
 AttrSpec derived(std::string n, Dim d, std::string meaning, bool integer = false);
 AttrSpec withDefault(AttrSpec a, units::Number v);
 AttrSpec required(AttrSpec a);

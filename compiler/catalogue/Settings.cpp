@@ -123,23 +123,15 @@ const std::vector<AttrSpec>& sweepSettings() {
 }
 
 const std::vector<AttrSpec>& toleranceSettings() {
-  static const std::vector<AttrSpec> s = [] {
-    // Whole numbers whose range message names both ends (a count would say "positive" first).
-    auto whole = [](std::string n, std::string meaning) {
-      auto a = in(std::move(n), none, std::move(meaning));
-      a.integer = true;
-      return a;
-    };
-    auto seed = whole("seed", "the random stream's seed: the same seed draws the same samples");
-    return std::vector<AttrSpec>{
-        budgeted(bounded(whole("samples", "Monte Carlo samples drawn instead of the box's corners"), num(2), std::nullopt),
-                 budget::kToleranceSamples),
-        symbol("distribution", {"normal", "uniform"},
-               "how a deviation is drawn (normal unless given): normal with the amount as three standard deviations, "
-               "or uniform between the bounds"),
-        bounded(seed, num(0), num(4294967295)),
-    };
-  }();
+  // Whole numbers whose range message names both ends (a count would say "positive" first).
+  static const std::vector<AttrSpec> s = {
+      budgeted(bounded(whole("samples", "Monte Carlo samples drawn instead of the box's corners"), num(2), std::nullopt),
+               budget::kToleranceSamples),
+      symbol("distribution", {"normal", "uniform"},
+             "how a deviation is drawn (normal unless given): normal with the amount as three standard deviations, "
+             "or uniform between the bounds"),
+      bounded(whole("seed", "the random stream's seed: the same seed draws the same samples"), num(0), num(4294967295)),
+  };
   return s;
 }
 

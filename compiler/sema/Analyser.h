@@ -133,8 +133,12 @@ private:
   bool readsWorst(const ir::Expr& e, int depth = 0) const;
   void worstSense(ir::Expr& e, int sense, bool condition = false, bool negated = false);
   std::vector<ir::Tolerance> tolerances(const GearboxModel& m, const Scope& gs);
-  std::vector<ir::Setting> toleranceSettings(const GearboxModel& m, const Scope& gs);
-  bool toleranceSettingMisspelt_ = false;  // the last block named a setting it does not take
+  // The block's settings; `misspelt`: it names one it does not take (E0214 said so).
+  struct ToleranceSettings {
+    std::vector<ir::Setting> settings;
+    bool misspelt = false;
+  };
+  ToleranceSettings toleranceSettings(const GearboxModel& m, const Scope& gs);
   void selfDefined(const ir::Gearbox& g);
   ir::Objective objective(const Stmt& st, const Scope& gs);
 

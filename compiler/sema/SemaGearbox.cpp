@@ -28,10 +28,11 @@ ir::Gearbox Analyser::lowerGearbox(const GearboxModel& m) {
   gs.gearbox = &m;
   gs.hasBaseline = !m.base.empty();
   gs.hasTolerances = !m.tolerances.empty();
-  g.toleranceSettings = toleranceSettings(m, gs);
+  auto sampling = toleranceSettings(m, gs);
+  g.toleranceSettings = std::move(sampling.settings);
   // A misspelt setting (E0214 already) counts as the samples it meant: no cascade of
   // "add `samples`" errors after it.
-  gs.hasSamples = gs.hasTolerances && (ir::findSetting(g.toleranceSettings, Q::Samples) || toleranceSettingMisspelt_);
+  gs.hasSamples = gs.hasTolerances && (ir::findSetting(g.toleranceSettings, Q::Samples) || sampling.misspelt);
   g.tolerances = tolerances(m, gs);
 
   std::map<std::string, Type> letTypes;

@@ -183,17 +183,18 @@ std::vector<ir::Tolerance> Analyser::tolerances(const GearboxModel& m, const Sco
 
 // `samples = N; distribution = normal; seed = 1;` beside the tolerance lines: Monte Carlo
 // samples instead of the box's corners (LANGUAGE.md §19).
-std::vector<ir::Setting> Analyser::toleranceSettings(const GearboxModel& m, const Scope& gs) {
-  toleranceSettingMisspelt_ = false;
-  if (m.toleranceSettings.empty()) return {};
+Analyser::ToleranceSettings Analyser::toleranceSettings(const GearboxModel& m, const Scope& gs) {
+  ToleranceSettings result;
+  if (m.toleranceSettings.empty()) return result;
   const std::string owner = "the `tolerances` block";
   std::vector<std::pair<std::string, Binding>> items;
   for (const Stmt* t : m.toleranceSettings) flattenOne(*t, items, owner);
-  toleranceSettingMisspelt_ = std::any_of(items.begin(), items.end(), [](const auto& i) {
+  result.misspelt = std::any_of(items.begin(), items.end(), [](const auto& i) {
     return std::none_of(cat::toleranceSettings().begin(), cat::toleranceSettings().end(), [&](const auto& spec) { return spec.name == i.first; });
   });
-  auto out = settings(items, cat::toleranceSettings(), gs, owner, m.toleranceSettings.front()->span, "E0237");
-  if (toleranceSettingMisspelt_) return out;
+  result.settings = settings(items, cat::toleranceSettings(), gs, owner, m.toleranceSettings.front()->span, "E0237");
+  const auto& out = result.settings;
+  if (result.misspelt) return result;
   bool shaped = std::any_of(items.begin(), items.end(), [](const auto& i) {
     auto k = cat::keyOf(i.first);
     return k == Q::Distribution || k == Q::Seed;
@@ -206,7 +207,7 @@ std::vector<ir::Setting> Analyser::toleranceSettings(const GearboxModel& m, cons
     diags_.error("E0237", m.toleranceSettings.front()->span,
                  "Monte Carlo samples scatter the tolerances, but this block lists none; add lines such as "
                  "`main.face_width +- 1 mm;`");
-  return out;
+  return result;
 }
 
 // Attributes given by expressions that need themselves, through one another

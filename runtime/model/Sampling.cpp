@@ -94,10 +94,6 @@ double quantileStandardError(const std::vector<double>& s, double p) {
   return (sortedQuantile(s, hi) - sortedQuantile(s, lo)) / 2;
 }
 
-} // namespace gbx::rt
-
-namespace gbx::rt {
-
 size_t worstIndex(const std::vector<double>& x, int sense) {
   size_t k = 0;
   for (size_t i = 1; i < x.size(); ++i)

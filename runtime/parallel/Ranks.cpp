@@ -102,15 +102,6 @@ Session::~Session() {
 
 int rank() { return gRank; }
 bool alone() { return gLoneRank; }
-int ranks() { return gRanks; }
-
-bool built() {
-#ifdef GBX_MPI
-  return true;
-#else
-  return false;
-#endif
-}
 
 void setJobs(int jobs) { gJobs = std::max(1, jobs); }
 int jobs() { return gJobs; }

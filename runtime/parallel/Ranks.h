@@ -19,13 +19,10 @@ public:
   Session& operator=(const Session&) = delete;
 };
 
-int rank();   // 0 without MPI
-int ranks();  // 1 without MPI
+int rank();  // 0 without MPI
 inline bool root() { return rank() == 0; }
 // Started by mpirun in a build without MPI: rank() is the launcher's, and nothing is shared.
 bool alone();
-// Whether this build can share work over ranks.
-bool built();
 
 // The threads a solve may use (`--jobs`), for the loops deep inside it.
 void setJobs(int jobs);

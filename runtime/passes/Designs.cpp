@@ -374,20 +374,25 @@ Columns reportColumns(const ir::Gearbox& gb) {
   return c;
 }
 
+std::string deviationsText(const Model& m, const std::vector<double>& deviations, bool sample) {
+  const auto& tol = m.gearbox.tolerances;
+  std::string at;
+  for (size_t i = 0; i < tol.size() && i < deviations.size(); ++i) {
+    double d = deviations[i];
+    if (d == 0) continue;
+    auto u = units::differenceUnitFor(tol[i].dim);  // an offset from the nominal value
+    // A sample's deviation to four figures; a corner's is the amount as written.
+    std::string amount = sample ? fmt::format("{:+.4g}", d / u.scale) : fmt::format("{:+g}", d / u.scale);
+    at += fmt::format("{}{} {}{}", at.empty() ? "" : ", ", tol[i].target, amount, u.name.empty() ? "" : " " + u.name);
+  }
+  return at;
+}
+
 std::optional<std::string> cornerNote(const Model& m, const Evaluator& ev, const ir::Expr& column,
                                       const std::string& name, const Assignment& a) {
   auto where = ev.worstCorner(column, a);
   if (!where) return std::nullopt;
-  const auto& tol = m.gearbox.tolerances;
-  std::string at;
-  for (size_t i = 0; i < tol.size(); ++i) {
-    double d = where->deviations[i];
-    if (d == 0) continue;
-    auto u = units::differenceUnitFor(tol[i].dim);  // an offset from the nominal value
-    // A sample's deviation to four figures; a corner's is the amount as written.
-    std::string amount = where->sample >= 0 ? fmt::format("{:+.4g}", d / u.scale) : fmt::format("{:+g}", d / u.scale);
-    at += fmt::format("{}{} {}{}", at.empty() ? "" : ", ", tol[i].target, amount, u.name.empty() ? "" : " " + u.name);
-  }
+  std::string at = deviationsText(m, where->deviations, where->sample >= 0);
   if (where->sample >= 0)
     return fmt::format("`{}` of design 1 is found at sample {} of {} ({})", name, where->sample + 1,
                        Sampling::of(m.gearbox).samples, at);

@@ -30,6 +30,11 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
 // What scenes, modifications and studies run on: the best design at its optimum freedoms.
 std::optional<Assignment> bestDesign(const Model& m, const Optimised& designs);
 
+// Deviations from the nominal design (SI, one per tolerance line) as a report writes them:
+// "main.face_width +1 mm, main.helix_angle -0.05 deg"; the zero ones left out; a Monte Carlo
+// sample's to four figures.
+std::string deviationsText(const Model& m, const std::vector<double>& deviations, bool sample);
+
 // Where a `worst(…)` column finds its value for design 1 (LANGUAGE.md §15), as a report note;
 // nothing for another column or where the evaluator cannot compute the corners.
 std::optional<std::string> cornerNote(const Model& m, const Evaluator& ev, const ir::Expr& column,

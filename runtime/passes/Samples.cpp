@@ -73,13 +73,8 @@ std::string failureAt(const Model& m, const Evaluator& ev, const ir::Expr& node,
     std::vector<double> d = s.deviations(tol, k);
     for (size_t i = 0; i < tol.size(); ++i) at.addOffset(tol[i].ref, d[i]);
     if (at.eval(*node.args[0], best).isNumber()) continue;
-    std::string where;
-    for (size_t i = 0; i < tol.size(); ++i) {
-      auto u = units::differenceUnitFor(tol[i].dim);
-      where += fmt::format("{}{} {:+.4g}{}", where.empty() ? "" : ", ", tol[i].target, d[i] / u.scale, u.name.empty() ? "" : " " + u.name);
-    }
     return fmt::format("`{}` has no value at Monte Carlo sample {} of {} ({}); its statistics are left out", node.name, k + 1,
-                       s.samples, where);
+                       s.samples, deviationsText(m, d, true));
   }
   return fmt::format("`{}` has no value at some Monte Carlo sample; its statistics are left out", node.name);
 }
@@ -101,7 +96,7 @@ std::vector<std::string> rangeWarnings(const Model& m, const Evaluator& ev, cons
     long below = 0, above = 0;
     double least = INFINITY, most = -INFINITY;
     for (const auto& d : r.deviations) {
-      double x = v.mid() + d[i] * units::differenceUnitFor(t.dim).scale;
+      double x = v.mid() + d[i];
       least = std::min(least, x);
       most = std::max(most, x);
       below += x < lo || (spec->positive && x <= 0);
@@ -120,6 +115,13 @@ std::vector<std::string> rangeWarnings(const Model& m, const Evaluator& ev, cons
 }
 
 } // namespace
+
+std::vector<const ir::Expr*> sampledExpressions(const ir::Gearbox& g, const Columns& columns) {
+  std::vector<const ir::Expr*> exprs = columns.exprs;
+  for (const auto& rule : g.rules) exprs.push_back(rule.expr.get());
+  for (const auto& ob : g.objectives) exprs.push_back(ob.expr.get());
+  return exprs;
+}
 
 SampleScenes::SampleScenes(const Model& m, const Assignment& best, const std::vector<const ir::Expr*>& exprs,
                            const std::vector<dyn::SceneResult>& nominal, int jobs) {
@@ -190,20 +192,12 @@ std::optional<MonteCarloReport> monteCarlo(const Model& m, const Assignment& bes
   r.distribution = s.distributionName();
   r.uniform = s.distribution == cat::distribution::Uniform;
   r.seed = s.seed;
-  std::vector<double> scale;
   for (const auto& t : m.gearbox.tolerances) {
     auto u = units::differenceUnitFor(t.dim);
-    r.tolerances.push_back({t.target, t.amount / u.scale, u.name, t.amount});
-    scale.push_back(u.scale);
+    r.tolerances.push_back({t.target, t.amount / u.scale, u.name, t.amount, u.scale});
   }
-  for (long k = 0; k < s.samples; ++k) {
-    std::vector<double> d = s.deviations(m.gearbox.tolerances, k);
-    for (size_t i = 0; i < d.size(); ++i) d[i] /= scale[i];
-    r.deviations.push_back(std::move(d));
-  }
-  std::vector<const ir::Expr*> exprs = columns.exprs;
-  for (const auto& rule : m.gearbox.rules) exprs.push_back(rule.expr.get());
-  for (const auto& ob : m.gearbox.objectives) exprs.push_back(ob.expr.get());
+  for (long k = 0; k < s.samples; ++k) r.deviations.push_back(s.deviations(m.gearbox.tolerances, k));
+  const std::vector<const ir::Expr*> exprs = sampledExpressions(m.gearbox, columns);
   Evaluator ev(m);
   ev.sceneOutput = [&](const ir::Expr& e, const Assignment&, const Evaluator& asking) -> Value {
     int sc = e.output.scene;

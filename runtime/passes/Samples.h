@@ -28,6 +28,10 @@ private:
   std::map<int, std::vector<dyn::SceneResult>> runs_;
 };
 
+// What a Monte Carlo part reads over the samples: the report's columns, the rules and the
+// objectives.
+std::vector<const ir::Expr*> sampledExpressions(const ir::Gearbox& g, const Columns& columns);
+
 // The quantities under `worst`, `mean` and `quantile` in the columns, the rules and the
 // objectives, each at every sample, with their statistics; nothing without `samples`.
 std::optional<MonteCarloReport> monteCarlo(const Model& m, const Assignment& best, const Columns& columns,

@@ -91,10 +91,7 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns,
   std::map<std::pair<int, std::vector<double>>, dyn::SceneResult> corners;
   std::mutex cornersMutex;
   // Monte Carlo: every sample's scenes first, shared over the threads and ranks.
-  std::vector<const ir::Expr*> sampled = columns.exprs;
-  for (const auto& rule : m.gearbox.rules) sampled.push_back(rule.expr.get());
-  for (const auto& ob : m.gearbox.objectives) sampled.push_back(ob.expr.get());
-  out.samples = std::make_shared<SampleScenes>(m, best, sampled, results, jobs);
+  out.samples = std::make_shared<SampleScenes>(m, best, sampledExpressions(m.gearbox, columns), results, jobs);
   Evaluator ev(m);
   ev.sceneOutput = [&](const ir::Expr& e, const Assignment& a, const Evaluator& asking) -> Value {
     int sc = e.output.scene;

@@ -146,7 +146,7 @@ std::vector<std::vector<std::string>> sampleCsvRows(const std::string& gearbox, 
     std::vector<std::string> row = {gearbox, std::to_string(k + 1)};
     size_t ki = static_cast<size_t>(k);
     for (size_t i = 0; i < r.tolerances.size(); ++i)
-      row.push_back(ki < r.deviations.size() ? fmt::format("{:.10g}", r.deviations[ki][i]) : "");
+      row.push_back(ki < r.deviations.size() ? fmt::format("{:.10g}", r.deviations[ki][i] / r.tolerances[i].scale) : "");
     for (const auto& o : r.outputs) row.push_back(ki < o.values.size() ? fmt::format("{:.10g}", o.unit.shown(o.values[ki])) : "");
     rows.push_back(std::move(row));
   }

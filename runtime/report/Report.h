@@ -240,9 +240,10 @@ struct MonteCarloReport {
     double amount = 0;  // in the display unit
     std::string unit;
     double si = 0;
+    double scale = 1;   // SI per display unit (of a difference)
   };
   std::vector<Tolerance> tolerances;
-  std::vector<std::vector<double>> deviations;  // per sample, each tolerance's in its display unit
+  std::vector<std::vector<double>> deviations;  // per sample, each tolerance's, SI
   struct Quantile {
     double p = 0, value = 0, error = 0;  // value and its standard error, SI
   };
