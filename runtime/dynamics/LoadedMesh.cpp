@@ -10,10 +10,103 @@ namespace gbx::rt::dyn {
 
 double singlePairShape(double xi) { return 0.7 + 1.2 * xi * (1.0 - xi); }
 
+namespace {
+
+// The initial separation of a contact point, split as the profile's part (a function of
+// the roll position s along the path) plus the lead's (a function of y across the face),
+// with the divisions taken once.
+struct Separation {
+  double path, tipStart0, tipSlope0, tipEnd1, tipSlope1, pitchSlope, form, twoOverPath;
+
+  Separation(const FlankSeparations& sep, double path, double p) : path(path) {
+    tipStart0 = sep.reliefLength[0] > 0 ? path - sep.reliefLength[0] : INFINITY;
+    tipSlope0 = sep.reliefLength[0] > 0 ? sep.tipRelief[0] / sep.reliefLength[0] : 0.0;
+    tipEnd1 = sep.reliefLength[1] > 0 ? sep.reliefLength[1] : -INFINITY;
+    tipSlope1 = sep.reliefLength[1] > 0 ? sep.tipRelief[1] / sep.reliefLength[1] : 0.0;
+    pitchSlope = sep.basePitch / p;
+    form = sep.profileForm;
+    twoOverPath = 2.0 / path;
+  }
+  double profile(double s) const {
+    double gap = pitchSlope * (s - 0.5 * path);
+    if (s > tipStart0) gap += tipSlope0 * (s - tipStart0);
+    if (s < tipEnd1) gap += tipSlope1 * (tipEnd1 - s);
+    double w = twoOverPath * s - 1.0;
+    return gap - form * w * w;
+  }
+  static double lead(const FlankSeparations& sep, double y, double b) {
+    double u = 2.0 * y / b - 1.0;
+    double gap = sep.leadCrowning * u * u + sep.leadSlope * 0.5 * u;
+    if (sep.endReliefWidth > 0) {
+      double w = sep.endReliefWidth;
+      gap += sep.endRelief * (std::max(0.0, w - y) + std::max(0.0, y - (b - w))) / w;
+    }
+    return gap;
+  }
+};
+
+// The pairs in contact at one mesh position: their separations and stiffnesses side by side,
+// in arrays sized once for the most pairs a position can hold.
+struct Contacts {
+  std::vector<double> gap, c;
+  std::vector<int> slice;
+  size_t n = 0;
+  explicit Contacts(size_t most) : gap(most), c(most), slice(most) {}
+};
+
+// The approach delta at which F(delta) = sum c max(0, delta - gap) carries the load. F is
+// convex, piecewise linear and increasing, so Newton's step from any delta with a pair in
+// contact lands at or beyond the root and from there descends to it; it ends when the pairs
+// in contact stop changing, which is the exact root of the piecewise-linear equation.
+// Starting from the last position's root takes one or two passes.
+struct Approach {
+  double delta, K;
+};
+Approach approach(const Contacts& pts, double load, double start) {
+  size_t n = pts.n;
+  const double* gap = pts.gap.data();
+  const double* c = pts.c.data();
+  auto pass = [&](double d, size_t& count, double& K) {
+    double KG = 0;
+    K = 0;
+    count = 0;
+    for (size_t i = 0; i < n; ++i) {
+      bool in = gap[i] < d;  // no branch: whether a pair touches is data, not control
+      double ci = in ? c[i] : 0.0;
+      K += ci;
+      KG += ci * gap[i];
+      count += in;
+    }
+    return (load + KG) / K;
+  };
+  size_t count = 0, last = n + 1;
+  double K = 0, delta = start;
+  for (size_t it = 0; it < n + 2; ++it) {
+    double next = pass(delta, count, K);
+    // No pair touches below delta: every pair in contact bounds the root from above.
+    if (count == 0) {
+      double KG = 0;
+      K = 0;
+      for (size_t i = 0; i < n; ++i) {
+        K += c[i];
+        KG += c[i] * gap[i];
+      }
+      next = (load + KG) / K;
+      count = n;
+    } else if (count == last) {
+      return {next, K};
+    }
+    last = count;
+    delta = next;
+  }
+  return {delta, K};
+}
+
+} // namespace
+
 LoadedMeshTable loadedMesh(const LoadedMeshInput& in) {
   LoadedMeshTable out;
   const FlankGeometry& g = in.g;
-  const FlankSeparations& sep = in.sep;
   double roll1 = std::sqrt(g.ra1 * g.ra1 - g.rb1 * g.rb1), roll2 = std::sqrt(g.ra2 * g.ra2 - g.rb2 * g.rb2);
   double path = roll1 + roll2 - g.centerDistance * std::sin(g.workingPressureAngle);
   out.pathLength = path;
@@ -26,64 +119,53 @@ LoadedMeshTable loadedMesh(const LoadedMeshInput& in) {
   out.epsBeta = b * shift / p;
   int S = std::max(1, in.slices), P = std::max(2, in.positions);
   double db = b / S;
-  // The separation of a contact point at s along the path and y across the face.
-  auto separation = [&](double s, double y) {
-    double gap = 0;
-    if (sep.reliefLength[0] > 0 && s > path - sep.reliefLength[0]) gap += sep.tipRelief[0] * (s - (path - sep.reliefLength[0])) / sep.reliefLength[0];
-    if (sep.reliefLength[1] > 0 && s < sep.reliefLength[1]) gap += sep.tipRelief[1] * (sep.reliefLength[1] - s) / sep.reliefLength[1];
-    double u = 2.0 * y / b - 1.0;
-    gap += sep.leadCrowning * u * u + sep.leadSlope * 0.5 * u;
-    if (sep.endReliefWidth > 0) {
-      double w = sep.endReliefWidth;
-      gap += sep.endRelief * (std::max(0.0, w - y) + std::max(0.0, y - (b - w))) / w;
-    }
-    gap += sep.basePitch * (s - 0.5 * path) / p;
-    double w = 2.0 * s / path - 1.0;
-    gap -= sep.profileForm * w * w;
-    return gap;
-  };
-  struct Point {
-    double gap, c;
-    int slice;
-    bool operator<(const Point& o) const { return gap < o.gap || (gap == o.gap && c < o.c); }
-  };
-  std::vector<Point> pts;
+  Separation sep(in.sep, path, p);
+  // Per slice: the phase of its contact lines along the path (in base pitches, its
+  // fractional part) and its lead separation.
+  std::vector<double> phase(static_cast<size_t>(S)), lead(static_cast<size_t>(S));
+  for (int j = 0; j < S; ++j) {
+    double y = (j + 0.5) * db;
+    double o = y * shift / p;
+    phase[static_cast<size_t>(j)] = o - std::floor(o);
+    lead[static_cast<size_t>(j)] = Separation::lead(in.sep, y, b);
+  }
+  double cScale = in.singleStiffness * db, invPath = 1.0 / path, eps = path / p;
+  // A slice holds at most floor(eps_alpha) + 1 pairs at once.
+  Contacts pts(static_cast<size_t>(S) * (static_cast<size_t>(eps) + 2));
   if (in.sliceLoads) out.sliceLineLoad.assign(static_cast<size_t>(S), 0.0);
-  double rigidSum = 0;
+  out.te.reserve(static_cast<size_t>(P));
+  out.stiffness.reserve(static_cast<size_t>(P));
+  double rigidSum = 0, delta = NAN;
   for (int i = 0; i < P; ++i) {
     double tau = static_cast<double>(i) / P;
-    pts.clear();
+    size_t n = 0;
     for (int j = 0; j < S; ++j) {
-      double y = (j + 0.5) * db;
-      double off = y * shift;
-      long k0 = static_cast<long>(std::ceil(off / p - tau - 1e-12)), k1 = static_cast<long>(std::floor((path + off) / p - tau + 1e-12));
-      for (long k = k0; k <= k1; ++k) {
-        double s = (tau + static_cast<double>(k)) * p - off;
-        if (s < 0 || s > path) continue;
-        double c = in.singleStiffness * singlePairShape(s / path) * db;
-        pts.push_back({separation(s, y), c, j});
+      // The slice's first pair lies at (tau - phase) mod 1 base pitches along the path.
+      double t0 = tau - phase[static_cast<size_t>(j)];
+      if (t0 < 0) t0 += 1.0;
+      for (double t = t0; t <= eps; t += 1.0) {
+        double s = t * p;
+        if (s > path) break;
+        double c = cScale * singlePairShape(s * invPath);
+        pts.gap[n] = sep.profile(s) + lead[static_cast<size_t>(j)];
+        pts.c[n] = c;
+        pts.slice[n] = j;
+        ++n;
         rigidSum += c;
       }
     }
-    if (pts.empty()) {
+    pts.n = n;
+    if (n == 0) {
       out.failure = fmt::format("no tooth pair touches at mesh position {}/{} (a contact ratio below 1)", i, P);
       return out;
     }
-    // F = sum c max(0, delta - gap): piecewise linear and increasing in delta.
-    std::sort(pts.begin(), pts.end());
-    double K = 0, KG = 0, delta = 0;
-    size_t n = pts.size();
-    for (size_t m = 0; m < n; ++m) {
-      K += pts[m].c;
-      KG += pts[m].c * pts[m].gap;
-      delta = (in.load + KG) / K;
-      if (m + 1 == n || delta <= pts[m + 1].gap) break;
-    }
+    Approach a = approach(pts, in.load, std::isnan(delta) ? -INFINITY : delta);
+    delta = a.delta;
     if (in.sliceLoads)
-      for (const auto& q : pts)
-        if (delta > q.gap) out.sliceLineLoad[static_cast<size_t>(q.slice)] += q.c * (delta - q.gap) / (db * P);
+      for (size_t q = 0; q < n; ++q)
+        if (delta > pts.gap[q]) out.sliceLineLoad[static_cast<size_t>(pts.slice[q])] += pts.c[q] * (delta - pts.gap[q]) / (db * P);
     out.te.push_back(delta);
-    out.stiffness.push_back(K);
+    out.stiffness.push_back(a.K);
   }
   double sumK = 0, sumT = 0;
   for (int i = 0; i < P; ++i) {
@@ -105,15 +187,35 @@ PeriodicSeries periodicSeries(const std::vector<double>& table, int harmonics) {
   for (double v : table) s.mean += v;
   s.mean /= static_cast<double>(P);
   int H = std::min<int>(harmonics, static_cast<int>((P - 1) / 2));
+  // cos and sin of 2 pi m / P once; harmonic k at position i reads entry k i mod P.
+  std::vector<double> cs(P), sn(P);
+  for (size_t m = 0; m < P; ++m) {
+    double w = 2.0 * M_PI * static_cast<double>(m) / static_cast<double>(P);
+    cs[m] = std::cos(w);
+    sn[m] = std::sin(w);
+  }
+  // Four partial sums each, so the additions do not wait on each other.
+  std::vector<size_t> idx(P);
   for (int k = 1; k <= H; ++k) {
-    double a = 0, b = 0;
+    size_t m = 0;
     for (size_t i = 0; i < P; ++i) {
-      double w = 2.0 * M_PI * k * static_cast<double>(i) / static_cast<double>(P);
-      a += table[i] * std::cos(w);
-      b += table[i] * std::sin(w);
+      idx[i] = m;
+      m += static_cast<size_t>(k);
+      if (m >= P) m -= P;
     }
-    s.f.a.push_back(2.0 * a / static_cast<double>(P));
-    s.f.b.push_back(2.0 * b / static_cast<double>(P));
+    double a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0};
+    size_t i = 0;
+    for (; i + 4 <= P; i += 4)
+      for (size_t q = 0; q < 4; ++q) {
+        a[q] += table[i + q] * cs[idx[i + q]];
+        b[q] += table[i + q] * sn[idx[i + q]];
+      }
+    for (size_t q = 0; i < P; ++i, ++q) {
+      a[q] += table[i] * cs[idx[i]];
+      b[q] += table[i] * sn[idx[i]];
+    }
+    s.f.a.push_back(2.0 * ((a[0] + a[1]) + (a[2] + a[3])) / static_cast<double>(P));
+    s.f.b.push_back(2.0 * ((b[0] + b[1]) + (b[2] + b[3])) / static_cast<double>(P));
   }
   return s;
 }

@@ -40,10 +40,17 @@ struct MeshKernel {
   static double force(const MeshModel& m, double t, const double* y, double* slope, double* vslope) {
     double rel = 1.0, ph = 0.0;
     if constexpr (T::needsPhase) ph = tau(m, t, y);
-    if constexpr (T::varying) rel = relativeStiffness(m.fourier_, ph);
     double x = y[0];
+    if constexpr (T::te == te::Loaded) {
+      // The loaded mesh's stiffness and separation share the phase: one pass over both.
+      double sk, su;
+      seriesPair(m.fourier_, m.e_.loadedSeparation.f, ph, sk, su);
+      rel = 1.0 + sk;
+      x -= m.e_.loadedSeparation.mean + su;
+    } else if constexpr (T::varying) {
+      rel = relativeStiffness(m.fourier_, ph);
+    }
     if constexpr (T::te == te::Displacement) x -= m.teDisplacement(ph);
-    else if constexpr (T::te == te::Loaded) x -= m.e_.loadedSeparation(ph);
     double f = 0, k = 0, kv = 0;
     if constexpr (T::contact == contact::Linear) {
       k = m.p_.meanStiffness * rel;
@@ -99,11 +106,23 @@ struct MeshKernel {
   static void dfdy(const MeshModel& m, double t, const double* y, double* J) {
     double k, kv;
     force(m, t, y, &k, &kv);
+    jacobian(m, k, kv, J);
+  }
+  static void jacobian(const MeshModel& m, double k, double kv, double* J) {
     constexpr size_t n = T::phase == drivephase::State ? 3 : 2;
     for (size_t i = 0; i < n * n; ++i) J[i] = 0;
     J[1] = 1.0;
     J[n + 0] = -k / m.p_.mass;
     J[n + 1] = -kv / m.p_.mass;
+  }
+  // Both from one evaluation of the force (the variational equations read both each step).
+  static void rhsDfdy(const MeshModel& m, double t, const double* y, double* dy, double* J) {
+    double k, kv;
+    double f = force(m, t, y, &k, &kv);
+    dy[0] = y[1];
+    dy[1] = f / m.p_.mass;
+    if constexpr (T::phase == drivephase::State) dy[2] = m.p_.drive.speed(t);
+    jacobian(m, k, kv, J);
   }
 };
 
@@ -139,6 +158,7 @@ MeshModel::MeshModel(const MeshParameters& p, const MeshEffects& e) : p_(p), e_(
                                          decltype(Q)::value, decltype(P)::value>>;
               sys_.rhs = [this](double t, const double* y, double* dy) { K::rhs(*this, t, y, dy); };
               sys_.dfdy = [this](double t, const double* y, double* J) { K::dfdy(*this, t, y, J); };
+              sys_.rhsDfdy = [this](double t, const double* y, double* dy, double* J) { K::rhsDfdy(*this, t, y, dy, J); };
             });
           });
         });

@@ -20,6 +20,8 @@ struct System {
   // The state Jacobian alone (row-major dim x dim), for the variational equations of the
   // periodic steady state; empty: the monodromy matrix is found by differences.
   std::function<void(double t, const double* y, double* dfdy)> dfdy;
+  // Optional: rhs and dfdy from one evaluation, where they share their work.
+  std::function<void(double t, const double* y, double* dydt, double* dfdy)> rhsDfdy;
   // Events: the integrator stops at every sign change of each function and restarts there.
   std::vector<std::function<double(double t, const double* y)>> events;
   std::vector<double> scale;  // absolute tolerance per component = atol * scale[i]

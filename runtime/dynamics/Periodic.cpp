@@ -24,7 +24,6 @@ System variational(const System& sys) {
   System v;
   v.dim = n + n * n;
   v.rhs = [&sys, n](double t, const double* y, double* dy) {
-    sys.rhs(t, y, dy);
     double J[64];
     std::vector<double> big;
     double* jac = J;
@@ -32,7 +31,12 @@ System variational(const System& sys) {
       big.resize(n * n);
       jac = big.data();
     }
-    sys.dfdy(t, y, jac);
+    if (sys.rhsDfdy) {
+      sys.rhsDfdy(t, y, dy, jac);
+    } else {
+      sys.rhs(t, y, dy);
+      sys.dfdy(t, y, jac);
+    }
     const double* P = y + n;
     double* dP = dy + n;
     for (size_t i = 0; i < n; ++i)
@@ -185,6 +189,13 @@ PeriodicOrbit newton(const System& sys, const Accuracy& acc, const PeriodicOptio
     double damp = sn > 10.0 ? 10.0 / sn : 1.0;
     for (size_t i = 0; i < n; ++i) y0[i] += damp * step[i];
     lastStep = damp * sn;
+    if (opt.linear && !opt.confirmLinear && damp == 1.0) {
+      o.y0 = y0;
+      o.converged = true;
+      o.unconfirmed = true;
+      o.residual = NAN;
+      break;
+    }
     if (it + 1 == opt.maxIterations) o.failure = fmt::format("Newton did not converge in {} iterations (residual {:.3g} of the state scale)",
                                                              opt.maxIterations, o.residual);
   }

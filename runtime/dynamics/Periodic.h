@@ -20,6 +20,10 @@ struct PeriodicOptions {
   std::vector<double> drift;  // y(T) - y(0) on the orbit (angles that advance), 0 if empty
   int maxIterations = 40;
   bool linear = false;        // one Newton step is exact; the second only confirms it
+  // For a linear system, leave that confirming period to the caller, who integrates the
+  // orbit's period anyway to record it: the orbit comes back with one iteration and
+  // residual NaN, to be measured over that run (PeriodicOrbit::unconfirmed).
+  bool confirmLinear = true;
 };
 
 struct PeriodicOrbit {
@@ -30,6 +34,7 @@ struct PeriodicOrbit {
   double stability = 0;   // largest multiplier modulus
   double residual = 0;    // |phi_T(y0) - y0 - drift| over the state scale, at the last check
   int iterations = 0;
+  bool unconfirmed = false;  // a linear orbit whose residual the caller measures (confirmLinear false)
   bool variational = false;  // monodromy from the variational equations (else differences)
   long settledPeriods = 0;   // periods settled before Newton converged (0: Newton from the guess)
   Stats stats;               // every right-hand side, variational ones included

@@ -301,6 +301,8 @@ SceneResult wholeGearboxModes(const Model& m, const Assignment& a, SceneResult r
   return r;
 }
 
+void describeOrbit(SceneResult& r, double Tz);
+
 // The periodic orbit of a single-mesh scene, from the model's initial state or the caller's
 // guess; false (with r.failure) where it is not found.
 bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, const ScenePlan& scene, const SceneOverrides& ov,
@@ -314,6 +316,7 @@ bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, cons
   PeriodicOptions po;
   po.period = T;
   po.linear = model.linear();
+  po.confirmLinear = false;  // the record run below integrates the period and measures the residual
   std::vector<double> guess = ov.guess && ov.guess->size() == y.size() ? *ov.guess : y;
   PeriodicOrbit orbit = periodicOrbit(model.system(), acc, po, guess);
   r.stats += orbit.stats;
@@ -332,13 +335,34 @@ bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, cons
   r.unstable = orbit.stability >= 1.0;
   r.newtonIterations = orbit.iterations;
   r.newtonResidual = orbit.residual;
-  r.model.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), {} by {}, {} Newton iteration{}, residual "
-                                "{:.2e} of the state scale, largest Floquet multiplier {:.6f}",
-                                T * 1e3, std::lround(T / Tz), std::lround(T / Tz) == 1 ? "" : "s",
-                                po.linear ? "linear: the monodromy matrix" : "shooting with Newton",
-                                orbit.variational ? "variational equations" : "differences", orbit.iterations,
-                                orbit.iterations == 1 ? "" : "s", orbit.residual, orbit.stability));
+  r.orbitMethod = fmt::format("{} by {}", po.linear ? "linear: the monodromy matrix" : "shooting with Newton",
+                              orbit.variational ? "variational equations" : "differences");
+  r.orbitUnconfirmed = orbit.unconfirmed;
+  if (!orbit.unconfirmed) describeOrbit(r, Tz);
   return true;
+}
+
+// The orbit's line in the model, once its residual is known.
+void describeOrbit(SceneResult& r, double Tz) {
+  double T = r.period;
+  r.model.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} mesh period{}), {}, {} Newton iteration{}, residual "
+                                "{:.2e} of the state scale{}, largest Floquet multiplier {:.6f}",
+                                T * 1e3, std::lround(T / Tz), std::lround(T / Tz) == 1 ? "" : "s", r.orbitMethod, r.newtonIterations,
+                                r.newtonIterations == 1 ? "" : "s", r.newtonResidual,
+                                r.orbitUnconfirmed ? " (one period of the record run from the orbit's start)" : "", r.stability));
+}
+
+// A linear orbit found in one Newton step: the record run, carried on to the end of the
+// orbit's first period, comes back to its start to within the residual.
+void confirmOrbit(Integrator& integ, double t, std::vector<double> y, const std::vector<double>* atPeriod, const System& sys,
+                  SceneResult& r, double Tz) {
+  if (!r.orbitUnconfirmed) return;
+  if (atPeriod) y = *atPeriod;
+  else if (!integ.advance(t, y, r.period, {}, [](double, const double*) {})) y.assign(y.size(), NAN);
+  std::vector<double> d(y.size());
+  for (size_t i = 0; i < d.size(); ++i) d[i] = y[i] - r.orbit[i];
+  r.newtonResidual = scaledNorm(d, sys.scale);
+  describeOrbit(r, Tz);
 }
 
 // `settle = N` integrates exactly N periods; whether the transient has died out there is
@@ -385,7 +409,9 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
   if (tp.steady == SteadyMethod::Periodic && !steadyOrbit(model, ms, tp, scene, ov, acc, r, y)) return "";
   Integrator integ(model.system(), acc);
   double t = 0;
+  std::vector<double> atPeriod;  // the state a whole orbit period on, where the record window reaches it
   bool ok = integ.advance(t, y, tp.end, tp.samples, [&](double ts, const double* ys) {
+    if (r.orbitUnconfirmed && atPeriod.empty() && std::fabs(ts - r.period) <= 1e-9 * r.period) atPeriod.assign(ys, ys + y.size());
     MeshSignals s = model.signals(ts, ys);
     // A settled run's first sample lies on its orbit at phase 0 (a whole number of periods).
     if (samples.t.empty() && tp.steady == SteadyMethod::Settle) r.orbit.assign(ys, ys + model.system().dim);
@@ -401,6 +427,7 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
     record(Signal::InputSpeed, s.inputSpeed);
     record(Signal::OutputSpeed, s.outputSpeed);
   });
+  if (ok) confirmOrbit(integ, t, y, atPeriod.empty() ? nullptr : &atPeriod, model.system(), r, 1.0 / ms.meshFrequency);
   r.stats += integ.stats();
   samples.staticLoad = p.staticLoad;
   if (!ok) return integ.error();

@@ -60,6 +60,8 @@ struct SceneResult {
   bool unstable = false;  // stability >= 1: no steady outputs
   int newtonIterations = 0;
   double newtonResidual = 0;
+  std::string orbitMethod;        // how the orbit was found, for the model's line
+  bool orbitUnconfirmed = false;  // a linear orbit whose residual the record run measures
   std::vector<double> orbit;  // the orbit's initial state, for a neighbouring sweep point
   int harmonics = 0;          // of the stiffness series, 0 without varying_stiffness
   Stats referenceStats;

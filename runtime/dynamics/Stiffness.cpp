@@ -1,5 +1,6 @@
 #include "dynamics/Stiffness.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gbx::rt::dyn {
@@ -35,31 +36,69 @@ Fourier contactLineSeries(double epsAlpha, double epsBeta, int harmonics) {
 }
 
 namespace {
-// Sum over the harmonics of term(k, cos 2 pi k tau, sin 2 pi k tau): one sincos, then the
-// harmonics by the angle-addition recurrence.
-template <class Term>
-double overHarmonics(const Fourier& f, double tau, Term term) {
+// Sum over the harmonics of term(k, cos 2 pi (k+1) tau, sin 2 pi (k+1) tau) into acc[lane]:
+// one sincos, then four interleaved angle-addition chains, each stepping by 4 w, so the
+// chains (and the sums, one per lane) do not wait on each other.
+template <size_t Sums, class Term>
+void overHarmonics(size_t n, double tau, double (&acc)[Sums][4], Term term) {
   double w = 2.0 * M_PI * (tau - std::floor(tau));
-  double c1 = std::cos(w), s1 = std::sin(w);
-  double ck = c1, sk = s1, sum = 0.0;
-  for (size_t k = 0; k < f.a.size(); ++k) {
-    sum += term(k, ck, sk);
-    double cn = ck * c1 - sk * s1, sn = sk * c1 + ck * s1;
-    ck = cn;
-    sk = sn;
+  double c[4], s[4];
+  c[0] = std::cos(w);
+  s[0] = std::sin(w);
+  for (size_t q = 1; q < 4; ++q) {
+    c[q] = c[q - 1] * c[0] - s[q - 1] * s[0];
+    s[q] = s[q - 1] * c[0] + c[q - 1] * s[0];
   }
-  return sum;
+  double c4 = c[3], s4 = s[3];  // the step of each chain: 4 w
+  for (auto& lanes : acc)
+    for (double& v : lanes) v = 0.0;
+  size_t k = 0;
+  for (; k + 4 <= n; k += 4)
+    for (size_t q = 0; q < 4; ++q) {
+      term(k + q, c[q], s[q], acc, q);
+      double cn = c[q] * c4 - s[q] * s4, sn = s[q] * c4 + c[q] * s4;
+      c[q] = cn;
+      s[q] = sn;
+    }
+  for (size_t q = 0; k < n; ++k, ++q) term(k, c[q], s[q], acc, q);
+}
+
+template <size_t Sums>
+double total(const double (&acc)[Sums][4], size_t i) {
+  return (acc[i][0] + acc[i][1]) + (acc[i][2] + acc[i][3]);
 }
 } // namespace
 
 double relativeStiffness(const Fourier& f, double tau) {
-  return 1.0 + overHarmonics(f, tau, [&](size_t k, double c, double s) { return f.a[k] * c + f.b[k] * s; });
+  double acc[1][4];
+  overHarmonics(f.a.size(), tau, acc, [&](size_t k, double c, double s, double (&a)[1][4], size_t q) { a[0][q] += f.a[k] * c + f.b[k] * s; });
+  return 1.0 + total(acc, 0);
 }
 
 double relativeStiffnessSlope(const Fourier& f, double tau) {
-  return overHarmonics(f, tau, [&](size_t k, double c, double s) {
-    return 2.0 * M_PI * static_cast<double>(k + 1) * (f.b[k] * c - f.a[k] * s);
+  double acc[1][4];
+  overHarmonics(f.a.size(), tau, acc, [&](size_t k, double c, double s, double (&a)[1][4], size_t q) {
+    a[0][q] += 2.0 * M_PI * static_cast<double>(k + 1) * (f.b[k] * c - f.a[k] * s);
   });
+  return total(acc, 0);
+}
+
+void seriesPair(const Fourier& f, const Fourier& g, double tau, double& sf, double& sg) {
+  double acc[2][4];
+  size_t nf = f.a.size(), ng = g.a.size();
+  if (nf == ng) {
+    overHarmonics(nf, tau, acc, [&](size_t k, double c, double s, double (&a)[2][4], size_t q) {
+      a[0][q] += f.a[k] * c + f.b[k] * s;
+      a[1][q] += g.a[k] * c + g.b[k] * s;
+    });
+  } else {
+    overHarmonics(std::max(nf, ng), tau, acc, [&](size_t k, double c, double s, double (&a)[2][4], size_t q) {
+      if (k < nf) a[0][q] += f.a[k] * c + f.b[k] * s;
+      if (k < ng) a[1][q] += g.a[k] * c + g.b[k] * s;
+    });
+  }
+  sf = total(acc, 0);
+  sg = total(acc, 1);
 }
 
 } // namespace gbx::rt::dyn

@@ -25,5 +25,8 @@ double epsAlphaStandard(double z1, double z2, double mod, double alpha, bool int
 double relativeStiffness(const Fourier& f, double tau);
 // Its derivative in tau.
 double relativeStiffnessSlope(const Fourier& f, double tau);
+// The harmonic sums of two series at one phase in one pass (one sincos, one recurrence):
+// sum_k f.a_k cos(2 pi k tau) + f.b_k sin(2 pi k tau) into sf, and g's into sg.
+void seriesPair(const Fourier& f, const Fourier& g, double tau, double& sf, double& sg);
 
 } // namespace gbx::rt::dyn

@@ -4,6 +4,8 @@
 // the load, and an independent reference (tests/reference/ltca_reference.py).
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -170,4 +172,162 @@ TEST(LoadedMesh, PeriodicSeriesInterpolatesItsTable) {
   PeriodicSeries s = periodicSeries(v, 31);
   for (int i = 0; i < 64; ++i) EXPECT_NEAR(s(i / 64.0), v[static_cast<size_t>(i)], 1e-12);
   EXPECT_NEAR(s.mean, 3.0, 1e-14);
+}
+
+namespace {
+
+// The load balance solved the plain way, as an independent check of the table's solver:
+// every pair that may touch, sorted by its separation, taken into contact one by one
+// until the next one's separation lies beyond the approach. The geometry is written out
+// again from DOMAIN.md §8 (separations per pair, the single-pair stiffness along the path).
+struct Reference {
+  std::vector<double> te, stiffness, sliceLineLoad;
+};
+Reference sortedReference(const LoadedMeshInput& in) {
+  Reference out;
+  const FlankGeometry& g = in.g;
+  const FlankSeparations& sep = in.sep;
+  double path = std::sqrt(g.ra1 * g.ra1 - g.rb1 * g.rb1) + std::sqrt(g.ra2 * g.ra2 - g.rb2 * g.rb2) -
+                g.centerDistance * std::sin(g.workingPressureAngle);
+  double p = g.basePitch, b = g.faceWidth, shift = std::tan(g.baseHelix), db = b / in.slices;
+  auto separation = [&](double s, double y) {
+    double gap = 0;
+    if (sep.reliefLength[0] > 0 && s > path - sep.reliefLength[0]) gap += sep.tipRelief[0] * (s - (path - sep.reliefLength[0])) / sep.reliefLength[0];
+    if (sep.reliefLength[1] > 0 && s < sep.reliefLength[1]) gap += sep.tipRelief[1] * (sep.reliefLength[1] - s) / sep.reliefLength[1];
+    double u = 2.0 * y / b - 1.0;
+    gap += sep.leadCrowning * u * u + sep.leadSlope * 0.5 * u;
+    if (sep.endReliefWidth > 0)
+      gap += sep.endRelief * (std::max(0.0, sep.endReliefWidth - y) + std::max(0.0, y - (b - sep.endReliefWidth))) / sep.endReliefWidth;
+    gap += sep.basePitch * (s - 0.5 * path) / p;
+    double w = 2.0 * s / path - 1.0;
+    return gap - sep.profileForm * w * w;
+  };
+  out.sliceLineLoad.assign(static_cast<size_t>(in.slices), 0.0);
+  for (int i = 0; i < in.positions; ++i) {
+    double tau = static_cast<double>(i) / in.positions;
+    std::vector<std::tuple<double, double, int>> pts;  // gap, stiffness, slice
+    for (int j = 0; j < in.slices; ++j) {
+      double y = (j + 0.5) * db;
+      for (long k = -2; k <= static_cast<long>(path / p) + 2; ++k) {
+        double s = (tau + static_cast<double>(k)) * p - y * shift;
+        // A whole number of base pitches further round: the same contact line.
+        s += p * std::floor(y * shift / p);
+        if (s < 0 || s > path) continue;
+        pts.emplace_back(separation(s, y), in.singleStiffness * singlePairShape(s / path) * db, j);
+      }
+    }
+    std::sort(pts.begin(), pts.end());
+    double K = 0, KG = 0, delta = 0;
+    for (size_t m = 0; m < pts.size(); ++m) {
+      K += std::get<1>(pts[m]);
+      KG += std::get<1>(pts[m]) * std::get<0>(pts[m]);
+      delta = (in.load + KG) / K;
+      if (m + 1 == pts.size() || delta <= std::get<0>(pts[m + 1])) break;
+    }
+    for (const auto& [gap, c, j] : pts)
+      if (delta > gap) out.sliceLineLoad[static_cast<size_t>(j)] += c * (delta - gap) / (db * in.positions);
+    out.te.push_back(delta);
+    out.stiffness.push_back(K);
+  }
+  return out;
+}
+
+} // namespace
+
+// The table's load balance (Newton on the piecewise-linear approach, warm-started from the
+// last position) against the sorted reference, with every separation the model knows:
+// tip reliefs on both gears, crowning, a lead slope, end relief, pitch and form deviations,
+// light and heavy loads (many pairs out of contact, or all in), spur and helical.
+TEST(LoadedMesh, LoadBalanceAgreesWithTheSortedReference) {
+  struct Case {
+    double beta, load, relief, crowning, slope, endRelief, pitch, form;
+  };
+  const Case cases[] = {
+      {0.0, 2e4, 0, 0, 0, 0, 0, 0},            {0.0, 2e5, 25e-6, 0, 0, 0, 8e-6, 0},   {13.95, 5e5, 20e-6, 10e-6, 3e-6, 0, 8e-6, 5e-6},
+      {13.95, 5e3, 20e-6, 10e-6, -4e-6, 6e-6, 0, 5e-6}, {8.0, 2e6, 0, 2e-6, 0, 0, 6e-6, 0}, {25.0, 3e5, 40e-6, 15e-6, 5e-6, 10e-6, 10e-6, 8e-6},
+  };
+  for (const Case& c : cases) {
+    LoadedMeshInput in = pair(22, 87, 16e-3, c.beta, 0.41, kCPrime, c.load);
+    in.sep.tipRelief[0] = c.relief;
+    in.sep.tipRelief[1] = 0.7 * c.relief;
+    in.sep.reliefLength[0] = 6e-3;
+    in.sep.reliefLength[1] = 4e-3;
+    in.sep.leadCrowning = c.crowning;
+    in.sep.leadSlope = c.slope;
+    in.sep.endRelief = c.endRelief;
+    in.sep.endReliefWidth = c.endRelief > 0 ? 0.03 : 0.0;
+    in.sep.basePitch = c.pitch;
+    in.sep.profileForm = c.form;
+    in.slices = 37;
+    in.positions = 101;
+    in.sliceLoads = true;
+    LoadedMeshTable t = loadedMesh(in);
+    ASSERT_TRUE(t.failure.empty()) << t.failure;
+    Reference r = sortedReference(in);
+    ASSERT_EQ(t.te.size(), r.te.size());
+    double teScale = 0, kScale = 0, qScale = 0;
+    for (size_t i = 0; i < r.te.size(); ++i) {
+      teScale = std::max(teScale, std::fabs(r.te[i]));
+      kScale = std::max(kScale, r.stiffness[i]);
+    }
+    for (double q : r.sliceLineLoad) qScale = std::max(qScale, q);
+    for (size_t i = 0; i < r.te.size(); ++i) {
+      EXPECT_NEAR(t.te[i], r.te[i], 1e-12 * teScale) << "beta " << c.beta << " load " << c.load << " position " << i;
+      EXPECT_NEAR(t.stiffness[i], r.stiffness[i], 1e-12 * kScale) << "beta " << c.beta << " load " << c.load << " position " << i;
+    }
+    for (size_t j = 0; j < r.sliceLineLoad.size(); ++j) EXPECT_NEAR(t.sliceLineLoad[j], r.sliceLineLoad[j], 1e-12 * qScale);
+  }
+}
+
+// The table's Fourier coefficients against the defining sums, for a table length that is
+// not a power of two and harmonics up to the interpolant's limit.
+TEST(LoadedMesh, PeriodicSeriesAgreesWithTheDefiningSums) {
+  std::vector<double> v;
+  for (int i = 0; i < 101; ++i) v.push_back(std::exp(std::sin(2 * M_PI * i / 101.0)) + 0.01 * (i % 7));
+  PeriodicSeries s = periodicSeries(v, 50);
+  ASSERT_EQ(s.f.a.size(), 50u);
+  for (int k = 1; k <= 50; ++k) {
+    double a = 0, b = 0;
+    for (int i = 0; i < 101; ++i) {
+      a += v[static_cast<size_t>(i)] * std::cos(2 * M_PI * k * i / 101.0);
+      b += v[static_cast<size_t>(i)] * std::sin(2 * M_PI * k * i / 101.0);
+    }
+    EXPECT_NEAR(s.f.a[static_cast<size_t>(k - 1)], 2 * a / 101, 1e-14) << k;
+    EXPECT_NEAR(s.f.b[static_cast<size_t>(k - 1)], 2 * b / 101, 1e-14) << k;
+  }
+}
+
+// The stiffness series evaluated by four interleaved recurrences against direct sums, for
+// every count of harmonics around the chains' length, the slope and the paired sums.
+TEST(LoadedMesh, SeriesEvaluationAgreesWithDirectSums) {
+  for (size_t n = 0; n <= 11; ++n) {
+    Fourier f, g;
+    for (size_t k = 1; k <= n; ++k) {
+      f.a.push_back(0.1 / static_cast<double>(k));
+      f.b.push_back(0.03 * static_cast<double>(k));
+      g.a.push_back(-0.2 * std::sin(static_cast<double>(k)));
+      g.b.push_back(0.05);
+    }
+    g.a.resize(n / 2);
+    g.b.resize(n / 2);
+    for (double tau : {0.0, 0.137, 0.5, 0.93, 7.25, -1.4}) {
+      double rel = 1, slope = 0, sf = 0, sg = 0;
+      for (size_t k = 1; k <= n; ++k) {
+        double w = 2 * M_PI * static_cast<double>(k) * tau;
+        rel += f.a[k - 1] * std::cos(w) + f.b[k - 1] * std::sin(w);
+        slope += 2 * M_PI * static_cast<double>(k) * (f.b[k - 1] * std::cos(w) - f.a[k - 1] * std::sin(w));
+        if (k <= g.a.size()) sg += g.a[k - 1] * std::cos(w) + g.b[k - 1] * std::sin(w);
+      }
+      sf = rel - 1;
+      EXPECT_NEAR(relativeStiffness(f, tau), rel, 1e-13) << n << " " << tau;
+      EXPECT_NEAR(relativeStiffnessSlope(f, tau), slope, 1e-11) << n << " " << tau;
+      double pf, pg;
+      seriesPair(f, g, tau, pf, pg);
+      EXPECT_NEAR(pf, sf, 1e-13) << n << " " << tau;
+      EXPECT_NEAR(pg, sg, 1e-13) << n << " " << tau;
+      seriesPair(f, f, tau, pf, pg);
+      EXPECT_NEAR(pf, sf, 1e-13);
+      EXPECT_NEAR(pg, sf, 1e-13);
+    }
+  }
 }
