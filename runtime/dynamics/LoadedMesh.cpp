@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "model/Recent.h"
+
 namespace gbx::rt::dyn {
 
 double singlePairShape(double xi) { return 0.7 + 1.2 * xi * (1.0 - xi); }
@@ -104,7 +106,31 @@ Approach approach(const Contacts& pts, double load, double start) {
 
 } // namespace
 
+std::vector<double> loadedMeshKey(const LoadedMeshInput& in) {
+  const FlankGeometry& g = in.g;
+  const FlankSeparations& s = in.sep;
+  return {g.rb1,           g.rb2,           g.ra1,          g.ra2,          g.centerDistance, g.workingPressureAngle,
+          g.basePitch,     g.baseHelix,     g.faceWidth,    s.tipRelief[0], s.tipRelief[1],   s.reliefLength[0],
+          s.reliefLength[1], s.leadCrowning, s.leadSlope,   s.basePitch,    s.profileForm,    s.endRelief,
+          s.endReliefWidth, in.singleStiffness, in.load,    static_cast<double>(in.slices), static_cast<double>(in.positions),
+          in.sliceLoads ? 1.0 : 0.0};
+}
+
+namespace {
+LoadedMeshTable tabulate(const LoadedMeshInput& in);
+} // namespace
+
 LoadedMeshTable loadedMesh(const LoadedMeshInput& in) {
+  thread_local Recent<std::vector<double>, LoadedMeshTable> recent;
+  std::vector<double> key = loadedMeshKey(in);
+  // A NaN has no order: such an input is tabulated (and fails) without the cache.
+  if (std::any_of(key.begin(), key.end(), [](double v) { return std::isnan(v); })) return tabulate(in);
+  if (const LoadedMeshTable* hit = recent.find(key)) return *hit;
+  return recent.put(std::move(key), tabulate(in));
+}
+
+namespace {
+LoadedMeshTable tabulate(const LoadedMeshInput& in) {
   LoadedMeshTable out;
   const FlankGeometry& g = in.g;
   double roll1 = std::sqrt(g.ra1 * g.ra1 - g.rb1 * g.rb1), roll2 = std::sqrt(g.ra2 * g.ra2 - g.rb2 * g.rb2);
@@ -179,6 +205,7 @@ LoadedMeshTable loadedMesh(const LoadedMeshInput& in) {
   out.lightLoadStiffness = rigidSum / P;
   return out;
 }
+} // namespace
 
 PeriodicSeries periodicSeries(const std::vector<double>& table, int harmonics) {
   PeriodicSeries s;

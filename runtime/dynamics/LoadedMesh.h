@@ -59,7 +59,11 @@ struct LoadedMeshTable {
 // [0, 1] from the start of contact to its end (its mean is 0.9).
 double singlePairShape(double xi);
 
+// The table; the last few are kept per thread and handed back for an identical input (a
+// rerun where only the dynamics or the accuracy change, a rating reading the same mesh).
 LoadedMeshTable loadedMesh(const LoadedMeshInput& in);
+// Every number the table depends on, as a key.
+std::vector<double> loadedMeshKey(const LoadedMeshInput& in);
 
 // A periodic table of P values over one period as its mean and its first H Fourier
 // harmonics (the trigonometric interpolant, truncated to H < P/2).

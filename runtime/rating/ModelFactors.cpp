@@ -9,54 +9,11 @@
 
 #include "dynamics/LoadedMeshInputs.h"
 #include "dynamics/Scene.h"
+#include "model/Recent.h"
 
 namespace gbx::rt::rating {
 
 namespace {
-
-// A small cache per thread: the same design is rated once per quantity that reads it.
-template <class K, class V> class Recent {
-public:
-  const V* find(const K& k) const {
-    auto it = map_.find(k);
-    return it == map_.end() ? nullptr : &it->second;
-  }
-  const V& put(K k, V v) {
-    if (map_.size() >= 64) map_.clear();
-    return map_.insert_or_assign(std::move(k), std::move(v)).first->second;
-  }
-
-private:
-  std::map<K, V> map_;
-};
-
-std::vector<double> keyOf(const dyn::LoadedMeshInput& in) {
-  const auto& g = in.g;
-  const auto& s = in.sep;
-  return {g.rb1,
-          g.rb2,
-          g.ra1,
-          g.ra2,
-          g.centerDistance,
-          g.workingPressureAngle,
-          g.basePitch,
-          g.baseHelix,
-          g.faceWidth,
-          s.tipRelief[0],
-          s.tipRelief[1],
-          s.reliefLength[0],
-          s.reliefLength[1],
-          s.leadCrowning,
-          s.leadSlope,
-          s.basePitch,
-          s.profileForm,
-          s.endRelief,
-          s.endReliefWidth,
-          in.singleStiffness,
-          in.load,
-          static_cast<double>(in.slices),
-          static_cast<double>(in.positions)};
-}
 
 } // namespace
 
@@ -104,7 +61,7 @@ FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, do
       "contact analysis: the slices' stiffness is c_gammabeta = 0.85 c_gammaalpha, as ISO 6336-1 takes it across the "
       "face; the "
       "pitch and profile deviations and the tip relief, which load the pairs along the path (K_Halpha), are left out");
-  auto key = std::make_pair(ev.model().serial, keyOf(in));
+  auto key = std::make_pair(ev.model().serial, dyn::loadedMeshKey(in));
   if (const FaceLoad* hit = cache.find(key)) return *hit;
   FaceLoad out = faceLoad(in);
   out.model = std::move(prov);
