@@ -345,6 +345,16 @@ std::string timeLimitMessage(const std::string& doing, double done, double limit
                      limit, doing, 100 * done, space, estimate);
 }
 
+// By exact ratio, then by values: where the doubles differ by far more than their rounding
+// they decide, and only near-ties compare the rationals.
+void sortByRatio(std::vector<Candidate>& candidates) {
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    if (std::fabs(x.r - y.r) > 1e-12 * std::max(std::fabs(x.r), std::fabs(y.r))) return x.r < y.r;
+    int c = x.ratio.compare(y.ratio);
+    return c != 0 ? c < 0 : x.idx < y.idx;
+  });
+}
+
 StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conjunct*>& local, int jobs) {
   const Model& m = ev.model();
   const StageInfo& info = m.stages[static_cast<size_t>(s)];
@@ -373,6 +383,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     size_t begin = total * static_cast<size_t>(t) / static_cast<size_t>(threads);
     size_t end = total * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
     std::vector<const Conjunct*> open;
+    ch.out.reserve(std::min<size_t>(end - begin, 1 << 16));
     for (size_t k = begin; k < end; ++k) {
       if ((k - begin) % 4096 == 0 && Deadline::expired()) {
         ch.stoppedAt = static_cast<double>(k - begin) / static_cast<double>(end - begin);
@@ -459,10 +470,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
   for (auto& ch : chunks)
     for (auto& c : ch.out)
       res.candidates.push_back(std::move(c));
-  std::sort(res.candidates.begin(), res.candidates.end(), [](const Candidate& x, const Candidate& y) {
-    int c = x.ratio.compare(y.ratio);
-    return c != 0 ? c < 0 : x.idx < y.idx;
-  });
+  sortByRatio(res.candidates);
   return res;
 }
 
@@ -697,6 +705,19 @@ private:
       }
     }
     for (int s = 0; s < k; ++s) {
+      // A stage like an earlier one in every attribute and rule of its own passes the same
+      // candidates (three or four equal stages filter once).
+      int same = -1;
+      for (int e = 0; e < s && same < 0; ++e)
+        if (sameFilter(e, s)) same = e;
+      if (same >= 0) {
+        stages.push_back(stages[static_cast<size_t>(same)]);
+        for (auto& f : stages.back().funnel) {
+          f.scope = m.stages[static_cast<size_t>(s)].ir->name;
+          res.funnel.push_back(f);
+        }
+        continue;
+      }
       stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs));
       if (stages.back().timedOutAt >= 0) {
         res.errors.push_back(timeLimitMessage(fmt::format("filtering the candidates of stage `{}`", m.stages[static_cast<size_t>(s)].ir->name),
@@ -707,6 +728,44 @@ private:
         res.funnel.push_back(f);
       for (auto& note : stages.back().notes)
         res.notes.push_back(note);
+    }
+    return true;
+  }
+
+  // Whether filtering stage b repeats filtering stage a: the same kind, the same
+  // attributes (decisions over the same values, fixed values, materials) and the same
+  // rules of its own, text for text. A stage's own rules and its kind's read its own
+  // attributes only (a rule that reads another stage's decision, as its speed or torque
+  // does downstream, is a cross-stage rule), so the candidates and the funnel are a's.
+  // Not where a's filter left notes (they name the stage).
+  bool sameFilter(int a, int b) const {
+    const ir::Stage &sa = *m.stages[static_cast<size_t>(a)].ir, &sb = *m.stages[static_cast<size_t>(b)].ir;
+    if (sa.kind != sb.kind || sa.gears != sb.gears || sa.presets != sb.presets || !stages[static_cast<size_t>(a)].notes.empty())
+      return false;
+    const auto &la = local[static_cast<size_t>(a)], &lb = local[static_cast<size_t>(b)];
+    if (la.size() != lb.size() || sa.attributes.size() != sb.attributes.size()) return false;
+    for (size_t i = 0; i < la.size(); ++i)
+      if (la[i]->text != lb[i]->text || la[i]->freedom != lb[i]->freedom) return false;
+    auto num = [](const std::optional<units::Number>& x, const std::optional<units::Number>& y) {
+      return x.has_value() == y.has_value() && (!x || (x->isExact() == y->isExact() && x->compare(*y) == 0));
+    };
+    for (const ir::Attribute& x : sa.attributes) {
+      const ir::Attribute* y = sb.find(x.name);
+      if (!y || y->role != x.role || y->key != x.key || y->gear != x.gear || y->integer != x.integer || y->symbol != x.symbol ||
+          y->choice != x.choice || y->sceneRef != x.sceneRef || !num(x.lo, y->lo) || !num(x.hi, y->hi) ||
+          x.members.size() != y->members.size() || !x.value != !y->value || (x.value && ir::print(*x.value) != ir::print(*y->value)))
+        return false;
+      for (size_t i = 0; i < x.members.size(); ++i)
+        if (x.members[i].isExact() != y->members[i].isExact() || x.members[i].compare(y->members[i]) != 0) return false;
+    }
+    // The decisions: the same attributes over the same values, slot for slot.
+    const auto &qa = m.stages[static_cast<size_t>(a)].slots, &qb = m.stages[static_cast<size_t>(b)].slots;
+    if (qa.size() != qb.size()) return false;
+    for (size_t i = 0; i < qa.size(); ++i) {
+      const Slot &x = m.slots[static_cast<size_t>(qa[i])], &y = m.slots[static_cast<size_t>(qb[i])];
+      if (x.attr != y.attr || x.values.size() != y.values.size()) return false;
+      for (size_t v = 0; v < x.values.size(); ++v)
+        if (!x.values[v].exact || !y.values[v].exact || *x.values[v].exact != *y.values[v].exact) return false;
     }
     return true;
   }
@@ -1296,14 +1355,17 @@ private:
       return k <= key0 ? 0 : static_cast<size_t>(std::min<std::uint64_t>((k - key0) >> shift, buckets - 1));
     }
     bool any(double lo, double hi) const {
-      if (bits.empty() || !(lo <= hi)) return true;
+      if (bits.empty() || !(lo <= hi) || lo <= 0) return true;
+      return anyPositive(lo, hi);
+    }
+    // The same for a built table and 0 < lo <= hi.
+    bool anyPositive(double lo, double hi) const {
       // Positive ratios (the table is built only for them): their bits order them.
       std::int64_t a, b;
       std::memcpy(&a, &lo, sizeof a);
       std::memcpy(&b, &hi, sizeof b);
       const std::int64_t top = static_cast<std::int64_t>(buckets - 1), base = static_cast<std::int64_t>(key0 & ~(std::uint64_t{1} << 63));
       std::int64_t q0 = (a - base) >> shift, q1 = (b - base) >> shift;
-      if (lo <= 0) return true;
       if (q1 < 0 || q0 > top) return false;  // wholly below or above the list
       q0 = std::max<std::int64_t>(q0, 0);
       q1 = std::min(q1, top);
@@ -1317,6 +1379,26 @@ private:
     }
   };
   Occupancy occupancy;
+
+  // A short right list's rows of one left index i, from j on: the first j whose window may
+  // hold an entry (the occupancy table), or m1 where the row ends (its floor's entry past
+  // the window). Only products, one load and a bit test per row; the table is built (so
+  // the windows are positive and finite) and the rows' floors are given as fi and floorJ.
+  size_t nextShortRow(size_t j, size_t m1, double invI, const double* inv1, const double* r2, size_t fi, bool floorJ, size_t& scanned) const {
+    const size_t start = j;
+    for (; j < m1; ++j) {
+      double inv = invI * inv1[j];
+      double wh = wantHiC * inv;
+      size_t floor = std::max(fi, floorJ ? j : 0);
+      if (floor >= rn || r2[floor] > wh) {
+        j = m1;
+        break;
+      }
+      if (occupancy.anyPositive(wantLoC * inv, wh)) break;
+    }
+    scanned += j - start;
+    return j;
+  }
 
   void buildOccupancy() {
     if (!rows || right->width() < 1 || rn == 0 || !(wantLoC > 0) || !std::isfinite(wantHiC)) return;
@@ -1391,6 +1473,10 @@ private:
     std::vector<double> inv0(ratios[0].size()), inv1(m1);
     for (size_t i = 0; i < inv0.size(); ++i) inv0[i] = 1 / r0[i];
     for (size_t j = 0; j < m1; ++j) inv1[j] = 1 / r1[j];
+    // A short right list's rows are scanned by nextShortRow, which reads the occupancy
+    // table directly: positive windows only.
+    const bool tight = r2 && !occupancy.bits.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 && wantLoC > 0 &&
+                       wantLoC <= wantHiC;
     auto& cand = w.cand;
     for (size_t i = w.begin; i < w.end; ++i) {
       if (due(w, (i - w.begin) % 64 == 0) && stopHere(w.t, i, w.begin, w.end)) return false;
@@ -1402,6 +1488,10 @@ private:
       size_t loP = right->lowerBound(wantLoC / x0), hiP = right->upperBound(wantHiC / x0);
       double rowPart = fastKey ? base + fastKey->entry(0, cand[0]) : 0;
       for (size_t j = j0; j < m1; ++j) {
+        if (tight) {
+          j = nextShortRow(j, m1, inv0[i], inv1.data(), r2, floorI ? i : 0, floorJ, w.sinceCheck);
+          if (j >= m1) break;
+        }
         if (due(w, false) && stopHere(w.t, i, w.begin, w.end)) return false;
         double x = r0[i] * r1[j];
         double inv = inv0[i] * inv1[j];

@@ -562,3 +562,24 @@ TEST(Search, InterchangeableInAnyWrittenOrderCountsEachOrbitOnce) {
   EXPECT_EQ(counts[1], counts[0]);
   EXPECT_EQ(counts[2], counts[0]);
 }
+
+// Stages equal in every attribute and rule filter once (s2 like s0 takes s0's candidates and
+// funnel under its own name); a stage that differs only in a fixed value its rule reads
+// (s1's module) is filtered on its own. The count is the exact one (Python fractions).
+TEST(Search, EqualStagesFilterOnceAndDifferentOnesEachTheirOwn) {
+  const char* text = R"(gearbox D {
+  stage s0: spur { pinion.z in 12..20; wheel.z in 40..50; normal_module = 3 mm; pressure_angle = 20 deg; require pinion.d >= 45 mm; }
+  stage s1: spur { pinion.z in 12..20; wheel.z in 40..50; normal_module = 4 mm; pressure_angle = 20 deg; require pinion.d >= 45 mm; }
+  stage s2 like s0;
+  require ratio == 30 +- 50%;
+}
+)";
+  Solved s = solveText(text, "D");
+  EXPECT_EQ(s.result.count, 351894u);
+  std::map<std::string, double> removed;
+  for (const auto& f : s.result.funnel)
+    if (f.rule.find("pinion.d") != std::string::npos) removed[f.scope] = f.removed;
+  EXPECT_EQ(removed["s0"], 33);  // pinion.z 12, 13, 14 at 3 mm: d below 45 mm, with each of 11 wheels
+  EXPECT_EQ(removed["s1"], 0);   // at 4 mm every pinion is at least 48 mm
+  EXPECT_EQ(removed["s2"], 33);
+}
