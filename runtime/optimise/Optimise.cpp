@@ -17,6 +17,7 @@
 #include "model/Evaluator.h"
 #include "optimise/Decide.h"
 #include "optimise/Violation.h"
+#include "parallel/Ranks.h"
 
 namespace gbx::rt {
 
@@ -218,6 +219,51 @@ std::string rankCheck(const Model& m, const Model* baseline, const Assignment* b
   return "";
 }
 
+namespace {
+
+// A candidate's run as numbers (for the ranks to exchange): feasible, objective,
+// evaluations, then the freedoms, the terms and the feasible points, each list after its
+// length. An empty vector: not run (the time limit).
+std::vector<double> packCandidate(const Task& task) {
+  std::vector<double> v = {task.feasible ? 1.0 : 0.0, task.bestObjective, static_cast<double>(task.evaluations)};
+  auto list = [&](const std::vector<double>& x) {
+    v.push_back(static_cast<double>(x.size()));
+    v.insert(v.end(), x.begin(), x.end());
+  };
+  list(task.bestFreedoms);
+  list(task.bestTerms);
+  v.push_back(static_cast<double>(task.points.size()));
+  for (const auto& [x, t] : task.points) {
+    list(x);
+    list(t);
+  }
+  return v;
+}
+
+void unpackCandidate(const std::vector<double>& v, OptCandidate& c, std::vector<std::pair<std::vector<double>, std::vector<double>>>& points) {
+  if (v.size() < 3) return;
+  size_t at = 0;
+  auto next = [&]() { return at < v.size() ? v[at++] : 0.0; };
+  auto list = [&]() {
+    size_t n = static_cast<size_t>(next());
+    std::vector<double> x;
+    for (size_t i = 0; i < n && at < v.size(); ++i) x.push_back(v[at++]);
+    return x;
+  };
+  c.feasible = next() != 0;
+  c.objective = next();
+  c.evaluations = static_cast<long>(next());
+  c.freedoms = list();
+  c.terms = list();
+  size_t n = static_cast<size_t>(next());
+  for (size_t i = 0; i < n && at < v.size(); ++i) {
+    std::vector<double> x = list();
+    points.emplace_back(std::move(x), list());
+  }
+}
+
+} // namespace
+
 OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment* baseDesign, const std::vector<Design>& candidates,
                         const OptimiseOptions& opt) {
   OptimiseResult res;
@@ -238,37 +284,32 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
   std::unique_ptr<FreedomPlan> plan;
   if (!readsScenes(m.gearbox) && !m.freedoms.empty()) plan = std::make_unique<FreedomPlan>(m);
 
-  std::vector<OptCandidate> out(candidates.size());
-  std::vector<std::vector<std::pair<std::vector<double>, std::vector<double>>>> clouds(candidates.size());
-  std::atomic<size_t> next{0}, done{0};
-  auto worker = [&](int t) {
+  // Each candidate's Nelder-Mead run is one task over the threads and, under mpirun, the
+  // ranks (a fixed point of the pass: every rank reaches it once per gearbox); its result
+  // packed into numbers, which every rank receives in candidate order.
+  std::atomic<size_t> done{0};
+  const std::thread::id mainThread = std::this_thread::get_id();
+  auto runOne = [&](size_t i) {
+    if (Deadline::expired()) return std::vector<double>{};  // the solve stops and says so
     Evaluator ev(m);
     installHooks(ev, m, nullptr, nullptr, opt.sceneRtol);
     ev.baseline = sharedBaseline;
-    for (size_t i = next++; i < candidates.size(); i = next++) {
-      if (Deadline::expired()) break;  // the solve stops and says so
-      Assignment a(m);
-      a.choice = candidates[i].choice;
-      Task task{&m, &ev, &a, {}, {}, &terms, {}, 0, INFINITY, {}, {}, false};
-      runCandidate(task, m, ev, a, plan.get(), terms, opt);
-      OptCandidate& c = out[i];
-      c.choice = candidates[i].choice;
-      c.ratio = candidates[i].ratio;
-      c.feasible = task.feasible;
-      c.objective = task.bestObjective;
-      c.freedoms = task.bestFreedoms;
-      c.terms = task.bestTerms;
-      c.evaluations = task.evaluations;
-      clouds[i] = std::move(task.points);
-      size_t d = ++done;
-      if (t == 0 && opt.progress) opt.progress(static_cast<double>(d) / static_cast<double>(candidates.size()));
-    }
+    Assignment a(m);
+    a.choice = candidates[i].choice;
+    Task task{&m, &ev, &a, {}, {}, &terms, {}, 0, INFINITY, {}, {}, false};
+    runCandidate(task, m, ev, a, plan.get(), terms, opt);
+    size_t d = ++done;
+    if (opt.progress && std::this_thread::get_id() == mainThread) opt.progress(static_cast<double>(d) / static_cast<double>(candidates.size()));
+    return packCandidate(task);
   };
-  int threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(candidates.size())));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker, t);
-  worker(0);
-  for (auto& th : pool) th.join();
+  std::vector<std::vector<double>> packed = par::map(candidates.size(), opt.jobs, runOne, true);
+  std::vector<OptCandidate> out(candidates.size());
+  std::vector<std::vector<std::pair<std::vector<double>, std::vector<double>>>> clouds(candidates.size());
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    out[i].choice = candidates[i].choice;
+    out[i].ratio = candidates[i].ratio;
+    unpackCandidate(packed[i], out[i], clouds[i]);
+  }
   if (opt.progress) opt.progress(1.0);
 
   for (size_t i = 0; i < out.size(); ++i) {
