@@ -2,6 +2,8 @@
 # Runs the search benchmark and rewrites docs/performance.md. Same-run comparisons only:
 # this machine is shared, so every ratio below comes from one invocation of this script.
 #   bench/run.sh            (builds first if needed)
+#   GBX_BASELINE=OTHER/gbxc GBX_BASELINE_NAME="gbxc at 87b43f7" bench/run.sh
+#                           (the marine optimisation timed against another build as well)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [[ -x build/bench/search_bench ]] || ./scripts/setup.sh >/dev/null

@@ -37,21 +37,32 @@ Fourier contactLineSeries(double epsAlpha, double epsBeta, int harmonics) {
 
 namespace {
 // Sum over the harmonics of term(k, cos 2 pi (k+1) tau, sin 2 pi (k+1) tau) into acc[lane]:
-// one sincos, then four interleaved angle-addition chains, each stepping by 4 w, so the
-// chains (and the sums, one per lane) do not wait on each other.
+// one sincos, then (from eight harmonics on) four interleaved angle-addition chains, each
+// stepping by 4 w, so the chains (and the sums, one per lane) do not wait on each other.
 template <size_t Sums, class Term>
 void overHarmonics(size_t n, double tau, double (&acc)[Sums][4], Term term) {
   double w = 2.0 * M_PI * (tau - std::floor(tau));
   double c[4], s[4];
   c[0] = std::cos(w);
   s[0] = std::sin(w);
+  for (auto& lanes : acc)
+    for (double& v : lanes) v = 0.0;
+  if (n < 8) {
+    // A few harmonics: one chain costs less than setting up four.
+    double ck = c[0], sk = s[0];
+    for (size_t k = 0; k < n; ++k) {
+      term(k, ck, sk, acc, 0);
+      double cn = ck * c[0] - sk * s[0], sn = sk * c[0] + ck * s[0];
+      ck = cn;
+      sk = sn;
+    }
+    return;
+  }
   for (size_t q = 1; q < 4; ++q) {
     c[q] = c[q - 1] * c[0] - s[q - 1] * s[0];
     s[q] = s[q - 1] * c[0] + c[q - 1] * s[0];
   }
   double c4 = c[3], s4 = s[3];  // the step of each chain: 4 w
-  for (auto& lanes : acc)
-    for (double& v : lanes) v = 0.0;
   size_t k = 0;
   for (; k + 4 <= n; k += 4)
     for (size_t q = 0; q < 4; ++q) {

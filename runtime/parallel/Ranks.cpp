@@ -102,6 +102,7 @@ Session::~Session() {
 
 int rank() { return gRank; }
 bool alone() { return gLoneRank; }
+int sharingRanks() { return std::this_thread::get_id() == gMain && gStarted && gRanks > 1 ? gRanks : 1; }
 
 void setJobs(int jobs) { gJobs = std::max(1, jobs); }
 int jobs() { return gJobs; }

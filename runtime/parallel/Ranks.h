@@ -20,6 +20,9 @@ public:
 };
 
 int rank();  // 0 without MPI
+// How many ranks a sharing map() called here would deal its work to: 1 without MPI, alone,
+// or off the program's main thread.
+int sharingRanks();
 inline bool root() { return rank() == 0; }
 // Started by mpirun in a build without MPI: rank() is the launcher's, and nothing is shared.
 bool alone();

@@ -16,6 +16,7 @@
 #include "catalogue/StageKinds.h"
 #include "model/Deadline.h"
 #include "model/StageKind.h"
+#include "parallel/Ranks.h"
 #include "search/FastKey.h"
 #include "search/HalfList.h"
 
@@ -1568,11 +1569,13 @@ private:
     return true;
   }
 
+  // One share of the rows: slot t of all the ranks' threads (locals.size()).
   void sweep(int t) {
     Local& lo = locals[static_cast<size_t>(t)];
     lo.crossRemoved.assign(cross.size(), 0);
-    size_t begin = n * static_cast<size_t>(t) / static_cast<size_t>(threads);
-    size_t end = n * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
+    const size_t slots = locals.size();
+    size_t begin = n * static_cast<size_t>(t) / slots;
+    size_t end = n * static_cast<size_t>(t + 1) / slots;
     if (begin >= end || rn == 0) return;
     bool report = t == 0 && opt.progress && (rows ? n * n1 : n) > 1000000;
     Walk w{t, lo, Assignment(m), std::vector<std::uint32_t>(kk + 1, 0), std::vector<double>(nk + 1, 0), begin, end, 0, report};
@@ -1600,15 +1603,26 @@ private:
     // and the canonical order at most a floor.
     arith = !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny && (floorOnly || crossing.empty());
     buildOccupancy();
-    locals.resize(static_cast<size_t>(threads));
-    walkBudget = opt.maxDesigns * kCheckedShare / static_cast<double>(threads);
-    joinDone.assign(static_cast<size_t>(threads), 1.0);
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t)
-      pool.emplace_back([this, t] { sweep(t); });
-    sweep(0);
-    for (auto& th : pool)
-      th.join();
+    // The rows dealt to every rank's threads; each rank sweeps its own slots and receives
+    // the others' counts and kept designs (a fixed point: every rank searches alike).
+    const int ranks = par::sharingRanks();
+    const size_t slots = static_cast<size_t>(threads) * static_cast<size_t>(ranks);
+    locals.resize(slots);
+    walkBudget = opt.maxDesigns * kCheckedShare / static_cast<double>(slots);
+    joinDone.assign(slots, 1.0);
+    auto shares = par::map(static_cast<size_t>(ranks), 1, [&](size_t r) {
+      int first = static_cast<int>(r) * threads;
+      std::vector<std::thread> pool;
+      for (int t = 1; t < threads; ++t)
+        pool.emplace_back([this, first, t] { sweep(first + t); });
+      sweep(first);
+      for (auto& th : pool)
+        th.join();
+      return ranks > 1 ? packShare(first) : std::vector<double>{};
+    }, true);
+    if (ranks > 1)
+      for (size_t r = 0; r < shares.size(); ++r)
+        if (static_cast<int>(r) != par::rank()) unpackShare(shares[r], static_cast<int>(r) * threads);
     if (overWalked) {
       res.errors.push_back(fmt::format("the rules across stages are checked design by design, and more than {:.3g} designs (a fiftieth "
                                        "of the search budget, --max-designs {:.3g}) of the {:.3g} combinations need it; narrow the "
@@ -1624,6 +1638,60 @@ private:
       return false;
     }
     return true;
+  }
+
+  // A rank's share of the join as numbers: the stop flags, then per thread its counts, its
+  // completed fraction and its kept designs (keys, candidates, heap), each list after its
+  // length. Counts go as two 32-bit halves (exact in a double).
+  std::vector<double> packShare(int first) const {
+    std::vector<double> v = {timedOut ? 1.0 : 0.0, overWalked ? 1.0 : 0.0};
+    auto count = [&](unsigned long long c) {
+      v.push_back(static_cast<double>(c >> 32));
+      v.push_back(static_cast<double>(c & 0xFFFFFFFFull));
+    };
+    auto list = [&](const auto& x) {
+      v.push_back(static_cast<double>(x.size()));
+      for (auto e : x) v.push_back(static_cast<double>(e));
+    };
+    for (int t = first; t < first + threads; ++t) {
+      const Local& lo = locals[static_cast<size_t>(t)];
+      count(lo.count);
+      count(lo.undecided);
+      v.insert(v.end(), {lo.inWindow, lo.duplicates, lo.walked, lo.overKept ? 1.0 : 0.0, joinDone[static_cast<size_t>(t)]});
+      list(lo.crossRemoved);
+      list(lo.keys);
+      list(lo.cand);
+      list(lo.heap);
+    }
+    return v;
+  }
+  void unpackShare(const std::vector<double>& v, int first) {
+    size_t at = 0;
+    auto next = [&]() { return at < v.size() ? v[at++] : 0.0; };
+    auto count = [&]() {
+      auto hi = static_cast<unsigned long long>(next());
+      return hi << 32 | static_cast<unsigned long long>(next());
+    };
+    auto list = [&](auto& x) {
+      x.resize(static_cast<size_t>(next()));
+      for (auto& e : x) e = static_cast<std::remove_reference_t<decltype(e)>>(next());
+    };
+    if (next() != 0) timedOut = true;
+    if (next() != 0) overWalked = true;
+    for (int t = first; t < first + threads; ++t) {
+      Local& lo = locals[static_cast<size_t>(t)];
+      lo.count = count();
+      lo.undecided = count();
+      lo.inWindow = next();
+      lo.duplicates = next();
+      lo.walked = next();
+      lo.overKept = next() != 0;
+      joinDone[static_cast<size_t>(t)] = next();
+      list(lo.crossRemoved);
+      list(lo.keys);
+      list(lo.cand);
+      list(lo.heap);
+    }
   }
 
   // ---- the ranked list ----------------------------------------------------------------------
