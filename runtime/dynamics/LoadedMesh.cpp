@@ -63,6 +63,7 @@ struct Contacts {
 // Starting from the last position's root takes one or two passes.
 struct Approach {
   double delta, K;
+  bool settled = true;
 };
 Approach approach(const Contacts& pts, double load, double start) {
   size_t n = pts.n;
@@ -101,7 +102,7 @@ Approach approach(const Contacts& pts, double load, double start) {
     last = count;
     delta = next;
   }
-  return {delta, K};
+  return {delta, K, false};
 }
 
 } // namespace
@@ -138,6 +139,13 @@ LoadedMeshTable tabulate(const LoadedMeshInput& in) {
   out.pathLength = path;
   if (!(path > 0) || !(g.basePitch > 0) || !(g.faceWidth > 0)) {
     out.failure = fmt::format("the flanks have no path of contact (length {:.4g} mm)", path * 1e3);
+    return out;
+  }
+  // The approach is where the pairs in contact carry the load: none without a load.
+  if (!(in.load > 0) || !std::isfinite(in.load)) {
+    out.failure = fmt::format("the mesh carries no load ({:.4g} N along the line of action): the loaded contact needs a positive "
+                              "torque through the stage",
+                              in.load);
     return out;
   }
   double p = g.basePitch, b = g.faceWidth, shift = std::tan(g.baseHelix);
@@ -186,6 +194,10 @@ LoadedMeshTable tabulate(const LoadedMeshInput& in) {
       return out;
     }
     Approach a = approach(pts, in.load, std::isnan(delta) ? -INFINITY : delta);
+    if (!a.settled) {
+      out.failure = fmt::format("the load balance at mesh position {}/{} did not settle (the pairs in contact kept changing)", i, P);
+      return out;
+    }
     delta = a.delta;
     if (in.sliceLoads)
       for (size_t q = 0; q < n; ++q)

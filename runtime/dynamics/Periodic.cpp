@@ -189,7 +189,7 @@ PeriodicOrbit newton(const System& sys, const Accuracy& acc, const PeriodicOptio
     double damp = sn > 10.0 ? 10.0 / sn : 1.0;
     for (size_t i = 0; i < n; ++i) y0[i] += damp * step[i];
     lastStep = damp * sn;
-    if (opt.linear && !opt.confirmLinear && damp == 1.0) {
+    if (opt.linear && !opt.confirmLinear && damp == 1.0 && std::isfinite(sn)) {
       o.y0 = y0;
       o.converged = true;
       o.unconfirmed = true;

@@ -353,16 +353,28 @@ void describeOrbit(SceneResult& r, double Tz) {
 }
 
 // A linear orbit found in one Newton step: the record run, carried on to the end of the
-// orbit's first period, comes back to its start to within the residual.
-void confirmOrbit(Integrator& integ, double t, std::vector<double> y, const std::vector<double>* atPeriod, const System& sys,
-                  SceneResult& r, double Tz) {
-  if (!r.orbitUnconfirmed) return;
-  if (atPeriod) y = *atPeriod;
-  else if (!integ.advance(t, y, r.period, {}, [](double, const double*) {})) y.assign(y.size(), NAN);
+// orbit's first period (or read there), comes back to its start to within the residual.
+// Where the run is past that end without a sample on it, or cannot be carried on, a period
+// from the orbit's start on its own. The failure, or "".
+std::string confirmOrbit(Integrator& integ, double t, std::vector<double> y, const std::vector<double>* atPeriod, const System& sys,
+                         const Accuracy& acc, SceneResult& r, double Tz) {
+  if (!r.orbitUnconfirmed) return "";
+  auto none = [](double, const double*) {};
+  if (atPeriod) {
+    y = *atPeriod;
+  } else if (!(t < r.period && integ.advance(t, y, r.period, {}, none))) {
+    Integrator fresh(sys, acc);
+    double t0 = 0;
+    y = r.orbit;
+    bool ok = fresh.advance(t0, y, r.period, {}, none);
+    r.stats += fresh.stats();
+    if (!ok) return "confirming the periodic orbit over its period: " + fresh.error();
+  }
   std::vector<double> d(y.size());
   for (size_t i = 0; i < d.size(); ++i) d[i] = y[i] - r.orbit[i];
   r.newtonResidual = scaledNorm(d, sys.scale);
   describeOrbit(r, Tz);
+  return "";
 }
 
 // `settle = N` integrates exactly N periods; whether the transient has died out there is
@@ -427,10 +439,12 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
     record(Signal::InputSpeed, s.inputSpeed);
     record(Signal::OutputSpeed, s.outputSpeed);
   });
-  if (ok) confirmOrbit(integ, t, y, atPeriod.empty() ? nullptr : &atPeriod, model.system(), r, 1.0 / ms.meshFrequency);
+  std::string confirmFailure;
+  if (ok) confirmFailure = confirmOrbit(integ, t, y, atPeriod.empty() ? nullptr : &atPeriod, model.system(), acc, r, 1.0 / ms.meshFrequency);
   r.stats += integ.stats();
   samples.staticLoad = p.staticLoad;
   if (!ok) return integ.error();
+  if (!confirmFailure.empty()) return confirmFailure;
   checkSettled(model, tp, acc, r);
   return "";
 }

@@ -21,6 +21,10 @@ public:
               std::memory_order_relaxed);
   }
   static void clear() { start(0); }
+  // Past the limit from now on (another MPI rank reached it: every rank must stop alike).
+  static void expireNow() {
+    if (limit_.load(std::memory_order_relaxed) > 0) at_.store(1, std::memory_order_relaxed);
+  }
   static bool expired() {
     auto at = at_.load(std::memory_order_relaxed);
     return at != 0 && Clock::now().time_since_epoch().count() >= at;

@@ -221,6 +221,9 @@ std::string rankCheck(const Model& m, const Model* baseline, const Assignment* b
 
 namespace {
 
+// A candidate stopped by the time limit, in place of its numbers.
+constexpr double kTimedOut = -1;
+
 // A candidate's run as numbers (for the ranks to exchange): feasible, objective,
 // evaluations, then the freedoms, the terms and the feasible points, each list after its
 // length. An empty vector: not run (the time limit).
@@ -241,7 +244,7 @@ std::vector<double> packCandidate(const Task& task) {
 }
 
 void unpackCandidate(const std::vector<double>& v, OptCandidate& c, std::vector<std::pair<std::vector<double>, std::vector<double>>>& points) {
-  if (v.size() < 3) return;
+  if (v.size() < 3) return;  // not run, or stopped by the time limit
   size_t at = 0;
   auto next = [&]() { return at < v.size() ? v[at++] : 0.0; };
   auto list = [&]() {
@@ -288,9 +291,10 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
   // ranks (a fixed point of the pass: every rank reaches it once per gearbox); its result
   // packed into numbers, which every rank receives in candidate order.
   std::atomic<size_t> done{0};
-  const std::thread::id mainThread = std::this_thread::get_id();
+  std::mutex progressLock;
   auto runOne = [&](size_t i) {
-    if (Deadline::expired()) return std::vector<double>{};  // the solve stops and says so
+    // Past the time limit: a marker, so that every rank stops alike (the solve says so).
+    if (Deadline::expired()) return std::vector<double>{kTimedOut};
     Evaluator ev(m);
     installHooks(ev, m, nullptr, nullptr, opt.sceneRtol);
     ev.baseline = sharedBaseline;
@@ -298,11 +302,17 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
     a.choice = candidates[i].choice;
     Task task{&m, &ev, &a, {}, {}, &terms, {}, 0, INFINITY, {}, {}, false};
     runCandidate(task, m, ev, a, plan.get(), terms, opt);
+    if (Deadline::expired()) return std::vector<double>{kTimedOut};  // cut short: not an optimum
     size_t d = ++done;
-    if (opt.progress && std::this_thread::get_id() == mainThread) opt.progress(static_cast<double>(d) / static_cast<double>(candidates.size()));
+    if (opt.progress) {
+      std::lock_guard<std::mutex> hold(progressLock);
+      opt.progress(static_cast<double>(d) / static_cast<double>(candidates.size()));
+    }
     return packCandidate(task);
   };
   std::vector<std::vector<double>> packed = par::map(candidates.size(), opt.jobs, runOne, true);
+  for (const auto& p : packed)
+    if (p.size() == 1 && p[0] == kTimedOut) Deadline::expireNow();
   std::vector<OptCandidate> out(candidates.size());
   std::vector<std::vector<std::pair<std::vector<double>, std::vector<double>>>> clouds(candidates.size());
   for (size_t i = 0; i < candidates.size(); ++i) {

@@ -1676,7 +1676,11 @@ private:
       x.resize(static_cast<size_t>(next()));
       for (auto& e : x) e = static_cast<std::remove_reference_t<decltype(e)>>(next());
     };
-    if (next() != 0) timedOut = true;
+    // Another rank's time limit stops this one too, so that every rank reports alike.
+    if (next() != 0) {
+      timedOut = true;
+      Deadline::expireNow();
+    }
     if (next() != 0) overWalked = true;
     for (int t = first; t < first + threads; ++t) {
       Local& lo = locals[static_cast<size_t>(t)];

@@ -331,3 +331,23 @@ TEST(LoadedMesh, SeriesEvaluationAgreesWithDirectSums) {
     }
   }
 }
+
+// Without a load there is no approach at which the pairs carry it: the table says so instead
+// of returning a transmission error and stiffness (zero, negative and NaN loads).
+TEST(LoadedMesh, NoLoadIsAFailureNotATable) {
+  for (double load : {0.0, -100.0, static_cast<double>(NAN)}) {
+    LoadedMeshInput in = pair(22, 87, 16e-3, 13.95, 0.41, kCPrime, load);
+    in.slices = 20;
+    in.positions = 32;
+    LoadedMeshTable t = loadedMesh(in);
+    EXPECT_NE(t.failure.find("carries no load"), std::string::npos) << load << ": " << t.failure;
+    EXPECT_TRUE(t.te.empty());
+  }
+  // A light but positive load still tabulates: the first pair to touch carries it.
+  LoadedMeshInput in = pair(22, 87, 16e-3, 13.95, 0.41, kCPrime, 1e-3);
+  in.slices = 20;
+  in.positions = 32;
+  LoadedMeshTable t = loadedMesh(in);
+  EXPECT_TRUE(t.failure.empty()) << t.failure;
+  EXPECT_EQ(t.te.size(), 32u);
+}
