@@ -177,9 +177,12 @@ LoadedMeshTable tabulate(const LoadedMeshInput& in) {
       // The slice's first pair lies at (tau - phase) mod 1 base pitches along the path.
       double t0 = tau - phase[static_cast<size_t>(j)];
       if (t0 < 0) t0 += 1.0;
-      for (double t = t0; t <= eps; t += 1.0) {
+      if (t0 >= 1.0) t0 = 0.0;  // just below 0 and rounded up to 1: the pair is coming in
+      // Each pair touches over [0, eps_alpha) base pitches (to within a billionth of one):
+      // where one pair leaves as the next comes in (a whole contact ratio), a position
+      // counts one of them, not both.
+      for (double t = t0; t < eps - 1e-9; t += 1.0) {
         double s = t * p;
-        if (s > path) break;
         double c = cScale * singlePairShape(s * invPath);
         pts.gap[n] = sep.profile(s) + lead[static_cast<size_t>(j)];
         pts.c[n] = c;
