@@ -60,7 +60,8 @@ struct Contacts {
 // convex, piecewise linear and increasing, so Newton's step from any delta with a pair in
 // contact lands at or beyond the root and from there descends to it; it ends when the pairs
 // in contact stop changing, which is the exact root of the piecewise-linear equation.
-// Starting from the last position's root takes one or two passes.
+// Starting from the last position's root takes two passes as a rule (one to find the
+// pairs, one to see them unchanged).
 struct Approach {
   double delta, K;
   bool settled = true;
@@ -87,16 +88,8 @@ Approach approach(const Contacts& pts, double load, double start) {
   for (size_t it = 0; it < n + 2; ++it) {
     double next = pass(delta, count, K);
     // No pair touches below delta: every pair in contact bounds the root from above.
-    if (count == 0) {
-      double KG = 0;
-      K = 0;
-      for (size_t i = 0; i < n; ++i) {
-        K += c[i];
-        KG += c[i] * gap[i];
-      }
-      next = (load + KG) / K;
-      count = n;
-    } else if (count == last) {
+    if (count == 0) next = pass(INFINITY, count, K);
+    else if (count == last) {
       return {next, K};
     }
     last = count;

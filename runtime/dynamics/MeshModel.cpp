@@ -97,8 +97,8 @@ struct MeshKernel {
     if (vslope) *vslope = kv;
     return load - f;
   }
-  static void rhs(const MeshModel& m, double t, const double* y, double* dy) {
-    double f = force(m, t, y, nullptr, nullptr);
+  static void rhs(const MeshModel& m, double t, const double* y, double* dy) { derivatives(m, t, y, force(m, t, y, nullptr, nullptr), dy); }
+  static void derivatives(const MeshModel& m, double t, const double* y, double f, double* dy) {
     dy[0] = y[1];
     dy[1] = f / m.p_.mass;
     if constexpr (T::phase == drivephase::State) dy[2] = m.p_.drive.speed(t);
@@ -118,10 +118,7 @@ struct MeshKernel {
   // Both from one evaluation of the force (the variational equations read both each step).
   static void rhsDfdy(const MeshModel& m, double t, const double* y, double* dy, double* J) {
     double k, kv;
-    double f = force(m, t, y, &k, &kv);
-    dy[0] = y[1];
-    dy[1] = f / m.p_.mass;
-    if constexpr (T::phase == drivephase::State) dy[2] = m.p_.drive.speed(t);
+    derivatives(m, t, y, force(m, t, y, &k, &kv), dy);
     jacobian(m, k, kv, J);
   }
 };

@@ -8,7 +8,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include <fmt/format.h>
 #include <gsl/gsl_multimin.h>
@@ -17,6 +16,7 @@
 #include "model/Evaluator.h"
 #include "optimise/Decide.h"
 #include "optimise/Violation.h"
+#include "parallel/Numbers.h"
 #include "parallel/Ranks.h"
 
 namespace gbx::rt {
@@ -225,43 +225,35 @@ namespace {
 constexpr double kTimedOut = -1;
 
 // A candidate's run as numbers (for the ranks to exchange): feasible, objective,
-// evaluations, then the freedoms, the terms and the feasible points, each list after its
-// length. An empty vector: not run (the time limit).
+// evaluations, then the freedoms, the terms and the feasible points (each list after its
+// length). A single kTimedOut: stopped by the time limit.
 std::vector<double> packCandidate(const Task& task) {
-  std::vector<double> v = {task.feasible ? 1.0 : 0.0, task.bestObjective, static_cast<double>(task.evaluations)};
-  auto list = [&](const std::vector<double>& x) {
-    v.push_back(static_cast<double>(x.size()));
-    v.insert(v.end(), x.begin(), x.end());
-  };
-  list(task.bestFreedoms);
-  list(task.bestTerms);
-  v.push_back(static_cast<double>(task.points.size()));
+  par::NumbersOut out;
+  out.put(task.feasible ? 1.0 : 0.0);
+  out.put(task.bestObjective);
+  out.put(static_cast<double>(task.evaluations));
+  out.list(task.bestFreedoms);
+  out.list(task.bestTerms);
+  out.put(static_cast<double>(task.points.size()));
   for (const auto& [x, t] : task.points) {
-    list(x);
-    list(t);
+    out.list(x);
+    out.list(t);
   }
-  return v;
+  return out.take();
 }
 
 void unpackCandidate(const std::vector<double>& v, OptCandidate& c, std::vector<std::pair<std::vector<double>, std::vector<double>>>& points) {
-  if (v.size() < 3) return;  // not run, or stopped by the time limit
-  size_t at = 0;
-  auto next = [&]() { return at < v.size() ? v[at++] : 0.0; };
-  auto list = [&]() {
-    size_t n = static_cast<size_t>(next());
-    std::vector<double> x;
-    for (size_t i = 0; i < n && at < v.size(); ++i) x.push_back(v[at++]);
-    return x;
-  };
-  c.feasible = next() != 0;
-  c.objective = next();
-  c.evaluations = static_cast<long>(next());
-  c.freedoms = list();
-  c.terms = list();
-  size_t n = static_cast<size_t>(next());
-  for (size_t i = 0; i < n && at < v.size(); ++i) {
-    std::vector<double> x = list();
-    points.emplace_back(std::move(x), list());
+  if (v.size() < 3) return;  // stopped by the time limit
+  par::NumbersIn in(v);
+  c.feasible = in.next() != 0;
+  c.objective = in.next();
+  c.evaluations = static_cast<long>(in.next());
+  in.list(c.freedoms);
+  in.list(c.terms);
+  points.resize(static_cast<size_t>(in.next()));
+  for (auto& [x, t] : points) {
+    in.list(x);
+    in.list(t);
   }
 }
 

@@ -16,6 +16,7 @@
 #include "catalogue/StageKinds.h"
 #include "model/Deadline.h"
 #include "model/StageKind.h"
+#include "parallel/Numbers.h"
 #include "parallel/Ranks.h"
 #include "search/FastKey.h"
 #include "search/HalfList.h"
@@ -1641,60 +1642,44 @@ private:
   }
 
   // A rank's share of the join as numbers: the stop flags, then per thread its counts, its
-  // completed fraction and its kept designs (keys, candidates, heap), each list after its
-  // length. Counts go as two 32-bit halves (exact in a double).
+  // completed fraction and its kept designs (keys, candidates, heap).
   std::vector<double> packShare(int first) const {
-    std::vector<double> v = {timedOut ? 1.0 : 0.0, overWalked ? 1.0 : 0.0};
-    auto count = [&](unsigned long long c) {
-      v.push_back(static_cast<double>(c >> 32));
-      v.push_back(static_cast<double>(c & 0xFFFFFFFFull));
-    };
-    auto list = [&](const auto& x) {
-      v.push_back(static_cast<double>(x.size()));
-      for (auto e : x) v.push_back(static_cast<double>(e));
-    };
+    par::NumbersOut out;
+    out.put(timedOut ? 1.0 : 0.0);
+    out.put(overWalked ? 1.0 : 0.0);
     for (int t = first; t < first + threads; ++t) {
       const Local& lo = locals[static_cast<size_t>(t)];
-      count(lo.count);
-      count(lo.undecided);
-      v.insert(v.end(), {lo.inWindow, lo.duplicates, lo.walked, lo.overKept ? 1.0 : 0.0, joinDone[static_cast<size_t>(t)]});
-      list(lo.crossRemoved);
-      list(lo.keys);
-      list(lo.cand);
-      list(lo.heap);
+      out.count(lo.count);
+      out.count(lo.undecided);
+      for (double x : {lo.inWindow, lo.duplicates, lo.walked, lo.overKept ? 1.0 : 0.0, joinDone[static_cast<size_t>(t)]}) out.put(x);
+      out.list(lo.crossRemoved);
+      out.list(lo.keys);
+      out.list(lo.cand);
+      out.list(lo.heap);
     }
-    return v;
+    return out.take();
   }
   void unpackShare(const std::vector<double>& v, int first) {
-    size_t at = 0;
-    auto next = [&]() { return at < v.size() ? v[at++] : 0.0; };
-    auto count = [&]() {
-      auto hi = static_cast<unsigned long long>(next());
-      return hi << 32 | static_cast<unsigned long long>(next());
-    };
-    auto list = [&](auto& x) {
-      x.resize(static_cast<size_t>(next()));
-      for (auto& e : x) e = static_cast<std::remove_reference_t<decltype(e)>>(next());
-    };
+    par::NumbersIn in(v);
     // Another rank's time limit stops this one too, so that every rank reports alike.
-    if (next() != 0) {
+    if (in.next() != 0) {
       timedOut = true;
       Deadline::expireNow();
     }
-    if (next() != 0) overWalked = true;
+    if (in.next() != 0) overWalked = true;
     for (int t = first; t < first + threads; ++t) {
       Local& lo = locals[static_cast<size_t>(t)];
-      lo.count = count();
-      lo.undecided = count();
-      lo.inWindow = next();
-      lo.duplicates = next();
-      lo.walked = next();
-      lo.overKept = next() != 0;
-      joinDone[static_cast<size_t>(t)] = next();
-      list(lo.crossRemoved);
-      list(lo.keys);
-      list(lo.cand);
-      list(lo.heap);
+      lo.count = in.count();
+      lo.undecided = in.count();
+      lo.inWindow = in.next();
+      lo.duplicates = in.next();
+      lo.walked = in.next();
+      lo.overKept = in.next() != 0;
+      joinDone[static_cast<size_t>(t)] = in.next();
+      in.list(lo.crossRemoved);
+      in.list(lo.keys);
+      in.list(lo.cand);
+      in.list(lo.heap);
     }
   }
 

@@ -37,6 +37,14 @@ LoadedMeshInput pair(double z1, double z2, double mn, double betaDeg, double b, 
 
 constexpr double kCPrime = 14e9;  // 14 N/(mm*um)
 
+// Tip radii that make the path of contact exactly two base pitches long (a pair of equal
+// gears, both alike): eps_alpha 2.
+void pathOfTwoBasePitches(LoadedMeshInput& in) {
+  double rb = in.g.rb1, a = in.g.centerDistance, pb = in.g.basePitch;
+  double roll = 0.5 * (2.0 * pb + a * std::sin(in.g.workingPressureAngle));
+  in.g.ra1 = in.g.ra2 = std::sqrt(roll * roll + rb * rb);
+}
+
 // The seed 003 turbine pair (DOMAIN.md §4): 33/103, mn 6.5 mm, beta 10.82 deg, b 225 mm, 7500 kW at 9364 rpm.
 LoadedMeshInput turbine(double relief, double loadFactor) {
   double T1 = 7500e3 / (9364 * M_PI / 30);
@@ -95,10 +103,7 @@ TEST(LoadedMesh, LightLoadSpurIsTheContactRatioSquareWave) {
 // + (xi + 1/2)(1/2 - xi)) c' b for xi in [0, 1/2]: from 1.7 to 1.85.
 TEST(LoadedMesh, StiffnessVariationCollapsesAtContactRatioTwo) {
   LoadedMeshInput in = pair(40, 40, 4e-3, 0, 0.040, kCPrime, 1000.0);
-  // Tip radii that make the path exactly two base pitches long (both gears alike).
-  double rb = in.g.rb1, a = in.g.centerDistance, pb = in.g.basePitch;
-  double roll = 0.5 * (2.0 * pb + a * std::sin(in.g.workingPressureAngle));
-  in.g.ra1 = in.g.ra2 = std::sqrt(roll * roll + rb * rb);
+  pathOfTwoBasePitches(in);
   in.slices = 1;
   in.positions = 400;
   LoadedMeshTable t = loadedMesh(in);
@@ -364,9 +369,7 @@ TEST(LoadedMesh, WholeContactRatioCountsEachPairOnce) {
   for (int z = 20; z <= 60; ++z)
     for (double mn : {2e-3, 3e-3, 4e-3, 5e-3, 6.5e-3}) {
       LoadedMeshInput in = pair(z, z, mn, 0, 10 * mn, kCPrime, 1000.0);
-      double rb = in.g.rb1, a = in.g.centerDistance, pb = in.g.basePitch;
-      double roll = 0.5 * (2.0 * pb + a * std::sin(in.g.workingPressureAngle));
-      in.g.ra1 = in.g.ra2 = std::sqrt(roll * roll + rb * rb);
+      pathOfTwoBasePitches(in);
       in.slices = 1;
       in.positions = 64;
       LoadedMeshTable t = loadedMesh(in);
