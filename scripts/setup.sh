@@ -40,7 +40,7 @@ fi
 # same report as one thread.
 packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
           libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium python3-jsonschema dpkg-dev file universal-ctags
-          libopenmpi-dev openmpi-bin ${extra_packages[@]+"${extra_packages[@]}"})
+          libopenmpi-dev openmpi-bin libnlopt-dev ${extra_packages[@]+"${extra_packages[@]}"})
 missing=()
 for p in "${packages[@]}"; do
   # Installed, not merely known to dpkg (a removed package keeps its config-files state).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -9,6 +10,7 @@
 #include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
 #include "model/Evaluator.h"
+#include "model/Recent.h"
 #include "model/Standards.h"
 
 namespace gbx::rt::rating {
@@ -499,34 +501,164 @@ bool modelFactors(const KindContext& c, Rated& g, std::string* why, bool estimat
 // rated for it (the smallest of a safety or film thickness, the largest of a temperature).
 enum class Worst { Governing, Smallest, Largest };
 
+// A stage's ratings at every corner of its inputs, as every rating quantity of that design
+// reads them: a design's four safeties, its stresses and factors are rated once, not once
+// each, and the search's check of a rule over a box rates its corners once for all its rules.
+struct RatedCorners {
+  std::optional<Rated> g;
+  bool ranged = false;                          // some input spans an interval
+  std::vector<std::vector<PairRating>> corners; // empty where an input has no value
+  std::vector<bool> failed;                     // per corner: the rating refused its geometry
+};
+
+// Whether nothing of a stage's attributes reads another stage or the gearbox: then its rating
+// depends on the rest of the design only through its operating point.
+bool readsOwnStage(const ir::Expr& e, int stage, int depth = 0) {
+  if (depth > 64) return false;
+  switch (e.op) {
+  case ir::Op::Quantity:
+    if (e.ref.owner == ir::QuantityRef::Stage && e.ref.index != stage) return false;
+    if (e.ref.owner != ir::QuantityRef::Stage && e.ref.owner != ir::QuantityRef::Material) return false;
+    break;
+  case ir::Op::Let:
+  case ir::Op::Scatter:
+  case ir::Op::SceneOutput:
+  case ir::Op::Relative: return false;
+  default: break;
+  }
+  for (const auto& x : e.args)
+    if (x && !readsOwnStage(*x, stage, depth + 1)) return false;
+  return true;
+}
+
+bool selfContained(const Model& m, int stage) {
+  if (!m.gearbox.splits.empty()) return false;
+  for (const auto& at : m.info(stage).ir->attributes)
+    if (at.value && !readsOwnStage(*at.value, stage)) return false;
+  return true;
+}
+
+// The parts of a rating's key: the model, the stage and what is asked; the evaluator's
+// deviations and overrides. No NaN in a key: it compares equal to everything in a map.
+std::vector<double> keyHead(const KindContext& c, bool damage, bool scuffing) {
+  return {static_cast<double>(c.ev.model().serial), static_cast<double>(c.stage), damage ? 1.0 : 0.0, scuffing ? 1.0 : 0.0,
+          c.ev.nominalOnly ? 1.0 : 0.0};
+}
+
+std::vector<double> keyTail(std::vector<double> k, const Evaluator& ev) {
+  auto offsets = ev.offsetKey(), overrides = ev.overrideKey();
+  k.push_back(static_cast<double>(offsets.size()));
+  k.insert(k.end(), offsets.begin(), offsets.end());
+  k.insert(k.end(), overrides.begin(), overrides.end());
+  for (double& x : k)
+    if (std::isnan(x)) x = -1.5e308;
+  return k;
+}
+
+// The whole assignment: cheap to build, and the same for every quantity of one design.
+std::vector<double> wholeKey(const KindContext& c, bool damage, bool scuffing) {
+  std::vector<double> k = keyHead(c, damage, scuffing);
+  k.insert(k.end(), {c.a.ratioApprox ? 1.0 : 0.0, c.a.ratioApprox.value_or(0), c.a.ratio ? 1.0 : 0.0,
+                     c.a.ratio ? c.a.ratio->toDouble() : 0});
+  for (int x : c.a.choice) k.push_back(x);
+  for (const auto& [lo, hi] : c.a.box) k.insert(k.end(), {lo, hi});
+  return keyTail(std::move(k), c.ev);
+}
+
+// The key of everything a stage's rating reads: where the stage is self-contained its own
+// choices and freedoms and its operating point (the same for every design upstream that
+// gives the same ratio), else the whole assignment.
+std::vector<double> ratedKey(const KindContext& c, bool damage, bool scuffing) {
+  const Model& m = c.ev.model();
+  thread_local std::map<std::pair<std::uint64_t, int>, bool> contained;
+  auto it = contained.find({m.serial, c.stage});
+  if (it == contained.end()) it = contained.emplace(std::make_pair(m.serial, c.stage), selfContained(m, c.stage)).first;
+  if (!it->second) return wholeKey(c, damage, scuffing);
+  std::vector<double> k = keyHead(c, damage, scuffing);
+  const StageInfo& info = m.info(c.stage);
+  auto push = [&](const Value& v) { k.insert(k.end(), {static_cast<double>(v.kind), v.lo, v.hi}); };
+  for (int sl : info.slots) k.push_back(c.a.choice[static_cast<size_t>(sl)]);
+  for (int f : info.freedoms) k.insert(k.end(), {c.a.box[static_cast<size_t>(f)].first, c.a.box[static_cast<size_t>(f)].second});
+  push(c.upstreamRatio());
+  push(c.gearbox(Q::InputSpeed));
+  push(c.gearbox(Q::InputTorque));
+  return keyTail(std::move(k), c.ev);
+}
+
+// The stage's ratings at the corners of its inputs (monotone in each: their image's bounds),
+// from the thread's recent ones when the same stage was rated just before.
+const RatedCorners& ratedCorners(const KindContext& c, bool damage, bool scuffing) {
+  // Large enough to hold a search's ratings of one stage over the upstream ratios it meets.
+  thread_local Recent<std::vector<double>, RatedCorners, 1 << 15> recent;
+  // The quantities of one design are read one after another: the last design's result is
+  // found without building the key of the operating point.
+  thread_local struct {
+    std::vector<double> whole;
+    const RatedCorners* hit = nullptr;
+  } last;
+  std::vector<double> whole = wholeKey(c, damage, scuffing);
+  if (last.hit && whole == last.whole) return *last.hit;
+  auto key = ratedKey(c, damage, scuffing);
+  if (const RatedCorners* hit = recent.find(key)) {
+    last = {std::move(whole), hit};
+    return *hit;
+  }
+  RatedCorners p;
+  p.g = gather(c, nullptr);
+  if (p.g && !modelFactors(c, *p.g, nullptr, false)) p.g.reset();
+  if (p.g) {
+    std::vector<Value> all;
+    for (const auto& v : p.g->varying) all.insert(all.end(), v.begin(), v.end());
+    arith::corners(all, [&](const V& x) {
+      p.corners.emplace_back();
+      p.failed.push_back(false);
+      try {
+        p.corners.back() = rateAll(*p.g, x, damage, scuffing);
+      } catch (const std::domain_error&) {
+        p.failed.back() = true;
+      }
+      return 0.0;
+    });
+    p.ranged = p.corners.size() > 1 || std::any_of(all.begin(), all.end(), [](const Value& v) { return !v.isPoint(); });
+  }
+  // A full cache starts again: the last result stays valid only until the next one is put.
+  const RatedCorners& out = recent.put(std::move(key), std::move(p));
+  last = {std::move(whole), &out};
+  return out;
+}
+
 Value rated(const KindContext& c, int gear, Side side, double (*select)(const PairRating&, int slot), bool damage = false,
             Worst worst = Worst::Governing) {
   bool scuffing = worst != Worst::Governing;
-  auto g = gather(c, nullptr);
-  if (!g || !modelFactors(c, *g, nullptr, false)) return Value::invalid();
-  std::vector<Value> all;
-  for (const auto& v : g->varying) all.insert(all.end(), v.begin(), v.end());
-  double minH = g->fixed[0].SHmin, minF = g->fixed[0].SFmin;
-  return arith::corners(all, [&](const V& v) {
-    try {
-      auto r = rateAll(*g, v, damage, scuffing);
-      if (scuffing) {
-        double out = kNaN;
-        for (const auto& m : r) {
-          double x = m.scuffing ? select(m, 0) : kNaN;
-          if (std::isnan(x)) continue;
-          if (std::isnan(out) || (worst == Worst::Smallest ? x < out : x > out)) out = x;
-        }
-        return out;
+  const RatedCorners& p = ratedCorners(c, damage, scuffing);
+  if (!p.g || p.corners.empty()) return Value::invalid();
+  const Rated& g = *p.g;
+  double minH = g.fixed[0].SHmin, minF = g.fixed[0].SFmin;
+  auto pick = [&](const std::vector<PairRating>& r) {
+    if (scuffing) {
+      double out = kNaN;
+      for (const auto& m : r) {
+        double x = m.scuffing ? select(m, 0) : kNaN;
+        if (std::isnan(x)) continue;
+        if (std::isnan(out) || (worst == Worst::Smallest ? x < out : x > out)) out = x;
       }
-      int k = governing(r, g->meshes, gear, side, minH, minF);
-      if (k < 0) return kNaN;
-      int slot = gear < 0 ? 0 : g->meshes[static_cast<size_t>(k)].g0 == gear ? 0 : 1;
-      return select(r[static_cast<size_t>(k)], slot);
-    } catch (const std::domain_error&) {
-      return kNaN;
+      return out;
     }
-  });
+    int k = governing(r, g.meshes, gear, side, minH, minF);
+    if (k < 0) return kNaN;
+    int slot = gear < 0 ? 0 : g.meshes[static_cast<size_t>(k)].g0 == gear ? 0 : 1;
+    return select(r[static_cast<size_t>(k)], slot);
+  };
+  // As arith::corners: no value where any corner has none; an enclosure over a box.
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t k = 0; k < p.corners.size(); ++k) {
+    double v = p.failed[k] ? kNaN : pick(p.corners[k]);
+    if (!std::isfinite(v)) return Value::invalid();
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (!p.ranged) return Value::number(lo);
+  return Value::range(std::nextafter(lo, -INFINITY), std::nextafter(hi, INFINITY));
 }
 
 template <double PairRating::*M>

@@ -17,47 +17,13 @@
 #include "passes/Optimise.h"
 #include "passes/Search.h"
 #include "report/Report.h"
+#include "Solved.h"
 
 using namespace gbx;
+using gbx::solved::Solved;
+using gbx::solved::solve;
 
 namespace {
-
-struct Solved {
-  std::unique_ptr<driver::Compilation> c;
-  std::unique_ptr<rt::Model> model;
-  rt::SearchResult result;
-  std::unique_ptr<rt::Evaluator> ev;
-  // Design i as the reports read it: its choices and its decided freedoms.
-  rt::Assignment at(size_t i) const {
-    rt::Assignment a(*model);
-    const auto& d = result.designs.at(i);
-    a.choice = d.choice;
-    for (size_t f = 0; f < d.freedoms.size(); ++f)
-      a.box[f] = {d.freedoms[f], d.freedoms[f]};
-    return a;
-  }
-  double value(const std::string& path, size_t i = 0) const {
-    rt::Value v = ev->quantity(path, at(i));
-    EXPECT_TRUE(v.isPoint()) << path << " is not a point: [" << v.lo << ", " << v.hi << "]";
-    return v.mid();
-  }
-};
-
-Solved solve(const std::string& text, size_t gearbox = 0) {
-  Solved s;
-  s.c = driver::compileText("t.gbx", text);
-  EXPECT_TRUE(s.c->ok()) << s.c->diags.renderText(s.c->sources);
-  if (!s.c->ok()) throw std::runtime_error("spec has errors");
-  s.model = std::make_unique<rt::Model>(s.c->program, s.c->program.gearboxes.at(gearbox));
-  // The search, then the optimiser where the rules or objectives need it (as `gbxc solve`).
-  auto designs =
-      rt::passes::optimise(s.c->program, *s.model, rt::passes::search(*s.model, 1, 1e9, nullptr), 1, nullptr);
-  s.result = std::move(designs.designs);
-  for (size_t i = 0; i < designs.freedoms.size() && i < s.result.designs.size(); ++i)
-    s.result.designs[i].freedoms = designs.freedoms[i];
-  s.ev = std::make_unique<rt::Evaluator>(*s.model);
-  return s;
-}
 
 std::string replaced(std::string t, const std::string& from, const std::string& to) {
   size_t at = t.find(from);

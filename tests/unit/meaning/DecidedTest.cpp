@@ -1,0 +1,172 @@
+// Continuous freedoms decided (docs/language.md, "Continuous freedoms"): the decided point is
+// the best point, checked against closed forms and brute force over fine grids; the printed
+// point keeps every rule.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <random>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "Solved.h"
+#include "report/Report.h"
+
+using namespace gbx;
+using gbx::solved::solve;
+using gbx::solved::Solved;
+
+namespace {
+
+// The overlap ratio of a helical pair in closed form: eps_beta = b sin(beta) / (pi m_n).
+double overlap(double b, double beta, double mn) { return b * std::sin(beta) / (M_PI * mn); }
+
+// Every rule of the gearbox at a design's stored (printed) point.
+bool holdsEveryRule(const Solved& s, size_t i) {
+  rt::Assignment a = s.at(i);
+  for (const auto& r : s.model->gearbox.rules) {
+    rt::Value v = s.ev->eval(*r.expr, a);
+    if (!(v.kind == rt::Value::Bool && v.truth == rt::Truth::True)) return false;
+  }
+  return true;
+}
+
+// The stored value is the double that the printed digits give back, read as the compiler
+// reads a literal with its unit (4 decimals in mm or deg).
+void expectPrinted(double si, const char* unit) {
+  auto atom = units::lookupAtom(unit);
+  ASSERT_TRUE(atom);
+  std::string shown = rt::formatNumber(si / atom->scale.toDouble());
+  auto digits = units::Rational::make(std::llround(std::stod(shown) * 1e4), 10000);
+  EXPECT_EQ(units::Number::exact(digits).mul(atom->scale).toDouble(), si) << shown << " " << unit;
+}
+
+} // namespace
+
+// A rule whose boundary bends across the box (eps_beta >= 1 over the helix angle and the face
+// width): the lightest pair lies at the 15 deg bound with the face width on the rule's
+// boundary, b = pi m_n / sin(15 deg) = 48.55273 mm, printed as the next 0.1 um up.
+TEST(Decided, FollowsABoundaryThatBendsAcrossTheBox) {
+  Solved s = solve(R"(import materials;
+gearbox G {
+  stage main: helical {
+    pinion.z = 21;  wheel.z = 83;  normal_module = 4 mm;
+    helix_angle in 8..15 deg;  face_width in 20..90 mm;  material = steel_18CrNiMo7_6;
+  }
+  require main.eps_beta >= 1;
+  minimize main.mass;
+}
+)");
+  ASSERT_EQ(s.result.designs.size(), 1u);
+  const auto& x = s.result.designs[0].freedoms;
+  EXPECT_EQ(x[0], 15 * M_PI / 180);
+  double exact = M_PI * 4e-3 / std::sin(15 * M_PI / 180);
+  EXPECT_NEAR(x[1], std::ceil(exact * 1e7) / 1e7, 1e-12);
+  EXPECT_GE(overlap(x[1], x[0], 4e-3), 1.0);
+  EXPECT_LT(overlap(x[1] - 1e-7, x[0], 4e-3), 1.0); // a printed digit less breaks the rule
+  EXPECT_TRUE(holdsEveryRule(s, 0));
+}
+
+// Over many random limits and designs, the printed point of every design listed satisfies
+// every rule: the stored freedoms are exactly the printed digits, and the rules hold there.
+TEST(Decided, ThePrintedPointKeepsEveryRule) {
+  std::mt19937 rng(11);
+  int designs = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    double eps = std::uniform_real_distribution<double>(1.0, 1.6)(rng);
+    double lo = std::uniform_real_distribution<double>(1.0, 1.4)(rng);
+    Solved s = solve(fmt::format(R"(import materials;
+gearbox G {{
+  stage main: helical {{
+    pinion.z in 18..24;  wheel.z in 60..80;  normal_module in {{3 mm, 4 mm}};
+    helix_angle in 8..16 deg;  face_width in 20..90 mm;  material = steel_18CrNiMo7_6;
+  }}
+  require main.ratio == 3.4 +- 3%;
+  require main.eps_beta >= {:.5f};
+  require main.eps_alpha + main.eps_beta >= {:.5f} + 1.4;
+  minimize main.mass;
+  report {{ top 12; }}
+}}
+)",
+                                 eps, lo));
+    for (size_t i = 0; i < s.result.designs.size(); ++i, ++designs) {
+      EXPECT_TRUE(holdsEveryRule(s, i)) << "trial " << trial << ", design " << i;
+      expectPrinted(s.result.designs[i].freedoms[0], "deg");
+      expectPrinted(s.result.designs[i].freedoms[1], "mm");
+    }
+  }
+  EXPECT_GT(designs, 50);
+}
+
+// The lightest face width under both safeties, and the ranking by it, against a brute force
+// over a 0.02 mm grid of every design of a small space: no design's decided mass is above its
+// grid best, none is below the grid best by more than one grid step's mass, and the best
+// designs come in the brute force's order.
+TEST(Decided, TopNMatchesABruteForceOverAFineGrid) {
+  const std::string text = R"(import materials;
+gearbox G {
+  stage main: helical {
+    pinion.z in 19..23;  wheel.z in 75..84;  normal_module in {3 mm, 3.5 mm};  helix_angle = 12 deg;
+    face_width in 20..80 mm;  material = steel_18CrNiMo7_6;  accuracy = 6;
+    rating {
+      application_factor = 1.25;  life = 20000 h;
+      lubricant { viscosity_40 = 150 mm^2/s; }
+      roughness { flank = 0.6 um; root = 3.0 um; }
+    }
+  }
+  operating { input_speed = 1480 rpm; power = 75 kW; }
+  require main.ratio == 3.8 +- 3%;
+  require main.pinion.contact_safety >= 1.2;  require main.wheel.contact_safety >= 1.2;
+  require main.pinion.bending_safety >= 1.5;  require main.wheel.bending_safety >= 1.5;
+  minimize main.mass;
+  report { top 8; }
+}
+)";
+  Solved s = solve(text);
+  ASSERT_GE(s.result.designs.size(), 4u);
+  // Every design of the space, by brute force: its lightest feasible grid point.
+  const rt::Model& m = *s.model;
+  std::vector<std::pair<double, std::vector<int>>> brute;
+  rt::Assignment a(m);
+  const double step = 0.02e-3;
+  std::vector<int> choice(m.slots.size());
+  std::function<void(size_t)> each = [&](size_t k) {
+    if (k < m.slots.size()) {
+      for (size_t v = 0; v < m.slots[k].values.size(); ++v) {
+        choice[k] = static_cast<int>(v);
+        each(k + 1);
+      }
+      return;
+    }
+    a.choice = choice;
+    for (double b = 20e-3; b <= 80e-3 + 1e-12; b += step) {
+      a.box[0] = {b, b};
+      bool ok = true;
+      for (const auto& r : m.gearbox.rules) {
+        rt::Value v = s.ev->eval(*r.expr, a);
+        ok = ok && v.kind == rt::Value::Bool && v.truth == rt::Truth::True;
+        if (!ok) break;
+      }
+      if (ok) {
+        brute.emplace_back(s.ev->quantity("main.mass", a).mid(), choice);
+        return;
+      }
+    }
+  };
+  each(0);
+  std::sort(brute.begin(), brute.end());
+  ASSERT_GE(brute.size(), s.result.designs.size());
+  std::map<std::vector<int>, double> gridBest;
+  for (const auto& [mass, c] : brute)
+    gridBest[c] = mass;
+  for (size_t i = 0; i < s.result.designs.size(); ++i) {
+    double decided = s.value("main.mass", i);
+    ASSERT_TRUE(gridBest.count(s.result.designs[i].choice)) << "design " << i << " has no feasible grid point";
+    double grid = gridBest[s.result.designs[i].choice];
+    EXPECT_LE(decided, grid * (1 + 1e-12)) << "design " << i;
+    EXPECT_GT(decided, grid * (1 - 1e-3)) << "design " << i;
+    // Rank i holds the i-th lightest of the brute force, up to designs within a grid step.
+    EXPECT_NEAR(decided, brute[i].first, brute[i].first * 1e-3) << "rank " << i;
+  }
+}
