@@ -25,11 +25,6 @@ constexpr double kStep = 1e-7;
 
 double minimum(const std::vector<double>& v) { return v.empty() ? 1.0 : *std::min_element(v.begin(), v.end()); }
 
-// Quiet GSL: a failed bracket is an answer here, not an abort.
-struct QuietGsl {
-  gsl_error_handler_t* old = gsl_set_error_handler_off();
-  ~QuietGsl() { gsl_set_error_handler(old); }
-};
 } // namespace
 
 bool better(const Decider::Point& p, const Decider::Point& q) {
@@ -50,7 +45,7 @@ Decider::Decider(const Evaluator& ev, const std::vector<int>& choice, const Free
 }
 
 DecidedPoint Decider::run() {
-  QuietGsl quiet;
+  gsl_set_error_handler_off();  // a failed bracket comes back as a status, never as an abort
   Point p = lo_.size() == 1 ? alone() : severally();
   DecidedPoint out;
   if (!p.feasible) {
