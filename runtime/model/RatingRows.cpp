@@ -588,8 +588,9 @@ std::vector<double> ratedKey(const KindContext& c, bool damage, bool scuffing) {
 // The stage's ratings at the corners of its inputs (monotone in each: their image's bounds),
 // from the thread's recent ones when the same stage was rated just before.
 const RatedCorners& ratedCorners(const KindContext& c, bool damage, bool scuffing) {
-  // Large enough to hold a search's ratings of one stage over the upstream ratios it meets.
-  thread_local Recent<std::vector<double>, RatedCorners, 1 << 15> recent;
+  // Room for a search's ratings of one stage over the upstream ratios it meets (about 10 KiB
+  // each: 20 MiB a thread at most).
+  thread_local Recent<std::vector<double>, RatedCorners, 2048> recent;
   // The quantities of one design are read one after another: the last design's result is
   // found without building the key of the operating point.
   thread_local struct {
