@@ -1,5 +1,6 @@
 #include "model/Model.h"
 
+#include <algorithm>
 #include <atomic>
 
 #include <cmath>
@@ -15,9 +16,25 @@ Value constant(const units::Number& n) {
   return Value::number(n.toDouble());
 }
 
-} // namespace
+// Whether an expression reads nothing but its own stage's quantities and materials.
+bool readsOwnStage(const ir::Expr& e, int stage, int depth = 0) {
+  if (depth > 64) return false;
+  switch (e.op) {
+  case ir::Op::Quantity:
+    if (e.ref.owner == ir::QuantityRef::Stage && e.ref.index != stage) return false;
+    if (e.ref.owner != ir::QuantityRef::Stage && e.ref.owner != ir::QuantityRef::Material) return false;
+    break;
+  case ir::Op::Let:
+  case ir::Op::Scatter:
+  case ir::Op::SceneOutput:
+  case ir::Op::Relative: return false;
+  default: break;
+  }
+  for (const auto& x : e.args)
+    if (x && !readsOwnStage(*x, stage, depth + 1)) return false;
+  return true;
+}
 
-namespace {
 std::uint64_t nextSerial() {
   static std::atomic<std::uint64_t> n{0};
   return ++n;
@@ -85,6 +102,9 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
       get(Q::Density, info.elastic.density);
       info.elastic.assumed = false;
     }
+    info.selfContained = g.splits.empty() &&
+                         std::all_of(st.attributes.begin(), st.attributes.end(),
+                                     [&](const ir::Attribute& a) { return !a.value || readsOwnStage(*a.value, si); });
     stages.push_back(std::move(info));
   }
   for (const auto& sc : g.scenes) scenes.push_back(planScene(sc));

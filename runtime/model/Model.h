@@ -48,6 +48,9 @@ struct StageInfo {
   Elastic elastic;                         // read from it once
   std::vector<int> slots;
   std::vector<int> freedoms;
+  // Nothing of its attributes reads another stage or the gearbox, and the gearbox has no
+  // splits: the rest of the design reaches it only through its operating point.
+  bool selfContained = false;
   // (gear + 1) * kKeyCount + key: what gives the attribute.
   struct Entry {
     const ir::Attribute* attr = nullptr;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -506,37 +505,9 @@ enum class Worst { Governing, Smallest, Largest };
 // each, and the search's check of a rule over a box rates its corners once for all its rules.
 struct RatedCorners {
   std::optional<Rated> g;
-  bool ranged = false;                          // some input spans an interval
-  std::vector<std::vector<PairRating>> corners; // empty where an input has no value
+  std::vector<std::vector<PairRating>> corners; // one per corner (one: every input a point); none without a value
   std::vector<bool> failed;                     // per corner: the rating refused its geometry
 };
-
-// Whether nothing of a stage's attributes reads another stage or the gearbox: then its rating
-// depends on the rest of the design only through its operating point.
-bool readsOwnStage(const ir::Expr& e, int stage, int depth = 0) {
-  if (depth > 64) return false;
-  switch (e.op) {
-  case ir::Op::Quantity:
-    if (e.ref.owner == ir::QuantityRef::Stage && e.ref.index != stage) return false;
-    if (e.ref.owner != ir::QuantityRef::Stage && e.ref.owner != ir::QuantityRef::Material) return false;
-    break;
-  case ir::Op::Let:
-  case ir::Op::Scatter:
-  case ir::Op::SceneOutput:
-  case ir::Op::Relative: return false;
-  default: break;
-  }
-  for (const auto& x : e.args)
-    if (x && !readsOwnStage(*x, stage, depth + 1)) return false;
-  return true;
-}
-
-bool selfContained(const Model& m, int stage) {
-  if (!m.gearbox.splits.empty()) return false;
-  for (const auto& at : m.info(stage).ir->attributes)
-    if (at.value && !readsOwnStage(*at.value, stage)) return false;
-  return true;
-}
 
 // The parts of a rating's key: the model, the stage and what is asked; the evaluator's
 // deviations and overrides. No NaN in a key: it compares equal to everything in a map.
@@ -567,15 +538,11 @@ std::vector<double> wholeKey(const KindContext& c, bool damage, bool scuffing) {
 
 // The key of everything a stage's rating reads: where the stage is self-contained its own
 // choices and freedoms and its operating point (the same for every design upstream that
-// gives the same ratio), else the whole assignment.
-std::vector<double> ratedKey(const KindContext& c, bool damage, bool scuffing) {
-  const Model& m = c.ev.model();
-  thread_local std::map<std::pair<std::uint64_t, int>, bool> contained;
-  auto it = contained.find({m.serial, c.stage});
-  if (it == contained.end()) it = contained.emplace(std::make_pair(m.serial, c.stage), selfContained(m, c.stage)).first;
-  if (!it->second) return wholeKey(c, damage, scuffing);
+// gives the same ratio), else the whole assignment (`whole`).
+std::vector<double> ratedKey(const KindContext& c, bool damage, bool scuffing, const std::vector<double>& whole) {
+  const StageInfo& info = c.ev.model().info(c.stage);
+  if (!info.selfContained) return whole;
   std::vector<double> k = keyHead(c, damage, scuffing);
-  const StageInfo& info = m.info(c.stage);
   auto push = [&](const Value& v) { k.insert(k.end(), {static_cast<double>(v.kind), v.lo, v.hi}); };
   for (int sl : info.slots) k.push_back(c.a.choice[static_cast<size_t>(sl)]);
   for (int f : info.freedoms) k.insert(k.end(), {c.a.box[static_cast<size_t>(f)].first, c.a.box[static_cast<size_t>(f)].second});
@@ -588,8 +555,8 @@ std::vector<double> ratedKey(const KindContext& c, bool damage, bool scuffing) {
 // The stage's ratings at the corners of its inputs (monotone in each: their image's bounds),
 // from the thread's recent ones when the same stage was rated just before.
 const RatedCorners& ratedCorners(const KindContext& c, bool damage, bool scuffing) {
-  // Room for a search's ratings of one stage over the upstream ratios it meets (about 10 KiB
-  // each: 20 MiB a thread at most).
+  // Room for a search's ratings of one stage over the upstream ratios it meets; a narrowed
+  // two-stage reducer peaks at 20 MiB with it (164 MiB with room for 32 768).
   thread_local Recent<std::vector<double>, RatedCorners, 2048> recent;
   // The quantities of one design are read one after another: the last design's result is
   // found without building the key of the operating point.
@@ -599,7 +566,7 @@ const RatedCorners& ratedCorners(const KindContext& c, bool damage, bool scuffin
   } last;
   std::vector<double> whole = wholeKey(c, damage, scuffing);
   if (last.hit && whole == last.whole) return *last.hit;
-  auto key = ratedKey(c, damage, scuffing);
+  auto key = ratedKey(c, damage, scuffing, whole);
   if (const RatedCorners* hit = recent.find(key)) {
     last = {std::move(whole), hit};
     return *hit;
@@ -620,7 +587,6 @@ const RatedCorners& ratedCorners(const KindContext& c, bool damage, bool scuffin
       }
       return 0.0;
     });
-    p.ranged = p.corners.size() > 1 || std::any_of(all.begin(), all.end(), [](const Value& v) { return !v.isPoint(); });
   }
   // A full cache starts again: the last result stays valid only until the next one is put.
   const RatedCorners& out = recent.put(std::move(key), std::move(p));
@@ -658,7 +624,7 @@ Value rated(const KindContext& c, int gear, Side side, double (*select)(const Pa
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }
-  if (!p.ranged) return Value::number(lo);
+  if (p.corners.size() == 1) return Value::number(lo);  // every input a point
   return Value::range(std::nextafter(lo, -INFINITY), std::nextafter(hi, INFINITY));
 }
 

@@ -45,7 +45,7 @@ Decider::Decider(const Evaluator& ev, const std::vector<int>& choice, const Free
 }
 
 DecidedPoint Decider::run() {
-  gsl_set_error_handler_off();  // a failed bracket comes back as a status, never as an abort
+  gsl_set_error_handler_off(); // a failed bracket comes back as a status, never as an abort
   Point p = lo_.size() == 1 ? alone() : severally();
   DecidedPoint out;
   if (!p.feasible) {
@@ -109,10 +109,7 @@ Decider::Point Decider::atSI(Point p) {
 }
 
 void Decider::consider(const Point& p) {
-  if (!any_ || better(p, best_)) {
-    best_ = p;
-    any_ = true;
-  }
+  if (best_.t.empty() || better(p, best_)) best_ = p;
 }
 
 // One freedom: samples over its range; between two samples on either side of a rule's
@@ -138,9 +135,21 @@ Decider::Point Decider::alone() {
 // jump, leaving feasible islands beside the root the bracket converged to: points between it
 // and the infeasible end, at halving distances, look for one, and its boundary is found too.
 Decider::Point Decider::boundary(const Point& in, const Point& out, int depth) {
+  // The points the root finder evaluated, the bracket's ends first: its start and its result
+  // are among them, and are not evaluated again.
+  struct Seen {
+    Decider* d;
+    std::vector<Point> points;
+    const Point& at(double t) {
+      for (const auto& p : points)
+        if (p.t[0] == t) return p;
+      points.push_back(d->at({t}));
+      return points.back();
+    }
+  } seen{this, {in, out}};
   gsl_function f;
-  f.function = [](double t, void* c) { return minimum(static_cast<Decider*>(c)->at({t}).margins); };
-  f.params = this;
+  f.function = [](double t, void* c) { return minimum(static_cast<Seen*>(c)->at(t).margins); };
+  f.params = &seen;
   const bool up = in.t[0] < out.t[0];
   double a = up ? in.t[0] : out.t[0], b = up ? out.t[0] : in.t[0];
   double fa = minimum(up ? in.margins : out.margins), fb = minimum(up ? out.margins : in.margins);
@@ -153,7 +162,7 @@ Decider::Point Decider::boundary(const Point& in, const Point& out, int depth) {
       double lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
       if (gsl_root_test_interval(lo, hi, 1e-13, 0) == GSL_SUCCESS) break;
     }
-    Point lo = at({gsl_root_fsolver_x_lower(s)}), hi = at({gsl_root_fsolver_x_upper(s)});
+    Point lo = seen.at(gsl_root_fsolver_x_lower(s)), hi = seen.at(gsl_root_fsolver_x_upper(s));
     gsl_root_fsolver_free(s);
     Point& feasibleEnd = up ? lo : hi;
     Point& otherEnd = up ? hi : lo;
@@ -177,7 +186,7 @@ Decider::Point Decider::boundary(const Point& in, const Point& out, int depth) {
 
 // The objective's minimum between two feasible neighbours of a better feasible sample, by
 // Brent's minimiser (to 1e-9 of the range: a smooth minimum is flat to 1e-18 there).
-Decider::Point Decider::interiorMinimum(const Point& left, const Point& middle, const Point& right) {
+void Decider::interiorMinimum(const Point& left, const Point& middle, const Point& right) {
   gsl_function f;
   f.function = [](double t, void* c) { return static_cast<Decider*>(c)->at({t}).objective; };
   f.params = this;
@@ -191,7 +200,6 @@ Decider::Point Decider::interiorMinimum(const Point& left, const Point& middle, 
     }
   }
   gsl_min_fminimizer_free(s);
-  return best_;
 }
 
 // Several freedoms: a sample of the box (a grid, the middle and the corners included), then
@@ -290,7 +298,7 @@ void constraints(unsigned m, double* c, unsigned n, const double* t, double* gra
 } // namespace
 
 // SLSQP from a start, the rules' margins as inequality constraints and the box as bounds.
-Decider::Point Decider::slsqp(const Point& start) {
+void Decider::slsqp(const Point& start) {
   const unsigned n = static_cast<unsigned>(start.t.size());
   Problem pr{this, start.margins.size(), std::max(std::fabs(start.objective), 1e-300), {}, {}, {}, {}};
   nlopt_opt opt = nlopt_create(NLOPT_LD_SLSQP, n);
@@ -308,7 +316,6 @@ Decider::Point Decider::slsqp(const Point& start) {
   nlopt_destroy(opt);
   Point end = at(t);
   if (!end.feasible && minimum(end.margins) > -1e-9) nearlyFeasible_.push_back(std::move(end));
-  return best_;
 }
 
 // The rule that fails by the most at the point nearest to feasibility.

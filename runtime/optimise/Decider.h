@@ -36,8 +36,8 @@ private:
   Point alone();
   Point severally();
   Point boundary(const Point& in, const Point& out, int depth = 0);
-  Point interiorMinimum(const Point& left, const Point& middle, const Point& right);
-  Point slsqp(const Point& start);
+  void interiorMinimum(const Point& left, const Point& middle, const Point& right);
+  void slsqp(const Point& start);
   Point printed(const Point& p);
   std::string failing(const Point& p);
   void consider(const Point& p);
@@ -48,8 +48,7 @@ private:
   const FreedomGroup& g_;
   std::vector<double> lo_, hi_;
   long evaluations_ = 0;
-  Point best_; // the best point evaluated so far
-  bool any_ = false;
+  Point best_;                        // the best point evaluated so far (none yet: no coordinates)
   std::vector<Point> nearlyFeasible_; // optimisers' end points a rounding away from feasible
   bool flat_ = false;                 // the objectives do not move over the box: the optimiser goes by the middle
 };

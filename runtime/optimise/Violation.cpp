@@ -47,10 +47,6 @@ double violation(const Evaluator& ev, const ir::Expr& e, const Assignment& a) {
   }
 }
 
-} // namespace gbx::rt
-
-namespace gbx::rt {
-
 namespace {
 
 double relative(double d, double x, double y) { return d / std::max({std::fabs(x), std::fabs(y), 1e-300}); }
