@@ -560,6 +560,7 @@ Value Evaluator::derived(int stage, int gear, Q key, const Assignment& a) const 
 }
 
 Value Evaluator::ratioProduct(int from, int to, const Assignment& a) const {
+  if (from == 0 && to > 0 && to == a.upstreamStage) return Value::number(a.upstreamRatio);
   Value r = Value::rational(Rational(1));
   for (int s = from; s < to; ++s) r = arith::mul(r, derived(s, Q::Ratio, a));
   return r;

@@ -16,8 +16,13 @@ Value constant(const units::Number& n) {
   return Value::number(n.toDouble());
 }
 
-// Whether an expression reads nothing but its own stage's quantities and materials.
-bool readsOwnStage(const ir::Expr& e, int stage, int depth = 0) {
+std::uint64_t nextSerial() {
+  static std::atomic<std::uint64_t> n{0};
+  return ++n;
+}
+} // namespace
+
+bool readsOwnStage(const ir::Expr& e, int stage, int depth) {
   if (depth > 64) return false;
   switch (e.op) {
   case ir::Op::Quantity:
@@ -34,12 +39,6 @@ bool readsOwnStage(const ir::Expr& e, int stage, int depth = 0) {
     if (x && !readsOwnStage(*x, stage, depth + 1)) return false;
   return true;
 }
-
-std::uint64_t nextSerial() {
-  static std::atomic<std::uint64_t> n{0};
-  return ++n;
-}
-} // namespace
 
 Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g), serial(nextSerial()) {
   for (const auto& st : g.stages) {

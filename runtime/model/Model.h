@@ -101,7 +101,14 @@ struct Assignment {
   std::vector<std::pair<double, double>> box;
   std::optional<Rational> ratio;  // the gearbox ratio when already known exactly
   std::optional<double> ratioApprox;  // or approximately, to screen designs cheaply
+  // The ratio before stage `upstreamStage`, given instead of the choices upstream: a search
+  // asks a downstream stage's rules over the upstream ratios its designs can have (-1: none).
+  int upstreamStage = -1;
+  double upstreamRatio = 1;
   explicit Assignment(const Model& m);
 };
+
+// Whether an expression reads nothing but stage `stage`'s quantities and materials.
+bool readsOwnStage(const ir::Expr& e, int stage, int depth = 0);
 
 } // namespace gbx::rt

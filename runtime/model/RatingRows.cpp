@@ -530,7 +530,7 @@ std::vector<double> keyTail(std::vector<double> k, const Evaluator& ev) {
 std::vector<double> wholeKey(const KindContext& c, bool damage, bool scuffing) {
   std::vector<double> k = keyHead(c, damage, scuffing);
   k.insert(k.end(), {c.a.ratioApprox ? 1.0 : 0.0, c.a.ratioApprox.value_or(0), c.a.ratio ? 1.0 : 0.0,
-                     c.a.ratio ? c.a.ratio->toDouble() : 0});
+                     c.a.ratio ? c.a.ratio->toDouble() : 0, static_cast<double>(c.a.upstreamStage), c.a.upstreamRatio});
   for (int x : c.a.choice) k.push_back(x);
   for (const auto& [lo, hi] : c.a.box) k.insert(k.end(), {lo, hi});
   return keyTail(std::move(k), c.ev);

@@ -177,6 +177,10 @@ SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<v
     so.top = std::nullopt;
   }
   so.maxKept = static_cast<size_t>(cat::budget::kKeptDesigns);
+  // Over freedoms the search ranks by bounds, and deciding the best designs usually reaches
+  // past the first `top` of them: four times as many are kept at once (one search, not two).
+  if (!m.freedoms.empty() && so.top && *so.top > 0)
+    so.top = std::min<long long>(*so.top * 4, static_cast<long long>(so.maxKept));
   SearchResult r = rt::search(m, so);
   // A rule over tolerance corners (`worst`) without freedoms is checked the same way, at the
   // design's one point.

@@ -22,6 +22,7 @@
 #include "search/FastKey.h"
 #include "search/HalfList.h"
 #include "search/StageFilter.h"
+#include "search/Upstream.h"
 
 namespace gbx::rt {
 
@@ -90,7 +91,7 @@ public:
       : m(model), opt(options), ev(model), k(static_cast<int>(model.stages.size())), kk(static_cast<size_t>(k)) {}
 
   SearchResult run() {
-    if (splitRules() && constantRules() && filterStages() && symmetry() && layout()) {
+    if (splitRules() && constantRules() && filterStages() && symmetry() && downstream() && layout()) {
       rankingKeys();
       orbits();
       if (join()) collect();
@@ -136,6 +137,9 @@ private:
   std::vector<std::string> windowTexts;
   std::vector<std::vector<const Conjunct*>> local;
   std::vector<const Conjunct*> cross, global;
+  // Per cross rule: its stage's entry in `upstream` and its place there, or -1.
+  std::vector<std::pair<int, int>> crossAt;
+  std::vector<UpstreamStage> upstream;
   // Stages, symmetry and the join's halves.
   std::vector<StageResult> stages;
   std::vector<Perm> group;
@@ -273,7 +277,7 @@ private:
         }
         continue;
       }
-      stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs));
+      stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs, !opt.exhaustive));
       if (stages.back().timedOutAt >= 0) {
         res.errors.push_back(timeLimitMessage(fmt::format("filtering the candidates of stage `{}`", m.stages[static_cast<size_t>(s)].ir->name),
                                               stages.back().timedOutAt, Deadline::seconds(), stageDomain(m, s)));
@@ -407,6 +411,53 @@ private:
     }
     if (!fast) ordered.clear();
     return true;
+  }
+
+  // ---- rules a downstream stage's operating point carries ---------------------------------
+
+  // Cross rules that read one downstream stage and its operating point alone are bracketed
+  // per candidate over the upstream ratios its designs can have (search/Upstream.h); the
+  // join asks a design only inside its bracket. Not for the exhaustive reference.
+  bool downstream() {
+    crossAt.assign(cross.size(), {-1, -1});
+    if (opt.exhaustive || k < 2) return true;
+    for (const auto& st : stages)
+      if (st.candidates.empty() || !(st.candidates.front().r > 0)) return true;
+    for (int s = 1; s < k; ++s) {
+      if (!m.stages[static_cast<size_t>(s)].selfContained) continue;
+      std::vector<const Conjunct*> rules;
+      std::vector<size_t> which;
+      for (size_t c = 0; c < cross.size(); ++c)
+        if (*cross[c]->stages.rbegin() == s && readsOwnStage(*cross[c]->expr, s)) {
+          rules.push_back(cross[c]);
+          which.push_back(c);
+        }
+      if (rules.empty()) continue;
+      auto placeOne = [this, s](Assignment& a, size_t c) { place(a, s, c); };
+      upstream.push_back(bracketStage(ev, s, stages[static_cast<size_t>(s)].candidates, rules, local[static_cast<size_t>(s)],
+                                      upstreamRange(s), placeOne, opt.jobs));
+      for (size_t r = 0; r < which.size(); ++r)
+        crossAt[which[r]] = {static_cast<int>(upstream.size()) - 1, static_cast<int>(r)};
+    }
+    return true;
+  }
+
+  // Per candidate of stage s, the upstream ratios a design in the window can give it: the
+  // products of the stages' least and greatest ratios, cut by the window over the
+  // candidate's own ratio and those downstream; empty (lo > hi) where none can.
+  std::vector<std::pair<double, double>> upstreamRange(int s) const {
+    double upLo = 1, upHi = 1, downLo = 1, downHi = 1;
+    for (int j = 0; j < k; ++j) {
+      const auto& c = stages[static_cast<size_t>(j)].candidates;
+      if (j == s) continue;
+      (j < s ? upLo : downLo) *= c.front().r;
+      (j < s ? upHi : downHi) *= c.back().r;
+    }
+    const double wlo = window.lo ? window.lo->toDouble() : 0, whi = window.hi ? window.hi->toDouble() : INFINITY;
+    std::vector<std::pair<double, double>> out;
+    for (const auto& c : stages[static_cast<size_t>(s)].candidates)
+      out.emplace_back(std::max(upLo, wlo / (c.r * downHi)) * (1 - 1e-9), std::min(upHi, whi / (c.r * downLo)) * (1 + 1e-9));
+    return out;
   }
 
   // ---- the join's halves ------------------------------------------------------------------
@@ -558,10 +609,14 @@ private:
     return q;
   }
   void place(Assignment& a, int s, size_t c) const {
-    const auto& slots = m.stages[static_cast<size_t>(s)].slots;
-    const auto& idx = stages[static_cast<size_t>(s)].candidates[c].idx;
-    for (size_t j = 0; j < slots.size(); ++j)
-      a.choice[static_cast<size_t>(slots[j])] = idx[j];
+    const StageInfo& info = m.stages[static_cast<size_t>(s)];
+    const Candidate& cand = stages[static_cast<size_t>(s)].candidates[c];
+    for (size_t j = 0; j < info.slots.size(); ++j)
+      a.choice[static_cast<size_t>(info.slots[j])] = cand.idx[j];
+    for (size_t j = 0; j < info.freedoms.size(); ++j) {
+      const auto f = static_cast<size_t>(info.freedoms[j]);
+      a.box[f] = cand.box.empty() ? std::pair{m.freedoms[f].lo, m.freedoms[f].hi} : cand.box[j];
+    }
   }
   void fill(Assignment& a, const std::uint32_t* cand) const {
     for (int s = 0; s < k; ++s)
@@ -778,12 +833,27 @@ private:
   // the least of its orbit. Counts what removes it.
   bool counts(Local& lo, Assignment& a, const std::uint32_t* cand) const {
     if (cross.empty() && !orbitCheck) return true;
-    fill(a, cand);
-    for (size_t c = 0; c < cross.size(); ++c)
-      if (truthOf(ev.eval(*cross[c]->expr, a)) == Truth::False) {
+    bool filled = false;
+    for (size_t c = 0; c < cross.size(); ++c) {
+      int holds = -1;
+      if (const auto [u, r] = crossAt[c]; u >= 0) {
+        const UpstreamStage& up = upstream[static_cast<size_t>(u)];
+        double ratio = 1;
+        for (int s = 0; s < up.stage; ++s)
+          ratio *= candidate(s, cand).r;
+        holds = up.brackets[cand[up.stage]][static_cast<size_t>(r)].at(ratio);
+      }
+      if (holds < 0) {
+        if (!filled) fill(a, cand);
+        filled = true;
+        holds = truthOf(ev.eval(*cross[c]->expr, a)) != Truth::False;
+      }
+      if (!holds) {
         lo.crossRemoved[c] += 1;
         return false;
       }
+    }
+    if (!filled) fill(a, cand);
     if (orbitCheck && !representative(a.choice)) {
       lo.duplicates += 1;
       return false;

@@ -9,6 +9,7 @@
 #include "catalogue/StageKinds.h"
 #include "model/Deadline.h"
 #include "model/StageKind.h"
+#include "search/Narrow.h"
 
 namespace gbx::rt {
 
@@ -40,6 +41,53 @@ void sortByRatio(std::vector<Candidate>& candidates) {
   });
 }
 
+// A thread's share of a stage's filter.
+struct Chunk {
+  std::vector<Candidate> out;
+  std::vector<double> removed, unevaluable;
+  double jointRemoved = 0;
+  double stoppedAt = -1;
+};
+
+// The threads' shares merged: the candidates by ratio, the funnel and the notes.
+StageResult collect(std::vector<Chunk>& chunks, const std::vector<StageRule>& rules, const std::string& name,
+                    double total) {
+  StageResult res;
+  if (std::any_of(chunks.begin(), chunks.end(), [](const Chunk& c) { return c.stoppedAt >= 0; })) {
+    res.timedOutAt = 0;
+    for (const auto& c : chunks) res.timedOutAt += (c.stoppedAt >= 0 ? c.stoppedAt : 1.0) / static_cast<double>(chunks.size());
+    return res;
+  }
+  double before = total;
+  res.funnel.push_back({"domain", name, 0, -before, true});
+  for (size_t r = 0; r < rules.size(); ++r) {
+    double removed = 0, unevaluable = 0;
+    for (const auto& ch : chunks) {
+      removed += ch.removed[r];
+      unevaluable += ch.unevaluable[r];
+    }
+    res.funnel.push_back({rules[r].text, name, before, removed});
+    if (unevaluable > 0)
+      res.notes.push_back(
+          fmt::format("stage {}: `{}` could not be evaluated for {:.0f} of its {:.0f} candidates, which it removed "
+                      "(a rating refuses their geometry, or an input is missing)",
+                      name, rules[r].text, unevaluable, before));
+    before -= removed;
+  }
+  double joint = 0;
+  for (const auto& ch : chunks)
+    joint += ch.jointRemoved;
+  if (joint > 0) {
+    res.funnel.push_back({"no freedom value satisfies the rules together", name, before, joint});
+    before -= joint;
+  }
+  for (auto& ch : chunks)
+    for (auto& c : ch.out)
+      res.candidates.push_back(std::move(c));
+  sortByRatio(res.candidates);
+  return res;
+}
+
 } // namespace
 
 std::string stageRanges(const Model& m, int s) {
@@ -67,7 +115,7 @@ std::string timeLimitMessage(const std::string& doing, double done, double limit
                      limit, doing, 100 * done, space, estimate);
 }
 
-StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conjunct*>& local, int jobs) {
+StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conjunct*>& local, int jobs, bool narrow) {
   const Model& m = ev.model();
   const StageInfo& info = m.stages[static_cast<size_t>(s)];
   auto rules = implicitRules(m, s);
@@ -79,12 +127,6 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     sizes.push_back(m.slots[static_cast<size_t>(sl)].values.size());
     total *= sizes.back();
   }
-  struct Chunk {
-    std::vector<Candidate> out;
-    std::vector<double> removed, unevaluable;
-    double jointRemoved = 0;
-    double stoppedAt = -1;
-  };
   int threads = std::max(1, std::min<int>(jobs, static_cast<int>(total / 2048) + 1));
   std::vector<Chunk> chunks(static_cast<size_t>(threads));
   auto work = [&](int t) {
@@ -134,6 +176,9 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
           continue;
         }
         c.undecided = v == Verdict::Undecided;
+        if (narrow && !c.undecided)
+          for (int f : info.freedoms)
+            c.box.push_back(feasibleSpan(ev, a, open, f));
       }
       Value r = ev.derived(s, Q::Ratio, a);
       if (!r.exact) continue;
@@ -149,41 +194,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
   for (auto& th : pool)
     th.join();
 
-  StageResult res;
-  if (std::any_of(chunks.begin(), chunks.end(), [](const Chunk& c) { return c.stoppedAt >= 0; })) {
-    res.timedOutAt = 0;
-    for (const auto& c : chunks) res.timedOutAt += (c.stoppedAt >= 0 ? c.stoppedAt : 1.0) / static_cast<double>(chunks.size());
-    return res;
-  }
-  double before = static_cast<double>(total);
-  const std::string& name = info.ir->name;
-  res.funnel.push_back({"domain", name, 0, -before, true});
-  for (size_t r = 0; r < rules.size(); ++r) {
-    double removed = 0, unevaluable = 0;
-    for (const auto& ch : chunks) {
-      removed += ch.removed[r];
-      unevaluable += ch.unevaluable[r];
-    }
-    res.funnel.push_back({rules[r].text, name, before, removed});
-    if (unevaluable > 0)
-      res.notes.push_back(
-          fmt::format("stage {}: `{}` could not be evaluated for {:.0f} of its {:.0f} candidates, which it removed "
-                      "(a rating refuses their geometry, or an input is missing)",
-                      name, rules[r].text, unevaluable, before));
-    before -= removed;
-  }
-  double joint = 0;
-  for (const auto& ch : chunks)
-    joint += ch.jointRemoved;
-  if (joint > 0) {
-    res.funnel.push_back({"no freedom value satisfies the rules together", name, before, joint});
-    before -= joint;
-  }
-  for (auto& ch : chunks)
-    for (auto& c : ch.out)
-      res.candidates.push_back(std::move(c));
-  sortByRatio(res.candidates);
-  return res;
+  return collect(chunks, rules, info.ir->name, static_cast<double>(total));
 }
 
 } // namespace gbx::rt

@@ -16,6 +16,9 @@ struct Candidate {
   Rational ratio;
   double r = 0;
   bool undecided = false;
+  // Per freedom of the stage (its order): the range where its rules can hold; empty for the
+  // whole box.
+  std::vector<std::pair<double, double>> box;
 };
 
 struct StageResult {
@@ -33,6 +36,8 @@ double stageDomain(const Model& m, int s);
 
 std::string timeLimitMessage(const std::string& doing, double done, double limit, double space);
 
-StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conjunct*>& local, int jobs);
+// With `narrow`, each candidate's freedoms are narrowed to where its rules can hold
+// (search/Narrow.h).
+StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conjunct*>& local, int jobs, bool narrow);
 
 } // namespace gbx::rt
