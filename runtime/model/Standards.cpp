@@ -1,7 +1,7 @@
 #include "model/Standards.h"
 
 #include <cmath>
-#include <initializer_list>
+#include <vector>
 
 namespace gbx::rt::iso {
 
@@ -12,10 +12,23 @@ double mm(double m) { return m * 1e3; }
 double um(double v) { return v * 1e-6; }
 } // namespace
 
+const std::vector<double>& diameterRanges() {
+  static const std::vector<double> r{5, 20, 50, 125, 280, 560, 1000, 1600, 2500, 4000, 6000, 8000, 10000};
+  return r;
+}
+const std::vector<double>& moduleRanges() {
+  static const std::vector<double> r{0.5, 2, 3.5, 6, 10, 16, 25, 40, 70};
+  return r;
+}
+const std::vector<double>& faceWidthRanges() {
+  static const std::vector<double> r{4, 10, 20, 40, 80, 160, 250, 400, 650, 1000};
+  return r;
+}
+
 namespace {
-// The range [lo, hi) of `bounds` that holds v, as its geometric mean (mm).
-double rangeMean(double v, std::initializer_list<double> bounds) {
-  double lo = *bounds.begin();
+// The range (lo, hi] of `bounds` that holds v, as its geometric mean (mm).
+double rangeMean(double v, const std::vector<double>& bounds) {
+  double lo = bounds.front();
   for (double hi : bounds) {
     if (hi <= lo) continue;
     if (v <= hi) return std::sqrt(lo * hi);
@@ -23,9 +36,9 @@ double rangeMean(double v, std::initializer_list<double> bounds) {
   }
   return v;  // beyond the table: the value itself
 }
-double dMean(double d) { return rangeMean(mm(d), {5, 20, 50, 125, 280, 560, 1000, 1600, 2500, 4000, 6000, 8000, 10000}); }
-double mMean(double mn) { return rangeMean(mm(mn), {0.5, 2, 3.5, 6, 10, 16, 25, 40, 70}); }
-double bMean(double b) { return rangeMean(mm(b), {4, 10, 20, 40, 80, 160, 250, 400, 650, 1000}); }
+double dMean(double d) { return rangeMean(mm(d), diameterRanges()); }
+double mMean(double mn) { return rangeMean(mm(mn), moduleRanges()); }
+double bMean(double b) { return rangeMean(mm(b), faceWidthRanges()); }
 double rounded(double v) { return v > 10 ? std::round(v) : v >= 5 ? std::round(2 * v) / 2 : std::round(10 * v) / 10; }
 } // namespace
 

@@ -1,5 +1,7 @@
 #pragma once
 // Formulas of the gear standards gbxc uses, in SI in and out.
+#include <vector>
+
 namespace gbx::rt::iso {
 
 // ISO 1328-1:1995, tolerances for accuracy grade Q, normal module mn and reference
@@ -17,6 +19,12 @@ double totalCumulativePitch(int grade, double mn, double d);  // F_p
 double tabulatedSinglePitch(int grade, double mn, double d);      // f_pt
 double tabulatedProfileForm(int grade, double mn, double d);      // f_f_alpha
 double tabulatedHelixSlope(int grade, double d, double b);        // f_H_beta
+
+// The ranges ISO 1328-1:1995 tabulates by, as their bounds in mm (a value on a bound is in
+// the range below it): a tabulated tolerance jumps where a gear's value crosses one.
+const std::vector<double>& diameterRanges();
+const std::vector<double>& moduleRanges();
+const std::vector<double>& faceWidthRanges();
 
 // ISO 6336-1 method B: mesh stiffness per unit face width c_gamma_alpha (N/m per m) of
 // solid gears on the standard basic rack: c'th from the q' polynomial,

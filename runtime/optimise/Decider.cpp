@@ -8,6 +8,7 @@
 #include <gsl/gsl_roots.h>
 #include <nlopt.h>
 
+#include "model/ToleranceEdges.h"
 #include "optimise/Violation.h"
 #include "units/Unit.h"
 
@@ -119,6 +120,19 @@ Decider::Point Decider::alone() {
   std::vector<Point> s;
   for (int k = 0; k < kSamples; ++k)
     s.push_back(at({static_cast<double>(k) / (kSamples - 1)}));
+  // Either side of each point where a tolerance table jumps: between samples, then, the
+  // rules are smooth, and a range that meets them below such a point is not missed.
+  Assignment whole = a_;
+  const int f = g_.freedoms[0];
+  whole.box[static_cast<size_t>(f)] = {lo_[0], hi_[0]};
+  for (double e : toleranceEdges(ev_, whole, f))
+    for (double x : {e * (1 - 1e-12), e * (1 + 1e-12)}) {
+      Point p;
+      p.t = {(x - lo_[0]) / (hi_[0] - lo_[0])};
+      p.x = {x};
+      s.push_back(atSI(std::move(p)));
+    }
+  std::sort(s.begin(), s.end(), [](const Point& x, const Point& y) { return x.t[0] < y.t[0]; });
   for (size_t k = 0; k + 1 < s.size(); ++k)
     if (s[k].feasible != s[k + 1].feasible) boundary(s[k].feasible ? s[k] : s[k + 1], s[k].feasible ? s[k + 1] : s[k]);
   for (size_t k = 1; k + 1 < s.size(); ++k)

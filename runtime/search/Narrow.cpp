@@ -1,6 +1,9 @@
 #include "search/Narrow.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "model/ToleranceEdges.h"
 
 namespace gbx::rt {
 
@@ -52,20 +55,26 @@ std::pair<double, double> feasibleSpan(const Evaluator& ev, Assignment& a, const
   const double lo = full.first, hi = full.second;
   if (!(hi > lo)) return full;
   Span s{ev, a, rules, fi, kTolerance * (hi - lo)};
-  double x[kSamples];
-  bool ok[kSamples];
+  // Samples, and either side of each point where a tolerance table jumps.
+  std::vector<double> x;
+  for (int k = 0; k < kSamples; ++k)
+    x.push_back(k == kSamples - 1 ? hi : lo + (hi - lo) * k / (kSamples - 1));
+  for (double e : toleranceEdges(ev, a, f)) {
+    x.push_back(e * (1 - 1e-12));
+    x.push_back(e * (1 + 1e-12));
+  }
+  std::sort(x.begin(), x.end());
+  const int n = static_cast<int>(x.size());
   int first = -1, last = -1;
-  for (int k = 0; k < kSamples; ++k) {
-    x[k] = k == kSamples - 1 ? hi : lo + (hi - lo) * k / (kSamples - 1);
-    ok[k] = s.passes(x[k]);
-    if (ok[k]) {
+  for (int k = 0; k < n; ++k)
+    if (s.passes(x[static_cast<size_t>(k)])) {
       if (first < 0) first = k;
       last = k;
     }
-  }
   std::pair<double, double> out = full;
-  if (first > 0) out.first = s.edge(x[first - 1], x[first]);
-  if (last >= 0 && last < kSamples - 1) out.second = s.edge(x[last + 1], x[last]);
+  auto at = [&](int k) { return x[static_cast<size_t>(k)]; };
+  if (first > 0) out.first = s.edge(at(first - 1), at(first));
+  if (last >= 0 && last < n - 1) out.second = s.edge(at(last + 1), at(last));
   a.box[fi] = full;
   return out;
 }

@@ -13,7 +13,8 @@ namespace gbx::rt {
 
 // The range of freedom f (a.box[f] on entry, restored on return) with its ends moved inward
 // past the parts where some rule fails at every point. The rules are asked at points of f
-// (the other freedoms over their box): samples, then bisection to 1e-4 of the range between
+// (the other freedoms over their box): samples (either side of each point where a tolerance
+// table jumps among them, model/ToleranceEdges.h), then bisection to 1e-4 of the range between
 // a failing and a passing one, then probes at halving distances below (above) the edge for a
 // passing island left by a factor read from a table, whose own edge is found in turn. The
 // ends returned fail (or are the range's own): the narrowed range holds every passing point

@@ -111,6 +111,7 @@ private:
     std::vector<std::uint32_t> leftAt; // scratch: the left indices the canonical order compares
     bool overKept = false;             // an unlimited listing reached opt.maxKept
     double walked = 0;                 // designs visited one by one (not counted by arithmetic)
+    double asked = 0;                  // of which the evaluator asked the rules across stages
   };
   // One thread's walk over its range of left entries.
   struct Walk {
@@ -846,6 +847,7 @@ private:
       if (holds < 0) {
         if (!filled) fill(a, cand);
         filled = true;
+        lo.asked += 1;
         holds = truthOf(ev.eval(*cross[c]->expr, a)) != Truth::False;
       }
       if (!holds) {
@@ -943,8 +945,10 @@ private:
     Local& lo = w.lo;
     if (!arith) {
       lo.walked += static_cast<double>(to - from);
-      // The exhaustive reference (tests, benchmarks) visits everything by design.
-      if (lo.walked > walkBudget && !opt.exhaustive) overWalked = true;
+      // The exhaustive reference (tests, benchmarks) visits everything by design. A design
+      // whose rules its candidates' brackets settle costs a comparison, one they leave to
+      // the evaluator some fifty times as much as counting it.
+      if ((lo.asked > walkBudget || lo.walked > walkBudget * 50) && !opt.exhaustive) overWalked = true;
       // Counted one by one; keyed only where the window's bound lets a design in.
       bool keyed = keep > 0 && !bounded(lo, partial, x * right->ratio(from), x * right->ratio(to - 1));
       visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, false, keyed);
@@ -1249,9 +1253,9 @@ private:
         if (static_cast<int>(r) != par::rank()) unpackShare(shares[r], static_cast<int>(r) * threads);
     if (overWalked) {
       res.errors.push_back(fmt::format("the rules across stages are checked design by design, and more than {:.3g} designs (a fiftieth "
-                                       "of the search budget, --max-designs {:.3g}) of the {:.3g} combinations need it; narrow the "
-                                       "ranges or the ratio window, or raise --max-designs",
-                                       opt.maxDesigns * kCheckedShare, opt.maxDesigns, combos));
+                                       "of the search budget, --max-designs {:.3g}) of the {:.3g} combinations need them evaluated, "
+                                       "or more than {:.3g} visited; narrow the ranges or the ratio window, or raise --max-designs",
+                                       opt.maxDesigns * kCheckedShare, opt.maxDesigns, combos, opt.maxDesigns));
       return false;
     }
     if (timedOut) {

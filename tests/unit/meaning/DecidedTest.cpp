@@ -170,3 +170,49 @@ gearbox G {
     EXPECT_NEAR(decided, brute[i].first, brute[i].first * 1e-3) << "rank " << i;
   }
 }
+
+// ISO 1328 tabulates f_Hbeta by face-width ranges, so K_Hbeta jumps up where the face width
+// passes 80 mm: this pair meets S_H >= 1.2 on [79.70, 80] mm, fails on (80, 81.17) mm and
+// meets it again above. The lightest face width lies below the jump; the range there is
+// narrower than any sample spacing, and a root found from the samples converges to 81.17 mm
+// (2 kg heavier). Checked against a brute force over a 0.01 mm grid.
+TEST(Decided, AFeasibleRangeEndingWhereAToleranceTableJumpsIsFound) {
+  const std::string text = R"(import materials;
+gearbox G {
+  stage ls: helical {
+    pinion.z = 20;  wheel.z = 90;  normal_module = 5 mm;  helix_angle = 10 deg;
+    face_width in 50..140 mm;  material = steel_18CrNiMo7_6;  accuracy = 6;
+    rating {
+      application_factor = 1.25;  life = 20000 h;
+      lubricant { viscosity_40 = 150 mm^2/s; }
+      roughness { flank = 0.6 um; root = 3.0 um; }
+    }
+  }
+  operating { input_speed = 302.3656 rpm; power = 55 kW; }
+  require ls.pinion.contact_safety >= 1.2;  require ls.wheel.contact_safety >= 1.2;
+  require ls.pinion.bending_safety >= 1.5;  require ls.wheel.bending_safety >= 1.5;
+  minimize ls.mass;
+}
+)";
+  Solved s = solve(text);
+  ASSERT_EQ(s.result.designs.size(), 1u);
+  const double decided = s.value("ls.face_width");
+  rt::Assignment a = s.at(0);
+  auto holds = [&](double b) {
+    a.box[0] = {b, b};
+    for (const auto& r : s.model->gearbox.rules) {
+      rt::Value v = s.ev->eval(*r.expr, a);
+      if (!(v.kind == rt::Value::Bool && v.truth == rt::Truth::True)) return false;
+    }
+    return true;
+  };
+  double grid = NAN;
+  for (int i = 0; i <= 9000 && std::isnan(grid); ++i)
+    if (holds(50e-3 + i * 0.01e-3)) grid = 50e-3 + i * 0.01e-3;
+  ASSERT_FALSE(std::isnan(grid));
+  EXPECT_LT(grid, 80e-3) << "the brute force finds the range below the jump";
+  EXPECT_FALSE(holds(80.5e-3)) << "the gap above the jump this case is about";
+  EXPECT_LE(decided, grid + 1e-12);
+  EXPECT_GT(decided, grid - 0.01e-3);
+  EXPECT_TRUE(holdsEveryRule(s, 0));
+}
