@@ -392,3 +392,5 @@ print("\n".join(lines))
 PY
 rm -f "$mitm" "$out" "$dyn" "$dyn.rhs" "$dyn.rating" "$dyn.steady" "$dyn.opt.settle" "$dyn.opt.periodic" "$settle_spec" "$periodic_spec" "$params" \
   "$dyn.robust" "$dyn.robust.out" "$dyn.ec.gbx" "$dyn.ec.msbdf" "$dyn.ec.rk8pd"
+# The sizing section, appended to the file just written.
+bench/sizing.sh >/dev/null
