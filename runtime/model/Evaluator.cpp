@@ -544,6 +544,7 @@ Value Evaluator::givenAttribute(int stage, int gear, Q key, const Assignment& a)
     return m_.slots[static_cast<size_t>(en.slot)].values[static_cast<size_t>(c)];
   }
   if (en.freedom >= 0) {
+    if (m_.freedoms[static_cast<size_t>(en.freedom)].solved) return m_.info(stage).kind->solve(KindContext{*this, stage, a}, gear);
     auto [lo, hi] = a.box[static_cast<size_t>(en.freedom)];
     return lo == hi ? Value::number(lo) : Value::range(lo, hi);
   }
@@ -557,6 +558,16 @@ Value Evaluator::derived(int stage, int gear, Q key, const Assignment& a) const 
   DerivedFn fn = gear < 0 ? k.stageFn(key) : k.gearFn(key);
   if (!fn) return Value::invalid();
   return fn(KindContext{*this, stage, a}, gear);
+}
+
+void Evaluator::solveFreedoms(Assignment& a, std::vector<double>& freedoms) const {
+  for (size_t f = 0; f < m_.freedoms.size() && f < freedoms.size(); ++f) {
+    const Freedom& fr = m_.freedoms[f];
+    if (!fr.solved) continue;
+    Value v = attribute(fr.stage, fr.gear, fr.key, a);
+    freedoms[f] = v.isNumber() ? v.mid() : NAN;
+    a.box[f] = {freedoms[f], freedoms[f]};
+  }
 }
 
 Value Evaluator::ratioProduct(int from, int to, const Assignment& a) const {

@@ -25,6 +25,9 @@ public:
   // A quantity path as the language writes it (`main.pinion.z`), resolved on the spot:
   // for tests and tools, never for the search.
   Value quantity(const std::string& path, const Assignment& a) const;
+  // The solved freedoms (Freedom::solved) at the design `a`, into `freedoms` (SI, model
+  // order; NaN where none meets its condition) and a's box.
+  void solveFreedoms(Assignment& a, std::vector<double>& freedoms) const;
   // A stage attribute as the design has it: fixed, chosen, a freedom's interval, a default.
   Value attribute(int stage, int gear, Q key, const Assignment& a) const;
   Value attribute(int stage, Q key, const Assignment& a) const { return attribute(stage, -1, key, a); }

@@ -101,6 +101,16 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
       get(Q::Density, info.elastic.density);
       info.elastic.assumed = false;
     }
+    // The one range of the key the kind's condition fixes is solved, not searched.
+    if (info.kind->solve) {
+      std::vector<int> keyed;
+      for (int f : info.freedoms)
+        if (freedoms[static_cast<size_t>(f)].key == info.kind->solvedKey) keyed.push_back(f);
+      if (keyed.size() == 1) {
+        freedoms[static_cast<size_t>(keyed[0])].solved = true;
+        info.freedoms.erase(std::find(info.freedoms.begin(), info.freedoms.end(), keyed[0]));
+      }
+    }
     info.selfContained = g.splits.empty() &&
                          std::all_of(st.attributes.begin(), st.attributes.end(),
                                      [&](const ir::Attribute& a) { return !a.value || readsOwnStage(*a.value, si); });

@@ -32,6 +32,10 @@ struct Freedom {
   int gear = -1;
   Q key = Q::None;
   double lo = 0, hi = 0;
+  // Fixed by an equation of its stage's kind (a planetary stage's one shift given as a range,
+  // by its concentricity): computed at each design, never searched; not among its stage's
+  // `freedoms`.
+  bool solved = false;
 };
 
 // A stage's elastic constants and density: its material's, or steel's (assumed = true).

@@ -58,6 +58,11 @@ public:
   SceneModel scene;
   std::vector<DerivedRow> rows;
   std::vector<ImplicitRule> rules;
+  // An attribute a condition of the kind fixes where it alone of its key is given as a
+  // range (a planetary stage's shift, by concentricity): its key, and its value at a design
+  // (invalid where no value in its range meets the condition).
+  Q solvedKey = Q::None;
+  DerivedFn solve = nullptr;
 
   DerivedFn stageFn(Q key) const { return stage_[static_cast<size_t>(key)]; }
   DerivedFn gearFn(Q key) const { return gear_[static_cast<size_t>(key)]; }

@@ -117,7 +117,7 @@ FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
     groups.clear();
     FreedomGroup g;
     for (size_t f = 0; f < m.freedoms.size(); ++f)
-      g.freedoms.push_back(static_cast<int>(f));
+      if (!m.freedoms[f].solved) g.freedoms.push_back(static_cast<int>(f));
     for (const auto& r : m.gearbox.rules)
       if (r.expr) g.rules.push_back(&r);
     g.allObjectives = true;
@@ -235,6 +235,7 @@ DecidedPoint FreedomPlan::decide(const Evaluator& ev, const std::vector<int>& ch
   a.choice = choice;
   for (size_t f = 0; f < out.freedoms.size(); ++f)
     a.box[f] = {out.freedoms[f], out.freedoms[f]};
+  ev.solveFreedoms(a, out.freedoms);
   // The groups decided the rules on their freedoms; the rules on none (a `worst` over a stage
   // without freedoms, which the search defers) are checked here.
   for (const auto* r : rest_) {

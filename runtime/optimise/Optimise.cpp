@@ -57,6 +57,7 @@ double objectiveAt(const gsl_vector* u, void* p) {
     x[i] = t->lo[i] + (t->hi[i] - t->lo[i]) * s * s;  // bounds by transform: never outside the domain
     t->a->box[i] = {x[i], x[i]};
   }
+  t->ev->solveFreedoms(*t->a, x); // a solved freedom's coordinate moves nothing: its value is computed
   ++t->evaluations;
   double v = 0;
   for (const auto& r : t->m->gearbox.rules)

@@ -43,7 +43,7 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth) {
       for (int s = 0; s <= st; ++s)
         c.stages.insert(s);
     c.stages.insert(st);
-    if (m.freedomOf(st, r.gear, r.key) >= 0) c.freedom = true;
+    if (int f = m.freedomOf(st, r.gear, r.key); f >= 0 && !m.freedoms[static_cast<size_t>(f)].solved) c.freedom = true;
     const ir::Attribute* a = m.attribute(st, r.gear, r.key);
     if (!a && !m.stages[static_cast<size_t>(st)].freedoms.empty() && r.key != Q::Ratio) c.freedom = true;
     if (a && a->value && a->role != ir::Attribute::Decision) dependencies(m, *a->value, c, depth + 1);

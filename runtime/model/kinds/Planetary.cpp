@@ -1,5 +1,9 @@
 // Planetary stages: sun input, ring fixed, carrier output, equally spaced planets.
+#include <algorithm>
 #include <cmath>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
 
 #include "catalogue/StageKinds.h"
 #include "model/Evaluator.h"
@@ -17,6 +21,61 @@ using cat::gear::Sun;
 
 Value half() { return Value::rational(Rational::make(1, 2)); }
 Truth truth(bool b) { return b ? Truth::True : Truth::False; }
+
+// Shifts are given to four decimals: 1e-3 m_n is the centre distance that rounding moves.
+constexpr double kConcentric = 1e-3;
+
+// The sun-planet working centre distance less the planet-ring one (the ring's shift as ISO
+// 21771 writes it for an internal gear), each mesh at its own working pressure angle.
+double concentricity(double zs, double zp, double zr, double m, double alpha, const double x[3]) {
+  return geometry::workingCenterDistance(zs, zp, m, alpha, x[Sun], x[Planet]) -
+         std::fabs(geometry::workingCenterDistance(zp, -zr, m, alpha, x[Planet], x[Ring]));
+}
+
+// The one shift given as a range (Freedom::solved), solved from the concentricity: the root
+// of the centre distances' difference in its range, by Brent's method (GSL) to 1e-12; an end
+// of the range where no root lies inside but that end is concentric within the tolerance;
+// else invalid (no shift in the range makes the stage concentric).
+Value concentricShift(const KindContext& c, int gear) {
+  const Model& model = c.ev.model();
+  const int f = model.freedomOf(c.stage, gear, Q::Shift);
+  std::vector<Value> v = {c.at(Sun, Q::Z), c.at(Planet, Q::Z), c.at(Ring, Q::Z), c.at(Q::Module), c.at(Q::PressureAngle)};
+  for (int g : {Sun, Planet, Ring})
+    if (g != gear) v.push_back(c.orZero(g, Q::Shift));
+  if (f < 0 || std::any_of(v.begin(), v.end(), [](const Value& x) { return !x.isPoint(); })) return Value::invalid();
+  struct Params {
+    double zs, zp, zr, m, alpha, x[3];
+    int gear;
+  } p{v[0].lo, v[1].lo, v[2].lo, v[3].lo, v[4].lo, {0, 0, 0}, gear};
+  if (!(p.zr > p.zp)) return Value::invalid();
+  for (int g = Sun, k = 5; g <= Ring; ++g)
+    if (g != gear) p.x[g] = v[static_cast<size_t>(k++)].lo;
+  gsl_function fn;
+  fn.function = [](double x, void* q) {
+    auto* s = static_cast<Params*>(q);
+    s->x[s->gear] = x;
+    return concentricity(s->zs, s->zp, s->zr, s->m, s->alpha, s->x);
+  };
+  fn.params = &p;
+  const double lo = model.freedoms[static_cast<size_t>(f)].lo, hi = model.freedoms[static_cast<size_t>(f)].hi;
+  const double flo = fn.function(lo, &p), fhi = fn.function(hi, &p);
+  if (!std::isfinite(flo) || !std::isfinite(fhi)) return Value::invalid();
+  if (flo * fhi > 0) {
+    double end = std::fabs(flo) < std::fabs(fhi) ? lo : hi;
+    return std::min(std::fabs(flo), std::fabs(fhi)) <= kConcentric * p.m ? Value::number(end) : Value::invalid();
+  }
+  if (flo == 0 || fhi == 0) return Value::number(flo == 0 ? lo : hi);
+  gsl_set_error_handler_off();
+  gsl_root_fsolver* s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  gsl_root_fsolver_set(s, &fn, lo, hi);
+  for (int it = 0; it < 100; ++it) {
+    if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) break;
+    if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 1e-12, 0) == GSL_SUCCESS) break;
+  }
+  double root = gsl_root_fsolver_root(s);
+  gsl_root_fsolver_free(s);
+  return Value::number(root);
+}
 
 std::vector<DerivedRow> rows() {
   auto r = moduleGearRows();
@@ -59,8 +118,22 @@ std::vector<DerivedRow> rows() {
   return r;
 }
 
+// Whether the stage's shift given as a range (Freedom::solved) has no value: no shift in the
+// range makes the stage concentric.
+bool solvedShiftMissing(const KindContext& c) {
+  const Model& m = c.ev.model();
+  for (int g : {Sun, Planet, Ring})
+    if (int f = m.freedomOf(c.stage, g, Q::Shift); f >= 0 && m.freedoms[static_cast<size_t>(f)].solved)
+      return c.at(g, Q::Shift).kind == Value::Invalid;
+  return false;
+}
+
 std::vector<ImplicitRule> rules() {
   return {
+      // One shift given as a range is solved from the concentricity (concentricShift); the
+      // funnel says so where the range holds no solution.
+      {"concentric: a value in the range of the shift given as a range makes the working centre distances equal",
+       [](const KindContext& c) { return truth(!solvedShiftMissing(c)); }},
       // Without profile shifts the tooth counts fix the concentricity. A stage whose gears
       // carry shifts (NREL 5 MW: 19/17/56) is concentric on its working centre distances: the
       // sun-planet mesh's equals the planet-ring mesh's (the ring's shift in ISO 21771's
@@ -75,13 +148,15 @@ std::vector<ImplicitRule> rules() {
          std::vector<Value> v = {c.at(Sun, Q::Z), c.at(Planet, Q::Z), c.at(Ring, Q::Z), c.at(Q::Module), c.at(Q::PressureAngle),
                                  c.orZero(Sun, Q::Shift), c.orZero(Planet, Q::Shift), c.orZero(Ring, Q::Shift)};
          for (const auto& x : v)
-           if (!x.isPoint()) return Truth::Unknown;
+           if (!x.isPoint()) {
+             // A solved shift without a value is removed by the rule before.
+             return solvedShiftMissing(c) ? Truth::True : Truth::Unknown;
+           }
          double zs = v[0].lo, zp = v[1].lo, zr = v[2].lo, m = v[3].lo, alpha = v[4].lo;
          if (!(zr > zp)) return Truth::False;
          double sunPlanet = geometry::workingCenterDistance(zs, zp, m, alpha, v[5].lo, v[6].lo);
          double planetRing = std::fabs(geometry::workingCenterDistance(zp, -zr, m, alpha, v[6].lo, v[7].lo));
-         // Shifts are given to four decimals: 1e-3 m_n is the centre distance that rounding moves.
-         return truth(std::fabs(sunPlanet - planetRing) <= 1e-3 * m);
+         return truth(std::fabs(sunPlanet - planetRing) <= kConcentric * m);
        }},
       {"assembly: (sun.z + ring.z) / planets is whole",
        [](const KindContext& c) {
@@ -102,7 +177,12 @@ std::vector<ImplicitRule> rules() {
 } // namespace
 
 const StageKindImpl& planetary() {
-  static const StageKindImpl k(ir::StageKind::Planetary, SceneModel::Planetary, rows(), rules());
+  static const StageKindImpl k = [] {
+    StageKindImpl kind(ir::StageKind::Planetary, SceneModel::Planetary, rows(), rules());
+    kind.solvedKey = Q::Shift;
+    kind.solve = concentricShift;
+    return kind;
+  }();
   return k;
 }
 

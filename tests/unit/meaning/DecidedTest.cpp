@@ -216,3 +216,54 @@ gearbox G {
   EXPECT_GT(decided, grid - 0.01e-3);
   EXPECT_TRUE(holdsEveryRule(s, 0));
 }
+
+namespace {
+
+// ISO 21771's working centre distance of a pair (z2 < 0 for an internal gear, its shift as
+// the standard writes it), from inv(alpha_w) = inv(alpha) + 2 tan(alpha) (x1 + x2) / (z1 + z2),
+// solved by bisection: an independent check of the concentricity.
+double workingDistance(double z1, double z2, double m, double x1, double x2) {
+  const double alpha = 20 * M_PI / 180;
+  auto inv = [](double a) { return std::tan(a) - a; };
+  const double want = inv(alpha) + 2 * std::tan(alpha) * (x1 + x2) / (z1 + z2);
+  double lo = 0.01, hi = 1.4;
+  for (int i = 0; i < 200; ++i) (inv(0.5 * (lo + hi)) < want ? lo : hi) = 0.5 * (lo + hi);
+  return std::fabs((z1 + z2) * m / 2 * std::cos(alpha) / std::cos(0.5 * (lo + hi)));
+}
+
+std::string planetary(const std::string& shifts) {
+  return "import materials;\ngearbox P {\n  stage p: planetary {\n    sun.z = 22; planet.z = 30; ring.z = 83; planets = 3;\n"
+         "    module = 3 mm;\n    " + shifts + "\n    face_width = 30 mm;\n    material = steel_18CrNiMo7_6;\n  }\n}\n";
+}
+
+} // namespace
+
+// A shift range under the planetary concentricity is solved, not searched: 22/30/83 at
+// module 3 mm with sun and planet shifts 0.25 is concentric at one ring shift, where both
+// working centre distances are 79.4094 mm.
+TEST(Decided, AShiftRangeOfAPlanetaryStageIsSolvedFromItsConcentricity) {
+  Solved s = solve(planetary("sun.shift = 0.25; planet.shift = 0.25; ring.shift in -0.5..0.0;"));
+  ASSERT_EQ(s.result.designs.size(), 1u);
+  const double xr = s.value("p.ring.shift");
+  const double sunPlanet = workingDistance(22, 30, 3, 0.25, 0.25);
+  EXPECT_NEAR(sunPlanet, 79.4094e-0, 1e-4);
+  EXPECT_NEAR(workingDistance(30, -83, 3, 0.25, xr), sunPlanet, 1e-9);
+  EXPECT_NEAR(xr, -0.21993, 1e-5);
+  // Pinned as printed, the same design.
+  Solved pinned = solve(planetary(fmt::format("sun.shift = 0.25; planet.shift = 0.25; ring.shift = {:.4f};", xr)));
+  EXPECT_EQ(pinned.result.designs.size(), 1u);
+  // The sun's shift solved the same way.
+  Solved sun = solve(planetary("sun.shift in 0.0..0.5; planet.shift = 0.25; ring.shift = -0.21993;"));
+  ASSERT_EQ(sun.result.designs.size(), 1u);
+  EXPECT_NEAR(sun.value("p.sun.shift"), 0.25, 1e-4);
+}
+
+// No ring shift in the range makes the stage concentric: no design, and the funnel says why.
+TEST(Decided, AShiftRangeWithoutAConcentricValueSaysSo) {
+  Solved s = solve(planetary("sun.shift = 0.25; planet.shift = 0.25; ring.shift in -0.5..-0.3;"));
+  EXPECT_EQ(s.result.count, 0u);
+  bool named = false;
+  for (const auto& f : s.result.funnel)
+    named = named || (f.rule.find("a value in the range of the shift") != std::string::npos && f.removed == 1);
+  EXPECT_TRUE(named);
+}
