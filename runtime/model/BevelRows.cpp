@@ -128,6 +128,19 @@ std::optional<BevelInput> fixedInputs(const KindContext& c, std::string* why) {
   return in;
 }
 
+// The pair rated, under the stage's load spectrum where it has one (ISO 6336-6's Miner sum
+// over ISO 10300's life factors): the safeties are then the spectrum's.
+BevelRating ratedUnder(const BevelInput& in, const std::vector<SpectrumBin>& bins) {
+  BevelRating r = rateBevel(in);
+  if (bins.empty()) return r;
+  BevelSpectrum sp = rateBevelSpectrum(in, bins);
+  for (size_t k = 0; k < 2; ++k) {
+    r.gear[k].SH = sp.contact[k].safety;
+    if (std::isfinite(r.gear[k].SF)) r.gear[k].SF = sp.bending[k].safety;
+  }
+  return r;
+}
+
 using Select = double (*)(const BevelRating&, int gear);
 enum Need { Geometry, Load, Rating };
 
@@ -135,12 +148,18 @@ enum Need { Geometry, Load, Rating };
 Value value(const KindContext& c, int gear, Select select, Need need) {
   std::optional<BevelInput> fixed = need == Rating ? fixedInputs(c, nullptr) : std::optional<BevelInput>(geometryInputs(c));
   if (!fixed) return Value::invalid();
+  std::vector<SpectrumBin> bins;
+  if (need == Rating) {
+    auto b = spectrumBins(c, nullptr);
+    if (!b) return Value::invalid();
+    bins = std::move(*b);
+  }
   auto x = varying(c, need != Geometry);
   if (!x) return Value::invalid();
   return arith::corners(*x, [&](const V& v) {
     try {
       BevelInput in = inputAt(*fixed, v);
-      return select(need == Rating ? rateBevel(in) : bevelGeometry(in), gear);
+      return select(need == Rating ? ratedUnder(in, bins) : bevelGeometry(in), gear);
     } catch (const std::domain_error&) {
       return kNaN;
     }
@@ -164,6 +183,8 @@ DerivedRow gearRow(Q key) {
 std::optional<BevelStageRating> rateBevelStage(const KindContext& c, std::string* why) {
   auto fixed = fixedInputs(c, why);
   if (!fixed) return std::nullopt;
+  auto bins = spectrumBins(c, why);
+  if (!bins) return std::nullopt;
   auto x = varying(c, true);
   if (!x) {
     if (why) *why = "its geometry or load is not known at this design";
@@ -173,7 +194,7 @@ std::optional<BevelStageRating> rateBevelStage(const KindContext& c, std::string
   for (const auto& v : *x) mid.push_back(v.mid());
   try {
     BevelInput in = inputAt(*fixed, mid);
-    return BevelStageRating{in, rateBevel(in)};
+    return BevelStageRating{in, ratedUnder(in, *bins)};
   } catch (const std::domain_error& e) {
     if (why) *why = e.what();
     return std::nullopt;

@@ -386,24 +386,10 @@ std::optional<Rated> gather(const KindContext& c, std::string* why) {
     ~Guard() { --n; }
   } guard(active);
   Rated r;
-  // Bins as shares of the stage's operating torque and of its life: a torque over the
-  // stage's input torque, cycles as revolutions of its input member over those of the life.
-  // Every mesh of the stage (a planet's, an idler's) then takes its own share.
-  for (const auto& b : c.ev.model().info(c.stage).ir->spectrum) {
-    SpectrumBin bin;
-    bin.torqueShare = b.load.toDouble();
-    bin.lifeShare = b.duration.toDouble();
-    if (!b.share || b.cycles) {
-      Value torque = c.derived(Q::InputTorque), speed = c.derived(Q::InputSpeed), life = c.at(Q::RatingLife);
-      if (!torque.isNumber() || !speed.isNumber() || !life.isNumber() || torque.mid() == 0 || speed.mid() == 0) {
-        if (why) *why = "its load spectrum's torques or cycles need the stage's input torque, speed and life";
-        return std::nullopt;
-      }
-      if (!b.share) bin.torqueShare = b.load.toDouble() / std::fabs(torque.mid());
-      if (b.cycles) bin.lifeShare = b.duration.toDouble() * 2 * M_PI / (std::fabs(speed.mid()) * life.mid());
-    }
-    r.bins.push_back(bin);
-  }
+  // Every mesh of the stage (a planet's, an idler's) takes its own share of the bins.
+  auto bins = spectrumBins(c, why);
+  if (!bins) return std::nullopt;
+  r.bins = std::move(*bins);
   r.meshes = meshesOf(c);
   if (r.meshes.empty()) {
     if (why) *why = "this stage kind has no ISO 6336 rating";
@@ -651,6 +637,26 @@ DerivedRow gearRow(Q key) {
 }
 
 } // namespace
+
+std::optional<std::vector<SpectrumBin>> spectrumBins(const KindContext& c, std::string* why) {
+  std::vector<SpectrumBin> out;
+  for (const auto& b : c.ev.model().info(c.stage).ir->spectrum) {
+    SpectrumBin bin;
+    bin.torqueShare = b.load.toDouble();
+    bin.lifeShare = b.duration.toDouble();
+    if (!b.share || b.cycles) {
+      Value torque = c.derived(Q::InputTorque), speed = c.derived(Q::InputSpeed), life = c.at(Q::RatingLife);
+      if (!torque.isNumber() || !speed.isNumber() || !life.isNumber() || torque.mid() == 0 || speed.mid() == 0) {
+        if (why) *why = "its load spectrum's torques or cycles need the stage's input torque, speed and life";
+        return std::nullopt;
+      }
+      if (!b.share) bin.torqueShare = b.load.toDouble() / std::fabs(torque.mid());
+      if (b.cycles) bin.lifeShare = b.duration.toDouble() * 2 * M_PI / (std::fabs(speed.mid()) * life.mid());
+    }
+    out.push_back(bin);
+  }
+  return out;
+}
 
 std::optional<ScuffingRating> scuffingOf(const PairInput& in, const PairRating& r, ScuffingEdition edition, std::string* why) {
   if (!in.oil || in.gear[1].internal) return std::nullopt;

@@ -18,6 +18,12 @@ namespace gbx::rt::rating {
 
 std::vector<DerivedRow> pairRows();
 
+// The stage's load spectrum (ISO 6336-6) as shares of its operating torque and of its life:
+// a bin's torque over the stage's input torque, its cycles as revolutions of the input member
+// over those of the life. Empty without one; nullopt, with the reason, where a bin's torque or
+// cycles need a load or life the design lacks.
+std::optional<std::vector<SpectrumBin>> spectrumBins(const KindContext& c, std::string* why);
+
 // A value the spec gives (fixed, chosen or free), not the one a kind derives when absent.
 Value givenOnly(const KindContext& c, int gear, Q k);
 

@@ -11,13 +11,15 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kEnd = 1e10; // the life curves' last point
 
-// The gear's permissible stresses (without S_min) when it has run n cycles.
-std::pair<double, double> limitsAt(PairInput in, int gear, double n) {
-  const GearInput& g = in.gear[static_cast<size_t>(gear)];
-  if (!(g.speed * g.cyclesPerRev > 0)) throw std::domain_error("a gear that does not turn has no life curve to rate a load spectrum on");
-  in.life = n * 2 * kPi / (g.speed * g.cyclesPerRev);
-  PairRating r = rate(in);
-  const GearRating& o = r.gear[static_cast<size_t>(gear)];
+// The gear's permissible stresses (without S_min) when it has run n cycles (`perRev` load
+// cycles per revolution).
+template <class Input, class Rate>
+std::pair<double, double> limitsAt(Input in, int gear, double n, double perRev, Rate rate) {
+  const auto& g = in.gear[static_cast<size_t>(gear)];
+  if (!(g.speed * perRev > 0)) throw std::domain_error("a gear that does not turn has no life curve to rate a load spectrum on");
+  in.life = n * 2 * kPi / (g.speed * perRev);
+  const auto r = rate(in);
+  const auto& o = r.gear[static_cast<size_t>(gear)];
   return {o.sigmaHP * in.SHmin, o.sigmaFP * in.SFmin};
 }
 
@@ -61,28 +63,35 @@ double SnCurve::cycles(double stress) const {
   return INFINITY;
 }
 
-SpectrumRating rateSpectrum(const PairInput& in, const std::vector<SpectrumBin>& bins) {
-  SpectrumRating out;
+namespace {
+
+// Miner's rule for a pair of either standard: `rate` rates an input; `perRev` gives each
+// gear's load cycles per revolution.
+template <class Input, class Rate>
+auto miner(const Input& in, const std::vector<SpectrumBin>& bins, Rate rate, const std::array<double, 2>& perRev) {
+  using Rating = decltype(rate(in));
+  SpectrumOf<Rating> out;
   if (bins.empty()) throw std::domain_error("an empty load spectrum");
-  PairRating nominal = rate(in);
+  Rating nominal = rate(in);
   for (int g = 0; g < 2; ++g) {
+    const double k = perRev[static_cast<size_t>(g)];
     Treatment t = in.gear[static_cast<size_t>(g)].treatment.value_or(in.treatment);
     LifeCurve c = contactCurve(t), b = bendingCurve(t);
-    auto [hs, fs0] = limitsAt(in, g, c.nStatic);
-    auto [hk, fk0] = limitsAt(in, g, c.nKnee);
-    auto [he, fe] = limitsAt(in, g, kEnd);
-    auto [hs1, fs] = limitsAt(in, g, b.nStatic);
-    auto [hk1, fk] = limitsAt(in, g, b.nKnee);
+    auto [hs, fs0] = limitsAt(in, g, c.nStatic, k, rate);
+    auto [hk, fk0] = limitsAt(in, g, c.nKnee, k, rate);
+    auto [he, fe] = limitsAt(in, g, kEnd, k, rate);
+    auto [hs1, fs] = limitsAt(in, g, b.nStatic, k, rate);
+    auto [hk1, fk] = limitsAt(in, g, b.nKnee, k, rate);
     out.contactCurve[static_cast<size_t>(g)] = {c.nStatic, hs, c.nKnee, hk, he};
     out.bendingCurve[static_cast<size_t>(g)] = {b.nStatic, fs, b.nKnee, fk, fe};
   }
   // Each bin's duration in each gear's load cycles: its share of the life.
   std::array<std::vector<double>, 2> n, sH, sF;
   for (const auto& b : bins) {
-    PairInput at = in;
+    Input at = in;
     at.torque1 = b.torqueShare * in.torque1;
     out.bins.push_back(rate(at));
-    const PairRating& r = out.bins.back();
+    const Rating& r = out.bins.back();
     for (size_t g = 0; g < 2; ++g) {
       n[g].push_back(b.lifeShare * nominal.gear[g].cycles);
       sH[g].push_back(r.gear[g].sigmaH);
@@ -95,6 +104,16 @@ SpectrumRating rateSpectrum(const PairInput& in, const std::vector<SpectrumBin>&
       out.bending[g] = {damageOf(out.bendingCurve[g], sF[g], n[g], 1.0), safetyOf(out.bendingCurve[g], sF[g], n[g])};
   }
   return out;
+}
+
+} // namespace
+
+SpectrumRating rateSpectrum(const PairInput& in, const std::vector<SpectrumBin>& bins) {
+  return miner(in, bins, [](const PairInput& x) { return rate(x); }, {in.gear[0].cyclesPerRev, in.gear[1].cyclesPerRev});
+}
+
+BevelSpectrum rateBevelSpectrum(const BevelInput& in, const std::vector<SpectrumBin>& bins) {
+  return miner(in, bins, [](const BevelInput& x) { return rateBevel(x); }, {1.0, 1.0});
 }
 
 } // namespace gbx::rt::rating

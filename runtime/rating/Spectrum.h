@@ -5,6 +5,7 @@
 #include <array>
 #include <vector>
 
+#include "rating/Iso10300.h"
 #include "rating/Iso6336.h"
 
 namespace gbx::rt::rating {
@@ -28,14 +29,20 @@ struct SpectrumSide {
   double safety = kNaN; // the factor on every bin's stress at which the sum reaches 1
 };
 
-struct SpectrumRating {
+template <class Rating>
+struct SpectrumOf {
   std::array<SpectrumSide, 2> contact, bending; // per gear (NaN: a root not rated)
   std::array<SnCurve, 2> contactCurve, bendingCurve;
-  std::vector<PairRating> bins; // the rating at each bin's torque
+  std::vector<Rating> bins; // the rating at each bin's torque
 };
+using SpectrumRating = SpectrumOf<PairRating>;
+using BevelSpectrum = SpectrumOf<BevelRating>;
 
 // `in` as rated at its operating torque and life; each bin rated at its own torque with the
 // factors the standard computes at that load (a given K_v or K_Hbeta stays as given).
 SpectrumRating rateSpectrum(const PairInput& in, const std::vector<SpectrumBin>& bins);
+// The same for a bevel pair (ISO 10300-2/-3): its life curves are ISO 6336's, read through
+// its own life factors Z_NT and Y_NT at each number of cycles.
+BevelSpectrum rateBevelSpectrum(const BevelInput& in, const std::vector<SpectrumBin>& bins);
 
 } // namespace gbx::rt::rating

@@ -327,3 +327,17 @@ TEST(ModelFactors, RatingWarnings) {
     EXPECT_NE(w.find(what), std::string::npos) << what << " in\n" << w;
   EXPECT_EQ(warningsOf(quiet), "");
 }
+
+// Aligned, but with an overlap ratio far from whole (eps_beta = 1.32 at 80 mm): the contact
+// lines cross the two ends of the face differently within a period, and the slices' averages
+// differ along it, so K_Hbeta is about 1 % above 1 (docs/rating.md says so).
+TEST(ModelFactors, PerfectAlignmentAtAnOverlapRatioFarFromWhole) {
+  std::string text = pair("mesh_misalignment = 0 um;", "1500 N*m");
+  auto at = text.find("face_width = 60 mm;");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 19, "face_width = 80 mm;");
+  auto d = design(text, "G");
+  EXPECT_NEAR(d.q("s.eps_beta"), 1.32, 0.005);
+  EXPECT_GT(d.q("s.K_Hbeta"), 1.005);
+  EXPECT_LT(d.q("s.K_Hbeta"), 1.015);
+}

@@ -1,5 +1,10 @@
 // The rating through the language: seed 003's mechanism on the project's turbine spec, and
 // the search's handling of strength rules.
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
 #include <gtest/gtest.h>
 
 #include "Specs.h"
@@ -270,4 +275,87 @@ TEST(RatingSpec, WhatABevelStageCannotComputeUnratedIsARatingQuantity) {
   for (const auto& a : bevel->stage) check(a, "upper." + a.name);
   for (const auto& a : bevel->gear) check(a, "upper.pinion." + a.name);
   EXPECT_GT(rated, 20);
+}
+
+namespace {
+
+// Sample 1 with the load factors given (so each stress follows the torque alone: sigma_H as
+// its square root, sigma_F in proportion) and a load spectrum inserted in its rating.
+double bevelUnder(const std::string& spectrum, const char* path) {
+  std::string text = readSpec("iso_tr_10300_sample1.gbx");
+  const std::string at = "      life_curve = optimum;";
+  auto pos = text.find(at);
+  EXPECT_NE(pos, std::string::npos);
+  text.insert(pos, "      dynamic_factor = 1.02;  face_load_factor = 1.65;  transverse_load_factor = 1.16;\n" + spectrum);
+  auto c = driver::compileText("spectrum.gbx", text);
+  EXPECT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  auto f = fixed(c, "Sample1");
+  rt::Evaluator ev(*f.model);
+  rt::Value v = ev.quantity(path, *f.design);
+  EXPECT_TRUE(v.isPoint()) << path;
+  return v.lo;
+}
+
+} // namespace
+
+// A load spectrum on a bevel stage counts (ISO 6336-6's Miner sum over ISO 10300's life
+// factors). One bin at 200 % for the whole life: each bin's cycles are the life's, so the
+// safety is the plain rating's at twice the torque, S_H / sqrt(2) and S_F / 2 where the load
+// factors are given. One bin at 100 % gives the plain safeties.
+TEST(RatingSpec, ALoadSpectrumOnABevelStageCounts) {
+  const std::string none, once = "      load_spectrum { bin 100% torque for 100% of life; }\n",
+                          twice = "      load_spectrum { bin 200% torque for 100% of life; }\n";
+  for (const char* gear : {"upper.pinion", "upper.wheel"}) {
+    std::string sh = std::string(gear) + ".contact_safety", sf = std::string(gear) + ".bending_safety";
+    const double plainH = bevelUnder(none, sh.c_str()), plainF = bevelUnder(none, sf.c_str());
+    EXPECT_NEAR(bevelUnder(once, sh.c_str()) / plainH, 1, 1e-9) << gear;
+    EXPECT_NEAR(bevelUnder(once, sf.c_str()) / plainF, 1, 1e-9) << gear;
+    EXPECT_NEAR(bevelUnder(twice, sh.c_str()) / plainH, 1 / std::sqrt(2.0), 1e-9) << gear;
+    EXPECT_NEAR(bevelUnder(twice, sf.c_str()) / plainF, 0.5, 1e-9) << gear;
+  }
+}
+
+namespace {
+
+// The turbine pair's K_Hbeta with the pinion crowned by `crowning` (none: the unmodified
+// pair), by method B or by the contact analysis.
+double turbineKHbeta(const std::string& crowning, bool contactAnalysis) {
+  std::string text = readSpec("turbine_modification.gbx");
+  if (!contactAnalysis) {
+    const std::string line = "      face_load_factor = contact_analysis;\n";
+    auto at = text.find(line);
+    EXPECT_NE(at, std::string::npos);
+    text.erase(at, line.size());
+  }
+  if (!crowning.empty()) {
+    const std::string rule = "max(pinion.bending_deflection + pinion.torsion_deflection, 13 um)";
+    auto at = text.find(rule);
+    EXPECT_NE(at, std::string::npos);
+    text.replace(at, rule.size(), crowning);
+  }
+  auto c = driver::compileText("turbine.gbx", text);
+  EXPECT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  auto f = fixed(c, crowning.empty() ? "TurbineReducerUnmodified" : "TurbineReducer");
+  rt::Evaluator ev(*f.model);
+  return ev.quantity("hs.K_Hbeta", *f.design).mid();
+}
+
+} // namespace
+
+// docs/rating.md quotes the turbine pair's K_Hbeta by crowning and method: the table there
+// is what the build computes, to its four decimals.
+TEST(RatingSpec, TheTurbineKHbetaTableInTheDocsIsWhatTheBuildComputes) {
+  std::ifstream in(std::string(GBX_SOURCE_DIR) + "/docs/rating.md");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string doc = ss.str();
+  const std::pair<const char*, const char*> rows[] = {{"none", ""}, {"13 µm", "13 um"}, {"40 µm", "40 um"}};
+  for (const auto& [label, crowning] : rows) {
+    auto at = doc.find(std::string("| ") + label + " | ");
+    ASSERT_NE(at, std::string::npos) << label;
+    double b = 0, ca = 0;
+    ASSERT_EQ(std::sscanf(doc.c_str() + at + 4 + std::strlen(label), "%lf | %lf", &b, &ca), 2) << label;
+    EXPECT_NEAR(turbineKHbeta(crowning, false), b, 5e-5) << label << ", method B";
+    EXPECT_NEAR(turbineKHbeta(crowning, true), ca, 5e-5) << label << ", contact analysis";
+  }
 }
