@@ -140,14 +140,14 @@ std::vector<ir::SpectrumBin> Analyser::spectrumBins(const StageModel& st) {
 }
 
 // A rated bevel stage (ISO 10300 method B1) needs its size (an outer cone distance, or a mean
-// normal module, and a face width or face ratio) and each gear's single pitch deviation.
+// normal module, and a face width or face ratio; or a face width and a face ratio, b/R_e) and each gear's single pitch deviation.
 void Analyser::bevelRatingInputs(const StageModel& st, Span where) {
   bool re = st.findAttr("outer_cone_distance"), mmn = st.findAttr("mean_normal_module"), b = st.findAttr("face_width"),
        ratio = st.findAttr("face_ratio");
-  if (!re && !mmn)
+  if (!re && !mmn && !(b && ratio))
     diags_.error("E0225", where,
-                 fmt::format("bevel stage `{}` is rated but gives neither `outer_cone_distance` nor `mean_normal_module`: the rating needs "
-                             "the size of the gears",
+                 fmt::format("bevel stage `{}` is rated but gives neither `outer_cone_distance` nor `mean_normal_module` (nor "
+                             "`face_width` with `face_ratio`): the rating needs the size of the gears",
                              st.name));
   if (!b && !ratio)
     diags_.error("E0225", where, fmt::format("bevel stage `{}` is rated but gives neither `face_width` nor `face_ratio`", st.name));

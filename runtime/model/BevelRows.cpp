@@ -54,7 +54,7 @@ std::optional<std::vector<Value>> varying(const KindContext& c, bool load) {
   for (int i : {Z1, Z2, X1, X2, Xs1, Xs2, Beta, AlphaN, Shaft, T1, N1, N2})
     if (!x[static_cast<size_t>(i)].isNumber()) return std::nullopt;
   // The size: a cone distance or a module, and a face width or a face ratio.
-  if (x[Re].lo == kAbsent && x[Mmn].lo == kAbsent) return std::nullopt;
+  if (x[Re].lo == kAbsent && x[Mmn].lo == kAbsent && (x[B].lo == kAbsent || x[Ratio].lo == kAbsent)) return std::nullopt;
   if (x[B].lo == kAbsent && x[Ratio].lo == kAbsent) return std::nullopt;
   return x;
 }

@@ -126,10 +126,8 @@ public:
         }
       }
     }
-    // `report { ranges; }`: each column over the design's whole box of freedoms.
-    const Assignment& at = ranges_ ? wholeBox(i) : a;
     for (size_t c = 0; c < exprs_.size(); ++c) {
-      Value v = value(i, c, at);
+      Value v = value(i, c, a);
       Cell cell;
       if (v.isNumber()) {
         cell.valid = true;
@@ -142,12 +140,21 @@ public:
           continue;
         }
         cell.text = v.lo == v.hi ? shown(v.lo) : "[" + shown(v.lo) + ", " + shown(v.hi) + "]";
-        auto b = exprs_[c]->op == ir::Op::Quantity ? bounds_.find(exprs_[c]->name) : bounds_.end();
-        if (b != bounds_.end() && v.lo != v.hi) {
-          cell.feasible = true;
-          cell.flo = std::max(v.lo, b->second.first);
-          cell.fhi = std::min(v.hi, b->second.second);
-          cell.text += " feasible [" + shown(cell.flo) + ", " + shown(cell.fhi) + "]";
+        // `report { ranges; }`: the column over the design's whole box of freedoms beside it,
+        // and the part of that a rule on the quantity allows.
+        Value w = ranges_ ? ev_.eval(*exprs_[c], wholeBox(i)) : Value::invalid();
+        if (w.isNumber() && w.lo != w.hi) {
+          cell.ranged = true;
+          cell.rlo = w.lo;
+          cell.rhi = w.hi;
+          cell.text += " in [" + shown(w.lo) + ", " + shown(w.hi) + "]";
+          auto b = exprs_[c]->op == ir::Op::Quantity ? bounds_.find(exprs_[c]->name) : bounds_.end();
+          if (b != bounds_.end()) {
+            cell.feasible = true;
+            cell.flo = std::max(w.lo, b->second.first);
+            cell.fhi = std::min(w.hi, b->second.second);
+            cell.text += " feasible [" + shown(cell.flo) + ", " + shown(cell.fhi) + "]";
+          }
         }
       } else {
         cell.text = "n/a";

@@ -24,7 +24,8 @@ struct Pair {
   double av, uv, pvet, gva, epsVa, epsVb, epsVg, rhoRel;
 };
 
-// The size of the pair: R_e given, else from the mean normal module; b given, else b/R_e.
+// The size of the pair: R_e given, else from the mean normal module, else from the face width
+// and the face ratio; b given, else b/R_e.
 void size(const BevelInput& in, Pair& p, bool strict) {
   double z1 = in.gear[0].z;
   bool haveB = std::isfinite(in.b);
@@ -34,6 +35,8 @@ void size(const BevelInput& in, Pair& p, bool strict) {
     // R_m = m_mn z1 / (2 cos beta_m sin delta1), R_e = R_m + b/2.
     double Rm = in.mmn * 1e3 * z1 / (2 * std::cos(in.betaM) * std::sin(p.delta[0]));
     p.Re = haveB ? Rm + in.b * 1e3 / 2 : Rm / (1 - in.faceRatio / 2);
+  } else if (haveB && std::isfinite(in.faceRatio) && in.faceRatio > 0) {
+    p.Re = in.b * 1e3 / in.faceRatio; // the face width and the face ratio b/R_e fix the cone
   } else {
     throw std::domain_error("the rating needs the outer cone distance or the mean normal module");
   }

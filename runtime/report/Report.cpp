@@ -249,6 +249,18 @@ std::string jsonCandidate(const GearboxReport& g, const DesignRow& r) {
     o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(g.columns[i].name), v);
   }
   o += "}";
+  bool anyRanged = false;
+  for (const auto& c : r.cells) anyRanged = anyRanged || c.ranged;
+  if (anyRanged) {
+    o += ", \"ranges\": {";
+    bool first = true;
+    for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
+      if (!r.cells[i].ranged) continue;
+      o += fmt::format("{}\"{}\": [{}, {}]", first ? "" : ", ", jsonEscape(g.columns[i].name), num(r.cells[i].rlo), num(r.cells[i].rhi));
+      first = false;
+    }
+    o += "}";
+  }
   bool anyFeasible = false;
   for (const auto& c : r.cells) anyFeasible = anyFeasible || c.feasible;
   if (anyFeasible) {

@@ -17,7 +17,11 @@ namespace gbx::rt {
 struct Cell {
   bool valid = false;
   double lo = 0, hi = 0;  // lo == hi for a number; over freedoms the attainable interval
-  bool feasible = false;  // a rule bounds this quantity: [flo, fhi] is the part it allows
+  // `report { ranges; }`: [rlo, rhi] is the value over the design's whole box of freedoms,
+  // beside the value at its decided point.
+  bool ranged = false;
+  double rlo = 0, rhi = 0;
+  bool feasible = false;  // a rule bounds this quantity: [flo, fhi] is the part of the range it allows
   double flo = 0, fhi = 0;
   std::string text;       // how the text report shows it
 };

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "Specs.h"
@@ -358,4 +359,25 @@ TEST(RatingSpec, TheTurbineKHbetaTableInTheDocsIsWhatTheBuildComputes) {
     EXPECT_NEAR(turbineKHbeta(crowning, false), b, 5e-5) << label << ", method B";
     EXPECT_NEAR(turbineKHbeta(crowning, true), ca, 5e-5) << label << ", contact analysis";
   }
+}
+
+// A rated bevel stage sized by its face width and face ratio alone: the two fix the outer cone
+// distance, R_e = b / (b/R_e), and Sample 1 so written rates as Sample 1.
+TEST(RatingSpec, ABevelStageSizedByFaceWidthAndFaceRatioIsRated) {
+  std::string text = readSpec("iso_tr_10300_sample1.gbx");
+  for (const std::string line : {"    mean_normal_module = 3.213 mm;  face_width = 25.4 mm;  spiral_angle = 35 deg;\n",
+                                 "    outer_cone_distance = 93.973 mm;\n"}) {
+    auto at = text.find(line);
+    ASSERT_NE(at, std::string::npos) << line;
+    text.erase(at, line.size());
+  }
+  const std::string cone = "    face_width = 25.4 mm;  face_ratio = " + fmt::format("{:.10f}", 25.4 / 93.973) + ";  spiral_angle = 35 deg;\n";
+  text.insert(text.find("    pressure_angle"), cone);
+  auto c = driver::compileText("sized.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  auto f = fixed(c, "Sample1");
+  rt::Evaluator ev(*f.model);
+  EXPECT_NEAR(ev.quantity("upper.outer_cone_distance", *f.design).mid() * 1e3, 93.973, 1e-6);
+  EXPECT_NEAR(ev.quantity("upper.pinion.contact_safety", *f.design).mid() / 0.944, 1, 0.0015);
+  EXPECT_NEAR(ev.quantity("upper.wheel.bending_safety", *f.design).mid() / 1.328, 1, 0.0015);
 }
