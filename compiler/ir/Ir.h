@@ -289,7 +289,7 @@ struct Report {
   std::vector<ExprPtr> columns;
   std::vector<std::string> columnTexts;
   std::vector<bool> ratioColumn;  // resolved by lowering: the column is the gearbox ratio, always shown
-  bool ranges = false;  // `ranges;`: columns over the freedoms' whole box, not at the decided point
+  bool ranges = false;  // `ranges;`: beside each column, its interval over the freedoms' whole box
   Span span;
 };
 

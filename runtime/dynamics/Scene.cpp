@@ -40,8 +40,11 @@ const SceneNumber* SceneResult::find(const ir::SceneOutputRef& ref) const {
 }
 
 const SceneNumber* SceneResult::find(cat::SignalFn fn, cat::Signal signal) const {
+  // A single result (`dynamic_factor`) is written bare: its signal names it, whatever
+  // function a reference carries.
+  const bool single = cat::signalSpec(signal).scalar;
   for (const auto& n : numbers)
-    if (n.fn == fn && n.signal == signal) return &n;
+    if (n.signal == signal && (single || n.fn == fn)) return &n;
   return nullptr;
 }
 

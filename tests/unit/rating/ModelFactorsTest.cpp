@@ -12,6 +12,7 @@
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 #include "model/RatingRows.h"
+#include "dynamics/Scene.h"
 #include "passes/Ratings.h"
 
 using namespace gbx;
@@ -177,6 +178,17 @@ TEST(ModelFactors, DynamicFactorFromAPeriodicScene) {
   EXPECT_NEAR(meshes[0].kv->Kv, kvNear, 1e-12);
   EXPECT_GE(meshes[0].kv->error, 0.0);
   EXPECT_LT(meshes[0].kv->error, 1e-2);
+  // A report column `vib.dynamic_factor` reads the scene's own result (it printed n/a).
+  std::string text = spec("1000 rpm", true);
+  text.insert(text.rfind("}"), "  report { columns vib.dynamic_factor; }\n");
+  auto col = design(text, "G");
+  const auto& report = col.c->program.gearboxes[0].report;
+  ASSERT_TRUE(report && report->columns.size() == 1 && report->columns[0]->op == ir::Op::SceneOutput);
+  const auto& ref = report->columns[0]->output;
+  auto run = rt::dyn::runScene(*col.model, *col.a, col.model->scenes[0]);
+  const auto* n = run.find(ref.fn, ref.signal);
+  ASSERT_NE(n, nullptr);
+  EXPECT_NEAR(n->value, kvA, 1e-6);
 }
 
 namespace {
