@@ -79,7 +79,11 @@ double inertiaOf(const Evaluator& ev, int st, const Assignment& a, int g, double
 struct Samples {
   std::vector<double> t;
   SignalSeries signals;
-  double staticLoad = NAN;    // the mean mesh force, for the dynamic factor
+  double staticLoad = NAN;    // the mean mesh force
+  // The largest quasi-static mesh force: the static load, or with a fluctuating load torque
+  // its mean plus its amplitude. The dynamic factor is the peak mesh force over it, so that a
+  // fluctuation the application factor K_A covers is not counted again in K_v.
+  double quasiStaticPeak = NAN;
   std::vector<double> modes;  // natural frequencies of a lumped model, Hz
 };
 
@@ -446,6 +450,9 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
   if (ok) confirmFailure = confirmOrbit(integ, t, y, atPeriod.empty() ? nullptr : &atPeriod, model.system(), acc, r, 1.0 / ms.meshFrequency);
   r.stats += integ.stats();
   samples.staticLoad = p.staticLoad;
+  const MeshEffects& fx = ms.effects;
+  samples.quasiStaticPeak = fx.torqueFluctuation ? (std::fabs(fx.torqueMean) + std::fabs(fx.torqueAmplitude)) / std::fabs(p.outputRadius * p.downstream)
+                                                 : p.staticLoad;
   if (!ok) return integ.error();
   if (!confirmFailure.empty()) return confirmFailure;
   checkSettled(model, tp, acc, r);
@@ -482,6 +489,7 @@ std::string runPlanetaryScene(const Model& m, const Evaluator& ev, const Assignm
   samples.t = pr.t;
   samples.signals = pr.signals;
   samples.staticLoad = pr.staticLoad;
+  samples.quasiStaticPeak = pr.staticLoad;
   samples.modes = pr.modes;
   return pr.failure;
 }
@@ -537,7 +545,7 @@ void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Sample
     }
     if (o.id == Signal::DynamicFactor) {
       double peak = over(cat::SignalFn::Peak, window(Signal::MeshForce));
-      r.numbers.push_back({"dynamic_factor", peak / samples.staticLoad, {}, cat::SignalFn::Peak, Signal::DynamicFactor});
+      r.numbers.push_back({"dynamic_factor", peak / samples.quasiStaticPeak, {}, cat::SignalFn::Peak, Signal::DynamicFactor});
       continue;
     }
     if (!cat::signalFnSpec(o.fn).number) {
@@ -555,7 +563,7 @@ void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Sample
   bool listed = std::any_of(scene.outputs.begin(), scene.outputs.end(), [](const auto& o) { return o.id == Signal::DynamicFactor; });
   if (ov.dynamicFactor && !listed) {
     double peak = r.unstable && !ov.keepUnstable ? NAN : over(cat::SignalFn::Peak, window(Signal::MeshForce));
-    r.numbers.push_back({"dynamic_factor", peak / samples.staticLoad, {}, cat::SignalFn::Peak, Signal::DynamicFactor});
+    r.numbers.push_back({"dynamic_factor", peak / samples.quasiStaticPeak, {}, cat::SignalFn::Peak, Signal::DynamicFactor});
   }
 }
 

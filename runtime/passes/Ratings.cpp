@@ -64,11 +64,11 @@ void modelNotes(const rating::MeshRating& mr, RatingReport& out) {
   if (mr.kv) {
     // S_H goes with sqrt(K_v), S_F with K_v: the scene's error carried into them.
     if (mr.kv->error >= 0)
-      out.model.push_back(fmt::format("K_v: the peak periodic mesh force of scene `{}` over its static force; its error estimate {:.1e} "
+      out.model.push_back(fmt::format("K_v: the peak periodic mesh force of scene `{}` over its largest quasi-static force (a fluctuating load torque is K_A's); its error estimate {:.1e} "
                                       "moves S_H by {:.1e} and S_F by {:.1e} (relative)",
                                       mr.kv->scene, mr.kv->error, 0.5 * mr.kv->error, mr.kv->error));
     else
-      out.model.push_back(fmt::format("K_v: the peak periodic mesh force of scene `{}` over its static force (no error estimate)", mr.kv->scene));
+      out.model.push_back(fmt::format("K_v: the peak periodic mesh force of scene `{}` over its largest quasi-static force (a fluctuating load torque is K_A's) (no error estimate)", mr.kv->scene));
   }
 }
 

@@ -353,3 +353,27 @@ TEST(ModelFactors, PerfectAlignmentAtAnOverlapRatioFarFromWhole) {
   EXPECT_GT(d.q("s.K_Hbeta"), 1.005);
   EXPECT_LT(d.q("s.K_Hbeta"), 1.015);
 }
+
+// K_v by method A from a scene whose load torque fluctuates (25 % at an eighth of the mesh
+// frequency, far below resonance): the fluctuation is K_A's, so K_v stays near the steady
+// torque's, not 1.25 (it counted K_A twice).
+TEST(ModelFactors, DynamicFactorLeavesAFluctuatingTorqueToTheApplicationFactor) {
+  auto spec = [](const std::string& fluctuation) {
+    return "import materials;\ngearbox G {\n  stage s: helical {\n    pinion.z = 25; wheel.z = 50; normal_module = 3 mm; "
+           "helix_angle = 15 deg; face_width = 40 mm; material = steel_18CrNiMo7_6; accuracy = 6;\n"
+           "    rating { life = 20000 h; lubricant { viscosity_40 = 220 mm^2/s; } roughness { flank = 0.6 um; root = 3 um; } "
+           "dynamic_factor = scene vib; application_factor = 1.25; }\n  }\n"
+           "  operating { input_speed = 1000 rpm; input_torque = 200 N*m; }\n  scene vib on s {\n"
+           "    effects { varying_stiffness { harmonics = 10; } damping { ratio = 0.1; }\n"
+           "      transmission_error { mean = 0 um; amplitude = 1 um; phase = 0 deg; }\n      " +
+           fluctuation +
+           " }\n    steady_state = periodic; record = 8 mesh_period; samples = 640;\n"
+           "    accuracy { method = rk8pd; rtol = 1e-8; }\n    output dynamic_factor;\n  }\n}\n";
+  };
+  auto steady = design(spec(""), "G");
+  auto fluctuating =
+      design(spec("torque_fluctuation { mean = 400 N*m; amplitude = 100 N*m; frequency = 52.08333333333333 Hz; }"), "G");
+  const double kv = steady.q("s.K_v"), kvF = fluctuating.q("s.K_v");
+  EXPECT_LT(kvF, 1.05);
+  EXPECT_NEAR(kvF, kv, 0.03);
+}
