@@ -112,7 +112,12 @@ void leadSeparations(const Evaluator& ev, const Assignment& a, int st, const Mod
         if (std::isfinite(f)) leadDeviation = std::max(leadDeviation, f);
       }
   sep.leadCrowning = mods.crowning[0] + mods.crowning[1];
-  if (sep.leadCrowning > 0) prov.push_back(fmt::format("loaded mesh: lead crowning {} (both gears), parabolic across the face", um(sep.leadCrowning)));
+  // Which gears carry it: the provenance names them (the two amounts add into one separation).
+  if (sep.leadCrowning > 0) {
+    const double p = mods.crowning[0], w = mods.crowning[1];
+    std::string who = p > 0 && w > 0 ? fmt::format("pinion {} + wheel {}", um(p), um(w)) : p > 0 ? "the pinion's" : "the wheel's";
+    prov.push_back(fmt::format("loaded mesh: lead crowning {} ({}), parabolic across the face", um(sep.leadCrowning), who));
+  }
   // End relief: both gears' amounts add; it runs over the wider of their widths, else a tenth
   // of the face.
   sep.endRelief = mods.endRelief[0] + mods.endRelief[1];
