@@ -57,6 +57,44 @@ std::string today() {
   return std::strftime(day, sizeof day, "%Y-%m-%d", std::gmtime(&now)) ? std::string(day) : std::string();
 }
 
+// `-o DIR`: the charts, the tables, then the report; false (said on err) where one fails.
+bool writeFolder(const passes::Rendered& rendered, const std::string& outDir, std::ostream& err) {
+  std::error_code ec;
+  std::filesystem::create_directories(outDir, ec);
+  if (ec) {
+    err << fmt::format("gbxc: cannot create the output folder `{}`: {}\n", outDir, ec.message());
+    return false;
+  }
+  const std::filesystem::path dir(outDir);
+  std::vector<std::string> failures;
+  auto put = [&](const std::string& name, const std::string& text) {
+    std::string e = writeWhole(dir / name, text);
+    if (!e.empty()) failures.push_back(e);
+  };
+  for (const auto& c : rendered.charts) put(c.name, c.svg);
+  for (const auto& t : rendered.tables) put(t.name, t.text);
+  // The report last: a new report is never beside old plots it does not name.
+  if (failures.empty()) put(rendered.reportFile, rendered.report);
+  for (const auto& f : failures) err << "gbxc: " << f << "\n";
+  return failures.empty();
+}
+
+// The report of a search the time limit stopped: its designs so far and a note that says so.
+GearboxReport partialReport(const Model& m, SearchResult found, bool lazyRows) {
+  std::string note = "partial result: " + found.partial;
+  passes::Optimised designs;
+  designs.designs = std::move(found);
+  for (const auto& d : designs.designs.designs)
+    if (!d.freedoms.empty()) designs.freedoms.push_back(d.freedoms);
+  passes::Columns columns = passes::reportColumns(m.gearbox);
+  GearboxReport rep = passes::designTable(m, designs, columns, lazyRows);
+  rep.notes.insert(rep.notes.begin(), designs.designs.notes.begin(), designs.designs.notes.end());
+  rep.notes.insert(rep.notes.begin(), note);
+  rep.partial = true;
+  rep.inputs = passes::decisiveInputs(m.gearbox);
+  return rep;
+}
+
 } // namespace
 
 int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, std::ostream& err) {
@@ -78,8 +116,9 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     if (!errors.empty()) status = 3;
     return !errors.empty();
   };
-  // Past the time limit nothing more is worked out and no report is written: a report
-  // with some of its results missing would read as complete.
+  // Past the time limit nothing more is worked out. A search stopped part way reports the
+  // designs of the part done, marked partial (exit 3); stopped later, no report is written: a
+  // report with some of its results missing would read as complete.
   auto timeUp = [&](const std::string& gearbox, const char* during) {
     if (!Deadline::expired()) return false;
     err << fmt::format("gbxc: gearbox `{}`: time limit of {:g} s (--time-limit) reached during {}; no report written\n", gearbox,
@@ -96,6 +135,14 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     models.push_back(std::make_unique<Model>(program, gb));
     const Model& m = *models.back();
     SearchResult found = passes::search(m, o.jobs, o.maxDesigns, progress(gb.name), progress(gb.name + " deciding freedoms"));
+    // Stopped part way by the time limit: the designs of the part done, marked partial, and
+    // nothing more worked out (exit 3).
+    if (!found.partial.empty() && found.errors.empty()) {
+      err << fmt::format("gbxc: gearbox `{}`: {}\n", gb.name, found.partial);
+      status = 3;
+      reports.push_back(partialReport(m, std::move(found), lazyRows));
+      break;
+    }
     if (fail(gb.name, found.errors)) {
       if (Deadline::expired()) return 3;  // the message says so; nothing more is worked out
       continue;
@@ -155,26 +202,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
   if (!rendered.unwritten.empty() && !o.quiet)
     err << fmt::format("gbxc: note: stdout holds the design table only; {} {} written with -o DIR\n",
                        fmt::join(rendered.unwritten, ", "), rendered.unwritten.size() == 1 ? "is" : "are");
-  if (!o.outDir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(o.outDir, ec);
-    if (ec) {
-      err << fmt::format("gbxc: cannot create the output folder `{}`: {}\n", o.outDir, ec.message());
-      return 3;
-    }
-    const std::filesystem::path dir(o.outDir);
-    std::vector<std::string> failures;
-    auto put = [&](const std::string& name, const std::string& text) {
-      std::string e = writeWhole(dir / name, text);
-      if (!e.empty()) failures.push_back(e);
-    };
-    for (const auto& c : rendered.charts) put(c.name, c.svg);
-    for (const auto& t : rendered.tables) put(t.name, t.text);
-    // The report last: a new report is never beside old plots it does not name.
-    if (failures.empty()) put(rendered.reportFile, rendered.report);
-    for (const auto& f : failures) err << "gbxc: " << f << "\n";
-    if (!failures.empty()) return 3;
-  }
+  if (!o.outDir.empty() && !writeFolder(rendered, o.outDir, err)) return 3;
   return status;
 }
 

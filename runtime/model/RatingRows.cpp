@@ -538,6 +538,37 @@ std::vector<double> ratedKey(const KindContext& c, bool damage, bool scuffing, c
   return keyTail(std::move(k), c.ev);
 }
 
+// The varying inputs with an interval of face width cut where ISO 1328's face-width ranges
+// make the tabulated helix slope deviation jump (K_Hbeta rises at b = 80 mm, say): within
+// each piece the rating is monotone in the face width, so the corners of the pieces bound it
+// where the corners of the whole interval would miss a feasible stretch below a bound.
+std::vector<std::vector<Value>> faceWidthPieces(const std::vector<Value>& all) {
+  std::vector<std::vector<Value>> out{all};
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t k = B; k < all.size(); k += In::Count)
+    if (all[k].isNumber() && all[k].lo < all[k].hi) {
+      lo = std::min(lo, all[k].lo);
+      hi = std::max(hi, all[k].hi);
+    }
+  std::vector<double> cuts;
+  for (double e : iso::faceWidthRanges())
+    if (e * 1e-3 > lo && e * 1e-3 < hi) cuts.push_back(e * 1e-3);
+  if (cuts.empty()) return out;
+  out.clear();
+  cuts.push_back(hi);
+  double from = lo;
+  for (double e : cuts) {
+    std::vector<Value> piece = all;
+    const double to = e < hi ? e * (1 - 1e-12) : hi;
+    for (size_t k = B; k < piece.size(); k += In::Count)
+      if (piece[k].isNumber() && piece[k].lo < piece[k].hi)
+        piece[k] = Value::range(std::max(piece[k].lo, from), std::min(piece[k].hi, to));
+    out.push_back(std::move(piece));
+    from = e * (1 + 1e-12);
+  }
+  return out;
+}
+
 // The stage's ratings at the corners of its inputs (monotone in each: their image's bounds),
 // from the thread's recent ones when the same stage was rated just before.
 const RatedCorners& ratedCorners(const KindContext& c, bool damage, bool scuffing) {
@@ -563,16 +594,17 @@ const RatedCorners& ratedCorners(const KindContext& c, bool damage, bool scuffin
   if (p.g) {
     std::vector<Value> all;
     for (const auto& v : p.g->varying) all.insert(all.end(), v.begin(), v.end());
-    arith::corners(all, [&](const V& x) {
-      p.corners.emplace_back();
-      p.failed.push_back(false);
-      try {
-        p.corners.back() = rateAll(*p.g, x, damage, scuffing);
-      } catch (const std::domain_error&) {
-        p.failed.back() = true;
-      }
-      return 0.0;
-    });
+    for (const auto& piece : faceWidthPieces(all))
+      arith::corners(piece, [&](const V& x) {
+        p.corners.emplace_back();
+        p.failed.push_back(false);
+        try {
+          p.corners.back() = rateAll(*p.g, x, damage, scuffing);
+        } catch (const std::domain_error&) {
+          p.failed.back() = true;
+        }
+        return 0.0;
+      });
   }
   // A full cache starts again: the last result stays valid only until the next one is put.
   const RatedCorners& out = recent.put(std::move(key), std::move(p));

@@ -218,7 +218,42 @@ void Decider::interiorMinimum(const Point& left, const Point& middle, const Poin
 
 // Several freedoms: a sample of the box (a grid, the middle and the corners included), then
 // SLSQP from its three best distinct points.
+// Several freedoms: the box cut into cells where a tolerance table jumps (model/
+// ToleranceEdges.h), each cell searched on its own, so that no optimiser step crosses a jump
+// and a feasible pocket below one (a face width under 40 mm, a helix angle that keeps a
+// wheel under 280 mm) is searched as a box of its own. At most 16 cells; beyond, the whole.
 Decider::Point Decider::severally() {
+  const std::vector<double> lo = lo_, hi = hi_;
+  Assignment whole = a_;
+  for (size_t i = 0; i < lo.size(); ++i)
+    whole.box[static_cast<size_t>(g_.freedoms[i])] = {lo[i], hi[i]};
+  std::vector<std::vector<std::pair<double, double>>> pieces(lo.size());
+  size_t cells = 1;
+  for (size_t i = 0; i < lo.size(); ++i) {
+    double from = lo[i];
+    for (double e : toleranceEdges(ev_, whole, g_.freedoms[i])) {
+      pieces[i].emplace_back(from, e * (1 - 1e-12));
+      from = e * (1 + 1e-12);
+    }
+    pieces[i].emplace_back(from, hi[i]);
+    cells *= pieces[i].size();
+  }
+  if (cells > 16) return cell();
+  for (size_t c = 0; c < cells; ++c) {
+    size_t rest = c;
+    for (size_t i = 0; i < lo.size(); ++i) {
+      std::tie(lo_[i], hi_[i]) = pieces[i][rest % pieces[i].size()];
+      rest /= pieces[i].size();
+    }
+    cell();
+  }
+  lo_ = lo;
+  hi_ = hi;
+  return best_;
+}
+
+// One box of several freedoms: a grid, then SLSQP from its three best points.
+Decider::Point Decider::cell() {
   const size_t n = lo_.size();
   size_t k =
       std::clamp<size_t>(static_cast<size_t>(std::floor(std::pow(64.0, 1.0 / static_cast<double>(n)) + 1e-9)), 2, 9);

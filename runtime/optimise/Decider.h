@@ -35,6 +35,7 @@ private:
   Point atSI(Point p);
   Point alone();
   Point severally();
+  Point cell();
   Point boundary(const Point& in, const Point& out, int depth = 0);
   void interiorMinimum(const Point& left, const Point& middle, const Point& right);
   void slsqp(const Point& start);

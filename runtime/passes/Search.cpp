@@ -46,6 +46,32 @@ void decideAll(const Model& m, const FreedomPlan& plan, const Design* first, con
 // removed by deciding and there are at most this many.
 constexpr unsigned long long kDecideForCount = 2000;
 
+// The time limit stopped the deciding: the designs decided so far, ranked, marked partial,
+// with how far it got and an estimate of the whole.
+SearchResult partialDecided(SearchResult r, const std::map<std::vector<int>, DecidedPoint>& decided,
+                            long long want) {
+  std::vector<Design> kept;
+  for (auto& d : r.designs) {
+    auto it = decided.find(d.choice);
+    if (it == decided.end() || !it->second.feasible) continue;
+    d.undecided = false;
+    d.keys = it->second.keys;
+    d.freedoms = it->second.freedoms;
+    kept.push_back(std::move(d));
+  }
+  std::stable_sort(kept.begin(), kept.end(), [](const Design& x, const Design& y) { return compareKeys(x.keys, y.keys) < 0; });
+  if (want >= 0 && kept.size() > static_cast<size_t>(want)) kept.resize(static_cast<size_t>(want));
+  const double done = static_cast<double>(decided.size()), all = static_cast<double>(r.designs.size());
+  std::string estimate =
+      done > 0 ? fmt::format("; deciding all {:.0f} would take about {:.3g} s", all, Deadline::seconds() * all / done) : "";
+  r.partial = fmt::format("time limit of {:g} s (--time-limit) reached while deciding the freedoms: {:.0f} of the {:.0f} "
+                          "designs kept were decided{}; the best of those decided are listed, and a design not decided may "
+                          "be better; raise --time-limit or narrow the ranges",
+                          Deadline::seconds(), done, all, estimate);
+  r.designs = std::move(kept);
+  return r;
+}
+
 // LANGUAGE.md §15: each design the search keeps gets its continuous freedoms decided, and
 // is ranked by the objectives at that point. The search ranks by the best value over the
 // whole box, a lower bound of the decided value (a design whose bound has no value comes
@@ -97,7 +123,7 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, lo
   for (;;) {
     auto [upTo, settled] = decideInOrder(false);
     examined = upTo;
-    if (Deadline::expired()) return r;
+    if (Deadline::expired()) return partialDecided(std::move(r), decided, want);
     if (settled || r.designs.size() >= r.count || want < 0) break;
     unsigned long long more = std::min<unsigned long long>(r.designs.size() * 4ULL, so.maxKept);
     if (more <= r.designs.size() || !widen(more)) {
@@ -182,6 +208,12 @@ SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<v
   if (!m.freedoms.empty() && so.top && *so.top > 0)
     so.top = std::min<long long>(*so.top * 4, static_cast<long long>(so.maxKept));
   SearchResult r = rt::search(m, so);
+  // Stopped part way through the join: the designs of the part walked are exact points
+  // without freedoms; with freedoms none was decided, so none is listed.
+  if (!r.partial.empty()) {
+    if (!m.freedoms.empty() || needsOptimiser(gb)) r.designs.clear();
+    return r;
+  }
   // A rule over tolerance corners (`worst`) without freedoms is checked the same way, at the
   // design's one point.
   if ((m.freedoms.empty() && !needsOptimiser(gb)) || !r.errors.empty() || needsScenes(gb)) return r;

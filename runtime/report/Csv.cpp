@@ -40,10 +40,18 @@ std::vector<bool> intervalColumns(const GearboxReport& g) {
   return v;
 }
 
+// Columns with a range beside their value in some row (`report { ranges; }`): two more.
+std::vector<bool> rangedColumns(const GearboxReport& g) {
+  std::vector<bool> v(g.columns.size(), false);
+  for (const auto& r : g.rows)
+    for (size_t i = 0; i < r.cells.size() && i < v.size(); ++i) v[i] = v[i] || r.cells[i].ranged;
+  return v;
+}
+
 std::string designs(const std::vector<GearboxReport>& reports) {
   std::string o;
   for (const auto& g : reports) {
-    auto wide = intervalColumns(g);
+    auto wide = intervalColumns(g), ranged = rangedColumns(g);
     std::vector<std::string> h = {"gearbox", "rank"};
     if (!g.rows.empty()) {
       for (const auto& [n, _] : g.rows[0].teeth) h.push_back(n);
@@ -58,6 +66,10 @@ std::string designs(const std::vector<GearboxReport>& reports) {
         h.push_back(withUnit(c.name + "_hi", c.unit));
       } else {
         h.push_back(withUnit(c.name, c.unit));
+      }
+      if (ranged[i]) {
+        h.push_back(withUnit(c.name + "_lo", c.unit));
+        h.push_back(withUnit(c.name + "_hi", c.unit));
       }
     }
     h.push_back("ratio_exact");
@@ -96,6 +108,12 @@ std::string designs(const std::vector<GearboxReport>& reports) {
         if (wide[i]) {
           o += ',';
           if (c.valid) num((c.hi - g.columns[i].offset) / sc);
+        }
+        if (ranged[i]) {
+          o += ',';
+          if (c.ranged) num((c.rlo - g.columns[i].offset) / sc);
+          o += ',';
+          if (c.ranged) num((c.rhi - g.columns[i].offset) / sc);
         }
       }
       o += ',';

@@ -86,6 +86,7 @@ std::string textDesigns(const GearboxReport& g, const RenderOptions& ro) {
   std::string o = fmt::format("gearbox {}: {} design{}", g.name, g.count, g.count == 1 ? "" : "s");
   if (g.undecided) o += fmt::format(" ({} undecided)", g.undecided);
   if (g.count > g.rows.size()) o += fmt::format(", best {} shown", g.rows.size());
+  if (g.partial) o += " (partial: the time limit stopped the work; see the note)";
   o += "\n";
   if (!g.window.empty()) o += "  ratio window " + g.window + "\n";
   o += textSummary(g);

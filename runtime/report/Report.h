@@ -300,6 +300,7 @@ struct GearboxReport {
   std::shared_ptr<const RowSource> source;
   std::vector<FunnelStep> funnel;
   std::vector<std::string> notes;     // about the design list (where a `worst` was found, …)
+  bool partial = false;               // the time limit stopped the search: a note says how far it got
   std::vector<std::string> warnings;  // what the numbers do not cover (eps_alpha below 1, …)
   std::vector<SceneReport> scenes;
   std::vector<StudyReport> studies;

@@ -123,6 +123,7 @@ GearboxSummary summarise(const GearboxReport& g) {
   s.headline = fmt::format("{} design{}", g.count, g.count == 1 ? "" : "s");
   if (g.undecided) s.headline += fmt::format(" ({} undecided)", g.undecided);
   if (g.count > g.rows.size()) s.headline += fmt::format(", best {} shown", g.rows.size());
+  if (g.partial) s.headline += " (partial: the time limit stopped the work)";
   if (!g.window.empty()) s.headline += "; ratio window " + g.window;
   s.inputs = g.inputs;
   if (!g.rows.empty()) {

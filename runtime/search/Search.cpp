@@ -1262,8 +1262,9 @@ private:
       double elapsed = Deadline::seconds();
       double done = 0;
       for (double d : joinDone) done += d / static_cast<double>(joinDone.size());
-      res.errors.push_back(timeLimitMessage("joining the stages' candidates", done, elapsed, combos));
-      return false;
+      // The designs of the part walked are kept, the report marked partial.
+      res.partial = timeLimitMessage("joining the stages' candidates", done, elapsed, combos);
+      return true;
     }
     return true;
   }

@@ -62,6 +62,9 @@ struct SearchResult {
   std::vector<std::string> errors;   // rules or objectives the search cannot evaluate
   std::vector<std::string> deferred; // rules left to the optimiser (deferDynamics)
   std::vector<std::string> notes;    // candidates removed because a rule could not be evaluated for them
+  // Set when the time limit stopped the work part way: how far it got and an estimate of the
+  // whole. The count and the designs are then those of the part done (marked partial).
+  std::string partial;
 };
 
 // An objective's value as the ranking compares it: to 12 significant digits, so values

@@ -139,7 +139,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     std::vector<const Conjunct*> open;
     ch.out.reserve(std::min<size_t>(end - begin, 1 << 16));
     for (size_t k = begin; k < end; ++k) {
-      if ((k - begin) % 4096 == 0 && Deadline::expired()) {
+      if ((k - begin) % 16 == 0 && Deadline::expired()) {
         ch.stoppedAt = static_cast<double>(k - begin) / static_cast<double>(end - begin);
         break;
       }

@@ -83,7 +83,7 @@ UpstreamStage bracketStage(const Evaluator& ev, int s, std::vector<Candidate>& c
     Assignment a(m);
     a.upstreamStage = s;
     for (size_t i = next++; i < candidates.size(); i = next++) {
-      if ((i & 255) == 0 && Deadline::expired()) break;
+      if ((i & 15) == 0 && Deadline::expired()) break;
       const auto [ulo, uhi] = range[i];
       if (!(ulo <= uhi)) continue;
       place(a, i);
