@@ -54,6 +54,7 @@ DecidedPoint Decider::run() {
     out.evaluations = evaluations_;
     return out;
   }
+  if (lo_.size() > 1 && !flat_) p = towardMiddle(p);
   p = printed(p);
   // An optimiser's end point on a rule's boundary may miss it by a rounding (a margin of
   // -1e-16): its printed neighbours that satisfy every rule compete too.
@@ -106,6 +107,38 @@ Decider::Point Decider::atSI(Point p) {
   }
   p.objective = p.keys.empty() || flat_ ? p.offCentre : std::isnan(p.keys[0]) ? 1e300 : p.keys[0];
   consider(p);
+  return p;
+}
+
+// A freedom the objectives do not read (a face width under a centre-distance objective) is
+// left by the optimiser wherever it stopped; the documented tie-break is the feasible point
+// nearer the middle. Each such freedom moves toward the middle as far as the point stays
+// feasible with the same objectives (bisection, 30 steps); one probe tells such a freedom.
+Decider::Point Decider::towardMiddle(Point p) {
+  // The point's coordinates over the whole box (a cell's search left them over the cell).
+  for (size_t i = 0; i < p.t.size(); ++i)
+    p.t[i] = hi_[i] > lo_[i] ? (p.x[i] - lo_[i]) / (hi_[i] - lo_[i]) : 0.5;
+  for (size_t i = 0; i < p.t.size(); ++i) {
+    auto moved = [&](double ti) {
+      std::vector<double> t = p.t;
+      t[i] = ti;
+      return at(t);
+    };
+    auto same = [&](const Point& q) { return q.feasible && compareKeys(q.keys, p.keys) == 0; };
+    const double from = p.t[i], step = from < 0.5 ? 1e-3 : -1e-3;
+    if (std::fabs(from - 0.5) < 1e-3 || !same(moved(from + step))) continue;
+    Point mid = moved(0.5);
+    if (same(mid)) {
+      p = mid;
+      continue;
+    }
+    double good = from + step, bad = 0.5;
+    for (int it = 0; it < 30; ++it) {
+      double t = 0.5 * (good + bad);
+      (same(moved(t)) ? good : bad) = t;
+    }
+    p = moved(good);
+  }
   return p;
 }
 

@@ -36,6 +36,7 @@ private:
   Point alone();
   Point severally();
   Point cell();
+  Point towardMiddle(Point p);
   Point boundary(const Point& in, const Point& out, int depth = 0);
   void interiorMinimum(const Point& left, const Point& middle, const Point& right);
   void slsqp(const Point& start);

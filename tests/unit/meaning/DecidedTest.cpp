@@ -267,3 +267,33 @@ TEST(Decided, AShiftRangeWithoutAConcentricValueSaysSo) {
     named = named || (f.rule.find("a value in the range of the shift") != std::string::npos && f.removed == 1);
   EXPECT_TRUE(named);
 }
+
+// The centre distance does not read the face width: beside the 8 deg bound that minimises it,
+// any feasible face width ties, and the documented tie-break takes the one nearest the middle
+// of 40..100 mm, 70 mm (the optimiser stopped at 88.5714 mm).
+TEST(Decided, AFreedomTheObjectiveDoesNotReadGoesToTheMiddle) {
+  const std::string text = R"(import materials;
+gearbox G {
+  stage hs: helical {
+    pinion.z = 20;  wheel.z = 74;  normal_module = 3 mm;
+    helix_angle in 8..20 deg;  face_width in 40..100 mm;
+    material = steel_18CrNiMo7_6;  accuracy = 6;
+    rating {
+      application_factor = 1.25;  life = 30000 h;
+      lubricant { viscosity_40 = 220 mm^2/s; }
+      roughness { flank = 0.8 um; root = 3.2 um; }
+    }
+  }
+  operating { input_speed = 1200 rpm; power = 45 kW; }
+  require hs.eps_beta >= 1;
+  require hs.pinion.contact_safety >= 1.2;  require hs.wheel.contact_safety >= 1.2;
+  require hs.pinion.bending_safety >= 1.5;  require hs.wheel.bending_safety >= 1.5;
+  minimize hs.center_distance;
+}
+)";
+  Solved s = solve(text);
+  ASSERT_EQ(s.result.designs.size(), 1u);
+  EXPECT_NEAR(s.value("hs.helix_angle") * 180 / M_PI, 8.0, 1e-4);
+  EXPECT_NEAR(s.value("hs.face_width"), 70e-3, 1e-7);
+  EXPECT_TRUE(holdsEveryRule(s, 0));
+}
