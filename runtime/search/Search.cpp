@@ -214,6 +214,9 @@ private:
       }
       if (asWindow(*c.expr, window)) {
         windowTexts.push_back(c.text);
+        // One stage: its ratio is the gearbox's, so the window is a cheap rule of the
+        // stage's filter, asked before the stage's ratings and credited before them.
+        if (k == 1) local[0].push_back(&c);
         continue;
       }
       if (c.stages.size() == 1)
@@ -1409,7 +1412,8 @@ private:
     // With interchangeable stages enumerated canonically, what passes the window is
     // already one design per orbit.
     if (fast && !ordered.empty()) windowText += " (interchangeable stages: one design per orbit)";
-    res.funnel.push_back({windowText, "", combos, combos - inWindow});
+    // One stage: the stage's filter applied the window (and credited it).
+    if (k != 1 || windowTexts.empty()) res.funnel.push_back({windowText, "", combos, combos - inWindow});
     double before = inWindow;
     for (size_t c = 0; c < cross.size(); ++c) {
       res.funnel.push_back({cross[c]->text, "", before, crossRemoved[c]});
