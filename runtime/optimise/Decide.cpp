@@ -6,6 +6,7 @@
 
 #include "catalogue/Settings.h"
 #include "optimise/Decider.h"
+#include "search/Conjuncts.h"
 #include "search/Search.h"
 
 namespace gbx::rt {
@@ -106,11 +107,16 @@ void terms(const ir::Expr& e, double sign, std::vector<std::pair<const ir::Expr*
 } // namespace
 
 FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
+  for (const auto& r : m.gearbox.rules) {
+    if (!r.expr) continue;
+    std::vector<const ir::Expr*> parts;
+    split(*r.expr, parts);
+    for (const auto* e : parts) parts_.push_back({e, parts.size() == 1 ? r.text : ir::print(*e)});
+  }
   // No freedoms: the design's one point, where every rule is checked (`worst` over the
   // tolerances, which the search defers).
   if (m.freedoms.empty()) {
-    for (const auto& r : m.gearbox.rules)
-      if (r.expr) rest_.push_back(&r);
+    rest_ = parts_;
     return;
   }
   auto whole = [&] {
@@ -118,18 +124,17 @@ FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
     FreedomGroup g;
     for (size_t f = 0; f < m.freedoms.size(); ++f)
       if (!m.freedoms[f].solved) g.freedoms.push_back(static_cast<int>(f));
-    for (const auto& r : m.gearbox.rules)
-      if (r.expr) g.rules.push_back(&r);
+    g.rules = parts_;
     g.allObjectives = true;
     groups.push_back(std::move(g));
   };
   // Separable when every rule reads the freedoms of one stage at most and the one objective
   // is a sum of terms that each do: then each stage's freedoms are decided on their own.
   std::vector<std::set<int>> ruleStages;
-  for (const auto& r : m.gearbox.rules) {
+  for (const auto& r : parts_) {
     std::set<int> st;
     bool own = true;
-    if (r.expr) reads(m, *r.expr, -1, st, own);
+    reads(m, *r.expr, -1, st, own);
     if (st.size() > 1) {
       whole();
       return;
@@ -168,10 +173,10 @@ FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
     g.freedoms = fs;
     bool own = true;
     std::set<int> ignored;
-    for (size_t r = 0; r < m.gearbox.rules.size(); ++r)
+    for (size_t r = 0; r < parts_.size(); ++r)
       if (ruleStages[r].count(g.stage)) {
-        g.rules.push_back(&m.gearbox.rules[r]);
-        reads(m, *m.gearbox.rules[r].expr, g.stage, ignored, own);
+        g.rules.push_back(parts_[r]);
+        reads(m, *parts_[r].expr, g.stage, ignored, own);
       }
     for (size_t t = 0; t < objectiveTerms.size(); ++t)
       if (termStages[t].count(g.stage)) {
@@ -185,8 +190,8 @@ FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
     groups.push_back(std::move(g));
   }
   // Rules on no freedom are checked on the whole design at its decided point.
-  for (size_t r = 0; r < m.gearbox.rules.size(); ++r)
-    if (ruleStages[r].empty() && m.gearbox.rules[r].expr) rest_.push_back(&m.gearbox.rules[r]);
+  for (size_t r = 0; r < parts_.size(); ++r)
+    if (ruleStages[r].empty()) rest_.push_back(parts_[r]);
   separable_ = !m.gearbox.objectives.empty();
   for (const auto& g : groups)
     separable_ = separable_ && g.cacheable;
@@ -238,11 +243,11 @@ DecidedPoint FreedomPlan::decide(const Evaluator& ev, const std::vector<int>& ch
   ev.solveFreedoms(a, out.freedoms);
   // The groups decided the rules on their freedoms; the rules on none (a `worst` over a stage
   // without freedoms, which the search defers) are checked here.
-  for (const auto* r : rest_) {
-    Value v = ev.eval(*r->expr, a);
+  for (const auto& r : rest_) {
+    Value v = ev.eval(*r.expr, a);
     if (!(v.kind == Value::Bool && v.truth == Truth::True)) {
       DecidedPoint failed;
-      failed.rule = r->text;
+      failed.rule = r.text;
       return failed;
     }
   }

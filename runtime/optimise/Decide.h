@@ -31,10 +31,17 @@ int compareKeys(const std::vector<double>& x, const std::vector<double>& y);
 
 // The freedoms decided together: all of them, or one stage's where every rule reads the
 // freedoms of one stage at most and the objective is a sum of terms that each do.
+// One part of a rule (a conjunct of its `and` or `forall`): what a group decides by, so that
+// `forall s in stages: …` decides each stage on its own.
+struct RulePart {
+  const ir::Expr* expr = nullptr;
+  std::string text;
+};
+
 struct FreedomGroup {
   int stage = -1;                                        // -1: every freedom of the design
   std::vector<int> freedoms;                             // indices in model.freedoms
-  std::vector<const ir::Rule*> rules;                    // the rules that read them
+  std::vector<RulePart> rules;                           // the rules' parts that read them
   bool allObjectives = false;                            // chosen by every objective; else by `terms`
   std::vector<std::pair<const ir::Expr*, double>> terms; // the objective's terms that read them, signed
   bool cacheable = false; // reads nothing but its own stage: the same for the same choices of it
@@ -54,7 +61,8 @@ private:
   // groups' decided terms and the terms on no freedom.
   bool separable_ = false;
   std::vector<std::pair<const ir::Expr*, double>> freeTerms_;
-  std::vector<const ir::Rule*> rest_; // rules that read no group's freedoms
+  std::vector<RulePart> parts_;       // every rule's parts (`and`, `forall`), in order
+  std::vector<RulePart> rest_;        // the parts that read no group's freedoms
   mutable std::mutex mutex_;
   mutable std::map<std::vector<int>, DecidedPoint> cache_;
 };

@@ -87,12 +87,12 @@ Decider::Point Decider::atSI(Point p) {
   }
   p.violation = 0;
   p.feasible = true;
-  for (const auto* r : g_.rules) {
-    Value v = ev_.eval(*r->expr, a_);
+  for (const auto& r : g_.rules) {
+    Value v = ev_.eval(*r.expr, a_);
     bool holds = v.kind == Value::Bool && v.truth == Truth::True;
     p.feasible = p.feasible && holds;
-    if (!holds) p.violation += std::max(violation(ev_, *r->expr, a_), 1e-12);
-    margins(ev_, *r->expr, a_, p.margins);
+    if (!holds) p.violation += std::max(violation(ev_, *r.expr, a_), 1e-12);
+    margins(ev_, *r.expr, a_, p.margins);
   }
   // The point is chosen by the objectives alone; `sort by` only orders the decided designs.
   if (g_.allObjectives) {
@@ -406,13 +406,13 @@ std::string Decider::failing(const Point& p) {
     a_.box[static_cast<size_t>(g_.freedoms[i])] = {p.x[i], p.x[i]};
   std::string worst;
   double most = -1;
-  for (const auto* r : g_.rules) {
-    Value v = ev_.eval(*r->expr, a_);
+  for (const auto& r : g_.rules) {
+    Value v = ev_.eval(*r.expr, a_);
     if (v.kind == Value::Bool && v.truth == Truth::True) continue;
-    double d = violation(ev_, *r->expr, a_);
+    double d = violation(ev_, *r.expr, a_);
     if (d > most) {
       most = d;
-      worst = r->text;
+      worst = r.text;
     }
   }
   return worst;

@@ -431,11 +431,12 @@ private:
       if (!m.stages[static_cast<size_t>(s)].selfContained) continue;
       std::vector<const Conjunct*> rules;
       std::vector<size_t> which;
-      for (size_t c = 0; c < cross.size(); ++c)
+      for (size_t c = 0; c < cross.size(); ++c) {
         if (*cross[c]->stages.rbegin() == s && readsOwnStage(*cross[c]->expr, s)) {
           rules.push_back(cross[c]);
           which.push_back(c);
         }
+      }
       if (rules.empty()) continue;
       auto placeOne = [this, s](Assignment& a, size_t c) { place(a, s, c); };
       upstream.push_back(bracketStage(ev, s, stages[static_cast<size_t>(s)].candidates, rules, local[static_cast<size_t>(s)],

@@ -297,3 +297,26 @@ gearbox G {
   EXPECT_NEAR(s.value("hs.face_width"), 70e-3, 1e-7);
   EXPECT_TRUE(holdsEveryRule(s, 0));
 }
+
+// `forall s in stages: …` is the rules it stands for: each stage's face width is decided on
+// its own either way (it was decided with the others, slower and not always as well).
+TEST(Decided, AForallRuleDecidesLikeTheRulesItStandsFor) {
+  auto spec = [](const std::string& rules) {
+    std::string stage = "    pinion.z in 19..21;  wheel.z in 60..64;  normal_module = 3 mm;  helix_angle = 12 deg;\n"
+                        "    face_width in 30..90 mm;  material = steel_18CrNiMo7_6;  accuracy = 6;\n"
+                        "    rating { application_factor = 1.25; life = 20000 h; lubricant { viscosity_40 = 150 mm^2/s; }\n"
+                        "             roughness { flank = 0.6 um; root = 3.0 um; } }\n";
+    return "import materials;\ngearbox G {\n  stage a: helical {\n" + stage + "  }\n  stage b: helical {\n" + stage +
+           "  }\n  operating { input_speed = 1480 rpm; power = 15 kW; }\n  require ratio == 10 +- 3%;\n" + rules +
+           "  minimize a.mass + b.mass;\n  report { top 5; }\n}\n";
+  };
+  Solved all = solve(spec("  require forall s in stages: s.pinion.contact_safety >= 1.2 and s.wheel.bending_safety >= 1.5;\n"));
+  Solved each = solve(spec("  require a.pinion.contact_safety >= 1.2;  require a.wheel.bending_safety >= 1.5;\n"
+                           "  require b.pinion.contact_safety >= 1.2;  require b.wheel.bending_safety >= 1.5;\n"));
+  ASSERT_GE(each.result.designs.size(), 2u);
+  ASSERT_EQ(all.result.designs.size(), each.result.designs.size());
+  for (size_t i = 0; i < each.result.designs.size(); ++i) {
+    EXPECT_EQ(all.result.designs[i].choice, each.result.designs[i].choice) << "rank " << i + 1;
+    EXPECT_EQ(all.result.designs[i].freedoms, each.result.designs[i].freedoms) << "rank " << i + 1;
+  }
+}
