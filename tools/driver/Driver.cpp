@@ -14,8 +14,10 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "catalogue/Budgets.h"
+#include "diag/Suggest.h"
 #include "driver/Golden.h"
 #include "format/Formatter.h"
 #include "lower/Lower.h"
@@ -324,6 +326,12 @@ int formatFiles(const Options& o, std::ostream& out, std::ostream& err) {
 
 } // namespace
 
+// The options and commands `run` knows, for "did you mean".
+const std::vector<std::string> kOptions = {"--check",   "--format", "--gearbox",    "--help",       "--jobs",     "--max-designs",
+                                           "--no-timings", "--quiet", "--time-limit", "--timings",   "--update",   "--version",
+                                           "-h",        "-j",       "-o",           "-q"};
+const std::vector<std::string> kCommands = {"solve", "check", "dump", "test", "fmt", "lsp"};
+
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, const TestSettings& testSettings) {
   Options o;
   o.test = testSettings;
@@ -380,7 +388,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     } else if (a == "--check") {
       o.check = true;
     } else if (a.size() > 1 && a[0] == '-') {
-      return usage(err, fmt::format("unknown option `{}`", a));
+      return usage(err, fmt::format("unknown option `{}`{}", a, diag::suggestion(diag::closest(a, kOptions))));
     } else {
       positional.push_back(a);
     }
@@ -398,8 +406,13 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   // --format names a row of the runtime's table of report formats; check, dump and test
   // print diagnostics, which come in fewer forms.
   const rt::ReportFormat* format = rt::findReportFormat(o.format);
-  if (!format || (o.command != "solve" && !format->diagnostics))
-    return usage(err, fmt::format("unknown format `{}` for `{}`", o.format, o.command));
+  if (!format || (o.command != "solve" && !format->diagnostics)) {
+    std::vector<std::string> names;
+    for (const auto& f : rt::reportFormats())
+      if (o.command == "solve" || f.diagnostics) names.emplace_back(f.name);
+    return usage(err, fmt::format("unknown format `{}` for `{}`{} (it takes {})", o.format, o.command,
+                                  diag::suggestion(diag::closest(o.format, names)), fmt::join(names, ", ")));
+  }
   // A dump is the program as text; its diagnostics in JSON would make a file that is neither.
   if (o.command == "dump" && format != &rt::reportFormats().front())
     return usage(err, "`dump` prints text only; `check --format json` gives the diagnostics as JSON");
@@ -419,7 +432,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     return lsp::serve(std::cin, out);
   }
   if (o.command != "check" && o.command != "dump" && o.command != "solve")
-    return usage(err, fmt::format("unknown command `{}`", o.command));
+    return usage(err, fmt::format("unknown command `{}`{}", o.command, diag::suggestion(diag::closest(o.command, kCommands))));
   if (o.files.size() != 1) return usage(err, fmt::format("`{}` takes exactly one file", o.command));
   if (o.update) return usage(err, "--update goes with `test`");
   if (o.testTimings) return usage(err, "--timings goes with `test` (solve shows CPU times unless --no-timings)");

@@ -60,6 +60,24 @@ TEST(Cli, ExitStatuses) {
   EXPECT_NE(missing.err.find("E0001"), std::string::npos);
 }
 
+// A mistyped flag, format or command is answered with the nearest one, and a format the
+// command does not take with the ones it does.
+TEST(Cli, MistypedFlagsFormatsAndCommandsSayWhatWasMeant) {
+  auto flag = gbxc({"solve", "--frmat", "text", "x.gbx"});
+  EXPECT_EQ(flag.status, 2);
+  EXPECT_NE(flag.err.find("unknown option `--frmat`; did you mean `--format`?"), std::string::npos) << flag.err;
+  auto format = gbxc({"solve", "x.gbx", "--format", "pdf"});
+  EXPECT_EQ(format.status, 2);
+  EXPECT_NE(format.err.find("(it takes text, json, csv, md, html)"), std::string::npos) << format.err;
+  auto near = gbxc({"solve", "x.gbx", "--format", "jsn"});
+  EXPECT_NE(near.err.find("did you mean `json`?"), std::string::npos) << near.err;
+  auto check = gbxc({"check", "x.gbx", "--format", "html"});
+  EXPECT_NE(check.err.find("(it takes text, json)"), std::string::npos) << check.err;
+  auto command = gbxc({"slove", "x.gbx"});
+  EXPECT_EQ(command.status, 2);
+  EXPECT_NE(command.err.find("unknown command `slove`; did you mean `solve`?"), std::string::npos) << command.err;
+}
+
 // GBX_PATH names folders of modules that `import NAME` finds before the stdlib, as a compiler
 // takes include paths; without it the same import is an error naming the modules there are.
 TEST(Cli, GbxPathAddsModuleFolders) {
