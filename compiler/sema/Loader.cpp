@@ -144,8 +144,9 @@ public:
       }
       return sm_.add(display.lexically_normal().string(), abs, std::move(text));
     }
-    // GBX_PATH's folders first, as a compiler searches its include paths before its own; a
-    // stdlib module is shown as <stdlib>/NAME.gbx, one of GBX_PATH by its path.
+    // The importing file's own folder first (a shop's module beside its specs), then
+    // GBX_PATH's folders, as a compiler searches its include paths before its own; a stdlib
+    // module is shown as <stdlib>/NAME.gbx, one of a folder by its path.
     auto findIn = [&](const std::vector<std::string>& dirs, bool stdlib) {
       for (const auto& dir : dirs) {
         fs::path target = fs::path(dir) / (d.word + std::string(kSpecExtension));
@@ -157,6 +158,17 @@ public:
       }
       return -1;
     };
+    const fs::path own = fs::path(sm_.get(fromFile).absPath()).parent_path();
+    std::error_code ec;
+    if (!own.empty() && fs::is_directory(own, ec)) {
+      fs::path target = own / (d.word + std::string(kSpecExtension));
+      std::string abs = canonicalPath(target), text;
+      if (int id = sm_.find(abs); id >= 0) return id;
+      if (readFile(target, text)) {
+        fs::path display = fs::path(sm_.get(fromFile).displayPath()).parent_path() / (d.word + std::string(kSpecExtension));
+        return sm_.add(display.lexically_normal().string(), abs, std::move(text));
+      }
+    }
     std::vector<std::string> user = modulePath();
     if (int id = findIn(user, false); id >= 0) return id;
     if (int id = findIn(stdlibSearchPath(), true); id >= 0) return id;
@@ -175,7 +187,9 @@ public:
                                                                    missing.size() == 1 ? "does" : "do")));
     } else
       diags_.error("E0203", at,
-                   fmt::format("cannot import `{}`: no module of that name (modules: {}; GBX_PATH adds folders of your own)", d.word,
+                   fmt::format("cannot import `{}`: no module of that name beside the spec, in GBX_PATH or in the stdlib (modules: {}; "
+                               "GBX_PATH adds folders of your own)",
+                               d.word,
                                fmt::join(modules, ", ")));
     return -1;
   }

@@ -78,6 +78,18 @@ TEST(Cli, MistypedFlagsFormatsAndCommandsSayWhatWasMeant) {
   EXPECT_NE(command.err.find("unknown command `slove`; did you mean `solve`?"), std::string::npos) << command.err;
 }
 
+// A module beside the spec is found first: `import shopstd;` reads shopstd.gbx in the spec's
+// own folder, without GBX_PATH.
+TEST(Cli, AModuleBesideTheSpecIsImported) {
+  fs::path d = tempDir("beside");
+  write(d / "shopstd.gbx", "const shop_ratio_tolerance = 1 %;\n");
+  write(d / "main.gbx", "import shopstd;\ngearbox G {\n  stage s: spur { pinion.z in 17..19; wheel.z in 50..60; normal_module = 2 mm; }\n"
+                        "  require s.ratio == 3 +- shop_ratio_tolerance;\n}\n");
+  ::unsetenv("GBX_PATH");
+  auto r = gbxc({"check", (d / "main.gbx").string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
 // GBX_PATH names folders of modules that `import NAME` finds before the stdlib, as a compiler
 // takes include paths; without it the same import is an error naming the modules there are.
 TEST(Cli, GbxPathAddsModuleFolders) {
@@ -89,7 +101,10 @@ TEST(Cli, GbxPathAddsModuleFolders) {
   ::unsetenv("GBX_PATH");
   auto without = gbxc({"check", (d / "main.gbx").string()});
   EXPECT_EQ(without.status, 1);
-  EXPECT_NE(without.err.find("cannot import `shopstd`: no module of that name (modules: gleason, klingelnberg"), std::string::npos) << without.err;
+  EXPECT_NE(without.err.find("cannot import `shopstd`: no module of that name beside the spec, in GBX_PATH or in the stdlib "
+                             "(modules: gleason, klingelnberg"),
+            std::string::npos)
+      << without.err;
   ::setenv("GBX_PATH", ("/no/such/folder:" + (d / "shop").string()).c_str(), 1);
   auto with = gbxc({"check", (d / "main.gbx").string()});
   auto listed = gbxc({"solve", (d / "main.gbx").string(), "--no-timings"});
