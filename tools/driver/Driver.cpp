@@ -69,6 +69,7 @@ commands:
   test PATH... [--update]  golden regression tests: each x.gbx against x.expected
   fmt PATH... [--check]    lay files out the one way (docs/formatting.md); - for stdin
   lsp                      a Language Server Protocol server on stdin/stdout (diagnostics)
+  help [COMMAND]           a command's own usage (also `gbxc COMMAND --help`)
 
 options:
   --format FORMAT          text or json (solve also: md, html, csv)
@@ -102,7 +103,8 @@ options:
                            join walks, counted before the work starts (default 1e9,
                            at most 4e9)
   --time-limit S           stop with exit 3 after S seconds of wall time, saying how far
-                           the work got and how long the whole would take
+                           the work got and how long the whole would take; designs the
+                           search found or decided by then are listed, marked partial
   --quiet                  no progress bar
   --no-timings             leave CPU times and the date out of reports
 
@@ -136,6 +138,40 @@ options:
 exit status: 0 laid out (or, with --check, already laid out), 1 a file does not parse or
 (--check) is not laid out, 2 usage, 3 a file cannot be read or written
 )";
+
+const char* kCheckUsage = R"(usage: gbxc check FILE [--format text|json]
+
+Checks a spec without solving it: syntax, names, types and physical units, the rules of
+each stage kind. Prints `FILE: ok, N gearboxes (NAMES)` or the diagnostics (code,
+file:line:col, caret, a sentence and, where one is near, a "did you mean").
+
+exit status: 0 no errors (warnings are printed), 1 the spec has errors, 2 usage
+)";
+
+const char* kDumpUsage = R"(usage: gbxc dump ast|ir FILE
+
+Prints the syntax tree (`ast`) as parsed, or the checked and lowered program (`ir`): every
+name resolved, every literal an exact rational in SI. Text only.
+
+exit status: 0 printed, 1 the spec has errors, 2 usage
+)";
+
+const char* kLspUsage = R"(usage: gbxc lsp
+
+A Language Server Protocol server on standard input and output, for an editor: diagnostics
+as a document is typed, hover, completion, go to definition, document symbols and
+formatting. It takes no file: it serves the editor's open documents.
+)";
+
+// The usage of one command, the general one for none; nullptr for an unknown command.
+const char* usageOf(const std::string& command) {
+  if (command.empty()) return kUsage;
+  const std::pair<const char*, const char*> table[] = {{"solve", kSolveUsage}, {"test", kTestUsage}, {"fmt", kFmtUsage},
+                                                       {"check", kCheckUsage}, {"dump", kDumpUsage}, {"lsp", kLspUsage}};
+  for (const auto& [name, text] : table)
+    if (command == name) return text;
+  return nullptr;
+}
 
 struct Options {
   TestSettings test;
@@ -342,8 +378,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
     if (a == "--help" || a == "-h") {
       // After a command, that command's options.
-      std::string command = positional.empty() ? "" : positional[0];
-      out << (command == "solve" ? kSolveUsage : command == "test" ? kTestUsage : command == "fmt" ? kFmtUsage : kUsage);
+      const char* text = usageOf(positional.empty() ? "" : positional[0]);
+      out << (text ? text : kUsage);
       return 0;
     }
     if (a == "--version") {
@@ -394,6 +430,15 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     }
   }
   if (positional.empty()) return usage(err, "no command given");
+  // `gbxc help [COMMAND]`: that command's usage.
+  if (positional[0] == "help") {
+    const std::string command = positional.size() > 1 ? positional[1] : "";
+    if (const char* text = usageOf(command)) {
+      out << text;
+      return 0;
+    }
+    return usage(err, fmt::format("no command `{}`{}", command, diag::suggestion(diag::closest(command, kCommands))));
+  }
   o.command = positional[0];
   positional.erase(positional.begin());
   if (o.command == "dump") {

@@ -90,6 +90,20 @@ TEST(Cli, AModuleBesideTheSpecIsImported) {
   EXPECT_EQ(r.status, 0) << r.err;
 }
 
+// Each command has its own usage: `gbxc help CMD` and `gbxc CMD --help` print it.
+TEST(Cli, EachCommandHasItsOwnHelp) {
+  for (const char* command : {"solve", "check", "dump", "test", "fmt", "lsp"}) {
+    auto help = gbxc({"help", command}), flag = gbxc({command, "--help"});
+    EXPECT_EQ(help.status, 0) << command;
+    EXPECT_EQ(help.out.rfind(std::string("usage: gbxc ") + command, 0), 0u) << command << ": " << help.out;
+    EXPECT_EQ(flag.out, help.out) << command;
+  }
+  EXPECT_EQ(gbxc({"help"}).out.rfind("usage: gbxc <command>", 0), 0u);
+  auto unknown = gbxc({"help", "slove"});
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.err.find("did you mean `solve`?"), std::string::npos) << unknown.err;
+}
+
 // GBX_PATH names folders of modules that `import NAME` finds before the stdlib, as a compiler
 // takes include paths; without it the same import is an error naming the modules there are.
 TEST(Cli, GbxPathAddsModuleFolders) {
