@@ -375,8 +375,13 @@ std::optional<Number> Analyser::boundOf(const AttrSpec& spec, const std::string&
     return std::nullopt;
   }
   if (x->type.dim != spec.dim) {
+    // A bare number: show it with the usual unit.
+    auto unit = units::displayUnitFor(spec.dim);
+    std::string fix = x->type.dim.dimensionless() && !unit.name.empty()
+                          ? fmt::format("; write it with a unit, as `{} {}`", x->value.str(), spec.unitHint.empty() ? unit.name : spec.unitHint)
+                          : "";
     diags_.error("E0302", x->span,
-                 fmt::format("unit mismatch: `{}` needs {}, got {}", path, spec.dim.describe(), describe(x->type)));
+                 fmt::format("unit mismatch: `{}` needs {}, got {}{}", path, spec.dim.describe(), describe(x->type), fix));
     return std::nullopt;
   }
   if (spec.integer && !(x->value.isRational() && x->value.rational().isInteger())) {
@@ -437,6 +442,17 @@ ir::Attribute Analyser::attribute(const StageModel& st, const std::string& path,
   if (s.domain == ast::DomainKind::Range) {
     auto [lo, hi] = checker_.checkRange(s.lo.get(), s.hi.get(), scope);
     Span span = source::cover(lo->span, hi->span);
+    // Both bounds bare numbers where a quantity with a unit belongs: one error, with the fix.
+    auto bare = [&](const ir::ExprPtr& x) { return x->isConst() && x->type.isNumber() && x->type.dim.dimensionless(); };
+    if (!spec->dim.dimensionless() && bare(lo) && bare(hi)) {
+      auto unit = units::displayUnitFor(spec->dim);
+      diags_.error("E0302", span,
+                   fmt::format("unit mismatch: `{}` needs {}, got plain numbers{}", path, spec->dim.describe(),
+                               unit.name.empty() ? ""
+                                                 : fmt::format("; write the range with a unit, as `{}..{} {}`", lo->value.str(),
+                                                               hi->value.str(), spec->unitHint.empty() ? unit.name : spec->unitHint)));
+      return a;
+    }
     a.lo = checkBound(std::move(lo));
     a.hi = checkBound(std::move(hi));
     if (a.lo && a.hi && a.lo->compare(*a.hi) > 0) {
