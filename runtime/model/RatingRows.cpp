@@ -11,6 +11,7 @@
 #include "model/Evaluator.h"
 #include "model/Recent.h"
 #include "model/Standards.h"
+#include "model/ToleranceEdges.h"
 
 namespace gbx::rt::rating {
 
@@ -550,21 +551,18 @@ std::vector<std::vector<Value>> faceWidthPieces(const std::vector<Value>& all) {
       lo = std::min(lo, all[k].lo);
       hi = std::max(hi, all[k].hi);
     }
-  std::vector<double> cuts;
-  for (double e : iso::faceWidthRanges())
-    if (e * 1e-3 > lo && e * 1e-3 < hi) cuts.push_back(e * 1e-3);
-  if (cuts.empty()) return out;
+  if (!(lo < hi)) return out;
+  std::vector<double> edges;
+  for (double e : iso::faceWidthRanges()) edges.push_back(e * 1e-3);
+  const auto cuts = cutAt(lo, hi, edges);
+  if (cuts.size() == 1) return out;
   out.clear();
-  cuts.push_back(hi);
-  double from = lo;
-  for (double e : cuts) {
+  for (const auto& [from, to] : cuts) {
     std::vector<Value> piece = all;
-    const double to = e < hi ? e * (1 - 1e-12) : hi;
     for (size_t k = B; k < piece.size(); k += In::Count)
       if (piece[k].isNumber() && piece[k].lo < piece[k].hi)
         piece[k] = Value::range(std::max(piece[k].lo, from), std::min(piece[k].hi, to));
     out.push_back(std::move(piece));
-    from = e * (1 + 1e-12);
   }
   return out;
 }

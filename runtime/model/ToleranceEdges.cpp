@@ -8,6 +8,18 @@
 
 namespace gbx::rt {
 
+std::vector<std::pair<double, double>> cutAt(double lo, double hi, const std::vector<double>& edges) {
+  std::vector<std::pair<double, double>> out;
+  double from = lo;
+  for (double e : edges) {
+    if (!(e > lo && e < hi)) continue;
+    out.emplace_back(from, e * (1 - 1e-12));
+    from = e * (1 + 1e-12);
+  }
+  out.emplace_back(from, hi);
+  return out;
+}
+
 std::vector<double> toleranceEdges(const Evaluator& ev, const Assignment& a, int f) {
   const Model& m = ev.model();
   const Freedom& fr = m.freedoms[static_cast<size_t>(f)];

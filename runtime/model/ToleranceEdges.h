@@ -5,6 +5,7 @@
 // where the face width passes 80 mm, say, and a range of face widths that meets a rule can
 // end just below such a point with none beside it. Whoever searches a freedom's range
 // samples these points, and then every gap between samples lies within one table range.
+#include <utility>
 #include <vector>
 
 #include "model/Evaluator.h"
@@ -15,5 +16,10 @@ namespace gbx::rt {
 // diameter or face width crosses a bound of ISO 1328's ranges, at the design `a` (its other
 // quantities at their middle), sorted. None for a freedom that moves none of them.
 std::vector<double> toleranceEdges(const Evaluator& ev, const Assignment& a, int f);
+
+// [lo, hi] cut at sorted `edges` inside it: each piece ends just below an edge (a value on a
+// bound is in the range below it) and the next begins just above, so each piece lies within
+// one table range. One piece, [lo, hi], without edges.
+std::vector<std::pair<double, double>> cutAt(double lo, double hi, const std::vector<double>& edges);
 
 } // namespace gbx::rt

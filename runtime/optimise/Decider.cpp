@@ -158,8 +158,9 @@ Decider::Point Decider::alone() {
   Assignment whole = a_;
   const int f = g_.freedoms[0];
   whole.box[static_cast<size_t>(f)] = {lo_[0], hi_[0]};
-  for (double e : toleranceEdges(ev_, whole, f))
-    for (double x : {e * (1 - 1e-12), e * (1 + 1e-12)}) {
+  const auto pieces = cutAt(lo_[0], hi_[0], toleranceEdges(ev_, whole, f));
+  for (size_t k = 0; k + 1 < pieces.size(); ++k)
+    for (double x : {pieces[k].second, pieces[k + 1].first}) {
       Point p;
       p.t = {(x - lo_[0]) / (hi_[0] - lo_[0])};
       p.x = {x};
@@ -263,12 +264,7 @@ Decider::Point Decider::severally() {
   std::vector<std::vector<std::pair<double, double>>> pieces(lo.size());
   size_t cells = 1;
   for (size_t i = 0; i < lo.size(); ++i) {
-    double from = lo[i];
-    for (double e : toleranceEdges(ev_, whole, g_.freedoms[i])) {
-      pieces[i].emplace_back(from, e * (1 - 1e-12));
-      from = e * (1 + 1e-12);
-    }
-    pieces[i].emplace_back(from, hi[i]);
+    pieces[i] = cutAt(lo[i], hi[i], toleranceEdges(ev_, whole, g_.freedoms[i]));
     cells *= pieces[i].size();
   }
   if (cells > 16) return cell();

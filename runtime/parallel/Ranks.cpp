@@ -11,6 +11,13 @@
 
 namespace gbx::rt::par {
 
+void onThreads(int threads, const std::function<void()>& work) {
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (auto& th : pool) th.join();
+}
+
 namespace {
 
 int gRank = 0, gRanks = 1;
@@ -29,14 +36,7 @@ void runShare(size_t n, int jobs, const std::function<std::vector<double>(size_t
   auto work = [&] {
     for (size_t j = next++; j < mine.size(); j = next++) out[mine[j]] = f(mine[j]);
   };
-  size_t threads = std::min<size_t>(static_cast<size_t>(std::max(1, jobs)), mine.size());
-  if (threads <= 1) {
-    work();
-    return;
-  }
-  std::vector<std::thread> pool;
-  for (size_t t = 0; t < threads; ++t) pool.emplace_back(work);
-  for (auto& t : pool) t.join();
+  onThreads(static_cast<int>(std::min<size_t>(static_cast<size_t>(std::max(1, jobs)), mine.size())), work);
 }
 
 #ifdef GBX_MPI

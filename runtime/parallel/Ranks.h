@@ -31,6 +31,9 @@ bool alone();
 void setJobs(int jobs);
 int jobs();
 
+// `work` on `threads` threads at once (this one among them); returns when every one has.
+void onThreads(int threads, const std::function<void()>& work);
+
 // f(i) for every i < n, over `jobs` threads; with shareRanks, also over the ranks
 // round-robin, the results gathered to every rank. The results in index order. Every rank
 // must make the same shareRanks calls in the same order, so only fixed points of a pass

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <map>
-#include <thread>
 
 #include <fmt/format.h>
 
 #include "catalogue/Budgets.h"
 #include "model/Deadline.h"
 #include "optimise/Decide.h"
+#include "parallel/Ranks.h"
 
 namespace gbx::rt::passes {
 
@@ -31,13 +31,7 @@ void decideAll(const Model& m, const FreedomPlan& plan, const Design* first, con
       out[i] = plan.decide(ev, open[i]->choice);
     }
   };
-  int threads = std::max(1, std::min<int>(jobs, static_cast<int>(open.size())));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back(work);
-  work();
-  for (auto& th : pool)
-    th.join();
+  par::onThreads(std::max(1, std::min<int>(jobs, static_cast<int>(open.size()))), work);
   for (size_t i = 0; i < open.size(); ++i)
     decided.emplace(open[i]->choice, std::move(out[i]));
 }

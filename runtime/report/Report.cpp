@@ -250,30 +250,20 @@ std::string jsonCandidate(const GearboxReport& g, const DesignRow& r) {
     o += fmt::format("{}\"{}\": {}", i ? ", " : "", jsonEscape(g.columns[i].name), v);
   }
   o += "}";
-  bool anyRanged = false;
-  for (const auto& c : r.cells) anyRanged = anyRanged || c.ranged;
-  if (anyRanged) {
-    o += ", \"ranges\": {";
+  // The columns' intervals of one kind ("ranges", "feasible"), where some cell has one.
+  auto intervals = [&](const char* key, bool Cell::*has, double Cell::*lo, double Cell::*hi) {
     bool first = true;
     for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
-      if (!r.cells[i].ranged) continue;
-      o += fmt::format("{}\"{}\": [{}, {}]", first ? "" : ", ", jsonEscape(g.columns[i].name), num(r.cells[i].rlo), num(r.cells[i].rhi));
+      const Cell& c = r.cells[i];
+      if (!(c.*has)) continue;
+      o += fmt::format("{}\"{}\": [{}, {}]", first ? fmt::format(", \"{}\": {{", key) : ", ", jsonEscape(g.columns[i].name),
+                       num(c.*lo), num(c.*hi));
       first = false;
     }
-    o += "}";
-  }
-  bool anyFeasible = false;
-  for (const auto& c : r.cells) anyFeasible = anyFeasible || c.feasible;
-  if (anyFeasible) {
-    o += ", \"feasible\": {";
-    bool first = true;
-    for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
-      if (!r.cells[i].feasible) continue;
-      o += fmt::format("{}\"{}\": [{}, {}]", first ? "" : ", ", jsonEscape(g.columns[i].name), num(r.cells[i].flo), num(r.cells[i].fhi));
-      first = false;
-    }
-    o += "}";
-  }
+    if (!first) o += "}";
+  };
+  intervals("ranges", &Cell::ranged, &Cell::rlo, &Cell::rhi);
+  intervals("feasible", &Cell::feasible, &Cell::flo, &Cell::fhi);
   o += "}";
   return o;
 }

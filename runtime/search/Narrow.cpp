@@ -59,9 +59,10 @@ std::pair<double, double> feasibleSpan(const Evaluator& ev, Assignment& a, const
   std::vector<double> x;
   for (int k = 0; k < kSamples; ++k)
     x.push_back(k == kSamples - 1 ? hi : lo + (hi - lo) * k / (kSamples - 1));
-  for (double e : toleranceEdges(ev, a, f)) {
-    x.push_back(e * (1 - 1e-12));
-    x.push_back(e * (1 + 1e-12));
+  const auto pieces = cutAt(lo, hi, toleranceEdges(ev, a, f));
+  for (size_t k = 0; k + 1 < pieces.size(); ++k) {
+    x.push_back(pieces[k].second);
+    x.push_back(pieces[k + 1].first);
   }
   std::sort(x.begin(), x.end());
   const int n = static_cast<int>(x.size());

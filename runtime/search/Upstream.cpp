@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <thread>
 
 #include "model/Deadline.h"
+#include "parallel/Ranks.h"
 #include "search/Narrow.h"
 
 namespace gbx::rt {
@@ -93,13 +93,7 @@ UpstreamStage bracketStage(const Evaluator& ev, int s, std::vector<Candidate>& c
         out.brackets[i][r] = bracket(ev, a, *rules[r], ulo, uhi);
     }
   };
-  int threads = std::max(1, std::min<int>(jobs, static_cast<int>(candidates.size() / 64) + 1));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back(work);
-  work();
-  for (auto& th : pool)
-    th.join();
+  par::onThreads(std::max(1, std::min<int>(jobs, static_cast<int>(candidates.size() / 64) + 1)), work);
   return out;
 }
 
