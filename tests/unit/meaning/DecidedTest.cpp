@@ -22,15 +22,17 @@ namespace {
 // The overlap ratio of a helical pair in closed form: eps_beta = b sin(beta) / (pi m_n).
 double overlap(double b, double beta, double mn) { return b * std::sin(beta) / (M_PI * mn); }
 
-// Every rule of the gearbox at a design's stored (printed) point.
-bool holdsEveryRule(const Solved& s, size_t i) {
-  rt::Assignment a = s.at(i);
+// Every rule of the gearbox at a point.
+bool holdsAt(const Solved& s, const rt::Assignment& a) {
   for (const auto& r : s.model->gearbox.rules) {
     rt::Value v = s.ev->eval(*r.expr, a);
     if (!(v.kind == rt::Value::Bool && v.truth == rt::Truth::True)) return false;
   }
   return true;
 }
+
+// Every rule of the gearbox at a design's stored (printed) point.
+bool holdsEveryRule(const Solved& s, size_t i) { return holdsAt(s, s.at(i)); }
 
 // The stored value is the double that the printed digits give back, read as the compiler
 // reads a literal with its unit (4 decimals in mm or deg).
@@ -142,13 +144,7 @@ gearbox G {
     a.choice = choice;
     for (double b = 20e-3; b <= 80e-3 + 1e-12; b += step) {
       a.box[0] = {b, b};
-      bool ok = true;
-      for (const auto& r : m.gearbox.rules) {
-        rt::Value v = s.ev->eval(*r.expr, a);
-        ok = ok && v.kind == rt::Value::Bool && v.truth == rt::Truth::True;
-        if (!ok) break;
-      }
-      if (ok) {
+      if (holdsAt(s, a)) {
         brute.emplace_back(s.ev->quantity("main.mass", a).mid(), choice);
         return;
       }
@@ -200,11 +196,7 @@ gearbox G {
   rt::Assignment a = s.at(0);
   auto holds = [&](double b) {
     a.box[0] = {b, b};
-    for (const auto& r : s.model->gearbox.rules) {
-      rt::Value v = s.ev->eval(*r.expr, a);
-      if (!(v.kind == rt::Value::Bool && v.truth == rt::Truth::True)) return false;
-    }
-    return true;
+    return holdsAt(s, a);
   };
   double grid = NAN;
   for (int i = 0; i <= 9000 && std::isnan(grid); ++i)

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "Compiled.h"
+
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 #include "search/FastKey.h"
@@ -10,21 +12,11 @@ using namespace gbx;
 
 namespace {
 
-struct Spec {
-  std::unique_ptr<driver::Compilation> c;
-  std::unique_ptr<rt::Model> m;
-};
-
-Spec compile(const std::string& objective) {
-  Spec s;
-  s.c = driver::compileText("k.gbx",
-                            fmt::format("gearbox K {{\n  stage a: spur {{ pinion.z in 12..40; wheel.z in 30..90; }}\n"
-                                        "  stage b: spur {{ pinion.z in 12..40; wheel.z in 30..90; }}\n"
-                                        "  require ratio == 9 +- 20%;\n  minimize {};\n}}\n",
-                                        objective));
-  if (!s.c->ok()) throw std::runtime_error(s.c->diags.renderText(s.c->sources));
-  s.m = std::make_unique<rt::Model>(s.c->program, s.c->program.gearboxes[0]);
-  return s;
+Compiled compile(const std::string& objective) {
+  return compileFirst(fmt::format("gearbox K {{\n  stage a: spur {{ pinion.z in 12..40; wheel.z in 30..90; }}\n"
+                                  "  stage b: spur {{ pinion.z in 12..40; wheel.z in 30..90; }}\n"
+                                  "  require ratio == 9 +- 20%;\n  minimize {};\n}}\n",
+                                  objective));
 }
 
 } // namespace
@@ -40,7 +32,7 @@ TEST(FastKey, ExactRatioFunctionsEqualTheEvaluator) {
                               "1 / (ratio - 9.0001)",
                               "ratio^-2 + 0.5 * ratio"};
   for (const char* o : objectives) {
-    Spec s = compile(o);
+    Compiled s = compile(o);
     const ir::Expr& e = *s.m->gearbox.objectives[0].expr;
     auto f = rt::RatioFn::compile(e);
     ASSERT_TRUE(f.has_value()) << o;
@@ -67,11 +59,11 @@ TEST(FastKey, ExactRatioFunctionsEqualTheEvaluator) {
 
 // What the exact path cannot do exactly it declines, and the evaluator answers.
 TEST(FastKey, DeclinesWhatIsNotExact) {
-  Spec s = compile("sqrt(ratio)");
+  Compiled s = compile("sqrt(ratio)");
   auto f = rt::RatioFn::compile(*s.m->gearbox.objectives[0].expr);
   ASSERT_TRUE(f.has_value());
   EXPECT_FALSE(f->exactAt(units::Rational::make(9, 1)).has_value());
   EXPECT_DOUBLE_EQ(f->at(9.0), 3.0);
-  Spec t = compile("a.pinion.z * ratio");
+  Compiled t = compile("a.pinion.z * ratio");
   EXPECT_FALSE(rt::RatioFn::compile(*t.m->gearbox.objectives[0].expr).has_value());
 }

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "Compiled.h"
 #include "Specs.h"
 
 #include "driver/Driver.h"
@@ -42,19 +43,6 @@ Solved solveText(const std::string& text, const std::string& gearbox, int jobs =
 
 std::string spec(const std::string& name) { return readSpec(name); }
 
-// A spec compiled and its first gearbox's search model (the test owns both).
-struct Compiled {
-  std::unique_ptr<driver::Compilation> c;
-  std::unique_ptr<rt::Model> m;
-};
-
-Compiled compileFirst(const std::string& text) {
-  Compiled out;
-  out.c = driver::compileText("t.gbx", text);
-  if (!out.c->ok()) throw std::runtime_error(text + out.c->diags.renderText(out.c->sources));
-  out.m = std::make_unique<rt::Model>(out.c->program, out.c->program.gearboxes[0]);
-  return out;
-}
 
 std::map<std::string, long long> values(const rt::Model& m, const rt::Design& d) {
   std::map<std::string, long long> v;

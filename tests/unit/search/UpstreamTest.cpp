@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "Compiled.h"
+
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 #include "optimise/Decide.h"
@@ -17,19 +19,6 @@
 using namespace gbx;
 
 namespace {
-
-struct Spec {
-  std::unique_ptr<driver::Compilation> c;
-  std::unique_ptr<rt::Model> m;
-};
-
-Spec compile(const std::string& text) {
-  Spec s;
-  s.c = driver::compileText("t.gbx", text);
-  if (!s.c->ok()) throw std::runtime_error(text + s.c->diags.renderText(s.c->sources));
-  s.m = std::make_unique<rt::Model>(s.c->program, s.c->program.gearboxes[0]);
-  return s;
-}
 
 std::string stage(const std::string& name, const std::string& pinions, const std::string& wheels,
                   const std::string& modules, const std::string& width) {
@@ -68,7 +57,7 @@ std::set<std::vector<int>> choices(const rt::SearchResult& r) {
 }
 
 void expectSameSearch(const std::string& text) {
-  Spec s = compile(text);
+  Compiled s = compileFirst(text);
   rt::SearchOptions all;
   all.exhaustive = true;
   auto want = rt::search(*s.m, all);
@@ -112,7 +101,7 @@ TEST(Upstream, ThreeStagesAsTheExhaustiveJoin) { expectSameSearch(reducer(true, 
 // Narrowed to where its rules hold, a design's box still holds its decided point: the key
 // it is ranked by is at most the decided objective, and at least the whole box's bound.
 TEST(Upstream, NarrowedKeysBoundTheDecidedValues) {
-  Spec s = compile(reducer(true, 2, ""));
+  Compiled s = compileFirst(reducer(true, 2, ""));
   rt::SearchOptions all;
   all.exhaustive = true;
   auto wide = rt::search(*s.m, all);
