@@ -54,7 +54,7 @@ if [ -n "${GBX_BASELINE:-}" ] && [ -x "$GBX_BASELINE" ]; then
   { time build/gbxc solve specs/marine_reducer.gbx --gearbox MarineReducerOptimised --no-timings --jobs 1 >/dev/null; } 2>>"$dyn.robust"
   echo "${GBX_BASELINE_NAME:-$GBX_BASELINE}" >>"$dyn.robust.base"
 fi
-# Seed 004's whole mechanism for 0.1 s: msbdf with the analytic Jacobian against rk8pd.
+# Paper P4's whole mechanism for 0.1 s: msbdf with the analytic Jacobian against rk8pd.
 for m in msbdf rk8pd; do
   sed -e 's/^    duration = 1 s;/    duration = 0.1 s;/' -e "s/method = msbdf;/method = $m;/" specs/electric_cylinder.gbx >"$dyn.ec.gbx"
   for i in 1 2 3; do
@@ -77,7 +77,7 @@ lines = ["# Performance", "",
          "smaller tooth ranges and extrapolated by the number of multisets it must visit.", "",
          "## Tooth-count search", "",
          "| case | jobs | designs | search time | peak memory |", "| --- | ---: | ---: | ---: | ---: |"]
-names = {"paper2": "thruster, two bevel stages (seeds/000)",
+names = {"paper2": "thruster, two bevel stages (paper P0, docs/sources.md)",
          "spur3": "3 spur stages, teeth 12..100, 13.36838 ± 1e-6 rel., top 100",
          "spur4": "4 spur stages, teeth 12..100, 13.36838 ± 1e-6 rel., top 100"}
 for r in rows:
@@ -366,7 +366,7 @@ lines += ["", "The table is built per position by Newton on the piecewise-linear
 ec_m = sorted(float(x) for x in open(sys.argv[10]).read().split())
 ec_r = sorted(float(x) for x in open(sys.argv[11]).read().split())
 em, er = ec_m[len(ec_m)//2], ec_r[len(ec_r)//2]
-lines += ["## Dynamics: seed 004's whole mechanism", "",
+lines += ["## Dynamics: paper P4's whole mechanism", "",
           "`specs/electric_cylinder.gbx` (`ElectricCylinderBuilt`) with every scene cut to",
           "0.1 s (the two planetary stage scenes with rk8pd in both); the source paper's contact damping makes the light",
           "idler stiff. Whole process, median user CPU of three runs each:", "",

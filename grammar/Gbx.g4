@@ -1,4 +1,4 @@
-// The .gbx language, v1 (LANGUAGE.md). The statement grammar is deliberately uniform:
+// The .gbx language, v1 (docs/language.md). The statement grammar is deliberately uniform:
 // which statement may stand in which block is checked by the AST builder, so that a
 // misplaced statement gets a sentence of its own instead of a bare syntax error.
 grammar Gbx;

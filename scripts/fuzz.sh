@@ -19,7 +19,7 @@ targets=("$@")
 mkdir -p build-asan/artifacts
 seeds=(specs tests/fuzz/regressions)
 for d in tests/golden/*/; do seeds+=("${d%/}"); done
-[[ -d ../shared/spec-examples ]] && seeds+=(../shared/spec-examples)
+[[ -n ${GBX_ACCEPTANCE_DIR:-} && -d $GBX_ACCEPTANCE_DIR ]] && seeds+=("$GBX_ACCEPTANCE_DIR")
 
 status=0
 for t in "${targets[@]}"; do

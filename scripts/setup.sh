@@ -36,11 +36,12 @@ fi
 # dpkg-dev, file: `cpack -G DEB` reads the program's shared libraries (dpkg-shlibdeps, and
 # CPack's own check with `file`) for the .deb's Depends.
 # universal-ctags: a test measures every function's length (Conventions.NoFunctionOver…).
+# pandoc, mkdocs: the manual page (from docs/cli.md) and the documentation site.
 # libopenmpi-dev, openmpi-bin: build/gbxc-mpi, and the test that four MPI ranks write the
 # same report as one thread.
 packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
           libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium python3-jsonschema dpkg-dev file universal-ctags
-          libopenmpi-dev openmpi-bin libnlopt-dev ${extra_packages[@]+"${extra_packages[@]}"})
+          libopenmpi-dev openmpi-bin libnlopt-dev pandoc mkdocs ${extra_packages[@]+"${extra_packages[@]}"})
 missing=()
 for p in "${packages[@]}"; do
   # Installed, not merely known to dpkg (a removed package keeps its config-files state).
@@ -64,5 +65,6 @@ if ((${#missing[@]})); then
   echo "setup: packages installed in ${SECONDS}s"
 fi
 
-cmake -S . -B "$build_dir" -G Ninja "${cmake_args[@]}" >/dev/null
+# GBX_ACCEPTANCE_DIR: a folder of acceptance specs kept outside the repository (optional).
+cmake -S . -B "$build_dir" -G Ninja "${cmake_args[@]}" -DGBX_ACCEPTANCE_DIR="${GBX_ACCEPTANCE_DIR:-}" >/dev/null
 cmake --build "$build_dir"

@@ -69,7 +69,7 @@ inline constexpr FunctionSpec kFunctions[] = {
     // worst(q): q at the corner of the tolerance box that is worst where q stands (mean(q), one
     // number, is the mean over the box: a Reduction row that the checker tells apart).
     {Fn::Worst, "worst", 1, 1, ArgRule::Scatter, ResultRule::Like},
-    // quantile(q, p): the p-quantile of q over the Monte Carlo samples (LANGUAGE.md §19).
+    // quantile(q, p): the p-quantile of q over the Monte Carlo samples (docs/optimisation.md).
     {Fn::Quantile, "quantile", 2, 2, ArgRule::Sampled, ResultRule::Dim},
 };
 

@@ -232,7 +232,7 @@ inline constexpr int kKeyCount = static_cast<int>(Q::None);
 // The word as the language writes it.
 std::string_view keyName(Q q);
 
-// Which way a quantity is better (LANGUAGE.md §15): safeties and permissible stresses
+// Which way a quantity is better (docs/language.md): safeties and permissible stresses
 // larger; stresses, mass, deflections, sliding and errors smaller. `worst(q)` reads the
 // other end; Unknown where neither is better (a contact ratio, a factor).
 enum class Better : std::int8_t { Unknown, Larger, Smaller };
@@ -240,7 +240,7 @@ Better betterOf(Q q);
 // The id of a word; `ratio` is the quantity (the damping ratio is resolved by its effect).
 std::optional<Q> keyOf(std::string_view name);
 // Lengths of the micrometre scale (deviations, deflections, modifications, roughness, oil
-// films): every report format shows them in um, whatever a value's size (LANGUAGE.md §20).
+// films): every report format shows them in um, whatever a value's size (docs/reports.md).
 bool readsInMicrometres(Q q);
 
 } // namespace gbx::cat

@@ -19,7 +19,7 @@ const std::vector<AttrSpec>& splitSettings();
 const std::vector<AttrSpec>& splitOutputs();
 const std::vector<AttrSpec>& workPrecisionSettings();
 const std::vector<AttrSpec>& sweepSettings();
-// `tolerances { …; samples = N; distribution = normal; seed = 1; }` (LANGUAGE.md §19).
+// `tolerances { …; samples = N; distribution = normal; seed = 1; }` (docs/optimisation.md).
 const std::vector<AttrSpec>& toleranceSettings();
 namespace distribution {
 inline constexpr int Normal = 0, Uniform = 1;
@@ -71,7 +71,7 @@ enum class Mod : int {
   LeadCrowning, ThermalLeadRelief, EndRelief, EndReliefWidth, HelixSlope,
 };
 // A modification's amount (a relief, a crowning, a slope) reads in um; where it starts (a
-// height, a width) in mm (LANGUAGE.md §20).
+// height, a width) in mm (docs/reports.md).
 inline bool modificationReadsInMicrometres(Mod m) {
   return m != Mod::TipReliefHeight && m != Mod::RootReliefHeight && m != Mod::EndReliefWidth;
 }
@@ -83,7 +83,7 @@ inline constexpr int CaseHardened = 0, Nitrided = 1, ThroughHardened = 2;
 namespace lifeCurve {
 inline constexpr int Normal = 0, Optimum = 1;
 }
-// The pinion's helix hand and the end of its face where the torque enters (LANGUAGE.md §16),
+// The pinion's helix hand and the end of its face where the torque enters (docs/rating.md),
 // and the word `rating.face_load_factor` takes instead of a number.
 namespace helixHand {
 inline constexpr int Right = 0, Left = 1;

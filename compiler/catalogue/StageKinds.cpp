@@ -63,7 +63,7 @@ AttrSpec accuracyRow() {
   return a;
 }
 
-// The `rating { … }` block (LANGUAGE.md §11): ISO 6336 inputs of the stage's meshes.
+// The `rating { … }` block (docs/rating.md): ISO 6336 inputs of the stage's meshes.
 // Absent values take the defaults their meaning names, applied by the rating itself.
 std::vector<AttrSpec> ratingInputs() {
   const Dim viscosity{2, 0, -1, 0};
@@ -74,7 +74,7 @@ std::vector<AttrSpec> ratingInputs() {
       hinted(pos("rating.life", time, "required service life"), "h"),
       symbol("rating.life_curve", {"normal", "optimum"}, "life-factor curves beyond the endurance knee (default normal: Z_NT, Y_NT >= 0.85)"),
       hinted(pos("rating.lubricant.viscosity_40", viscosity, "lubricant kinematic viscosity at 40 degC"), "mm^2/s"),
-      // Scuffing and micropitting (ISO/TS 6336-20, -21, -22; LANGUAGE.md §17).
+      // Scuffing and micropitting (ISO/TS 6336-20, -21, -22; docs/rating.md).
       hinted(pos("rating.lubricant.viscosity_100", viscosity, "lubricant kinematic viscosity at 100 degC (with viscosity_40: the ASTM D341 line)"), "mm^2/s"),
       hinted(bounded(pos("rating.lubricant.density", units::dims::density, "lubricant density at 15 degC (default 890 kg/m^3)"), num(600),
                      num(1200)),
@@ -183,7 +183,7 @@ std::vector<AttrSpec> ratingGearQuantities() {
   };
 }
 
-// Bevel stages (LANGUAGE.md §18): the ISO 23509 geometry the rating needs, the ISO 10300
+// Bevel stages (docs/rating.md): the ISO 23509 geometry the rating needs, the ISO 10300
 // rating inputs that apply to bevel gears, and the quantities the rating computes.
 std::vector<AttrSpec> bevelStageAttrs() {
   std::vector<AttrSpec> a = {
@@ -298,9 +298,9 @@ std::vector<KindSpec> buildKinds() {
         derived("pitch_line_velocity", velocity, "pitch-line velocity"),
         derived("eps_alpha", none, "transverse contact ratio"),
         derived("eps_beta", none, "overlap ratio"),
-        derived("mass", units::dims::mass, "gear-pair mass (DOMAIN.md §3, f2)"),
+        derived("mass", units::dims::mass, "gear-pair mass of two solid discs at the reference diameters: (pi/4) m_n^2 z1^2 b (1 + u^2) rho / cos^2 beta"),
         derived("whole_depth", length, "whole depth 2.25 mn"),
-        derived("sliding_balance", none, "specific-sliding balance value (DOMAIN.md §3)"),
+        derived("sliding_balance", none, "specific-sliding balance: the difference of the two gears' largest specific sliding, 0 when balanced"),
         derived("working_pressure_angle", angle, "transverse working pressure angle"),
         derived("tangential_force", force, "nominal tangential force"),
         derived("load_deflection", length, "elastic deflection w_t / c_gamma"),
@@ -311,7 +311,7 @@ std::vector<KindSpec> buildKinds() {
     if (helical)
       a.insert(a.begin() + 1, required(bounded(in("helix_angle", angle, "helix angle at the reference circle"), deg(0), deg(45))));
     for (auto& d : commonDerived()) a.push_back(d);
-    // The sense of the pinion's wind-up and bending mismatch across the face (LANGUAGE.md §16).
+    // The sense of the pinion's wind-up and bending mismatch across the face (docs/rating.md).
     if (helical) a.push_back(symbol("helix_hand", {"right", "left"}, "the pinion's helix hand: the sense of its bending mismatch across the face"));
     a.push_back(symbol("torque_side", {"coupling", "free"}, "the end of the pinion's face where the torque enters: the sense of its wind-up"));
     for (auto& r : ratingInputs()) a.push_back(r);
@@ -338,7 +338,7 @@ std::vector<KindSpec> buildKinds() {
         withDefault(bounded(pos("pressure_angle", angle, "normal pressure angle (the drive flank's)"), deg(10), deg(35)), deg(20)),
         material(),
         accuracyRow(),
-        derived("mmn_b", none, "mean normal module over face width (DOMAIN.md §1)"),
+        derived("mmn_b", none, "mean normal module over face width (docs/search.md)"),
     };
     a[1].role = a[4].role = a[5].role = AttrRole::Either;
     for (auto& d : commonDerived()) a.push_back(d);

@@ -34,7 +34,7 @@ public:
   // Sorted by file, position, code; exact duplicates dropped.
   std::vector<Diagnostic> sorted() const;
 
-  // Render in the text form of DESIGN.md (numbered source line, caret, sentence).
+  // Render as text: code, place, the numbered source line with a caret, the sentence (docs/diagnostics.md).
   std::string renderText(const source::SourceManager& sm) const;
   // One JSON object per diagnostic, in a JSON array.
   std::string renderJson(const source::SourceManager& sm) const;

@@ -55,7 +55,7 @@ enum class Op {
   Forall,       // name: variable, detail in type: collection; args: one instance per element
   SceneOutput,  // name: "scene.fn(signal)"
   Relative,     // args[0] divided by its value in the baseline gearbox (`inBaseline`)
-  Scatter,      // fn Worst or Mean: args[0] over the gearbox's `tolerances` (LANGUAGE.md §13)
+  Scatter,      // fn Worst or Mean: args[0] over the gearbox's `tolerances` (docs/dynamics.md)
 };
 
 struct Expr;
@@ -215,7 +215,7 @@ struct SceneOutput {
   bool bare = true;                       // resolved by lowering: no function
   cat::SignalFn fn = cat::SignalFn::Rms;  // when not bare
   cat::Signal id = cat::Signal::Displacement;
-  std::string mesh;  // a whole-gearbox scene's mesh, "stage.mesh" or "stage" (LANGUAGE.md §14)
+  std::string mesh;  // a whole-gearbox scene's mesh, "stage.mesh" or "stage" (docs/dynamics.md)
   std::string key() const {
     std::string s = mesh.empty() ? signal : signal + "(" + mesh + ")";
     return function.empty() ? s : function + "(" + s + ")";
@@ -316,7 +316,7 @@ struct Gearbox {
   std::vector<Split> splits;
   std::vector<Study> studies;
   std::vector<Tolerance> tolerances;
-  std::vector<Setting> toleranceSettings;  // samples, distribution, seed: Monte Carlo (LANGUAGE.md §19)
+  std::vector<Setting> toleranceSettings;  // samples, distribution, seed: Monte Carlo (docs/optimisation.md)
   std::optional<Report> report;
   Span span;
   const Stage* findStage(const std::string& name) const;

@@ -332,7 +332,7 @@ ir::ExprPtr ExprChecker::name(const ast::Expr& e, const Scope& s) {
   }
   if (s.context == Scope::EffectParam &&
       std::find(s.effectLocals.begin(), s.effectLocals.end(), n) != s.effectLocals.end())
-    // ADAMS convention (DOMAIN.md §2): C = 0.01·K takes K's SI magnitude as a damping coefficient.
+    // ADAMS convention (docs/dynamics.md): C = 0.01·K takes K's SI magnitude as a damping coefficient.
     return make(Op::Symbol, Type::number(units::dims::dampingCoeff), e.span, n);
   if (s.context == Scope::Modify && s.stage) {
     for (const auto& b : modifyBuiltins()) {

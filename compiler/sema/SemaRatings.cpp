@@ -65,7 +65,7 @@ void Analyser::ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, c
   m.rated = true;
 }
 
-// `load_spectrum { bin 130% torque for 0.1% of life; … }` (LANGUAGE.md §16): each bin a
+// `load_spectrum { bin 130% torque for 0.1% of life; … }` (docs/rating.md): each bin a
 // share of the operating torque or a torque, for a share of the life or a number of load
 // cycles of the driving gear; the shares of the life add up to the whole life.
 std::vector<ir::SpectrumBin> Analyser::spectrumBins(const StageModel& st) {

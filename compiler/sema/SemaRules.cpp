@@ -182,7 +182,7 @@ std::vector<ir::Tolerance> Analyser::tolerances(const GearboxModel& m, const Sco
 }
 
 // `samples = N; distribution = normal; seed = 1;` beside the tolerance lines: Monte Carlo
-// samples instead of the box's corners (LANGUAGE.md §19).
+// samples instead of the box's corners (docs/optimisation.md).
 Analyser::ToleranceSettings Analyser::toleranceSettings(const GearboxModel& m, const Scope& gs) {
   ToleranceSettings result;
   if (m.toleranceSettings.empty()) return result;

@@ -205,7 +205,7 @@ std::string Analyser::dotted(const ast::Expr* e) {
   return "";
 }
 
-// The meshes a whole-gearbox scene names by stage (LANGUAGE.md §14).
+// The meshes a whole-gearbox scene names by stage (docs/dynamics.md).
 std::vector<std::string> Analyser::meshNames(const StageModel& st) {
   if (!st.kind) return {};
   switch (st.kind->kind) {

@@ -1,5 +1,5 @@
 #pragma once
-// Unit atoms (LANGUAGE.md §1) and unit expressions built from them.
+// Unit atoms (docs/language.md) and unit expressions built from them.
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,7 +38,7 @@ struct DisplayUnit {
   double si(double shownValue) const { return shownValue * scale + offset; }
 };
 DisplayUnit displayUnitFor(const Dim& d);
-// Transmission errors, deviations and the other micrometre-scale lengths (LANGUAGE.md §20).
+// Transmission errors, deviations and the other micrometre-scale lengths (docs/reports.md).
 inline DisplayUnit micrometres() { return {"um", 1e-6}; }
 // The display unit of a difference of this dimension: a temperature difference reads in K
 // (degC's zero does not apply to it). Reports show an expression that is not an absolute

@@ -110,7 +110,7 @@ struct Kernel {
     if constexpr (Damped) c = me.c;
     if constexpr (Slopes) *fd = *fv = *ft = 0;
     if constexpr (Contact == contact::Loaded) {
-      // k(t) (x - u(t)): the loaded tooth contact of the flanks (DOMAIN.md §8).
+      // k(t) (x - u(t)): the loaded tooth contact of the flanks (docs/dynamics.md).
       double phi = me.phaseDof < 0 ? tin : y[me.phaseDof];
       double tau = me.phaseGain * phi + me.phase0;
       const auto& L = p.loaded[static_cast<size_t>(me.loaded)];

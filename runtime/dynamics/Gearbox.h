@@ -1,5 +1,5 @@
 #pragma once
-// A whole gearbox in time (LANGUAGE.md §14): every shaft, carrier, planet spin and idler a
+// A whole gearbox in time (docs/dynamics.md): every shaft, carrier, planet spin and idler a
 // rotation, the gearbox input driven, the output loaded, every mesh of every stage a contact
 // along its line of action with the scene's effects. The lumped model of the modes
 // (dynamics/Lumped.h) with contact laws instead of linear springs.

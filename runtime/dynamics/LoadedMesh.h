@@ -1,5 +1,5 @@
 #pragma once
-// Thin-slice loaded tooth contact of a cylindrical gear pair (DOMAIN.md §8): the face is cut
+// Thin-slice loaded tooth contact of a cylindrical gear pair (docs/dynamics.md): the face is cut
 // into slices, each a spur pair with the single-pair stiffness along the path of contact;
 // the profile and lead modifications and the deviations are initial separations; at every
 // mesh position the approach that carries the load with only the slices in contact gives

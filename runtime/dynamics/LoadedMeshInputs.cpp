@@ -235,7 +235,7 @@ LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int st
   }
   leadSeparations(ev, a, st, mods, g, use, sep, prov);
   if (use.leadOnly) return in;
-  // Deviations, in their adverse forms, each the mean of the two gears' (what seed 003's relief
+  // Deviations, in their adverse forms, each the mean of the two gears' (what paper P3's relief
   // rule allows for): the incoming pair early by the base pitch deviation, the ends of the
   // path proud by the profile form deviation.
   double fp1 = optional(Pinion, Q::PitchDeviation), fp2 = optional(Wheel, Q::PitchDeviation);

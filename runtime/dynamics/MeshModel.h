@@ -1,5 +1,5 @@
 #pragma once
-// One gear mesh along its line of action (DOMAIN.md §3): m x'' + c x' + k(t) x = F0 + F(t),
+// One gear mesh along its line of action (docs/dynamics.md): m x'' + c x' + k(t) x = F0 + F(t),
 // built from the scene's effects only. Each listed effect contributes its terms once,
 // when the model is composed; an effect that is not listed has no state, no term and no
 // test in the right-hand side.

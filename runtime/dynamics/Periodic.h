@@ -1,6 +1,6 @@
 #pragma once
 // The periodic steady state of a periodically forced system, found directly instead of by
-// settling a transient (DOMAIN.md §7): shooting, Newton on the initial state x0 so that one
+// settling a transient (docs/dynamics.md): shooting, Newton on the initial state x0 so that one
 // period of the flow returns to x0 (plus a known drift of angle coordinates). Its Jacobian
 // is the monodromy matrix, from the variational equations when the system gives dfdy,
 // else by differences. For a linear system the first Newton step is exact; the eigenvalues

@@ -54,7 +54,7 @@ inline constexpr int Constant = 0, ClosedForm = 1, State = 2;
 
 template <bool Varying, bool Damped, int Contact, bool Te, bool TorqueFl, int Phase>
 struct Kernel {
-  // Transmission error: F = dk(t) e(t) on a mesh always in contact (DOMAIN.md §3); with
+  // Transmission error: F = dk(t) e(t) on a mesh always in contact (docs/dynamics.md); with
   // contact loss a displacement inside the contact law, so the force stays continuous.
   static constexpr bool teDisplacement = Te && Contact != contact::Linear;
   static constexpr bool teForce = Te && Contact == contact::Linear && Varying;
@@ -353,7 +353,7 @@ private:
   }
 
   // Hertz stiffness K = 4/3 sqrt(R) E*; the ring-planet mesh is internal, so the curvatures
-  // subtract (the source paper adds them; DOMAIN.md §2). Every listed effect must be one the
+  // subtract (the source paper adds them; docs/dynamics.md). Every listed effect must be one the
   // planetary model implements (its registry row says).
   void contact() {
     double Estar = in_.E / (2.0 * (1.0 - in_.nu * in_.nu));

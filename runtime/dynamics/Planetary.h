@@ -1,7 +1,7 @@
 #pragma once
 // An NGW planetary stage as a lumped torsional model (sun driven, ring fixed, carrier
 // out): the carrier and each planet's spin are degrees of freedom; every sun-planet and
-// ring-planet mesh is a contact along its line of action (DOMAIN.md §2).
+// ring-planet mesh is a contact along its line of action (docs/dynamics.md).
 #include <map>
 #include <string>
 #include <vector>

@@ -240,7 +240,7 @@ SceneSeries recorded(const ir::SceneOutput& o, Dim dim, const std::vector<double
   return s;
 }
 
-// A whole-gearbox scene in time (LANGUAGE.md §14): the outputs of its meshes by name.
+// A whole-gearbox scene in time (docs/dynamics.md): the outputs of its meshes by name.
 SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov,
                             SceneResult r) {
   Accuracy acc = sceneAccuracy(scene, ov);
@@ -538,7 +538,7 @@ void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Sample
       r.numbers.push_back(r.stabilityNumber);
       continue;
     }
-    // An unstable periodic response has no steady value to report (LANGUAGE.md §12).
+    // An unstable periodic response has no steady value to report (docs/dynamics.md).
     if (r.unstable && !ov.keepUnstable && cat::signalFnSpec(o.fn).number) {
       r.numbers.push_back({o.key(), NAN, o.id == Signal::DynamicFactor ? Dim{} : dim, o.fn, o.id});
       continue;

@@ -22,7 +22,7 @@ struct SceneNumber {
   units::Dim dim;
   cat::SignalFn fn = cat::SignalFn::Rms;  // what it is, for `scene.fn(signal)` in objectives
   cat::Signal signal = cat::Signal::Modes;
-  // The size an error of this output is measured against (LANGUAGE.md §15): the RMS of its
+  // The size an error of this output is measured against (docs/language.md): the RMS of its
   // signal over the recorded window, a force at least the static load; 0: the value itself.
   double scale = 0;
   double error = NAN;  // its own error estimate, relative to that scale

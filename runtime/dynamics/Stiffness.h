@@ -1,5 +1,5 @@
 #pragma once
-// Time-varying mesh stiffness from the length of the contact lines (DOMAIN.md §3):
+// Time-varying mesh stiffness from the length of the contact lines (docs/dynamics.md):
 // L(tau) = Lm [1 + sum_k A_k cos(2 pi k tau) + B_k sin(2 pi k tau)], tau in mesh periods.
 #include <vector>
 

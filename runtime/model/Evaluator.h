@@ -74,7 +74,7 @@ public:
     long sample = -1;                // the Monte Carlo sample, or -1 at a corner
   };
   std::optional<Where> worstCorner(const ir::Expr& scatter, const Assignment& a) const;
-  // q at every Monte Carlo sample of the gearbox's `tolerances` (LANGUAGE.md §19), in sample
+  // q at every Monte Carlo sample of the gearbox's `tolerances` (docs/optimisation.md), in sample
   // order; nothing where the tolerances are not sampled or q has no value at some sample.
   // shareRanks: under mpirun, the samples are dealt out over the ranks too (a fixed point of
   // a pass only: see parallel/Ranks.h).

@@ -172,7 +172,7 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
   in.nu40 = num(Q::RatingViscosity40, kNaN);
   if (!std::isfinite(in.life)) return fail("its rating gives no `life`");
   if (!std::isfinite(in.nu40)) return fail("its rating gives no `lubricant.viscosity_40`");
-  // Rz = 6 Ra unless Rz is given (LANGUAGE.md §11).
+  // Rz = 6 Ra unless Rz is given (docs/rating.md).
   in.RzFlank = num(Q::RatingRoughnessFlankRz, 6 * num(Q::RatingRoughnessFlank, kNaN));
   in.RzRoot = num(Q::RatingRoughnessRootRz, 6 * num(Q::RatingRoughnessRoot, kNaN));
   if (!std::isfinite(in.RzFlank) || !std::isfinite(in.RzRoot)) return fail("its rating gives no flank or root roughness");
@@ -649,7 +649,7 @@ DerivedRow stageRow(Q key) {
   return {key, false, [](const KindContext& c, int g) { return rated(c, g, Side::Any, [](const PairRating& r, int) { return r.*M; }); }};
 }
 // A scuffing or micropitting quantity of the stage: the worst of its meshes' (NaN where no
-// mesh is rated for it), by the quantity's direction (LANGUAGE.md §15).
+// mesh is rated for it), by the quantity's direction (docs/language.md).
 template <double ScuffingRating::*M, Q K>
 DerivedRow scuffingRow() {
   return {K, false, [](const KindContext& c, int g) {

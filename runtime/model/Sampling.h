@@ -1,5 +1,5 @@
 #pragma once
-// Monte Carlo samples of a gearbox's `tolerances` (LANGUAGE.md §19): each tolerance's
+// Monte Carlo samples of a gearbox's `tolerances` (docs/optimisation.md): each tolerance's
 // deviation at sample k is drawn from a counter-based stream (the seed, k and the
 // tolerance's position), so any share of the samples over threads or ranks draws the same
 // numbers, and the statistics the report gives of them.

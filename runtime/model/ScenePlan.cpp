@@ -145,7 +145,7 @@ void ListedEffect::set(Q key, double si, units::Dim dim) {
 
 SteadyMethod ScenePlan::steady(std::optional<long> settlePeriods) const {
   // The periodic steady state when the scene asks for it, and by default when it neither
-  // settles nor runs from rest (LANGUAGE.md §12).
+  // settles nor runs from rest (docs/dynamics.md).
   bool settles = settlePeriods || settle;
   if (!settlePeriods && (periodicWritten || (!settles && !duration))) return SteadyMethod::Periodic;
   return record ? SteadyMethod::Settle : SteadyMethod::FromRest;

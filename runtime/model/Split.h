@@ -1,6 +1,6 @@
 #pragma once
 // Load sharing of a two-branch (or n-branch) power split with torsion shafts
-// (DOMAIN.md §5): shaft twist, circumferential displacement at the stage-I wheel, and
+// (docs/dynamics.md): shaft twist, circumferential displacement at the stage-I wheel, and
 // the imbalance a backlash difference leaves, for free and preloaded installation.
 #include <optional>
 #include <string>

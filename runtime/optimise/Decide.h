@@ -1,5 +1,5 @@
 #pragma once
-// Deciding a design's continuous freedoms (LANGUAGE.md §15): the point of the freedoms'
+// Deciding a design's continuous freedoms (docs/language.md): the point of the freedoms'
 // box where every rule holds that ranks best by the objectives (with none, the feasible
 // point nearest the middle of the box), or the rule that no point satisfies.
 #include <map>

@@ -275,7 +275,7 @@ OptimiseResult optimise(const Model& m, const Model* baseline, const Assignment*
   auto sharedBaseline = probe.baseline;
 
   // Without a scene in the rules or objectives, each candidate's freedoms are decided as the
-  // search decides them (LANGUAGE.md §15): the same point, rounded to the printed digits, so an
+  // search decides them (docs/language.md): the same point, rounded to the printed digits, so an
   // unchanged variant reads relative(x) = 1 exactly.
   std::unique_ptr<FreedomPlan> plan;
   if (!readsScenes(m.gearbox) && !m.freedoms.empty()) plan = std::make_unique<FreedomPlan>(m);

@@ -1,6 +1,6 @@
 #pragma once
 // Work shared over threads and, in a build with Open MPI (-DGBX_MPI=ON) started by
-// `mpirun -n N`, over ranks (LANGUAGE.md §19). Every rank runs the whole solve; the loops
+// `mpirun -n N`, over ranks (docs/optimisation.md). Every rank runs the whole solve; the loops
 // that cost (Monte Carlo samples) share their iterations, and every rank receives every
 // result, so what follows is the same on each and rank 0 alone writes the report.
 #include <cstddef>

@@ -409,7 +409,7 @@ std::optional<std::string> cornerNote(const Model& m, const Evaluator& ev, const
 GearboxReport designTable(const Model& m, Optimised& o, const Columns& columns, bool lazy) {
   GearboxReport g =
       reportOf(m, o.designs, columns.exprs, columns.names, o.freedoms, o.baseline.get(), o.baselineDesign.get(), lazy);
-  // Where each `worst(…)` column finds its value for design 1 (LANGUAGE.md §15).
+  // Where each `worst(…)` column finds its value for design 1 (docs/language.md).
   if (!g.rows.empty() && !g.source) {
     Evaluator ev(m);
     Assignment a(m);

@@ -35,7 +35,7 @@ std::optional<Assignment> bestDesign(const Model& m, const Optimised& designs);
 // sample's to four figures.
 std::string deviationsText(const Model& m, const std::vector<double>& deviations, bool sample);
 
-// Where a `worst(…)` column finds its value for design 1 (LANGUAGE.md §15), as a report note;
+// Where a `worst(…)` column finds its value for design 1 (docs/language.md), as a report note;
 // nothing for another column or where the evaluator cannot compute the corners.
 std::optional<std::string> cornerNote(const Model& m, const Evaluator& ev, const ir::Expr& column,
                                       const std::string& name, const Assignment& a);

@@ -78,7 +78,7 @@ double usualSpeed(int grade) {
   return grade >= 5 && grade <= 12 ? helical[grade] : 0;
 }
 
-// What a rating engineer expects to be told (LANGUAGE.md §16).
+// What a rating engineer expects to be told (docs/rating.md).
 void warnings(const rating::MeshRating& mr, RatingReport& out) {
   const PairRating& r = mr.rating;
   double bd = r.b / r.dPinion;

@@ -1,5 +1,5 @@
 #pragma once
-// Monte Carlo over the tolerances (LANGUAGE.md §19) at design 1. The scenes that sampled
+// Monte Carlo over the tolerances (docs/optimisation.md) at design 1. The scenes that sampled
 // quantities read run once per sample, shared over the threads and the ranks; the columns
 // and the Monte Carlo report read those runs.
 #include <map>

@@ -66,7 +66,7 @@ SearchResult partialDecided(SearchResult r, const std::map<std::vector<int>, Dec
   return r;
 }
 
-// LANGUAGE.md §15: each design the search keeps gets its continuous freedoms decided, and
+// docs/language.md: each design the search keeps gets its continuous freedoms decided, and
 // is ranked by the objectives at that point. The search ranks by the best value over the
 // whole box, a lower bound of the decided value (a design whose bound has no value comes
 // first). Designs are decided in the search's order until the kth decided one ranks before

@@ -1,6 +1,6 @@
 #pragma once
 // Load capacity of a bevel gear pair without hypoid offset by ISO 10300-1, -2, -3, method B1:
-// virtual cylindrical gears in the mean normal section (DOMAIN.md §10). The bevel geometry is
+// virtual cylindrical gears in the mean normal section (docs/rating.md). The bevel geometry is
 // ISO 23509's as far as the rating needs it. Inputs and outputs are SI; the formulas run in
 // the standard's units (mm, N, um, N/mm^2).
 #include <array>

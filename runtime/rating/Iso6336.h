@@ -1,6 +1,6 @@
 #pragma once
 // Load capacity of one cylindrical gear mesh by ISO 6336-1, -2, -3 (2006 with
-// Corrigendum 1:2008), method B unless a factor is given (DOMAIN.md §6). Inputs and
+// Corrigendum 1:2008), method B unless a factor is given (docs/rating.md). Inputs and
 // outputs are SI except where the standard's factor is conventionally a pure number in
 // its own units (Z_E in sqrt(N/mm^2)). Internally the formulas run in the standard's
 // units: mm, N, um, N/mm^2.

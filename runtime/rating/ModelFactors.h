@@ -1,5 +1,5 @@
 #pragma once
-// The rating's factors from the models (LANGUAGE.md §16, DOMAIN.md §11): K_Hbeta from the
+// The rating's factors from the models (docs/rating.md, docs/rating.md): K_Hbeta from the
 // stage's thin-slice loaded mesh (a contact analysis, which ISO 6336-1 method B admits),
 // K_v from a periodic scene of the stage (ISO 6336-1 method A).
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
 // Scuffing by the flash temperature (ISO/TS 6336-20) and by the integral temperature
 // (ISO/TS 6336-21), and micropitting by the specific film thickness (ISO/TS 6336-22
-// method B) of one external cylindrical mesh, along its path of contact (DOMAIN.md §9).
+// method B) of one external cylindrical mesh, along its path of contact (docs/rating.md).
 // Inputs are SI; inside, the formulas run in the standards' units (mm, N, m/s, N/mm^2,
 // mPa s, degC).
 #include <array>

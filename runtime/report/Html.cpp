@@ -1,7 +1,7 @@
 // The HTML report as a document an engineer sends on: a summary first (per gearbox what it
 // was solved for, the chosen design, its key results, each safety against its minimum, the
 // warnings), then every plot, then the tables, long ones folded; one embedded stylesheet for
-// screen and print (A4). LANGUAGE.md §20.
+// screen and print (A4). docs/reports.md.
 #include <cmath>
 
 #include <fmt/format.h>
@@ -327,7 +327,7 @@ std::string renderHtml(const std::vector<GearboxReport>& reports, const RenderOp
   std::string o = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                   "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
                   esc(title) + " · gbxc</title>\n" + kStyle + "</head><body>\n";
-  // LANGUAGE.md §20: the body opens with the summary.
+  // docs/reports.md: the body opens with the summary.
   o += "<section class=\"summary\">\n<header><h1>" + esc(title) + "</h1>\n";
   std::vector<std::string> meta;
   if (!ro.version.empty()) meta.push_back("gbxc " + ro.version);

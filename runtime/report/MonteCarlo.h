@@ -1,5 +1,5 @@
 #pragma once
-// The Monte Carlo part of a report (LANGUAGE.md §19): what was sampled, one row per
+// The Monte Carlo part of a report (docs/optimisation.md): what was sampled, one row per
 // statistic of each sampled quantity with its standard error, the JSON value and the CSV
 // rows (engineering units).
 #include <string>

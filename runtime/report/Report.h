@@ -1,5 +1,5 @@
 #pragma once
-// Reports of solved gearboxes: text tables, JSON (keys of LANGUAGE.md §10), CSV,
+// Reports of solved gearboxes: text tables, JSON (keys of docs/cli.md), CSV,
 // Markdown and HTML. Numbers are printed in a fixed format so that reports are byte-stable.
 #include <memory>
 #include <optional>
@@ -70,7 +70,7 @@ struct SceneReport {
   struct Output {
     std::string key, unit;
     double si = 0, shown = 0;
-    double error = NAN;  // its own error estimate, relative to its scale (LANGUAGE.md §15)
+    double error = NAN;  // its own error estimate, relative to its scale (docs/language.md)
   };
   // Whether an output's own estimate is worth printing beside the scene's: it differs by
   // more than the two digits the scene's is printed with.
@@ -216,7 +216,7 @@ struct RatingReport {
   std::string error;      // why the stage could not be rated
   std::string note;       // how the design was rated, when not at a point
   std::vector<std::string> model;   // how a factor from the models was found (contact analysis, scene)
-  std::vector<std::string> warnings;  // what a rating engineer would want said (LANGUAGE.md §16)
+  std::vector<std::string> warnings;  // what a rating engineer would want said (docs/rating.md)
   // Values the rating leaves out, each with its reason (an internal gear's tooth root).
   struct NotRated {
     std::string gear, what, reason;
@@ -232,7 +232,7 @@ struct RatingReport {
   std::vector<std::string> files;              // its chart, with -o DIR
 };
 
-// Monte Carlo over the tolerances at design 1 (LANGUAGE.md §19): each quantity that a
+// Monte Carlo over the tolerances at design 1 (docs/optimisation.md): each quantity that a
 // `worst`, `mean` or `quantile` reads, at every sample, and its statistics.
 struct MonteCarloReport {
   long samples = 0;

@@ -91,7 +91,7 @@ std::string json(const SweepStudy& s) {
         flags += fmt::format("{}{}", i ? ", " : "", i < p.unstable.size() && p.unstable[i] ? "true" : "false");
       extra += ", \"unstable\": [" + flags + "]";
     }
-    // The swept quantity under its own name too (LANGUAGE.md §12).
+    // The swept quantity under its own name too (docs/dynamics.md).
     points += fmt::format("{}{{\"x\": {}, \"{}\": {}{}, \"outputs\": {{{}}}}}", k ? ", " : "", jsonNumber(p.x), diag::jsonEscape(s.target), jsonNumber(p.x), extra, outs);
   }
   std::string folds, marks, notes, gaps;

@@ -81,7 +81,7 @@ bool readsScenes(const ir::Gearbox& g) { return rulesOrObjectivesUse(g, {Op::Sce
 
 namespace {
 
-// One search, phase by phase (LANGUAGE.md §5): rules into conjuncts, constant rules, the
+// One search, phase by phase (docs/language.md): rules into conjuncts, constant rules, the
 // budget and each stage's filter, interchangeable stages, the halves of the join and its
 // budget, the ranking keys, the join itself, and the ranked list with its funnel. Each phase
 // returns false when it ends the search (the result then says why).

@@ -1,5 +1,5 @@
 #pragma once
-// Exhaustive tooth-count synthesis (LANGUAGE.md §5): every design that satisfies every
+// Exhaustive tooth-count synthesis (docs/language.md): every design that satisfies every
 // rule, none invented, ranked by the objectives. Per-stage candidate lists are filtered
 // by the rules that concern one stage; stages are joined by meet-in-the-middle over
 // their exact ratios; `interchangeable` designs are counted once per orbit.

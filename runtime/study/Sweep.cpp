@@ -43,7 +43,7 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   r.target = st.target;
   r.plot = st.plot;
   double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
-  // The swept quantity in its one display unit (LANGUAGE.md §20): a deviation, a modification
+  // The swept quantity in its one display unit (docs/reports.md): a deviation, a modification
   // or an effect's length (a clearance, an error amplitude) in um.
   units::Dim sweptDim = st.dim.value_or(units::Dim{});
   bool micro = sweptDim == units::dims::length && (st.sweptEffect.scene >= 0 || cat::readsInMicrometres(st.swept.key));

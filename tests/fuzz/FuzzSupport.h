@@ -8,7 +8,7 @@
 namespace gbx::fuzz {
 
 // An unquoted nan or inf after `:`, `[` or `,` of a JSON report, outside its strings (a
-// column may be named `max(x, info)`): a non-finite number LANGUAGE.md §10 forbids.
+// column may be named `max(x, info)`): a non-finite number docs/cli.md forbids.
 inline bool jsonHasNonFinite(const std::string& r) {
   bool inString = false;
   for (size_t i = 0; i < r.size(); ++i) {

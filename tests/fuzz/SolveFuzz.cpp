@@ -24,7 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   o.timeLimit = 1;
   std::ostringstream out, err;
   int status = gbx::rt::solve(c->program, o, out, err);
-  // A report never prints a non-finite number (LANGUAGE.md §10).
+  // A report never prints a non-finite number (docs/cli.md).
   if (status == 0 && o.format == "json" && gbx::fuzz::jsonHasNonFinite(out.str())) __builtin_trap();
   return 0;
 }

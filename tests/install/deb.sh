@@ -19,6 +19,8 @@ if [[ -z $declared || $(printf '%s\n%s\n' "$needed" "$declared" | sort -V | tail
   exit 1
 fi
 contents=$(dpkg-deb -c "$deb")
-for f in ./usr/bin/gbxc ./usr/share/gbxc/stdlib/klingelnberg.gbx ./usr/share/doc/gbxc/README.md; do
+for f in ./usr/bin/gbxc ./usr/share/gbxc/stdlib/klingelnberg.gbx ./usr/share/doc/gbxc/README.md \
+         ./usr/share/doc/gbxc/tutorial.md ./usr/share/doc/gbxc/site/index.html ./usr/share/man/man1/gbxc.1 \
+         ./usr/share/bash-completion/completions/gbxc ./usr/share/zsh/vendor-completions/_gbxc; do
   grep -q " $f\$" <<<"$contents" || { echo "FAIL: the package lacks $f" >&2; exit 1; }
 done

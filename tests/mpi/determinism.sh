@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The same files from `gbxc solve SPEC --jobs 1`, `--jobs 2` and `mpirun -n 4 … --jobs 2`
-# (LANGUAGE.md §19), for each SPEC: every table (designs, Monte Carlo statistics, every
+# (docs/optimisation.md), for each SPEC: every table (designs, Monte Carlo statistics, every
 # sample), every chart and the report, byte for byte: the search's join, the optimiser's
 # candidates and the Monte Carlo samples are what the ranks share. Two threads per rank as
 # well: the ranks must exchange at the same points whatever their threads do.

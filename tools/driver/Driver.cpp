@@ -362,11 +362,13 @@ int formatFiles(const Options& o, std::ostream& out, std::ostream& err) {
 
 } // namespace
 
-// The options and commands `run` knows, for "did you mean".
+// The options and commands `run` knows, for "did you mean" (and the reference's test).
 const std::vector<std::string> kOptions = {"--check",   "--format", "--gearbox",    "--help",       "--jobs",     "--max-designs",
                                            "--no-timings", "--quiet", "--time-limit", "--timings",   "--update",   "--version",
                                            "-h",        "-j",       "-o",           "-q"};
 const std::vector<std::string> kCommands = {"solve", "check", "dump", "test", "fmt", "lsp"};
+const std::vector<std::string>& optionNames() { return kOptions; }
+const std::vector<std::string>& commandNames() { return kCommands; }
 
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, const TestSettings& testSettings) {
   Options o;

@@ -26,6 +26,10 @@ struct Compilation {
 std::unique_ptr<Compilation> compile(const std::string& path);
 std::unique_ptr<Compilation> compileText(const std::string& displayPath, const std::string& text);
 
+// Every option and command `run` accepts (docs/cli.md documents each).
+const std::vector<std::string>& optionNames();
+const std::vector<std::string>& commandNames();
+
 // The command line, runnable in-process (the golden engine uses it). Returns the exit
 // status: 0 success, 1 the spec has errors, 2 usage, 3 runtime failure.
 // What only tests set: they cut work that another test of the same suite does in full.

@@ -1,5 +1,5 @@
 #pragma once
-// Completion of units (LANGUAGE.md §1): where one may be written, and which fit there. Read
+// Completion of units (docs/language.md): where one may be written, and which fit there. Read
 // from the text itself, so that the half-typed statement being edited (which does not parse)
 // is understood.
 #include <functional>

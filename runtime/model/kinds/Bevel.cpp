@@ -1,4 +1,4 @@
-// Bevel stages: a pinion driving a wheel across a shaft angle (DOMAIN.md §1).
+// Bevel stages: a pinion driving a wheel across a shaft angle (docs/search.md).
 #include <cmath>
 
 #include "catalogue/StageKinds.h"

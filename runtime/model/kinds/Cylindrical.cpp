@@ -1,4 +1,4 @@
-// Spur and helical stages: a pinion driving a wheel (DOMAIN.md §3–§4).
+// Spur and helical stages: a pinion driving a wheel (docs/dynamics.md–§4).
 #include <cmath>
 
 #include "catalogue/StageKinds.h"
@@ -96,7 +96,7 @@ struct Cyl {
          }},
         {Q::TotalContactRatio, false,
          [](const KindContext& c, int) { return arith::add(c.derived(Q::EpsAlpha), c.derived(Q::EpsBeta)); }},
-        // f2 = (pi/4) mn² z1² b (1 + i²) rho / cos²(beta) (DOMAIN.md §3).
+        // f2 = (pi/4) mn² z1² b (1 + i²) rho / cos²(beta) (docs/dynamics.md).
         {Q::Mass, false,
          [](const KindContext& c, int) {
            return arith::corners({mn(c), c.at(Pinion, Q::Z), c.at(Q::FaceWidth), c.derived(Q::Ratio), c.material(Q::Density), beta(c)},
@@ -105,7 +105,7 @@ struct Cyl {
                                           (std::cos(x[5]) * std::cos(x[5]));
                                  });
          }},
-        // (1/u)(C6/C5 - 1) - u C1/(C6 - C1), the balance of specific sliding (DOMAIN.md §3).
+        // (1/u)(C6/C5 - 1) - u C1/(C6 - C1), the balance of specific sliding (docs/dynamics.md).
         // The tips are those eps_alpha and the rating use.
         {Q::SlidingBalance, false,
          [](const KindContext& c, int) {
@@ -150,7 +150,7 @@ struct Cyl {
         {Q::PitchDeviation, true, [](const KindContext& c, int g) { return grade(c, g, true); }},
         {Q::ProfileDeviation, true, [](const KindContext& c, int g) { return grade(c, g, false); }},
         // Wind-up across the face of a solid gear under its torque spread evenly along the
-        // face: delta_t = T b (d/2) / (2 G Jp) = 8 T b / (pi G d^3) (DOMAIN.md §4).
+        // face: delta_t = T b (d/2) / (2 G Jp) = 8 T b / (pi G d^3) (docs/dynamics.md).
         {Q::TorsionDeflection, true,
          [](const KindContext& c, int g) {
            Value G = c.material(Q::ShearModulus);

@@ -1,5 +1,5 @@
 #pragma once
-// Involute geometry shared by the cylindrical kinds (DOMAIN.md §3).
+// Involute geometry shared by the cylindrical kinds (docs/dynamics.md).
 #include <algorithm>
 #include <cmath>
 

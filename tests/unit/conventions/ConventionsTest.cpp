@@ -29,7 +29,7 @@ std::string listed(const std::vector<Hit>& hits) {
 
 } // namespace
 
-// The ceilings of LANGUAGE.md's "names never decide": a name that decides behaviour is a
+// The ceilings of docs/architecture.md's "names never decide": a name that decides behaviour is a
 // catalogue row, an enum or a table entry, compared as such.
 TEST(Conventions, LiteralStringComparisonsStayUnderTheirCeilings) {
   auto sema = literalComparisons(kRoot / "compiler" / "sema");

@@ -1,4 +1,4 @@
-// Whole-gearbox scenes in time (LANGUAGE.md §14): the planetary stage and the idler train
+// Whole-gearbox scenes in time (docs/dynamics.md): the planetary stage and the idler train
 // integrated together, against the stage models, the kinematics and the energy balance.
 #include <cmath>
 #include <memory>

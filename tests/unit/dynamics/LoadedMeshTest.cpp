@@ -1,4 +1,4 @@
-// The thin-slice loaded mesh (DOMAIN.md §8) with asserted answers: the light-load square
+// The thin-slice loaded mesh (docs/dynamics.md) with asserted answers: the light-load square
 // wave of a spur pair, the collapse of the stiffness variation at eps_alpha = 2, agreement
 // with ISO 6336-1 c_gamma_alpha, the relief of minimum transmission error moving up with
 // the load, and an independent reference (tests/reference/ltca_reference.py).
@@ -45,7 +45,7 @@ void pathOfTwoBasePitches(LoadedMeshInput& in) {
   in.g.ra1 = in.g.ra2 = std::sqrt(roll * roll + rb * rb);
 }
 
-// The seed 003 turbine pair (DOMAIN.md §4): 33/103, mn 6.5 mm, beta 10.82 deg, b 225 mm, 7500 kW at 9364 rpm.
+// The paper P3 turbine pair (docs/dynamics.md): 33/103, mn 6.5 mm, beta 10.82 deg, b 225 mm, 7500 kW at 9364 rpm.
 LoadedMeshInput turbine(double relief, double loadFactor) {
   double T1 = 7500e3 / (9364 * M_PI / 30);
   LoadedMeshInput in = pair(33, 103, 6.5e-3, 10.81986667, 0.225, 1.0, 0.0);
@@ -148,7 +148,7 @@ TEST(LoadedMesh, MeanStiffnessAgreesWithIsoCGammaAlpha) {
 }
 
 // A relieved pair: the relief of least peak-to-peak transmission error sits near the load
-// deflection and moves up when the load doubles (the turbine pair of seed 003).
+// deflection and moves up when the load doubles (the turbine pair of paper P3).
 TEST(LoadedMesh, MinimumTransmissionErrorReliefRisesWithTheLoad) {
   auto best = [](double loadFactor) {
     double at = 0, least = INFINITY;
@@ -164,7 +164,7 @@ TEST(LoadedMesh, MinimumTransmissionErrorReliefRisesWithTheLoad) {
     return at;
   };
   double one = best(1.0), two = best(2.0);
-  // The load deflection w_t / c_gamma is 19.04 um (DOMAIN.md §4).
+  // The load deflection w_t / c_gamma is 19.04 um (docs/dynamics.md).
   EXPECT_GE(one, 7.5e-6);
   EXPECT_LE(one, 25e-6);
   EXPECT_GE(two, one + 15e-6);
@@ -184,7 +184,7 @@ namespace {
 // The load balance solved the plain way, as an independent check of the table's solver:
 // every pair that may touch, sorted by its separation, taken into contact one by one
 // until the next one's separation lies beyond the approach. The geometry is written out
-// again from DOMAIN.md §8 (separations per pair, the single-pair stiffness along the path).
+// again from docs/dynamics.md (separations per pair, the single-pair stiffness along the path).
 struct Reference {
   std::vector<double> te, stiffness, sliceLineLoad;
 };

@@ -69,7 +69,7 @@ TEST(SteadyState, LinearMarinePeriodicEqualsALongTransient) {
   EXPECT_EQ(t.steady, SteadyMethod::Settle);
   double rt = value(t, "rms(acceleration)"), rp = value(p, "rms(acceleration)");
   EXPECT_NEAR(rp / rt, 1.0, 1e-9) << "periodic " << rp << " against transient " << rt;
-  // An independent measurement (DOMAIN.md §7) gives 50.53239936 for this scene.
+  // An independent measurement (docs/dynamics.md) gives 50.53239936 for this scene.
   EXPECT_NEAR(rp, 50.53239936, 5e-8);
   // Linear: one Newton step is exact; the record run, one period from the orbit's start,
   // confirms it (no second variational period); the orbit is stable.

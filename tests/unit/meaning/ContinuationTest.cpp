@@ -1,4 +1,4 @@
-// LANGUAGE.md §15: a continuation stays inside its range, follows one branch at a time, marks
+// docs/language.md: a continuation stays inside its range, follows one branch at a time, marks
 // what it cannot follow as a gap, and reports a turning point only where a Floquet multiplier
 // crosses +1. Checked on the project's spur pair with backlash against brute-force time runs
 // swept up and down through each hysteresis region.
@@ -175,7 +175,7 @@ TEST(Continuation, ABranchLeavingAtTheStartIsAGap) {
   EXPECT_EQ(after, 1u);
 }
 
-// LANGUAGE.md §15: each output's error is measured on its own scale. The mean acceleration of
+// docs/language.md: each output's error is measured on its own scale. The mean acceleration of
 // a periodic response is zero (to rounding); measured against its own value its difference
 // between two runs is enormous (the estimate was 16, i.e. 1600 %). Against the RMS of its
 // signal it is tiny, and listing it leaves the scene's estimate as it is.

@@ -1,4 +1,4 @@
-// LANGUAGE.md §15, one meaning everywhere: a reported design holds at the values printed,
+// docs/language.md, one meaning everywhere: a reported design holds at the values printed,
 // `worst` reads the worse end wherever it stands, and a quantity that depends on the centre
 // distance or the shifts agrees with its closed form and with the rating's geometry.
 #include <cmath>
@@ -403,7 +403,7 @@ gearbox G {
 // The balance of specific sliding at a given centre distance, from the line of action: T1 and
 // T2 where it touches the base circles, A and E where the wheel's and the pinion's tip circles
 // cut it. The pinion's specific sliding at E and the wheel's at A, from the radii of curvature
-// there; the balance (DOMAIN.md §3) is zeta_2(A) - zeta_1(E).
+// there; the balance (docs/dynamics.md) is zeta_2(A) - zeta_1(E).
 double slidingBalance(double z1, double z2, double mn, double beta, double x1, double x2, double aw) {
   const double alphaN = 20 * M_PI / 180;
   double alphaT = std::atan(std::tan(alphaN) / std::cos(beta));
@@ -845,7 +845,7 @@ TEST(Geometry, APairThatDoesNotMeshIsSaidToBeOne) {
   EXPECT_NE(r.find("warning: stage `s` of design 1 does not mesh"), std::string::npos) << r;
 }
 
-// LANGUAGE.md §20: one display unit per quantity in every format. A deviation, a modification
+// docs/reports.md: one display unit per quantity in every format. A deviation, a modification
 // or a transmission error reads in um whatever its size (a 0.2 mm tip relief as 200 um, not as
 // 0.2 mm in one table and um in another); other lengths in mm, however small.
 TEST(OneMeaning, MicrometreQuantitiesReadInMicrometresWhateverTheirSize) {

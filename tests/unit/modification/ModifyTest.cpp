@@ -48,7 +48,7 @@ const double um = 1e-6, mm = 1e-3;
 } // namespace
 
 TEST(Iso1328, SinglePitchToleranceOfGradeFour) {
-  // DOMAIN.md §4: 0.3(m + 0.4 sqrt(d)) + 4 at grade 5, a factor sqrt(2) per grade.
+  // docs/dynamics.md: 0.3(m + 0.4 sqrt(d)) + 4 at grade 5, a factor sqrt(2) per grade.
   EXPECT_NEAR(rt::iso::singlePitch(4, 6.5 * mm, 218.4 * mm) / um, 5.46, 0.005);
   EXPECT_NEAR(rt::iso::singlePitch(4, 6.5 * mm, 681.6 * mm) / um, 6.42, 0.005);
   EXPECT_NEAR(rt::iso::singlePitch(5, 6.5 * mm, 218.4 * mm) / rt::iso::singlePitch(4, 6.5 * mm, 218.4 * mm), std::sqrt(2.0), 1e-12);

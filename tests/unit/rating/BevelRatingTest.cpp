@@ -1,5 +1,5 @@
 // Bevel gear load capacity (ISO 10300-1, -2, -3 method B1) against ISO/TR 10300-30 Sample 1
-// as DOMAIN.md §10 transcribes it, and factor by factor against an independent reference
+// as docs/rating.md transcribes it, and factor by factor against an independent reference
 // written from the standards (BevelReference.h).
 #include <gtest/gtest.h>
 

@@ -48,7 +48,7 @@ struct Inputs {
     double x_hm1 = 0.505;         // profile shift coefficient, pinion (x_hm2 = -x_hm1)
     double x_sm1 = 0.036, x_sm2 = -0.055;  // thickness modification coefficients
     double rho_a01 = 0.8, rho_a02 = 1.2;   // cutter edge radius [mm]
-    double k_hap = 1.0;           // basic crown gear addendum factor (not in DOMAIN; default 1.0)
+    double k_hap = 1.0;           // basic crown gear addendum factor (not given for the sample; default 1.0)
     double k_hfp = 1.25;          // basic crown gear dedendum factor
     // ---- load ----
     double T1 = 300.0;            // pinion torque [N m]
@@ -59,7 +59,7 @@ struct Inputs {
     Mounting mounting = Mounting::OneCantilever;
     ContactCheck contact_check = ContactCheck::LightLoadEachSet;
     // ---- material, lubrication ----
-    double E = 210000.0, nu = 0.3;  // not given in DOMAIN; 210000/0.3 (ISO 10300 steel)
+    double E = 210000.0, nu = 0.3;  // not given for the sample; 210000/0.3 (ISO 10300 steel)
     double rho_mat = 7.83e-6;       // density [kg/mm^3] (ISO 6336-1 value; UNVERIFIED for 10300)
     double sigma_Hlim = 1500.0, sigma_Flim = 480.0;
     double nu40 = 150.0;

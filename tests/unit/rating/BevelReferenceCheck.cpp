@@ -1,5 +1,5 @@
 // BevelReferenceCheck.cpp -- runs ISO/TR 10300-30:2024 Annex A Sample 1 (spiral bevel, no
-// offset; as transcribed in DOMAIN.md section 10) through the independent reference of
+// offset; as printed in the technical report) through the independent reference of
 // BevelReference.h and prints computed vs published values.
 //
 // Build: g++ -std=c++20 -O1 -Wall -Wextra -o /work/main/build-bevelref/check
@@ -7,7 +7,7 @@
 //
 // Published values are used here ONLY for the comparison column.
 //
-// The two quirks of the transcription (DOMAIN section 10):
+// The two quirks of the printed sample:
 //  * sigma_HP = 1617.8 carries a factor 1.2 beyond sigma_Hlim Z_L Z_v Z_R: this is the bevel
 //    gear factor Z_K = 1.2 that ISO 10300-2:2023 (UNVERIFIED against the 2023 text; a public
 //    description of the 2023 edition has it as eq. (11))

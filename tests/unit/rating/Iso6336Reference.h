@@ -6,7 +6,7 @@
 // SOURCES AND VALUES (each value says which public transcription backs it):
 //  * Life curves, "normal" quality (Z_NT, Y_NT >= 0.85: 1.0 at the knee, 0.85 at 1e10, 0.85 beyond),
 //    log-log between the tabulated points (the standard's exponents, e.g. 0.0756 / 0.0306 / 0.115,
-//    are these slopes rounded; exact slopes are used here, DOMAIN.md section 6):
+//    are these slopes rounded; exact slopes are used here, docs/rating.md):
 //      ISO 6336-2 Table 2, Z_NT   case-hardened (Eh) and through-hardened (V, "no pitting" row):
 //                                 1.6 at N <= 1e5, 1.0 at 5e7;  nitrided (NT, NV nitr.): 1.3 at 1e5, 1.0 at 2e6
 //      ISO 6336-3 Table 3, Y_NT   Eh: 2.5 at N <= 1e3, 1.0 at 3e6;  V: 2.5 at 1e4, 1.0 at 3e6;

@@ -1,4 +1,4 @@
-// ISO 6336 rating against published values: ISO/TR 6336-30:2017 Example 1 (DOMAIN.md §6)
+// ISO 6336 rating against published values: ISO/TR 6336-30:2017 Example 1 (docs/rating.md)
 // and a commercial rating of the NREL 5 MW gearbox's high-speed helical stage; Y_F and
 // Y_S against an independent fillet generation (FilletReference).
 #include <cmath>
@@ -49,7 +49,7 @@ PairInput example1() {
   in.hfP = 1.4;
   in.rhoFP = 0.39;
   in.tipRelief = 70e-6;
-  in.KHbetaGiven = 1.1596;  // the TR's misalignment inputs are not transcribed (DOMAIN.md §6)
+  in.KHbetaGiven = 1.1596;  // the TR's misalignment inputs are not transcribed (docs/rating.md)
   return in;
 }
 

@@ -1,4 +1,4 @@
-// The rating from the models (LANGUAGE.md §16): K_Hbeta by contact analysis against the
+// The rating from the models (docs/rating.md): K_Hbeta by contact analysis against the
 // closed forms of ISO 6336-1, crowning's amount on the turbine pair, K_v by method A from a
 // periodic scene against method B.
 #include <gtest/gtest.h>
@@ -97,7 +97,7 @@ TEST(ModelFactors, LinearMismatchFollowsTheClosedForm) {
   }
 }
 
-// The sense of the pinion's wind-up and bending (LANGUAGE.md §16): they add with a right
+// The sense of the pinion's wind-up and bending (docs/rating.md): they add with a right
 // hand and the torque at the coupling, and partly cancel with the torque at the free end.
 TEST(ModelFactors, HelixHandAndTorqueSideSetTheSenseOfTheMismatch) {
   std::string deflect = "pinion.bending_deflection = 12 um; pinion.torsion_deflection = 8 um; ";
@@ -118,7 +118,7 @@ TEST(ModelFactors, HelixHandAndTorqueSideSetTheSenseOfTheMismatch) {
   EXPECT_NEAR(mirrored.q("s.K_Hbeta"), adds.q("s.K_Hbeta"), 1e-3);
 }
 
-// Seed 003's pair: the contact analysis sees crowning's amount, which method B does not
+// Paper P3's pair: the contact analysis sees crowning's amount, which method B does not
 // (it only knows that a lead rule exists). 13 um takes the peak off the loaded end; 40 um
 // concentrates the load in the middle of the face and raises K_Hbeta again.
 TEST(ModelFactors, TurbineCrowningAmountReachesKHbeta) {
@@ -314,7 +314,7 @@ TEST(ModelFactors, ShortLifeMovesFactorsTowardStatic) {
   }
 }
 
-// The warnings a rating engineer expects (LANGUAGE.md §16): a wide pinion, partial contact
+// The warnings a rating engineer expects (docs/rating.md): a wide pinion, partial contact
 // across the face, a short transverse overlap, a speed beyond the grade's; none on a
 // moderate pair.
 TEST(ModelFactors, RatingWarnings) {

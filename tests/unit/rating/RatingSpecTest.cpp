@@ -1,4 +1,4 @@
-// The rating through the language: seed 003's mechanism on the project's turbine spec, and
+// The rating through the language: paper P3's mechanism on the project's turbine spec, and
 // the search's handling of strength rules.
 #include <cstdio>
 #include <cstring>
@@ -39,7 +39,7 @@ Fixed fixed(const std::unique_ptr<driver::Compilation>& c, const std::string& ge
 
 } // namespace
 
-// Seed 003: profile and lead modification lower K_Hbeta (the contact analysis sees 13 um of
+// Paper P3: profile and lead modification lower K_Hbeta (the contact analysis sees 13 um of
 // crowning take the peak off the loaded end of the face), so both the contact and the
 // bending safety rise, on both gears.
 TEST(RatingSpec, TurbineModificationLowersKHbetaAndRaisesBothSafeties) {
@@ -219,7 +219,7 @@ gearbox I { stage t: idler { driver.z = 19; idler.z = 60; driven.z = 23; module 
   EXPECT_GT(s[0].thetaM, 343.15);
 }
 
-// ISO/TR 10300-30 Sample 1 written as LANGUAGE.md §18 writes a bevel stage: the published
+// ISO/TR 10300-30 Sample 1 written as docs/rating.md writes a bevel stage: the published
 // values through the language (BevelRatingTest holds the rest of the table).
 TEST(RatingSpec, BevelSampleOneThroughTheLanguage) {
   auto c = driver::compileText("iso_tr_10300_sample1.gbx", readSpec("iso_tr_10300_sample1.gbx"));

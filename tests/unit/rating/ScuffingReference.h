@@ -52,7 +52,7 @@
 //    theta_fla over Gamma_A..Gamma_E (TR 13989-1 Eq. (22)-(24)); X_S = 1.0 dip, 1.2 injection
 //    (0.2 submerged, not offered); X_mp given (1 + n_p)/2 for n_p mating gears.
 //  * Scuffing temperature: theta_S = 80 + (0.85 + 1.4 X_W) X_L S_FZG^2 (TR 13989-1 Eq. (99); the
-//    80 degC is the FZG test's bulk base, not theta_oil -- DOMAIN.md writes theta_oil, equal here);
+//    80 degC is the FZG test's bulk base, not theta_oil; the two are equal here);
 //    S_B = (theta_S - theta_oil)/(theta_Bmax - theta_oil) (Eq. (100)). X_W = 1 case carburised.
 //  * Integral temperature (TR 13989-2, C#): theta_int = theta_M + C2 theta_flaint, C2 = 1.5 (Eq. 17);
 //    theta_flaint = theta_flaE X_eps (Eq. 18); theta_flaE = mu_mC X_M X_E X_alphabeta X_BE

@@ -1,4 +1,4 @@
-// Standalone check of ScuffingReference.h on the NREL 5 MW high-speed stage (DOMAIN.md section 9).
+// Standalone check of ScuffingReference.h on the NREL 5 MW high-speed stage (docs/rating.md).
 // Build: g++ -std=c++20 -O2 -Wall -Wextra -o build-ref/check tests/unit/rating/ScuffingReferenceCheck.cpp
 // Prints every intermediate beside the value a commercial program (KISSsoft 03/2017, ISO/TR 13989:2000,
 // ISO/TR 15144-1:2014) printed, the relative difference, and the TS edition's value with TS - TR.

@@ -1,6 +1,6 @@
 // Scuffing and micropitting (ISO/TS 6336-20, -21, -22) of one mesh against an independent
 // reference written from the standards (ScuffingReference.h), the published NREL 5 MW
-// high-speed stage (DOMAIN.md §9) and the hard cases with their closed forms.
+// high-speed stage (docs/rating.md) and the hard cases with their closed forms.
 #include <gtest/gtest.h>
 
 #include <algorithm>

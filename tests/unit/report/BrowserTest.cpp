@@ -106,7 +106,7 @@ int attribute(const std::string& dom, const std::string& name) {
 
 } // namespace
 
-// LANGUAGE.md §20 in a browser, for the reports the README shows: the body opens with the
+// docs/reports.md in a browser, for the reports the README shows: the body opens with the
 // summary; in each gearbox's part its plots come before its tables; nothing is wider than a
 // 1280 px window (wide tables scroll inside their box); printed to PDF (A4) the report takes a
 // bounded number of pages.

@@ -160,7 +160,7 @@ TEST(Search, MarineBaselineGeometry) {
 }
 
 TEST(Search, SlidingBalanceOfThePapersOptimum) {
-  // 19/75, beta = 10.8 deg, x = 0.4849/0.4760: a = 780 mm and a balance of 0.0001 (DOMAIN.md §3).
+  // 19/75, beta = 10.8 deg, x = 0.4849/0.4760: a = 780 mm and a balance of 0.0001 (docs/dynamics.md).
   auto s = solveText(R"(
 gearbox Opt { stage main: helical { pinion.z = 19; wheel.z = 75; normal_module = 16 mm; helix_angle = 10.8 deg;
   pressure_angle = 20 deg; pinion.shift = 0.4849; wheel.shift = 0.4760; face_width = 400 mm; } }

@@ -22,7 +22,7 @@ TEST(Rational, NormalisesSignAndGcd) {
   EXPECT_EQ(Rational::make(177, 59).str(), "3");
 }
 
-// DOMAIN.md §1: in doubles, |177/59 - 3.02| <= 0.02 says false; exactly it is true.
+// docs/search.md: in doubles, |177/59 - 3.02| <= 0.02 says false; exactly it is true.
 TEST(Rational, RatioWindowBoundaryIsDecidedExactly) {
   Rational u = Rational::make(177, 59);
   Rational target = *Rational::parseDecimal("3.02"), tol = *Rational::parseDecimal("0.02");

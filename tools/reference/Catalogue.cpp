@@ -1,0 +1,199 @@
+#include "reference/Catalogue.h"
+
+#include <fmt/format.h>
+
+#include <map>
+#include <set>
+#include <vector>
+
+#include "catalogue/Effects.h"
+#include "catalogue/Settings.h"
+#include "catalogue/StageKinds.h"
+#include "units/Unit.h"
+
+namespace gbx::reference {
+
+namespace {
+
+using cat::AttrSpec;
+using cat::ValueKind;
+
+// A table cell may not hold `|`, and a line break would end the row.
+std::string cell(std::string s) {
+  std::string out;
+  for (char c : s)
+    out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
+  return out;
+}
+
+// The unit a row's values are written in: its hint where it has one (`um` for a clearance),
+// else the dimension's display unit.
+units::DisplayUnit shownUnit(const AttrSpec& a) {
+  static const std::map<std::string, units::DisplayUnit> hints = {
+      {"um", {"um", 1e-6}},          {"h", {"h", 3600}},  {"mm^2/s", {"mm^2/s", 1e-6}}, {"kg/m^3", {"kg/m^3", 1}},
+      {"degC", {"degC", 1, 273.15}}, {"mm", {"mm", 1e-3}}};
+  auto it = hints.find(a.unitHint);
+  return it != hints.end() ? it->second : units::displayUnitFor(a.dim);
+}
+
+// A value of the row in its unit, to 10 significant digits (-50 degC, not -49.99999999999997).
+std::string show(const units::Number& v, const AttrSpec& a) {
+  auto u = shownUnit(a);
+  std::string n = fmt::format("{:.10g}", u.shown(v.toDouble()));
+  return u.name.empty() ? n : n + " " + u.name;
+}
+
+std::string unitOf(const AttrSpec& a) {
+  if (a.value == ValueKind::Material) return "a material's name";
+  if (a.value == ValueKind::Stage) return "a stage's name";
+  if (a.value == ValueKind::Symbol) return "a word";
+  if (a.dim == units::dims::none) return a.integer ? "whole number" : "number";
+  std::string u = shownUnit(a).name;
+  if (a.altDim) u += " (or " + units::displayUnitFor(*a.altDim).name + ")";
+  if (a.meshPeriods) u += " or mesh_periods";
+  return u;
+}
+
+// A value the row accepts, written as a spec would write it.
+std::string sample(const AttrSpec& a) {
+  if (a.value == ValueKind::Material) return "steel_18CrNiMo7_6";
+  if (a.value == ValueKind::Stage) return "first";
+  if (a.value == ValueKind::Symbol) return a.symbols.empty() ? "?" : a.symbols.front();
+  if (a.dflt) return show(*a.dflt, a);
+  if (a.atLeast && a.atMost) return show(*a.atMost, a);
+  if (a.atLeast) return show(*a.atLeast, a);
+  if (a.dim == units::dims::none) return a.integer ? "3" : "1.2";
+  return "10 " + shownUnit(a).name;
+}
+
+std::string rules(const AttrSpec& a) {
+  std::vector<std::string> r;
+  if (a.role == cat::AttrRole::Derived) r.push_back("computed, read only");
+  if (a.role == cat::AttrRole::Either) r.push_back("computed unless given");
+  if (a.required) r.push_back("required");
+  if (a.dflt) r.push_back("default " + show(*a.dflt, a));
+  if (a.positive && !(a.atLeast && !a.budget)) r.push_back("> 0");
+  if (a.atLeast && !a.budget) r.push_back(">= " + show(*a.atLeast, a));
+  if (a.atMost) r.push_back((a.budget ? "at most " : "<= ") + show(*a.atMost, a));
+  if (a.value == ValueKind::Symbol || !a.symbols.empty()) {
+    std::string w;
+    for (const auto& s : a.symbols)
+      w += (w.empty() ? "" : ", ") + ("`" + s + "`");
+    r.push_back((a.value == ValueKind::Symbol ? "one of " : "or the word ") + w);
+  }
+  if (a.sceneRef) r.push_back("or `scene NAME`");
+  std::string out;
+  for (const auto& s : r)
+    out += (out.empty() ? "" : "; ") + s;
+  return out;
+}
+
+std::string example(const AttrSpec& a, const std::string& prefix) {
+  if (a.role == cat::AttrRole::Derived) return "`" + prefix + a.name + "`";
+  return "`" + prefix + a.name + " = " + sample(a) + ";`";
+}
+
+void table(std::string& out, const std::vector<AttrSpec>& rows, const std::string& prefix = "",
+           const std::map<std::string, std::string>* where = nullptr) {
+  out += where ? "| name | kinds | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- | --- |\n"
+               : "| name | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- |\n";
+  for (const auto& a : rows) {
+    out += "| `" + a.name + "` | ";
+    if (where) out += where->at(a.name) + " | ";
+    out +=
+        cell(unitOf(a)) + " | " + cell(a.meaning) + " | " + cell(rules(a)) + " | " + cell(example(a, prefix)) + " |\n";
+  }
+  out += "\n";
+}
+
+// Rows shared by several stage kinds appear once, with the kinds that take them.
+void kindRows(std::string& out, bool gear) {
+  std::vector<AttrSpec> rows;
+  std::map<std::string, std::string> where;
+  for (const auto& k : cat::stageKinds())
+    for (const auto& a : gear ? k.gear : k.stage) {
+      auto [it, fresh] = where.emplace(a.name, "`" + k.name + "`");
+      if (fresh)
+        rows.push_back(a);
+      else
+        it->second += ", `" + k.name + "`";
+    }
+  table(out, rows, gear ? "pinion." : "", &where);
+}
+
+void kinds(std::string& out) {
+  out += "## Stage kinds\n\n| kind | gears |\n| --- | --- |\n";
+  for (const auto& k : cat::stageKinds()) {
+    std::string g;
+    for (const auto& n : k.gears)
+      g += (g.empty() ? "" : ", ") + ("`" + n + "`");
+    out += "| `" + k.name + "` | " + g + " |\n";
+  }
+  out += "\n## Stage attributes\n\nWritten inside a stage (`face_width = 60 mm;`), or at gearbox level through the "
+         "stage's name (`hs.face_width`). A `rating.` row may also be written inside a `rating { … }` block of the "
+         "stage without the prefix.\n\n";
+  kindRows(out, false);
+  out += "## Gear attributes\n\nWritten with the gear's name: `pinion.z = 21;`, `wheel.shift in -0.5..0.5;` "
+         "(the gear names of each kind are listed above).\n\n";
+  kindRows(out, true);
+}
+
+void blocks(std::string& out) {
+  out += "## Gearbox quantities\n\nRead at gearbox level (`ratio`, `output_speed`) once `operating` is given.\n\n";
+  table(out, cat::gearboxQuantities());
+  out += "## `operating { … }`\n\nTwo of these fix the operating point: a speed and a torque or the power.\n\n";
+  table(out, cat::operatingSettings());
+  out += "## `material NAME { … }`\n\n";
+  table(out, cat::materialProperties());
+  out += "## Scene settings\n\nInside `scene NAME on TARGET { … }`.\n\n";
+  table(out, cat::sceneSettings());
+  out += "## `accuracy { … }` of a scene\n\n";
+  table(out, cat::accuracySettings());
+  out += "## Effects of a scene\n\nEach effect is a block inside `effects { … }`; its parameters follow.\n\n";
+  for (const auto& e : cat::effects()) {
+    out += "### `" + e.name + "`\n\n" + e.meaning + ".";
+    if (!e.locals.empty()) {
+      out += " A parameter may be written in terms of";
+      for (const auto& l : e.locals)
+        out += " `" + l + "`";
+      out += ".";
+    }
+    out += "\n\n";
+    if (e.params.empty())
+      out += "No parameters: `" + e.name + ";`.\n\n";
+    else
+      table(out, e.params);
+  }
+  out += "## `split NAME { … }`\n\n";
+  table(out, cat::splitSettings());
+  out += "Results, read as `NAME.twist` and so on:\n\n";
+  table(out, cat::splitOutputs(), "sharing.");
+  out += "## Studies\n\nA sweep of a scene takes:\n\n";
+  table(out, cat::sweepSettings());
+  out += "`work_precision of SCENE` takes lists (`rtol in {1e-4, 1e-6, 1e-8};`):\n\n";
+  table(out, cat::workPrecisionSettings());
+  out += "## `tolerances { … }` of a gearbox\n\nBesides its `path +- amount;` lines:\n\n";
+  table(out, cat::toleranceSettings());
+  out += "## Words that stand alone\n\n| word | block | meaning |\n| --- | --- | --- |\n";
+  for (const auto& f : cat::flags())
+    out += std::string("| `") + f.word + "` | " + (f.id == cat::Flag::Plot ? "`study`" : "`report`") + " | " +
+           f.meaning + " |\n";
+  out += "\n";
+}
+
+} // namespace
+
+std::string catalogueMarkdown() {
+  std::string out =
+      "# Catalogue: every attribute, setting and effect\n\n"
+      "<!-- Written by `scripts/reference.sh` from the compiler's catalogue; a test fails when it is stale. -->\n\n"
+      "Each row gives the name as a spec writes it, the unit a value is shown in (a spec may use any unit of the "
+      "same dimension), what it means, the rules the checker applies, and an example. \"computed, read only\" rows "
+      "are results a rule, an objective or a report column can read. How the language uses them is in "
+      "[the language reference](language.md).\n\n";
+  kinds(out);
+  blocks(out);
+  return out;
+}
+
+} // namespace gbx::reference
