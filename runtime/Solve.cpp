@@ -74,7 +74,7 @@ bool writeFolder(const passes::Rendered& rendered, const std::string& outDir, st
   for (const auto& c : rendered.charts) put(c.name, c.svg);
   for (const auto& t : rendered.tables) put(t.name, t.text);
   // The report last: a new report is never beside old plots it does not name.
-  if (failures.empty()) put(rendered.reportFile, rendered.report);
+  if (failures.empty() && !rendered.reportFile.empty()) put(rendered.reportFile, rendered.report);
   for (const auto& f : failures) err << "gbxc: " << f << "\n";
   return failures.empty();
 }

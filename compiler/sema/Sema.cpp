@@ -207,6 +207,10 @@ ir::Setting Analyser::setting(const std::string& name, const Binding& b, const A
     auto unit = units::displayUnitFor(spec.dim);
     if (v && v->kind == ast::ExprKind::Number && !v->unit && x->type.dim.dimensionless() && !unit.name.empty())
       fix = fmt::format("; write it with a unit, as `{} {}`", v->text, spec.unitHint.empty() ? unit.name : spec.unitHint);
+    // A number in a unit of another dimension (`life = 20000 kW`): the unit it reads in.
+    else if (v && v->kind == ast::ExprKind::Number && v->unit && !unit.name.empty())
+      fix = fmt::format("; write it in {} (or any unit of {})", spec.unitHint.empty() ? unit.name : spec.unitHint,
+                        spec.dim.describe());
     // A frequency where a speed belongs: the same number of turns per second, in rpm.
     if (spec.dim == units::dims::angularSpeed && x->type.dim == units::dims::frequency && x->isConst())
       fix = fmt::format("; a speed of {} turns a second is `{} rpm`", units::formatDouble(x->value.toDouble()),

@@ -133,4 +133,15 @@ std::string showQuantity(const Number& v, const Dim& d) {
   return formatDouble(u.shown(v.toDouble())) + " " + u.name;
 }
 
+std::string siUnitName(const Dim& d) {
+  static const std::vector<std::pair<Dim, const char*>> named = {
+      {dims::force, "N"},           {dims::torque, "N*m"},       {dims::power, "W"},
+      {dims::pressure, "Pa"},       {dims::frequency, "Hz"},     {dims::stiffness, "N/m"},
+      {dims::dampingCoeff, "N*s/m"}, {dims::angularSpeed, "rad/s"}, {dims::inertia, "kg*m^2"},
+  };
+  for (const auto& [dim, name] : named)
+    if (dim == d) return name;
+  return d.siUnit();
+}
+
 } // namespace gbx::units

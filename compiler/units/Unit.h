@@ -38,6 +38,9 @@ struct DisplayUnit {
   double si(double shownValue) const { return shownValue * scale + offset; }
 };
 DisplayUnit displayUnitFor(const Dim& d);
+// The SI unit of a dimension as an engineer writes it (`N`, `N*m`, `W`, `Pa`, `rad/s`), else
+// its base units (`Dim::siUnit`); `1` for a plain number. JSON's `si_unit` fields.
+std::string siUnitName(const Dim& d);
 // Transmission errors, deviations and the other micrometre-scale lengths (docs/reports.md).
 inline DisplayUnit micrometres() { return {"um", 1e-6}; }
 // The display unit of a difference of this dimension: a temperature difference reads in K

@@ -68,6 +68,13 @@ Value roundTo(const V& v) {
       }
     }
   }
+  // An exact step n/d (10 um is 1/100000 m): the multiple as q n / d, rounded once, so that
+  // 3 steps of 10 um is the double of 30 um (3e-05), not 3 * 1e-05 (3.0000000000000004e-05).
+  if (step.exact && !step.exact->isZero()) {
+    double n = static_cast<double>(step.exact->num()), d = static_cast<double>(step.exact->den());
+    if (std::fabs(n) < 0x1p53 && d < 0x1p53)
+      return arith::corners({x, step}, [n, d](const std::vector<double>& y) { return std::round(y[0] / y[1]) * n / d; });
+  }
   return arith::corners({x, step}, [](const std::vector<double>& y) { return std::round(y[0] / y[1]) * y[1]; });
 }
 

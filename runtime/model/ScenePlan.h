@@ -1,5 +1,5 @@
 #pragma once
-// A scene resolved once (docs/language.md, §12, §14): its accuracy, time plan, steady-state
+// A scene resolved once (docs/language.md, docs/dynamics.md): its accuracy, time plan, steady-state
 // method, drive and effects with their parameters in SI, and its outputs. The Model plans
 // every scene of its gearbox when it is built; the scene models, the passes and the studies
 // read the plan, never the scene's settings in the IR.

@@ -61,7 +61,7 @@ public:
       for (size_t vi = 0; vi < slot.values.size(); ++vi) {
         const Value& v = slot.values[vi];
         std::string text = written ? at->memberTexts[vi] : formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name);
-        slotShown_[sl].push_back({text, {v.lo / du.scale, du.name}});
+        slotShown_[sl].push_back({text, {v.lo / du.scale, du.name, v.lo, du.scale, units::siUnitName(at ? at->dim : units::Dim{})}});
       }
     }
     // Columns that read only the gearbox ratio: from the design's exact ratio directly.
@@ -96,7 +96,7 @@ public:
         auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
         row.choices.emplace_back(m.freedoms[f].path,
                                  formatNumber(freedoms_[i][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
-        row.choiceValues.push_back({freedoms_[i][f] / u.scale, u.name});
+        row.choiceValues.push_back({freedoms_[i][f] / u.scale, u.name, freedoms_[i][f], u.scale, units::siUnitName(at ? at->dim : units::Dim{})});
       }
     row.choice = a.choice;
     row.box = a.box;
@@ -244,6 +244,7 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
     c.unit = u.name;
     c.scale = u.scale;
     c.offset = u.offset;
+    c.siUnit = units::siUnitName(columnExprs[i]->type.dim);
     g.columns.push_back(c);
   }
   auto rows = std::make_shared<DesignRows>(m, &r.designs, columnExprs, g.columns, freedoms, baseline, baseDesign);

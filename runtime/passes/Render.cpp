@@ -10,7 +10,11 @@ Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, 
   if (format.inlineCharts) ro.inlineCharts = &r.charts;
   r.report = format.render(reports, ro);
   r.reportFile = "report." + std::string(format.extension);
-  if (o.charts && format.tables) r.tables = format.tables(reports, o);
+  // A format written as tables (CSV) writes those alone: its report is the first of them.
+  if (o.charts && format.tables) {
+    r.tables = format.tables(reports, o);
+    r.reportFile.clear();
+  }
   if (!o.charts && format.unwritten) r.unwritten = format.unwritten(reports, o);
   return r;
 }

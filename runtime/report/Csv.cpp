@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "report/MonteCarlo.h"
+#include "report/Numbers.h"
 #include "report/Ratings.h"
 #include "report/Report.h"
 
@@ -21,7 +22,7 @@ std::string field(const std::string& s) {
   return o + "\"";
 }
 
-std::string number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string(); }
+std::string number(double v) { return csvNumber(v); }
 
 std::string withUnit(const std::string& name, const std::string& unit) { return unit.empty() ? name : name + " [" + unit + "]"; }
 
@@ -79,6 +80,7 @@ std::string designs(const std::vector<GearboxReport>& reports) {
     auto num = [&](double v) {
       if (std::isfinite(v)) fmt::format_to(std::back_inserter(o), FMT_COMPILE("{}"), v);
     };
+    auto inUnit = [&](double si, const std::string& unit, double scale, double offset) { o += csvNumber(si, unit, scale, offset); };
     auto integer = [&](long long v) {
       fmt::format_int f(v);
       o.append(f.data(), f.size());
@@ -96,24 +98,25 @@ std::string designs(const std::vector<GearboxReport>& reports) {
       }
       for (const auto& c : r.choiceValues) {
         o += ',';
-        num(c.shown);
+        if (std::isfinite(c.si)) inUnit(c.si, c.unit, c.scale, 0.0);
       }
       o += ',';
       num(r.ratio.toDouble());
       for (size_t i = 0; i < r.cells.size(); ++i) {
         const Cell& c = r.cells[i];
-        double sc = g.columns[i].scale;
+        const std::string& un = g.columns[i].unit;
+        double sc = g.columns[i].scale, off = g.columns[i].offset;
         o += ',';
-        if (c.valid) num((c.lo - g.columns[i].offset) / sc);
+        if (c.valid) inUnit(c.lo, un, sc, off);
         if (wide[i]) {
           o += ',';
-          if (c.valid) num((c.hi - g.columns[i].offset) / sc);
+          if (c.valid) inUnit(c.hi, un, sc, off);
         }
         if (ranged[i]) {
           o += ',';
-          if (c.ranged) num((c.rlo - g.columns[i].offset) / sc);
+          if (c.ranged) inUnit(c.rlo, un, sc, off);
           o += ',';
-          if (c.ranged) num((c.rhi - g.columns[i].offset) / sc);
+          if (c.ranged) inUnit(c.rhi, un, sc, off);
         }
       }
       o += ',';
@@ -145,7 +148,7 @@ std::string spectra(const std::vector<GearboxReport>& reports) {
       for (const auto& sp : s.spectra)
         for (const auto& p : sp.peaks) {
           any = true;
-          o += row({g.name, s.name, sp.key, number(p.frequency), number(p.amplitude / sp.scale), sp.unit,
+          o += row({g.name, s.name, sp.key, number(p.frequency), csvNumber(p.amplitude, sp.unit, sp.scale), sp.unit,
                     p.harmonic > 0 ? std::to_string(p.harmonic) : ""});
         }
   return any ? o : "";
@@ -160,8 +163,8 @@ std::string sweeps(const std::vector<GearboxReport>& reports) {
         for (const auto& p : s->points)
           for (size_t i = 0; i < s->outputs.size() && i < p.y.size(); ++i) {
             any = true;
-            o += row({g.name, s->name, s->target, number(s->unit.shown(p.x)), s->unit.name, s->outputs[i].text,
-                      number(s->outputs[i].unit.shown(p.y[i])), s->outputs[i].unit.name, number(p.stability),
+            o += row({g.name, s->name, s->target, csvNumber(p.x, s->unit.name, s->unit.scale, s->unit.offset), s->unit.name, s->outputs[i].text,
+                      csvNumber(p.y[i], s->outputs[i].unit.name, s->outputs[i].unit.scale, s->outputs[i].unit.offset), s->outputs[i].unit.name, number(p.stability),
                       s->continuation == "arclength" ? std::to_string(p.branch) : ""});
           }
   return any ? o : "";
@@ -195,7 +198,7 @@ std::string modifications(const std::vector<GearboxReport>& reports) {
     for (const auto& m : g.modifications)
       for (const auto& r : m.rows) {
         any = true;
-        o += row({g.name, m.stage, r.target, r.present ? "yes" : "no", r.valid ? fmt::format("{:.10g}", r.unit.shown(r.si)) : "",
+        o += row({g.name, m.stage, r.target, r.present ? "yes" : "no", r.valid ? csvNumber(r.si, r.unit.name, r.unit.scale, r.unit.offset) : "",
                     r.unit.name, r.text, r.condition, r.error});
       }
   return any ? o : "";

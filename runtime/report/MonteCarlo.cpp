@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "diag/Diagnostic.h"
+#include "report/Numbers.h"
 
 namespace gbx::rt {
 
@@ -121,7 +122,7 @@ std::string monteCarloJson(const MonteCarloReport& r) {
 
 std::vector<std::vector<std::string>> monteCarloCsvRows(const std::string& gearbox, const MonteCarloReport& r) {
   std::vector<std::vector<std::string>> rows;
-  auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : std::string(); };
+  auto num = [](double v) { return csvNumber(v); };
   for (const auto& o : r.outputs)
     for (const auto& s : stats(o)) {
       std::string name = s.name;
@@ -146,8 +147,8 @@ std::vector<std::vector<std::string>> sampleCsvRows(const std::string& gearbox, 
     std::vector<std::string> row = {gearbox, std::to_string(k + 1)};
     size_t ki = static_cast<size_t>(k);
     for (size_t i = 0; i < r.tolerances.size(); ++i)
-      row.push_back(ki < r.deviations.size() ? fmt::format("{:.10g}", r.deviations[ki][i] / r.tolerances[i].scale) : "");
-    for (const auto& o : r.outputs) row.push_back(ki < o.values.size() ? fmt::format("{:.10g}", o.unit.shown(o.values[ki])) : "");
+      row.push_back(ki < r.deviations.size() ? csvNumber(r.deviations[ki][i], r.tolerances[i].unit, r.tolerances[i].scale) : "");
+    for (const auto& o : r.outputs) row.push_back(ki < o.values.size() ? csvNumber(o.values[ki], o.unit.name, o.unit.scale, o.unit.offset) : "");
     rows.push_back(std::move(row));
   }
   return rows;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "diag/Diagnostic.h"
+#include "report/Numbers.h"
 
 namespace gbx::rt {
 
@@ -20,7 +21,7 @@ std::string shown(const RatingReport::Row& row, double si) {
 }
 
 // Rating values to ten significant digits, the precision of the standard's check values.
-std::string ratingNumber(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
+std::string ratingNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
 
 } // namespace
 
@@ -119,7 +120,7 @@ std::string ratingJson(const RatingReport& r) {
 std::vector<std::vector<std::string>> ratingCsvRows(const std::string& gearbox, const RatingReport& r) {
   std::vector<std::vector<std::string>> out;
   for (const auto& row : r.rows) {
-    auto value = [&](double si) { return std::isfinite(si) ? fmt::format("{:.10g}", (si - row.offset) / row.scale) : std::string(); };
+    auto value = [&](double si) { return csvNumber(si, row.unit, row.scale, row.offset); };
     // A value left out names its reason.
     auto note = [&](size_t g, double si) {
       if (std::isfinite(si)) return std::string();

@@ -242,6 +242,14 @@ std::string jsonCandidate(const GearboxReport& g, const DesignRow& r) {
       o += fmt::format("{}\"{}\": \"{}\"", i ? ", " : "", jsonEscape(r.choices[i].first), jsonEscape(r.choices[i].second));
     o += "}";
   }
+  // The same decisions as numbers in SI with their unit (schema 1.2).
+  if (!r.choiceValues.empty() && r.choiceValues.size() == r.choices.size()) {
+    o += ", \"choice_values\": {";
+    for (size_t i = 0; i < r.choiceValues.size(); ++i)
+      o += fmt::format("{}\"{}\": {{\"value\": {}, \"unit\": \"{}\"}}", i ? ", " : "", jsonEscape(r.choices[i].first),
+                       num(r.choiceValues[i].si), jsonEscape(r.choiceValues[i].siUnit));
+    o += "}";
+  }
   o += fmt::format(", \"ratio\": {}, \"ratio_exact\": \"{}\", \"undecided\": {}, \"values\": {{", num(r.ratio.toDouble()),
                    r.ratio.str(), r.undecided ? "true" : "false");
   for (size_t i = 0; i < r.cells.size() && i < g.columns.size(); ++i) {
@@ -352,8 +360,9 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
     o += g.rows.empty() ? "],\n" : "\n   ],\n";
     o += "   \"columns\": [";
     for (size_t i = 0; i < g.columns.size(); ++i)
-      o += fmt::format("{}{{\"name\": \"{}\", \"unit\": \"SI\", \"intervals\": \"{}\"}}", i ? ", " : "",
-                       jsonEscape(g.columns[i].name), g.columns[i].exact ? "exact" : "enclosure");
+      o += fmt::format("{}{{\"name\": \"{}\", \"unit\": \"SI\", \"si_unit\": \"{}\", \"display_unit\": \"{}\", \"intervals\": \"{}\"}}",
+                       i ? ", " : "", jsonEscape(g.columns[i].name), jsonEscape(g.columns[i].siUnit), jsonEscape(g.columns[i].unit),
+                       g.columns[i].exact ? "exact" : "enclosure");
     o += "],\n   \"funnel\": [";
     for (size_t i = 0; i < g.funnel.size(); ++i) {
       const auto& f = g.funnel[i];

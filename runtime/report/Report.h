@@ -32,6 +32,7 @@ struct Column {
   double scale = 1;  // SI per display unit
   bool exact = true; // intervals are exact images (monotone catalogue quantities), else enclosures
   double offset = 0; // SI value of the display unit's zero (degC)
+  std::string siUnit; // the SI unit of its values in JSON (`m`, `rad`, `1` for a plain number)
 };
 
 struct DesignRow {
@@ -41,6 +42,8 @@ struct DesignRow {
   struct Value {
     double shown = 0;  // in `unit`
     std::string unit;
+    double si = 0, scale = 1;  // the value in SI, and SI per `unit`
+    std::string siUnit;        // the SI unit of `si`
   };
   std::vector<Value> choiceValues;  // the same, as numbers in their display unit
   // The design as the search model has it, for passes that evaluate more of it.
@@ -340,7 +343,7 @@ void forEachRow(const GearboxReport& g, F&& f) {
 }
 
 // The version of docs/report.schema.json the JSON report follows (its top-level "schema").
-inline constexpr const char* kReportSchemaVersion = "1.1";
+inline constexpr const char* kReportSchemaVersion = "1.2";
 
 std::string formatNumber(double v);
 // A JSON number, shortest round-trip; null where the value is not finite (never nan or inf).

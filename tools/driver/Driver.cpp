@@ -75,10 +75,10 @@ options:
   --format FORMAT          text or json (solve also: md, html, csv)
   --gearbox NAME           solve only this gearbox
   -o DIR                   write plots and reports into DIR
-  --jobs N                 worker threads (results do not depend on N)
+  --jobs N, -j N           worker threads (results do not depend on N)
   --max-designs N          (solve) the search budget (default 1e9)
   --time-limit S           (solve) stop with exit 3 after S seconds
-  --quiet                  no progress output
+  --quiet, -q              no progress output
   --no-timings             leave CPU times and the date out of reports (for golden files)
   --update                 (test) rewrite the expected files
   --timings                (test) compare CPU times too (left out by default: they vary)
@@ -98,14 +98,14 @@ options:
   --format FORMAT          text (default), json, csv, md or html
   --gearbox NAME           solve only this gearbox
   -o DIR                   write the report, plots (SVG) and, for csv, one table per result into DIR
-  --jobs N                 worker threads (results do not depend on N)
+  --jobs N, -j N           worker threads (results do not depend on N)
   --max-designs N          the search budget: candidates of a stage, and combinations the
                            join walks, counted before the work starts (default 1e9,
                            at most 4e9)
   --time-limit S           stop with exit 3 after S seconds of wall time, saying how far
                            the work got and how long the whole would take; designs the
                            search found or decided by then are listed, marked partial
-  --quiet                  no progress bar
+  --quiet, -q              no progress bar
   --no-timings             leave CPU times and the date out of reports
 
 exit status: 0 solved (an empty design list too), 1 the spec has errors, 2 usage,

@@ -93,32 +93,38 @@ std::string example(const AttrSpec& a, const std::string& prefix) {
   return "`" + prefix + a.name + " = " + sample(a) + ";`";
 }
 
+// `prefixes`: a row's own path prefix in its example (`sun.` for a planetary-only gear row).
 void table(std::string& out, const std::vector<AttrSpec>& rows, const std::string& prefix = "",
-           const std::map<std::string, std::string>* where = nullptr) {
+           const std::map<std::string, std::string>* where = nullptr,
+           const std::map<std::string, std::string>* prefixes = nullptr) {
   out += where ? "| name | kinds | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- | --- |\n"
                : "| name | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- |\n";
   for (const auto& a : rows) {
     out += "| `" + a.name + "` | ";
     if (where) out += where->at(a.name) + " | ";
     out +=
-        cell(unitOf(a)) + " | " + cell(a.meaning) + " | " + cell(rules(a)) + " | " + cell(example(a, prefix)) + " |\n";
+        cell(unitOf(a)) + " | " + cell(a.meaning) + " | " + cell(rules(a)) + " | " +
+           cell(example(a, prefixes ? prefixes->at(a.name) : prefix)) + " |\n";
   }
   out += "\n";
 }
 
 // Rows shared by several stage kinds appear once, with the kinds that take them.
+// A gear row's example names the first gear of the first kind that has it (`sun.z`).
 void kindRows(std::string& out, bool gear) {
   std::vector<AttrSpec> rows;
-  std::map<std::string, std::string> where;
+  std::map<std::string, std::string> where, prefixes;
   for (const auto& k : cat::stageKinds())
     for (const auto& a : gear ? k.gear : k.stage) {
       auto [it, fresh] = where.emplace(a.name, "`" + k.name + "`");
-      if (fresh)
+      if (fresh) {
         rows.push_back(a);
-      else
+        prefixes[a.name] = gear ? k.gears.front() + "." : "";
+      } else {
         it->second += ", `" + k.name + "`";
+      }
     }
-  table(out, rows, gear ? "pinion." : "", &where);
+  table(out, rows, "", &where, &prefixes);
 }
 
 void kinds(std::string& out) {

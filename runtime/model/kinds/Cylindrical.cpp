@@ -1,4 +1,4 @@
-// Spur and helical stages: a pinion driving a wheel (docs/dynamics.md–§4).
+// Spur and helical stages: a pinion driving a wheel (docs/language.md, docs/catalogue.md).
 #include <cmath>
 
 #include "catalogue/StageKinds.h"

@@ -147,6 +147,28 @@ TEST(Reference, EveryCommandAndOptionIsDocumented) {
   EXPECT_TRUE(gaps.empty()) << "no entry in docs/cli.md: " << list(gaps);
 }
 
+// Every material, constant and preset of the standard library has an entry in docs/stdlib.md
+// (an oil grade's three constants share the grade's row).
+TEST(Reference, EveryStandardLibraryNameIsDocumented) {
+  std::string text = doc("stdlib.md");
+  std::regex decl(R"re((?:^|\n)\s*(?:material|const|preset)\s+(\w+))re");
+  std::regex oil(R"re((iso_vg\d+)_(?:viscosity_40|viscosity_100|density))re");
+  std::vector<std::string> gaps;
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(repoDir() / "stdlib")) {
+    std::string t = read(e.path());
+    for (auto it = std::sregex_iterator(t.begin(), t.end(), decl); it != std::sregex_iterator(); ++it) {
+      std::string name = (*it)[1];
+      std::smatch m;
+      if (std::regex_match(name, m, oil)) name = m[1];
+      ++n;
+      if (!hasEntry(text, name)) gaps.push_back(name);
+    }
+  }
+  EXPECT_GT(n, 30);
+  EXPECT_TRUE(gaps.empty()) << "no entry in docs/stdlib.md: " << list(gaps);
+}
+
 // A complete example (a ```gbx block) compiles without errors; fragments use plain ```.
 TEST(Reference, EveryCompleteExampleCompiles) {
   int n = 0;

@@ -147,7 +147,8 @@ TEST(Sema, DefaultsAreMadeExplicitByLowering) {
 TEST(Sema, UnitMismatchNamesBothSides) {
   auto c = compile("gearbox G { stage s: spur { pinion.z = 14; wheel.z = 31; } operating { input_speed = 91670 N*m; } }");
   ASSERT_EQ(codes(*c), std::vector<std::string>{"E0302"});
-  EXPECT_EQ(c->diags.all()[0].message, "unit mismatch: `input_speed` needs an angular speed, got a torque (N*m)");
+  EXPECT_EQ(c->diags.all()[0].message,
+            "unit mismatch: `input_speed` needs an angular speed, got a torque (N*m); write it in rpm (or any unit of an angular speed)");
 }
 
 TEST(Sema, AngularSpeedAcceptsFrequencyOnlyWhereDeclared) {

@@ -1,0 +1,67 @@
+#include "report/Numbers.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "units/Unit.h"
+
+namespace gbx::rt {
+
+namespace {
+
+using units::Number;
+
+// `mm^2/s`, `N*m`, `kg/m^3`: atoms joined by `*` and `/`, each with an optional `^n`.
+std::optional<units::Unit> parseUnit(const std::string& name) {
+  units::Unit u;
+  bool divide = false;
+  size_t at = 0;
+  while (at < name.size()) {
+    size_t end = name.find_first_of("*/", at);
+    std::string factor = name.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    int exponent = 1;
+    if (auto caret = factor.find('^'); caret != std::string::npos) {
+      exponent = std::atoi(factor.c_str() + caret + 1);
+      factor.erase(caret);
+    }
+    auto atom = units::lookupAtom(factor);
+    if (!atom || exponent == 0) return std::nullopt;
+    u = units::multiply(u, units::powerOf(*atom, divide ? -exponent : exponent));
+    if (end == std::string::npos) break;
+    divide = name[end] == '/';
+    at = end + 1;
+  }
+  // A lone atom keeps its zero (`80 degC`), as a literal in it does.
+  if (auto atom = units::lookupAtom(name)) u.offset = atom->offset;
+  return u;
+}
+
+bool readsBack(const std::string& digits, double si, const std::optional<units::Unit>& u, double scale, double offset) {
+  if (u) {
+    auto r = units::Rational::parseDecimal(digits);
+    if (r) return Number::exact(*r).mul(u->scale).add(u->offset).toDouble() == si;
+  }
+  return std::strtod(digits.c_str(), nullptr) * scale + offset == si;
+}
+
+} // namespace
+
+std::string csvNumber(double si, const std::string& unit, double scale, double offset) {
+  if (!std::isfinite(si)) return {};
+  double shown = (si - offset) / scale;
+  std::string plain = fmt::format("{}", shown); // the shortest that reads back to `shown`
+  if (unit.empty() && scale == 1.0 && offset == 0.0) return plain;
+  auto u = parseUnit(unit);
+  for (int p = 1; p < 17; ++p) {
+    // Rounded to p digits, written without an exponent where `{}` would (100, not 1e+02).
+    std::string s = fmt::format("{}", std::strtod(fmt::format("{:.{}g}", shown, p).c_str(), nullptr));
+    if (s.size() >= plain.size()) break;
+    if (readsBack(s, si, u, scale, offset)) return s;
+  }
+  return plain;
+}
+
+} // namespace gbx::rt

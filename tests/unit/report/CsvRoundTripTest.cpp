@@ -1,0 +1,86 @@
+// CSV writes the shortest decimal that reads back, in its header's unit, to the value: every
+// fixed input of a spec, listed as a column, reads back from the CSV as exactly the double
+// the spec's own literal gives (71 mm as `71`, not `70.99999999999999`).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "driver/Driver.h"
+
+using namespace gbx;
+
+namespace {
+
+// What the compiler makes of `const c = TEXT;`: the value's double in SI.
+double readAsSpec(const std::string& text) {
+  auto c = driver::compileText("c.gbx", "const c = " + text + ";\n");
+  EXPECT_FALSE(c->diags.hasErrors()) << text << "\n" << c->diags.renderText(c->sources);
+  for (const auto& k : c->program.consts)
+    if (k.name == "c") return k.value.toDouble();
+  ADD_FAILURE() << "no const in " << text;
+  return 0;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream in(line);
+  std::string cell;
+  while (std::getline(in, cell, ','))
+    out.push_back(cell);
+  return out;
+}
+
+// `s.face_width [mm]` -> name and unit.
+std::pair<std::string, std::string> header(const std::string& h) {
+  auto b = h.find(" [");
+  if (b == std::string::npos) return {h, ""};
+  return {h.substr(0, b), h.substr(b + 2, h.size() - b - 3)};
+}
+
+} // namespace
+
+TEST(CsvRoundTrip, EveryFixedInputReadsBackExactly) {
+  // Literals chosen so that their value in the header's unit is not a short double
+  // (71 mm is 70.99999999999999 mm after SI and back), with π in deg and rpm.
+  const std::map<std::string, std::string> written = {
+      {"s.face_width", "71 mm"},    {"s.helix_angle", "12.3 deg"}, {"s.pressure_angle", "0.3490658503988659 rad"},
+      {"input_speed", "1480 rpm"},  {"power", "55.1 kW"},          {"s.center_distance", "0.154884 m"},
+      {"t.face_width", "0.0333 m"}, {"t.normal_module", "3.7 mm"},
+  };
+  std::string spec = R"(gearbox G {
+  stage s: helical { pinion.z = 21; wheel.z = 80; normal_module = 3.25 mm; helix_angle = 12.3 deg;
+                     face_width = 71 mm; pressure_angle = 0.3490658503988659 rad; center_distance = 0.154884 m; }
+  stage t: spur { pinion.z = 20; wheel.z = 41; normal_module in {3.7 mm, 4.1 mm}; face_width = 0.0333 m; }
+  operating { input_speed = 1480 rpm; power = 55.1 kW; }
+  report { columns s.face_width, s.helix_angle, s.pressure_angle, input_speed, power, s.center_distance,
+                   t.face_width, t.normal_module; }
+}
+)";
+  auto path = std::filesystem::temp_directory_path() / "gbx_csv_round_trip.gbx";
+  std::ofstream(path) << spec;
+  std::ostringstream out, err;
+  ASSERT_EQ(driver::run({"solve", path.string(), "--format", "csv", "--quiet"}, out, err), 0) << err.str();
+  std::filesystem::remove(path);
+  std::stringstream lines(out.str());
+  std::string head, first;
+  std::getline(lines, head);
+  std::getline(lines, first);
+  auto names = split(head), cells = split(first);
+  ASSERT_EQ(names.size(), cells.size());
+  int checked = 0;
+  for (size_t i = 0; i < names.size(); ++i) {
+    auto [name, unit] = header(names[i]);
+    auto w = written.find(name);
+    if (w == written.end()) continue;
+    ++checked;
+    EXPECT_EQ(cells[i].find_first_of("eE"), std::string::npos) << names[i] << " = " << cells[i];
+    EXPECT_LE(cells[i].size(), 12u) << names[i] << " = " << cells[i] << " is not the shortest decimal";
+    EXPECT_EQ(readAsSpec(cells[i] + " " + unit), readAsSpec(w->second))
+        << names[i] << ": the CSV's " << cells[i] << " " << unit << " is not the spec's " << w->second;
+  }
+  // Each column once, and the set choice t.normal_module also in its own column.
+  EXPECT_GE(checked, static_cast<int>(written.size()));
+}
