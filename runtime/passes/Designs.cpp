@@ -373,11 +373,13 @@ Columns reportColumns(const ir::Gearbox& gb) {
       c.exprs.push_back(gb.report->columns[i].get());
       c.names.push_back(gb.report->columnTexts[i]);
     }
-  } else {
-    for (const auto& ob : gb.objectives) {
-      c.exprs.push_back(ob.expr.get());
-      c.names.push_back(ob.text);
-    }
+  }
+  // Every objective's value is listed for every design: after the spec's own columns,
+  // unless one of them is the objective already.
+  for (const auto& ob : gb.objectives) {
+    if (std::find(c.names.begin(), c.names.end(), ob.text) != c.names.end()) continue;
+    c.exprs.push_back(ob.expr.get());
+    c.names.push_back(ob.text);
   }
   return c;
 }

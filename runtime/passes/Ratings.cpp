@@ -1,6 +1,7 @@
 #include "passes/Ratings.h"
 
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -224,6 +225,65 @@ void governs(RatingReport& out) {
   out.governingRatio = worst;
 }
 
+const char* treatmentWord(rating::Treatment t) {
+  switch (t) {
+  case rating::Treatment::CaseHardened: return "case_hardened";
+  case rating::Treatment::Nitrided: return "nitrided";
+  case rating::Treatment::ThroughHardened: return "through_hardened";
+  }
+  return "";
+}
+
+// What the rating was given, before what it found: each gear's geometry (ISO 21771, with
+// nominal tooth thicknesses) and the inputs that decide the factors.
+void inputRows(const rating::MeshRating& mr, RatingReport& out) {
+  using Row = RatingReport::Row;
+  const rating::PairInput& in = mr.input;
+  const PairRating& r = mr.rating;
+  constexpr double pi = 3.14159265358979323846, nan = std::numeric_limits<double>::quiet_NaN();
+  const units::DisplayUnit mm{"mm", 1e-3}, um{"um", 1e-6}, h{"h", 3600}, mpa{"MPa", 1e6}, cst{"mm^2/s", 1e-6},
+      deg{"deg", pi / 180}, plain{"", 1};
+  auto both = [&](std::string key, std::string label, const units::DisplayUnit& u, double v0, double v1, std::string method = "") {
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, true, {v0, v1}});
+    out.rows.back().method = std::move(method);
+  };
+  auto one = [&](std::string key, std::string label, const units::DisplayUnit& u, double v, std::string method = "") {
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, false, {v}});
+    out.rows.back().method = std::move(method);
+  };
+  double alphaT = std::atan(std::tan(in.alphaN) / std::cos(in.beta));
+  std::array<double, 2> d{}, db{}, sn{};
+  for (size_t g = 0; g < 2; ++g) {
+    d[g] = std::fabs(in.gear[g].z) * in.mn / std::cos(in.beta);
+    db[g] = d[g] * std::cos(alphaT);
+    // An internal gear's tooth thickness is its space width's complement: not given here.
+    sn[g] = in.gear[g].internal ? nan : in.mn * (pi / 2 + 2 * in.gear[g].x * std::tan(in.alphaN));
+  }
+  both("z", "z", plain, std::fabs(in.gear[0].z), std::fabs(in.gear[1].z), mr.internal ? "the ring internal" : "");
+  out.rows.back().format = Row::Whole;
+  both("shift", "x", plain, in.gear[0].x, in.gear[1].x, "profile shift coefficient");
+  both("reference_diameter", "d", mm, d[0], d[1], "z m_n / cos beta");
+  both("tip_diameter", "d_a", mm, r.gear[0].tipDiameter, r.gear[1].tipDiameter);
+  both("root_diameter", "d_f", mm, r.gear[0].rootDiameter, r.gear[1].rootDiameter, "from the basic rack h_fP*");
+  both("base_diameter", "d_b", mm, db[0], db[1], "d cos alpha_t");
+  both("tooth_thickness", "s_n", mm, sn[0], sn[1], "nominal, m_n (pi/2 + 2 x tan alpha_n), no allowance");
+  if (mr.internal) out.notRated.push_back({out.gears[1], "tooth_thickness", "an internal gear's is not computed"});
+  one("working_pressure_angle", "alpha_wt", deg, r.alphaWt, std::isfinite(in.a) ? "at the given centre distance" : "from the shifts");
+  auto treatment = [&](size_t g) { return treatmentWord(in.gear[g].treatment.value_or(in.treatment)); };
+  both("sigma_Hlim", "sigma_Hlim", mpa, in.gear[0].sigmaHlim, in.gear[1].sigmaHlim,
+       fmt::format("material, {} / {}", treatment(0), treatment(1)));
+  both("sigma_Flim", "sigma_Flim", mpa, in.gear[0].sigmaFlim, in.gear[1].sigmaFlim, "material");
+  if (in.grade > 0) {
+    one("accuracy", "accuracy", plain, in.grade, "ISO 1328-1 grade");
+    out.rows.back().format = Row::Whole;
+  }
+  one("life", "life", h, in.life, "rating.life");
+  one("viscosity_40", "nu_40", cst, in.nu40, "rating.lubricant.viscosity_40");
+  one("roughness_flank_rz", "Rz flank", um, in.RzFlank, "rating.roughness");
+  one("roughness_root_rz", "Rz root", um, in.RzRoot, "rating.roughness");
+  one("basic_rack", "h_aP*, h_fP*", plain, in.haP, fmt::format("h_fP* {}, rho_fP* {}", formatNumber(in.hfP), formatNumber(in.rhoFP)));
+}
+
 RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool several, double minH, double minF, double ka, double kgamma) {
   const PairRating& r = mr.rating;
   RatingReport out;
@@ -248,6 +308,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   using namespace units::dims;
   auto method = [&](std::string m) { out.rows.back().method = std::move(m); };
   const rating::PairInput& in = mr.input;
+  inputRows(mr, out);
   mesh("tangential_force", r.Ft, force);
   mesh("pitch_line_velocity", r.v, velocity);
   mesh("eps_alpha", r.epsAlpha);
@@ -284,7 +345,6 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   method("from eps_alpha, eps_beta");
   mesh("Z_beta", r.Zbeta);
   method("1/sqrt(cos beta), Corrigendum 1");
-  gear("tip_diameter", &GearRating::tipDiameter, length);
   gear("load_cycles", &GearRating::cycles, units::dims::none, Row::NoMinimum, Row::Count);
   gear("Z_B", &GearRating::ZBD, units::dims::none, Row::NoMinimum, Row::Plain, "Z_B, Z_D");
   method(mr.internal ? "1 (internal mesh)" : "M_1, M_2 by eps_beta");

@@ -17,10 +17,11 @@ std::string shown(const RatingReport::Row& row, double si) {
   if (std::isinf(si)) return "beyond static";  // a damage sum: a bin above the static strength
   if (!std::isfinite(si)) return "not rated";  // an internal gear's root (ISO 6336-3 internal gears)
   if (row.format == RatingReport::Row::Count) return fmt::format("{:.4e}", si);
+  if (row.format == RatingReport::Row::Whole) return fmt::format("{:.0f}", si);
   return formatNumber((si - row.offset) / row.scale);
 }
 
-// Rating values to ten significant digits, the precision of the standard's check values.
+// Rating values in JSON: SI, every digit (the shortest form that reads back to the double).
 std::string ratingNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
 
 } // namespace

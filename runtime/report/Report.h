@@ -184,7 +184,7 @@ struct RatingReport {
   std::string mesh;       // "driver-idler" when the stage has several meshes, else ""
   std::vector<std::string> gears;
   struct Row {
-    enum Format { Plain, Count };             // a count (load cycles) prints in exponent form
+    enum Format { Plain, Count, Whole };      // a count (load cycles) prints in exponent form, a whole number (z) bare
     enum Minimum { NoMinimum, Contact, Bending, Scuffing, IntegralScuffing, Micropitting };  // a safety: its minimum goes beside it
     std::string key;     // the quantity's name (`K_v`, `contact_safety`) or a geometry term
     std::string label;   // as the table heads it (`Z_B, Z_D`)
