@@ -40,7 +40,7 @@ fi
 # libopenmpi-dev, openmpi-bin: build/gbxc-mpi, and the test that four MPI ranks write the
 # same report as one thread.
 packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
-          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium python3-jsonschema dpkg-dev file universal-ctags
+          libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium poppler-utils python3-jsonschema dpkg-dev file universal-ctags
           libopenmpi-dev openmpi-bin libnlopt-dev pandoc mkdocs ${extra_packages[@]+"${extra_packages[@]}"})
 missing=()
 for p in "${packages[@]}"; do

@@ -2,6 +2,7 @@
 // was solved for, the chosen design, its key results, each safety against its minimum, the
 // warnings), then every plot, then the tables, long ones folded; one embedded stylesheet for
 // screen and print (A4). docs/reports.md.
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -66,6 +67,8 @@ ul.model{color:var(--muted);font-size:13px;padding-left:18px}
  figure svg{max-height:120mm;width:auto}
  thead{display:table-header-group}
  .screen{display:none}.print{display:block}
+ details::details-content{content-visibility:visible;display:block}
+ details>summary{color:inherit;list-style:none}
 }
 </style>
 )";
@@ -98,14 +101,31 @@ std::string heading(const std::string& h) {
   return o;
 }
 
-std::string tableHtml(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows, size_t from, size_t to) {
-  std::string o = "<div class=\"scroll\"><table>\n<thead><tr>";
-  for (size_t i = 0; i < head.size(); ++i) o += (i == 0 ? "<th class=\"t\">" : "<th>") + heading(head[i]) + "</th>";
+// A column of words (rules, inputs, names, methods) is left-aligned as a whole, a column of
+// numbers right-aligned: one alignment per column, whatever a cell starts with.
+// (A number column keeps its alignment where a few cells say why they have no number.)
+std::vector<bool> wordColumns(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
+  std::vector<int> text(head.size(), 0), filled(head.size(), 0);
+  for (const auto& r : rows)
+    for (size_t c = 0; c < r.size() && c < head.size(); ++c)
+      if (!r[c].empty()) {
+        ++filled[c];
+        text[c] += numberLike(r[c]) ? 0 : 1;
+      }
+  std::vector<bool> words(head.size(), false);
+  for (size_t c = 0; c < head.size(); ++c) words[c] = c == 0 || 2 * text[c] > filled[c];
+  return words;
+}
+
+std::string tableHtml(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows, size_t from, size_t to,
+                      const char* cls = nullptr) {
+  auto words = wordColumns(head, rows);
+  std::string o = cls ? fmt::format("<div class=\"scroll\"><table class=\"{}\">\n<thead><tr>", cls) : "<div class=\"scroll\"><table>\n<thead><tr>";
+  for (size_t i = 0; i < head.size(); ++i) o += (words[i] ? "<th class=\"t\">" : "<th>") + heading(head[i]) + "</th>";
   o += "</tr></thead>\n";
   for (size_t r = from; r < to && r < rows.size(); ++r) {
     o += "<tr>";
-    // Numbers right-aligned, words (rules, inputs, names) left.
-    for (const auto& c : rows[r]) o += (numberLike(c) ? "<td>" : "<td class=\"t\">") + esc(c) + "</td>";
+    for (size_t c = 0; c < rows[r].size(); ++c) o += (c < words.size() && words[c] ? "<td class=\"t\">" : "<td>") + esc(rows[r][c]) + "</td>";
     o += "</tr>\n";
   }
   return o + "</table></div>\n";
@@ -213,6 +233,37 @@ std::string figureHtml(const Figure& f, const RenderOptions& ro) {
   return fmt::format("<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n", esc(f.file), esc(f.file), esc(f.caption));
 }
 
+// The width a column takes on screen, estimated from its text: 8.2 px a character of the
+// 14 px font, a heading breaking after its dots and underscores, and the cell padding.
+double columnWidth(const std::string& head, const std::vector<std::vector<std::string>>& rows, size_t c) {
+  size_t widest = 0, part = 0;
+  for (char ch : head) {
+    ++part;
+    if (ch == '.' || ch == '_' || ch == '(') widest = std::max(widest, part), part = 0;
+  }
+  widest = std::max({widest, part, size_t{4}});
+  for (const auto& r : rows)
+    if (c < r.size()) widest = std::max(widest, r[c].size());
+  return 8.2 * static_cast<double>(widest) + 20;
+}
+
+// Column groups that each fit the page (1200 px wide, less the rank column they repeat).
+std::vector<std::vector<size_t>> columnGroups(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
+  constexpr double kPage = 1100;
+  std::vector<std::vector<size_t>> groups(1, {0});
+  double rank = columnWidth(head[0], rows, 0), used = rank;
+  for (size_t c = 1; c < head.size(); ++c) {
+    double w = columnWidth(head[c], rows, c);
+    if (used + w > kPage && groups.back().size() > 1) {
+      groups.push_back({0});
+      used = rank;
+    }
+    groups.back().push_back(c);
+    used += w;
+  }
+  return groups;
+}
+
 std::string designsHtml(const GearboxReport& g) {
   if (g.rows.empty()) return "";
   auto head = designHeader(g);
@@ -230,6 +281,21 @@ std::string designsHtml(const GearboxReport& g) {
       tr.push_back(line);
     }
     return o + table(th, tr);
+  }
+  // Wider than a 1280 px window: cut into tables of columns that fit, each opening with the
+  // rank, so that every column (the safeties last among them) shows without scrolling.
+  auto parts = columnGroups(head, rows);
+  if (parts.size() > 1) {
+    for (size_t p = 0; p < parts.size(); ++p) {
+      std::vector<std::string> h;
+      std::vector<std::vector<std::string>> rs(rows.size());
+      for (size_t c : parts[p]) {
+        h.push_back(head[c]);
+        for (size_t r = 0; r < rows.size(); ++r) rs[r].push_back(c < rows[r].size() ? rows[r][c] : "");
+      }
+      o += fmt::format("<h4>columns {} of {}</h4>\n", p + 1, parts.size()) + table(h, rs);
+    }
+    return o;
   }
   return o + table(head, rows);
 }
@@ -265,11 +331,42 @@ std::string sceneHtml(const SceneReport& sc, const GearboxReport& g) {
   return o;
 }
 
+// What a rating row is: given (geometry, inputs), a result (a stress, a safety, a damage, a
+// temperature, a film thickness) or an intermediate factor.
+enum class RowKind { Given, Result, Factor };
+RowKind kindOf(const RatingReport::Row& row) {
+  static const std::vector<std::string> given = {"z", "shift", "reference_diameter", "tip_diameter", "root_diameter", "base_diameter",
+                                                 "tooth_thickness", "working_pressure_angle", "sigma_Hlim", "sigma_Flim", "accuracy",
+                                                 "life", "viscosity_40", "roughness_flank_rz", "roughness_root_rz", "basic_rack"};
+  if (std::find(given.begin(), given.end(), row.key) != given.end()) return RowKind::Given;
+  auto has = [&](const char* w) { return row.key.find(w) != std::string::npos; };
+  if (row.minimum != RatingReport::Row::NoMinimum || has("stress") || has("safety") || has("damage") || has("temperature") ||
+      has("film_thickness"))
+    return RowKind::Result;
+  return RowKind::Factor;
+}
+
+// The rating as three tables: what it was given, what it found (never folded), and the
+// factors between them, folded on screen and whole on paper.
+std::string ratingTables(const RatingReport& r) {
+  auto head = ratingHeader(r);
+  auto rows = ratingRows(r);
+  std::vector<std::vector<std::string>> part[3];
+  for (size_t i = 0; i < rows.size() && i < r.rows.size(); ++i) part[static_cast<int>(kindOf(r.rows[i]))].push_back(rows[i]);
+  std::string o;
+  if (!part[1].empty()) o += "<h4>stresses and safeties</h4>\n" + tableHtml(head, part[1], 0, part[1].size(), "safety-table");
+  if (!part[0].empty()) o += "<h4>geometry and inputs</h4>\n" + tableHtml(head, part[0], 0, part[0].size());
+  if (!part[2].empty())
+    o += fmt::format("<details class=\"factors\"><summary>the {} influence factors</summary>\n{}</details>\n", part[2].size(),
+                     tableHtml(head, part[2], 0, part[2].size()));
+  return o;
+}
+
 std::string ratingHtml(const RatingReport& r) {
   std::string o = fmt::format("<h3>Rating of {}{} ({})</h3>\n", esc(r.stage), r.mesh.empty() ? "" : ", mesh " + esc(r.mesh), esc(r.standard));
   bool ok = r.error.empty() && r.governingRatio >= 1;
   o += fmt::format("<p class=\"verdict {}\">{}</p>\n", ok ? "ok" : "low", esc(ratingVerdict(r)));
-  if (r.error.empty()) o += table(ratingHeader(r), ratingRows(r));
+  if (r.error.empty()) o += ratingTables(r);
   // Its warnings in a box, as everywhere; what it leaves out and how the model factors were
   // found as lines.
   std::vector<std::string> rest;
@@ -320,13 +417,30 @@ std::string gearboxDetails(const GearboxReport& g, const RenderOptions& ro) {
   return o + "</section>\n";
 }
 
+// Printed pages: the spec, gbxc's version and the date at the top of every page, and the
+// page number at the bottom (CSS page-margin boxes).
+std::string pageStyle(const std::string& title, const RenderOptions& ro) {
+  std::string block = title;
+  if (!ro.version.empty()) block += " · gbxc " + ro.version;
+  if (!ro.date.empty()) block += " · " + ro.date;
+  std::string css;
+  for (char c : block) {
+    if (c == '"' || c == '\\') css += '\\';
+    if (c == '<') css += "\\3c ";
+    else css += c;
+  }
+  return "<style>@page{@top-left{content:\"" + css +
+         "\";font:8pt system-ui,sans-serif;color:#57606a}@bottom-right{content:\"page \" counter(page) \" of \" counter(pages);"
+         "font:8pt system-ui,sans-serif;color:#57606a}}</style>\n";
+}
+
 } // namespace
 
 std::string renderHtml(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
   std::string title = ro.title.empty() ? "gbxc report" : ro.title;
   std::string o = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                   "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
-                  esc(title) + " · gbxc</title>\n" + kStyle + "</head><body>\n";
+                  esc(title) + " · gbxc</title>\n" + kStyle + pageStyle(title, ro) + "</head><body>\n";
   // docs/reports.md: the body opens with the summary.
   o += "<section class=\"summary\">\n<header><h1>" + esc(title) + "</h1>\n";
   std::vector<std::string> meta;

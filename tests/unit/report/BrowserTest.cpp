@@ -166,3 +166,86 @@ TEST(Browser, ReportsReadAsDocumentsOnScreenAndOnPaper) {
   }
   fs::remove_all(d);
 }
+
+namespace {
+
+// Counts, at a 1280 px window, the safety cells (a column headed `…safety…` of a design
+// table, a `…safety…` row of a rating's results, the summary's safeties) and those whose
+// right edge lies past the window or past the visible part of their scrolling box.
+const char* kSafeties = R"(<script>
+(function(){var n=0,hidden=0;
+function check(td){n++;var r=td.getBoundingClientRect(),box=td.closest('.scroll'),right=window.innerWidth;
+if(box)right=Math.min(right,box.getBoundingClientRect().right);if(r.right>right+1||r.width<=0)hidden++;}
+document.querySelectorAll('table').forEach(function(t){var heads=t.querySelectorAll('thead th');
+t.querySelectorAll('tbody tr, tr').forEach(function(tr){var cells=tr.querySelectorAll('td');if(!cells.length)return;
+cells.forEach(function(td,i){var h=heads[i]?heads[i].textContent:'';var first=cells[0].textContent;
+if(/safety/.test(h)||(i>0&&i<3&&/safety/.test(first)&&td.textContent.trim()!==''))check(td);});});});
+document.body.setAttribute('data-safeties',String(n));document.body.setAttribute('data-hidden',String(hidden));})();
+</script>)";
+
+// A two-stage reducer sized by both stages' safeties, with the safeties and the objective as
+// columns: its design table is wider than a 1280 px window.
+const char* kReducer = R"(import materials;
+gearbox Reducer {
+  stage hs: helical {
+    pinion.z in 23..28;  wheel.z in 130..140;  normal_module in {2.5 mm, 3 mm};  helix_angle = 12 deg;
+    face_width in 30..90 mm;  material = steel_18CrNiMo7_6;  accuracy = 6;
+    rating { application_factor = 1.25; life = 20000 h; lubricant { viscosity_40 = 150 mm^2/s; }
+             roughness { flank = 0.6 um; root = 3.0 um; } min_safety { contact = 1.2; bending = 1.5; } }
+  }
+  stage ls: helical {
+    pinion.z in 28..30;  wheel.z in 100..128;  normal_module = 4 mm;  helix_angle = 10 deg;
+    face_width in 50..140 mm;  material = steel_18CrNiMo7_6;  accuracy = 6;
+    rating { application_factor = 1.25; life = 20000 h; lubricant { viscosity_40 = 150 mm^2/s; }
+             roughness { flank = 0.6 um; root = 3.0 um; } min_safety { contact = 1.2; bending = 1.5; } }
+  }
+  operating { input_speed = 1480 rpm; power = 55 kW; }
+  require ratio == 22 +- 2%;
+  require forall s in stages: s.pinion.contact_safety >= 1.2 and s.wheel.contact_safety >= 1.2;
+  require forall s in stages: s.pinion.bending_safety >= 1.5 and s.wheel.bending_safety >= 1.5;
+  minimize hs.mass + ls.mass;
+  report { top 8; columns hs.pinion.contact_safety, hs.wheel.contact_safety, hs.pinion.bending_safety, hs.wheel.bending_safety,
+                   ls.pinion.contact_safety, ls.wheel.contact_safety, ls.pinion.bending_safety, ls.wheel.bending_safety; }
+}
+)";
+
+} // namespace
+
+// At a 1280 px window every safety of the report is in view without scrolling inside a
+// table (a wide design table is cut into groups of columns); printed, every page carries its
+// number and the spec's name, and the folded influence factors are on paper.
+TEST(Browser, EverySafetyInViewAt1280AndPagesNumbered) {
+  ASSERT_EQ(std::system("command -v chromium >/dev/null 2>&1"), 0) << "chromium is missing: run scripts/setup.sh";
+  ASSERT_EQ(std::system("command -v pdftotext >/dev/null 2>&1"), 0) << "pdftotext is missing: run scripts/setup.sh";
+  fs::path d = fs::temp_directory_path() / ("gbxc-safeties-" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  std::ofstream(d / "reducer.gbx") << kReducer;
+  const std::vector<fs::path> specs = {d / "reducer.gbx", fs::path(GBX_SOURCE_DIR) / "specs" / "nrel5mw_planetary_stage.gbx"};
+  for (const auto& spec : specs) {
+    std::string name = spec.stem().string();
+    std::ostringstream out, err;
+    ASSERT_EQ(driver::run({"solve", "--format", "html", "--no-timings", "--quiet", spec.string()}, out, err), 0) << name << err.str();
+    std::string page = out.str();
+    std::string copy = page;
+    copy.insert(copy.rfind("</body>"), kSafeties);
+    fs::path measured = d / (name + ".measured.html"), dom = d / (name + ".dom"), html = d / (name + ".html"), pdf = d / (name + ".pdf");
+    std::ofstream(measured, std::ios::binary) << copy;
+    std::ofstream(html, std::ios::binary) << page;
+    ASSERT_EQ(chromium("--window-size=1280,1000 --dump-dom file://" + measured.string() + " > " + dom.string() + " 2>/dev/null; true"), 0);
+    std::string parsed = read(dom);
+    EXPECT_GE(attribute(parsed, "data-safeties"), 8) << name << ": the measurement found too few safeties";
+    EXPECT_EQ(attribute(parsed, "data-hidden"), 0) << name << ": a safety is out of view at 1280 px";
+    ASSERT_EQ(chromium("--no-pdf-header-footer --print-to-pdf=" + pdf.string() + " file://" + html.string()), 0) << name;
+    fs::path text = d / (name + ".txt");
+    ASSERT_EQ(std::system(("pdftotext -layout " + pdf.string() + " " + text.string()).c_str()), 0);
+    std::string paper = read(text);
+    int pages = pdfPages(read(pdf));
+    EXPECT_GE(pages, 2) << name;
+    EXPECT_EQ(count(paper, " of " + std::to_string(pages)), static_cast<size_t>(pages)) << name << ": a page without its number\n" << paper;
+    EXPECT_NE(paper.find("page 1 of " + std::to_string(pages)), std::string::npos) << name;
+    EXPECT_GE(count(paper, name + ".gbx"), static_cast<size_t>(pages)) << name << ": a page without the title block";
+    EXPECT_NE(paper.find("Z_NT"), std::string::npos) << name << ": the folded factors are not on paper";
+  }
+  fs::remove_all(d);
+}
