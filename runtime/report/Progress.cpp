@@ -26,6 +26,9 @@ void ProgressBar::draw(double f) {
 
 void ProgressBar::update(double fraction) {
   if (finished_) return;
+  // The fraction never goes back: work that grows (more designs to decide) holds the bar.
+  fraction = std::max(fraction, best_);
+  best_ = fraction;
   draw(fraction);
   if (fraction >= 1.0) finish();
 }

@@ -16,7 +16,7 @@ public:
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 
-  void update(double fraction);  // 0..1; 1 finishes the bar
+  void update(double fraction);  // 0..1, never below a fraction reported before; 1 finishes the bar
   void finish();                 // 100 % and a newline, once, if the bar was drawn
 
 private:
@@ -25,6 +25,7 @@ private:
   std::string label_;
   bool drawn_ = false, finished_ = false;
   int last_ = -1;  // the last percentage drawn
+  double best_ = 0;  // the largest fraction reported
   size_t leftWidth_ = 0;  // of the time-left text drawn last
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };

@@ -1209,7 +1209,8 @@ private:
     size_t begin = n * static_cast<size_t>(t) / slots;
     size_t end = n * static_cast<size_t>(t + 1) / slots;
     if (begin >= end || rn == 0) return;
-    bool report = t == 0 && opt.progress && (rows ? n * n1 : n) > 1000000;
+    // The bar itself appears only once the solve has taken a second.
+    bool report = t == 0 && opt.progress;
     Walk w{t, lo, Assignment(m), std::vector<std::uint32_t>(kk + 1, 0), std::vector<double>(nk + 1, 0), begin, end, 0, report};
     bool done = rows ? sweepRows(w) : sweepHalves(w);
     if (report && done) opt.progress(1.0);

@@ -446,6 +446,8 @@ private:
           if (asWritten != si) text += fmt::format(" ({} in SI)", si);
         }
     }
+    // A material, a stage or a scene, by its name wherever it stands: its definition.
+    if (text.empty()) text = namedDefinition(a, ch, wordAt(a));
     // A quantity in an expression, and in a gearbox with one candidate design its value there.
     auto value = designValueAt(a, ch);
     if (text.empty() && value) text = value->first;
@@ -453,6 +455,51 @@ private:
     if (value) text += "\n\n" + value->second;
     if (text.empty()) return Json();
     return Json::Object{{"contents", Json::Object{{"kind", "markdown"}, {"value", text}}}};
+  }
+
+  // A setting as the spec wrote it: `sigma_hlim 1500 MPa`, `treatment case_hardened`.
+  static std::string settingText(const ir::Setting& st) {
+    if (!st.symbol.empty()) return st.name + " " + st.symbol;
+    if (!st.value) return st.name;
+    return st.name + " " + units::showQuantity(*st.value, st.dim);
+  }
+
+  // The definition behind a name: a material's properties, a stage's kind, gears and
+  // bindings, a scene's target, effects and settings.
+  static std::string namedDefinition(const At& a, const std::vector<const ast::Stmt*>& ch, const std::string& word) {
+    if (word.empty()) return "";
+    const ir::Program& program = a.c->program;
+    for (const auto& m : program.materials)
+      if (m.name == word) {
+        std::vector<std::string> props;
+        for (const auto& p : m.properties) props.push_back(settingText(p));
+        return fmt::format("**material {}**\n\n{}", m.name, fmt::join(props, "; "));
+      }
+    const ir::Gearbox* g = nullptr;
+    for (const auto& gb : program.gearboxes)
+      if (!ch.empty() && ch.front()->kind == ast::StmtKind::Gearbox && gb.name == ch.front()->name) g = &gb;
+    if (!g) return "";
+    for (const auto& st : g->stages)
+      if (st.name == word) {
+        std::vector<std::string> binds;
+        for (const auto& at : st.attributes) {
+          if (at.role == ir::Attribute::Default) continue;
+          if (at.role == ir::Attribute::Decision || at.role == ir::Attribute::Freedom) binds.push_back(at.name + " decided");
+          else if (!at.symbol.empty()) binds.push_back(at.name + " " + at.symbol);
+          else if (at.value && at.value->isConst()) binds.push_back(at.name + " " + units::showQuantity(at.value->value, at.dim));
+        }
+        return fmt::format("**stage {}**: {} — gears {}\n\n{}", st.name, cat::kindSpec(st.kind).name, fmt::join(st.gears, ", "),
+                           fmt::join(binds, "; "));
+      }
+    for (const auto& sc : g->scenes)
+      if (sc.name == word) {
+        std::vector<std::string> fx, set;
+        for (const auto& e : sc.effects) fx.push_back(e.name);
+        for (const auto& x : sc.settings) set.push_back(settingText(x));
+        return fmt::format("**scene {}** on {}\n\neffects: {}\n\n{}", sc.name, sc.target.empty() ? "the gearbox" : sc.target,
+                           fx.empty() ? "none" : fmt::format("{}", fmt::join(fx, ", ")), fmt::join(set, "; "));
+      }
+    return "";
   }
 
   // What the stage or gearbox quantity at the position is, from the checked program.

@@ -244,6 +244,8 @@ TEST(Lsp, HoverCompletionDefinitionAndSymbols) {
                        req(5, "textDocument/definition", at("mesh on s1", 9)) +
                        req(6, "textDocument/definition", at("steel_42CrMo4", 3)) +
                        frame(request(7, "textDocument/documentSymbol", Json::Object{{"textDocument", doc}})) +
+                       req(9, "textDocument/hover", at("steel_42CrMo4", 3)) + req(10, "textDocument/hover", at("mesh on s1", 9)) +
+                       req(11, "textDocument/hover", at("mesh on s1", 1)) +
                        frame(request(8, "shutdown")) + frame(notify("exit"));
   std::istringstream in(script);
   std::ostringstream out;
@@ -271,6 +273,16 @@ TEST(Lsp, HoverCompletionDefinitionAndSymbols) {
   std::vector<std::string> children;
   for (size_t i = 0; i < sym.at(0)["children"].size(); ++i) children.push_back(sym.at(0)["children"].at(i)["name"].string());
   EXPECT_EQ(children, (std::vector<std::string>{"s1", "mesh", "resonance"}));
+  // Hover on a name: a material's properties, a stage's kind and bindings, a scene's effects.
+  std::string material = byId[9]["contents"]["value"].string();
+  EXPECT_NE(material.find("**material steel_42CrMo4**"), std::string::npos) << material;
+  EXPECT_NE(material.find("sigma_hlim 1000 MPa"), std::string::npos) << material;
+  EXPECT_NE(material.find("treatment nitrided"), std::string::npos) << material;
+  std::string stage = byId[10]["contents"]["value"].string();
+  EXPECT_NE(stage.find("**stage s1**: spur"), std::string::npos) << stage;
+  std::string scene = byId[11]["contents"]["value"].string();
+  EXPECT_NE(scene.find("**scene mesh** on s1"), std::string::npos) << scene;
+  EXPECT_NE(scene.find("effects: "), std::string::npos) << scene;
 }
 
 // Hover on a const, where it is used: its value, as written and in SI.

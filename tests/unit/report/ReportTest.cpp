@@ -62,6 +62,18 @@ TEST(Progress, EndsAtOneHundredPercentWithANewline) {
   std::ostringstream c;
   { rt::ProgressBar bar(c, "G"); }  // never drawn: prints nothing
   EXPECT_TRUE(c.str().empty());
+
+  // Work that grows (more designs to decide) never sends the bar back: 99 % stays.
+  std::ostringstream d;
+  {
+    rt::ProgressBar bar(d, "G");
+    bar.update(0.99);
+    bar.update(0.02);
+    bar.update(0.5);
+  }
+  std::string sd = d.str();
+  EXPECT_EQ(sd.find("  2%"), std::string::npos) << sd;
+  EXPECT_EQ(sd.find(" 50%"), std::string::npos) << sd;
 }
 
 // Axes carry round ticks (1, 2 or 5 times a power of ten), and an amplitude axis starts at zero.
