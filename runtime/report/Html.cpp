@@ -13,6 +13,7 @@
 #include "report/Report.h"
 #include "report/Studies.h"
 #include "report/Summary.h"
+#include "report/Symbols.h"
 
 namespace gbx::rt {
 
@@ -117,15 +118,18 @@ std::vector<bool> wordColumns(const std::vector<std::string>& head, const std::v
   return words;
 }
 
+// `symbols`: the first column holds symbols and units (a rating's), written as engineers do.
 std::string tableHtml(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows, size_t from, size_t to,
-                      const char* cls = nullptr) {
+                      const char* cls = nullptr, bool symbols = false) {
   auto words = wordColumns(head, rows);
   std::string o = cls ? fmt::format("<div class=\"scroll\"><table class=\"{}\">\n<thead><tr>", cls) : "<div class=\"scroll\"><table>\n<thead><tr>";
   for (size_t i = 0; i < head.size(); ++i) o += (words[i] ? "<th class=\"t\">" : "<th>") + heading(head[i]) + "</th>";
   o += "</tr></thead>\n";
   for (size_t r = from; r < to && r < rows.size(); ++r) {
     o += "<tr>";
-    for (size_t c = 0; c < rows[r].size(); ++c) o += (c < words.size() && words[c] ? "<td class=\"t\">" : "<td>") + esc(rows[r][c]) + "</td>";
+    for (size_t c = 0; c < rows[r].size(); ++c)
+      o += (c < words.size() && words[c] ? "<td class=\"t\">" : "<td>") + (symbols && c == 0 ? symbolHtml(rows[r][c]) : esc(rows[r][c])) +
+           "</td>";
     o += "</tr>\n";
   }
   return o + "</table></div>\n";
@@ -182,12 +186,12 @@ std::string summaryCard(const GearboxReport& g) {
                               anchor(g.name), esc(g.name), esc(s.headline));
   if (!s.inputs.empty()) {
     o += "<div><h4>Solved for</h4><dl class=\"kv\">\n";
-    for (const auto& in : s.inputs) o += fmt::format("<dt>{}</dt><dd>{}</dd>\n", esc(in.label), esc(in.value));
+    for (const auto& in : s.inputs) o += fmt::format("<dt>{}</dt><dd>{}</dd>\n", esc(in.label), unitHtml(in.value));
     o += "</dl></div>\n";
   }
   if (!s.design.empty()) {
     o += fmt::format("<div><h4>{}</h4><dl class=\"kv\">\n", g.count > 1 ? "Design 1" : "The design");
-    for (const auto& [n, v] : s.design) o += fmt::format("<dt>{}</dt><dd>{}</dd>\n", esc(n), esc(v));
+    for (const auto& [n, v] : s.design) o += fmt::format("<dt>{}</dt><dd>{}</dd>\n", esc(n), unitHtml(v));
     o += "</dl></div>\n";
   }
   o += "</div>\n";
@@ -354,11 +358,11 @@ std::string ratingTables(const RatingReport& r) {
   std::vector<std::vector<std::string>> part[3];
   for (size_t i = 0; i < rows.size() && i < r.rows.size(); ++i) part[static_cast<int>(kindOf(r.rows[i]))].push_back(rows[i]);
   std::string o;
-  if (!part[1].empty()) o += "<h4>stresses and safeties</h4>\n" + tableHtml(head, part[1], 0, part[1].size(), "safety-table");
-  if (!part[0].empty()) o += "<h4>geometry and inputs</h4>\n" + tableHtml(head, part[0], 0, part[0].size());
+  if (!part[1].empty()) o += "<h4>stresses and safeties</h4>\n" + tableHtml(head, part[1], 0, part[1].size(), "safety-table", true);
+  if (!part[0].empty()) o += "<h4>geometry and inputs</h4>\n" + tableHtml(head, part[0], 0, part[0].size(), nullptr, true);
   if (!part[2].empty())
     o += fmt::format("<details class=\"factors\"><summary>the {} influence factors</summary>\n{}</details>\n", part[2].size(),
-                     tableHtml(head, part[2], 0, part[2].size()));
+                     tableHtml(head, part[2], 0, part[2].size(), nullptr, true));
   return o;
 }
 

@@ -11,6 +11,7 @@
 #include "report/Ratings.h"
 #include "report/Studies.h"
 #include "report/Summary.h"
+#include "report/Symbols.h"
 
 namespace gbx::rt {
 
@@ -469,8 +470,14 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
     o += para(sum.headline);
     // The summary first, as in every format.
     std::vector<std::string> solved;
-    for (const auto& in : sum.inputs) solved.push_back(fmt::format("**{}**: {}", in.label, in.value));
+    for (const auto& in : sum.inputs) solved.push_back(fmt::format("**{}**: {}", in.label, unitHtml(in.value)));
     if (!solved.empty()) o += list(solved);
+    // Design 1 beside its results, as the text and HTML reports put it.
+    if (!sum.design.empty() && !sum.results.empty()) {
+      std::vector<std::string> parts;
+      for (const auto& [n, v] : sum.design) parts.push_back(n + " " + v);
+      o += para(fmt::format("**design 1**: {}", fmt::join(parts, ", ")));
+    }
     for (const auto& r : sum.results) o += "- " + r + "\n";
     if (!sum.results.empty()) o += "\n";
     if (!sum.safeties.empty()) {
@@ -511,7 +518,12 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
     }
     for (const auto& r : g.ratings) {
       o += heading(3, "Rating of " + r.stage + (r.mesh.empty() ? "" : ", mesh " + r.mesh) + " (" + r.standard + ")");
-      if (r.error.empty()) o += table(ratingHeader(r), ratingRows(r));
+      if (r.error.empty()) {
+        // Symbols and units as engineers write them (Markdown renders the HTML inline).
+        auto rows = ratingRows(r);
+        for (auto& row : rows) row[0] = symbolHtml(row[0]);
+        o += table(ratingHeader(r), rows);
+      }
       o += para(ratingVerdict(r));
       if (auto notes = ratingNotes(r); !notes.empty()) o += list(notes);
       for (const auto& f : r.files) o += image(f);

@@ -133,7 +133,9 @@ GearboxSummary summarise(const GearboxReport& g) {
     for (const auto& [n, c] : r.choices) s.design.emplace_back(n, c);
     s.design.emplace_back("ratio", formatNumber(r.ratio.toDouble()) + " (" + r.ratio.str() + ")");
     for (size_t i = 0; i < g.columns.size() && i < r.cells.size(); ++i)
-      s.design.emplace_back(g.columns[i].name, r.cells[i].text + (g.columns[i].unit.empty() ? "" : " " + g.columns[i].unit));
+      // A column that is a decided freedom (`hs.face_width`) is already in the line.
+      if (std::none_of(s.design.begin(), s.design.end(), [&](const auto& d) { return d.first == g.columns[i].name; }))
+        s.design.emplace_back(g.columns[i].name, r.cells[i].text + (g.columns[i].unit.empty() ? "" : " " + g.columns[i].unit));
   }
   if (g.count == 0)
     s.warnings.push_back("no design satisfies every rule: the elimination funnel below shows what each rule removed");

@@ -9,6 +9,7 @@
 #include "report/Progress.h"
 #include "report/Formats.h"
 #include "report/Svg.h"
+#include "report/Symbols.h"
 
 using namespace gbx;
 
@@ -164,4 +165,24 @@ TEST(Svg, AFlatCurveEndsAtOnce) {
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
   EXPECT_EQ(svg.find("inf"), std::string::npos);
   EXPECT_EQ(svg.find("nan"), std::string::npos);
+}
+
+// HTML and Markdown write symbols and units as engineers do; words with an underscore stay.
+TEST(Symbols, SubscriptsGreekLettersAndUnits) {
+  EXPECT_EQ(rt::symbolHtml("K_Hbeta"), "K<sub>Hβ</sub>");
+  EXPECT_EQ(rt::symbolHtml("Z_eps"), "Z<sub>ε</sub>");
+  EXPECT_EQ(rt::symbolHtml("Z_B, Z_D"), "Z<sub>B</sub>, Z<sub>D</sub>");
+  EXPECT_EQ(rt::symbolHtml("sigma_Hlim [MPa]"), "σ<sub>Hlim</sub> [MPa]");
+  EXPECT_EQ(rt::symbolHtml("Y_deltarelT"), "Y<sub>δrelT</sub>");
+  EXPECT_EQ(rt::symbolHtml("X_alphabeta"), "X<sub>αβ</sub>");
+  EXPECT_EQ(rt::symbolHtml("h_aP*, h_fP*"), "h<sub>aP</sub>*, h<sub>fP</sub>*");
+  EXPECT_EQ(rt::symbolHtml("nu_40 [mm^2/s]"), "ν<sub>40</sub> [mm²/s]");
+  EXPECT_EQ(rt::symbolHtml("contact_stress [MPa]"), "contact_stress [MPa]");
+  EXPECT_EQ(rt::symbolHtml("load_cycles"), "load_cycles");
+  EXPECT_EQ(rt::symbolHtml("Rz flank [um]"), "Rz flank [µm]");
+  EXPECT_EQ(rt::unitHtml("N*m"), "N·m");
+  EXPECT_EQ(rt::unitHtml("kg/m^3"), "kg/m³");
+  EXPECT_EQ(rt::unitHtml("degC"), "°C");
+  EXPECT_EQ(rt::unitHtml("viscosity_40 150 mm^2/s, 12 um"), "viscosity_40 150 mm²/s, 12 µm");
+  EXPECT_EQ(rt::unitHtml("a <b>"), "a &lt;b&gt;");
 }
