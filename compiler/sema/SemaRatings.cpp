@@ -339,8 +339,8 @@ void Analyser::sceneFactors(const ir::Gearbox& g) {
       bool cylindrical = st.kind == ir::StageKind::Spur || st.kind == ir::StageKind::Helical;
       if (!a.sceneRef && !a.symbol.empty() && cat::keyOf(a.name) == Q::RatingFaceLoadFactor && !cylindrical)
         diags_.error("E0235", a.span,
-                     fmt::format("`{} = {}` of stage `{}`: the contact analysis reads a spur or helical pair's loaded mesh; a {} stage's "
-                                 "is not implemented (give K_Hbeta, or leave it to method B)",
+                     fmt::format("`{} = {}` of stage `{}`: the contact analysis reads a spur or helical pair's loaded mesh; that of "
+                                 "a stage of kind `{}` is not implemented (give K_Hbeta, or leave it to method B)",
                                  a.name, a.symbol, st.name, cat::kindSpec(st.kind).name));
       if (!a.sceneRef) continue;
       const ir::Scene* sc = nullptr;
@@ -353,7 +353,7 @@ void Analyser::sceneFactors(const ir::Gearbox& g) {
                                  st.name, sc->name, sc->target.empty() ? "the whole gearbox" : fmt::format("stage `{}`", sc->target)));
       else if (!cylindrical)
         diags_.error("E0235", a.span,
-                     fmt::format("`{}` of stage `{}`: K_v by method A reads a single mesh's scene; a {} stage's is not implemented", a.name,
+                     fmt::format("`{}` of stage `{}`: K_v by method A reads a single mesh's scene; that of a stage of kind `{}` is not implemented", a.name,
                                  st.name, cat::kindSpec(st.kind).name));
       else if (!ir::findSetting(sc->settings, Q::SteadyState))
         diags_.error("E0225", a.span,

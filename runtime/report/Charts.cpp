@@ -50,21 +50,52 @@ void paretoChart(const std::string& gearbox, OptimisationSummary& s, std::vector
   add(out, s.files, fileSafe(gearbox) + ".pareto.svg", c);
 }
 
+// An axis in an engineering prefix of its SI unit (ms, µs, kHz) where the values are small
+// or large, so that ticks read `0, 0.5, 1, 1.5 ms`, not `0, 5.0e-04, 0.001`.
+struct Prefixed {
+  double scale = 1;  // SI per shown unit
+  std::string unit;
+};
+Prefixed timeAxis(double top) {
+  if (top < 1e-3) return {1e-6, "us"};
+  if (top < 1) return {1e-3, "ms"};
+  return {1, "s"};
+}
+Prefixed frequencyAxis(double top) { return top >= 1e4 ? Prefixed{1e3, "kHz"} : Prefixed{1, "Hz"}; }
+
+// `mesh_force` as `mesh force`.
+std::string words(std::string s) {
+  for (auto& c : s)
+    if (c == '_') c = ' ';
+  return s;
+}
+
 void sceneCharts(const std::string& gearbox, SceneReport& sc, std::vector<ChartFile>& out) {
   for (const auto& p : sc.plots) {
     SvgChart chart;
-    chart.title = fmt::format("{} — scene {}: {}", gearbox, sc.name, p.key);
-    chart.xLabel = p.spectrum ? "frequency [Hz]" : "time [s]";
-    chart.yLabel = withUnit(p.spectrum ? "amplitude" : p.signal, p.unit);
-    chart.series.push_back({"", p.x, p.y});
+    std::string where = sc.target.empty() ? "the gearbox" : "stage " + sc.target;
+    chart.title = p.spectrum ? fmt::format("Spectrum of the {}, scene {} on {} ({})", words(p.signal), sc.name, where, gearbox)
+                             : fmt::format("{} over time, scene {} on {} ({})", words(p.signal), sc.name, where, gearbox);
+    if (!p.spectrum && !chart.title.empty()) chart.title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(chart.title[0])));
+    double top = 0;
+    for (double x : p.x) top = std::max(top, std::fabs(x));
+    Prefixed axis = p.spectrum ? frequencyAxis(top) : timeAxis(top);
+    std::vector<double> xs;
+    for (double x : p.x) xs.push_back(x / axis.scale);
+    chart.xLabel = fmt::format("{} [{}]", p.spectrum ? "frequency" : "time", axis.unit);
+    chart.yLabel = withUnit(p.spectrum ? "amplitude" : words(p.signal), p.unit);
+    SvgSeries series{"", xs, p.y};
+    series.bars = p.spectrum;  // a spectrum is lines at its harmonics, not a curve between them
+    chart.series.push_back(series);
     // A spectrum reads by mesh orders: ticks at 1x, 2x, … the mesh frequency.
     if (p.spectrum && p.meshFrequency > 0) {
-      chart.xLabel = fmt::format("frequency [Hz], ticks at mesh orders ({:.2f} Hz)", p.meshFrequency);
+      chart.xLabel = fmt::format("frequency [{}], ticks at mesh orders ({:.2f} Hz)", axis.unit, p.meshFrequency);
       // Every order up to the tenth; beyond it (a listed peak far up) every second, fifth, …
-      double top = p.x.empty() ? 10.5 * p.meshFrequency : p.x.back();
-      int orders = std::max(10, static_cast<int>(top / p.meshFrequency));
+      double last = p.x.empty() ? 10.5 * p.meshFrequency : p.x.back();
+      int orders = std::max(10, static_cast<int>(last / p.meshFrequency));
       int step = orders <= 12 ? 1 : orders <= 24 ? 2 : orders <= 60 ? 5 : 10;
-      for (int k = step == 1 ? 1 : step; k <= orders; k += step) chart.xTicks.emplace_back(k * p.meshFrequency, fmt::format("{}x", k));
+      for (int k = step == 1 ? 1 : step; k <= orders; k += step)
+        chart.xTicks.emplace_back(k * p.meshFrequency / axis.scale, fmt::format("{}x", k));
     }
     add(out, sc.files, fileSafe(gearbox + "." + sc.name + "." + p.key) + ".svg", chart);
   }

@@ -217,7 +217,7 @@ struct Figure {
 std::vector<Figure> figures(const GearboxReport& g) {
   std::vector<Figure> f;
   for (const auto& sc : g.scenes)
-    for (const auto& x : sc.files) f.push_back({x, "scene " + sc.name});
+    for (const auto& x : sc.files) f.push_back({x, x});  // the title says what it is; the caption names its file
   for (const auto& st : g.studies)
     for (const auto& x : st.files) f.push_back({x, "study " + studyName(st)});
   for (const auto& r : g.ratings)
@@ -429,6 +429,7 @@ std::string pageStyle(const std::string& title, const RenderOptions& ro) {
   if (!ro.date.empty()) block += " · " + ro.date;
   std::string css;
   for (char c : block) {
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';  // a line break would end the CSS string
     if (c == '"' || c == '\\') css += '\\';
     if (c == '<') css += "\\3c ";
     else css += c;

@@ -41,8 +41,14 @@ std::optional<units::Unit> parseUnit(const std::string& name) {
 
 bool readsBack(const std::string& digits, double si, const std::optional<units::Unit>& u, double scale, double offset) {
   if (u) {
-    auto r = units::Rational::parseDecimal(digits);
-    if (r) return Number::exact(*r).mul(u->scale).add(u->offset).toDouble() == si;
+    // `-3 mm` is the negation of the literal `3 mm`, as a spec reads it.
+    bool minus = !digits.empty() && digits[0] == '-';
+    auto r = units::Rational::parseDecimal(minus ? digits.substr(1) : digits);
+    if (r) {
+      Number v = Number::exact(*r);
+      if (minus) v = v.neg();
+      return v.mul(u->scale).add(u->offset).toDouble() == si;
+    }
   }
   return std::strtod(digits.c_str(), nullptr) * scale + offset == si;
 }
@@ -60,6 +66,18 @@ std::string csvNumber(double si, const std::string& unit, double scale, double o
     std::string s = fmt::format("{}", std::strtod(fmt::format("{:.{}g}", shown, p).c_str(), nullptr));
     if (s.size() >= plain.size()) break;
     if (readsBack(s, si, u, scale, offset)) return s;
+  }
+  if (readsBack(plain, si, u, scale, offset)) return plain;
+  // `shown` itself was rounded once (SI over the scale): a decimal a few units of its last
+  // digit away may read back where its own does not (74.00799015338948 mm, not …947).
+  if (shown != 0) {
+    int e = static_cast<int>(std::floor(std::log10(std::fabs(shown))));
+    for (int p = 16; p <= 17; ++p)
+      for (int k : {1, -1, 2, -2, 3, -3}) {
+        double step = std::pow(10.0, e - p + 1);
+        std::string s = fmt::format("{:.{}g}", shown + k * step, p);
+        if (s.find_first_of("eE") == std::string::npos && readsBack(s, si, u, scale, offset)) return s;
+      }
   }
   return plain;
 }

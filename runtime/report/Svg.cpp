@@ -182,13 +182,16 @@ std::string renderSvg(const SvgChart& c) {
     for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
       if ((c.logX && s.x[i] <= 0) || (c.logY && s.y[i] <= 0) || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       pts += fmt::format("{:.2f},{:.2f} ", px(s.x[i]), py(s.y[i]));
+      if (s.bars)
+        o += fmt::format("<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"{}\" stroke-width=\"3\"/>\n", px(s.x[i]),
+                         py(std::max(0.0, y0)), px(s.x[i]), py(s.y[i]), col);
       // A series of one or two points is a marked design: draw it large.
       double radius = s.x.size() <= 2 ? 6.0 : 2.5;
       if (s.markers)
         o += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{}\" fill=\"{}\" stroke=\"{}\"/>\n", px(s.x[i]), py(s.y[i]), radius,
                          col, radius > 3 ? "black" : col);
     }
-    if (s.line)
+    if (s.line && !s.bars)
       o += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{} points=\"{}\"/>\n", col, s.dashed ? "1.6" : "1.2",
                        s.dashed ? " stroke-dasharray=\"5,4\"" : "", pts);
     if (!s.label.empty()) {

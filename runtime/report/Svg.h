@@ -12,6 +12,7 @@ struct SvgSeries {
   bool line = true;  // false: the points alone, e.g. a cloud whose order means nothing
   bool dashed = false;  // an unstable branch
   int colour = -1;      // a fixed colour index (parts of one curve), -1: by position
+  bool bars = false;    // a vertical line from zero at each point (a spectrum), no curve
 };
 
 struct SvgChart {

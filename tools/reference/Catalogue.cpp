@@ -93,38 +93,38 @@ std::string example(const AttrSpec& a, const std::string& prefix) {
   return "`" + prefix + a.name + " = " + sample(a) + ";`";
 }
 
-// `prefixes`: a row's own path prefix in its example (`sun.` for a planetary-only gear row).
-void table(std::string& out, const std::vector<AttrSpec>& rows, const std::string& prefix = "",
-           const std::map<std::string, std::string>* where = nullptr,
-           const std::map<std::string, std::string>* prefixes = nullptr) {
-  out += where ? "| name | kinds | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- | --- |\n"
-               : "| name | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- |\n";
-  for (const auto& a : rows) {
-    out += "| `" + a.name + "` | ";
-    if (where) out += where->at(a.name) + " | ";
-    out +=
-        cell(unitOf(a)) + " | " + cell(a.meaning) + " | " + cell(rules(a)) + " | " +
-           cell(example(a, prefixes ? prefixes->at(a.name) : prefix)) + " |\n";
-  }
+void table(std::string& out, const std::vector<AttrSpec>& rows, const std::string& prefix = "") {
+  out += "| name | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- |\n";
+  for (const auto& a : rows)
+    out += "| `" + a.name + "` | " + cell(unitOf(a)) + " | " + cell(a.meaning) + " | " + cell(rules(a)) + " | " +
+           cell(example(a, prefix)) + " |\n";
   out += "\n";
 }
 
-// Rows shared by several stage kinds appear once, with the kinds that take them.
-// A gear row's example names the first gear of the first kind that has it (`sun.z`).
+// Rows shared by several stage kinds appear once, with the kinds that take them; a name
+// whose row differs between kinds (computed for one, given for another; other bounds) has a
+// row for each version. A gear row's example names the first gear of its first kind (`sun.z`).
 void kindRows(std::string& out, bool gear) {
-  std::vector<AttrSpec> rows;
-  std::map<std::string, std::string> where, prefixes;
+  struct Merged {
+    AttrSpec row;
+    std::string kinds, prefix;
+  };
+  std::vector<Merged> rows;
+  std::map<std::string, size_t> bySignature;
   for (const auto& k : cat::stageKinds())
     for (const auto& a : gear ? k.gear : k.stage) {
-      auto [it, fresh] = where.emplace(a.name, "`" + k.name + "`");
-      if (fresh) {
-        rows.push_back(a);
-        prefixes[a.name] = gear ? k.gears.front() + "." : "";
-      } else {
-        it->second += ", `" + k.name + "`";
-      }
+      std::string signature = a.name + "|" + unitOf(a) + "|" + a.meaning + "|" + rules(a) + "|" + example(a, "");
+      auto [it, fresh] = bySignature.emplace(signature, rows.size());
+      if (fresh)
+        rows.push_back({a, "`" + k.name + "`", gear ? k.gears.front() + "." : ""});
+      else
+        rows[it->second].kinds += ", `" + k.name + "`";
     }
-  table(out, rows, "", &where, &prefixes);
+  out += "| name | kinds | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- | --- |\n";
+  for (const auto& m : rows)
+    out += "| `" + m.row.name + "` | " + m.kinds + " | " + cell(unitOf(m.row)) + " | " + cell(m.row.meaning) + " | " +
+           cell(rules(m.row)) + " | " + cell(example(m.row, m.prefix)) + " |\n";
+  out += "\n";
 }
 
 void kinds(std::string& out) {

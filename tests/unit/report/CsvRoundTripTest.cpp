@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "driver/Driver.h"
+#include "report/Numbers.h"
 
 using namespace gbx;
 
@@ -83,4 +84,17 @@ TEST(CsvRoundTrip, EveryFixedInputReadsBackExactly) {
   }
   // Each column once, and the set choice t.normal_module also in its own column.
   EXPECT_GE(checked, static_cast<int>(written.size()));
+}
+
+// Negative values and computed values (whose value in the unit is not a short decimal) read
+// back too: the exact reading of each written number is the value itself.
+TEST(CsvRoundTrip, NegativeAndComputedValuesReadBack) {
+  EXPECT_EQ(rt::csvNumber(-0.071, "mm", 1e-3), "-71");
+  EXPECT_EQ(rt::csvNumber(readAsSpec("-50 degC"), "degC", 1, 273.15), "-50");
+  EXPECT_EQ(rt::csvNumber(readAsSpec("12.3 deg"), "deg", 3.14159265358979323846 / 180), "12.3");
+  EXPECT_EQ(rt::csvNumber(readAsSpec("-12.3 deg"), "deg", 3.14159265358979323846 / 180), "-12.3");
+  for (double si : {0.07400799015338948, 0.0123456789012345, 1.2345678901234567e-5, -0.0987654321098765}) {
+    std::string s = rt::csvNumber(si, "mm", 1e-3);
+    EXPECT_EQ(readAsSpec(s + " mm"), si) << s;
+  }
 }
