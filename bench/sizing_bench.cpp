@@ -123,7 +123,15 @@ Printed firstDesign(const std::string& out) {
   if (std::regex_search(out, m, std::regex(R"(: (\d+) designs?)"))) p.designs = std::stoll(m[1]);
   auto at = out.find("  design 1: ");
   if (at == std::string::npos) return p;
-  std::string line = out.substr(at + 12, out.find('\n', at) - at - 12);
+  // The line and its continuations (the text report wraps at 120 columns, indenting them).
+  std::string line;
+  for (size_t from = at + 12;;) {
+    size_t end = out.find('\n', from);
+    std::string part = out.substr(from, end == std::string::npos ? std::string::npos : end - from);
+    line += (line.empty() ? "" : " ") + part.substr(part.find_first_not_of(' ') == std::string::npos ? 0 : part.find_first_not_of(' '));
+    if (end == std::string::npos || out.compare(end + 1, 6, "      ") != 0) break;
+    from = end + 1;
+  }
   std::regex item(R"(([a-z_.]+) ([0-9.]+(?: mm)?)(?:,|$))");
   for (auto it = std::sregex_iterator(line.begin(), line.end(), item); it != std::sregex_iterator(); ++it)
     p.values[(*it)[1]] = (*it)[2];

@@ -41,6 +41,49 @@ std::vector<std::string> cells(const DesignRow& r) { return designCells(r); }
 
 namespace {
 
+// The text report's width: a longer line wraps, a wider table is cut into column groups.
+constexpr size_t kTextWidth = 120;
+
+// A line longer than the width, broken at blanks (after a comma or a semicolon where one is
+// near), each continuation indented four more than the line.
+std::string wrapLine(const std::string& line) {
+  if (line.size() <= kTextWidth) return line;
+  size_t lead = line.find_first_not_of(' ');
+  std::string hang(std::min<size_t>(lead == std::string::npos ? 0 : lead, 40) + 4, ' ');
+  std::string out, rest = line;
+  bool first = true;
+  while (rest.size() > kTextWidth) {
+    size_t cut = rest.rfind(' ', kTextWidth);
+    size_t start = first ? (lead == std::string::npos ? 0 : lead) : hang.size();
+    if (cut == std::string::npos || cut <= start) break;  // one word longer than the line
+    // Prefer a break after a list's comma or semicolon in the last third of the line.
+    for (size_t c = cut; c > start + kTextWidth / 2; c = rest.rfind(' ', c - 1)) {
+      if (rest[c - 1] == ',' || rest[c - 1] == ';') {
+        cut = c;
+        break;
+      }
+      if (c == 0) break;
+    }
+    out += rest.substr(0, cut) + "\n";
+    rest = hang + rest.substr(rest.find_first_not_of(' ', cut));
+    first = false;
+  }
+  return out + rest;
+}
+
+std::string wrapLines(const std::string& text) {
+  std::string out;
+  size_t at = 0;
+  while (at < text.size()) {
+    size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    out += wrapLine(text.substr(at, end - at));
+    if (end < text.size()) out += "\n";
+    at = end + 1;
+  }
+  return out;
+}
+
 // A table's rows padded to their columns' widths, right-aligned, each line after `indent`.
 std::string aligned(const std::vector<std::vector<std::string>>& table, const std::string& indent, size_t columns) {
   std::vector<size_t> w(columns, 0);
@@ -83,6 +126,37 @@ std::string textSummary(const GearboxReport& g) {
 }
 
 // The design list: its headline, table, funnel, notes, and the optimisation.
+// A table wider than the text report: groups of columns that each fit, every group opening
+// with the first column (the rank), one after the other.
+std::string alignedToWidth(const std::vector<std::vector<std::string>>& table, const std::string& indent) {
+  size_t columns = table.empty() ? 0 : table[0].size();
+  std::vector<size_t> w(columns, 0);
+  for (const auto& row : table)
+    for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
+  std::vector<std::vector<size_t>> groups(1, {0});
+  size_t used = indent.size() + (columns ? w[0] + 1 : 0);
+  for (size_t c = 1; c < columns; ++c) {
+    if (used + w[c] + 1 > kTextWidth && groups.back().size() > 1) {
+      groups.push_back({0});
+      used = indent.size() + w[0] + 1;
+    }
+    groups.back().push_back(c);
+    used += w[c] + 1;
+  }
+  if (groups.size() == 1) return aligned(table, indent, columns);
+  std::string o;
+  for (const auto& cols : groups) {
+    std::vector<std::vector<std::string>> part;
+    for (const auto& row : table) {
+      std::vector<std::string> r;
+      for (size_t c : cols) r.push_back(c < row.size() ? row[c] : "");
+      part.push_back(std::move(r));
+    }
+    o += aligned(part, indent, cols.size());
+  }
+  return o;
+}
+
 std::string textDesigns(const GearboxReport& g, const RenderOptions& ro) {
   std::string o = fmt::format("gearbox {}: {} design{}", g.name, g.count, g.count == 1 ? "" : "s");
   if (g.undecided) o += fmt::format(" ({} undecided)", g.undecided);
@@ -95,7 +169,7 @@ std::string textDesigns(const GearboxReport& g, const RenderOptions& ro) {
     auto h = header(g);
     std::vector<std::vector<std::string>> table = {h};
     for (const auto& r : g.rows) table.push_back(cells(r));
-    o += aligned(table, " ", h.size());
+    o += alignedToWidth(table, " ");
   }
   if (g.count == 0 || g.undecided) {
     o += "  elimination funnel:\n";
@@ -221,7 +295,7 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
     for (const auto& sc : g.scenes) o += textScene(sc, g, ro);
     for (const auto& study : g.studies) o += textStudy(study, ro);
   }
-  return o;
+  return wrapLines(o);
 }
 
 std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); }
