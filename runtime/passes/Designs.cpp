@@ -409,6 +409,23 @@ std::optional<std::string> cornerNote(const Model& m, const Evaluator& ev, const
   return fmt::format("`{}` of design 1 is found {}", name, at.empty() ? "at the nominal design" : "at " + at);
 }
 
+// A freedom of design 1 decided at an end of its range while objectives rank the designs:
+// the optimum may lie beyond the range, which the spec then cuts short.
+void boundWarnings(const Model& m, const Optimised& o, GearboxReport& g) {
+  if (o.freedoms.empty() || m.gearbox.objectives.empty()) return;
+  for (size_t f = 0; f < o.freedoms[0].size() && f < m.freedoms.size(); ++f) {
+    const Freedom& fr = m.freedoms[f];
+    double v = o.freedoms[0][f], tol = 1e-9 * std::max(std::fabs(fr.hi - fr.lo), 1e-300);
+    bool low = std::fabs(v - fr.lo) <= tol, high = std::fabs(v - fr.hi) <= tol;
+    if (fr.solved || !(low || high) || fr.hi <= fr.lo) continue;
+    const ir::Attribute* at = m.attribute(fr.stage, fr.gear, fr.key);
+    auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
+    g.warnings.push_back(fmt::format("design 1's `{}` is decided at the {} end of its range ({}{}): the objectives may be better "
+                                     "beyond it; widen the range to see",
+                                     fr.path, low ? "lower" : "upper", formatNumber(v / u.scale), u.name.empty() ? "" : " " + u.name));
+  }
+}
+
 GearboxReport designTable(const Model& m, Optimised& o, const Columns& columns, bool lazy) {
   GearboxReport g =
       reportOf(m, o.designs, columns.exprs, columns.names, o.freedoms, o.baseline.get(), o.baselineDesign.get(), lazy);
@@ -434,6 +451,7 @@ GearboxReport designTable(const Model& m, Optimised& o, const Columns& columns, 
                                       "rating refuses such a pair",
                                       m.gearbox.stages[st].name, eps.lo));
     }
+    boundWarnings(m, o, g);
   }
   return g;
 }

@@ -629,3 +629,16 @@ TEST(Cli, ConcurrentWritersAndCtrlCLeaveWholeFiles) {
   EXPECT_EQ(readAll(d / "out" / "report.json"), report);
   for (const auto& e : fs::directory_iterator(d / "out")) EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
 }
+
+// A freedom decided at an end of its range while an objective ranks the designs is said:
+// the lightest face width here is the range's lower end, and the optimum may lie below it.
+TEST(Cli, AFreedomAtTheEndOfItsRangeIsAWarning) {
+  fs::path d = tempDir("freedom-bound");
+  write(d / "b.gbx", "import materials;\ngearbox B {\n  stage s: helical { pinion.z = 21; wheel.z = 80; normal_module = 3 mm; helix_angle = 12 deg;\n"
+                     "    face_width in 30..90 mm; material = steel_18CrNiMo7_6; }\n  minimize s.mass;\n}\n"
+                     "gearbox C extends B { s.face_width = 40 mm; }\n");
+  auto r = gbxc({"solve", (d / "b.gbx").string(), "--no-timings"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("design 1's `s.face_width` is decided at the lower end of its range (30.0000 mm)"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("warning", r.out.find("gearbox C")), std::string::npos) << "a fixed face width has no range";
+}
