@@ -121,6 +121,7 @@ private:
   void ratingInputs(const StageModel& st, Span where);
   void bevelRatingInputs(const StageModel& st, Span where);
   static bool rateable(const cat::KindSpec& kind);
+  bool misspeltIn(const StageModel& st, const std::string& need) const;
   void requireMaterial(const ir::Gearbox& g, const GearboxModel& m);
   void requireRating(const ir::Gearbox& g, const GearboxModel& m);
   void sceneFactors(const ir::Gearbox& g);

@@ -160,6 +160,23 @@ void Analyser::bevelRatingInputs(const StageModel& st, Span where) {
 }
 
 // A rated stage needs its service life and a material with the ISO 6336-5 numbers.
+namespace {
+bool inside(const Span& s, const Span& outer) {
+  auto before = [](int l1, int c1, int l2, int c2) { return l1 < l2 || (l1 == l2 && c1 <= c2); };
+  return s.file == outer.file && before(outer.line, outer.col, s.line, s.col) && before(s.endLine, s.endCol, outer.endLine, outer.endCol);
+}
+} // namespace
+
+// Whether the stage misspells `need` (an E0211 in it suggests that name): then its absence is
+// the misspelling's doing, and a second error for it would only hide the first.
+bool Analyser::misspeltIn(const StageModel& st, const std::string& need) const {
+  if (!st.decl) return false;
+  for (const auto& d : diags_.all())
+    if (d.code == "E0211" && inside(d.span, st.decl->span) && d.message.find("did you mean `" + need + "`") != std::string::npos)
+      return true;
+  return false;
+}
+
 void Analyser::ratingInputs(const StageModel& st, Span where) {
   for (const char* need : {"rating.life", "rating.lubricant.viscosity_40", "rating.roughness.flank", "rating.roughness.root"}) {
     std::string rz = std::string(need) + "_rz";
@@ -216,7 +233,7 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
   } else {
     bool plainModule = st.kind->kind == ir::StageKind::Idler || st.kind->kind == ir::StageKind::Planetary;
     for (const char* need : {plainModule ? "module" : "normal_module", "face_width"})
-      if (!st.findAttr(need))
+      if (!st.findAttr(need) && !misspeltIn(st, need))
         diags_.error("E0225", where, fmt::format("stage `{}` is rated but does not give `{}` ({})", st.name, need, findAttr(*st.kind, need)->meaning));
   }
   if (st.kind->kind != ir::StageKind::Bevel && !st.findAttr("accuracy")) {
