@@ -367,9 +367,17 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
 
 Columns reportColumns(const ir::Gearbox& gb) {
   Columns c;
+  // A decision's own value is listed with the design (teeth, choices, decided freedoms): a
+  // column naming it again would repeat it, under the same header in CSV.
+  auto decision = [&](const std::string& text) {
+    for (const auto& st : gb.stages)
+      for (const auto& at : st.attributes)
+        if ((at.role == ir::Attribute::Decision || at.role == ir::Attribute::Freedom) && text == st.name + "." + at.name) return true;
+    return false;
+  };
   if (gb.report && !gb.report->columns.empty()) {
     for (size_t i = 0; i < gb.report->columns.size(); ++i) {
-      if (gb.report->ratioColumn[i]) continue; // always shown
+      if (gb.report->ratioColumn[i] || decision(gb.report->columnTexts[i])) continue; // always shown
       c.exprs.push_back(gb.report->columns[i].get());
       c.names.push_back(gb.report->columnTexts[i]);
     }
