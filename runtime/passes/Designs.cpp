@@ -60,7 +60,8 @@ public:
       bool written = at && !du.name.empty() && at->memberTexts.size() == slot.values.size();
       for (size_t vi = 0; vi < slot.values.size(); ++vi) {
         const Value& v = slot.values[vi];
-        std::string text = written ? at->memberTexts[vi] : formatNumber(v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name);
+        // A member of a named set (`iso54_series1`) to twelve digits, as a literal would read: `3 mm`, `1.125 mm`.
+        std::string text = written ? at->memberTexts[vi] : fmt::format("{:.12g}", v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name);
         slotShown_[sl].push_back({text, {v.lo / du.scale, du.name, v.lo, du.scale, units::siUnitName(at ? at->dim : units::Dim{})}});
       }
     }
