@@ -242,6 +242,7 @@ ir::Setting Analyser::domainSetting(const Stmt& b, const AttrSpec& spec, const S
 
 std::optional<units::Dim> Analyser::sweepTarget(const ast::Path& p, const GearboxModel& m, const AttrSpec** spec) {
   const auto& parts = p.parts;
+  if (parts.empty()) return std::nullopt;  // a sweep cut off by a syntax error names nothing
   auto found = [&](const AttrSpec& a) {
     if (spec) *spec = &a;
     return std::optional<units::Dim>(a.dim);

@@ -35,8 +35,39 @@ namespace gbx::driver {
 
 namespace {
 
+// Diagnostics about one statement alone (its attribute, units, values, functions): after a
+// syntax error they are still true of the statements that parsed. Those that relate a
+// statement to others (an unknown name, a missing input) may be the syntax error's doing
+// (a declaration it cut off) and wait until the file parses.
+bool aboutOneStatement(const std::string& code) {
+  static const std::vector<std::string> codes = {"E0210", "E0211", "E0212", "E0213", "E0214", "E0215", "E0220", "E0221", "E0222",
+                                                 "E0224", "E0301", "E0302", "E0303", "E0304", "E0305", "E0401", "E0402", "E0403",
+                                                 "E0404", "E0405", "E0406", "E0407", "E0408", "E0409", "E0411", "W0501"};
+  return std::find(codes.begin(), codes.end(), code) != codes.end();
+}
+
 void analyseAndLower(Compilation& c) {
-  if (c.loaded.parseErrors || c.loaded.mainMissing) return;
+  if (c.loaded.mainMissing) return;
+  if (c.loaded.parseErrors) {
+    // The parser resumed at the next statement: check what parsed, so that the file (and the
+    // editor) shows every error of those statements beside the syntax errors.
+    diag::DiagnosticEngine more;
+    sema::analyse(c.loaded, more);
+    // A statement on a syntax error's lines is what the parser made of broken text: its own
+    // errors would only echo that one.
+    const std::vector<diag::Diagnostic> syntax = c.diags.all();
+    auto broken = [&](const source::Span& s) {
+      for (const auto& e : syntax)
+        if (e.span.file == s.file && s.line >= e.span.line && s.line <= std::max(e.span.line, e.span.endLine)) return true;
+      return false;
+    };
+    for (const auto& d : more.all()) {
+      if (!aboutOneStatement(d.code) || broken(d.span)) continue;
+      auto& copy = d.severity == diag::Severity::Error ? c.diags.error(d.code, d.span, d.message) : c.diags.warning(d.code, d.span, d.message);
+      copy.notes = d.notes;
+    }
+    return;
+  }
   c.program = lower::lower(sema::analyse(c.loaded, c.diags));
   c.analysed = true;
 }
