@@ -400,6 +400,33 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
 
 // The rating table of a bevel pair (ISO 10300 method B1): the cone, the virtual cylindrical
 // gears, every factor and each safety against its minimum.
+// What a bevel rating was given: tooth counts, shifts, the materials' limits and treatment,
+// the life, the oil, the roughness and the basic crown gear.
+void bevelInputRows(const rating::BevelInput& in, RatingReport& out) {
+  using Row = RatingReport::Row;
+  const units::DisplayUnit um{"um", 1e-6}, h{"h", 3600}, mpa{"MPa", 1e6}, cst{"mm^2/s", 1e-6}, plain{"", 1};
+  auto both = [&](std::string key, std::string label, const units::DisplayUnit& u, double v0, double v1, std::string method = "") {
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, true, {v0, v1}});
+    out.rows.back().method = std::move(method);
+  };
+  auto one = [&](std::string key, std::string label, const units::DisplayUnit& u, double v, std::string method = "") {
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, false, {v}});
+    out.rows.back().method = std::move(method);
+  };
+  both("z", "z", plain, in.gear[0].z, in.gear[1].z);
+  out.rows.back().format = Row::Whole;
+  both("shift", "x_hm", plain, in.gear[0].xhm, in.gear[1].xhm, "mean profile shift coefficient");
+  auto treatment = [&](size_t g) { return treatmentWord(in.gear[g].treatment.value_or(in.treatment)); };
+  both("sigma_Hlim", "sigma_Hlim", mpa, in.gear[0].sigmaHlim, in.gear[1].sigmaHlim,
+       fmt::format("material, {} / {}", treatment(0), treatment(1)));
+  both("sigma_Flim", "sigma_Flim", mpa, in.gear[0].sigmaFlim, in.gear[1].sigmaFlim, "material");
+  one("life", "life", h, in.life, "rating.life");
+  one("viscosity_40", "nu_40", cst, in.nu40, "rating.lubricant.viscosity_40");
+  one("roughness_flank_rz", "Rz flank", um, in.RzFlank, "rating.roughness");
+  one("roughness_root_rz", "Rz root", um, in.RzRoot, "rating.roughness");
+  one("basic_rack", "k_hap, k_hfp", plain, in.khap, fmt::format("basic crown gear; k_hfp {}", formatNumber(in.khfp)));
+}
+
 RatingReport bevelTable(const ir::Stage& st, const rating::BevelStageRating& br) {
   using rating::BevelGearRating;
   const rating::BevelRating& r = br.rating;
@@ -424,6 +451,7 @@ RatingReport bevelTable(const ir::Stage& st, const rating::BevelStageRating& br)
     std::string label = key;
     out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, true, {r.gear[0].*m, r.gear[1].*m}, f, min, std::move(method)});
   };
+  bevelInputRows(in, out);
   mesh("outer_cone_distance", r.Re, std::isfinite(in.Re) ? "given" : "from the mean normal module", length);
   mesh("mean_cone_distance", r.Rm, "R_e - b/2", length);
   mesh("face_width", r.b, std::isfinite(in.b) ? "given" : "face_ratio R_e", length);
