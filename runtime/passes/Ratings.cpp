@@ -107,7 +107,9 @@ void spectrumRows(const PairRating& r, size_t contactRow, RatingReport& out) {
     out.rows.push_back({std::move(key), std::move(label), "", 1.0, true, {r.gear[0].*m, r.gear[1].*m}, f, Row::NoMinimum});
   };
   bool spectrum = std::isfinite(r.gear[0].SHoperating);
-  const char* miner = spectrum ? "Miner over the load spectrum" : "Miner, the operating torque over the life";
+  // A damage of 0 is no rounding: a stress below the life curve's endurance end does none.
+  const char* miner = spectrum ? "Miner over the load spectrum; 0 where every stress is below the endurance limit"
+                               : "Miner, the operating torque over the life; 0 below the endurance limit";
   if (spectrum) {
     out.rows.back().method = out.rows[contactRow].method = "under the load spectrum (ISO 6336-6, Miner)";
     gear("contact_safety_operating", &GearRating::SHoperating, Row::Plain, "contact_safety at the operating torque");
