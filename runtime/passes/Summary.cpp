@@ -31,8 +31,11 @@ std::string_view shortName(cat::Q key) {
 }
 
 // The stage inputs the summary names, in this order (the rest is in the tables).
-constexpr cat::Q kStageInputs[] = {cat::Q::Material, cat::Q::Accuracy, cat::Q::RatingApplicationFactor, cat::Q::RatingLife,
-                                   cat::Q::RatingViscosity40, cat::Q::RatingOilTemperature};
+// The fixed geometry first (a pinned design's module and face width identify it), then what
+// the rating is given.
+constexpr cat::Q kStageInputs[] = {cat::Q::NormalModule, cat::Q::Module, cat::Q::HelixAngle, cat::Q::FaceWidth,
+                                   cat::Q::OuterConeDistance, cat::Q::Material, cat::Q::Accuracy, cat::Q::RatingApplicationFactor,
+                                   cat::Q::RatingLife, cat::Q::RatingViscosity40, cat::Q::RatingOilTemperature};
 
 } // namespace
 
