@@ -236,23 +236,51 @@ const char* treatmentWord(rating::Treatment t) {
   return "";
 }
 
+// The rows a rating table opens with, what it was given: one value of the mesh, or one per
+// gear, each in its unit with where it comes from.
+struct GivenRows {
+  RatingReport& out;
+  void both(std::string key, std::string label, const units::DisplayUnit& u, double v0, double v1, std::string method = "") {
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, true, {v0, v1}});
+    out.rows.back().method = std::move(method);
+  }
+  void one(std::string key, std::string label, const units::DisplayUnit& u, double v, std::string method = "") {
+    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, false, {v}});
+    out.rows.back().method = std::move(method);
+  }
+  void whole() { out.rows.back().format = RatingReport::Row::Whole; }
+
+  // Each gear's material limits, with the treatments beside them.
+  void materials(const std::array<double, 2>& hlim, const std::array<double, 2>& flim, const std::string& treatments) {
+    const units::DisplayUnit mpa{"MPa", 1e6};
+    both("sigma_Hlim", "sigma_Hlim", mpa, hlim[0], hlim[1], "material, " + treatments);
+    both("sigma_Flim", "sigma_Flim", mpa, flim[0], flim[1], "material");
+  }
+  // The life, the oil and the roughness, as the `rating` block gives them.
+  void service(double life, double nu40, double rzFlank, double rzRoot) {
+    const units::DisplayUnit um{"um", 1e-6}, h{"h", 3600}, cst{"mm^2/s", 1e-6};
+    one("life", "life", h, life, "rating.life");
+    one("viscosity_40", "nu_40", cst, nu40, "rating.lubricant.viscosity_40");
+    one("roughness_flank_rz", "Rz flank", um, rzFlank, "rating.roughness");
+    one("roughness_root_rz", "Rz root", um, rzRoot, "rating.roughness");
+  }
+};
+
+// `case_hardened / case_hardened`: each gear's treatment, its own or the pair's.
+template <class Input>
+std::string treatments(const Input& in) {
+  return fmt::format("{} / {}", treatmentWord(in.gear[0].treatment.value_or(in.treatment)),
+                     treatmentWord(in.gear[1].treatment.value_or(in.treatment)));
+}
+
 // What the rating was given, before what it found: each gear's geometry (ISO 21771, with
 // nominal tooth thicknesses) and the inputs that decide the factors.
 void inputRows(const rating::MeshRating& mr, RatingReport& out) {
-  using Row = RatingReport::Row;
   const rating::PairInput& in = mr.input;
   const PairRating& r = mr.rating;
   constexpr double pi = 3.14159265358979323846, nan = std::numeric_limits<double>::quiet_NaN();
-  const units::DisplayUnit mm{"mm", 1e-3}, um{"um", 1e-6}, h{"h", 3600}, mpa{"MPa", 1e6}, cst{"mm^2/s", 1e-6},
-      deg{"deg", pi / 180}, plain{"", 1};
-  auto both = [&](std::string key, std::string label, const units::DisplayUnit& u, double v0, double v1, std::string method = "") {
-    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, true, {v0, v1}});
-    out.rows.back().method = std::move(method);
-  };
-  auto one = [&](std::string key, std::string label, const units::DisplayUnit& u, double v, std::string method = "") {
-    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, false, {v}});
-    out.rows.back().method = std::move(method);
-  };
+  const units::DisplayUnit mm{"mm", 1e-3}, deg{"deg", pi / 180}, plain{"", 1};
+  GivenRows rows{out};
   double alphaT = std::atan(std::tan(in.alphaN) / std::cos(in.beta));
   std::array<double, 2> d{}, db{}, sn{};
   for (size_t g = 0; g < 2; ++g) {
@@ -261,29 +289,23 @@ void inputRows(const rating::MeshRating& mr, RatingReport& out) {
     // An internal gear's tooth thickness is its space width's complement: not given here.
     sn[g] = in.gear[g].internal ? nan : in.mn * (pi / 2 + 2 * in.gear[g].x * std::tan(in.alphaN));
   }
-  both("z", "z", plain, std::fabs(in.gear[0].z), std::fabs(in.gear[1].z), mr.internal ? "the ring internal" : "");
-  out.rows.back().format = Row::Whole;
-  both("shift", "x", plain, in.gear[0].x, in.gear[1].x, "profile shift coefficient");
-  both("reference_diameter", "d", mm, d[0], d[1], "z m_n / cos beta");
-  both("tip_diameter", "d_a", mm, r.gear[0].tipDiameter, r.gear[1].tipDiameter);
-  both("root_diameter", "d_f", mm, r.gear[0].rootDiameter, r.gear[1].rootDiameter, "from the basic rack h_fP*");
-  both("base_diameter", "d_b", mm, db[0], db[1], "d cos alpha_t");
-  both("tooth_thickness", "s_n", mm, sn[0], sn[1], "nominal, m_n (pi/2 + 2 x tan alpha_n), no allowance");
+  rows.both("z", "z", plain, std::fabs(in.gear[0].z), std::fabs(in.gear[1].z), mr.internal ? "the ring internal" : "");
+  rows.whole();
+  rows.both("shift", "x", plain, in.gear[0].x, in.gear[1].x, "profile shift coefficient");
+  rows.both("reference_diameter", "d", mm, d[0], d[1], "z m_n / cos beta");
+  rows.both("tip_diameter", "d_a", mm, r.gear[0].tipDiameter, r.gear[1].tipDiameter);
+  rows.both("root_diameter", "d_f", mm, r.gear[0].rootDiameter, r.gear[1].rootDiameter, "from the basic rack h_fP*");
+  rows.both("base_diameter", "d_b", mm, db[0], db[1], "d cos alpha_t");
+  rows.both("tooth_thickness", "s_n", mm, sn[0], sn[1], "nominal, m_n (pi/2 + 2 x tan alpha_n), no allowance");
   if (mr.internal) out.notRated.push_back({out.gears[1], "tooth_thickness", "an internal gear's is not computed"});
-  one("working_pressure_angle", "alpha_wt", deg, r.alphaWt, std::isfinite(in.a) ? "at the given centre distance" : "from the shifts");
-  auto treatment = [&](size_t g) { return treatmentWord(in.gear[g].treatment.value_or(in.treatment)); };
-  both("sigma_Hlim", "sigma_Hlim", mpa, in.gear[0].sigmaHlim, in.gear[1].sigmaHlim,
-       fmt::format("material, {} / {}", treatment(0), treatment(1)));
-  both("sigma_Flim", "sigma_Flim", mpa, in.gear[0].sigmaFlim, in.gear[1].sigmaFlim, "material");
+  rows.one("working_pressure_angle", "alpha_wt", deg, r.alphaWt, std::isfinite(in.a) ? "at the given centre distance" : "from the shifts");
+  rows.materials({in.gear[0].sigmaHlim, in.gear[1].sigmaHlim}, {in.gear[0].sigmaFlim, in.gear[1].sigmaFlim}, treatments(in));
   if (in.grade > 0) {
-    one("accuracy", "accuracy", plain, in.grade, "ISO 1328-1 grade");
-    out.rows.back().format = Row::Whole;
+    rows.one("accuracy", "accuracy", plain, in.grade, "ISO 1328-1 grade");
+    rows.whole();
   }
-  one("life", "life", h, in.life, "rating.life");
-  one("viscosity_40", "nu_40", cst, in.nu40, "rating.lubricant.viscosity_40");
-  one("roughness_flank_rz", "Rz flank", um, in.RzFlank, "rating.roughness");
-  one("roughness_root_rz", "Rz root", um, in.RzRoot, "rating.roughness");
-  one("basic_rack", "h_aP*, h_fP*", plain, in.haP, fmt::format("h_fP* {}, rho_fP* {}", formatNumber(in.hfP), formatNumber(in.rhoFP)));
+  rows.service(in.life, in.nu40, in.RzFlank, in.RzRoot);
+  rows.one("basic_rack", "h_aP*, h_fP*", plain, in.haP, fmt::format("h_fP* {}, rho_fP* {}", formatNumber(in.hfP), formatNumber(in.rhoFP)));
 }
 
 RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool several, double minH, double minF, double ka, double kgamma) {
@@ -400,35 +422,21 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   return out;
 }
 
-// The rating table of a bevel pair (ISO 10300 method B1): the cone, the virtual cylindrical
-// gears, every factor and each safety against its minimum.
 // What a bevel rating was given: tooth counts, shifts, the materials' limits and treatment,
 // the life, the oil, the roughness and the basic crown gear.
 void bevelInputRows(const rating::BevelInput& in, RatingReport& out) {
-  using Row = RatingReport::Row;
-  const units::DisplayUnit um{"um", 1e-6}, h{"h", 3600}, mpa{"MPa", 1e6}, cst{"mm^2/s", 1e-6}, plain{"", 1};
-  auto both = [&](std::string key, std::string label, const units::DisplayUnit& u, double v0, double v1, std::string method = "") {
-    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, true, {v0, v1}});
-    out.rows.back().method = std::move(method);
-  };
-  auto one = [&](std::string key, std::string label, const units::DisplayUnit& u, double v, std::string method = "") {
-    out.rows.push_back({std::move(key), std::move(label), u.name, u.scale, false, {v}});
-    out.rows.back().method = std::move(method);
-  };
-  both("z", "z", plain, in.gear[0].z, in.gear[1].z);
-  out.rows.back().format = Row::Whole;
-  both("shift", "x_hm", plain, in.gear[0].xhm, in.gear[1].xhm, "mean profile shift coefficient");
-  auto treatment = [&](size_t g) { return treatmentWord(in.gear[g].treatment.value_or(in.treatment)); };
-  both("sigma_Hlim", "sigma_Hlim", mpa, in.gear[0].sigmaHlim, in.gear[1].sigmaHlim,
-       fmt::format("material, {} / {}", treatment(0), treatment(1)));
-  both("sigma_Flim", "sigma_Flim", mpa, in.gear[0].sigmaFlim, in.gear[1].sigmaFlim, "material");
-  one("life", "life", h, in.life, "rating.life");
-  one("viscosity_40", "nu_40", cst, in.nu40, "rating.lubricant.viscosity_40");
-  one("roughness_flank_rz", "Rz flank", um, in.RzFlank, "rating.roughness");
-  one("roughness_root_rz", "Rz root", um, in.RzRoot, "rating.roughness");
-  one("basic_rack", "k_hap, k_hfp", plain, in.khap, fmt::format("basic crown gear; k_hfp {}", formatNumber(in.khfp)));
+  const units::DisplayUnit plain{"", 1};
+  GivenRows rows{out};
+  rows.both("z", "z", plain, in.gear[0].z, in.gear[1].z);
+  rows.whole();
+  rows.both("shift", "x_hm", plain, in.gear[0].xhm, in.gear[1].xhm, "mean profile shift coefficient");
+  rows.materials({in.gear[0].sigmaHlim, in.gear[1].sigmaHlim}, {in.gear[0].sigmaFlim, in.gear[1].sigmaFlim}, treatments(in));
+  rows.service(in.life, in.nu40, in.RzFlank, in.RzRoot);
+  rows.one("basic_rack", "k_hap, k_hfp", plain, in.khap, fmt::format("basic crown gear; k_hfp {}", formatNumber(in.khfp)));
 }
 
+// The rating table of a bevel pair (ISO 10300 method B1): the cone, the virtual cylindrical
+// gears, every factor and each safety against its minimum.
 RatingReport bevelTable(const ir::Stage& st, const rating::BevelStageRating& br) {
   using rating::BevelGearRating;
   const rating::BevelRating& r = br.rating;
