@@ -93,11 +93,22 @@ std::string example(const AttrSpec& a, const std::string& prefix) {
   return "`" + prefix + a.name + " = " + sample(a) + ";`";
 }
 
+// A row's cells after its name and before its example: unit, meaning, rules. Two rows of a
+// name with the same cells (and example) are one row of the catalogue.
+std::string middleCells(const AttrSpec& a) {
+  return cell(unitOf(a)) + " | " + cell(a.meaning) + " | " + cell(rules(a));
+}
+
+// One table line; `kinds`, where given, is a column of its own after the name.
+std::string line(const AttrSpec& a, const std::string& prefix, const std::string* kinds = nullptr) {
+  return "| `" + a.name + "` | " + (kinds ? *kinds + " | " : "") + middleCells(a) + " | " + cell(example(a, prefix)) +
+         " |\n";
+}
+
 void table(std::string& out, const std::vector<AttrSpec>& rows, const std::string& prefix = "") {
   out += "| name | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- |\n";
   for (const auto& a : rows)
-    out += "| `" + a.name + "` | " + cell(unitOf(a)) + " | " + cell(a.meaning) + " | " + cell(rules(a)) + " | " +
-           cell(example(a, prefix)) + " |\n";
+    out += line(a, prefix);
   out += "\n";
 }
 
@@ -113,7 +124,7 @@ void kindRows(std::string& out, bool gear) {
   std::map<std::string, size_t> bySignature;
   for (const auto& k : cat::stageKinds())
     for (const auto& a : gear ? k.gear : k.stage) {
-      std::string signature = a.name + "|" + unitOf(a) + "|" + a.meaning + "|" + rules(a) + "|" + example(a, "");
+      std::string signature = a.name + "|" + middleCells(a) + "|" + example(a, "");
       auto [it, fresh] = bySignature.emplace(signature, rows.size());
       if (fresh)
         rows.push_back({a, "`" + k.name + "`", gear ? k.gears.front() + "." : ""});
@@ -122,8 +133,7 @@ void kindRows(std::string& out, bool gear) {
     }
   out += "| name | kinds | unit | meaning | rules | example |\n| --- | --- | --- | --- | --- | --- |\n";
   for (const auto& m : rows)
-    out += "| `" + m.row.name + "` | " + m.kinds + " | " + cell(unitOf(m.row)) + " | " + cell(m.row.meaning) + " | " +
-           cell(rules(m.row)) + " | " + cell(example(m.row, m.prefix)) + " |\n";
+    out += line(m.row, m.prefix, &m.kinds);
   out += "\n";
 }
 
