@@ -251,23 +251,6 @@ double columnWidth(const std::string& head, const std::vector<std::vector<std::s
   return 8.2 * static_cast<double>(widest) + 20;
 }
 
-// Column groups that each fit the page (1200 px wide, less the rank column they repeat).
-std::vector<std::vector<size_t>> columnGroups(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
-  constexpr double kPage = 1100;
-  std::vector<std::vector<size_t>> groups(1, {0});
-  double rank = columnWidth(head[0], rows, 0), used = rank;
-  for (size_t c = 1; c < head.size(); ++c) {
-    double w = columnWidth(head[c], rows, c);
-    if (used + w > kPage && groups.back().size() > 1) {
-      groups.push_back({0});
-      used = rank;
-    }
-    groups.back().push_back(c);
-    used += w;
-  }
-  return groups;
-}
-
 std::string designsHtml(const GearboxReport& g) {
   if (g.rows.empty()) return "";
   auto head = designHeader(g);
@@ -288,16 +271,15 @@ std::string designsHtml(const GearboxReport& g) {
   }
   // Wider than a 1280 px window: cut into tables of columns that fit, each opening with the
   // rank, so that every column (the safeties last among them) shows without scrolling.
-  auto parts = columnGroups(head, rows);
+  // The columns' widths on a page of 1100 px (the 1200 px body less its padding).
+  std::vector<double> widths;
+  for (size_t c = 0; c < head.size(); ++c) widths.push_back(columnWidth(head[c], rows, c));
+  auto parts = columnGroups(widths, 1100);
   if (parts.size() > 1) {
     for (size_t p = 0; p < parts.size(); ++p) {
-      std::vector<std::string> h;
-      std::vector<std::vector<std::string>> rs(rows.size());
-      for (size_t c : parts[p]) {
-        h.push_back(head[c]);
-        for (size_t r = 0; r < rows.size(); ++r) rs[r].push_back(c < rows[r].size() ? rows[r][c] : "");
-      }
-      o += fmt::format("<h4>columns {} of {}</h4>\n", p + 1, parts.size()) + table(h, rs);
+      std::vector<std::vector<std::string>> rs;
+      for (const auto& r : rows) rs.push_back(cellsOf(r, parts[p]));
+      o += fmt::format("<h4>columns {} of {}</h4>\n", p + 1, parts.size()) + table(cellsOf(head, parts[p]), rs);
     }
     return o;
   }

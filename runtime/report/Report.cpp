@@ -130,28 +130,16 @@ std::string textSummary(const GearboxReport& g) {
 // with the first column (the rank), one after the other.
 std::string alignedToWidth(const std::vector<std::vector<std::string>>& table, const std::string& indent) {
   size_t columns = table.empty() ? 0 : table[0].size();
-  std::vector<size_t> w(columns, 0);
+  // Each column takes its widest cell and the blank before it.
+  std::vector<double> widths(columns, 1);
   for (const auto& row : table)
-    for (size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
-  std::vector<std::vector<size_t>> groups(1, {0});
-  size_t used = indent.size() + (columns ? w[0] + 1 : 0);
-  for (size_t c = 1; c < columns; ++c) {
-    if (used + w[c] + 1 > kTextWidth && groups.back().size() > 1) {
-      groups.push_back({0});
-      used = indent.size() + w[0] + 1;
-    }
-    groups.back().push_back(c);
-    used += w[c] + 1;
-  }
+    for (size_t i = 0; i < row.size() && i < columns; ++i) widths[i] = std::max(widths[i], static_cast<double>(row[i].size()) + 1);
+  auto groups = columnGroups(widths, static_cast<double>(kTextWidth - indent.size()));
   if (groups.size() == 1) return aligned(table, indent, columns);
   std::string o;
   for (const auto& cols : groups) {
     std::vector<std::vector<std::string>> part;
-    for (const auto& row : table) {
-      std::vector<std::string> r;
-      for (size_t c : cols) r.push_back(c < row.size() ? row[c] : "");
-      part.push_back(std::move(r));
-    }
+    for (const auto& row : table) part.push_back(cellsOf(row, cols));
     o += aligned(part, indent, cols.size());
   }
   return o;

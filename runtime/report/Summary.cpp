@@ -147,4 +147,25 @@ GearboxSummary summarise(const GearboxReport& g) {
   return s;
 }
 
+std::vector<std::vector<size_t>> columnGroups(const std::vector<double>& widths, double limit) {
+  std::vector<std::vector<size_t>> groups(1, {0});
+  if (widths.empty()) return groups;
+  double used = widths[0];
+  for (size_t c = 1; c < widths.size(); ++c) {
+    if (used + widths[c] > limit && groups.back().size() > 1) {
+      groups.push_back({0});
+      used = widths[0];
+    }
+    groups.back().push_back(c);
+    used += widths[c];
+  }
+  return groups;
+}
+
+std::vector<std::string> cellsOf(const std::vector<std::string>& row, const std::vector<size_t>& columns) {
+  std::vector<std::string> out;
+  for (size_t c : columns) out.push_back(c < row.size() ? row[c] : "");
+  return out;
+}
+
 } // namespace gbx::rt

@@ -37,4 +37,11 @@ std::vector<std::vector<std::string>> modificationRows(const ModifyReport& md);
 std::vector<std::string> designHeader(const GearboxReport& g);
 std::vector<std::string> designCells(const DesignRow& r);
 
+// A table too wide for its page, cut into groups of columns: each group opens with the first
+// column (the rank) and takes the next columns while their widths (the first's included) fit
+// within `limit`; one group when the whole table fits. Widths in any measure (characters, px).
+std::vector<std::vector<size_t>> columnGroups(const std::vector<double>& widths, double limit);
+// A row's cells in the given columns, a blank where the row is short.
+std::vector<std::string> cellsOf(const std::vector<std::string>& row, const std::vector<size_t>& columns);
+
 } // namespace gbx::rt
