@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "ReadFile.h"
+
 #include "driver/Driver.h"
 #include "format/Formatter.h"
 #include "ir/Ir.h"
@@ -23,13 +25,6 @@ std::optional<std::string> fmtText(const std::string& text, std::string* diagnos
   auto out = format::formatText("t.gbx", text, sm, diags);
   if (diagnostics) *diagnostics = diags.renderText(sm);
   return out;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 struct Result {
@@ -173,7 +168,7 @@ TEST(Format, SurvivesEveryTruncatedSpec) {
   int formatted = 0, refused = 0;
   for (const auto& p : laidOutFiles()) {
     if (p.parent_path().filename() != "specs") continue;
-    std::string text = read(p);
+    std::string text = readFile(p);
     for (size_t k = 1; k <= 60; ++k) {
       std::string cut = text.substr(0, text.size() * k / 60);
       std::optional<std::string> out;
@@ -207,7 +202,7 @@ TEST(Format, RepositoryIsLaidOut) {
 TEST(Format, SameProgramWhateverTheBlanks) {
   int n = 0;
   for (const auto& p : laidOutFiles()) {
-    std::string text = read(p), collapsed, messy;
+    std::string text = readFile(p), collapsed, messy;
     int line = 0;
     bool lineStart = true;
     for (char c : text) {
@@ -246,12 +241,12 @@ TEST(Format, CommandLine) {
   Result check = gbxc({"fmt", "--check", (d / "a.gbx").string(), (d / "sub").string()});
   EXPECT_EQ(check.status, 1);
   EXPECT_NE(check.out.find("@@ -1,1 +1,1 @@\n-" + messy + "+" + tidy), std::string::npos) << check.out;
-  EXPECT_EQ(read(d / "a.gbx"), messy); // --check changes nothing
+  EXPECT_EQ(readFile(d / "a.gbx"), messy); // --check changes nothing
 
   Result write = gbxc({"fmt", d.string()}); // a folder: every .gbx below it
   EXPECT_EQ(write.status, 1);               // bad.gbx does not parse ...
   EXPECT_NE(write.err.find("E0102"), std::string::npos) << write.err;
-  EXPECT_EQ(read(d / "a.gbx"), tidy); // ... and the others are laid out all the same
+  EXPECT_EQ(readFile(d / "a.gbx"), tidy); // ... and the others are laid out all the same
   EXPECT_EQ(fs::status(d / "a.gbx").permissions() & fs::perms::all, fs::perms::owner_read | fs::perms::owner_write);
   EXPECT_NE(write.out.find("formatted "), std::string::npos);
   EXPECT_EQ(write.out.find("b.gbx"), std::string::npos) << write.out; // already laid out: untouched
@@ -269,7 +264,7 @@ TEST(Format, CommandLine) {
   fs::create_symlink("sub/real.gbx", d / "link.gbx");
   EXPECT_EQ(gbxc({"fmt", (d / "link.gbx").string()}).status, 0);
   EXPECT_TRUE(fs::is_symlink(d / "link.gbx"));
-  EXPECT_EQ(read(d / "sub" / "real.gbx"), tidy);
+  EXPECT_EQ(readFile(d / "sub" / "real.gbx"), tidy);
   EXPECT_EQ(gbxc({"fmt", (d / "missing.gbx").string()}).status, 3);
   EXPECT_EQ(gbxc({"fmt"}).status, 2);
   EXPECT_EQ(gbxc({"check", "--check", (d / "a.gbx").string()}).status, 2);

@@ -4,6 +4,8 @@
 // repository points at a file outside it.
 #include <gtest/gtest.h>
 
+#include "ReadFile.h"
+
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -25,15 +27,8 @@ using namespace gbx;
 
 namespace {
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 fs::path repoDir() { return fs::path(GBX_SOURCE_DIR); }
-std::string doc(const std::string& page) { return read(repoDir() / "docs" / page); }
+std::string doc(const std::string& page) { return readFile(repoDir() / "docs" / page); }
 
 // An entry: the name in backticks, alone or as the head of a longer code span
 // (`rms(acceleration)`, `pinion.z = 21;`).
@@ -62,7 +57,7 @@ std::string list(const std::vector<std::string>& v) {
 // The grammar's keywords: `IMPORT : 'import' ;` rules of upper-case tokens.
 std::vector<std::string> keywords() {
   std::vector<std::string> out;
-  std::string g = read(repoDir() / "grammar" / "Gbx.g4");
+  std::string g = readFile(repoDir() / "grammar" / "Gbx.g4");
   std::regex kw(R"(([A-Z]+) : '([a-z]+)' ;)");
   for (auto it = std::sregex_iterator(g.begin(), g.end(), kw); it != std::sregex_iterator(); ++it)
     out.push_back((*it)[2]);
@@ -77,7 +72,7 @@ std::set<std::string> diagnosticCodes() {
     for (const auto& e : fs::recursive_directory_iterator(repoDir() / dir)) {
       auto ext = e.path().extension();
       if (ext != ".cpp" && ext != ".h") continue;
-      std::string t = read(e.path());
+      std::string t = readFile(e.path());
       for (auto it = std::sregex_iterator(t.begin(), t.end(), code); it != std::sregex_iterator(); ++it)
         out.insert((*it)[1]);
     }
@@ -156,7 +151,7 @@ TEST(Reference, EveryStandardLibraryNameIsDocumented) {
   std::vector<std::string> gaps;
   int n = 0;
   for (const auto& e : fs::directory_iterator(repoDir() / "stdlib")) {
-    std::string t = read(e.path());
+    std::string t = readFile(e.path());
     for (auto it = std::sregex_iterator(t.begin(), t.end(), decl); it != std::sregex_iterator(); ++it) {
       std::string name = (*it)[1];
       std::smatch m;
@@ -176,7 +171,7 @@ TEST(Reference, EveryCompleteExampleCompiles) {
   for (const auto& e : fs::directory_iterator(repoDir() / "docs"))
     if (e.path().extension() == ".md") pages.push_back(e.path());
   for (const auto& page : pages) {
-    std::string text = read(page);
+    std::string text = readFile(page);
     for (size_t at = text.find("```gbx\n"); at != std::string::npos; at = text.find("```gbx\n", at + 1)) {
       size_t end = text.find("```", at + 7);
       ASSERT_NE(end, std::string::npos) << page;
@@ -204,7 +199,7 @@ TEST(Reference, NothingPointsOutsideTheRepository) {
     }
     if (p.string().find("/tests/fuzz/corpus/") != std::string::npos) continue; // inputs, not text
     if (p.filename() == "ReferenceTest.cpp") continue;
-    std::string t = read(p);
+    std::string t = readFile(p);
     if (t.find('\0') != std::string::npos) continue;
     std::smatch m;
     if (std::regex_search(t, m, outside)) hits.push_back(fs::relative(p, repoDir()).string() + ": " + m.str());

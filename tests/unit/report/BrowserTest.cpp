@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "ReadFile.h"
+
 #include "driver/Driver.h"
 
 namespace fs = std::filesystem;
@@ -22,13 +24,6 @@ size_t count(const std::string& s, const std::string& what) {
   size_t n = 0;
   for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
   return n;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // Chromium as the set-up script installs it; run as root in CI, hence --no-sandbox.
@@ -64,7 +59,7 @@ TEST(Browser, EverySpecsHtmlRendersWithItsSectionsAndPlots) {
     ASSERT_EQ(chromium("--window-size=1280,1600 --screenshot=" + png.string() + " file://" + html.string()), 0) << name;
     EXPECT_GT(fs::file_size(png), 3 * blank) << name << ": the screenshot is (nearly) blank";
     ASSERT_EQ(chromium("--dump-dom file://" + html.string() + " > " + dom.string() + " 2>/dev/null; true"), 0);
-    std::string page = out.str(), parsed = read(dom);
+    std::string page = out.str(), parsed = readFile(dom);
     // The browser's DOM holds what the report wrote: each gearbox's heading, its tables,
     // every plot as an SVG element.
     EXPECT_GT(count(page, "<h2>"), 0u) << name;
@@ -153,14 +148,14 @@ TEST(Browser, ReportsReadAsDocumentsOnScreenAndOnPaper) {
     copy.insert(copy.rfind("</body>"), kMeasure);
     std::ofstream(measured, std::ios::binary) << copy;
     ASSERT_EQ(chromium("--window-size=1280,1000 --dump-dom file://" + measured.string() + " > " + dom.string() + " 2>/dev/null; true"), 0);
-    std::string parsed = read(dom);
+    std::string parsed = readFile(dom);
     int widest = attribute(parsed, "data-widest"), pageWidth = attribute(parsed, "data-page-width");
     ASSERT_GT(widest, 0) << name << ": the measurement did not run";
     EXPECT_LE(widest, 1280) << name << ": an element reaches past the window's right edge";
     EXPECT_LE(pageWidth, 1280) << name << ": the page scrolls sideways";
     // On paper.
     ASSERT_EQ(chromium("--no-pdf-header-footer --print-to-pdf=" + pdf.string() + " file://" + html.string()), 0) << name;
-    int pages = pdfPages(read(pdf));
+    int pages = pdfPages(readFile(pdf));
     EXPECT_GE(pages, fewest) << name;
     EXPECT_LE(pages, most) << name;
   }
@@ -233,14 +228,14 @@ TEST(Browser, EverySafetyInViewAt1280AndPagesNumbered) {
     std::ofstream(measured, std::ios::binary) << copy;
     std::ofstream(html, std::ios::binary) << page;
     ASSERT_EQ(chromium("--window-size=1280,1000 --dump-dom file://" + measured.string() + " > " + dom.string() + " 2>/dev/null; true"), 0);
-    std::string parsed = read(dom);
+    std::string parsed = readFile(dom);
     EXPECT_GE(attribute(parsed, "data-safeties"), 8) << name << ": the measurement found too few safeties";
     EXPECT_EQ(attribute(parsed, "data-hidden"), 0) << name << ": a safety is out of view at 1280 px";
     ASSERT_EQ(chromium("--no-pdf-header-footer --print-to-pdf=" + pdf.string() + " file://" + html.string()), 0) << name;
     fs::path text = d / (name + ".txt");
     ASSERT_EQ(std::system(("pdftotext -layout " + pdf.string() + " " + text.string()).c_str()), 0);
-    std::string paper = read(text);
-    int pages = pdfPages(read(pdf));
+    std::string paper = readFile(text);
+    int pages = pdfPages(readFile(pdf));
     EXPECT_GE(pages, 2) << name;
     EXPECT_EQ(count(paper, " of " + std::to_string(pages)), static_cast<size_t>(pages)) << name << ": a page without its number\n" << paper;
     EXPECT_NE(paper.find("page 1 of " + std::to_string(pages)), std::string::npos) << name;
