@@ -201,6 +201,9 @@ namespace gbx::cat {
   X(CutterRadius, "cutter_radius")                                                              \
   X(HypoidOffset, "offset")                                                                     \
   X(ThicknessModification, "thickness_modification")                                            \
+  X(UpperThicknessAllowance, "upper_thickness_allowance")                                      \
+  X(LowerThicknessAllowance, "lower_thickness_allowance")                                      \
+  X(CenterDistanceAllowance, "center_distance_allowance")                                      \
   X(ToolEdgeRadius, "tool_edge_radius")                                                         \
   X(MeanDiameter, "mean_diameter")                                                              \
   X(OuterPitchDiameter, "outer_pitch_diameter")                                                 \

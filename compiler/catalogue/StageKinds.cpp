@@ -151,6 +151,8 @@ std::vector<AttrSpec> ratingGearExtras() {
       pos("bore_diameter", length, "inner diameter of the gear blank (0: solid; for the reduced mass of K_v)"),
       pos("web_thickness", length, "web thickness b_s of a webbed gear blank (for C_R; solid when absent)"),
       pos("rim_thickness", length, "rim thickness s_R of a webbed gear blank (for C_R)"),
+      hinted(in("upper_thickness_allowance", length, "upper normal tooth-thickness allowance A_sne (thinner teeth: negative; for the backlash)"), "um"),
+      hinted(in("lower_thickness_allowance", length, "lower normal tooth-thickness allowance A_sni (with the upper one; for the backlash)"), "um"),
   };
 }
 
@@ -292,6 +294,7 @@ std::vector<KindSpec> buildKinds() {
         withDefault(bounded(pos("pressure_angle", angle, "normal pressure angle"), deg(10), deg(35)), deg(20)),
         pos("face_width", length, "face width"),
         pos("center_distance", length, "centre distance"),
+        hinted(bounded(in("center_distance_allowance", length, "centre distance allowance A_a, either way (+-; for the backlash)"), num(0), std::nullopt), "um"),
         material(),
         accuracyRow(),
         pos("mesh_stiffness", pressure, "mesh stiffness per unit face width (c_gamma)"),
@@ -371,7 +374,11 @@ std::vector<KindSpec> buildKinds() {
     for (auto& r : ratingInputs()) a.push_back(r);
     for (auto& r : ratingStageQuantities()) a.push_back(r);
     auto g = plainGearAttrs();
-    g.push_back(pos("mass", mass, "gear mass (planets: each)"));
+    // Given, or from the geometry and the material's density.
+    g.push_back(pos("mass", mass,
+                    "gear mass (planets: each); else the sun and a planet solid discs at the reference diameter across the face "
+                    "width, the ring an annulus from its reference circle to `rim_thickness` below its root (1.25 m)"));
+    g.back().role = AttrRole::Either;
     for (auto& r : ratingGearExtras()) g.push_back(r);
     for (auto& r : ratingGearQuantities()) g.push_back(r);
     k.push_back({ir::StageKind::Planetary, "planetary", {"sun", "planet", "ring"}, a, g});

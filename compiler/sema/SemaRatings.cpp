@@ -295,17 +295,58 @@ void Analyser::requireMaterial(const ir::Gearbox& g, const GearboxModel& m) {
       if (x.op != Op::Quantity || !x.type.isNumber() || keyOf(lastPart(x.name)) != Q::Mass) return;
       auto dot = x.name.find('.');
       const StageModel* st = dot == std::string::npos ? nullptr : m.findStage(x.name.substr(0, dot));
-      if (!st || !st->kind || st->findAttr(std::string(keyName(Q::Material))) || x.name.find('.', dot + 1) != std::string::npos) return;
+      if (!st || !st->kind) return;
+      const std::string material(keyName(Q::Material));
+      auto second = x.name.find('.', dot + 1);
+      std::string gear = second == std::string::npos ? "" : x.name.substr(dot + 1, second - dot - 1);
+      // A planetary gear's mass, given, or from its geometry: the ring's needs its rim.
+      if (!gear.empty() && st->findAttr(gear + ".mass")) return;
+      bool ring = st->kind->kind == ir::StageKind::Planetary && gear == st->kind->gears.back();
+      bool dense = st->findAttr(material) || (!gear.empty() && st->findAttr(gear + "." + material));
+      if (dense && !(ring && !st->findAttr(gear + ".rim_thickness"))) return;
       if (!reported.insert({x.span.line, x.span.col}).second) return;
-      diags_.error("E0233", x.span,
-                   fmt::format("`{}` needs the density of the stage's material, but stage `{}` names no `material` ({})", x.name,
-                               st->name, where));
+      if (!dense)
+        diags_.error("E0233", x.span,
+                     fmt::format("`{}` needs the density of the stage's material, but stage `{}` names no `material` ({}){}", x.name,
+                                 st->name, where, gear.empty() ? "" : fmt::format("; or give `{}.mass`", gear)));
+      else
+        diags_.error("E0233", x.span,
+                     fmt::format("`{}` needs the ring's `{}.rim_thickness` (its mass is the annulus below the root) or its `{}.mass` ({})",
+                                 x.name, gear, gear, where));
     });
   };
   for (const auto& o : g.objectives) visit(o.expr.get(), "used in an objective");
   for (const auto& r : g.rules) visit(r.expr.get(), "used in a rule");
   if (g.report)
     for (const auto& c : g.report->columns) visit(c.get(), "reported");
+}
+
+// A gear's tooth-thickness allowances come as a pair, the upper one not below the lower.
+void Analyser::thicknessAllowances(const ir::Gearbox& g) {
+  const std::string upper(keyName(Q::UpperThicknessAllowance)), lower(keyName(Q::LowerThicknessAllowance));
+  for (const auto& st : g.stages)
+    for (const auto& gear : st.gears) {
+      const ir::Attribute* u = st.find(gear + "." + upper);
+      const ir::Attribute* l = st.find(gear + "." + lower);
+      if (!u && !l) continue;
+      if (st.kind == ir::StageKind::Planetary && gear == st.gears.back()) {
+        diags_.error("E0235", (u ? u : l)->span,
+                     fmt::format("`{}`: the backlash of an internal mesh is not computed (the sun-planet mesh's is)", (u ? u : l)->name));
+        continue;
+      }
+      if (!u || !l) {
+        const ir::Attribute* given = u ? u : l;
+        diags_.error("E0225", given->span,
+                     fmt::format("`{}` needs `{}.{}` too: the backlash takes both allowances of the tooth thickness", given->name, gear,
+                                 u ? lower : upper));
+        continue;
+      }
+      bool fixed = u->role == ir::Attribute::Fixed && l->role == ir::Attribute::Fixed && u->value && l->value;
+      if (fixed && u->value->isConst() && l->value->isConst() && u->value->value.compare(l->value->value) < 0)
+        diags_.error("E0401", u->span,
+                     fmt::format("`{}` ({:g} um) is below `{}` ({:g} um): the upper allowance is the thicker tooth", u->name,
+                                 u->value->value.toDouble() * 1e6, l->name, l->value->value.toDouble() * 1e6));
+    }
 }
 
 // A safety or an influence factor needs the stage's `rating` inputs.

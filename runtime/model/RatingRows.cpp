@@ -188,6 +188,7 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
   in.cgammaGiven = cg.isNumber() ? cg.mid() : kNaN;
   in.fma = num(Q::RatingMeshMisalignment, kNaN);
   in.SHmin = num(Q::RatingMinContact, 1.0);
+  in.aAllowance = num(Q::CenterDistanceAllowance, 0.0);
   in.SFmin = num(Q::RatingMinBending, 1.0);
   // The oil of scuffing and micropitting (sema has checked that its line and temperature
   // come with a load stage).
@@ -231,6 +232,8 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
     int g = slot == 0 ? mesh.g0 : mesh.g1;
     gi.YM = slot == 0 ? mesh.YM0 : mesh.YM1;
     gi.bore = num2(c, g, Q::BoreDiameter, 0.0);
+    gi.upperAllowance = num2(c, g, Q::UpperThicknessAllowance, kNaN);
+    gi.lowerAllowance = num2(c, g, Q::LowerThicknessAllowance, kNaN);
     double bs = num2(c, g, Q::WebThickness, kNaN), sr = num2(c, g, Q::RimThickness, kNaN);
     double b = c.at(Q::FaceWidth).mid(), mn = c.at(moduleKey(c)).mid();
     // C_R of a webbed blank, ISO 6336-1 eq. (clause 9.3.4): 1 + ln(b_s/b) / (5 e^(s_R/(5 m_n))).

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "model/kinds/Geometry.h"
+
 #include "model/BevelRows.h"
 #include "model/Evaluator.h"
 #include "model/RatingRows.h"
@@ -273,6 +275,32 @@ std::string treatments(const Input& in) {
                      treatmentWord(in.gear[1].treatment.value_or(in.treatment)));
 }
 
+// The allowances and the backlash they leave (ISO 21771), where both gears give theirs: the
+// least with the thickest teeth at the shortest centre distance, the most the other way.
+void backlashRows(const rating::PairInput& in, const std::array<double, 2>& db, double alphaWt, GivenRows& rows) {
+  const auto& g = in.gear;
+  if (!std::isfinite(g[0].upperAllowance) || !std::isfinite(g[1].upperAllowance)) return;
+  const units::DisplayUnit um{"um", 1e-6};
+  rows.both("upper_thickness_allowance", "A_sne", um, g[0].upperAllowance, g[1].upperAllowance, "given");
+  rows.both("lower_thickness_allowance", "A_sni", um, g[0].lowerAllowance, g[1].lowerAllowance, "given");
+  double a = 0.5 * (db[0] + db[1]) / std::cos(alphaWt), Aa = in.aAllowance;
+  auto at = [&](double A1, double A2, double dist) {
+    return geometry::backlash(g[0].z, g[1].z, in.mn, in.beta, in.alphaN, g[0].x, g[1].x, A1, A2, dist);
+  };
+  geometry::Backlash least = at(g[0].upperAllowance, g[1].upperAllowance, a - Aa);
+  geometry::Backlash most = at(g[0].lowerAllowance, g[1].lowerAllowance, a + Aa);
+  auto where = [&](const char* allowance, const char* sign, double dist) {
+    return Aa == 0 ? fmt::format("{} at a = {} mm", allowance, formatNumber(a * 1e3))
+                   : fmt::format("{}, a {} A_a = {} mm", allowance, sign, formatNumber(dist * 1e3));
+  };
+  std::string tight = where("A_sne", "-", a - Aa), loose = where("A_sni", "+", a + Aa);
+  if (least.jn < 0) tight += ": the flanks interfere";
+  rows.one("circumferential_backlash_min", "j_t min", um, least.jt, tight);
+  rows.one("circumferential_backlash_max", "j_t max", um, most.jt, loose);
+  rows.one("normal_backlash_min", "j_n min", um, least.jn, "j_t cos alpha_wt cos beta_b");
+  rows.one("normal_backlash_max", "j_n max", um, most.jn);
+}
+
 // What the rating was given, before what it found: each gear's geometry (ISO 21771, with
 // nominal tooth thicknesses) and the inputs that decide the factors.
 void inputRows(const rating::MeshRating& mr, RatingReport& out) {
@@ -299,6 +327,7 @@ void inputRows(const rating::MeshRating& mr, RatingReport& out) {
   rows.both("tooth_thickness", "s_n", mm, sn[0], sn[1], "nominal, m_n (pi/2 + 2 x tan alpha_n), no allowance");
   if (mr.internal) out.notRated.push_back({out.gears[1], "tooth_thickness", "an internal gear's is not computed"});
   rows.one("working_pressure_angle", "alpha_wt", deg, r.alphaWt, std::isfinite(in.a) ? "at the given centre distance" : "from the shifts");
+  if (!mr.internal) backlashRows(in, db, r.alphaWt, rows);
   rows.materials({in.gear[0].sigmaHlim, in.gear[1].sigmaHlim}, {in.gear[0].sigmaFlim, in.gear[1].sigmaFlim}, treatments(in));
   if (in.grade > 0) {
     rows.one("accuracy", "accuracy", plain, in.grade, "ISO 1328-1 grade");

@@ -36,12 +36,15 @@ struct GearInput {
   // unset, the pair's. brinell: HB of a through-hardened gear (its Z_W against a harder mate).
   std::optional<Treatment> treatment = std::nullopt;
   double E = kNaN, nu = kNaN, brinell = kNaN;
+  // Normal tooth-thickness allowances A_sne, A_sni [m]: the report's backlash (NaN: not given).
+  double upperAllowance = kNaN, lowerAllowance = kNaN;
 };
 
 struct PairInput {
   std::array<GearInput, 2> gear;  // pinion (driving), wheel
   double mn = 0, alphaN = 0, beta = 0, b = 0;
   double a = kNaN;         // working centre distance [m]; NaN: from the shifts
+  double aAllowance = 0;   // centre distance allowance A_a, either way [m] (the report's backlash)
   double torque1 = 0;      // pinion torque [N m]
   double E = 206e9, nu = 0.3, density = 7830;  // [Pa], [-], [kg/m^3]
   Treatment treatment = Treatment::CaseHardened;

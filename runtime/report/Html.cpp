@@ -324,8 +324,8 @@ RowKind kindOf(const RatingReport::Row& row) {
   static const std::vector<std::string> given = {"z", "shift", "reference_diameter", "tip_diameter", "root_diameter", "base_diameter",
                                                  "tooth_thickness", "working_pressure_angle", "sigma_Hlim", "sigma_Flim", "accuracy",
                                                  "life", "viscosity_40", "roughness_flank_rz", "roughness_root_rz", "basic_rack"};
-  if (std::find(given.begin(), given.end(), row.key) != given.end()) return RowKind::Given;
   auto has = [&](const char* w) { return row.key.find(w) != std::string::npos; };
+  if (std::find(given.begin(), given.end(), row.key) != given.end() || has("allowance") || has("backlash")) return RowKind::Given;
   if (row.minimum != RatingReport::Row::NoMinimum || has("stress") || has("safety") || has("damage") || has("temperature") ||
       has("film_thickness"))
     return RowKind::Result;

@@ -343,7 +343,7 @@ void forEachRow(const GearboxReport& g, F&& f) {
 }
 
 // The version of docs/report.schema.json the JSON report follows (its top-level "schema").
-inline constexpr const char* kReportSchemaVersion = "1.2";
+inline constexpr const char* kReportSchemaVersion = "1.3";
 
 std::string formatNumber(double v);
 // A JSON number, shortest round-trip; null where the value is not finite (never nan or inf).

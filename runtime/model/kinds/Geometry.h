@@ -65,4 +65,32 @@ inline CylPair cylPair(double z1, double z2, double mn, double beta, double alph
   return p;
 }
 
+// The backlash of an external pair at the centre distance a (ISO 21771): each tooth's
+// transverse thickness on the working pitch circle, from its normal thickness
+// m_n (pi/2 + 2 x tan a_n) + A_s on the reference circle; j_t is what the two leave of the
+// working pitch, j_n the same play normal to the flanks. Negative: the flanks interfere;
+// NaN: a closer than the base circles allow.
+struct Backlash {
+  double jt, jn;  // circumferential (working pitch circle) and normal [m]
+};
+
+inline Backlash backlash(double z1, double z2, double mn, double beta, double alphaN, double x1, double x2, double As1, double As2,
+                         double a) {
+  constexpr double pi = 3.14159265358979323846;
+  double alphaT = std::atan(std::tan(alphaN) / std::cos(beta));
+  double cosWt = 0.5 * (z1 + z2) * mn / std::cos(beta) * std::cos(alphaT) / a;
+  if (!(cosWt <= 1)) return {NAN, NAN};
+  double alphaWt = std::acos(cosWt);
+  // On the working pitch circle d_w = d cos a_t / cos a_wt: s_w = d_w (s_t / d + inv a_t - inv a_wt).
+  auto thickness = [&](double z, double x, double As) {
+    double d = z * mn / std::cos(beta), st = (mn * (pi / 2 + 2 * x * std::tan(alphaN)) + As) / std::cos(beta);
+    double dw = d * std::cos(alphaT) / cosWt;
+    return dw * (st / d + involute(alphaT) - involute(alphaWt));
+  };
+  double pw = pi * (z1 * mn / std::cos(beta)) * std::cos(alphaT) / cosWt / z1;
+  double jt = pw - thickness(z1, x1, As1) - thickness(z2, x2, As2);
+  double betaB = std::asin(std::sin(beta) * std::cos(alphaN));
+  return {jt, jt * cosWt * std::cos(betaB)};
+}
+
 } // namespace gbx::rt::geometry

@@ -102,6 +102,19 @@ std::vector<DerivedRow> rows() {
          if (g == Ring) return Value::rational(Rational(0));
          return arith::mul(c.derived(Q::OutputSpeed), arith::sub(Value::rational(Rational(1)), arith::div(c.at(Ring, Q::Z), c.at(Planet, Q::Z))));
        }},
+      // A gear's mass where the spec gives none: the sun and each planet a solid disc at the
+      // reference diameter, the ring an annulus from its reference circle to `rim_thickness`
+      // below its root (a dedendum of 1.25 m): rho b pi/4 (D^2 - d^2).
+      {Q::Mass, true,
+       [](const KindContext& c, int g) {
+         Value rim = g == Ring ? c.at(Ring, Q::RimThickness) : Value::number(0.0);
+         if (!rim.isNumber()) return Value::invalid();
+         return arith::corners({c.at(g, Q::Z), c.at(Q::Module), c.at(Q::FaceWidth), c.material(Q::Density), rim}, [g](const std::vector<double>& x) {
+           double d = x[0] * x[1], outer = g == Ring ? d + 2 * (1.25 * x[1] + x[4]) : d;
+           double inner = g == Ring ? d : 0;
+           return x[3] * x[2] * M_PI / 4 * (outer * outer - inner * inner);
+         });
+       }},
       // Torques on each member's own axis: T_sun, each planet T_sun z_p / (z_s N), the ring's
       // reaction T_sun z_r / z_s.
       {Q::Torque, true,

@@ -251,3 +251,20 @@ gearbox G {
   auto rise = compile(base + "gearbox B extends A { report { columns relative(s.contact_temperature - 80 degC); } }");
   EXPECT_TRUE(rise->ok()) << rise->diags.renderText(rise->sources);
 }
+
+// A planetary gear's mass is given or follows from its geometry and density (the ring's from
+// its rim): without those, the spec is refused before the search, not answered with n/a.
+TEST(Sema, PlanetaryGearMassNeedsDensityAndTheRingItsRim) {
+  auto spec = [](const std::string& stage, const std::string& objective) {
+    return "import materials;\ngearbox P {\n  stage ps: planetary { sun.z = 18; planet.z = 27; ring.z = 72; planets = 3; module = 3 mm; "
+           "face_width = 40 mm; " +
+           stage + " }\n  minimize " + objective + ";\n}\n";
+  };
+  EXPECT_EQ(codes(*compile(spec("", "ps.sun.mass"))), std::vector<std::string>{"E0233"});
+  EXPECT_TRUE(compile(spec("sun.mass = 2 kg;", "ps.sun.mass"))->ok());
+  EXPECT_TRUE(compile(spec("material = steel_18CrNiMo7_6;", "ps.sun.mass + ps.planet.mass"))->ok());
+  auto ring = compile(spec("material = steel_18CrNiMo7_6;", "ps.ring.mass"));
+  EXPECT_EQ(codes(*ring), std::vector<std::string>{"E0233"});
+  EXPECT_NE(ring->diags.renderText(ring->sources).find("ring.rim_thickness"), std::string::npos);
+  EXPECT_TRUE(compile(spec("material = steel_18CrNiMo7_6; ring.rim_thickness = 12 mm;", "ps.ring.mass"))->ok());
+}
