@@ -1,6 +1,8 @@
 // CSV: every number in the unit its header names (the display unit of the text report),
 // an interval as `_lo` and `_hi` columns, one tidy table per kind of result.
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <variant>
 
 #include <fmt/compile.h>
@@ -49,79 +51,120 @@ std::vector<bool> rangedColumns(const GearboxReport& g) {
   return v;
 }
 
-std::string designs(const std::vector<GearboxReport>& reports) {
-  std::string o;
-  for (const auto& g : reports) {
-    auto wide = intervalColumns(g), ranged = rangedColumns(g);
-    std::vector<std::string> h = {"gearbox", "rank"};
-    if (!g.rows.empty()) {
-      for (const auto& [n, _] : g.rows[0].teeth) h.push_back(n);
-      for (size_t i = 0; i < g.rows[0].choices.size(); ++i)
-        h.push_back(withUnit(g.rows[0].choices[i].first, i < g.rows[0].choiceValues.size() ? g.rows[0].choiceValues[i].unit : ""));
+// A gearbox's design-table header: rank, its tooth counts and choices, the ratio, its columns.
+std::vector<std::string> designHeader(const GearboxReport& g, const std::vector<bool>& wide, const std::vector<bool>& ranged) {
+  std::vector<std::string> h = {"gearbox", "rank"};
+  if (!g.rows.empty()) {
+    for (const auto& [n, _] : g.rows[0].teeth) h.push_back(n);
+    for (size_t i = 0; i < g.rows[0].choices.size(); ++i)
+      h.push_back(withUnit(g.rows[0].choices[i].first, i < g.rows[0].choiceValues.size() ? g.rows[0].choiceValues[i].unit : ""));
+  }
+  h.push_back("ratio");
+  for (size_t i = 0; i < g.columns.size(); ++i) {
+    const auto& c = g.columns[i];
+    if (wide[i]) {
+      h.push_back(withUnit(c.name + "_lo", c.unit));
+      h.push_back(withUnit(c.name + "_hi", c.unit));
+    } else {
+      h.push_back(withUnit(c.name, c.unit));
     }
-    h.push_back("ratio");
-    for (size_t i = 0; i < g.columns.size(); ++i) {
-      const auto& c = g.columns[i];
+    if (ranged[i]) {
+      h.push_back(withUnit(c.name + "_lo", c.unit));
+      h.push_back(withUnit(c.name + "_hi", c.unit));
+    }
+  }
+  h.push_back("ratio_exact");
+  return h;
+}
+
+// One gearbox's rows, appended to `o` in its own header's order.
+void designRows(const GearboxReport& g, const std::vector<bool>& wide, const std::vector<bool>& ranged, std::string& o,
+                const std::function<void(std::string&)>& rowDone) {
+  const std::string name = field(g.name);
+  auto num = [&](double v) {
+    if (std::isfinite(v)) fmt::format_to(std::back_inserter(o), FMT_COMPILE("{}"), v);
+  };
+  auto inUnit = [&](double si, const std::string& unit, double scale, double offset) { o += csvNumber(si, unit, scale, offset); };
+  auto integer = [&](long long v) {
+    fmt::format_int f(v);
+    o.append(f.data(), f.size());
+  };
+  size_t rowsStart = o.size();
+  forEachRow(g, [&](const DesignRow& r) {
+    // A long listing: room for all of it at the size of its first row, once.
+    if (r.rank == 2 && g.source) o.reserve(o.size() + (o.size() - rowsStart) * (g.source->size() + 16) * 21 / 20);
+    o += name;
+    o += ',';
+    integer(r.rank);
+    for (const auto& [_, z] : r.teeth) {
+      o += ',';
+      integer(z);
+    }
+    for (const auto& c : r.choiceValues) {
+      o += ',';
+      if (std::isfinite(c.si)) inUnit(c.si, c.unit, c.scale, 0.0);
+    }
+    o += ',';
+    num(r.ratio.toDouble());
+    for (size_t i = 0; i < r.cells.size(); ++i) {
+      const Cell& c = r.cells[i];
+      const std::string& un = g.columns[i].unit;
+      double sc = g.columns[i].scale, off = g.columns[i].offset;
+      o += ',';
+      if (c.valid) inUnit(c.lo, un, sc, off);
       if (wide[i]) {
-        h.push_back(withUnit(c.name + "_lo", c.unit));
-        h.push_back(withUnit(c.name + "_hi", c.unit));
-      } else {
-        h.push_back(withUnit(c.name, c.unit));
+        o += ',';
+        if (c.valid) inUnit(c.hi, un, sc, off);
       }
       if (ranged[i]) {
-        h.push_back(withUnit(c.name + "_lo", c.unit));
-        h.push_back(withUnit(c.name + "_hi", c.unit));
+        o += ',';
+        if (c.ranged) inUnit(c.rlo, un, sc, off);
+        o += ',';
+        if (c.ranged) inUnit(c.rhi, un, sc, off);
       }
     }
-    h.push_back("ratio_exact");
-    o += row(h);
-    // Rows appended in place: a listing may hold a million of them.
-    const std::string name = field(g.name);
-    auto num = [&](double v) {
-      if (std::isfinite(v)) fmt::format_to(std::back_inserter(o), FMT_COMPILE("{}"), v);
-    };
-    auto inUnit = [&](double si, const std::string& unit, double scale, double offset) { o += csvNumber(si, unit, scale, offset); };
-    auto integer = [&](long long v) {
-      fmt::format_int f(v);
-      o.append(f.data(), f.size());
-    };
-    size_t rowsStart = o.size();
-    forEachRow(g, [&](const DesignRow& r) {
-      // A long listing: room for all of it at the size of its first row, once.
-      if (r.rank == 2 && g.source) o.reserve(o.size() + (o.size() - rowsStart) * (g.source->size() + 16) * 21 / 20);
-      o += name;
-      o += ',';
-      integer(r.rank);
-      for (const auto& [_, z] : r.teeth) {
-        o += ',';
-        integer(z);
+    o += ',';
+    o += r.ratio.str();
+    o += '\n';
+    if (rowDone) rowDone(o);
+  });
+}
+
+// One table for every gearbox: the union of their headers, in the order they first appear,
+// with a gearbox's row empty in the columns it does not have.
+std::string designs(const std::vector<GearboxReport>& reports) {
+  std::vector<std::vector<std::string>> heads;
+  std::vector<std::string> all;
+  for (const auto& g : reports) {
+    heads.push_back(designHeader(g, intervalColumns(g), rangedColumns(g)));
+    for (const auto& h : heads.back())
+      if (std::find(all.begin(), all.end(), h) == all.end()) all.push_back(h);
+  }
+  if (reports.empty()) return "";
+  std::string o = row(all);
+  for (size_t k = 0; k < reports.size(); ++k) {
+    const auto& g = reports[k];
+    auto wide = intervalColumns(g), ranged = rangedColumns(g);
+    if (heads[k] == all) {
+      designRows(g, wide, ranged, o, nullptr);
+      continue;
+    }
+    // Each field to its place in the whole header (no field holds a comma: names are
+    // identifiers, values numbers or a ratio).
+    std::vector<size_t> at;
+    for (const auto& h : heads[k]) at.push_back(static_cast<size_t>(std::find(all.begin(), all.end(), h) - all.begin()));
+    std::string line;
+    std::vector<std::string> cells(all.size());
+    designRows(g, wide, ranged, line, [&](std::string& l) {
+      for (auto& c : cells) c.clear();
+      size_t from = 0;
+      for (size_t f = 0; f < at.size(); ++f) {
+        size_t to = l.find_first_of(",\n", from);
+        cells[at[f]].assign(l, from, to - from);
+        from = to + 1;
       }
-      for (const auto& c : r.choiceValues) {
-        o += ',';
-        if (std::isfinite(c.si)) inUnit(c.si, c.unit, c.scale, 0.0);
-      }
-      o += ',';
-      num(r.ratio.toDouble());
-      for (size_t i = 0; i < r.cells.size(); ++i) {
-        const Cell& c = r.cells[i];
-        const std::string& un = g.columns[i].unit;
-        double sc = g.columns[i].scale, off = g.columns[i].offset;
-        o += ',';
-        if (c.valid) inUnit(c.lo, un, sc, off);
-        if (wide[i]) {
-          o += ',';
-          if (c.valid) inUnit(c.hi, un, sc, off);
-        }
-        if (ranged[i]) {
-          o += ',';
-          if (c.ranged) inUnit(c.rlo, un, sc, off);
-          o += ',';
-          if (c.ranged) inUnit(c.rhi, un, sc, off);
-        }
-      }
-      o += ',';
-      o += r.ratio.str();
-      o += '\n';
+      o += row(cells);
+      l.clear();
     });
   }
   return o;

@@ -43,7 +43,7 @@ ul.results{margin:0;padding-left:18px}ul.results li{overflow-wrap:anywhere}
 table{border-collapse:collapse;font-variant-numeric:tabular-nums}
 th,td{padding:3px 9px;text-align:right;border-bottom:1px solid #eaeef2;vertical-align:bottom}
 th{background:#f6f8fa;font-weight:600;max-width:16em}
-td{white-space:nowrap}td.t,th.t{text-align:left;white-space:normal;overflow-wrap:break-word}
+td{white-space:nowrap}td.t,th.t{text-align:left;white-space:normal}td.t{overflow-wrap:break-word}
 .scroll{overflow-x:auto;max-width:100%;margin:6px 0}
 table.safety td.v{font-weight:600}
 tr.ok td.v{color:var(--ok);background:var(--ok-bg)}tr.low td.v{color:var(--low);background:var(--low-bg)}
@@ -61,7 +61,7 @@ ul.model{color:var(--muted);font-size:13px;padding-left:18px}
  @page{size:A4;margin:14mm 12mm}
  body{max-width:none;padding:0;font-size:9.5pt}
  h2{break-after:avoid;margin-top:14pt}h3,h4{break-after:avoid}
- figure,tr,.warnings,dl.kv>*{break-inside:avoid}
+ figure,tr,.warnings,dl.kv>*,.card{break-inside:avoid}
  .cols{display:block}.cols>div{margin-bottom:6px}
  .scroll{overflow:visible}
  table{font-size:8pt}th{max-width:10em}
