@@ -130,17 +130,19 @@ void designRows(const GearboxReport& g, const std::vector<bool>& wide, const std
   });
 }
 
-// One table for every gearbox: the union of their headers, in the order they first appear,
-// with a gearbox's row empty in the columns it does not have.
+// One table for every gearbox: the union of their headers, in the order they first appear
+// (the exact ratio last), with a gearbox's row empty in the columns it does not have.
 std::string designs(const std::vector<GearboxReport>& reports) {
   std::vector<std::vector<std::string>> heads;
   std::vector<std::string> all;
   for (const auto& g : reports) {
     heads.push_back(designHeader(g, intervalColumns(g), rangedColumns(g)));
-    for (const auto& h : heads.back())
-      if (std::find(all.begin(), all.end(), h) == all.end()) all.push_back(h);
+    // Each header ends with the exact ratio, which goes last.
+    for (auto h = heads.back().begin(); h + 1 < heads.back().end(); ++h)
+      if (std::find(all.begin(), all.end(), *h) == all.end()) all.push_back(*h);
   }
   if (reports.empty()) return "";
+  all.push_back(heads.back().back());
   std::string o = row(all);
   for (size_t k = 0; k < reports.size(); ++k) {
     const auto& g = reports[k];

@@ -134,8 +134,10 @@ options:
                            join walks, counted before the work starts (default 1e9,
                            at most 4e9)
   --time-limit S           stop with exit 3 after S seconds of wall time, saying how far
-                           the work got and how long the whole would take; designs the
-                           search found or decided by then are listed, marked partial
+                           the work got; stopped in the search or while deciding the
+                           freedoms, the designs found or decided so far are listed,
+                           marked partial (with how many of how many); stopped later
+                           (optimisation, scenes, studies), no report is written
   --quiet, -q              no progress bar
   --no-timings             leave CPU times and the date out of reports
 

@@ -98,3 +98,41 @@ TEST(CsvRoundTrip, NegativeAndComputedValuesReadBack) {
     EXPECT_EQ(readAsSpec(s + " mm"), si) << s;
   }
 }
+
+// Several gearboxes, different columns: one table, one header, every row as wide as it.
+TEST(CsvRoundTrip, SeveralGearboxesMakeOneTidyTable) {
+  const char* spec = R"(gearbox A {
+  stage s: spur { pinion.z in 18..20; wheel.z in 40..41; normal_module = 3 mm; face_width = 30 mm; }
+  report { columns s.center_distance; }
+}
+gearbox B {
+  stage s: spur { pinion.z in 18..19; wheel.z = 50; normal_module in {2 mm, 3 mm}; face_width = 30 mm; }
+  report { columns s.eps_alpha, s.center_distance; }
+}
+)";
+  auto path = std::filesystem::temp_directory_path() / "gbx_csv_two_gearboxes.gbx";
+  std::ofstream(path) << spec;
+  std::stringstream csv, err;
+  ASSERT_EQ(driver::run({"solve", path.string(), "--format", "csv", "--quiet"}, csv, err), 0) << err.str();
+  std::string line;
+  std::getline(csv, line);
+  auto head = split(line);
+  EXPECT_EQ(head.front(), "gearbox");
+  EXPECT_EQ(head.back(), "ratio_exact");
+  auto column = [&](const std::string& n) { return std::find(head.begin(), head.end(), n) - head.begin(); };
+  ASSERT_LT(column("s.eps_alpha"), static_cast<long>(head.size()));
+  int a = 0, b = 0;
+  while (std::getline(csv, line)) {
+    auto cells = split(line);  // the last cell, the exact ratio, is never empty
+    ASSERT_EQ(cells.size(), head.size()) << line;
+    if (cells[0] == "A") {
+      ++a;
+      EXPECT_TRUE(cells[static_cast<size_t>(column("s.eps_alpha"))].empty()) << line;
+    } else {
+      ++b;
+      EXPECT_FALSE(cells[static_cast<size_t>(column("s.eps_alpha"))].empty()) << line;
+    }
+  }
+  EXPECT_EQ(a, 6);
+  EXPECT_EQ(b, 4);
+}
