@@ -40,6 +40,7 @@ struct AttrSpec {
   bool budget = false;                 // atMost is a size budget (E0411), not a physical bound
   std::vector<std::string> symbols;    // accepted words for ValueKind::Symbol; for a Number, words it takes instead of one
   bool sceneRef = false;               // a Number that may instead name a scene (`dynamic_factor = scene vib`)
+  std::string example;                 // a typical value as a spec writes it, for the reference (else from the bounds)
 };
 
 // Row builders shared by the catalogue files.

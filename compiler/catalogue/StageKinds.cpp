@@ -18,6 +18,11 @@ AttrSpec material() {
   return a;
 }
 
+AttrSpec exampled(AttrSpec a, std::string example) {
+  a.example = std::move(example);
+  return a;
+}
+
 std::vector<AttrSpec> commonDerived() {
   return {
       derived("ratio", none, "reduction: input speed / output speed"),
@@ -151,8 +156,12 @@ std::vector<AttrSpec> ratingGearExtras() {
       pos("bore_diameter", length, "inner diameter of the gear blank (0: solid; for the reduced mass of K_v)"),
       pos("web_thickness", length, "web thickness b_s of a webbed gear blank (for C_R; solid when absent)"),
       pos("rim_thickness", length, "rim thickness s_R of a webbed gear blank (for C_R)"),
-      hinted(in("upper_thickness_allowance", length, "upper normal tooth-thickness allowance A_sne (thinner teeth: negative; for the backlash)"), "um"),
-      hinted(in("lower_thickness_allowance", length, "lower normal tooth-thickness allowance A_sni (with the upper one; for the backlash)"), "um"),
+      exampled(hinted(in("upper_thickness_allowance", length,
+                         "upper normal tooth-thickness allowance A_sne (thinner teeth: negative; for the backlash of a rated stage)"),
+                      "um"),
+               "-50 um"),
+      exampled(hinted(in("lower_thickness_allowance", length, "lower normal tooth-thickness allowance A_sni (with the upper one)"), "um"),
+               "-90 um"),
   };
 }
 

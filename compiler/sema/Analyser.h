@@ -124,7 +124,7 @@ private:
   bool misspeltIn(const StageModel& st, const std::string& need) const;
   void requireMaterial(const ir::Gearbox& g, const GearboxModel& m);
   void requireRating(const ir::Gearbox& g, const GearboxModel& m);
-  void thicknessAllowances(const ir::Gearbox& g);
+  void thicknessAllowances(const ir::Gearbox& g, const GearboxModel& m);
   void sceneFactors(const ir::Gearbox& g);
   std::vector<ir::SpectrumBin> spectrumBins(const StageModel& st);
   void requireOperating(const ir::Gearbox& g);

@@ -122,7 +122,7 @@ ir::Gearbox Analyser::lowerGearbox(const GearboxModel& m) {
   if (!m.hasOperating) requireOperating(g);
   requireMaterial(g, m);
   requireRating(g, m);
-  thicknessAllowances(g);
+  thicknessAllowances(g, m);
   sceneFactors(g);
   if (!m.hasOperating)
     for (const auto& st : m.stages)

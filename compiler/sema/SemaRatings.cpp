@@ -322,13 +322,22 @@ void Analyser::requireMaterial(const ir::Gearbox& g, const GearboxModel& m) {
 }
 
 // A gear's tooth-thickness allowances come as a pair, the upper one not below the lower.
-void Analyser::thicknessAllowances(const ir::Gearbox& g) {
+void Analyser::thicknessAllowances(const ir::Gearbox& g, const GearboxModel& m) {
   const std::string upper(keyName(Q::UpperThicknessAllowance)), lower(keyName(Q::LowerThicknessAllowance));
   for (const auto& st : g.stages)
     for (const auto& gear : st.gears) {
       const ir::Attribute* u = st.find(gear + "." + upper);
       const ir::Attribute* l = st.find(gear + "." + lower);
       if (!u && !l) continue;
+      const StageModel* sm = m.findStage(st.name);
+      if (sm && !sm->rated) {
+        diags_.warning("W0503", (u ? u : l)->span,
+                       fmt::format("`{}` does nothing here: the backlash is part of the rating table, and stage `{}` has no "
+                                   "`rating {{ … }}` block",
+                                   (u ? u : l)->name, st.name));
+        continue;
+      }
+      if (sm && (misspeltIn(*sm, gear + "." + upper) || misspeltIn(*sm, gear + "." + lower))) continue;
       if (st.kind == ir::StageKind::Planetary && gear == st.gears.back()) {
         diags_.error("E0235", (u ? u : l)->span,
                      fmt::format("`{}`: the backlash of an internal mesh is not computed (the sun-planet mesh's is)", (u ? u : l)->name));

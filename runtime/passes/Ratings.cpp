@@ -298,7 +298,14 @@ void backlashRows(const rating::PairInput& in, const std::array<double, 2>& db, 
   rows.one("circumferential_backlash_min", "j_t min", um, least.jt, tight);
   rows.one("circumferential_backlash_max", "j_t max", um, most.jt, loose);
   rows.one("normal_backlash_min", "j_n min", um, least.jn, "j_t cos alpha_wt cos beta_b");
-  rows.one("normal_backlash_max", "j_n max", um, most.jn);
+  rows.one("normal_backlash_max", "j_n max", um, most.jn, "j_t cos alpha_wt cos beta_b");
+  // An allowance that takes the whole tooth is a typing slip, not a design.
+  for (size_t k = 0; k < 2; ++k) {
+    double sn = in.mn * (3.14159265358979323846 / 2 + 2 * g[k].x * std::tan(in.alphaN));
+    if (sn + g[k].lowerAllowance <= 0)
+      rows.out.warnings.push_back(fmt::format("{}: the lower thickness allowance {} um leaves no tooth (s_n {} mm)", rows.out.gears[k],
+                                              formatNumber(g[k].lowerAllowance * 1e6), formatNumber(sn * 1e3)));
+  }
 }
 
 // What the rating was given, before what it found: each gear's geometry (ISO 21771, with

@@ -250,7 +250,7 @@ std::string modifications(const std::vector<GearboxReport>& reports) {
 }
 
 std::string ratings(const std::vector<GearboxReport>& reports) {
-  std::string o = row({"gearbox", "stage", "gear", "quantity", "unit", "value", "method", "note"});
+  std::string o = row({"gearbox", "stage", "gear", "quantity", "unit", "value", "minimum", "method", "note"});
   bool any = false;
   for (const auto& g : reports)
     for (const auto& r : g.ratings)

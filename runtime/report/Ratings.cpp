@@ -130,10 +130,12 @@ std::vector<std::vector<std::string>> ratingCsvRows(const std::string& gearbox, 
       return std::string("not a number");
     };
     std::string stage = r.mesh.empty() ? r.stage : r.stage + "." + r.mesh;
-    if (!row.perGear) out.push_back({gearbox, stage, "", row.key, row.unit, value(row.si[0]), row.method, note(0, row.si[0])});
+    // A safety stands beside the minimum it is held against.
+    std::string least = row.minimum == RatingReport::Row::NoMinimum ? "" : csvNumber(r.minimumOf(row.minimum));
+    if (!row.perGear) out.push_back({gearbox, stage, "", row.key, row.unit, value(row.si[0]), least, row.method, note(0, row.si[0])});
     else
       for (size_t g = 0; g < r.gears.size(); ++g)
-        out.push_back({gearbox, stage, r.gears[g], row.key, row.unit, value(row.si[g]), row.method, note(g, row.si[g])});
+        out.push_back({gearbox, stage, r.gears[g], row.key, row.unit, value(row.si[g]), least, row.method, note(g, row.si[g])});
   }
   return out;
 }

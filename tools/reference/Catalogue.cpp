@@ -59,6 +59,7 @@ std::string sample(const AttrSpec& a) {
   if (a.value == ValueKind::Material) return "steel_18CrNiMo7_6";
   if (a.value == ValueKind::Stage) return "first";
   if (a.value == ValueKind::Symbol) return a.symbols.empty() ? "?" : a.symbols.front();
+  if (!a.example.empty()) return a.example;
   if (a.dflt) return show(*a.dflt, a);
   if (a.atLeast && a.atMost) return show(*a.atMost, a);
   if (a.atLeast) return show(*a.atLeast, a);

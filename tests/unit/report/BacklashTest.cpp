@@ -83,11 +83,16 @@ gearbox G {
   EXPECT_EQ(row("upper_thickness_allowance"), (std::vector<double>{-80e-6, -100e-6}));
 }
 
-TEST(Backlash, AllowancesComeInPairsUpperAboveLower) {
-  auto diag = [](const std::string& gears) {
-    auto c = driver::compileText("b.gbx",
-                                 "gearbox G {\n  stage s: spur { pinion.z = 20; wheel.z = 40; normal_module = 3 mm; " +
-                                     gears + " }\n}\n");
+TEST(Backlash, AllowancesComeInPairsUpperAboveLowerOnARatedStage) {
+  auto diag = [](const std::string& gears, bool rated = true) {
+    std::string rating =
+        rated ? "material = steel_18CrNiMo7_6; accuracy = 6; rating { life = 20000 h; lubricant { viscosity_40 = 220 "
+                "mm^2/s; } roughness { flank = 0.8 um; root = 3.2 um; } }"
+              : "";
+    auto c = driver::compileText(
+        "b.gbx", "import materials;\ngearbox G {\n  stage s: spur { pinion.z = 20; wheel.z = 40; normal_module = "
+                 "3 mm; face_width = 30 mm; " +
+                     gears + rating + " }\n  operating { input_speed = 1500 rpm; input_torque = 100 N*m; }\n}\n");
     return c->diags.renderText(c->sources);
   };
   std::string one = diag("pinion.upper_thickness_allowance = -50 um;");
@@ -95,6 +100,7 @@ TEST(Backlash, AllowancesComeInPairsUpperAboveLower) {
   EXPECT_NE(one.find("pinion.lower_thickness_allowance"), std::string::npos) << one;
   std::string inverted = diag("pinion.upper_thickness_allowance = -90 um; pinion.lower_thickness_allowance = -50 um;");
   EXPECT_NE(inverted.find("E0401"), std::string::npos) << inverted;
-  EXPECT_EQ(diag("pinion.upper_thickness_allowance = -50 um; pinion.lower_thickness_allowance = -90 um;").find("error"),
-            std::string::npos);
+  const std::string both = "pinion.upper_thickness_allowance = -50 um; pinion.lower_thickness_allowance = -90 um;";
+  EXPECT_EQ(diag(both).find("error"), std::string::npos) << diag(both);
+  EXPECT_NE(diag(both, false).find("W0503"), std::string::npos); // nothing shows them without a rating
 }
