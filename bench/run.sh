@@ -392,5 +392,6 @@ print("\n".join(lines))
 PY
 rm -f "$mitm" "$out" "$dyn" "$dyn.rhs" "$dyn.rating" "$dyn.steady" "$dyn.opt.settle" "$dyn.opt.periodic" "$settle_spec" "$periodic_spec" "$params" \
   "$dyn.robust" "$dyn.robust.out" "$dyn.ec.gbx" "$dyn.ec.msbdf" "$dyn.ec.rk8pd"
-# The sizing section, appended to the file just written.
+# The sizing and shaft sections, appended to the file just written.
 bench/sizing.sh >/dev/null
+bench/shaft.sh >/dev/null
