@@ -20,6 +20,17 @@ grammar Gbx;
     auto t = _input->LT(1);
     return t && t->getText() == w;
   }
+  // `WORD [path] at …`: a placement in a shaft, told apart before it is parsed so that a
+  // misspelt statement word (`minimise x;`) keeps its own message.
+  bool placed() {
+    size_t i = 2;
+    while (_input->LT(static_cast<ssize_t>(i))->getType() == ID) {
+      ++i;
+      if (_input->LT(static_cast<ssize_t>(i))->getText() != ".") break;
+      ++i;
+    }
+    return _input->LT(static_cast<ssize_t>(i))->getType() == AT;
+  }
   // A unit stands on the number's line: `41` at the end of a line is never `41 normal_module`.
   bool sameLine() {
     auto prev = _input->LT(-1);
@@ -64,6 +75,9 @@ stmt
   | path IN domain ';'                             # domainStmt
   | path PLUSMINUS addExpr ';'                     # scatterStmt  // in `tolerances`
   | {isWord("bin")}? ID tolExpr ID? FOR tolExpr (OF ID)? ';' # binStmt  // `bin 130% torque for 0.1% of life;`
+  | {isWord("segment")}? ID tolExpr '..' tolExpr block        # segmentStmt  // `segment 0 mm .. 60 mm { … }`
+  | {placed()}? ID path? AT expr (block | ';')      # placedStmt  // `bearing A at 30 mm { … }`, `gear hs.pinion at 175 mm;`
+  | ID ID block                                    # memberStmt  // `shaft input { … }`
   | ID block                                       # blockStmt
   | ID ';'                                         # flagStmt
   ;
@@ -117,7 +131,7 @@ OPERATING : 'operating' ;  SCENE : 'scene' ;  ON : 'on' ;  EFFECTS : 'effects' ;
 MODIFY : 'modify' ;  SPLIT : 'split' ;  STUDY : 'study' ;  SWEEP : 'sweep' ;
 STEP : 'step' ;  OF : 'of' ;  OUTPUT : 'output' ;  REPORT : 'report' ;  TOP : 'top' ;
 SORT : 'sort' ;  BY : 'by' ;  COLUMNS : 'columns' ;  WHEN : 'when' ;  AND : 'and' ;
-OR : 'or' ;  NOT : 'not' ;  TRUE : 'true' ;  FALSE : 'false' ;
+OR : 'or' ;  NOT : 'not' ;  TRUE : 'true' ;  FALSE : 'false' ;  AT : 'at' ;
 
 PLUSMINUS : '+-' | '\u00B1' ;
 DEGSIGN : '\u00B0' ;

@@ -58,6 +58,9 @@ const char* stmtKindName(StmtKind k) {
   case StmtKind::Columns: return "columns";
   case StmtKind::Assign: return "assignment";
   case StmtKind::Domain: return "domain";
+  case StmtKind::Member: return "member";
+  case StmtKind::Segment: return "segment";
+  case StmtKind::Placed: return "placement";
   case StmtKind::Scatter: return "tolerance";
   case StmtKind::Bin: return "spectrum bin";
   case StmtKind::Block: return "block";
@@ -193,6 +196,9 @@ void printStmt(std::string& out, const Stmt& s, int depth) {
     if (s.when) head += " when " + opt(s.when);
     break;
   case StmtKind::Scatter: head += fmt::format(" {} +- {}", s.path.str(), opt(s.value)); break;
+  case StmtKind::Member: head += fmt::format(" {} {}", s.word, s.name); break;
+  case StmtKind::Segment: head += fmt::format(" {}..{}", opt(s.lo), opt(s.hi)); break;
+  case StmtKind::Placed: head += fmt::format(" {}{} at {}", s.name, s.path.parts.empty() ? "" : " " + s.path.str(), opt(s.value)); break;
   case StmtKind::Bin:
     head += fmt::format(" {}{} for {}{}", opt(s.value), s.word.empty() ? "" : " " + s.word, opt(s.step),
                         s.cycles ? " cycles" : s.base.empty() ? "" : " of " + s.base);

@@ -80,6 +80,9 @@ enum class StmtKind {
   Modify, Split, Study, Report, Output, Sweep, Of, Top, Sort, Columns, Assign, Domain,
   Scatter,  // `main.face_width +- 1 mm;` in `tolerances`
   Bin,      // `bin 130% torque for 0.1% of life;` in `load_spectrum`: value, word, step, base
+  Member,   // `shaft input { … }` in a gearbox: word `shaft`, name
+  Segment,  // `segment 0 mm .. 60 mm { … }` in a shaft: lo, hi, body
+  Placed,   // `WORD [path] at POSITION ({ … } | ;)` in a shaft: word, path (gear or name), value, body
   Block, Flag,
 };
 

@@ -53,11 +53,16 @@ Better betterOf(Q q) {
   case Q::ScuffingTemperature:
   case Q::MicropittingSafety:
   case Q::SpecificFilmThickness:
-  case Q::PermissibleFilmThickness: return Better::Larger;
+  case Q::PermissibleFilmThickness:
+  case Q::Life:
+  case Q::ModifiedLife:
+  case Q::StaticSafety: return Better::Larger;
   case Q::ContactStress:
   case Q::BendingStress:
   case Q::Mass:
   case Q::LoadDeflection:
+  case Q::Deflection:
+  case Q::Reaction:
   case Q::BendingDeflection:
   case Q::TorsionDeflection:
   case Q::SlidingBalance:
@@ -84,6 +89,7 @@ bool readsInMicrometres(Q q) {
   case Q::BendingDeflection:
   case Q::TorsionDeflection:
   case Q::LoadDeflection:
+  case Q::Deflection:
   case Q::TipRelief:
   case Q::LeadCrowning:
   case Q::RatingMeshMisalignment:

@@ -204,6 +204,36 @@ namespace gbx::cat {
   X(UpperThicknessAllowance, "upper_thickness_allowance")                                      \
   X(LowerThicknessAllowance, "lower_thickness_allowance")                                      \
   X(CenterDistanceAllowance, "center_distance_allowance")                                      \
+  X(Diameter, "diameter")                                                                    \
+  X(Bore, "bore")                                                                            \
+  X(Roughness, "roughness")                                                                  \
+  X(Shear, "shear")                                                                          \
+  X(HeatTreatmentDiameter, "heat_treatment_diameter")                                        \
+  X(BearingKind, "kind")                                                                     \
+  X(DynamicRating, "C")                                                                      \
+  X(StaticRating, "C0")                                                                      \
+  X(RadialStiffness, "radial_stiffness")                                                     \
+  X(Axial, "axial")                                                                          \
+  X(LoadRatioLimit, "e")                                                                     \
+  X(RadialFactor, "X")                                                                       \
+  X(AxialFactor, "Y")                                                                        \
+  X(StaticRadialFactor, "X0")                                                                \
+  X(StaticAxialFactor, "Y0")                                                                 \
+  X(PitchDiameter, "pitch_diameter")                                                         \
+  X(Radial, "radial")                                                                        \
+  X(Angle, "angle")                                                                          \
+  X(Width, "width")                                                                          \
+  X(Reliability, "reliability")                                                              \
+  X(Cleanliness, "cleanliness")                                                              \
+  X(Contamination, "contamination")                                                          \
+  X(Deflection, "deflection")                                                                \
+  X(CriticalSpeed, "critical_speed")                                                         \
+  X(Reaction, "reaction")                                                                    \
+  X(AxialReaction, "axial_reaction")                                                         \
+  X(Life, "life")                                                                            \
+  X(ModifiedLife, "modified_life")                                                           \
+  X(StaticSafety, "static_safety")                                                           \
+  X(OilViscosity, "viscosity")                                                               \
   X(ToolEdgeRadius, "tool_edge_radius")                                                         \
   X(MeanDiameter, "mean_diameter")                                                              \
   X(OuterPitchDiameter, "outer_pitch_diameter")                                                 \

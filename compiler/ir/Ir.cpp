@@ -20,6 +20,8 @@ std::string Type::str() const {
   case Split: return "split";
   case PerGear: return "per-gear " + dim.siUnit();
   case Block: return "block " + detail;
+  case Shaft: return "shaft";
+  case Bearing: return "bearing " + detail;
   case Error: return "error";
   }
   return "?";
@@ -137,6 +139,12 @@ int Gearbox::stageIndex(const std::string& n) const {
   return -1;
 }
 
+int Gearbox::shaftIndex(const std::string& n) const {
+  for (size_t i = 0; i < shafts.size(); ++i)
+    if (shafts[i].name == n) return static_cast<int>(i);
+  return -1;
+}
+
 int Gearbox::splitIndex(const std::string& n) const {
   for (size_t i = 0; i < splits.size(); ++i)
     if (splits[i].name == n) return static_cast<int>(i);
@@ -165,6 +173,16 @@ const Material* Program::findMaterial(const std::string& n) const {
   for (const auto& m : materials)
     if (m.name == n) return &m;
   return nullptr;
+}
+
+int Shaft::bearingIndex(const std::string& n) const {
+  int k = 0;
+  for (const auto& p : placed) {
+    if (p.kind != Place::Bearing) continue;
+    if (p.name == n) return k;
+    ++k;
+  }
+  return -1;
 }
 
 } // namespace gbx::ir

@@ -25,7 +25,7 @@ using units::Dim;
 using units::Number;
 
 struct Type {
-  enum Kind { Number, Bool, Interval, Set, Stage, Gear, Collection, Signal, Symbol, Material, Scene, Split, PerGear, Block, Error };
+  enum Kind { Number, Bool, Interval, Set, Stage, Gear, Collection, Signal, Symbol, Material, Scene, Split, PerGear, Block, Shaft, Bearing, Error };
   Kind kind = Error;
   Dim dim;
   bool integer = false;
@@ -65,10 +65,10 @@ using cat::Q;
 
 // A quantity as lowering resolves it: who owns it, and which catalogue word it is.
 struct QuantityRef {
-  enum Owner : std::uint8_t { Unresolved, Gearbox, Stage, Split, Material, Collection };
+  enum Owner : std::uint8_t { Unresolved, Gearbox, Stage, Split, Material, Collection, Shaft };
   Owner owner = Unresolved;
-  std::int16_t index = -1;  // the stage, split or material
-  std::int8_t gear = -1;    // the gear's position in its stage; -1 a stage quantity
+  std::int16_t index = -1;  // the stage, split, material or shaft
+  std::int8_t gear = -1;    // the gear's position in its stage (a shaft's bearing); -1 a stage (shaft) quantity
   bool perGear = false;     // `pitch_deviation` of every gear of the stage (modify rules)
   Q key = Q::None;
   bool operator==(const QuantityRef&) const = default;
@@ -261,6 +261,30 @@ struct Split {
   Span span;
 };
 
+// A shaft of the gearbox (docs/shafts.md): positions along its own axis from its left end.
+struct Shaft {
+  std::string name;
+  std::vector<Setting> settings;  // material (symbol), shear, speed, heat_treatment_diameter, life.*
+  struct Segment {
+    Number x0, x1;
+    std::vector<Setting> settings;  // diameter, bore, roughness
+    Span span;
+  };
+  std::vector<Segment> segments;  // contiguous from 0, left to right
+  enum class Place : std::uint8_t { Gear, Coupling, Bearing, Load, Disk };
+  struct Placed {
+    Place kind = Place::Load;
+    std::string name;  // a bearing's name, a gear's `stage.gear`
+    Number at;
+    int stage = -1, gear = -1;  // a gear: its stage and position
+    std::vector<Setting> settings;
+    Span span;
+  };
+  std::vector<Placed> placed;
+  Span span;
+  int bearingIndex(const std::string& n) const;  // among the bearings, in order; -1 if none
+};
+
 struct Study {
   enum Kind { Sweep, WorkPrecision };
   std::string name;
@@ -314,6 +338,7 @@ struct Gearbox {
   std::vector<Scene> scenes;
   std::vector<Modify> modifies;
   std::vector<Split> splits;
+  std::vector<Shaft> shafts;
   std::vector<Study> studies;
   std::vector<Tolerance> tolerances;
   std::vector<Setting> toleranceSettings;  // samples, distribution, seed: Monte Carlo (docs/optimisation.md)
@@ -322,6 +347,7 @@ struct Gearbox {
   const Stage* findStage(const std::string& name) const;
   int stageIndex(const std::string& name) const;
   int splitIndex(const std::string& name) const;
+  int shaftIndex(const std::string& name) const;
 };
 
 struct Material {

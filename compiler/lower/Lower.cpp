@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "catalogue/Settings.h"
+#include "catalogue/Shafts.h"
 #include "catalogue/StageKinds.h"
 
 namespace gbx::lower {
@@ -186,6 +187,14 @@ public:
       }
     }
     for (auto& sp : g.splits) settings(sp.settings, cat::splitSettings());
+    for (auto& sh : g.shafts) {
+      settings(sh.settings, cat::shaftSettings());
+      for (auto& seg : sh.segments) settings(seg.settings, cat::segmentSettings());
+      for (auto& p : sh.placed)
+        settings(p.settings, p.kind == ir::Shaft::Place::Bearing ? cat::bearingSettings()
+                             : p.kind == ir::Shaft::Place::Disk  ? cat::diskSettings()
+                                                                 : cat::loadSettings());
+    }
     for (auto& t : g.tolerances) t.ref = quantity(t.target);
     settings(g.toleranceSettings, cat::toleranceSettings());
     for (auto& st : g.studies) {
@@ -254,6 +263,18 @@ QuantityRef quantityRef(const ir::Program& p_, const ir::Gearbox& g_, const std:
   if (int sp = g_.splitIndex(head); sp >= 0) {
     r.owner = QuantityRef::Split;
     r.index = static_cast<std::int16_t>(sp);
+    r.key = cat::keyOf(rest).value_or(Q::None);
+    return r;
+  }
+  // `input.deflection`, `input.A.life`: the shaft's, or one bearing's (its position among them).
+  if (int sh = g_.shaftIndex(head); sh >= 0) {
+    r.owner = QuantityRef::Shaft;
+    r.index = static_cast<std::int16_t>(sh);
+    auto d2 = rest.find('.');
+    if (d2 != std::string::npos) {
+      r.gear = static_cast<std::int8_t>(g_.shafts[static_cast<size_t>(sh)].bearingIndex(rest.substr(0, d2)));
+      rest = rest.substr(d2 + 1);
+    }
     r.key = cat::keyOf(rest).value_or(Q::None);
     return r;
   }

@@ -158,6 +158,11 @@ private:
     }
     if (stmt.size() == 1 && voc.getSymbolicName(stmt[0]->getType()) == "ID" && voc.getSymbolicName(offending.getType()) == "ID")
       return unknownStatement(voc, *stmt[0], keywords);
+    // `word a.b …` that is no placement (no `at`): taken as one up to its end, still a
+    // misspelt statement word.
+    if (stmt.size() >= 2 && voc.getSymbolicName(stmt[0]->getType()) == "ID" && voc.getSymbolicName(stmt[1]->getType()) == "ID" &&
+        std::none_of(stmt.begin(), stmt.end(), [&](antlr4::Token* t) { return voc.getSymbolicName(t->getType()) == "AT"; }))
+      return unknownStatement(voc, *stmt[0], keywords);
     return false;
   }
 
@@ -275,6 +280,36 @@ private:
       if (auto x = stmt(st)) s.body.push_back(std::move(*x));
   }
 
+  // The statements of a shaft: `segment a .. b { … }`, `WORD [path] at x …`, and the
+  // gearbox member `shaft NAME { … }` itself.
+  bool shaftStmt(ast::Stmt& s, GbxParser::StmtContext* ctx) {
+    using K = ast::StmtKind;
+    if (auto* c = dynamic_cast<GbxParser::SegmentStmtContext*>(ctx)) {
+      s.kind = K::Segment;
+      setName(s, c->ID());
+      auto t = c->tolExpr();
+      if (t.size() > 0) s.lo = tolExpr(t[0]);
+      if (t.size() > 1) s.hi = tolExpr(t[1]);
+      body(s, c->block());
+    } else if (auto* c = dynamic_cast<GbxParser::PlacedStmtContext*>(ctx)) {
+      s.kind = K::Placed;
+      setName(s, c->ID());
+      if (c->path()) s.path = path(c->path());
+      s.value = expr(c->expr());
+      body(s, c->block());
+    } else if (auto* c = dynamic_cast<GbxParser::MemberStmtContext*>(ctx)) {
+      s.kind = K::Member;
+      auto ids = c->ID();
+      s.word = ids[0]->getText();
+      s.wordSpan = span(ids[0]);
+      if (ids.size() > 1) setName(s, ids[1]);
+      body(s, c->block());
+    } else {
+      return false;
+    }
+    return true;
+  }
+
   std::optional<ast::Stmt> stmt(GbxParser::StmtContext* ctx) {
     using K = ast::StmtKind;
     ast::Stmt s;
@@ -376,6 +411,7 @@ private:
       s.value = addExpr(c->addExpr());
     } else if (auto* c = dynamic_cast<GbxParser::BinStmtContext*>(ctx)) {
       bin(s, c);
+    } else if (shaftStmt(s, ctx)) {
     } else if (auto* c = dynamic_cast<GbxParser::BlockStmtContext*>(ctx)) {
       s.kind = K::Block;
       setName(s, c->ID());

@@ -161,6 +161,10 @@ private:
   ir::Modify modify(const Stmt& st, const GearboxModel& m, const Scope& gs);
   void missingInputs(const StageModel& stage, const ir::ModRule& r, const Stmt& b);
   ir::Split split(const Stmt& st, const GearboxModel& m, const Scope& gs);
+  ir::Shaft shaft(const Stmt& st, const GearboxModel& m, const Scope& gs);
+  std::optional<ir::Shaft::Placed> placed(const Stmt& s, const GearboxModel& m, const Scope& gs, const std::string& owner,
+                                          std::set<std::string>& bearings);
+  std::optional<Number> position(const ast::Expr* e, const Scope& gs, const std::string& what);
 
   // ---- SemaStudies.cpp: studies and the report --------------------------------------------------
   ir::Study study(const Stmt& st, const GearboxModel& m, const Scope& gs);

@@ -8,6 +8,7 @@
 #include "catalogue/Functions.h"
 #include "catalogue/Methods.h"
 #include "catalogue/Settings.h"
+#include "catalogue/Shafts.h"
 #include "catalogue/Signals.h"
 #include "catalogue/StageKinds.h"
 #include "diag/Suggest.h"

@@ -31,6 +31,8 @@ std::string describe(const Type& t, const std::string& written) {
   case Type::Material: return "a material";
   case Type::Scene: return "a scene";
   case Type::Split: return "a split";
+  case Type::Shaft: return "a shaft";
+  case Type::Bearing: return "a bearing";
   case Type::PerGear: return "a per-gear quantity";
   case Type::Block: return "a settings block";
   case Type::Error: return "an erroneous expression";
@@ -367,6 +369,7 @@ ir::ExprPtr ExprChecker::name(const ast::Expr& e, const Scope& s) {
       return make(Op::Quantity, Type{Type::Stage, {}, false, st->kind ? st->kind->name : ""}, e.span, n);
     if (s.gearbox->findScene(n)) return make(Op::Quantity, Type{Type::Scene, {}, false, {}}, e.span, n);
     if (s.gearbox->findSplit(n)) return make(Op::Quantity, Type{Type::Split, {}, false, {}}, e.span, n);
+    if (s.gearbox->findShaft(n)) return make(Op::Quantity, Type{Type::Shaft, {}, false, {}}, e.span, n);
   }
   if (auto it = globals_.constValues.find(n); it != globals_.constValues.end()) {
     auto v = it->second->clone();
@@ -423,6 +426,30 @@ ir::ExprPtr ExprChecker::member(const ast::Expr& e, const Scope& s) {
     diags_.error("E0219", e.span,
                  fmt::format("split `{}` has no `{}` (it reports twist, displacement, imbalance, branch_torque){}",
                              obj->name, m, suggestion(hint)));
+    return error(e.span);
+  }
+  case Type::Shaft: {
+    for (const auto& o : cat::shaftOutputs())
+      if (o.name == m) return quantity(obj->name + "." + m, o, e.span);
+    std::vector<std::string> names;
+    for (const auto& o : cat::shaftOutputs()) names.push_back(o.name);
+    if (const ast::Stmt* sh = s.gearbox ? s.gearbox->findShaft(obj->name) : nullptr)
+      for (const auto& b : sh->body)
+        if (b.kind == ast::StmtKind::Placed && b.name == "bearing" && b.path.parts.size() == 1) {
+          if (b.path.parts[0] == m) return make(Op::Quantity, Type{Type::Bearing, {}, false, obj->name}, e.span, obj->name + "." + m);
+          names.push_back(b.path.parts[0]);
+        }
+    diags_.error("E0219", e.span,
+                 fmt::format("shaft `{}` has no `{}` (it reports deflection, critical_speed, mass, and each bearing's values){}", obj->name, m,
+                             suggestion(closest(m, names))));
+    return error(e.span);
+  }
+  case Type::Bearing: {
+    for (const auto& o : cat::bearingOutputs())
+      if (o.name == m) return quantity(obj->name + "." + m, o, e.span);
+    std::vector<std::string> names;
+    for (const auto& o : cat::bearingOutputs()) names.push_back(o.name);
+    diags_.error("E0219", e.span, fmt::format("bearing `{}` has no `{}`{}", obj->name, m, suggestion(closest(m, names))));
     return error(e.span);
   }
   case Type::Block: {

@@ -41,6 +41,7 @@ const ast::Stmt* byName(const std::vector<const ast::Stmt*>& v, const std::strin
 
 const ast::Stmt* GearboxModel::findScene(const std::string& n) const { return byName(scenes, n); }
 const ast::Stmt* GearboxModel::findSplit(const std::string& n) const { return byName(splits, n); }
+const ast::Stmt* GearboxModel::findShaft(const std::string& n) const { return byName(shafts, n); }
 const ast::Stmt* GearboxModel::findLet(const std::string& n) const { return byName(lets, n); }
 
 } // namespace gbx::sema

@@ -53,6 +53,7 @@ struct GearboxModel {
   std::vector<const ast::Stmt*> scenes;
   std::vector<const ast::Stmt*> modifies;
   std::vector<const ast::Stmt*> splits;
+  std::vector<const ast::Stmt*> shafts;
   std::map<std::string, std::vector<std::pair<std::string, Binding>>> splitOverrides;
   std::vector<const ast::Stmt*> studies;
   std::vector<const ast::Stmt*> tolerances;  // the lines of `tolerances { … }`, a variant's replacing by target
@@ -63,6 +64,7 @@ struct GearboxModel {
   StageModel* findStage(const std::string& n);
   const ast::Stmt* findScene(const std::string& n) const;
   const ast::Stmt* findSplit(const std::string& n) const;
+  const ast::Stmt* findShaft(const std::string& n) const;
   const ast::Stmt* findLet(const std::string& n) const;
 };
 

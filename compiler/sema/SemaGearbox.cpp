@@ -116,6 +116,7 @@ ir::Gearbox Analyser::lowerGearbox(const GearboxModel& m) {
   for (const auto* sc : m.scenes) g.scenes.push_back(scene(*sc, m, gs));
   for (const auto* md : m.modifies) mergeModify(g.modifies, modify(*md, m, gs));
   for (const auto* sp : m.splits) g.splits.push_back(split(*sp, m, gs));
+  for (const auto* sh : m.shafts) g.shafts.push_back(shaft(*sh, m, gs));
   for (const auto* sd : m.studies) g.studies.push_back(study(*sd, m, gs));
   if (m.report) g.report = report(*m.report, gs);
 

@@ -251,6 +251,14 @@ void Analyser::statementsOf(GearboxModel& model, const Stmt& decl, std::map<std:
       replaceOrAdd(model.splits, &st, [](const Stmt* s) { return s->name; });
       model.splitOverrides.erase(st.name);
       break;
+    case StmtKind::Member:
+      if (st.word != "shaft") {
+        diags_.error("E0111", st.wordSpan, fmt::format("`{} {} {{ … }}` is not a gearbox member; a gearbox holds `shaft NAME {{ … }}`", st.word, st.name));
+        break;
+      }
+      dupInBlock(seen, st, "shaft");
+      replaceOrAdd(model.shafts, &st, [](const Stmt* s) { return s->name; });
+      break;
     case StmtKind::Study:
       dupInBlock(seen, st, "study");
       replaceOrAdd(model.studies, &st, [](const Stmt* s) { return s->name; });

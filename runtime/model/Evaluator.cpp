@@ -1,5 +1,7 @@
 #include "model/Evaluator.h"
 
+#include "shaft/ShaftPlan.h"
+
 #include "model/Builtins.h"
 #include "model/Deadline.h"
 #include "model/Sampling.h"
@@ -496,6 +498,7 @@ Value Evaluator::quantity(const ir::QuantityRef& r, const Assignment& a) const {
   case ir::QuantityRef::Split:
     if (r.index < 0 || static_cast<size_t>(r.index) >= m_.gearbox.splits.size()) return Value::invalid();
     return splitQuantity(r.index, r.key, a);
+  case ir::QuantityRef::Shaft: return shaftQuantity(*this, r, a);
   case ir::QuantityRef::Stage: {
     if (!m_.hasStage(r.index)) return Value::invalid();
     const StageInfo::Entry& en = m_.info(r.index).entry(r.gear, r.key);
@@ -704,6 +707,7 @@ units::DisplayUnit valueUnitOf(const ir::Expr& e) {
 
 units::DisplayUnit displayUnitOf(const ir::Expr& e) {
   if (e.op == ir::Op::Quantity && e.ref.key == Q::Imbalance) return {"%", 0.01};
+  if (e.op == ir::Op::Quantity && (e.ref.key == Q::Life || e.ref.key == Q::ModifiedLife)) return {"h", 3600};
   return valueUnitOf(e);
 }
 

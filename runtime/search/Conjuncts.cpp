@@ -1,5 +1,7 @@
 #include "search/Conjuncts.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "catalogue/Settings.h"
@@ -31,6 +33,18 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth) {
       for (int s = 0; s < all; ++s)
         c.stages.insert(s);
       if (!m.freedoms.empty() && r.key != Q::Ratio) c.freedom = true;
+      break;
+    }
+    // A shaft's quantity: the stages of its gears and every stage before them (their torques
+    // and speeds come down the train), solved once the candidates' cheaper rules have passed.
+    if (r.owner == ir::QuantityRef::Shaft) {
+      int last = -1;
+      for (const auto& p : m.gearbox.shafts[static_cast<size_t>(r.index)].placed) last = std::max(last, p.stage);
+      for (int s = 0; s <= (last < 0 ? all - 1 : last); ++s) {
+        c.stages.insert(s);
+        if (!m.stages[static_cast<size_t>(s)].freedoms.empty()) c.freedom = true;
+      }
+      c.strength = true;
       break;
     }
     if (r.owner != ir::QuantityRef::Stage) {

@@ -1,0 +1,207 @@
+#include "catalogue/Shafts.h"
+#include "catalogue/StageKinds.h"
+#include "sema/Analyser.h"
+
+// `shaft NAME { … }`: its settings, segments, gears, bearings, loads and disks (docs/shafts.md).
+
+namespace gbx::sema {
+
+namespace {
+
+using Place = ir::Shaft::Place;
+
+std::optional<Place> placeOf(const std::string& w) {
+  if (w == "gear") return Place::Gear;
+  if (w == "coupling") return Place::Coupling;
+  if (w == "bearing") return Place::Bearing;
+  if (w == "load") return Place::Load;
+  if (w == "disk") return Place::Disk;
+  return std::nullopt;
+}
+
+} // namespace
+
+// A position along the shaft: a constant length.
+std::optional<Number> Analyser::position(const ast::Expr* e, const Scope& gs, const std::string& what) {
+  if (!e) return std::nullopt;
+  auto x = checker_.check(e, gs);
+  if (x->type.isError()) return std::nullopt;
+  if (!x->isConst() || !x->type.isNumber()) {
+    diags_.error("E0410", x->span, fmt::format("the position of {} must be a constant length", what));
+    return std::nullopt;
+  }
+  if (x->type.dim != units::dims::length) {
+    bool bare = x->type.dim.dimensionless();
+    diags_.error("E0302", x->span,
+                 fmt::format("unit mismatch: the position of {} needs a length, got {}{}", what, describe(x->type),
+                             bare ? fmt::format("; write it with a unit, as `{} mm`", x->value.str()) : ""));
+    return std::nullopt;
+  }
+  if (x->value.sign() < 0) {
+    diags_.error("E0405", x->span,
+                 fmt::format("the position of {} must not be negative, got {}", what,
+                             units::showQuantity(x->value, x->type.dim)));
+    return std::nullopt;
+  }
+  return x->value;
+}
+
+// One `WORD [path] at x …` of a shaft: a gear of a stage, a coupling, a named bearing, a
+// load or a disk, with its settings.
+std::optional<ir::Shaft::Placed> Analyser::placed(const Stmt& s, const GearboxModel& m, const Scope& gs,
+                                                  const std::string& owner, std::set<std::string>& bearings) {
+  auto kind = placeOf(s.name);
+  if (s.name == "notch") {
+    diags_.error(
+        "E0235", nameOr(s),
+        fmt::format("{}: the DIN 743 strength of a shaft is not rated yet (its notches and `strength` block)", owner));
+    return std::nullopt;
+  }
+  if (!kind) {
+    diags_.error("E0110", nameOr(s),
+                 fmt::format("`{} … at …` is not allowed in {}; it takes gear, coupling, bearing, load and disk",
+                             s.name, owner));
+    return std::nullopt;
+  }
+  ir::Shaft::Placed p;
+  p.kind = *kind;
+  p.span = s.span;
+  auto at = position(s.value.get(), gs, fmt::format("a {}", s.name));
+  if (!at) return std::nullopt;
+  p.at = *at;
+  if (*kind == Place::Gear) {
+    const StageModel* stage = s.path.parts.size() == 2 ? m.findStage(s.path.parts[0]) : nullptr;
+    bool gearOk =
+        stage && stage->kind &&
+        std::find(stage->kind->gears.begin(), stage->kind->gears.end(), s.path.parts[1]) != stage->kind->gears.end();
+    if (!gearOk) {
+      diags_.error("E0201", s.path.span,
+                   fmt::format("`{}` is not a gear of this gearbox (write `gear STAGE.GEAR at …`)", s.path.str()));
+      return std::nullopt;
+    }
+    if (stage->kind->kind != ir::StageKind::Spur && stage->kind->kind != ir::StageKind::Helical) {
+      diags_.error("E0235", s.path.span,
+                   fmt::format("`{}`: a shaft carries spur and helical gears so far (not a {} stage's)", s.path.str(),
+                               stage->kind->name));
+      return std::nullopt;
+    }
+    p.name = s.path.str();
+    p.gear = static_cast<int>(std::find(stage->kind->gears.begin(), stage->kind->gears.end(), s.path.parts[1]) -
+                              stage->kind->gears.begin());
+    for (size_t i = 0; i < m.stages.size(); ++i)
+      if (&m.stages[i] == stage) p.stage = static_cast<int>(i);
+  } else if (*kind == Place::Bearing) {
+    if (s.path.parts.size() != 1) {
+      diags_.error("E0110", nameOr(s),
+                   fmt::format("a bearing of {} needs a name: `bearing A at 30 mm {{ … }}`", owner));
+      return std::nullopt;
+    }
+    p.name = s.path.str();
+    if (!bearings.insert(p.name).second) {
+      diags_.error("E0202", s.path.span,
+                   fmt::format("duplicate declaration: {} already has a bearing `{}`", owner, p.name));
+      return std::nullopt;
+    }
+  } else if (!s.path.empty()) {
+    diags_.error("E0110", s.path.span, fmt::format("a {} of {} takes no name", s.name, owner));
+  }
+  if (s.hasBody && (*kind == Place::Gear || *kind == Place::Coupling))
+    diags_.error("E0110", nameOr(s), fmt::format("a {} of {} takes no block", s.name, owner));
+  else if (*kind != Place::Gear && *kind != Place::Coupling) {
+    std::vector<std::pair<std::string, Binding>> own;
+    std::string what = fmt::format("{}'s {}{}", owner, s.name, p.name.empty() ? "" : " " + p.name);
+    flatten(s.body, "", what, own, {});
+    p.settings = settings(own,
+                          *kind == Place::Bearing ? cat::bearingSettings()
+                          : *kind == Place::Disk  ? cat::diskSettings()
+                                                  : cat::loadSettings(),
+                          gs, what, nameOr(s), "E0225");
+  }
+  return p;
+}
+
+ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs) {
+  ir::Shaft out;
+  out.name = st.name;
+  out.span = st.span;
+  const std::string owner = fmt::format("shaft `{}`", st.name);
+  std::vector<std::pair<std::string, Binding>> items;
+  std::set<std::string> bearings;
+  for (const auto& s : st.body) {
+    switch (s.kind) {
+    case StmtKind::Assign: items.emplace_back(s.path.str(), Binding{&s, owner}); break;
+    case StmtKind::Block:
+      if (s.name == "life")
+        flatten(s.body, "life.", owner, items, {});
+      else if (s.name == "strength")
+        diags_.error(
+            "E0235", nameOr(s),
+            fmt::format("{}: the DIN 743 strength of a shaft is not rated yet (its notches and `strength` block)",
+                        owner));
+      else
+        diags_.error("E0224", nameOr(s), fmt::format("{} has no block `{}` (it takes `life {{ … }}`)", owner, s.name));
+      break;
+    case StmtKind::Segment: {
+      ir::Shaft::Segment seg;
+      seg.span = s.span;
+      auto lo = position(s.lo.get(), gs, "a segment's start"), hi = position(s.hi.get(), gs, "a segment's end");
+      if (!lo || !hi) break;
+      if (lo->compare(*hi) >= 0) {
+        diags_.error("E0401", s.span,
+                     fmt::format("empty segment {} .. {}", units::showQuantity(*lo, units::dims::length),
+                                 units::showQuantity(*hi, units::dims::length)));
+        break;
+      }
+      seg.x0 = *lo;
+      seg.x1 = *hi;
+      std::vector<std::pair<std::string, Binding>> own;
+      flatten(s.body, "", owner + "'s segment", own, {});
+      seg.settings = settings(own, cat::segmentSettings(), gs, owner + "'s segment", s.span, "E0225");
+      out.segments.push_back(std::move(seg));
+      break;
+    }
+    case StmtKind::Placed:
+      if (auto p = placed(s, m, gs, owner, bearings)) out.placed.push_back(std::move(*p));
+      break;
+    default: notAllowed(s, owner);
+    }
+  }
+  out.settings = settings(items, cat::shaftSettings(), gs, owner, nameOr(st), "E0225");
+  // The segments follow each other from 0; every station lies on the shaft.
+  Number end = Number::exact(units::Rational(0));
+  for (const auto& seg : out.segments) {
+    if (seg.x0.compare(end) != 0) {
+      diags_.error("E0405", seg.span,
+                   fmt::format("{}: a segment must start where the one before ends ({}), got {}", owner,
+                               units::showQuantity(end, units::dims::length), units::showQuantity(seg.x0, units::dims::length)));
+      break;
+    }
+    end = seg.x1;
+  }
+  if (!out.segments.empty()) end = out.segments.back().x1;
+  if (out.segments.empty())
+    diags_.error("E0225", nameOr(st), fmt::format("{} has no `segment a .. b {{ diameter = …; }}`", owner));
+  int nBearings = 0, held = 0;
+  for (const auto& p : out.placed) {
+    if (!out.segments.empty() && p.at.compare(end) > 0)
+      diags_.error("E0405", p.span,
+                   fmt::format("{}: {} lies beyond the shaft's end at {}", owner,
+                               units::showQuantity(p.at, units::dims::length),
+                               units::showQuantity(end, units::dims::length)));
+    if (p.kind != Place::Bearing) continue;
+    ++nBearings;
+    const ir::Setting* ax = ir::findSetting(p.settings, "axial");
+    held += ax && ax->symbol == "held";
+  }
+  if (nBearings < 2)
+    diags_.error("E0225", nameOr(st), fmt::format("{} needs two bearings (`bearing A at … {{ … }}`) to stand", owner));
+  if (held > 1)
+    diags_.error("E0202", nameOr(st),
+                 fmt::format("{}: {} bearings hold the axial force; one does (`axial = held`)", owner, held));
+  if (!m.hasOperating)
+    diags_.error("E0231", nameOr(st),
+                 fmt::format("{} needs an operating point, but gearbox `{}` has no `operating` block", owner, m.name));
+  return out;
+}
+
+} // namespace gbx::sema

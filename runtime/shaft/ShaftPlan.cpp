@@ -1,0 +1,248 @@
+#include "shaft/ShaftPlan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "catalogue/Settings.h"
+#include "catalogue/Shafts.h"
+#include "catalogue/StageKinds.h"
+#include "model/Evaluator.h"
+
+namespace gbx::rt {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+using Place = ir::Shaft::Place;
+
+std::optional<double> given(const std::vector<ir::Setting>& s, Q key) {
+  const ir::Setting* x = ir::findSetting(s, key);
+  if (!x || !x->value) return std::nullopt;
+  return x->value->toDouble();
+}
+
+std::optional<double> given(const std::vector<ir::Setting>& s, const std::string& name) {
+  const ir::Setting* x = ir::findSetting(s, name);
+  if (!x || !x->value) return std::nullopt;
+  return x->value->toDouble();
+}
+
+int choiceOf(const std::vector<ir::Setting>& s, Q key, int dflt) {
+  const ir::Setting* x = ir::findSetting(s, key);
+  return x && x->choice >= 0 ? x->choice : dflt;
+}
+
+struct Ctx {
+  const Evaluator& ev;
+  const Assignment& a;
+  std::string* error;
+  std::optional<double> stage(int st, int gear, Q key) const {
+    ir::QuantityRef r;
+    r.owner = ir::QuantityRef::Stage;
+    r.index = static_cast<std::int16_t>(st);
+    r.gear = static_cast<std::int8_t>(gear);
+    r.key = key;
+    Value v = ev.quantity(r, a);
+    if (!v.isNumber()) return std::nullopt;
+    return v.mid();
+  }
+};
+
+// The shaft's own material: E, G (or E / 2(1 + nu)) and density.
+std::optional<shaft::Material> materialOf(const Evaluator& ev, const ir::Shaft& sh) {
+  const ir::Setting* m = ir::findSetting(sh.settings, Q::Material);
+  if (!m) return std::nullopt;
+  int i = ev.model().program.materialIndex(m->symbol);
+  if (i < 0) return std::nullopt;
+  const auto& props = ev.model().program.materials[static_cast<size_t>(i)].properties;
+  auto E = given(props, Q::YoungsModulus), nu = given(props, Q::Poisson), rho = given(props, Q::Density),
+       G = given(props, Q::ShearModulus);
+  if (!E || !rho || (!G && !nu)) return std::nullopt;
+  return shaft::Material{*E, G ? *G : *E / (2 * (1 + *nu)), *rho};
+}
+
+double diameterAt(const shaft::Model& m, double x) {
+  for (const auto& s : m.sections)
+    if (x >= s.x0 - 1e-12 && x <= s.x1 + 1e-12) return s.diameter;
+  return m.sections.empty() ? 0 : m.sections.back().diameter;
+}
+
+// A gear's mesh forces on its shaft, at the working pitch circle. The stages lie in one
+// plane: the driving gear's mate at +y, the driven gear's at -y; the input turns positively
+// about the axis and every external mesh reverses the sense (docs/shafts.md).
+bool gearLoad(const Ctx& c, const ir::Shaft::Placed& p, shaft::Model& m, ShaftResult& out, double& speed) {
+  auto fail = [&](const std::string& s) {
+    if (c.error) *c.error = fmt::format("gear `{}`: {}", p.name, s);
+    return false;
+  };
+  const Model& model = c.ev.model();
+  int st = p.stage, g = p.gear;
+  bool helical = model.info(st).ir->kind == ir::StageKind::Helical;
+  auto T = c.stage(st, g, Q::Torque), w = c.stage(st, g, Q::Speed), z = c.stage(st, g, Q::Z),
+       mn = c.stage(st, -1, Q::NormalModule);
+  auto alphaN = c.stage(st, -1, Q::PressureAngle), alphaWt = c.stage(st, -1, Q::WorkingPressureAngle),
+       b = c.stage(st, -1, Q::FaceWidth);
+  std::optional<double> beta = helical ? c.stage(st, -1, Q::HelixAngle) : std::optional<double>(0.0);
+  if (!T || !w) return fail("its torque and speed need the operating point");
+  if (!z || !mn || !alphaN || !alphaWt || !beta) return fail("its geometry is not known at this design");
+  if (!b) return fail("its stage gives no `face_width`");
+  double d = *z * *mn / std::cos(*beta), alphaT = std::atan(std::tan(*alphaN) / std::cos(*beta));
+  double dw = d * std::cos(alphaT) / std::cos(*alphaWt), rw = dw / 2;
+  double tanBw = std::tan(*beta) * dw / d;
+  double Ft = 2 * std::fabs(*T) / dw, Fr = Ft * std::tan(*alphaWt), Fa = Ft * tanBw;
+  bool driving = g == cat::gear::Pinion;
+  double s = driving ? 1 : -1;
+  // The sense of rotation: + on the input, reversed by each stage before this gear.
+  double sigma = ((st + (driving ? 0 : 1)) % 2 == 0) ? 1 : -1;
+  double Ftheta = driving ? -sigma * Ft : sigma * Ft;
+  const ir::Attribute* hand = model.attribute(st, Q::HelixHand);
+  double h = (hand && hand->choice == cat::helixHand::Left) ? -1 : 1;
+  if (!driving) h = -h; // the mate's hand is the opposite
+  double Fx = helical ? -h * Ftheta * tanBw : 0;
+  double x = p.at.toDouble();
+  m.loads.push_back({x, -s * Fr, s * Ftheta, Fx, -s * rw * Fx, 0, rw * Ftheta});
+  out.gears.push_back({p.name, x, Ft, Fr, Fa});
+  // The gear as a rigid disk for the critical speed: an annulus from the shaft to d.
+  auto rho = c.ev.materialProperty(st, Q::Density);
+  if (rho.isNumber()) {
+    double ds = diameterAt(m, x), R = d / 2, r = ds / 2;
+    double mass = rho.mid() * kPi * (R * R - r * r) * *b;
+    m.disks.push_back({x, mass, mass * (3 * (R * R + r * r) + *b * *b) / 12, mass * (R * R + r * r) / 2});
+  }
+  speed = std::fabs(*w);
+  return true;
+}
+
+} // namespace
+
+std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error) {
+  const ir::Shaft& sh = ev.model().gearbox.shafts[static_cast<size_t>(index)];
+  auto fail = [&](const std::string& what) -> std::optional<ShaftResult> {
+    if (error) *error = fmt::format("shaft `{}`: {}", sh.name, what);
+    return std::nullopt;
+  };
+  ShaftResult out;
+  shaft::Model& m = out.model;
+  auto mat = materialOf(ev, sh);
+  if (!mat) return fail("its material gives no Young's modulus, density, and shear modulus or Poisson's ratio");
+  m.material = *mat;
+  m.shear = choiceOf(sh.settings, Q::Shear, 0) == 0;
+  for (const auto& seg : sh.segments)
+    m.sections.push_back({seg.x0.toDouble(), seg.x1.toDouble(), given(seg.settings, Q::Diameter).value_or(0),
+                          given(seg.settings, Q::Bore).value_or(0)});
+  Ctx c{ev, a, error};
+  double speed = given(sh.settings, Q::Speed).value_or(0);
+  bool coupled = false;
+  std::vector<const ir::Shaft::Placed*> bearings;
+  for (const auto& p : sh.placed) {
+    double x = p.at.toDouble();
+    switch (p.kind) {
+    case Place::Gear: {
+      std::string why;
+      c.error = &why;
+      double w = 0;
+      if (!gearLoad(c, p, m, out, w)) return fail(why);
+      if (speed == 0) speed = w;
+      if (!coupled) m.torsionFixedAt = x;
+      break;
+    }
+    case Place::Coupling:
+      if (!coupled) m.torsionFixedAt = x;
+      coupled = true;
+      break;
+    case Place::Load: {
+      double radial = given(p.settings, Q::Radial).value_or(0), angle = given(p.settings, Q::Angle).value_or(0);
+      m.loads.push_back({x, radial * std::cos(angle), radial * std::sin(angle), given(p.settings, Q::Axial).value_or(0),
+                         0, 0, given(p.settings, Q::Torque).value_or(0)});
+      break;
+    }
+    case Place::Disk: {
+      double D = given(p.settings, Q::Diameter).value_or(0), t = given(p.settings, Q::Width).value_or(0),
+             bore = given(p.settings, Q::Bore).value_or(0);
+      double mass = m.material.density * kPi / 4 * (D * D - bore * bore) * t;
+      m.disks.push_back(
+          {x, mass, mass * (3 * (D * D + bore * bore) / 4 + t * t) / 12, mass * (D * D + bore * bore) / 8});
+      break;
+    }
+    case Place::Bearing:
+      bearings.push_back(&p);
+      out.bearings.push_back(p.name);
+      m.bearings.push_back({p.name, x, given(p.settings, Q::RadialStiffness).value_or(shaft::kRigid),
+                            choiceOf(p.settings, Q::Axial, 1) == 0});
+      break;
+    }
+  }
+  try {
+    out.solution = shaft::solve(m);
+    auto w = shaft::naturalFrequencies(m, 1);
+    out.criticalSpeed = w.empty() ? 0 : w[0];
+  } catch (const std::invalid_argument& e) {
+    return fail(e.what());
+  }
+  out.speed = speed;
+  for (double x : out.solution.x)
+    out.deflection = std::max(out.deflection, out.solution.deflectionAt(x));
+  for (const auto& s : m.sections)
+    out.mass += m.material.density * kPi / 4 * (s.diameter * s.diameter - s.bore * s.bore) * (s.x1 - s.x0);
+  // Each bearing's life at the shaft's speed, with kappa where the oil's viscosity is given.
+  shaft::LifeSettings life;
+  life.reliability = given(sh.settings, "life.reliability").value_or(0.9);
+  const ir::Setting* clean = ir::findSetting(sh.settings, "life.cleanliness");
+  life.contamination = given(sh.settings, "life.contamination")
+                           .value_or(cat::cleanliness::kEc[clean && clean->choice >= 0 ? clean->choice : 2]);
+  life.viscosity = given(sh.settings, "life.viscosity").value_or(-1);
+  for (size_t k = 0; k < bearings.size(); ++k) {
+    const auto& p = *bearings[k];
+    shaft::BearingData b;
+    b.kind = static_cast<shaft::BearingKind>(choiceOf(p.settings, Q::BearingKind, 0));
+    b.C = given(p.settings, Q::DynamicRating).value_or(0);
+    b.C0 = given(p.settings, Q::StaticRating).value_or(0);
+    b.e = given(p.settings, Q::LoadRatioLimit).value_or(-1);
+    b.X = given(p.settings, Q::RadialFactor).value_or(-1);
+    b.Y = given(p.settings, Q::AxialFactor).value_or(-1);
+    b.X0 = given(p.settings, Q::StaticRadialFactor).value_or(-1);
+    b.Y0 = given(p.settings, Q::StaticAxialFactor).value_or(-1);
+    b.pitchDiameter = given(p.settings, Q::PitchDiameter).value_or(1.4 * diameterAt(m, p.at.toDouble()));
+    const auto& r = out.solution.reactions[k];
+    try {
+      out.lives.push_back(shaft::life(b, {r.radial(), r.Fx, speed}, life));
+    } catch (const std::invalid_argument& e) {
+      return fail(fmt::format("bearing `{}`: {}", p.name, e.what()));
+    }
+  }
+  if (speed > 0 && out.criticalSpeed > 0 && std::fabs(speed - out.criticalSpeed) < 0.2 * out.criticalSpeed)
+    out.warnings.push_back(
+        fmt::format("shaft `{}`: its speed {:.0f} rpm lies within 20 % of its first critical speed {:.0f} rpm", sh.name,
+                    speed * 30 / kPi, out.criticalSpeed * 30 / kPi));
+  return out;
+}
+
+Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignment& a) {
+  if (r.index < 0 || static_cast<size_t>(r.index) >= ev.model().gearbox.shafts.size()) return Value::invalid();
+  auto s = computeShaft(ev, r.index, a);
+  if (!s) return Value::invalid();
+  if (r.gear < 0) {
+    switch (r.key) {
+    case Q::Deflection: return Value::number(s->deflection);
+    case Q::CriticalSpeed: return Value::number(s->criticalSpeed);
+    case Q::Mass: return Value::number(s->mass);
+    default: return Value::invalid();
+    }
+  }
+  size_t k = static_cast<size_t>(r.gear);
+  if (k >= s->lives.size()) return Value::invalid();
+  const auto& l = s->lives[k];
+  switch (r.key) {
+  case Q::Reaction: return Value::number(s->solution.reactions[k].radial());
+  case Q::AxialReaction: return Value::number(std::fabs(s->solution.reactions[k].Fx));
+  case Q::Life: return Value::number(l.L10h * 3600);
+  case Q::ModifiedLife: return Value::number(l.Lnmh * 3600);
+  case Q::StaticSafety: return Value::number(l.s0);
+  default: return Value::invalid();
+  }
+}
+
+} // namespace gbx::rt

@@ -1,0 +1,43 @@
+#pragma once
+// A gearbox's shaft at a design (docs/shafts.md): its beam model with the mesh forces of
+// the gears it carries, solved, with each bearing's life and its first critical speed.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ir/Ir.h"
+#include "model/Value.h"
+#include "shaft/Beam.h"
+#include "shaft/Iso281.h"
+
+namespace gbx::rt {
+
+class Evaluator;
+struct Assignment;
+
+struct ShaftResult {
+  shaft::Model model;
+  shaft::Solution solution;
+  std::vector<std::string> bearings; // names, in order
+  std::vector<shaft::BearingLife> lives;
+  double speed = 0;         // rad/s
+  double criticalSpeed = 0; // rad/s
+  double deflection = 0;    // largest radial deflection, m
+  double mass = 0;          // kg
+  struct GearLoad {
+    std::string gear;
+    double x = 0, Ft = 0, Fr = 0, Fa = 0; // N, at the working pitch circle
+  };
+  std::vector<GearLoad> gears;
+  std::vector<std::string> warnings;
+};
+
+// The shaft `index` of the evaluator's gearbox at the design; nullopt with `error` said when
+// the design leaves something unknown or the shaft cannot stand.
+std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a,
+                                        std::string* error = nullptr);
+
+// `input.deflection`, `input.A.life`: one quantity of a shaft or of its bearing (`r.gear`).
+Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignment& a);
+
+} // namespace gbx::rt

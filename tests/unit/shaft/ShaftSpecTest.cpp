@@ -1,0 +1,139 @@
+// Shafts through the language: the reactions and bearing lives of a spec against a hand
+// calculation (statics of a simply supported shaft, ISO 281 by its formulas), rules over
+// bearing lives in the search, and the diagnostics of a shaft block.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "driver/Driver.h"
+#include "model/Evaluator.h"
+
+using namespace gbx;
+
+namespace {
+
+std::string spec(const std::string& pinion, const std::string& extra) {
+  return R"(import materials;
+gearbox G {
+  stage hs: helical {
+    )" + pinion +
+         R"(  wheel.z = 71;  normal_module = 3 mm;  helix_angle = 15 deg;  face_width = 40 mm;
+    material = steel_18CrNiMo7_6;
+  }
+  operating { input_speed = 1500 rpm;  input_torque = 300 N*m; }
+  shaft input {
+    material = steel_42CrMo4;
+    segment 0 mm .. 60 mm { diameter = 45 mm; }
+    segment 60 mm .. 290 mm { diameter = 60 mm;  bore = 20 mm; }
+    segment 290 mm .. 350 mm { diameter = 45 mm; }
+    gear hs.pinion at 175 mm;
+    coupling at 0 mm;
+    bearing A at 30 mm { kind = cylindrical_roller;  C = 112 kN;  C0 = 120 kN;  radial_stiffness = 800 N/um; }
+    bearing B at 320 mm { kind = deep_groove_ball;  C = 62 kN;  C0 = 38 kN;  axial = held;  e = 0.3;  X = 0.56;  Y = 1.5; }
+  }
+)" + extra +
+         "}\n";
+}
+
+std::string codes(const std::string& text) {
+  auto c = driver::compileText("s.gbx", text);
+  std::string out;
+  for (const auto& d : c->diags.sorted())
+    out += d.code + " ";
+  return out;
+}
+
+} // namespace
+
+TEST(ShaftSpec, ReactionsAndLivesMatchAHandCalculation) {
+  auto c = driver::compileText("s.gbx", spec("pinion.z = 23;", ""));
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::Model m(c->program, c->program.gearboxes[0]);
+  rt::Evaluator ev(m);
+  rt::Assignment a(m);
+  auto q = [&](const char* p) { return ev.quantity(p, a).mid(); };
+  // The pinion's forces at its working pitch circle (no shift: the reference circle).
+  const double deg = std::numbers::pi / 180, d = 23 * 3e-3 / std::cos(15 * deg),
+               alphaT = std::atan(std::tan(20 * deg) / std::cos(15 * deg));
+  const double Ft = 2 * 300 / d, Fr = Ft * std::tan(alphaT), Fa = Ft * std::tan(15 * deg), M = Fa * d / 2;
+  // Centred between bearings 290 mm apart: half of each force, and the thrust's couple. The
+  // right-hand pinion drives and turns positively: its thrust points to B (which holds it),
+  // and at the pitch point, on its mate's side, that thrust relieves A and loads B.
+  const double RA = std::hypot(Ft / 2, Fr / 2 - M / 0.29), RB = std::hypot(Ft / 2, Fr / 2 + M / 0.29);
+  EXPECT_NEAR(q("input.A.reaction"), RA, 1e-9 * RA);
+  EXPECT_NEAR(q("input.B.reaction"), RB, 1e-9 * RB);
+  EXPECT_NEAR(q("input.B.axial_reaction"), Fa, 1e-9 * Fa);
+  EXPECT_NEAR(q("input.A.axial_reaction"), 0, 1e-9);
+  // ISO 281: A a cylindrical roller bearing (p = 10/3), B a ball bearing beyond e.
+  const double hours = 3600, rev = 1500 * 60.0;
+  EXPECT_NEAR(q("input.A.life") / hours, std::pow(112e3 / RA, 10.0 / 3) * 1e6 / rev, 1e-6);
+  const double PB = 0.56 * RB + 1.5 * Fa;
+  EXPECT_NEAR(q("input.B.life") / hours, std::pow(62e3 / PB, 3) * 1e6 / rev, 1e-6);
+  EXPECT_NEAR(q("input.B.static_safety"), 38e3 / std::max(RB, 0.6 * RB + 0.5 * Fa), 1e-9);
+  EXPECT_GT(q("input.deflection"), 0);
+  EXPECT_GT(q("input.critical_speed"), 1500 * std::numbers::pi / 30); // a stiff shaft: well above its speed
+  // Mass: three hollow and solid cylinders of 7850 kg/m^3.
+  const double pi4 = std::numbers::pi / 4;
+  double mass = 7850 * pi4 * (0.045 * 0.045 * 0.060 + (0.06 * 0.06 - 0.02 * 0.02) * 0.230 + 0.045 * 0.045 * 0.060);
+  EXPECT_NEAR(q("input.mass"), mass, 1e-9 * mass);
+}
+
+TEST(ShaftSpec, ARuleOnABearingLifeRemovesTheDesignsThatFallShort) {
+  auto count = [](const std::string& rule) {
+    auto c = driver::compileText("s.gbx", spec("pinion.z in 17..30;", rule));
+    EXPECT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+    std::ostringstream out, err;
+    auto path = std::filesystem::temp_directory_path() / "gbx_shaft_rule.gbx";
+    std::ofstream(path) << spec("pinion.z in 17..30;", rule);
+    EXPECT_EQ(driver::run({"solve", path.string(), "--format", "csv", "--quiet"}, out, err), 0) << err.str();
+    std::filesystem::remove(path);
+    std::string s = out.str();
+    return std::count(s.begin(), s.end(), '\n') - 1;
+  };
+  long all = count(""), kept = count("  require input.B.life >= 12000 h;\n");
+  EXPECT_EQ(all, 14);
+  // A smaller pinion pushes harder on the same torque: the smallest ones fall short.
+  EXPECT_GT(kept, 0);
+  EXPECT_LT(kept, all);
+}
+
+TEST(ShaftSpec, AShaftBlockIsCheckedBeforeTheSearch) {
+  auto without = [](const std::string& from, const std::string& to) {
+    std::string s = spec("pinion.z = 23;", "");
+    s.replace(s.find(from), from.size(), to);
+    return codes(s);
+  };
+  EXPECT_EQ(without("    bearing A at 30 mm { kind = cylindrical_roller;  C = 112 kN;  C0 = 120 kN;  radial_stiffness "
+                    "= 800 N/um; }\n",
+                    ""),
+            "E0225 ");
+  EXPECT_EQ(without("gear hs.pinion", "gear hs.pinon"), "E0201 ");
+  EXPECT_EQ(without("coupling at 0 mm;", "coupling at 0;"), "E0302 ");
+  EXPECT_EQ(without("segment 60 mm .. 290 mm", "segment 70 mm .. 290 mm"), "E0405 ");
+  EXPECT_EQ(without("coupling at 0 mm;", "notch shoulder at 60 mm { radius = 2 mm; }"), "E0235 ");
+  EXPECT_EQ(without("C0 = 38 kN;", ""), "E0225 ");
+  EXPECT_EQ(codes(spec("pinion.z = 23;", "  require input.B.lfe >= 1 h;\n")), "E0219 ");
+  EXPECT_EQ(codes(spec("pinion.z = 23;", "  require input.D.life >= 1 h;\n")), "E0219 ");
+}
+
+// The helix hand sets the thrust's sense: a left-hand pinion loads A where a right-hand one
+// loads B, and the reactions trade places.
+TEST(ShaftSpec, ALeftHandPinionSwapsWhichBearingTheThrustCoupleLoads) {
+  auto reactions = [](const std::string& hand) {
+    auto c = driver::compileText("s.gbx", spec("pinion.z = 23;  " + hand, ""));
+    EXPECT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+    rt::Model m(c->program, c->program.gearboxes[0]);
+    rt::Evaluator ev(m);
+    rt::Assignment a(m);
+    return std::make_pair(ev.quantity("input.A.reaction", a).mid(), ev.quantity("input.B.reaction", a).mid());
+  };
+  auto right = reactions(""), left = reactions("helix_hand = left;");
+  EXPECT_LT(right.first, right.second);
+  EXPECT_NEAR(left.first, right.second, 1e-9 * right.second);
+  EXPECT_NEAR(left.second, right.first, 1e-9 * right.first);
+}
