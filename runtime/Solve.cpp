@@ -25,6 +25,7 @@
 #include "report/Progress.h"
 #include "passes/Modifications.h"
 #include "passes/Ratings.h"
+#include "passes/Shafts.h"
 #include "passes/Optimise.h"
 #include "passes/Render.h"
 #include "passes/Scenes.h"
@@ -184,6 +185,9 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       passes::Ratings rated = passes::ratings(m, *best);
       fail(gb.name, rated.errors);
       rep.ratings = std::move(rated.ratings);
+      passes::Shafts solved = passes::shafts(m, *best);
+      rep.shafts = std::move(solved.shafts);
+      rep.warnings.insert(rep.warnings.end(), solved.warnings.begin(), solved.warnings.end());
     }
     rep.inputs = passes::decisiveInputs(gb);
     reports.push_back(std::move(rep));

@@ -1,5 +1,6 @@
 #include "catalogue/Shafts.h"
 #include "catalogue/StageKinds.h"
+#include "diag/Suggest.h"
 #include "sema/Analyser.h"
 
 // `shaft NAME { … }`: its settings, segments, gears, bearings, loads and disks (docs/shafts.md).
@@ -75,8 +76,14 @@ std::optional<ir::Shaft::Placed> Analyser::placed(const Stmt& s, const GearboxMo
         stage && stage->kind &&
         std::find(stage->kind->gears.begin(), stage->kind->gears.end(), s.path.parts[1]) != stage->kind->gears.end();
     if (!gearOk) {
+      std::vector<std::string> gears;
+      for (const auto& sm : m.stages)
+        if (sm.kind)
+          for (const auto& g : sm.kind->gears)
+            gears.push_back(sm.name + "." + g);
       diags_.error("E0201", s.path.span,
-                   fmt::format("`{}` is not a gear of this gearbox (write `gear STAGE.GEAR at …`)", s.path.str()));
+                   fmt::format("`{}` is not a gear of this gearbox (write `gear STAGE.GEAR at …`){}", s.path.str(),
+                               diag::suggestion(diag::closest(s.path.str(), gears))));
       return std::nullopt;
     }
     if (stage->kind->kind != ir::StageKind::Spur && stage->kind->kind != ir::StageKind::Helical) {
@@ -173,7 +180,8 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
     if (seg.x0.compare(end) != 0) {
       diags_.error("E0405", seg.span,
                    fmt::format("{}: a segment must start where the one before ends ({}), got {}", owner,
-                               units::showQuantity(end, units::dims::length), units::showQuantity(seg.x0, units::dims::length)));
+                               units::showQuantity(end, units::dims::length),
+                               units::showQuantity(seg.x0, units::dims::length)));
       break;
     }
     end = seg.x1;
@@ -195,6 +203,19 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
   }
   if (nBearings < 2)
     diags_.error("E0225", nameOr(st), fmt::format("{} needs two bearings (`bearing A at … {{ … }}`) to stand", owner));
+  bool thrust = false;
+  for (const auto& p : out.placed) {
+    if (p.kind == Place::Gear && p.stage >= 0 && m.stages[static_cast<size_t>(p.stage)].kind &&
+        m.stages[static_cast<size_t>(p.stage)].kind->kind == ir::StageKind::Helical)
+      thrust = true;
+    if (p.kind == Place::Load && ir::findSetting(p.settings, "axial")) thrust = true;
+  }
+  if (thrust && held == 0 && nBearings >= 2)
+    diags_.error(
+        "E0225", nameOr(st),
+        fmt::format("{} carries an axial force (a helical gear's thrust or an axial load), but no bearing holds it: "
+                    "give one bearing `axial = held`",
+                    owner));
   if (held > 1)
     diags_.error("E0202", nameOr(st),
                  fmt::format("{}: {} bearings hold the axial force; one does (`axial = held`)", owner, held));

@@ -12,6 +12,7 @@
 #include "report/Numbers.h"
 #include "report/Ratings.h"
 #include "report/Report.h"
+#include "report/Shafts.h"
 
 namespace gbx::rt {
 
@@ -249,28 +250,42 @@ std::string modifications(const std::vector<GearboxReport>& reports) {
   return any ? o : "";
 }
 
-std::string ratings(const std::vector<GearboxReport>& reports) {
-  std::string o = row({"gearbox", "stage", "gear", "quantity", "unit", "value", "minimum", "method", "note"});
+// A tidy table of every gearbox's rows under one header; empty when no gearbox has any.
+template <class RowsOf>
+std::string tidy(const std::vector<std::string>& header, const std::vector<GearboxReport>& reports, RowsOf rowsOf) {
+  std::string o = row(header);
   bool any = false;
   for (const auto& g : reports)
-    for (const auto& r : g.ratings)
-      for (const auto& v : ratingCsvRows(g.name, r)) {
-        any = true;
-        o += row(v);
-      }
+    for (const auto& v : rowsOf(g)) {
+      any = true;
+      o += row(v);
+    }
   return any ? o : "";
 }
 
+using Rows = std::vector<std::vector<std::string>>;
+
+std::string ratings(const std::vector<GearboxReport>& reports) {
+  return tidy({"gearbox", "stage", "gear", "quantity", "unit", "value", "minimum", "method", "note"}, reports, [](const GearboxReport& g) {
+    Rows out;
+    for (const auto& r : g.ratings)
+      for (auto& v : ratingCsvRows(g.name, r)) out.push_back(std::move(v));
+    return out;
+  });
+}
+
+std::string shafts(const std::vector<GearboxReport>& reports) {
+  return tidy({"gearbox", "shaft", "item", "quantity", "unit", "value", "method"}, reports, [](const GearboxReport& g) {
+    Rows out;
+    for (const auto& sh : g.shafts)
+      for (auto& v : shaftCsvRows(g.name, sh)) out.push_back(std::move(v));
+    return out;
+  });
+}
+
 std::string monteCarlo(const std::vector<GearboxReport>& reports) {
-  std::string o = row({"gearbox", "quantity", "unit", "statistic", "value", "standard_error", "sample"});
-  bool any = false;
-  for (const auto& g : reports)
-    if (g.monteCarlo)
-      for (const auto& v : monteCarloCsvRows(g.name, *g.monteCarlo)) {
-        any = true;
-        o += row(v);
-      }
-  return any ? o : "";
+  return tidy({"gearbox", "quantity", "unit", "statistic", "value", "standard_error", "sample"}, reports,
+              [](const GearboxReport& g) { return g.monteCarlo ? monteCarloCsvRows(g.name, *g.monteCarlo) : Rows{}; });
 }
 
 // Every sample of each gearbox that has them: its deviations and each quantity's value.
@@ -302,6 +317,7 @@ std::vector<TableFile> otherTables(const std::vector<GearboxReport>& reports, co
   add("work_precision.csv", workPrecision(reports, o.timings));
   add("modifications.csv", modifications(reports));
   add("ratings.csv", ratings(reports));
+  add("shafts.csv", shafts(reports));
   add("monte_carlo.csv", monteCarlo(reports));
   add("samples.csv", samples(reports));
   return out;

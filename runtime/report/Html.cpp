@@ -12,6 +12,7 @@
 #include "report/Ratings.h"
 #include "report/Report.h"
 #include "report/Studies.h"
+#include "report/Shafts.h"
 #include "report/Summary.h"
 #include "report/Symbols.h"
 
@@ -392,6 +393,11 @@ std::string gearboxDetails(const GearboxReport& g, const RenderOptions& ro) {
          ".</p>\n" + table(monteCarloHeader(), monteCarloRows(mc)) + list(monteCarloNotes(mc), "model");
   }
   for (const auto& r : g.ratings) o += ratingHtml(r);
+  for (const auto& sh : g.shafts) {
+    o += "<h3>Shaft " + esc(sh.name) + " (design 1)</h3>\n";
+    if (sh.error.empty()) o += table(shaftBearingHeader(), shaftBearingRows(sh)) + table(shaftGearHeader(), shaftGearRows(sh));
+    o += list(shaftNotes(sh));
+  }
   for (const auto& md : g.modifications) {
     o += "<h3>Modification of " + esc(md.stage) + "</h3>\n" + table(modificationHeader(), modificationRows(md));
   }

@@ -1,4 +1,5 @@
 #include "report/Report.h"
+#include "report/Shafts.h"
 
 #include <cctype>
 #include <cmath>
@@ -280,6 +281,7 @@ std::string renderText(const std::vector<GearboxReport>& reports, const RenderOp
     if (g.monteCarlo) o += textMonteCarlo(*g.monteCarlo);
     for (const auto& md : g.modifications) o += textModification(md);
     for (const auto& r : g.ratings) o += textRating(r);
+    for (const auto& sh : g.shafts) o += textShaft(sh);
     for (const auto& sc : g.scenes) o += textScene(sc, g, ro);
     for (const auto& study : g.studies) o += textStudy(study, ro);
   }
@@ -464,6 +466,10 @@ std::string renderJson(const std::vector<GearboxReport>& reports, const RenderOp
       o += fmt::format("{}\n    \"{}\": {}", ri ? "," : "",
                        jsonEscape(g.ratings[ri].stage + (g.ratings[ri].mesh.empty() ? "" : "." + g.ratings[ri].mesh)), ratingJson(g.ratings[ri]));
     o += g.ratings.empty() ? "}, " : "\n   }, ";
+    o += "\"shafts\": {";
+    for (size_t si = 0; si < g.shafts.size(); ++si)
+      o += fmt::format("{}\n    \"{}\": {}", si ? "," : "", jsonEscape(g.shafts[si].name), shaftJson(g.shafts[si]));
+    o += g.shafts.empty() ? "}, " : "\n   }, ";
     if (g.monteCarlo) o += "\"monte_carlo\": " + monteCarloJson(*g.monteCarlo) + ", ";
     o += "\"studies\": {";
     for (size_t si = 0; si < g.studies.size(); ++si)
@@ -497,34 +503,52 @@ std::vector<std::string> sceneItems(const SceneReport& sc) {
   return items;
 }
 
-std::string markdown(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
-  auto table = [&](const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
-    std::string o = "|";
-    for (const auto& h : head) o += " " + h + " |";
-    o += "\n|";
-    // Numbers right-aligned; a column of words (safeties, methods, rules) left.
-    for (size_t i = 0; i < head.size(); ++i) {
-      bool words = false;
-      for (const auto& r : rows)
-        if (i < r.size() && !r[i].empty()) words = words || !(std::isdigit(static_cast<unsigned char>(r[i][0])) || r[i][0] == '-' || r[i][0] == '[');
-      o += words ? " :--- |" : " ---: |";
-    }
+// Markdown's pieces: a table (numbers right-aligned), a heading, a list.
+std::string mdTable(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
+  std::string o = "|";
+  for (const auto& h : head) o += " " + h + " |";
+  o += "\n|";
+  // Numbers right-aligned; a column of words (safeties, methods, rules) left.
+  for (size_t i = 0; i < head.size(); ++i) {
+    bool words = false;
+    for (const auto& r : rows)
+      if (i < r.size() && !r[i].empty()) words = words || !(std::isdigit(static_cast<unsigned char>(r[i][0])) || r[i][0] == '-' || r[i][0] == '[');
+    o += words ? " :--- |" : " ---: |";
+  }
+  o += "\n";
+  for (const auto& r : rows) {
+    o += "|";
+    for (const auto& c : r) o += " " + c + " |";
     o += "\n";
-    for (const auto& r : rows) {
-      o += "|";
-      for (const auto& c : r) o += " " + c + " |";
-      o += "\n";
-    }
-    return o + "\n";
-  };
-  auto heading = [&](int level, const std::string& t) { return std::string(static_cast<size_t>(level), '#') + " " + t + "\n\n"; };
+  }
+  return o + "\n";
+}
+
+std::string mdHeading(int level, const std::string& t) { return std::string(static_cast<size_t>(level), '#') + " " + t + "\n\n"; }
+
+std::string mdList(const std::vector<std::string>& items) {
+  std::string o;
+  for (const auto& i : items) o += "- " + i + "\n";
+  return o + "\n";
+}
+
+// Each shaft's bearings and gear forces, and its lines.
+std::string markdownShafts(const GearboxReport& g) {
+  std::string o;
+  for (const auto& sh : g.shafts) {
+    o += mdHeading(3, "Shaft " + sh.name + " (design 1)");
+    if (sh.error.empty()) o += mdTable(shaftBearingHeader(), shaftBearingRows(sh)) + mdTable(shaftGearHeader(), shaftGearRows(sh));
+    o += mdList(shaftNotes(sh));
+  }
+  return o;
+}
+
+std::string markdown(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
+  const auto& table = mdTable;
+  const auto& heading = mdHeading;
+  const auto& list = mdList;
   auto para = [&](const std::string& t) { return t + "\n\n"; };
   auto image = [&](const std::string& f) { return fmt::format("![{}]({})\n\n", f, f); };
-  auto list = [&](const std::vector<std::string>& items) {
-    std::string o;
-    for (const auto& i : items) o += "- " + i + "\n";
-    return o + "\n";
-  };
   std::string o;
   for (const auto& g : reports) {
     o += heading(2, g.name);
@@ -590,6 +614,7 @@ std::string markdown(const std::vector<GearboxReport>& reports, const RenderOpti
       if (auto notes = ratingNotes(r); !notes.empty()) o += list(notes);
       for (const auto& f : r.files) o += image(f);
     }
+    o += markdownShafts(g);
     for (const auto& sc : g.scenes) {
       o += heading(3, "Scene " + sc.name);
       if (!sc.failure.empty()) {

@@ -178,6 +178,25 @@ struct ModifyReport {
 
 // A stage's load-capacity rating at design 1: each factor per gear (or of the mesh), the
 // safeties against their minimums, and which one governs.
+// A shaft at design 1 (docs/shafts.md): its bearings, the gears' forces on it, its speed,
+// critical speed, largest deflection and mass. SI throughout.
+struct ShaftReport {
+  std::string name;
+  std::string error;  // why the shaft could not be solved
+  struct Bearing {
+    std::string name, kind, method;
+    double x = 0, Fr = 0, Fa = 0, P = 0, L10h = 0, Lnmh = 0, s0 = 0;  // m, N, h, -
+  };
+  struct Gear {
+    std::string name;
+    double x = 0, Ft = 0, Fr = 0, Fa = 0;
+  };
+  std::vector<Bearing> bearings;
+  std::vector<Gear> gears;
+  double speed = 0, criticalSpeed = 0, deflection = 0, deflectionAt = 0, mass = 0;  // rad/s, m, kg
+  std::vector<std::string> warnings;
+};
+
 struct RatingReport {
   std::string stage;
   std::string standard = "ISO 6336";  // ISO 10300 for a bevel pair
@@ -309,6 +328,7 @@ struct GearboxReport {
   std::vector<StudyReport> studies;
   std::vector<ModifyReport> modifications;
   std::vector<RatingReport> ratings;
+  std::vector<ShaftReport> shafts;
   std::optional<OptimisationSummary> optimisation;
   std::optional<MonteCarloReport> monteCarlo;
 };
@@ -343,7 +363,7 @@ void forEachRow(const GearboxReport& g, F&& f) {
 }
 
 // The version of docs/report.schema.json the JSON report follows (its top-level "schema").
-inline constexpr const char* kReportSchemaVersion = "1.3";
+inline constexpr const char* kReportSchemaVersion = "1.4";
 
 std::string formatNumber(double v);
 // A JSON number, shortest round-trip; null where the value is not finite (never nan or inf).

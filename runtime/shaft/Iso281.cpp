@@ -116,7 +116,7 @@ BearingLife life(const BearingData& b, const BearingLoad& l, const LifeSettings&
         fmt::format("; kappa {:.3g}, e_C {:.3g}, C_u {:.4g} N: a_ISO {:.3g}", out.kappa, s.contamination, Cu, out.aIso);
   } else {
     out.Lnmh = out.a1 * out.L10h;
-    out.method += "; no viscosity: a_ISO 1";
+    out.method += "; a_ISO 1 (no viscosity)";
   }
   return out;
 }

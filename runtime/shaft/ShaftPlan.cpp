@@ -183,8 +183,16 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
     return fail(e.what());
   }
   out.speed = speed;
-  for (double x : out.solution.x)
-    out.deflection = std::max(out.deflection, out.solution.deflectionAt(x));
+  // The largest deflection: at a station, or between two (the line is a cubic there).
+  const auto& xs = out.solution.x;
+  for (size_t i = 0; i < xs.size(); ++i)
+    for (int k = 0; k < (i + 1 < xs.size() ? 8 : 1); ++k) {
+      double x = i + 1 < xs.size() ? xs[i] + (xs[i + 1] - xs[i]) * k / 8 : xs[i], d = out.solution.deflectionAt(x);
+      if (d > out.deflection) {
+        out.deflection = d;
+        out.deflectionAt = x;
+      }
+    }
   for (const auto& s : m.sections)
     out.mass += m.material.density * kPi / 4 * (s.diameter * s.diameter - s.bore * s.bore) * (s.x1 - s.x0);
   // Each bearing's life at the shaft's speed, with kappa where the oil's viscosity is given.
@@ -198,6 +206,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
     const auto& p = *bearings[k];
     shaft::BearingData b;
     b.kind = static_cast<shaft::BearingKind>(choiceOf(p.settings, Q::BearingKind, 0));
+    out.kinds.push_back(b.kind);
     b.C = given(p.settings, Q::DynamicRating).value_or(0);
     b.C0 = given(p.settings, Q::StaticRating).value_or(0);
     b.e = given(p.settings, Q::LoadRatioLimit).value_or(-1);

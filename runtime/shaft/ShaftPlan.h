@@ -18,11 +18,13 @@ struct Assignment;
 struct ShaftResult {
   shaft::Model model;
   shaft::Solution solution;
-  std::vector<std::string> bearings; // names, in order
+  std::vector<std::string> bearings;  // names, in order
+  std::vector<shaft::BearingKind> kinds;
   std::vector<shaft::BearingLife> lives;
   double speed = 0;         // rad/s
   double criticalSpeed = 0; // rad/s
   double deflection = 0;    // largest radial deflection, m
+  double deflectionAt = 0;   // where, m
   double mass = 0;          // kg
   struct GearLoad {
     std::string gear;
