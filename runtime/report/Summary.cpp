@@ -116,6 +116,20 @@ void ratingResults(const GearboxReport& g, GearboxSummary& s) {
   }
 }
 
+// Each shaft's bearings: their lives, and the shaft's critical speed against its speed.
+void shaftResults(const GearboxReport& g, GearboxSummary& s) {
+  for (const auto& sh : g.shafts) {
+    if (!sh.error.empty()) {
+      s.warnings.push_back(fmt::format("shaft {}: not solved: {}", sh.name, sh.error));
+      continue;
+    }
+    std::vector<std::string> lives;
+    for (const auto& b : sh.bearings) lives.push_back(fmt::format("{} L10h {:.0f} h, L_nmh {:.0f} h, s0 {:.2f}", b.name, b.L10h, b.Lnmh, b.s0));
+    s.results.push_back(fmt::format("shaft {}: {}; critical speed {:.0f} rpm at {:.0f} rpm", sh.name, fmt::join(lives, "; "),
+                                    sh.criticalSpeed * 30 / 3.14159265358979323846, sh.speed * 30 / 3.14159265358979323846));
+  }
+}
+
 } // namespace
 
 GearboxSummary summarise(const GearboxReport& g) {
@@ -144,6 +158,7 @@ GearboxSummary summarise(const GearboxReport& g) {
   sceneResults(g, s);
   studyResults(g, s);
   ratingResults(g, s);
+  shaftResults(g, s);
   return s;
 }
 
