@@ -1,5 +1,6 @@
 #include "passes/Shafts.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "model/Evaluator.h"
@@ -34,6 +35,22 @@ Shafts shafts(const Model& m, const Assignment& best) {
     r.deflectionAt = s->deflectionAt;
     r.mass = s->mass;
     r.warnings = s->warnings;
+    // The deflection line and the bending moment, sampled along the shaft for the charts.
+    const auto& sol = s->solution;
+    double x0 = sol.x.front(), x1 = sol.x.back();
+    std::vector<double> at;
+    for (int k = 0; k <= 200; ++k)
+      at.push_back(x0 + (x1 - x0) * k / 200);
+    // Each station from both sides: a couple there makes the moment jump.
+    for (double x : sol.x)
+      at.insert(at.end(), {std::max(x0, x - 1e-9), x});
+    std::sort(at.begin(), at.end());
+    for (double x : at) {
+      r.lineX.push_back(x);
+      r.lineDeflection.push_back(sol.deflectionAt(x));
+      r.lineMoment.push_back(
+          std::hypot(sol.moment(shaft::Solution::Plane::Y, x), sol.moment(shaft::Solution::Plane::Z, x)));
+    }
     out.warnings.insert(out.warnings.end(), s->warnings.begin(), s->warnings.end());
     out.shafts.push_back(std::move(r));
   }

@@ -173,6 +173,36 @@ void workPrecisionChart(const std::string& gearbox, const WorkPrecisionStudy& s,
   add(out, files, fileSafe(gearbox) + "." + s.name + ".svg", chart);
 }
 
+// A shaft's deflection line and bending-moment diagram (its bearings as a second series).
+void shaftCharts(const std::string& gearbox, ShaftReport& sh, std::vector<ChartFile>& out) {
+  if (sh.lineX.empty()) return;
+  std::vector<double> x, d, m;
+  for (size_t i = 0; i < sh.lineX.size(); ++i) {
+    x.push_back(sh.lineX[i] * 1e3);
+    d.push_back(sh.lineDeflection[i] * 1e6);
+    m.push_back(sh.lineMoment[i]);
+  }
+  SvgSeries bearings{"bearings", {}, {}};
+  bearings.markers = true;
+  bearings.line = false;
+  for (const auto& b : sh.bearings) {
+    bearings.x.push_back(b.x * 1e3);
+    bearings.y.push_back(0);
+  }
+  SvgChart c;
+  c.title = fmt::format("{} — shaft {}: deflection along the shaft (design 1)", gearbox, sh.name);
+  c.xLabel = "position from the left end [mm]";
+  c.yLabel = "radial deflection [um]";
+  c.series = {{"deflection", x, d}, bearings};
+  add(out, sh.files, fileSafe(gearbox + "." + sh.name) + ".deflection.svg", c);
+  SvgChart mc;
+  mc.title = fmt::format("{} — shaft {}: bending moment along the shaft (design 1)", gearbox, sh.name);
+  mc.xLabel = c.xLabel;
+  mc.yLabel = "bending moment [N m]";
+  mc.series = {{"bending moment", x, m}, bearings};
+  add(out, sh.files, fileSafe(gearbox + "." + sh.name) + ".bending_moment.svg", mc);
+}
+
 // K_Hbeta by contact analysis: the line load across the face against its mean.
 void faceLoadChart(const std::string& gearbox, RatingReport& r, std::vector<ChartFile>& out) {
   if (r.lineLoad.empty()) return;
@@ -250,6 +280,7 @@ std::vector<ChartFile> drawCharts(std::vector<GearboxReport>& reports) {
       faceLoadChart(g.name, r, out);
       pathCharts(g.name, r, out);
     }
+    for (auto& sh : g.shafts) shaftCharts(g.name, sh, out);
     for (auto& st : g.studies) {
       if (const auto* s = std::get_if<SweepStudy>(&st.study)) sweepCharts(g.name, *s, st.files, out);
       else workPrecisionChart(g.name, std::get<WorkPrecisionStudy>(st.study), st.files, out);

@@ -223,6 +223,8 @@ std::vector<Figure> figures(const GearboxReport& g) {
     for (const auto& x : st.files) f.push_back({x, "study " + studyName(st)});
   for (const auto& r : g.ratings)
     for (const auto& x : r.files) f.push_back({x, "rating of " + r.stage});
+  for (const auto& sh : g.shafts)
+    for (const auto& x : sh.files) f.push_back({x, "shaft " + sh.name});
   if (g.optimisation)
     for (const auto& x : g.optimisation->files) f.push_back({x, "optimisation"});
   if (g.monteCarlo)

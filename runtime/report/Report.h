@@ -195,6 +195,8 @@ struct ShaftReport {
   std::vector<Gear> gears;
   double speed = 0, criticalSpeed = 0, deflection = 0, deflectionAt = 0, mass = 0;  // rad/s, m, kg
   std::vector<std::string> warnings;
+  std::vector<double> lineX, lineDeflection, lineMoment;  // along the shaft: m, m, N m (the bending moment's magnitude)
+  std::vector<std::string> files;                         // charts written with -o DIR
 };
 
 struct RatingReport {

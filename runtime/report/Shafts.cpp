@@ -52,6 +52,8 @@ std::vector<std::string> shaftNotes(const ShaftReport& s) {
                           mm(s.deflectionAt), formatNumber(s.mass)));
   for (const auto& w : s.warnings)
     n.push_back("warning: " + w);
+  for (const auto& f : s.files)
+    n.push_back("chart: " + f);
   return n;
 }
 

@@ -218,10 +218,10 @@ double Solution::slope(Plane p, double at) const {
 }
 
 double Solution::moment(Plane p, double at) const {
-  const auto& m = p == Plane::Y ? momentY : momentZ;
   size_t e = element(at);
   double s = std::clamp((at - x[e]) / (x[e + 1] - x[e]), 0.0, 1.0);
-  return m[e] + s * (m[e + 1] - m[e]);
+  double a = p == Plane::Y ? startY[e] : startZ[e], b = p == Plane::Y ? endY[e] : endZ[e];
+  return a + s * (b - a);
 }
 
 double Solution::twistAt(double at) const {
@@ -346,6 +346,10 @@ Solution solve(const Model& m) {
     }
     s.momentY.push_back(fy(3));
     s.momentZ.push_back(fz(3));
+    s.startY.push_back(-fy(1));
+    s.endY.push_back(fy(3));
+    s.startZ.push_back(-fz(1));
+    s.endZ.push_back(fz(3));
   }
   return s;
 }

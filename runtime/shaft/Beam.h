@@ -74,12 +74,14 @@ struct Solution {
   std::vector<Reaction> reactions; // per bearing, the force the bearing puts on the shaft
   std::vector<double> momentY,
       momentZ;                // bending moment at each station (from its left element; the first from its right)
-  std::vector<double> torque; // per element
+  std::vector<double> torque; // per element: the torque it carries
+  // Per element, its own end moments (a couple acting at a station makes them jump there).
+  std::vector<double> startY, endY, startZ, endZ;
 
   enum class Plane { Y, Z };
   double deflection(Plane p, double at) const;
   double slope(Plane p, double at) const;
-  double moment(Plane p, double at) const; // linear between stations
+  double moment(Plane p, double at) const; // linear within an element; at a station, the element on its right
   double deflectionAt(double at) const { return std::hypot(deflection(Plane::Y, at), deflection(Plane::Z, at)); }
   double slopeAt(double at) const { return std::hypot(slope(Plane::Y, at), slope(Plane::Z, at)); }
   double twistAt(double at) const; // linear between stations
