@@ -131,7 +131,7 @@ const ir::Expr* quantityAt(const ir::Gearbox& g, const std::function<bool(const 
   };
   auto visit = [&](const ir::Expr& e) {
     if (e.op != ir::Op::Quantity || !e.type.isNumber() || !at(e.span)) return;
-    if (e.ref.owner != ir::QuantityRef::Stage && e.ref.owner != ir::QuantityRef::Gearbox) return;
+    if (e.ref.owner != ir::QuantityRef::Stage && e.ref.owner != ir::QuantityRef::Gearbox && e.ref.owner != ir::QuantityRef::Shaft) return;
     if (!best || extent(e.span) < extent(best->span)) {
       best = &e;
       ambiguous = false;

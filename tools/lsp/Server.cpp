@@ -13,6 +13,7 @@
 
 #include "catalogue/Effects.h"
 #include "catalogue/Settings.h"
+#include "catalogue/Shafts.h"
 #include "catalogue/StageKinds.h"
 #include "driver/Driver.h"
 #include "format/Formatter.h"
@@ -491,6 +492,15 @@ private:
         return fmt::format("**stage {}**: {} — gears {}\n\n{}", st.name, cat::kindSpec(st.kind).name, fmt::join(st.gears, ", "),
                            fmt::join(binds, "; "));
       }
+    for (const auto& sh : g->shafts)
+      if (sh.name == word) {
+        std::vector<std::string> parts;
+        for (const auto& p : sh.placed)
+          if (p.kind == ir::Shaft::Place::Gear || p.kind == ir::Shaft::Place::Bearing)
+            parts.push_back(fmt::format("{} {} at {:g} mm", p.kind == ir::Shaft::Place::Gear ? "gear" : "bearing", p.name, p.at.toDouble() * 1e3));
+        double length = sh.segments.empty() ? 0 : sh.segments.back().x1.toDouble();
+        return fmt::format("**shaft {}**: {} segments over {:g} mm\n\n{}", sh.name, sh.segments.size(), length * 1e3, fmt::join(parts, "; "));
+      }
     for (const auto& sc : g->scenes)
       if (sc.name == word) {
         std::vector<std::string> fx, set;
@@ -522,6 +532,9 @@ private:
     }
     if (ref.owner == ir::QuantityRef::Gearbox)
       for (const auto& q : cat::gearboxQuantities())
+        if (q.key == ref.key) return &q;
+    if (ref.owner == ir::QuantityRef::Shaft)
+      for (const auto& q : ref.gear < 0 ? cat::shaftOutputs() : cat::bearingOutputs())
         if (q.key == ref.key) return &q;
     return nullptr;
   }

@@ -18,6 +18,7 @@
 #endif
 
 #include "driver/Driver.h"
+#include "ReadFile.h"
 #include "lsp/Json.h"
 #include "lsp/Server.h"
 
@@ -684,4 +685,19 @@ TEST(Lsp, DefinitionOfAnImportIsItsFile) {
   EXPECT_EQ(fs::weakly_canonical(r[2]["uri"].string().substr(7)), fs::weakly_canonical(doc.parent_path() / "lib" / "shop.gbx")) << r[2].dump();
   EXPECT_EQ(r[2]["range"]["start"]["line"].number(), 0);
   EXPECT_EQ(fs::path(r[3]["uri"].string()).filename(), "materials.gbx") << r[3].dump();
+}
+
+// A shaft's name shows its gears and bearings; a shaft quantity in a rule what it is and, for
+// a fixed design, its value there.
+TEST(Lsp, HoverOnAShaftAndItsQuantities) {
+  const std::string text = readFile(fs::path(GBX_SOURCE_DIR) / "tests" / "golden" / "solve" / "shaft_input.gbx");
+  const std::string uri = "file://" + (fs::path(GBX_SOURCE_DIR) / "tests" / "golden" / "solve" / "shaft_input.gbx").string();
+  auto r = answers(uri, text,
+                   {{"textDocument/hover", after(text, "shaft inp", 0)},
+                    {"textDocument/hover", after(text, "require input.B.li", 0)}});
+  auto hover = [&](int id) { return r[id]["contents"]["value"].string(); };
+  EXPECT_NE(hover(2).find("**shaft input**"), std::string::npos) << hover(2);
+  EXPECT_NE(hover(2).find("bearing A at 30 mm"), std::string::npos) << hover(2);
+  EXPECT_NE(hover(2).find("gear hs.pinion at 175 mm"), std::string::npos) << hover(2);
+  EXPECT_NE(hover(3).find("ISO 281 basic rating life"), std::string::npos) << hover(3);
 }
