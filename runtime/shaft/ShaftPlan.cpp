@@ -118,7 +118,7 @@ bool gearLoad(const Ctx& c, const ir::Shaft::Placed& p, shaft::Model& m, ShaftRe
 
 } // namespace
 
-std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error) {
+std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error, bool modes) {
   const ir::Shaft& sh = ev.model().gearbox.shafts[static_cast<size_t>(index)];
   auto fail = [&](const std::string& what) -> std::optional<ShaftResult> {
     if (error) *error = fmt::format("shaft `{}`: {}", sh.name, what);
@@ -177,8 +177,10 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
   }
   try {
     out.solution = shaft::solve(m);
-    auto w = shaft::naturalFrequencies(m, 1);
-    out.criticalSpeed = w.empty() ? 0 : w[0];
+    if (modes) {
+      auto w = shaft::naturalFrequencies(m, 1);
+      out.criticalSpeed = w.empty() ? 0 : w[0];
+    }
   } catch (const std::invalid_argument& e) {
     return fail(e.what());
   }
@@ -231,7 +233,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
 
 Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignment& a) {
   if (r.index < 0 || static_cast<size_t>(r.index) >= ev.model().gearbox.shafts.size()) return Value::invalid();
-  auto s = computeShaft(ev, r.index, a);
+  auto s = computeShaft(ev, r.index, a, nullptr, r.gear < 0 && r.key == Q::CriticalSpeed);
   if (!s) return Value::invalid();
   if (r.gear < 0) {
     switch (r.key) {

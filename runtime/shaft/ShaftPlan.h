@@ -36,8 +36,10 @@ struct ShaftResult {
 
 // The shaft `index` of the evaluator's gearbox at the design; nullopt with `error` said when
 // the design leaves something unknown or the shaft cannot stand.
-std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a,
-                                        std::string* error = nullptr);
+// `modes`: also its first critical speed (an eigenproblem, the costly part: a rule on a
+// bearing's life does not pay for it).
+std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error = nullptr,
+                                        bool modes = true);
 
 // `input.deflection`, `input.A.life`: one quantity of a shaft or of its bearing (`r.gear`).
 Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignment& a);
