@@ -10,6 +10,7 @@
 #include "catalogue/Shafts.h"
 #include "catalogue/StageKinds.h"
 #include "model/Evaluator.h"
+#include "model/Recent.h"
 
 namespace gbx::rt {
 
@@ -231,9 +232,34 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
   return out;
 }
 
+namespace {
+
+// Everything a shaft reads that a design can change: each of its gears' load and geometry (a
+// shaft's own settings are constants). Missing values count as themselves.
+std::vector<double> inputsKey(const Evaluator& ev, int index, const Assignment& a, bool modes) {
+  std::vector<double> k = {static_cast<double>(ev.model().serial), static_cast<double>(index), modes ? 1.0 : 0.0};
+  Ctx c{ev, a, nullptr};
+  for (const auto& p : ev.model().gearbox.shafts[static_cast<size_t>(index)].placed) {
+    if (p.kind != Place::Gear) continue;
+    for (auto [g, key] : {std::pair{p.gear, Q::Torque}, {p.gear, Q::Speed}, {p.gear, Q::Z}, {-1, Q::NormalModule}, {-1, Q::PressureAngle},
+                          {-1, Q::WorkingPressureAngle}, {-1, Q::FaceWidth}, {-1, Q::HelixAngle}})
+      k.push_back(c.stage(p.stage, g, key).value_or(-1.5e308));
+  }
+  return k;
+}
+
+} // namespace
+
 Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignment& a) {
   if (r.index < 0 || static_cast<size_t>(r.index) >= ev.model().gearbox.shafts.size()) return Value::invalid();
-  auto s = computeShaft(ev, r.index, a, nullptr, r.gear < 0 && r.key == Q::CriticalSpeed);
+  // The quantities of one design are read one after another (a rule on two bearings' lives,
+  // a table's columns): the shaft is solved once for them.
+  thread_local Recent<std::vector<double>, std::optional<ShaftResult>, 256> recent;
+  bool modes = r.gear < 0 && r.key == Q::CriticalSpeed;
+  auto key = inputsKey(ev, r.index, a, modes);
+  const std::optional<ShaftResult>* hit = recent.find(key);
+  if (!hit) hit = &recent.put(std::move(key), computeShaft(ev, r.index, a, nullptr, modes));
+  const std::optional<ShaftResult>& s = *hit;
   if (!s) return Value::invalid();
   if (r.gear < 0) {
     switch (r.key) {
