@@ -5,13 +5,14 @@
 #include <cmath>
 #include <numbers>
 
+#include "Compiled.h"
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 
 using namespace gbx;
 
 TEST(PlanetaryMass, DiscsAndTheRingAnnulusFromTheGeometry) {
-  auto c = driver::compileText("p.gbx", R"(import materials;
+  Compiled c = compileFirst(R"(import materials;
 gearbox P {
   stage ps: planetary {
     sun.z = 18;  planet.z = 27;  ring.z = 72;  planets = 3;  module = 3 mm;  face_width = 40 mm;
@@ -19,8 +20,7 @@ gearbox P {
   }
 }
 )");
-  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
-  rt::Model m(c->program, c->program.gearboxes[0]);
+  const rt::Model& m = *c.m;
   rt::Evaluator ev(m);
   rt::Assignment a(m);
   auto q = [&](const char* path) { return ev.quantity(path, a).mid(); };

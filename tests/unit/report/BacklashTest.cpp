@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "BacklashReference.h"
+#include "Compiled.h"
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 #include "model/kinds/Geometry.h"
@@ -56,9 +57,8 @@ gearbox G {
   operating { input_speed = 1500 rpm; input_torque = 300 N*m; }
 }
 )";
-  auto c = driver::compileText("backlash.gbx", spec);
-  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
-  rt::Model m(c->program, c->program.gearboxes[0]);
+  Compiled c = compileFirst(spec);
+  const rt::Model& m = *c.m;
   rt::Assignment a(m);
   auto tables = rt::passes::ratings(m, a).ratings;
   ASSERT_EQ(tables.size(), 1u);

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "Compiled.h"
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 
@@ -51,9 +52,8 @@ std::string codes(const std::string& text) {
 } // namespace
 
 TEST(ShaftSpec, ReactionsAndLivesMatchAHandCalculation) {
-  auto c = driver::compileText("s.gbx", spec("pinion.z = 23;", ""));
-  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
-  rt::Model m(c->program, c->program.gearboxes[0]);
+  Compiled c = compileFirst(spec("pinion.z = 23;", ""));
+  const rt::Model& m = *c.m;
   rt::Evaluator ev(m);
   rt::Assignment a(m);
   auto q = [&](const char* p) { return ev.quantity(p, a).mid(); };
@@ -125,9 +125,8 @@ TEST(ShaftSpec, AShaftBlockIsCheckedBeforeTheSearch) {
 // loads B, and the reactions trade places.
 TEST(ShaftSpec, ALeftHandPinionSwapsWhichBearingTheThrustCoupleLoads) {
   auto reactions = [](const std::string& hand) {
-    auto c = driver::compileText("s.gbx", spec("pinion.z = 23;  " + hand, ""));
-    EXPECT_TRUE(c->ok()) << c->diags.renderText(c->sources);
-    rt::Model m(c->program, c->program.gearboxes[0]);
+    Compiled c = compileFirst(spec("pinion.z = 23;  " + hand, ""));
+    const rt::Model& m = *c.m;
     rt::Evaluator ev(m);
     rt::Assignment a(m);
     return std::make_pair(ev.quantity("input.A.reaction", a).mid(), ev.quantity("input.B.reaction", a).mid());
@@ -163,9 +162,8 @@ gearbox S {
   operating { input_speed = 1000 rpm;  input_torque = 1 N*m; }
 }
 )";
-  auto c = driver::compileText("shigley.gbx", text);
-  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
-  rt::Model m(c->program, c->program.gearboxes[0]);
+  Compiled c = compileFirst(text);
+  const rt::Model& m = *c.m;
   rt::Evaluator ev(m);
   rt::Assignment a(m);
   auto q = [&](const char* p) { return ev.quantity(p, a).mid(); };
