@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "ExamplePair.h"
 #include "driver/Driver.h"
 #include "rating/Iso6336.h"
 #include "search/Search.h"
@@ -40,21 +41,7 @@ gearbox G {
 } // namespace
 
 int main() {
-  constexpr double deg = M_PI / 180, rpm = M_PI / 30;
-  rt::rating::PairInput in;
-  in.gear[0] = {17, 0.145, 159.66e-3, 8e-6, 10e-6, 11e-6, 360 * rpm, 1, 1, 1, 0, 1500e6, 500e6};
-  in.gear[1] = {103, 0, 872.35e-3, 9.5e-6, 12e-6, 13e-6, 360 * rpm * 17 / 103, 1, 1, 1, 0, 1500e6, 500e6};
-  in.mn = 8e-3;
-  in.alphaN = 20 * deg;
-  in.beta = 15.8 * deg;
-  in.b = 100e-3;
-  in.a = 500e-3;
-  in.torque1 = 9000;
-  in.life = 50000 * 3600.0;
-  in.nu40 = 320e-6;
-  in.RzFlank = in.RzRoot = 6e-6;
-  in.hfP = 1.4;
-  in.rhoFP = 0.39;
+  rt::rating::PairInput in = trExample1Pair();
   std::vector<double> per;
   double sink = 0;
   for (int rep = 0; rep < 7; ++rep) {

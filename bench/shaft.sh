@@ -26,15 +26,9 @@ sec = ["## Shafts", "",
        f"| static solve, {stations} stations | {static:.0f} us | {static/rating:.0f} |",
        f"| first natural frequencies, 200 elements | {modes200/1000:.0f} ms | {modes200/rating:.0f} |",
        f"| one mesh rated | {rating:.2f} us | 1 |", ""]
-path = "docs/performance.md"
-doc = open(path).read()
-start = doc.find("## Shafts")
-if start < 0:
-    doc = doc.rstrip("\n") + "\n\n" + "\n".join(sec)
-else:
-    end = doc.find("\n## ", start + 1)
-    doc = doc[:start] + "\n".join(sec) + ("\n" + doc[end + 1:] if end >= 0 else "")
-open(path, "w").write(doc)
+sys.path.insert(0, "bench")
+from section import write_section
+write_section(sec)
 print("\n".join(sec))
 PY
 rm -f "$out"

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "ExamplePair.h"
 #include "rating/Iso6336.h"
 #include "shaft/Beam.h"
 
@@ -48,7 +49,6 @@ shaft::Model shaft200() {
 } // namespace
 
 int main() {
-  constexpr double deg = M_PI / 180, rpm = M_PI / 30;
   shaft::Model m = shaft200();
   double sink = 0;
   double st = microseconds([&] { sink += shaft::solve(m).v[7]; }, 200);
@@ -56,18 +56,7 @@ int main() {
   shaft::Model coarse = m;
   coarse.elements = 40; // the default mesh of the natural frequencies
   double modes40 = microseconds([&] { sink += shaft::naturalFrequencies(coarse, 3)[0]; }, 10);
-  rating::PairInput in;
-  in.gear[0] = {17, 0.145, 159.66e-3, 8e-6, 10e-6, 11e-6, 360 * rpm, 1, 1, 1, 0, 1500e6, 500e6};
-  in.gear[1] = {103, 0, 872.35e-3, 9.5e-6, 12e-6, 13e-6, 360 * rpm * 17 / 103, 1, 1, 1, 0, 1500e6, 500e6};
-  in.mn = 8e-3;
-  in.alphaN = 20 * deg;
-  in.beta = 15.8 * deg;
-  in.b = 100e-3;
-  in.a = 500e-3;
-  in.torque1 = 9000;
-  in.life = 50000 * 3600.0;
-  in.nu40 = 320e-6;
-  in.RzFlank = in.RzRoot = 6e-6;
+  rating::PairInput in = trExample1Pair();
   double rate = microseconds([&] { sink += rating::rate(in).gear[0].SH; }, 2000);
   std::printf("static %.1f us (%zu stations)\n", st, shaft::solve(m).x.size());
   std::printf("modes %.0f us (200 elements), %.0f us (%zu nodes, the default mesh)\n", modes, modes40,

@@ -47,14 +47,8 @@ sec = ["## Sizing continuous face widths", "",
        f"| best mass | {float(n['gbxc_mass']):.4f} kg | {float(n['brute_mass']):.4f} kg (b {n['brute_b']} mm) |",
        f"| best 10 the same (masses within a grid step) | {n['same_top']} | |",
        f"| time ratio, brute force / gbxc | {float(n['ratio']):.0f}x | |", ""]
-path = "docs/performance.md"
-text = open(path).read()
-start = text.find("## Sizing continuous face widths")
-if start < 0:
-    text = text.rstrip("\n") + "\n\n" + "\n".join(sec)
-else:
-    end = text.find("\n## ", start + 1)
-    text = text[:start] + "\n".join(sec) + ("\n" + text[end + 1:] if end >= 0 else "")
-open(path, "w").write(text)
+sys.path.insert(0, "bench")
+from section import write_section
+write_section(sec)
 PY
 exit $status
