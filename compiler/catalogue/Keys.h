@@ -234,6 +234,13 @@ namespace gbx::cat {
   X(ModifiedLife, "modified_life")                                                           \
   X(StaticSafety, "static_safety")                                                           \
   X(OilViscosity, "viscosity")                                                               \
+  X(TensileStrength, "tensile_strength")                                                     \
+  X(YieldStrength, "yield_strength")                                                         \
+  X(SteelGroup, "steel_group")                                                               \
+  X(FatigueSafety, "fatigue_safety")                                                         \
+  X(NotchRadius, "radius")                                                                   \
+  X(NotchDepth, "depth")                                                                     \
+  X(Keys, "keys")                                                                            \
   X(ToolEdgeRadius, "tool_edge_radius")                                                         \
   X(MeanDiameter, "mean_diameter")                                                              \
   X(OuterPitchDiameter, "outer_pitch_diameter")                                                 \

@@ -43,6 +43,12 @@ const std::vector<AttrSpec>& materialProperties() {
       pos("brinell_hardness", none, "Brinell hardness HB of a through-hardened steel (Z_W of ISO 6336-2 when it meshes with a harder pinion)"),
       symbol("treatment", {"case_hardened", "nitrided", "through_hardened"},
              "heat treatment: selects the ISO 6336 life curves, running-in, notch sensitivity and size factors"),
+      hinted(pos("tensile_strength", pressure, "tensile strength sigma_B at DIN 743's reference diameter 16 mm (shafts)"),
+             "MPa"),
+      hinted(pos("yield_strength", pressure, "yield strength sigma_S at DIN 743's reference diameter 16 mm (shafts)"),
+             "MPa"),
+      symbol("steel_group", {"quenched_tempered", "case_hardening", "structural", "nitriding"},
+             "DIN 743-2 steel group: how the strengths fall with the heat-treatment diameter (K1)"),
   };
   return q;
 }

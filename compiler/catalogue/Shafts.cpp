@@ -22,6 +22,20 @@ const std::vector<AttrSpec>& shaftSettings() {
                "ISO 281 contamination level: e_C from Table 13's guide values (default normal, e_C 0.55)"),
         bounded(in("life.contamination", none, "ISO 281 contamination factor e_C, given (in place of `cleanliness`)"),
                 num(0), num(1)),
+        bounded(withDefault(count("strength.load_case", "DIN 743 load case: 1 the mean stress stays as the load grows, "
+                                                       "2 (the default) its ratio to the amplitude stays"),
+                            num(2)),
+                num(1), num(2)),
+        bounded(withDefault(pos("strength.peak_factor", none,
+                                "the largest load over the nominal one, for the static proof S_F (default 1)"),
+                            num(1)),
+                num(1), std::nullopt),
+        symbol("strength.surface", {"plain", "hardened"},
+               "DIN 743 surface: `hardened` (a hardened layer) takes K_F 1, the hard layer's support number and K2F 1"),
+        withDefault(pos("strength.surface_factor", none, "DIN 743 K_V, the surface strengthening factor (default 1)"),
+                    num(1)),
+        withDefault(pos("strength.min_safety.fatigue", none, "minimum fatigue safety S_D (default 1.2)"), num(6, 5)),
+        withDefault(pos("strength.min_safety.static", none, "minimum static safety S_F (default 1.2)"), num(6, 5)),
         hinted(pos("life.viscosity", kinematicViscosity,
                    "oil viscosity at the bearings' temperature (kappa of a_ISO); without it, L_nm uses a_ISO 1"),
                "mm^2/s"),
@@ -81,6 +95,21 @@ const std::vector<AttrSpec>& diskSettings() {
   return s;
 }
 
+const std::vector<std::string>& notchKinds() {
+  static const std::vector<std::string> k = {"shoulder", "groove", "keyway", "press_fit", "hole", "v_notch"};
+  return k;
+}
+
+const std::vector<AttrSpec>& notchSettings() {
+  static const std::vector<AttrSpec> s = {
+      hinted(pos("radius", length, "fillet radius of a shoulder or groove"), "mm"),
+      hinted(pos("depth", length, "depth of a groove or V-notch below the segment's diameter"), "mm"),
+      hinted(pos("diameter", length, "diameter of a transverse hole"), "mm"),
+      bounded(count("keys", "keys in a keyway, 1 or 2 (default 1)"), num(1), num(2)),
+  };
+  return s;
+}
+
 const std::vector<AttrSpec>& shaftOutputs() {
   static const std::vector<AttrSpec> s = {
       hinted(derived("deflection", length, "largest radial deflection along the shaft"), "um"),
@@ -88,6 +117,8 @@ const std::vector<AttrSpec>& shaftOutputs() {
                      "first bending natural frequency on the bearings, gears and disks as rigid disks"),
              "rpm"),
       derived("mass", mass, "the shaft's mass"),
+      derived("fatigue_safety", none, "DIN 743 fatigue safety S_D, the least over the notches"),
+      derived("static_safety", none, "DIN 743 static safety S_F, the least over the notches"),
   };
   return s;
 }

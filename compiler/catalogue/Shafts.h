@@ -1,6 +1,7 @@
 #pragma once
 // The `shaft` member of a gearbox: its settings and those of its segments, bearings, loads,
 // disks and `life` block, and the quantities it reports (docs/shafts.md).
+#include <string>
 #include <vector>
 
 #include "catalogue/Attr.h"
@@ -12,7 +13,9 @@ const std::vector<AttrSpec>& segmentSettings(); // diameter, bore, roughness
 const std::vector<AttrSpec>& bearingSettings(); // kind, C, C0, radial_stiffness, axial, e, X, Y, X0, Y0, pitch_diameter
 const std::vector<AttrSpec>& loadSettings();    // radial, axial, torque, angle
 const std::vector<AttrSpec>& diskSettings();    // diameter, width, bore
-const std::vector<AttrSpec>& shaftOutputs();    // deflection, critical_speed, mass
+const std::vector<std::string>& notchKinds();   // shoulder, groove, keyway, press_fit, hole, v_notch
+const std::vector<AttrSpec>& notchSettings();   // radius, depth, diameter, keys
+const std::vector<AttrSpec>& shaftOutputs();    // deflection, critical_speed, mass, fatigue_safety, static_safety
 const std::vector<AttrSpec>& bearingOutputs();  // reaction, axial_reaction, life, modified_life, static_safety
 
 namespace bearingKind {
@@ -20,6 +23,10 @@ namespace bearingKind {
 inline constexpr int DeepGrooveBall = 0, AngularContactBall = 1, CylindricalRoller = 2, TaperedRoller = 3,
                      SphericalRoller = 4;
 } // namespace bearingKind
+namespace notchKind {
+// In the order of notchKinds().
+inline constexpr int Shoulder = 0, Groove = 1, Keyway = 2, PressFit = 3, Hole = 4, VNotch = 5;
+} // namespace notchKind
 namespace cleanliness {
 // ISO 281 Table 13's guide values of e_C (D_pw < 100 mm), the middle of each band.
 inline constexpr double kEc[] = {1.0, 0.7, 0.55, 0.4, 0.2, 0.05};

@@ -314,7 +314,7 @@ std::vector<KindSpec> buildKinds() {
         derived("whole_depth", length, "whole depth 2.25 mn"),
         derived("sliding_balance", none, "specific-sliding balance: the difference of the two gears' largest specific sliding, 0 when balanced"),
         derived("working_pressure_angle", angle, "transverse working pressure angle"),
-        derived("tangential_force", force, "nominal tangential force"),
+        derived("tangential_force", force, "nominal tangential force F_t = 2 T / d at the reference circle (ISO 6336; a shaft takes its forces at the working pitch circle)"),
         derived("load_deflection", length, "elastic deflection w_t / c_gamma"),
         derived("total_contact_ratio", none, "eps_alpha + eps_beta"),
     };

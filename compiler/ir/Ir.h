@@ -271,12 +271,13 @@ struct Shaft {
     Span span;
   };
   std::vector<Segment> segments;  // contiguous from 0, left to right
-  enum class Place : std::uint8_t { Gear, Coupling, Bearing, Load, Disk };
+  enum class Place : std::uint8_t { Gear, Coupling, Bearing, Load, Disk, Notch };
   struct Placed {
     Place kind = Place::Load;
     std::string name;  // a bearing's name, a gear's `stage.gear`
     Number at;
     int stage = -1, gear = -1;  // a gear: its stage and position
+    int notch = -1;             // a notch: its kind, in the order of cat::notchKinds()
     std::vector<Setting> settings;
     Span span;
   };

@@ -193,6 +193,7 @@ public:
       for (auto& p : sh.placed)
         settings(p.settings, p.kind == ir::Shaft::Place::Bearing ? cat::bearingSettings()
                              : p.kind == ir::Shaft::Place::Disk  ? cat::diskSettings()
+                             : p.kind == ir::Shaft::Place::Notch ? cat::notchSettings()
                                                                  : cat::loadSettings());
     }
     for (auto& t : g.tolerances) t.ref = quantity(t.target);

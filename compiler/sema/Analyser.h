@@ -162,6 +162,8 @@ private:
   void missingInputs(const StageModel& stage, const ir::ModRule& r, const Stmt& b);
   ir::Split split(const Stmt& st, const GearboxModel& m, const Scope& gs);
   ir::Shaft shaft(const Stmt& st, const GearboxModel& m, const Scope& gs);
+  void notchGeometry(const ir::Shaft& sh, const std::string& owner);
+  void notchNeeds(const ir::Shaft::Placed& p, const std::string& what, const Span& at);
   std::optional<ir::Shaft::Placed> placed(const Stmt& s, const GearboxModel& m, const Scope& gs, const std::string& owner,
                                           std::set<std::string>& bearings);
   std::optional<Number> position(const ast::Expr* e, const Scope& gs, const std::string& what);

@@ -12,15 +12,87 @@ namespace {
 using Place = ir::Shaft::Place;
 
 std::optional<Place> placeOf(const std::string& w) {
-  if (w == "gear") return Place::Gear;
-  if (w == "coupling") return Place::Coupling;
-  if (w == "bearing") return Place::Bearing;
-  if (w == "load") return Place::Load;
-  if (w == "disk") return Place::Disk;
+  static const std::pair<std::string_view, Place> words[] = {{"gear", Place::Gear}, {"coupling", Place::Coupling},
+                                                             {"bearing", Place::Bearing}, {"load", Place::Load},
+                                                             {"disk", Place::Disk}, {"notch", Place::Notch}};
+  for (const auto& [word, place] : words)
+    if (word == w) return place;
   return std::nullopt;
 }
 
 } // namespace
+
+// What each kind of notch needs: a shoulder and a groove their fillet, a groove and a
+// V-notch their depth, a hole its diameter.
+void Analyser::notchNeeds(const ir::Shaft::Placed& p, const std::string& what, const Span& at) {
+  auto need = [&](const char* key, const char* example) {
+    if (!ir::findSetting(p.settings, key))
+      diags_.error("E0225", at, fmt::format("{} needs `{}` (as `{}`)", what, key, example));
+  };
+  auto refuse = [&](const char* key) {
+    if (const ir::Setting* x = ir::findSetting(p.settings, key))
+      diags_.error("E0224", x->span, fmt::format("{} takes no `{}`", what, key));
+  };
+  namespace nk = cat::notchKind;
+  const int k = p.notch;
+  if (k == nk::Shoulder || k == nk::Groove) need("radius", "radius = 2 mm");
+  else refuse("radius");
+  if (k == nk::Groove || k == nk::VNotch) need("depth", "depth = 2 mm");
+  else refuse("depth");
+  if (k == nk::Hole) need("diameter", "diameter = 8 mm");
+  else refuse("diameter");
+  if (k != nk::Keyway) refuse("keys");
+}
+
+// A notch's place on the shaft: a shoulder where the diameter steps, a groove or V-notch
+// shallower than the segment's radius; with notches, the material's DIN 743 strengths.
+void Analyser::notchGeometry(const ir::Shaft& sh, const std::string& owner) {
+  auto diameterAt = [&](const Number& x, bool left) -> std::optional<double> {
+    for (const auto& seg : sh.segments) {
+      bool in = left ? x.compare(seg.x0) > 0 && x.compare(seg.x1) <= 0 : x.compare(seg.x0) >= 0 && x.compare(seg.x1) < 0;
+      const ir::Setting* d = ir::findSetting(seg.settings, Q::Diameter);
+      if (in && d && d->value) return d->value->toDouble();
+    }
+    return std::nullopt;
+  };
+  bool any = false;
+  for (const auto& p : sh.placed) {
+    if (p.kind != Place::Notch) continue;
+    any = true;
+    auto l = diameterAt(p.at, true), r = diameterAt(p.at, false);
+    std::string where = units::showQuantity(p.at, units::dims::length);
+    if (p.notch == cat::notchKind::Shoulder && (!l || !r || *l == *r)) {
+      diags_.error("E0405", p.span,
+                   fmt::format("{}: a shoulder stands where the diameter steps, and it does not at {}", owner, where));
+      continue;
+    }
+    const ir::Setting* depth = ir::findSetting(p.settings, Q::NotchDepth);
+    double d = std::max(l.value_or(0), r.value_or(0));
+    if (depth && depth->value && d > 0 && 2 * depth->value->toDouble() >= d)
+      diags_.error("E0405", depth->span,
+                   fmt::format("{}: the {} at {} is {} deep in a {} shaft: no section is left", owner, p.name, where,
+                               units::showQuantity(*depth->value, units::dims::length),
+                               units::showQuantity(Number::approx(d), units::dims::length)));
+    const ir::Setting* hole = p.notch == cat::notchKind::Hole ? ir::findSetting(p.settings, Q::Diameter) : nullptr;
+    if (hole && hole->value && d > 0 && hole->value->toDouble() >= d)
+      diags_.error("E0405", hole->span,
+                   fmt::format("{}: the hole at {} is as wide as the shaft", owner, where));
+  }
+  const ir::Setting* mat = ir::findSetting(sh.settings, Q::Material);
+  if (!any || !mat) return;
+  auto it = globals_.materials.find(mat->symbol);
+  if (it == globals_.materials.end()) return;
+  std::vector<std::string> missing;
+  for (Q need : {Q::TensileStrength, Q::YieldStrength}) {
+    std::string n(keyName(need));
+    if (std::none_of(it->second->body.begin(), it->second->body.end(), [&](const Stmt& b) { return b.path.str() == n; }))
+      missing.push_back("`" + n + "`");
+  }
+  if (!missing.empty())
+    diags_.error("E0233", mat->span,
+                 fmt::format("{} has notches to rate to DIN 743, but material `{}` does not give {}", owner,
+                             mat->symbol, fmt::join(missing, ", ")));
+}
 
 // A position along the shaft: a constant length.
 std::optional<Number> Analyser::position(const ast::Expr* e, const Scope& gs, const std::string& what) {
@@ -52,15 +124,9 @@ std::optional<Number> Analyser::position(const ast::Expr* e, const Scope& gs, co
 std::optional<ir::Shaft::Placed> Analyser::placed(const Stmt& s, const GearboxModel& m, const Scope& gs,
                                                   const std::string& owner, std::set<std::string>& bearings) {
   auto kind = placeOf(s.name);
-  if (s.name == "notch") {
-    diags_.error(
-        "E0235", nameOr(s),
-        fmt::format("{}: the DIN 743 strength of a shaft is not rated yet (its notches and `strength` block)", owner));
-    return std::nullopt;
-  }
   if (!kind) {
     diags_.error("E0110", nameOr(s),
-                 fmt::format("`{} … at …` is not allowed in {}; it takes gear, coupling, bearing, load and disk",
+                 fmt::format("`{} … at …` is not allowed in {}; it takes gear, coupling, bearing, load, disk and notch",
                              s.name, owner));
     return std::nullopt;
   }
@@ -109,6 +175,18 @@ std::optional<ir::Shaft::Placed> Analyser::placed(const Stmt& s, const GearboxMo
                    fmt::format("duplicate declaration: {} already has a bearing `{}`", owner, p.name));
       return std::nullopt;
     }
+  } else if (*kind == Place::Notch) {
+    const auto& kinds = cat::notchKinds();
+    auto k = s.path.parts.size() == 1 ? std::find(kinds.begin(), kinds.end(), s.path.parts[0]) : kinds.end();
+    if (k == kinds.end()) {
+      diags_.error("E0225", s.path.empty() ? nameOr(s) : s.path.span,
+                   fmt::format("a notch of {} needs its kind: `notch shoulder at 60 mm {{ radius = 2 mm; }}` "
+                               "(shoulder, groove, keyway, press_fit, hole or v_notch){}",
+                               owner, diag::suggestion(diag::closest(s.path.str(), kinds))));
+      return std::nullopt;
+    }
+    p.notch = static_cast<int>(k - kinds.begin());
+    p.name = *k;
   } else if (!s.path.empty()) {
     diags_.error("E0110", s.path.span, fmt::format("a {} of {} takes no name", s.name, owner));
   }
@@ -121,8 +199,10 @@ std::optional<ir::Shaft::Placed> Analyser::placed(const Stmt& s, const GearboxMo
     p.settings = settings(own,
                           *kind == Place::Bearing ? cat::bearingSettings()
                           : *kind == Place::Disk  ? cat::diskSettings()
+                          : *kind == Place::Notch ? cat::notchSettings()
                                                   : cat::loadSettings(),
                           gs, what, nameOr(s), "E0225");
+    if (*kind == Place::Notch) notchNeeds(p, what, nameOr(s));
   }
   return p;
 }
@@ -141,12 +221,10 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
       if (s.name == "life")
         flatten(s.body, "life.", owner, items, {});
       else if (s.name == "strength")
-        diags_.error(
-            "E0235", nameOr(s),
-            fmt::format("{}: the DIN 743 strength of a shaft is not rated yet (its notches and `strength` block)",
-                        owner));
+        flatten(s.body, "strength.", owner, items, {"strength.min_safety"});
       else
-        diags_.error("E0224", nameOr(s), fmt::format("{} has no block `{}` (it takes `life {{ … }}`)", owner, s.name));
+        diags_.error("E0224", nameOr(s),
+                     fmt::format("{} has no block `{}` (it takes `life {{ … }}` and `strength {{ … }}`)", owner, s.name));
       break;
     case StmtKind::Segment: {
       ir::Shaft::Segment seg;
@@ -189,6 +267,7 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
   if (!out.segments.empty()) end = out.segments.back().x1;
   if (out.segments.empty())
     diags_.error("E0225", nameOr(st), fmt::format("{} has no `segment a .. b {{ diameter = …; }}`", owner));
+  notchGeometry(out, owner);
   int nBearings = 0, held = 0;
   for (const auto& p : out.placed) {
     if (!out.segments.empty() && p.at.compare(end) > 0)
@@ -199,7 +278,7 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
     if (p.kind != Place::Bearing) continue;
     ++nBearings;
     const ir::Setting* ax = ir::findSetting(p.settings, "axial");
-    held += ax && ax->symbol == "held";
+    held += ax && ax->choice == 0; // `held`, the first of the catalogue's words
   }
   if (nBearings < 2)
     diags_.error("E0225", nameOr(st), fmt::format("{} needs two bearings (`bearing A at … {{ … }}`) to stand", owner));

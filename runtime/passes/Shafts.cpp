@@ -2,11 +2,83 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "model/Evaluator.h"
 #include "shaft/ShaftPlan.h"
 
 namespace gbx::rt::passes {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Each notch's DIN 743 sequence as the report shows it: N/mm^2 for stresses, 1/mm for G'.
+void notches(const ShaftResult& s, ShaftReport& r) {
+  using F = shaft::din743::Factors;
+  using N = ShaftReport::Notch;
+  r.loadCase = s.strength.din.loadCase;
+  r.peakFactor = s.strength.peak;
+  r.minFatigue = s.strength.minFatigue;
+  r.minStatic = s.strength.minStatic;
+  r.fatigueSafety = s.fatigueSafety;
+  r.staticSafety = s.staticSafety;
+  struct Row {
+    const char *key, *label, *unit;
+    double scale;
+    double (*get)(const F&);
+    bool formFactorOnly, testOnly;
+  };
+  static const Row rows[] = {
+      {"mean", "mean stress", "N/mm^2", 1e6, [](const F& f) { return f.mean; }, false, false},
+      {"amplitude", "stress amplitude", "N/mm^2", 1e6, [](const F& f) { return f.amplitude; }, false, false},
+      {"max", "largest stress", "N/mm^2", 1e6, [](const F& f) { return f.max; }, false, false},
+      {"K2", "K2", "", 1, [](const F& f) { return f.K2; }, false, false},
+      {"alpha", "alpha", "", 1, [](const F& f) { return f.alpha; }, true, false},
+      {"G_prime", "G'", "1/mm", 1e3, [](const F& f) { return f.Gprime; }, true, false},
+      {"n", "n", "", 1, [](const F& f) { return f.n; }, true, false},
+      {"beta_test", "beta(d_BK)", "", 1, [](const F& f) { return f.betaTest; }, false, true},
+      {"K3_test", "K3(d_BK)", "", 1, [](const F& f) { return f.K3Test; }, false, true},
+      {"K3", "K3(d)", "", 1, [](const F& f) { return f.K3; }, false, true},
+      {"beta", "beta", "", 1, [](const F& f) { return f.beta; }, false, false},
+      {"K_F", "K_F", "", 1, [](const F& f) { return f.KF; }, false, false},
+      {"K", "K", "", 1, [](const F& f) { return f.K; }, false, false},
+      {"sigma_W", "sigma_W(d_eff)", "N/mm^2", 1e6, [](const F& f) { return f.sigmaW; }, false, false},
+      {"sigma_WK", "sigma_WK", "N/mm^2", 1e6, [](const F& f) { return f.sigmaWK; }, false, false},
+      {"psi", "psi", "", 1, [](const F& f) { return f.psi; }, false, false},
+      {"sigma_ADK", "sigma_ADK", "N/mm^2", 1e6, [](const F& f) { return f.sigmaADK; }, false, false},
+      {"K2F", "K2F", "", 1, [](const F& f) { return f.K2F; }, false, false},
+      {"gamma_F", "gamma_F", "", 1, [](const F& f) { return f.gammaF; }, false, false},
+      {"sigma_FK", "sigma_FK", "N/mm^2", 1e6, [](const F& f) { return f.sigmaFK; }, false, false},
+  };
+  for (const auto& n : s.notches) {
+    N o;
+    o.kind = n.kind;
+    o.x = n.x;
+    o.d = n.notch.d;
+    o.D = n.notch.D;
+    o.radius = n.notch.radius;
+    o.SD = n.result.SD;
+    o.SF = n.result.SF;
+    bool formFactor = n.result.f[0].alpha > 0;
+    for (const auto& row : rows) {
+      if ((row.formFactorOnly && !formFactor) || (row.testOnly && formFactor)) continue;
+      N::Factor f{row.key, row.label, row.unit, row.scale, {}};
+      for (int k = 0; k < 3; ++k)
+        f.si[k] = row.get(n.result.f[static_cast<size_t>(k)]);
+      o.factors.push_back(std::move(f));
+    }
+    o.common = {{"K1B", "K1 (sigma_B)", "", 1, n.result.K1B},
+                {"K1S", "K1 (sigma_S)", "", 1, n.result.K1S},
+                {"sigma_B", "sigma_B(d_eff)", "N/mm^2", 1e6, n.result.tensileAt},
+                {"sigma_S", "sigma_S(d_eff)", "N/mm^2", 1e6, n.result.yieldAt},
+                {"phi", "phi", "", 1, formFactor ? n.result.phi : kNaN},
+                {"sigma_mv", "sigma_mv", "N/mm^2", 1e6, n.result.sigmaMv}};
+    r.notches.push_back(std::move(o));
+  }
+}
+
+} // namespace
 
 Shafts shafts(const Model& m, const Assignment& best) {
   Shafts out;
@@ -29,6 +101,7 @@ Shafts shafts(const Model& m, const Assignment& best) {
     }
     for (const auto& g : s->gears)
       r.gears.push_back({g.gear, g.x, g.Ft, g.Fr, g.Fa});
+    notches(*s, r);
     r.speed = s->speed;
     r.criticalSpeed = s->criticalSpeed;
     r.deflection = s->deflection;

@@ -397,7 +397,7 @@ std::string gearboxDetails(const GearboxReport& g, const RenderOptions& ro) {
   for (const auto& r : g.ratings) o += ratingHtml(r);
   for (const auto& sh : g.shafts) {
     o += "<h3>Shaft " + esc(sh.name) + " (design 1)</h3>\n";
-    if (sh.error.empty()) o += table(shaftBearingHeader(), shaftBearingRows(sh)) + table(shaftGearHeader(), shaftGearRows(sh));
+    for (const auto& t : shaftTables(sh)) o += (t.caption.empty() ? "" : "<p>" + esc(t.caption) + "</p>\n") + table(t.header, t.rows);
     o += list(shaftNotes(sh));
   }
   for (const auto& md : g.modifications) {

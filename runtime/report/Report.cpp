@@ -537,7 +537,7 @@ std::string markdownShafts(const GearboxReport& g) {
   std::string o;
   for (const auto& sh : g.shafts) {
     o += mdHeading(3, "Shaft " + sh.name + " (design 1)");
-    if (sh.error.empty()) o += mdTable(shaftBearingHeader(), shaftBearingRows(sh)) + mdTable(shaftGearHeader(), shaftGearRows(sh));
+    for (const auto& t : shaftTables(sh)) o += (t.caption.empty() ? "" : t.caption + ":\n\n") + mdTable(t.header, t.rows);
     o += mdList(shaftNotes(sh));
   }
   return o;

@@ -191,8 +191,30 @@ struct ShaftReport {
     std::string name;
     double x = 0, Ft = 0, Fr = 0, Fa = 0;
   };
+  // A notch rated to DIN 743: its geometry, its safeties and every factor of the sequence
+  // (one value per load type: tension, bending, torsion).
+  struct Notch {
+    std::string kind;
+    double x = 0, d = 0, D = 0, radius = 0;  // m
+    double SD = 0, SF = 0;
+    struct Factor {
+      std::string key, label, unit;  // `beta`, `beta`, ``; `sigma_WK`, `sigma_WK`, `N/mm^2`
+      double scale = 1;              // SI per display unit
+      double si[3] = {0, 0, 0};      // NaN: not defined for that load type
+    };
+    std::vector<Factor> factors;
+    struct Common {
+      std::string key, label, unit;
+      double scale = 1, si = 0;
+    };
+    std::vector<Common> common;  // K1B, K1S, sigma_B(d_eff), sigma_S(d_eff), phi, sigma_mv
+  };
   std::vector<Bearing> bearings;
   std::vector<Gear> gears;
+  std::vector<Notch> notches;
+  int loadCase = 2;
+  double peakFactor = 1, minFatigue = 1.2, minStatic = 1.2;
+  double fatigueSafety = 0, staticSafety = 0;  // the least over the notches
   double speed = 0, criticalSpeed = 0, deflection = 0, deflectionAt = 0, mass = 0;  // rad/s, m, kg
   std::vector<std::string> warnings;
   std::vector<double> lineX, lineDeflection, lineMoment;  // along the shaft: m, m, N m (the bending moment's magnitude)
@@ -365,7 +387,7 @@ void forEachRow(const GearboxReport& g, F&& f) {
 }
 
 // The version of docs/report.schema.json the JSON report follows (its top-level "schema").
-inline constexpr const char* kReportSchemaVersion = "1.4";
+inline constexpr const char* kReportSchemaVersion = "1.5";
 
 std::string formatNumber(double v);
 // A JSON number, shortest round-trip; null where the value is not finite (never nan or inf).

@@ -43,6 +43,44 @@ std::vector<std::vector<std::string>> shaftGearRows(const ShaftReport& s) {
   return rows;
 }
 
+namespace {
+
+std::string safety(double v, const char* none) { return std::isfinite(v) ? fmt::format("{:.3f}", v) : none; }
+std::string factor(double v, double scale) {
+  return std::isfinite(v) ? formatNumber(v / scale) : "-";
+}
+std::string notchName(const ShaftReport::Notch& n) { return fmt::format("{} at {} mm", n.kind, mm(n.x)); }
+
+const char* kLoadTypes[] = {"tension", "bending", "torsion"};
+
+} // namespace
+
+std::vector<ShaftTable> shaftTables(const ShaftReport& s) {
+  if (!s.error.empty()) return {};
+  std::vector<ShaftTable> t;
+  t.push_back({"", shaftBearingHeader(), shaftBearingRows(s), {true, false, true, false, false, false, false, false, false, true}});
+  t.push_back({"", shaftGearHeader(), shaftGearRows(s), {true, false, false, false, false}});
+  if (s.notches.empty()) return t;
+  ShaftTable n{fmt::format("DIN 743, load case {}, peak factor {:g}", s.loadCase, s.peakFactor),
+               {"notch", "at [mm]", "d [mm]", "D [mm]", "r [mm]", "S_D", "S_D,min", "S_F", "S_F,min"},
+               {},
+               {true, false, false, false, false, false, false, false, false}};
+  for (const auto& x : s.notches)
+    n.rows.push_back({x.kind, mm(x.x), mm(x.d), mm(x.D), x.radius > 0 ? mm(x.radius) : "-", safety(x.SD, "static only"),
+                      fmt::format("{:.2f}", s.minFatigue), safety(x.SF, "no load"), fmt::format("{:.2f}", s.minStatic)});
+  t.push_back(std::move(n));
+  for (const auto& x : s.notches) {
+    ShaftTable f{"DIN 743 factors, " + notchName(x), {"factor", "tension", "bending", "torsion", "unit"}, {},
+                 {true, false, false, false, true}};
+    for (const auto& c : x.factors)
+      f.rows.push_back({c.label, factor(c.si[0], c.scale), factor(c.si[1], c.scale), factor(c.si[2], c.scale), c.unit});
+    for (const auto& c : x.common)
+      if (std::isfinite(c.si)) f.rows.push_back({c.label, factor(c.si, c.scale), "", "", c.unit});
+    t.push_back(std::move(f));
+  }
+  return t;
+}
+
 std::vector<std::string> shaftNotes(const ShaftReport& s) {
   if (!s.error.empty()) return {"not solved: " + s.error};
   std::vector<std::string> n;
@@ -77,10 +115,9 @@ std::string textShaft(const ShaftReport& s) {
       o += line + "\n";
     }
   };
-  if (s.error.empty()) {
-    table(shaftBearingHeader(), shaftBearingRows(s),
-          {true, false, true, false, false, false, false, false, false, true});
-    table(shaftGearHeader(), shaftGearRows(s), {true, false, false, false, false});
+  for (auto& t : shaftTables(s)) {
+    if (!t.caption.empty()) o += "    " + t.caption + "\n";
+    table(std::move(t.header), std::move(t.rows), t.left);
   }
   for (const auto& n : shaftNotes(s))
     o += "    " + n + "\n";
@@ -109,7 +146,29 @@ std::string shaftJson(const ShaftReport& s) {
                      i ? ", " : "", jsonEscape(g.name), jsonNumberOf(g.x), jsonNumberOf(g.Ft), jsonNumberOf(g.Fr),
                      jsonNumberOf(g.Fa));
   }
-  o += "}, \"warnings\": [";
+  o += "}";
+  if (!s.notches.empty())
+    o += fmt::format(", \"load_case\": {}, \"peak_factor\": {}, \"fatigue_safety\": {}, \"static_safety\": {}, "
+                     "\"min_fatigue_safety\": {}, \"min_static_safety\": {}",
+                     s.loadCase, jsonNumberOf(s.peakFactor), jsonNumberOf(s.fatigueSafety), jsonNumberOf(s.staticSafety),
+                     jsonNumberOf(s.minFatigue), jsonNumberOf(s.minStatic));
+  o += ", \"notches\": [";
+  for (size_t i = 0; i < s.notches.size(); ++i) {
+    const auto& n = s.notches[i];
+    o += fmt::format("{}{{\"kind\": \"{}\", \"at\": {}, \"d\": {}, \"D\": {}, \"radius\": {}, \"fatigue_safety\": {}, "
+                     "\"static_safety\": {}, \"factors\": {{",
+                     i ? ", " : "", n.kind, jsonNumberOf(n.x), jsonNumberOf(n.d), jsonNumberOf(n.D), jsonNumberOf(n.radius),
+                     jsonNumberOf(n.SD), jsonNumberOf(n.SF));
+    for (size_t k = 0; k < n.factors.size(); ++k) {
+      const auto& f = n.factors[k];
+      o += fmt::format("{}\"{}\": [{}, {}, {}]", k ? ", " : "", f.key, jsonNumberOf(f.si[0]), jsonNumberOf(f.si[1]),
+                       jsonNumberOf(f.si[2]));
+    }
+    for (const auto& c : n.common)
+      o += fmt::format(", \"{}\": {}", c.key, jsonNumberOf(c.si));
+    o += "}}";
+  }
+  o += "], \"warnings\": [";
   for (size_t i = 0; i < s.warnings.size(); ++i)
     o += fmt::format("{}\"{}\"", i ? ", " : "", jsonEscape(s.warnings[i]));
   return o + "]}";
@@ -135,6 +194,17 @@ std::vector<std::vector<std::string>> shaftCsvRows(const std::string& gearbox, c
     add(b.name, "life", "h", b.L10h * 3600, 3600);
     add(b.name, "modified_life", "h", b.Lnmh * 3600, 3600);
     add(b.name, "static_safety", "", b.s0, 1);
+  }
+  for (const auto& n : s.notches) {
+    std::string item = notchName(n);
+    add(item, "fatigue_safety", "", n.SD, 1, fmt::format("DIN 743, load case {}", s.loadCase));
+    add(item, "static_safety", "", n.SF, 1, fmt::format("DIN 743, peak factor {:g}", s.peakFactor));
+    for (const auto& f : n.factors)
+      for (int k = 0; k < 3; ++k)
+        if (std::isfinite(f.si[k]))
+          rows.push_back({gearbox, s.name, item, f.key + "." + kLoadTypes[k], f.unit, csvNumber(f.si[k], f.unit, f.scale), ""});
+    for (const auto& c : n.common)
+      if (std::isfinite(c.si)) rows.push_back({gearbox, s.name, item, c.key, c.unit, csvNumber(c.si, c.unit, c.scale), ""});
   }
   for (const auto& g : s.gears) {
     add(g.name, "at", "mm", g.x, 1e-3);

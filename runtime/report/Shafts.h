@@ -12,6 +12,16 @@ std::vector<std::string> shaftBearingHeader();
 std::vector<std::vector<std::string>> shaftBearingRows(const ShaftReport& s);
 std::vector<std::string> shaftGearHeader();
 std::vector<std::vector<std::string>> shaftGearRows(const ShaftReport& s);
+// One table of a shaft as every format draws it: a caption (empty for the first two), its
+// header and rows, and which columns read left to right.
+struct ShaftTable {
+  std::string caption;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<bool> left;
+};
+// Bearings, gears, notches and each notch's DIN 743 factors (none for a shaft not solved).
+std::vector<ShaftTable> shaftTables(const ShaftReport& s);
 std::vector<std::string> shaftNotes(const ShaftReport& s); // speeds, deflection, mass, warnings, or the error
 std::string shaftJson(const ShaftReport& s);
 std::vector<std::vector<std::string>> shaftCsvRows(const std::string& gearbox, const ShaftReport& s);

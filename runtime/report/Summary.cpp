@@ -125,8 +125,21 @@ void shaftResults(const GearboxReport& g, GearboxSummary& s) {
     }
     std::vector<std::string> lives;
     for (const auto& b : sh.bearings) lives.push_back(fmt::format("{} L10h {:.0f} h, L_nmh {:.0f} h, s0 {:.2f}", b.name, b.L10h, b.Lnmh, b.s0));
-    s.results.push_back(fmt::format("shaft {}: {}; critical speed {:.0f} rpm at {:.0f} rpm", sh.name, fmt::join(lives, "; "),
-                                    sh.criticalSpeed * 30 / 3.14159265358979323846, sh.speed * 30 / 3.14159265358979323846));
+    std::string strength;
+    if (!sh.notches.empty()) {
+      auto least = [&](double ShaftReport::Notch::*v) {
+        return *std::min_element(sh.notches.begin(), sh.notches.end(), [&](const auto& a, const auto& b) { return a.*v < b.*v; });
+      };
+      const auto& d = least(&ShaftReport::Notch::SD);
+      const auto& f = least(&ShaftReport::Notch::SF);
+      strength = fmt::format("; S_D {:.2f} (min {:.2f}, {} at {:g} mm), S_F {:.2f} (min {:.2f}, {} at {:g} mm)", d.SD,
+                             sh.minFatigue, d.kind, d.x * 1e3, f.SF, sh.minStatic, f.kind, f.x * 1e3);
+      s.safeties.push_back({fmt::format("shaft {}, {} at {:g} mm", sh.name, d.kind, d.x * 1e3), "S_D", d.SD, sh.minFatigue});
+      s.safeties.push_back({fmt::format("shaft {}, {} at {:g} mm", sh.name, f.kind, f.x * 1e3), "S_F", f.SF, sh.minStatic});
+    }
+    s.results.push_back(fmt::format("shaft {}: {}{}; critical speed {:.0f} rpm at {:.0f} rpm", sh.name, fmt::join(lives, "; "),
+                                    strength, sh.criticalSpeed * 30 / 3.14159265358979323846,
+                                    sh.speed * 30 / 3.14159265358979323846));
   }
 }
 

@@ -230,6 +230,8 @@ double Solution::twistAt(double at) const {
   return twist[e] + s * (twist[e + 1] - twist[e]);
 }
 
+double Solution::torqueAt(double at) const { return torque[element(at)]; }
+
 Props props(const Section& s, double nu) {
   double D = s.diameter, d = s.bore, D2 = D * D, d2 = d * d;
   Props p{};

@@ -16,6 +16,7 @@ inline constexpr double kRigid = std::numeric_limits<double>::infinity();
 struct Section {
   double x0 = 0, x1 = 0;
   double diameter = 0, bore = 0;
+  double roughness = 0; // Rz of its surface (DIN 743's K_F); 0: not given
 };
 
 struct Material {
@@ -85,6 +86,7 @@ struct Solution {
   double deflectionAt(double at) const { return std::hypot(deflection(Plane::Y, at), deflection(Plane::Z, at)); }
   double slopeAt(double at) const { return std::hypot(slope(Plane::Y, at), slope(Plane::Z, at)); }
   double twistAt(double at) const; // linear between stations
+  double torqueAt(double at) const; // the torque carried there; at a station, by the element on its right
 
 private:
   size_t element(double at) const;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -117,6 +118,43 @@ bool gearLoad(const Ctx& c, const ir::Shaft::Placed& p, shaft::Model& m, ShaftRe
   return true;
 }
 
+// DIN 743 at every notch, with the material's strengths and the `strength` settings.
+bool rateStrength(const Evaluator& ev, const ir::Shaft& sh, ShaftResult& out, std::string* error) {
+  auto& st = out.strength;
+  const ir::Setting* m = ir::findSetting(sh.settings, Q::Material);
+  int i = m ? ev.model().program.materialIndex(m->symbol) : -1;
+  if (i >= 0) {
+    const auto& props = ev.model().program.materials[static_cast<size_t>(i)].properties;
+    st.material = {given(props, Q::TensileStrength).value_or(0), given(props, Q::YieldStrength).value_or(0),
+                   static_cast<shaft::din743::Group>(choiceOf(props, Q::SteelGroup, 0))};
+  }
+  st.din.loadCase = static_cast<int>(given(sh.settings, "strength.load_case").value_or(2));
+  st.din.hardened = ir::findSetting(sh.settings, "strength.surface") &&
+                    ir::findSetting(sh.settings, "strength.surface")->choice == 1;
+  st.din.KV = given(sh.settings, "strength.surface_factor").value_or(1);
+  double largest = 0;
+  for (const auto& s : out.model.sections)
+    largest = std::max(largest, s.diameter);
+  st.din.effectiveDiameter = given(sh.settings, Q::HeatTreatmentDiameter).value_or(largest);
+  st.peak = given(sh.settings, "strength.peak_factor").value_or(1);
+  st.minFatigue = given(sh.settings, "strength.min_safety.fatigue").value_or(1.2);
+  st.minStatic = given(sh.settings, "strength.min_safety.static").value_or(1.2);
+  try {
+    out.notches = shaft::rateNotches(sh, out.model, out.solution, st);
+  } catch (const std::invalid_argument& e) {
+    if (error) *error = fmt::format("shaft `{}`: {}", sh.name, e.what());
+    return false;
+  }
+  out.fatigueSafety = out.staticSafety = std::numeric_limits<double>::infinity();
+  for (const auto& n : out.notches) {
+    out.fatigueSafety = std::min(out.fatigueSafety, n.result.SD);
+    out.staticSafety = std::min(out.staticSafety, n.result.SF);
+    for (const auto& w : n.result.warnings)
+      out.warnings.push_back(fmt::format("shaft `{}`: the {} at {:g} mm: {}", sh.name, n.kind, n.x * 1e3, w));
+  }
+  return true;
+}
+
 } // namespace
 
 std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error, bool modes) {
@@ -133,7 +171,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
   m.shear = choiceOf(sh.settings, Q::Shear, 0) == 0;
   for (const auto& seg : sh.segments)
     m.sections.push_back({seg.x0.toDouble(), seg.x1.toDouble(), given(seg.settings, Q::Diameter).value_or(0),
-                          given(seg.settings, Q::Bore).value_or(0)});
+                          given(seg.settings, Q::Bore).value_or(0), given(seg.settings, Q::Roughness).value_or(0)});
   Ctx c{ev, a, error};
   double speed = given(sh.settings, Q::Speed).value_or(0);
   bool coupled = false;
@@ -168,6 +206,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
           {x, mass, mass * (3 * (D * D + bore * bore) / 4 + t * t) / 12, mass * (D * D + bore * bore) / 8});
       break;
     }
+    case Place::Notch: break; // rated once the shaft is solved
     case Place::Bearing:
       bearings.push_back(&p);
       out.bearings.push_back(p.name);
@@ -225,6 +264,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
       return fail(fmt::format("bearing `{}`: {}", p.name, e.what()));
     }
   }
+  if (!rateStrength(ev, sh, out, error)) return std::nullopt;
   if (speed > 0 && out.criticalSpeed > 0 && std::fabs(speed - out.criticalSpeed) < 0.2 * out.criticalSpeed)
     out.warnings.push_back(
         fmt::format("shaft `{}`: its speed {:.0f} rpm lies within 20 % of its first critical speed {:.0f} rpm", sh.name,
@@ -266,6 +306,8 @@ Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignm
     case Q::Deflection: return Value::number(s->deflection);
     case Q::CriticalSpeed: return Value::number(s->criticalSpeed);
     case Q::Mass: return Value::number(s->mass);
+    case Q::FatigueSafety: return s->notches.empty() ? Value::invalid() : Value::number(s->fatigueSafety);
+    case Q::StaticSafety: return s->notches.empty() ? Value::invalid() : Value::number(s->staticSafety);
     default: return Value::invalid();
     }
   }

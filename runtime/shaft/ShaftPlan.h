@@ -9,6 +9,7 @@
 #include "model/Value.h"
 #include "shaft/Beam.h"
 #include "shaft/Iso281.h"
+#include "shaft/ShaftStrength.h"
 
 namespace gbx::rt {
 
@@ -31,6 +32,9 @@ struct ShaftResult {
     double x = 0, Ft = 0, Fr = 0, Fa = 0; // N, at the working pitch circle
   };
   std::vector<GearLoad> gears;
+  std::vector<shaft::NotchRating> notches;
+  shaft::StrengthSettings strength;
+  double fatigueSafety = 0, staticSafety = 0; // the least over the notches (infinite without one)
   std::vector<std::string> warnings;
 };
 

@@ -6,6 +6,7 @@
 #include <set>
 #include <vector>
 
+#include "catalogue/Shafts.h"
 #include "catalogue/Effects.h"
 #include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
@@ -185,6 +186,26 @@ void blocks(std::string& out) {
   table(out, cat::splitSettings());
   out += "Results, read as `NAME.twist` and so on:\n\n";
   table(out, cat::splitOutputs(), "sharing.");
+  out += "## `shaft NAME { … }`\n\nThe shaft's own settings (`life.…` and `strength.…` may also be written as blocks: "
+         "`life { reliability = 0.95; }`):\n\n";
+  table(out, cat::shaftSettings());
+  out += "A `segment A .. B { … }`:\n\n";
+  table(out, cat::segmentSettings());
+  out += "A `bearing NAME at X { … }`:\n\n";
+  table(out, cat::bearingSettings());
+  out += "A `load at X { … }`:\n\n";
+  table(out, cat::loadSettings());
+  out += "A `disk at X { … }`:\n\n";
+  table(out, cat::diskSettings());
+  out += "A `notch KIND at X { … }`, KIND one of";
+  for (const auto& k : cat::notchKinds())
+    out += " `" + k + "`";
+  out += ":\n\n";
+  table(out, cat::notchSettings());
+  out += "Results of the shaft, read as `NAME.deflection`:\n\n";
+  table(out, cat::shaftOutputs(), "input.");
+  out += "Results of each bearing, read as `NAME.BEARING.life`:\n\n";
+  table(out, cat::bearingOutputs(), "input.A.");
   out += "## Studies\n\nA sweep of a scene takes:\n\n";
   table(out, cat::sweepSettings());
   out += "`work_precision of SCENE` takes lists (`rtol in {1e-4, 1e-6, 1e-8};`):\n\n";
