@@ -90,6 +90,8 @@ bool readsInMicrometres(Q q) {
   case Q::TorsionDeflection:
   case Q::LoadDeflection:
   case Q::Deflection:
+  case Q::DeflectionAt:
+  case Q::TorsionAt:
   case Q::TipRelief:
   case Q::LeadCrowning:
   case Q::RatingMeshMisalignment:

@@ -241,6 +241,9 @@ namespace gbx::cat {
   X(NotchRadius, "radius")                                                                   \
   X(NotchDepth, "depth")                                                                     \
   X(Keys, "keys")                                                                            \
+  X(DeflectionAt, "deflection_at")                                                           \
+  X(SlopeAt, "slope_at")                                                                     \
+  X(TorsionAt, "torsion_at")                                                                 \
   X(ToolEdgeRadius, "tool_edge_radius")                                                         \
   X(MeanDiameter, "mean_diameter")                                                              \
   X(OuterPitchDiameter, "outer_pitch_diameter")                                                 \

@@ -123,6 +123,16 @@ const std::vector<AttrSpec>& shaftOutputs() {
   return s;
 }
 
+const std::vector<AttrSpec>& shaftFunctions() {
+  static const std::vector<AttrSpec> s = {
+      hinted(derived("deflection_at", length, "radial deflection at a gear's face centre: `input.deflection_at(hs.pinion)`"),
+             "um"),
+      hinted(derived("slope_at", angle, "slope of the deflection line at a gear's face centre"), "mrad"),
+      hinted(derived("torsion_at", length, "wind-up across a gear's face, at its reference circle"), "um"),
+  };
+  return s;
+}
+
 const std::vector<AttrSpec>& bearingOutputs() {
   static const std::vector<AttrSpec> s = {
       hinted(derived("reaction", force, "radial bearing force"), "N"),

@@ -271,6 +271,15 @@ QuantityRef quantityRef(const ir::Program& p_, const ir::Gearbox& g_, const std:
   if (int sh = g_.shaftIndex(head); sh >= 0) {
     r.owner = QuantityRef::Shaft;
     r.index = static_cast<std::int16_t>(sh);
+    // `deflection_at(hs.pinion)`: the gear's position among the shaft's placements.
+    if (auto open = rest.find('('); open != std::string::npos) {
+      std::string gear = rest.substr(open + 1, rest.size() - open - 2);
+      const auto& placed = g_.shafts[static_cast<size_t>(sh)].placed;
+      for (size_t k = 0; k < placed.size(); ++k)
+        if (placed[k].kind == ir::Shaft::Place::Gear && placed[k].name == gear) r.gear = static_cast<std::int8_t>(k);
+      r.key = cat::keyOf(rest.substr(0, open)).value_or(Q::None);
+      return r;
+    }
     auto d2 = rest.find('.');
     if (d2 != std::string::npos) {
       r.gear = static_cast<std::int8_t>(g_.shafts[static_cast<size_t>(sh)].bearingIndex(rest.substr(0, d2)));

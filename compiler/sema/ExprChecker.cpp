@@ -769,15 +769,46 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
   return n;
 }
 
+// `input.deflection_at(hs.pinion)`: a shaft's line at one of its gears.
+ir::ExprPtr ExprChecker::shaftAt(const ast::Expr& e, const ast::Expr& callee, const ir::Expr& obj,
+                                 const std::vector<const ast::Expr*>& argAst, const Scope& s) {
+  const std::string& fn = callee.text;
+  const AttrSpec* spec = nullptr;
+  std::vector<std::string> fns;
+  for (const auto& f : cat::shaftFunctions()) {
+    fns.push_back(f.name);
+    if (f.name == fn) spec = &f;
+  }
+  if (!spec) {
+    diags_.error("E0220", callee.span,
+                 fmt::format("shaft `{}` has no function `{}` (it takes {}){}", obj.name, fn, fmt::join(fns, ", "),
+                             suggestion(closest(fn, fns))));
+    return error(e.span);
+  }
+  std::string gear = argAst.size() == 1 && argAst[0] ? ast::print(*argAst[0]) : "";
+  std::vector<std::string> gears;
+  if (const ast::Stmt* sh = s.gearbox ? s.gearbox->findShaft(obj.name) : nullptr)
+    for (const auto& b : sh->body)
+      if (b.kind == ast::StmtKind::Placed && b.name == "gear") gears.push_back(b.path.str());
+  if (std::find(gears.begin(), gears.end(), gear) == gears.end()) {
+    diags_.error("E0219", argAst.size() == 1 && argAst[0] ? argAst[0]->span : e.span,
+                 fmt::format("`{}.{}` takes one gear that shaft `{}` carries ({}){}", obj.name, fn, obj.name,
+                             gears.empty() ? std::string("it carries none") : fmt::format("{}", fmt::join(gears, ", ")), suggestion(closest(gear, gears))));
+    return error(e.span);
+  }
+  return quantity(fmt::format("{}.{}({})", obj.name, fn, gear), *spec, e.span);
+}
+
 ir::ExprPtr ExprChecker::sceneResult(const ast::Expr& e, const ast::Expr& calleeRef, const std::vector<const ast::Expr*>& argAst,
                                      const Scope& s) {
   const ast::Expr* callee = &calleeRef;
   auto obj = check(callee->args[0].get(), s);
   if (obj->type.isError()) return obj;
-  if (obj->type.kind != Type::Scene) {
+  if (obj->type.kind != Type::Scene && obj->type.kind != Type::Shaft) {
     diags_.error("E0220", callee->span, fmt::format("`{}` is not a function", ast::print(*callee)));
     return error(e.span);
   }
+  if (obj->type.kind == Type::Shaft) return shaftAt(e, *callee, *obj, argAst, s);
   const std::string& fn = callee->text;
   const SignalFnSpec* fnSpec = findSignalFn(fn);
   if (!fnSpec) {

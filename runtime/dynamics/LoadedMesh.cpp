@@ -43,6 +43,13 @@ struct Separation {
       double w = sep.endReliefWidth;
       gap += sep.endRelief * (std::max(0.0, w - y) + std::max(0.0, y - (b - w))) / w;
     }
+    if (size_t n = sep.leadProfile.size(); n == 1) {
+      gap += sep.leadProfile[0];
+    } else if (n > 1) {
+      double t = std::clamp(y / b, 0.0, 1.0) * static_cast<double>(n - 1);
+      size_t i = std::min(static_cast<size_t>(t), n - 2);
+      gap += sep.leadProfile[i] + (t - static_cast<double>(i)) * (sep.leadProfile[i + 1] - sep.leadProfile[i]);
+    }
     return gap;
   }
 };
@@ -103,11 +110,14 @@ Approach approach(const Contacts& pts, double load, double start) {
 std::vector<double> loadedMeshKey(const LoadedMeshInput& in) {
   const FlankGeometry& g = in.g;
   const FlankSeparations& s = in.sep;
-  return {g.rb1,           g.rb2,           g.ra1,          g.ra2,          g.centerDistance, g.workingPressureAngle,
+  std::vector<double> k = {g.rb1,           g.rb2,           g.ra1,          g.ra2,          g.centerDistance, g.workingPressureAngle,
           g.basePitch,     g.baseHelix,     g.faceWidth,    s.tipRelief[0], s.tipRelief[1],   s.reliefLength[0],
           s.reliefLength[1], s.leadCrowning, s.leadSlope,   s.basePitch,    s.profileForm,    s.endRelief,
           s.endReliefWidth, in.singleStiffness, in.load,    static_cast<double>(in.slices), static_cast<double>(in.positions),
           in.sliceLoads ? 1.0 : 0.0};
+  k.push_back(static_cast<double>(s.leadProfile.size()));
+  k.insert(k.end(), s.leadProfile.begin(), s.leadProfile.end());
+  return k;
 }
 
 namespace {

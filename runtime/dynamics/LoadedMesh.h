@@ -32,6 +32,9 @@ struct FlankSeparations {
   double endReliefWidth = 0;
   double basePitch = 0;             // base pitch deviation: each incoming pair early by this much
   double profileForm = 0;           // both gears' profile form deviations: the ends of the path proud
+  // A separation across the face of any shape (the shafts' deflections), at equally spaced
+  // points from y = 0 to y = b, linear between them; empty: none.
+  std::vector<double> leadProfile;
 };
 
 struct LoadedMeshInput {

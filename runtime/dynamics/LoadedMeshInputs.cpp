@@ -141,7 +141,15 @@ void leadSeparations(const Evaluator& ev, const Assignment& a, int st, const Mod
   // One word alone: the other takes the sense that adds, the adverse case.
   if (hand && !side) sideSign = handSign;
   if (side && !hand) handSign = sideSign;
-  if (std::isfinite(bend) || std::isfinite(twist)) {
+  double tilt = 0; // the shafts' tilt end to end, which a correction opposes and a deviation adds to
+  if (!use.shaftProfile.empty()) {
+    sep.leadProfile = use.shaftProfile;
+    tilt = use.shaftProfile.back() - use.shaftProfile.front();
+    double most = *std::max_element(use.shaftProfile.begin(), use.shaftProfile.end());
+    prov.push_back(fmt::format("loaded mesh: the shafts' bending and twist with their bearings, on the line of action: {} "
+                               "across the face end to end, {} at most",
+                               um(std::fabs(tilt)), um(most)));
+  } else if (std::isfinite(bend) || std::isfinite(twist)) {
     double b = (std::isfinite(bend) ? bend : 0.0) * use.deflectionScale, t = (std::isfinite(twist) ? twist : 0.0) * use.deflectionScale;
     if (use.deflectionScale != 1)
       prov.push_back(fmt::format("loaded mesh: the pinion's deflections at the operating torque times {:.4f} (F_m / F_t)", use.deflectionScale));
@@ -155,16 +163,17 @@ void leadSeparations(const Evaluator& ev, const Assignment& a, int st, const Mod
   }
   // A helix slope correction takes its amount off the deflection's slope (it is made to
   // compensate it).
+  auto sense = [&] { return tilt + sep.leadSlope >= 0 ? 1.0 : -1.0; };
   double correction = mods.helixSlope[0] + mods.helixSlope[1];
   if (correction > 0) {
-    sep.leadSlope -= (sep.leadSlope >= 0 ? 1.0 : -1.0) * correction;
+    sep.leadSlope -= sense() * correction;
     prov.push_back(fmt::format("loaded mesh: helix slope correction {} against the deflection: {} across the face", um(correction),
-                               um(std::fabs(sep.leadSlope))));
+                               um(std::fabs(tilt + sep.leadSlope))));
   }
   if (leadDeviation > 0) {
-    sep.leadSlope += (sep.leadSlope >= 0 ? 1.0 : -1.0) * leadDeviation;
+    sep.leadSlope += sense() * leadDeviation;
     prov.push_back(fmt::format("loaded mesh: lead deviation {} in the adverse sense: {} across the face in all", um(leadDeviation),
-                               um(std::fabs(sep.leadSlope))));
+                               um(std::fabs(tilt + sep.leadSlope))));
   }
 }
 

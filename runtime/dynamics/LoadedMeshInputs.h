@@ -17,6 +17,9 @@ struct LoadedMeshUse {
   double leadDeviation = 0;
   bool leadOnly = false;
   double deflectionScale = 1;  // the pinion's deflections at the operating torque times this (F_m / F_t)
+  // The shafts' separation across the face (ShaftMesh), already at the load: it takes the
+  // place of the pinion's bending and torsion deflections.
+  std::vector<double> shaftProfile;
 };
 
 // `load` is the transverse force along the line of action, N. Every choice is said in `prov`.

@@ -708,6 +708,7 @@ units::DisplayUnit valueUnitOf(const ir::Expr& e) {
 units::DisplayUnit displayUnitOf(const ir::Expr& e) {
   if (e.op == ir::Op::Quantity && e.ref.key == Q::Imbalance) return {"%", 0.01};
   if (e.op == ir::Op::Quantity && (e.ref.key == Q::Life || e.ref.key == Q::ModifiedLife)) return {"h", 3600};
+  if (e.op == ir::Op::Quantity && e.ref.key == Q::SlopeAt) return {"mrad", 1e-3};
   return valueUnitOf(e);
 }
 

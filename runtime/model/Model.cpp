@@ -111,7 +111,17 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
         info.freedoms.erase(std::find(info.freedoms.begin(), info.freedoms.end(), keyed[0]));
       }
     }
-    info.selfContained = g.splits.empty() &&
+    // The shafts of its two gears, if both sit on one, and the last stage they carry a gear of.
+    int pinionShaft = -1, wheelShaft = -1;
+    for (size_t k = 0; k < g.shafts.size(); ++k)
+      for (const auto& p : g.shafts[k].placed)
+        if (p.kind == ir::Shaft::Place::Gear && p.stage == static_cast<int>(si))
+          (p.gear == 0 ? pinionShaft : wheelShaft) = static_cast<int>(k);
+    if (pinionShaft >= 0 && wheelShaft >= 0)
+      for (int k : {pinionShaft, wheelShaft})
+        for (const auto& p : g.shafts[static_cast<size_t>(k)].placed)
+          info.shaftStagesUpTo = std::max(info.shaftStagesUpTo, p.stage);
+    info.selfContained = g.splits.empty() && info.shaftStagesUpTo < 0 &&
                          std::all_of(st.attributes.begin(), st.attributes.end(),
                                      [&](const ir::Attribute& a) { return !a.value || readsOwnStage(*a.value, si); });
     stages.push_back(std::move(info));

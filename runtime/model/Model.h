@@ -55,6 +55,9 @@ struct StageInfo {
   // Nothing of its attributes reads another stage or the gearbox, and the gearbox has no
   // splits: the rest of the design reaches it only through its operating point.
   bool selfContained = false;
+  // Both its gears on shafts: its rating reads the shafts, and so every stage whose gears
+  // they carry, up to this one (-1: not on shafts).
+  int shaftStagesUpTo = -1;
   // (gear + 1) * kKeyCount + key: what gives the attribute.
   struct Entry {
     const ir::Attribute* attr = nullptr;

@@ -383,7 +383,8 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
          : std::isfinite(in.KvGiven) ? std::string("given")
                                      : fmt::format("method B, {}", rangeName(r.kvRange)));
   mesh("K_Hbeta", r.KHbeta);
-  method(mr.faceLoad ? fmt::format("contact analysis, {} slices x {} positions", mr.faceLoad->slices, mr.faceLoad->positions)
+  method(mr.faceLoad ? fmt::format("contact analysis, {} slices x {} positions{}", mr.faceLoad->slices, mr.faceLoad->positions,
+                                    mr.faceLoad->shafts.empty() ? "" : "; " + mr.faceLoad->shafts)
          : std::isfinite(in.KHbetaGiven) ? std::string("given")
                                          : std::string("method B, F_betay c_gammabeta / (2 F_m/b)"));
   if (mr.faceLoad) {

@@ -5,17 +5,15 @@
 #include <map>
 #include <utility>
 
+#include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include "dynamics/LoadedMeshInputs.h"
 #include "dynamics/Scene.h"
 #include "model/Recent.h"
+#include "shaft/ShaftMesh.h"
 
 namespace gbx::rt::rating {
-
-namespace {
-
-} // namespace
 
 FaceLoad faceLoad(dyn::LoadedMeshInput in) {
   FaceLoad out;
@@ -42,16 +40,19 @@ FaceLoad faceLoad(dyn::LoadedMeshInput in) {
   return out;
 }
 
-FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, double load, double fma, double deflectionScale) {
-  thread_local Recent<std::pair<std::uint64_t, std::vector<double>>, FaceLoad> cache;
-  std::vector<std::string> prov;
-  dyn::LoadedMeshInput in;
+namespace {
+
+constexpr double kShaftTolerance = 1e-6; // the line load's largest change over its peak
+constexpr int kShaftIterations = 50;
+
+// The loaded mesh of the stage at the design, with the slices at c_gammabeta.
+bool meshInput(const Evaluator& ev, const Assignment& a, int stage, double load, const dyn::LoadedMeshUse& use,
+               dyn::LoadedMeshInput& in, std::vector<std::string>& prov, std::string& failure) {
   try {
-    in = dyn::loadedMeshInput(ev, a, stage, load, kFaceSlices, kFacePositions, prov, {fma, true, deflectionScale});
+    in = dyn::loadedMeshInput(ev, a, stage, load, kFaceSlices, kFacePositions, prov, use);
   } catch (const dyn::SceneFailure& f) {
-    FaceLoad out;
-    out.failure = f.what;
-    return out;
+    failure = f.what;
+    return false;
   }
   // Across the face the standard's stiffness is c_gammabeta = 0.85 c_gammaalpha (ISO 6336-1
   // cl. 9): the slices carry it. Pitch and profile deviations and tip relief load the pairs
@@ -61,10 +62,109 @@ FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, do
       "contact analysis: the slices' stiffness is c_gammabeta = 0.85 c_gammaalpha, as ISO 6336-1 takes it across the "
       "face; the "
       "pitch and profile deviations and the tip relief, which load the pairs along the path (K_Halpha), are left out");
+  return true;
+}
+
+// The next share from the steps so far (x_k, G(x_k)): Anderson's type II over the last three,
+// kept a share (non-negative, summing to 1).
+Eigen::VectorXd anderson(std::vector<Eigen::VectorXd>& xs, std::vector<Eigen::VectorXd>& gs) {
+  constexpr size_t depth = 3;
+  if (xs.size() > depth + 1) {
+    xs.erase(xs.begin());
+    gs.erase(gs.begin());
+  }
+  size_t k = xs.size() - 1, m = k;
+  Eigen::VectorXd next = gs[k];
+  if (m > 0) {
+    Eigen::MatrixXd dF(xs[0].size(), static_cast<Eigen::Index>(m)), dG(xs[0].size(), static_cast<Eigen::Index>(m));
+    for (size_t i = 0; i < m; ++i) {
+      dF.col(static_cast<Eigen::Index>(i)) = (gs[i + 1] - xs[i + 1]) - (gs[i] - xs[i]);
+      dG.col(static_cast<Eigen::Index>(i)) = gs[i + 1] - gs[i];
+    }
+    Eigen::VectorXd gamma = dF.colPivHouseholderQr().solve(gs[k] - xs[k]);
+    if (gamma.allFinite()) next -= dG * gamma;
+  }
+  next = next.cwiseMax(0.0);
+  double sum = next.sum();
+  return sum > 0 ? Eigen::VectorXd(next / sum) : gs[k];
+}
+
+// Both gears on shafts: the shafts carry the mesh force as the contact analysis spreads it
+// across the face, and the contact analysis takes the shafts' separation; from an even
+// spread, until the line load stops changing.
+FaceLoad shaftFixedPoint(const Evaluator& ev, const Assignment& a, int stage, double load, const dyn::LoadedMeshUse& base,
+                         const MeshShafts& ms, dyn::LoadedMeshInput in, std::vector<std::string> prov) {
+  FaceLoad out;
+  const Eigen::Index S = kFaceSlices;
+  Eigen::VectorXd share = Eigen::VectorXd::Constant(S, 1.0 / kFaceSlices);
+  // Anderson's mixing over the last few steps: the plain iteration contracts by about the
+  // shafts' share of the compliance across the face, too slowly for a search.
+  std::vector<Eigen::VectorXd> xs, gs;
+  for (int it = 1; it <= kShaftIterations; ++it) {
+    out = faceLoad(in);
+    if (!out.failure.empty()) return out;
+    Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(out.lineLoad.data(), S);
+    g /= g.sum();
+    double change = (g - share).cwiseAbs().maxCoeff();
+    if (change <= kShaftTolerance * g.maxCoeff()) {
+      const auto& shafts = ev.model().gearbox.shafts;
+      out.shafts = fmt::format("shafts {}, {}: fixed point in {} iteration{} (line load to {:g})",
+                               shafts[static_cast<size_t>(ms.pinion)].name, shafts[static_cast<size_t>(ms.wheel)].name, it,
+                               it == 1 ? "" : "s", kShaftTolerance);
+      out.model = std::move(prov);
+      return out;
+    }
+    xs.push_back(share);
+    gs.push_back(g);
+    share = anderson(xs, gs);
+    std::string why;
+    dyn::LoadedMeshUse use = base;
+    use.shaftProfile = shaftSeparation(ev, a, stage, ms, std::vector<double>(share.data(), share.data() + S), kFaceSlices + 1,
+                                       &why);
+    if (use.shaftProfile.empty()) {
+      out.failure = "the shafts: " + why;
+      return out;
+    }
+    for (double& g : use.shaftProfile)
+      g *= base.deflectionScale;
+    prov.clear();
+    if (!meshInput(ev, a, stage, load, use, in, prov, out.failure)) return out;
+  }
+  out.failure = fmt::format("the shafts and the line load did not settle in {} iterations", kShaftIterations);
+  return out;
+}
+
+} // namespace
+
+FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, double load, double fma, double deflectionScale) {
+  thread_local Recent<std::pair<std::uint64_t, std::vector<double>>, FaceLoad> cache;
+  std::vector<std::string> prov;
+  dyn::LoadedMeshInput in;
+  dyn::LoadedMeshUse use{fma, true, deflectionScale, {}};
+  FaceLoad out;
+  auto ms = meshShafts(ev.model().gearbox, stage);
+  if (ms) {
+    // The shafts under an even spread: what every later step depends on, and the cache's key.
+    std::string why;
+    use.shaftProfile = shaftSeparation(ev, a, stage, *ms, std::vector<double>(kFaceSlices, 1.0 / kFaceSlices),
+                                       kFaceSlices + 1, &why);
+    if (use.shaftProfile.empty()) {
+      out.failure = "the shafts: " + why;
+      return out;
+    }
+    for (double& g : use.shaftProfile)
+      g *= deflectionScale;
+  }
+  if (!meshInput(ev, a, stage, load, use, in, prov, out.failure)) return out;
   auto key = std::make_pair(ev.model().serial, dyn::loadedMeshKey(in));
   if (const FaceLoad* hit = cache.find(key)) return *hit;
-  FaceLoad out = faceLoad(in);
-  out.model = std::move(prov);
+  if (ms) {
+    use.shaftProfile.clear();
+    out = shaftFixedPoint(ev, a, stage, load, use, *ms, in, prov);
+  } else {
+    out = faceLoad(in);
+    out.model = std::move(prov);
+  }
   return cache.put(std::move(key), std::move(out));
 }
 

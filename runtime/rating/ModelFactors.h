@@ -19,6 +19,7 @@ struct FaceLoad {
   std::vector<double> lineLoad; // per slice from y = 0, the mean over one mesh period, N/m
   int slices = 0, positions = 0;
   std::vector<std::string> model; // how the loaded mesh was built
+  std::string shafts;             // with both gears on shafts: which, and how the fixed point settled
   std::string failure;            // set when it could not be computed
 };
 

@@ -53,6 +53,12 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth) {
     }
     int st = r.index;
     if (cat::isRatingQuantity(r.key)) c.strength = true;
+    // A rating that reads the shafts reads every stage whose gears they carry.
+    if (int up = m.stages[static_cast<size_t>(st)].shaftStagesUpTo; up >= 0 && cat::isRatingQuantity(r.key))
+      for (int s = 0; s <= up; ++s) {
+        c.stages.insert(s);
+        if (!m.stages[static_cast<size_t>(s)].freedoms.empty()) c.freedom = true;
+      }
     if (cat::dependsOnOperatingPoint(r.key))
       for (int s = 0; s <= st; ++s)
         c.stages.insert(s);

@@ -41,6 +41,7 @@ struct Ctx {
   const Evaluator& ev;
   const Assignment& a;
   std::string* error;
+  const LoadSpread* spread = nullptr;
   std::optional<double> stage(int st, int gear, Q key) const {
     ir::QuantityRef r;
     r.owner = ir::QuantityRef::Stage;
@@ -105,7 +106,18 @@ bool gearLoad(const Ctx& c, const ir::Shaft::Placed& p, shaft::Model& m, ShaftRe
   if (!driving) h = -h; // the mate's hand is the opposite
   double Fx = helical ? -h * Ftheta * tanBw : 0;
   double x = p.at.toDouble();
-  m.loads.push_back({x, -s * Fr, s * Ftheta, Fx, -s * rw * Fx, 0, rw * Ftheta});
+  shaft::PointLoad whole{x, -s * Fr, s * Ftheta, Fx, -s * rw * Fx, 0, rw * Ftheta};
+  if (c.spread && c.spread->stage == st && !c.spread->share.empty()) {
+    // Across the face, slice by slice, as the contact analysis carries it.
+    size_t n = c.spread->share.size();
+    for (size_t j = 0; j < n; ++j) {
+      double k = c.spread->share[j] * c.spread->scale;
+      m.loads.push_back({x + *b * ((static_cast<double>(j) + 0.5) / static_cast<double>(n) - 0.5), k * whole.Fy, k * whole.Fz,
+                         k * whole.Fx, k * whole.My, 0, k * whole.T});
+    }
+  } else {
+    m.loads.push_back(whole);
+  }
   out.gears.push_back({p.name, x, Ft, Fr, Fa});
   // The gear as a rigid disk for the critical speed: an annulus from the shaft to d.
   auto rho = c.ev.materialProperty(st, Q::Density);
@@ -157,7 +169,8 @@ bool rateStrength(const Evaluator& ev, const ir::Shaft& sh, ShaftResult& out, st
 
 } // namespace
 
-std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error, bool modes) {
+std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error, bool modes,
+                                        const LoadSpread* spread) {
   const ir::Shaft& sh = ev.model().gearbox.shafts[static_cast<size_t>(index)];
   auto fail = [&](const std::string& what) -> std::optional<ShaftResult> {
     if (error) *error = fmt::format("shaft `{}`: {}", sh.name, what);
@@ -172,7 +185,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
   for (const auto& seg : sh.segments)
     m.sections.push_back({seg.x0.toDouble(), seg.x1.toDouble(), given(seg.settings, Q::Diameter).value_or(0),
                           given(seg.settings, Q::Bore).value_or(0), given(seg.settings, Q::Roughness).value_or(0)});
-  Ctx c{ev, a, error};
+  Ctx c{ev, a, error, spread};
   double speed = given(sh.settings, Q::Speed).value_or(0);
   bool coupled = false;
   std::vector<const ir::Shaft::Placed*> bearings;
@@ -237,6 +250,8 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
     }
   for (const auto& s : m.sections)
     out.mass += m.material.density * kPi / 4 * (s.diameter * s.diameter - s.bore * s.bore) * (s.x1 - s.x0);
+  // A mesh's misalignment reads the deflections alone.
+  if (spread) return out;
   // Each bearing's life at the shaft's speed, with kappa where the oil's viscosity is given.
   shaft::LifeSettings life;
   life.reliability = given(sh.settings, "life.reliability").value_or(0.9);
@@ -290,6 +305,21 @@ std::vector<double> inputsKey(const Evaluator& ev, int index, const Assignment& 
 
 } // namespace
 
+// The line at a gear (`r.gear` its placement): deflection and slope at the face centre, the
+// wind-up across the face at the reference circle.
+Value gearLine(const Evaluator& ev, const ShaftResult& s, const ir::QuantityRef& r, const Assignment& a) {
+  const auto& placed = ev.model().gearbox.shafts[static_cast<size_t>(r.index)].placed;
+  if (r.gear < 0 || static_cast<size_t>(r.gear) >= placed.size()) return Value::invalid();
+  const auto& p = placed[static_cast<size_t>(r.gear)];
+  double x = p.at.toDouble();
+  if (r.key == Q::DeflectionAt) return Value::number(s.solution.deflectionAt(x));
+  if (r.key == Q::SlopeAt) return Value::number(s.solution.slopeAt(x));
+  Ctx c{ev, a, nullptr};
+  auto b = c.stage(p.stage, -1, Q::FaceWidth), d = c.stage(p.stage, p.gear, Q::D);
+  if (!b || !d) return Value::invalid();
+  return Value::number(std::fabs(s.solution.twistAt(x + *b / 2) - s.solution.twistAt(x - *b / 2)) * *d / 2);
+}
+
 Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignment& a) {
   if (r.index < 0 || static_cast<size_t>(r.index) >= ev.model().gearbox.shafts.size()) return Value::invalid();
   // The quantities of one design are read one after another (a rule on two bearings' lives,
@@ -301,6 +331,7 @@ Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignm
   if (!hit) hit = &recent.put(std::move(key), computeShaft(ev, r.index, a, nullptr, modes));
   const std::optional<ShaftResult>& s = *hit;
   if (!s) return Value::invalid();
+  if (r.key == Q::DeflectionAt || r.key == Q::SlopeAt || r.key == Q::TorsionAt) return gearLine(ev, *s, r, a);
   if (r.gear < 0) {
     switch (r.key) {
     case Q::Deflection: return Value::number(s->deflection);

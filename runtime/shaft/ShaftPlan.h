@@ -38,12 +38,21 @@ struct ShaftResult {
   std::vector<std::string> warnings;
 };
 
+// A stage's mesh force spread across the face as its contact analysis loads it: each
+// slice's share (from the face's end nearer the shaft's left end), times `scale`.
+struct LoadSpread {
+  int stage = -1;
+  std::vector<double> share; // sums to 1
+  double scale = 1;          // of the forces at the operating point (F_m / F_t)
+};
+
 // The shaft `index` of the evaluator's gearbox at the design; nullopt with `error` said when
 // the design leaves something unknown or the shaft cannot stand.
+// With `spread` (a mesh's misalignment), its deflections alone: no lives, no strength.
 // `modes`: also its first critical speed (an eigenproblem, the costly part: a rule on a
 // bearing's life does not pay for it).
 std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error = nullptr,
-                                        bool modes = true);
+                                        bool modes = true, const LoadSpread* spread = nullptr);
 
 // `input.deflection`, `input.A.life`: one quantity of a shaft or of its bearing (`r.gear`).
 Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignment& a);

@@ -204,6 +204,8 @@ void blocks(std::string& out) {
   table(out, cat::notchSettings());
   out += "Results of the shaft, read as `NAME.deflection`:\n\n";
   table(out, cat::shaftOutputs(), "input.");
+  out += "Results at one of its gears, read as `NAME.deflection_at(STAGE.GEAR)`:\n\n";
+  table(out, cat::shaftFunctions(), "input.");
   out += "Results of each bearing, read as `NAME.BEARING.life`:\n\n";
   table(out, cat::bearingOutputs(), "input.A.");
   out += "## Studies\n\nA sweep of a scene takes:\n\n";
