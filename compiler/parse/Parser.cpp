@@ -143,6 +143,23 @@ private:
                    "safety: `>=`), not `=` (which sets a value)");
       return true;
     }
+    // `shaft output {`: a keyword where a member's name belongs.
+    std::string lit = voc.getLiteralName(offending.getType());
+    if (stmt.size() == 1 && voc.getSymbolicName(stmt[0]->getType()) == "ID" && lit.size() > 2 &&
+        std::isalpha(static_cast<unsigned char>(lit[1]))) {
+      antlr4::Token* next = nullptr;
+      for (size_t i = offending.getTokenIndex() + 1; i < stream->size() && !next; ++i)
+        if (stream->get(i)->getChannel() == antlr4::Token::DEFAULT_CHANNEL) next = stream->get(i);
+      if (next && next->getText() == "{") {
+        diags_.error("E0102", span,
+                     fmt::format("syntax error: `{}` is a word of the language and cannot name a {}; call it otherwise "
+                                 "(`{}_{}`)",
+                                 offending.getText(), stmt[0]->getText(), offending.getText(), stmt[0]->getText()));
+        // The block read as statements makes no sense after it: say this one thing.
+        cutoff_ = static_cast<int>(offending.getLine()) + 1;
+        return true;
+      }
+    }
     // A word where a statement starts, then something no statement has after a name: a
     // keyword misspelt (`minimise`).
     // (A word that opens a statement of its own, `bin`, makes the parser stop at the first

@@ -163,7 +163,7 @@ void leadSeparations(const Evaluator& ev, const Assignment& a, int st, const Mod
   }
   // A helix slope correction takes its amount off the deflection's slope (it is made to
   // compensate it).
-  auto sense = [&] { return tilt + sep.leadSlope >= 0 ? 1.0 : -1.0; };
+  auto sense = [&] { return use.sense != 0 ? use.sense : tilt + sep.leadSlope >= 0 ? 1.0 : -1.0; };
   double correction = mods.helixSlope[0] + mods.helixSlope[1];
   if (correction > 0) {
     sep.leadSlope -= sense() * correction;

@@ -20,6 +20,9 @@ struct LoadedMeshUse {
   // The shafts' separation across the face (ShaftMesh), already at the load: it takes the
   // place of the pinion's bending and torsion deflections.
   std::vector<double> shaftProfile;
+  // The sense the lead deviation adds in and a correction opposes, when decided once (the
+  // shafts' fixed point: a tilt near zero must not flip it from one step to the next).
+  double sense = 0;
 };
 
 // `load` is the transverse force along the line of action, N. Every choice is said in `prov`.

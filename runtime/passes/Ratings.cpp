@@ -54,9 +54,11 @@ void modelNotes(const rating::MeshRating& mr, RatingReport& out) {
   if (mr.faceLoad) {
     const rating::FaceLoad& f = *mr.faceLoad;
     out.model.push_back(fmt::format("K_Hbeta: the largest line load across the face over one mesh period, {:.4g} N/mm at {:.1f} mm from "
-                                    "the coupling end, over the mean {:.4g} N/mm (the loaded mesh at F_m = F_t K_A K_gamma K_v, "
+                                    "{}, over the mean {:.4g} N/mm (the loaded mesh at F_m = F_t K_A K_gamma K_v, "
                                     "misalignment f_ma {:.3g} um; no running-in allowance)",
-                                    f.KHbeta * f.meanLineLoad * 1e-3, f.peak * f.faceWidth * 1e3, f.meanLineLoad * 1e-3, r.fma * 1e6));
+                                    f.KHbeta * f.meanLineLoad * 1e-3, f.peak * f.faceWidth * 1e3,
+                                    f.shafts.empty() ? "the coupling end" : "the face's end nearer the shafts' left ends",
+                                    f.meanLineLoad * 1e-3, r.fma * 1e6));
     for (const auto& line : f.model) out.model.push_back(line);
     for (size_t j = 0; j < f.lineLoad.size(); ++j) {
       out.facePosition.push_back((static_cast<double>(j) + 0.5) / static_cast<double>(f.lineLoad.size()) * f.faceWidth * 1e3);
@@ -389,7 +391,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
                                          : std::string("method B, F_betay c_gammabeta / (2 F_m/b)"));
   if (mr.faceLoad) {
     mesh("line_load_peak", mr.faceLoad->peak * mr.faceLoad->faceWidth, length);
-    method("from the coupling end of the face");
+    method(mr.faceLoad->shafts.empty() ? "from the coupling end of the face" : "from the face's end nearer the shafts' left ends");
   }
   mesh("K_Fbeta", r.KFbeta);
   method("K_Hbeta^N_F");

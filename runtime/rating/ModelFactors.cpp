@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -100,6 +101,7 @@ FaceLoad shaftFixedPoint(const Evaluator& ev, const Assignment& a, int stage, do
   // Anderson's mixing over the last few steps: the plain iteration contracts by about the
   // shafts' share of the compliance across the face, too slowly for a search.
   std::vector<Eigen::VectorXd> xs, gs;
+  double last = std::numeric_limits<double>::infinity(), relax = 1;
   for (int it = 1; it <= kShaftIterations; ++it) {
     out = faceLoad(in);
     if (!out.failure.empty()) return out;
@@ -114,8 +116,16 @@ FaceLoad shaftFixedPoint(const Evaluator& ev, const Assignment& a, int stage, do
       out.model = std::move(prov);
       return out;
     }
+    // A residual that grows: the mixing overshot (a slice leaving or entering contact bends
+    // the map): start its history again from a damped plain step.
+    if (change > last) {
+      xs.clear();
+      gs.clear();
+      relax = std::max(0.125, relax * 0.5);
+    }
+    last = change;
     xs.push_back(share);
-    gs.push_back(g);
+    gs.push_back(share + relax * (g - share));
     share = anderson(xs, gs);
     std::string why;
     dyn::LoadedMeshUse use = base;
@@ -140,7 +150,7 @@ FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, do
   thread_local Recent<std::pair<std::uint64_t, std::vector<double>>, FaceLoad> cache;
   std::vector<std::string> prov;
   dyn::LoadedMeshInput in;
-  dyn::LoadedMeshUse use{fma, true, deflectionScale, {}};
+  dyn::LoadedMeshUse use{fma, true, deflectionScale, {}, 0};
   FaceLoad out;
   auto ms = meshShafts(ev.model().gearbox, stage);
   if (ms) {
@@ -154,6 +164,7 @@ FaceLoad contactAnalysis(const Evaluator& ev, const Assignment& a, int stage, do
     }
     for (double& g : use.shaftProfile)
       g *= deflectionScale;
+    use.sense = use.shaftProfile.back() >= use.shaftProfile.front() ? 1.0 : -1.0;
   }
   if (!meshInput(ev, a, stage, load, use, in, prov, out.failure)) return out;
   auto key = std::make_pair(ev.model().serial, dyn::loadedMeshKey(in));

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "catalogue/Settings.h"
+#include "model/Evaluator.h"
 
 namespace gbx::rt {
 
@@ -80,6 +81,18 @@ void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth) {
   }
   for (const auto& a : e.args)
     if (a) dependencies(m, *a, c, depth + 1);
+}
+
+std::string ruleText(const ir::Expr& e) {
+  // `input.A.life >= 20000 h`: a bound on a quantity in the unit its column shows.
+  bool compare = e.op == Op::Ge || e.op == Op::Gt || e.op == Op::Le || e.op == Op::Lt || e.op == Op::Eq;
+  if (!compare || e.args.size() != 2 || !e.args[0] || !e.args[1]) return ir::print(e);
+  const ir::Expr& q = *e.args[0];
+  const ir::Expr& k = *e.args[1];
+  if (q.op != Op::Quantity || k.op != Op::Const || !k.type.isNumber()) return ir::print(e);
+  units::DisplayUnit u = displayUnitOf(q);
+  const char* op = e.op == Op::Ge ? ">=" : e.op == Op::Gt ? ">" : e.op == Op::Le ? "<=" : e.op == Op::Lt ? "<" : "==";
+  return fmt::format("{} {} {:g}{}", q.name, op, u.shown(k.value.toDouble()), u.name.empty() ? "" : " " + u.name);
 }
 
 void split(const ir::Expr& e, std::vector<const ir::Expr*>& out) {

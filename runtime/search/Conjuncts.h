@@ -26,6 +26,8 @@ struct Conjunct {
 void dependencies(const Model& m, const ir::Expr& e, Conjunct& c, int depth = 0);
 
 // A rule's conjuncts (`and`, `forall`) in order.
+// A conjunct's text for the funnel: a bound on a quantity in the unit its column shows.
+std::string ruleText(const ir::Expr& e);
 void split(const ir::Expr& e, std::vector<const ir::Expr*>& out);
 
 // The gearbox ratio's window, from the rules that bound it.

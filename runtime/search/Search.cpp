@@ -196,7 +196,7 @@ private:
       for (const auto* p : parts) {
         Conjunct c;
         c.expr = p;
-        c.text = parts.size() == 1 ? r.text : ir::print(*p);
+        c.text = parts.size() == 1 ? r.text : ruleText(*p);
         dependencies(m, *p, c);
         if (!r.scope.empty() && c.stages.empty()) c.stages.insert(m.stageIndex(r.scope));
         conjuncts.push_back(std::move(c));

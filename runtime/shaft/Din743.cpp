@@ -146,13 +146,14 @@ double amplitudeStrength(int loadCase, double mv, double a, const Factors& f) {
 void check(const Notch& n, const Material& m) {
   auto bad = [](const std::string& s) { throw std::invalid_argument(s); };
   if (m.tensile <= 0 || m.yield <= 0) bad("its material needs `tensile_strength` and `yield_strength`");
+  if ((n.kind == NotchKind::Groove || n.kind == NotchKind::VNotch) && n.d <= n.bore)
+    bad(fmt::format("the {}'s depth leaves no section", notchName(n.kind)));
+  if (n.kind == NotchKind::Hole && n.bore > 0) bad("a transverse hole in a hollow segment is not rated (its net section)");
   if (n.d <= 0) bad("the notch lies where the shaft has no diameter");
   if (n.bore >= n.d) bad("the notch's section is all bore");
   if ((n.kind == NotchKind::Shoulder || n.kind == NotchKind::Groove) && n.radius <= 0)
     bad(fmt::format("a {} needs a fillet `radius` above 0", notchName(n.kind)));
   if (n.kind == NotchKind::Shoulder && n.D <= n.d) bad("a shoulder needs a step in diameter at its position");
-  if ((n.kind == NotchKind::Groove || n.kind == NotchKind::VNotch) && n.d <= 0)
-    bad(fmt::format("the {}'s depth leaves no section", notchName(n.kind)));
   if (n.kind == NotchKind::Hole && (n.holeDiameter <= 0 || n.holeDiameter >= n.d))
     bad("the hole's diameter must lie between 0 and the shaft's");
   if (n.kind == NotchKind::Keyway && n.keys != 1 && n.keys != 2) bad("a keyway has 1 or 2 keys");
@@ -222,8 +223,11 @@ Result rate(const Notch& n, const Material& m, const std::array<Load, 3>& loads,
   bool circumferential = n.kind != NotchKind::Keyway && n.kind != NotchKind::Hole;
   for (int k = 0; k < 3; ++k) {
     auto& f = r.f[k];
-    f.K2F = s.hardened || k == Tension ? 1.0 : 1.2;
-    f.gammaF = circumferential && k != Torsion ? yieldIncrease(f.alpha > 0 ? f.alpha : f.beta) : 1.0;
+    // K2F of 743-1: 1.2 in bending and torsion of a solid section, 1.1 and 1.0 of a hollow
+    // one, 1 in tension or under a hardened layer; gamma_F raises only a circumferential
+    // notch's yield limit, and not under a hardened layer.
+    f.K2F = s.hardened || k == Tension ? 1.0 : n.bore > 0 ? (k == Bending ? 1.1 : 1.0) : 1.2;
+    f.gammaF = circumferential && !s.hardened && k != Torsion ? yieldIncrease(f.alpha > 0 ? f.alpha : f.beta) : 1.0;
     f.sigmaFK = f.K2F * f.gammaF * S / (k == Torsion ? std::sqrt(3.0) : 1.0);
   }
   // Equivalent mean stresses, the amplitude strengths and the safeties.
@@ -236,6 +240,14 @@ Result rate(const Notch& n, const Material& m, const std::array<Load, 3>& loads,
   double qs = q(r.f[Tension].amplitude, r.f[Tension].sigmaADK) + q(r.f[Bending].amplitude, r.f[Bending].sigmaADK);
   double qt = q(r.f[Torsion].amplitude, r.f[Torsion].sigmaADK);
   r.SD = qs * qs + qt * qt > 0 ? 1 / std::sqrt(qs * qs + qt * qt) : std::numeric_limits<double>::infinity();
+  // Load case 1 past the yield line: the mean stress alone yields the section, no amplitude
+  // is borne.
+  for (const auto& f : r.f)
+    if (f.amplitude > 0 && !(f.sigmaADK > 0)) {
+      r.SD = 0;
+      r.warnings.push_back("the equivalent mean stress exceeds the yield limit: no amplitude is borne (S_D 0)");
+      break;
+    }
   double ps = std::fabs(r.f[Tension].max) / r.f[Tension].sigmaFK + std::fabs(r.f[Bending].max) / r.f[Bending].sigmaFK;
   double pt = std::fabs(r.f[Torsion].max) / r.f[Torsion].sigmaFK;
   r.SF = ps * ps + pt * pt > 0 ? 1 / std::sqrt(ps * ps + pt * pt) : std::numeric_limits<double>::infinity();

@@ -478,6 +478,10 @@ inline Din743Result din743Reference(const Din743Input& in) {
   const double qt = ratio(r.torsion.nominal.amplitude, r.torsion.sigmaADK);
   const double qD = qs * qs + qt * qt;
   r.SD = qD > 0 ? 1.0 / std::sqrt(qD) : std::numeric_limits<double>::infinity();
+  // Load case 1 past the yield line (sigma_ADK = sigma_FK - sigma_mv <= 0): no amplitude is
+  // borne, S_D = 0 (squaring a negative ratio would hide it).
+  for (const auto* f : {&r.tension, &r.bending, &r.torsion})
+    if (f->nominal.amplitude > 0 && !(f->sigmaADK > 0)) r.SD = 0.0;
 
   const double ps = r.tension.nominal.max / r.tension.sigmaFK + r.bending.nominal.max / r.bending.sigmaFK;
   const double pt = r.torsion.nominal.max / r.torsion.sigmaFK;

@@ -208,3 +208,28 @@ TEST(Din743, GrooveHoleKeywayAndPressFitFactorByFactorAsTheReference) {
       expectSameAsReference(c, in);
     }
 }
+
+// Load case 1 with a mean stress past the yield line: the section bears no amplitude, S_D 0
+// (not the positive number a negative sigma_ADK squared away would give).
+TEST(Din743, LoadCaseOnePastTheYieldLineBearsNoAmplitude) {
+  Case c = s2();
+  c.loads[Bending] = {60000, 3000, 63000};
+  auto r = rateCase(c);
+  EXPECT_EQ(r.SD, 0);
+  EXPECT_FALSE(r.warnings.empty());
+}
+
+// A hollow section's K2F (1.1 bending, 1.0 torsion) and a hardened layer's (1, and no gamma_F).
+TEST(Din743, HollowAndHardenedYieldFactors) {
+  Case c = s2();
+  c.notch.bore = 0.030;
+  auto r = rateCase(c);
+  EXPECT_EQ(r.f[Bending].K2F, 1.1);
+  EXPECT_EQ(r.f[Torsion].K2F, 1.0);
+  c = s2();
+  c.settings.hardened = true;
+  r = rateCase(c);
+  EXPECT_EQ(r.f[Bending].K2F, 1.0);
+  EXPECT_EQ(r.f[Bending].gammaF, 1.0);
+  EXPECT_EQ(r.f[Bending].KF, 1.0);
+}
