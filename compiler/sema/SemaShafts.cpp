@@ -279,6 +279,12 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
     ++nBearings;
     const ir::Setting* ax = ir::findSetting(p.settings, "axial");
     held += ax && ax->choice == 0; // `held`, the first of the catalogue's words
+    const ir::Setting* kind = ir::findSetting(p.settings, Q::BearingKind);
+    if (ax && ax->choice == 0 && kind && kind->choice == cat::bearingKind::CylindricalRoller)
+      diags_.error("E0225", ax->span,
+                   fmt::format("{}: bearing `{}` is a cylindrical roller bearing, which takes no axial load: let another "
+                               "bearing hold the thrust (`axial = held`)",
+                               owner, p.name));
   }
   if (nBearings < 2)
     diags_.error("E0225", nameOr(st), fmt::format("{} needs two bearings (`bearing A at … {{ … }}`) to stand", owner));

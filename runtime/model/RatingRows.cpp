@@ -460,8 +460,16 @@ bool modelFactors(const KindContext& c, Rated& g, std::string* why, bool estimat
     if (why) *why = std::move(s);
     return false;
   };
-  if (std::any_of(c.a.choice.begin(), c.a.choice.end(), [](int x) { return x < 0; }))
-    return fail("its K_v or K_Hbeta comes from a model of the whole design, whose tooth counts are not all chosen");
+  // A scene may be the whole gearbox's, and a stage on shafts reads the others' loads: they
+  // need every tooth count; a self-contained stage's contact analysis needs its own.
+  const StageInfo& info = m.info(c.stage);
+  bool whole = byScene || !info.selfContained;
+  bool unchosen = whole ? std::any_of(c.a.choice.begin(), c.a.choice.end(), [](int x) { return x < 0; })
+                        : std::any_of(info.slots.begin(), info.slots.end(),
+                                      [&](int sl) { return c.a.choice[static_cast<size_t>(sl)] < 0; });
+  if (unchosen)
+    return fail(whole ? "its K_v or K_Hbeta comes from a model of the whole design, whose tooth counts are not all chosen"
+                      : "its K_Hbeta comes from a contact analysis of the stage, whose tooth counts are not all chosen");
   V mid;
   for (const auto& v : g.varying)
     for (const auto& x : v) mid.push_back(x.mid());

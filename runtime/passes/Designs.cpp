@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "model/Evaluator.h"
+#include "shaft/ShaftPlan.h"
 #include "optimise/Optimise.h"
 #include "catalogue/Settings.h"
 #include "search/FastKey.h"
@@ -352,12 +353,17 @@ std::vector<std::string> unevaluated(const Model& m, const GearboxReport& table,
       const auto& ref = missingExpr ? missingExpr->ref : ir::QuantityRef{};
       bool rated = ref.owner == ir::QuantityRef::Stage && cat::isRatingQuantity(ref.key) && ref.index >= 0 &&
                    static_cast<size_t>(ref.index) < m.gearbox.stages.size();
+      // A shaft's quantity has none where the shaft cannot stand at this design: say why.
+      std::string shaftWhy;
+      if (ref.owner == ir::QuantityRef::Shaft && ref.index >= 0 && static_cast<size_t>(ref.index) < m.gearbox.shafts.size())
+        if (!computeShaft(ev, ref.index, a, &shaftWhy, false)) shaftWhy = ": " + shaftWhy;
       c.error = fmt::format(
           "{} `{}` has no value for design {} ({}){}", c.what, ir::print(*c.e), row.rank, teeth,
           missing.empty() ? std::string()
           : cyclic ? fmt::format(": `{}` is defined in terms of itself, through what it is computed from", missing)
           : rated  ? fmt::format(": `{}` comes from the rating of stage `{}`, which cannot rate this design (see its message)",
                                  missing, m.gearbox.stages[static_cast<size_t>(ref.index)].name)
+          : !shaftWhy.empty() && shaftWhy[0] == ':' ? shaftWhy
                    : fmt::format(": `{}` cannot be computed; give it, or what it is computed from", missing));
     }
   });

@@ -121,6 +121,10 @@ bool gearLoad(const Ctx& c, const ir::Shaft::Placed& p, shaft::Model& m, ShaftRe
   out.gears.push_back({p.name, x, Ft, Fr, Fa});
   // The gear as a rigid disk for the critical speed: an annulus from the shaft to d.
   auto rho = c.ev.materialProperty(st, Q::Density);
+  if (!rho.isNumber())
+    out.warnings.push_back(fmt::format("gear `{}`: its stage gives no material (density): its mass is left out of the "
+                                       "critical speed",
+                                       p.name));
   if (rho.isNumber()) {
     double ds = diameterAt(m, x), R = d / 2, r = ds / 2;
     double mass = rho.mid() * kPi * (R * R - r * r) * *b;
@@ -238,6 +242,8 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
     return fail(e.what());
   }
   out.speed = speed;
+  // A mesh's misalignment reads the deflections alone.
+  if (spread) return out;
   // The largest deflection: at a station, or between two (the line is a cubic there).
   const auto& xs = out.solution.x;
   for (size_t i = 0; i < xs.size(); ++i)
@@ -250,8 +256,6 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
     }
   for (const auto& s : m.sections)
     out.mass += m.material.density * kPi / 4 * (s.diameter * s.diameter - s.bore * s.bore) * (s.x1 - s.x0);
-  // A mesh's misalignment reads the deflections alone.
-  if (spread) return out;
   // Each bearing's life at the shaft's speed, with kappa where the oil's viscosity is given.
   shaft::LifeSettings life;
   life.reliability = given(sh.settings, "life.reliability").value_or(0.9);

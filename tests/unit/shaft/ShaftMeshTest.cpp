@@ -7,9 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "Compiled.h"
+#include "driver/Driver.h"
 #include "model/Evaluator.h"
 #include "rating/ModelFactors.h"
 #include "shaft/ShaftMesh.h"
@@ -171,4 +175,38 @@ TEST(ShaftMesh, AGearOnNoShaftKeepsTheGivenDeflections) {
   ASSERT_TRUE(a.failure.empty()) << a.failure;
   EXPECT_TRUE(a.shafts.empty());
   EXPECT_EQ(a.KHbeta, b.KHbeta);
+}
+
+// A two-stage gearbox without shafts whose stages rate K_Hbeta by contact analysis: each
+// stage's rule is checked on its own candidates (its contact analysis needs its own tooth
+// counts only), and the search finds the designs that a whole-design check finds.
+TEST(ShaftMesh, AContactAnalysisRuleOfOneStageIsCheckedOnItsOwnCandidates) {
+  std::string text = R"(import materials;
+gearbox G {
+  stage hs: helical {
+    pinion.z in 18..22;  wheel.z in 70..80;  normal_module = 2.5 mm;  helix_angle = 12 deg;  face_width = 40 mm;
+    material = steel_18CrNiMo7_6;  accuracy = 6;  pinion.bending_deflection = 10 um;
+    rating { life = 20000 h;  face_load_factor = contact_analysis;  lubricant { viscosity_40 = 220 mm^2/s; }
+             roughness { flank = 0.6 um;  root = 2 um; } }
+  }
+  stage ls: helical {
+    pinion.z in 17..20;  wheel.z in 60..70;  normal_module = 5 mm;  helix_angle = 10 deg;  face_width = 80 mm;
+    material = steel_18CrNiMo7_6;  accuracy = 6;  pinion.bending_deflection = 10 um;
+    rating { life = 20000 h;  face_load_factor = contact_analysis;  lubricant { viscosity_40 = 220 mm^2/s; }
+             roughness { flank = 0.6 um;  root = 2 um; } }
+  }
+  operating { input_speed = 1500 rpm;  power = 30 kW; }
+  require ratio == 14 +- 0.5;
+  require hs.pinion.contact_safety >= 1.0;
+}
+)";
+  Compiled c = compileFirst(text);
+  EXPECT_TRUE(c.m->info(0).selfContained);
+  auto path = std::filesystem::temp_directory_path() / "gbx_contact_two_stage.gbx";
+  std::ofstream(path) << text;
+  std::ostringstream out, err;
+  ASSERT_EQ(driver::run({"solve", path.string(), "--format", "csv", "--quiet"}, out, err), 0) << err.str();
+  std::filesystem::remove(path);
+  std::string s = out.str();
+  EXPECT_GT(std::count(s.begin(), s.end(), '\n'), 1) << s << err.str();
 }
