@@ -37,7 +37,8 @@ const std::vector<AttrSpec>& shaftSettings() {
         withDefault(pos("strength.min_safety.fatigue", none, "minimum fatigue safety S_D (default 1.2)"), num(6, 5)),
         withDefault(pos("strength.min_safety.static", none, "minimum static safety S_F (default 1.2)"), num(6, 5)),
         hinted(pos("life.viscosity", kinematicViscosity,
-                   "oil viscosity at the bearings' temperature (kappa of a_ISO); without it, L_nm uses a_ISO 1"),
+                   "oil viscosity at the bearings' temperature (kappa of a_ISO); without it, the oil of the first rated "
+                   "stage the shaft carries a gear of, at its oil_temperature; with neither, a_ISO 1"),
                "mm^2/s"),
     };
   }();

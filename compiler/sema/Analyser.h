@@ -118,7 +118,7 @@ private:
 
   // ---- SemaRatings.cpp: ratings and what they need ----------------------------------------------
   void ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen);
-  void ratingInputs(const StageModel& st, Span where);
+  void ratingInputs(const StageModel& st, Span where, bool bearingsReadOil = false);
   void bevelRatingInputs(const StageModel& st, Span where);
   static bool rateable(const cat::KindSpec& kind);
   bool misspeltIn(const StageModel& st, const std::string& need) const;

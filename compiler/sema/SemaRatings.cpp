@@ -177,7 +177,7 @@ bool Analyser::misspeltIn(const StageModel& st, const std::string& need) const {
   return false;
 }
 
-void Analyser::ratingInputs(const StageModel& st, Span where) {
+void Analyser::ratingInputs(const StageModel& st, Span where, bool bearingsReadOil) {
   for (const char* need : {"rating.life", "rating.lubricant.viscosity_40", "rating.roughness.flank", "rating.roughness.root"}) {
     std::string rz = std::string(need) + "_rz";
     if (!st.findAttr(need) && !st.findAttr(rz))
@@ -207,7 +207,9 @@ void Analyser::ratingInputs(const StageModel& st, Span where) {
                                               {"rating.min_safety.integral_scuffing", 1}, {"rating.min_safety.micropitting", 2}};
   for (const auto& [name, uses] : only) {
     const Binding* b = st.findAttr(name);
-    bool used = ((uses & 1) && fzg) || ((uses & 2) && fva);
+    std::string n(name);
+    bool oilLine = n == "rating.lubricant.viscosity_100" || n == "rating.lubricant.oil_temperature";
+    bool used = ((uses & 1) && fzg) || ((uses & 2) && fva) || (bearingsReadOil && oilLine);
     if (b && !used && oil)
       diags_.warning("W0502", b->stmt->path.span,
                      fmt::format("`{}` of stage `{}` does nothing: it is read by {} only, and the oil gives no {}", std::string(name).substr(7),

@@ -533,7 +533,22 @@ ir::Stage Analyser::stage(const StageModel& st, const Scope& gbScope) {
     for (const auto& a : st.kind->gear)
       if (a.required && !st.findAttr(g + "." + a.name) && !misspelt_.count({st.name, g + "." + a.name}))
         diags_.error("E0225", where, fmt::format("stage `{}` does not give `{}.{}` ({})", st.name, g, a.name, a.meaning));
-  if (st.rated) ratingInputs(st, where);
+  // A shaft carrying one of its gears without its own `life.viscosity` reads the stage's oil.
+  bool bearingsReadOil = false;
+  if (gbScope.gearbox)
+    for (const ast::Stmt* sh : gbScope.gearbox->shafts) {
+      bool own = false, carries = false;
+      for (const auto& b : sh->body) {
+        if (b.kind == ast::StmtKind::Placed && b.name == "gear" && !b.path.parts.empty() && b.path.parts[0] == st.name)
+          carries = true;
+        if ((b.kind == ast::StmtKind::Block && b.name == "life" &&
+             std::any_of(b.body.begin(), b.body.end(), [](const ast::Stmt& x) { return x.path.str() == "viscosity"; })) ||
+            (b.kind == ast::StmtKind::Assign && b.path.str() == "life.viscosity"))
+          own = true;
+      }
+      bearingsReadOil = bearingsReadOil || (carries && !own);
+    }
+  if (st.rated) ratingInputs(st, where, bearingsReadOil);
   out.spectrum = spectrumBins(st);
   return out;
 }

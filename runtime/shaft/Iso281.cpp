@@ -113,7 +113,8 @@ BearingLife life(const BearingData& b, const BearingLoad& l, const LifeSettings&
     out.aIso = lifeModification(ball, out.kappa, s.contamination * Cu / out.P);
     out.Lnmh = out.a1 * out.aIso * out.L10h;
     out.method +=
-        fmt::format("; kappa {:.3g}, e_C {:.3g}, C_u {:.4g} N: a_ISO {:.3g}", out.kappa, s.contamination, Cu, out.aIso);
+        fmt::format("; kappa {:.3g}{}, e_C {:.3g}, C_u {:.4g} N: a_ISO {:.3g}", out.kappa,
+                    s.viscositySource.empty() ? "" : " (" + s.viscositySource + ")", s.contamination, Cu, out.aIso);
   } else {
     out.Lnmh = out.a1 * out.L10h;
     out.method += "; a_ISO 1 (no viscosity)";

@@ -28,6 +28,7 @@ struct LifeSettings {
   double reliability = 0.9;   // 0.9 .. 0.99
   double contamination = 0.5; // e_C
   double viscosity = -1;      // nu at the operating temperature, m^2/s; < 0: no modified life
+  std::string viscositySource; // where nu came from, for the method line
 };
 
 struct BearingLife {

@@ -12,6 +12,7 @@
 #include "catalogue/StageKinds.h"
 #include "model/Evaluator.h"
 #include "model/Recent.h"
+#include "rating/Scuffing.h"
 
 namespace gbx::rt {
 
@@ -171,6 +172,37 @@ bool rateStrength(const Evaluator& ev, const ir::Shaft& sh, ShaftResult& out, st
   return true;
 }
 
+// Without `life.viscosity`, the oil of the first rated stage whose gear the shaft carries:
+// nu at its oil temperature on the ASTM D341 line through nu40 and nu100, else nu40 itself.
+void stageOil(const Evaluator& ev, const ir::Shaft& sh, const Assignment& a, shaft::LifeSettings& life) {
+  for (const auto& p : sh.placed) {
+    if (p.kind != Place::Gear) continue;
+    auto value = [&](Q key) -> std::optional<double> {
+      Value v = ev.attribute(p.stage, key, a);
+      if (!v.isNumber()) return std::nullopt;
+      return v.mid();
+    };
+    auto nu40 = value(Q::RatingViscosity40);
+    if (!nu40) continue;
+    auto nu100 = value(Q::RatingViscosity100), T = value(Q::RatingOilTemperature);
+    const std::string& stage = ev.model().gearbox.stages[static_cast<size_t>(p.stage)].name;
+    if (nu100 && T && *nu40 > *nu100) {
+      rating::Lubricant oil;
+      oil.nu40 = *nu40;
+      oil.nu100 = *nu100;
+      life.viscosity = oil.kinematic(*T);
+      life.viscositySource = fmt::format("nu {:.3g} mm^2/s, stage {}'s oil at {:.0f} degC", life.viscosity * 1e6, stage,
+                                         *T - 273.15);
+    } else {
+      life.viscosity = *nu40;
+      life.viscositySource = fmt::format("nu {:.3g} mm^2/s, stage {}'s oil at 40 degC: it gives no viscosity_100 and "
+                                         "oil_temperature",
+                                         *nu40 * 1e6, stage);
+    }
+    return;
+  }
+}
+
 } // namespace
 
 std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error, bool modes,
@@ -263,6 +295,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
   life.contamination = given(sh.settings, "life.contamination")
                            .value_or(cat::cleanliness::kEc[clean && clean->choice >= 0 ? clean->choice : 2]);
   life.viscosity = given(sh.settings, "life.viscosity").value_or(-1);
+  if (life.viscosity < 0) stageOil(ev, sh, a, life);
   for (size_t k = 0; k < bearings.size(); ++k) {
     const auto& p = *bearings[k];
     shaft::BearingData b;

@@ -12,6 +12,7 @@
 
 #include "Compiled.h"
 #include "Din743Reference.h"
+#include "Iso281Reference.h"
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 
@@ -215,4 +216,29 @@ TEST(ShaftSpec, AShouldersSafetiesMatchTheReferenceOnStatics) {
   // The beam's moments come from its element stiffness: round-off of about 1e-8 relative.
   EXPECT_NEAR(ev.quantity("input.fatigue_safety", a).mid(), ref.SD, 1e-7 * ref.SD);
   EXPECT_NEAR(ev.quantity("input.static_safety", a).mid(), ref.SF, 1e-7 * ref.SF);
+}
+
+// Without `life.viscosity`, kappa takes the oil of the rated stage the shaft carries: nu at
+// its oil temperature on the ASTM D341 line through nu40 and nu100 (written out here), at
+// the bearing's speed and pitch diameter (1.4 times the shaft's 45 mm at B).
+TEST(ShaftSpec, KappaTakesTheStagesOilAtItsTemperature) {
+  std::string text = spec("pinion.z = 23;", "");
+  text.replace(text.find("    material = steel_18CrNiMo7_6;\n  }"), 37,
+               "    material = steel_18CrNiMo7_6;  accuracy = 6;\n    rating { life = 20000 h;  lubricant { viscosity_40 = 220 mm^2/s;  "
+               "viscosity_100 = 19 mm^2/s;  oil_temperature = 70 degC; }  roughness { flank = 0.6 um;  root = 2 um; } }\n  }");
+  Compiled c = compileFirst(text);
+  rt::Evaluator ev(*c.m);
+  rt::Assignment a(*c.m);
+  // ASTM D341: log10 log10 (nu + 0.7) = A - B log10 T, nu in mm^2/s, T in K.
+  auto loglog = [](double nu) { return std::log10(std::log10(nu + 0.7)); };
+  double T40 = 313.15, T100 = 373.15, T = 343.15;
+  double B = (loglog(220) - loglog(19)) / (std::log10(T100) - std::log10(T40));
+  double A = loglog(220) + B * std::log10(T40);
+  double nu = std::pow(10.0, std::pow(10.0, A - B * std::log10(T))) - 0.7;
+  double kappa = gbx::test::iso281Kappa(nu, 1500, 1.4 * 45);
+  double L10h = ev.quantity("input.B.life", a).mid() / 3600;
+  double P = std::pow(62e3, 1.0) / std::cbrt(L10h * 60 * 1500 / 1e6);  // back from L10 = (C/P)^3
+  auto aIso = gbx::test::iso281AIso(gbx::test::Iso281BearingType::radial_ball, kappa, 0.55, 38e3 / 22, P);
+  EXPECT_NEAR(ev.quantity("input.B.modified_life", a).mid() / 3600, aIso.aIso * L10h, 1e-6 * aIso.aIso * L10h);
+  EXPECT_GT(aIso.aIso, 1.0);
 }
