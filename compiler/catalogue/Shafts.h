@@ -28,6 +28,9 @@ namespace notchKind {
 // In the order of notchKinds().
 inline constexpr int Shoulder = 0, Groove = 1, Keyway = 2, PressFit = 3, Hole = 4, VNotch = 5;
 } // namespace notchKind
+namespace shaftSurface {
+inline constexpr int Plain = 0, Hardened = 1; // the order of `strength.surface`'s words
+} // namespace shaftSurface
 namespace cleanliness {
 // ISO 281 Table 13's guide values of e_C (D_pw < 100 mm), the middle of each band.
 inline constexpr double kEc[] = {1.0, 0.7, 0.55, 0.4, 0.2, 0.05};

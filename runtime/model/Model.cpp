@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "catalogue/StageKinds.h"
 #include "model/StageKind.h"
 
 namespace gbx::rt {
@@ -116,7 +117,7 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
     for (size_t k = 0; k < g.shafts.size(); ++k)
       for (const auto& p : g.shafts[k].placed)
         if (p.kind == ir::Shaft::Place::Gear && p.stage == static_cast<int>(si))
-          (p.gear == 0 ? pinionShaft : wheelShaft) = static_cast<int>(k);
+          (p.gear == cat::gear::Pinion ? pinionShaft : wheelShaft) = static_cast<int>(k);
     if (pinionShaft >= 0 && wheelShaft >= 0)
       for (int k : {pinionShaft, wheelShaft})
         for (const auto& p : g.shafts[static_cast<size_t>(k)].placed)

@@ -58,6 +58,9 @@ void notches(const ShaftResult& s, ShaftReport& r) {
     o.d = n.notch.d;
     o.D = n.notch.D;
     o.radius = n.notch.radius;
+    o.bending = n.loads[shaft::din743::Bending].amplitude;
+    o.torque = n.loads[shaft::din743::Torsion].mean;
+    o.axial = n.loads[shaft::din743::Tension].mean;
     o.SD = n.result.SD;
     o.SF = n.result.SF;
     bool formFactor = n.result.f[0].alpha > 0;

@@ -196,6 +196,7 @@ struct ShaftReport {
   struct Notch {
     std::string kind;
     double x = 0, d = 0, D = 0, radius = 0;  // m
+    double bending = 0, torque = 0, axial = 0;  // the section's loads: N m, N m, N (tension positive)
     double SD = 0, SF = 0;
     struct Factor {
       std::string key, label, unit;  // `beta`, `beta`, ``; `sigma_WK`, `sigma_WK`, `N/mm^2`

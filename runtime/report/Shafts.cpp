@@ -62,12 +62,14 @@ std::vector<ShaftTable> shaftTables(const ShaftReport& s) {
   t.push_back({"", shaftGearHeader(), shaftGearRows(s), {true, false, false, false, false}});
   if (s.notches.empty()) return t;
   ShaftTable n{fmt::format("DIN 743, load case {}, peak factor {:g}", s.loadCase, s.peakFactor),
-               {"notch", "at [mm]", "d [mm]", "D [mm]", "r [mm]", "S_D", "S_D,min", "S_F", "S_F,min"},
+               {"notch", "at [mm]", "d [mm]", "D [mm]", "r [mm]", "M_b [N*m]", "T [N*m]", "F_zd [N]", "S_D", "S_D,min",
+                "S_F", "S_F,min"},
                {},
-               {true, false, false, false, false, false, false, false, false}};
+               {true, false, false, false, false, false, false, false, false, false, false, false}};
   for (const auto& x : s.notches)
-    n.rows.push_back({x.kind, mm(x.x), mm(x.d), mm(x.D), x.radius > 0 ? mm(x.radius) : "-", safety(x.SD, "static only"),
-                      fmt::format("{:.2f}", s.minFatigue), safety(x.SF, "no load"), fmt::format("{:.2f}", s.minStatic)});
+    n.rows.push_back({x.kind, mm(x.x), mm(x.d), mm(x.D), x.radius > 0 ? mm(x.radius) : "-", newton(x.bending),
+                      newton(x.torque), newton(x.axial), safety(x.SD, "static only"), fmt::format("{:.2f}", s.minFatigue),
+                      safety(x.SF, "no load"), fmt::format("{:.2f}", s.minStatic)});
   t.push_back(std::move(n));
   for (const auto& x : s.notches) {
     ShaftTable f{"DIN 743 factors, " + notchName(x), {"factor", "tension", "bending", "torsion", "unit"}, {},
@@ -155,10 +157,11 @@ std::string shaftJson(const ShaftReport& s) {
   o += ", \"notches\": [";
   for (size_t i = 0; i < s.notches.size(); ++i) {
     const auto& n = s.notches[i];
-    o += fmt::format("{}{{\"kind\": \"{}\", \"at\": {}, \"d\": {}, \"D\": {}, \"radius\": {}, \"fatigue_safety\": {}, "
-                     "\"static_safety\": {}, \"factors\": {{",
+    o += fmt::format("{}{{\"kind\": \"{}\", \"at\": {}, \"d\": {}, \"D\": {}, \"radius\": {}, \"bending_moment\": {}, "
+                     "\"torque\": {}, \"axial_force\": {}, \"fatigue_safety\": {}, \"static_safety\": {}, \"factors\": {{",
                      i ? ", " : "", n.kind, jsonNumberOf(n.x), jsonNumberOf(n.d), jsonNumberOf(n.D), jsonNumberOf(n.radius),
-                     jsonNumberOf(n.SD), jsonNumberOf(n.SF));
+                     jsonNumberOf(n.bending), jsonNumberOf(n.torque), jsonNumberOf(n.axial), jsonNumberOf(n.SD),
+                     jsonNumberOf(n.SF));
     for (size_t k = 0; k < n.factors.size(); ++k) {
       const auto& f = n.factors[k];
       o += fmt::format("{}\"{}\": [{}, {}, {}]", k ? ", " : "", f.key, jsonNumberOf(f.si[0]), jsonNumberOf(f.si[1]),
@@ -197,6 +200,9 @@ std::vector<std::vector<std::string>> shaftCsvRows(const std::string& gearbox, c
   }
   for (const auto& n : s.notches) {
     std::string item = notchName(n);
+    add(item, "bending_moment", "N*m", n.bending, 1, "amplitude (the shaft turning)");
+    add(item, "torque", "N*m", n.torque, 1, "steady");
+    add(item, "axial_force", "N", n.axial, 1, "steady, tension positive");
     add(item, "fatigue_safety", "", n.SD, 1, fmt::format("DIN 743, load case {}", s.loadCase));
     add(item, "static_safety", "", n.SF, 1, fmt::format("DIN 743, peak factor {:g}", s.peakFactor));
     for (const auto& f : n.factors)

@@ -146,8 +146,8 @@ bool rateStrength(const Evaluator& ev, const ir::Shaft& sh, ShaftResult& out, st
                    static_cast<shaft::din743::Group>(choiceOf(props, Q::SteelGroup, 0))};
   }
   st.din.loadCase = static_cast<int>(given(sh.settings, "strength.load_case").value_or(2));
-  st.din.hardened = ir::findSetting(sh.settings, "strength.surface") &&
-                    ir::findSetting(sh.settings, "strength.surface")->choice == 1;
+  const ir::Setting* surface = ir::findSetting(sh.settings, "strength.surface");
+  st.din.hardened = surface && surface->choice == cat::shaftSurface::Hardened;
   st.din.KV = given(sh.settings, "strength.surface_factor").value_or(1);
   double largest = 0;
   for (const auto& s : out.model.sections)

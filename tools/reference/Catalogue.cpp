@@ -32,7 +32,9 @@ std::string cell(std::string s) {
 units::DisplayUnit shownUnit(const AttrSpec& a) {
   static const std::map<std::string, units::DisplayUnit> hints = {
       {"um", {"um", 1e-6}},          {"h", {"h", 3600}},  {"mm^2/s", {"mm^2/s", 1e-6}}, {"kg/m^3", {"kg/m^3", 1}},
-      {"degC", {"degC", 1, 273.15}}, {"mm", {"mm", 1e-3}}};
+      {"degC", {"degC", 1, 273.15}}, {"mm", {"mm", 1e-3}}, {"mrad", {"mrad", 1e-3}},
+      {"rpm", {"rpm", 3.14159265358979323846 / 30}}, {"kN", {"kN", 1e3}},  {"N", {"N", 1}},
+      {"N/um", {"N/um", 1e6}},       {"N*m", {"N*m", 1}}, {"MPa", {"MPa", 1e6}}};
   auto it = hints.find(a.unitHint);
   return it != hints.end() ? it->second : units::displayUnitFor(a.dim);
 }
