@@ -496,8 +496,12 @@ private:
       if (sh.name == word) {
         std::vector<std::string> parts;
         for (const auto& p : sh.placed)
-          if (p.kind == ir::Shaft::Place::Gear || p.kind == ir::Shaft::Place::Bearing)
-            parts.push_back(fmt::format("{} {} at {:g} mm", p.kind == ir::Shaft::Place::Gear ? "gear" : "bearing", p.name, p.at.toDouble() * 1e3));
+          if (p.kind == ir::Shaft::Place::Gear || p.kind == ir::Shaft::Place::Bearing || p.kind == ir::Shaft::Place::Notch)
+            parts.push_back(fmt::format("{} {} at {:g} mm",
+                                        p.kind == ir::Shaft::Place::Gear      ? "gear"
+                                        : p.kind == ir::Shaft::Place::Bearing ? "bearing"
+                                                                              : "notch",
+                                        p.name, p.at.toDouble() * 1e3));
         double length = sh.segments.empty() ? 0 : sh.segments.back().x1.toDouble();
         return fmt::format("**shaft {}**: {} segments over {:g} mm\n\n{}", sh.name, sh.segments.size(), length * 1e3, fmt::join(parts, "; "));
       }

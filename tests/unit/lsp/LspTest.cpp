@@ -687,7 +687,7 @@ TEST(Lsp, DefinitionOfAnImportIsItsFile) {
   EXPECT_EQ(fs::path(r[3]["uri"].string()).filename(), "materials.gbx") << r[3].dump();
 }
 
-// A shaft's name shows its gears and bearings; a shaft quantity in a rule what it is and, for
+// A shaft's name shows its gears, bearings and notches; a shaft quantity in a rule what it is and, for
 // a fixed design, its value there.
 TEST(Lsp, HoverOnAShaftAndItsQuantities) {
   const std::string text = readFile(fs::path(GBX_SOURCE_DIR) / "tests" / "golden" / "solve" / "shaft_input.gbx");
@@ -699,5 +699,6 @@ TEST(Lsp, HoverOnAShaftAndItsQuantities) {
   EXPECT_NE(hover(2).find("**shaft input**"), std::string::npos) << hover(2);
   EXPECT_NE(hover(2).find("bearing A at 30 mm"), std::string::npos) << hover(2);
   EXPECT_NE(hover(2).find("gear hs.pinion at 175 mm"), std::string::npos) << hover(2);
+  EXPECT_NE(hover(2).find("notch shoulder at 60 mm"), std::string::npos) << hover(2);
   EXPECT_NE(hover(3).find("ISO 281 basic rating life"), std::string::npos) << hover(3);
 }
