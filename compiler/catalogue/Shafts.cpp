@@ -134,6 +134,14 @@ const std::vector<AttrSpec>& shaftFunctions() {
   return s;
 }
 
+const std::vector<AttrSpec>& notchOutputs() {
+  static const std::vector<AttrSpec> s = {
+      derived("fatigue_safety", none, "DIN 743 fatigue safety S_D at this notch: `input.notch_at(60 mm).fatigue_safety`"),
+      derived("static_safety", none, "DIN 743 static safety S_F at this notch"),
+  };
+  return s;
+}
+
 const std::vector<AttrSpec>& bearingOutputs() {
   static const std::vector<AttrSpec> s = {
       hinted(derived("reaction", force, "radial bearing force"), "N"),

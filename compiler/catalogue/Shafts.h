@@ -17,6 +17,7 @@ const std::vector<std::string>& notchKinds();   // shoulder, groove, keyway, pre
 const std::vector<AttrSpec>& notchSettings();   // radius, depth, diameter, keys
 const std::vector<AttrSpec>& shaftOutputs();    // deflection, critical_speed, mass, fatigue_safety, static_safety
 const std::vector<AttrSpec>& shaftFunctions();  // deflection_at, slope_at, torsion_at (of a gear on the shaft)
+const std::vector<AttrSpec>& notchOutputs();    // fatigue_safety, static_safety (of `notch_at(x)`)
 const std::vector<AttrSpec>& bearingOutputs();  // reaction, axial_reaction, life, modified_life, static_safety
 
 namespace bearingKind {

@@ -22,6 +22,7 @@ std::string Type::str() const {
   case Block: return "block " + detail;
   case Shaft: return "shaft";
   case Bearing: return "bearing " + detail;
+  case Notch: return "notch " + detail;
   case Error: return "error";
   }
   return "?";

@@ -25,7 +25,7 @@ using units::Dim;
 using units::Number;
 
 struct Type {
-  enum Kind { Number, Bool, Interval, Set, Stage, Gear, Collection, Signal, Symbol, Material, Scene, Split, PerGear, Block, Shaft, Bearing, Error };
+  enum Kind { Number, Bool, Interval, Set, Stage, Gear, Collection, Signal, Symbol, Material, Scene, Split, PerGear, Block, Shaft, Bearing, Notch, Error };
   Kind kind = Error;
   Dim dim;
   bool integer = false;
@@ -68,7 +68,8 @@ struct QuantityRef {
   enum Owner : std::uint8_t { Unresolved, Gearbox, Stage, Split, Material, Collection, Shaft };
   Owner owner = Unresolved;
   std::int16_t index = -1;  // the stage, split, material or shaft
-  std::int8_t gear = -1;    // the gear's position in its stage (a shaft's bearing); -1 a stage (shaft) quantity
+  std::int8_t gear = -1;    // the gear's position in its stage (a shaft's bearing); -1 a stage (shaft) quantity;
+                            // -2 - k: a shaft's notch, k its position among the shaft's placements
   bool perGear = false;     // `pitch_deviation` of every gear of the stage (modify rules)
   Q key = Q::None;
   bool operator==(const QuantityRef&) const = default;

@@ -272,6 +272,17 @@ QuantityRef quantityRef(const ir::Program& p_, const ir::Gearbox& g_, const std:
     r.owner = QuantityRef::Shaft;
     r.index = static_cast<std::int16_t>(sh);
     // `deflection_at(hs.pinion)`: the gear's position among the shaft's placements.
+    if (rest.rfind("notch_at(", 0) == 0) {
+      // `notch_at(60 mm).fatigue_safety`: the notch's position among the placements.
+      auto close = rest.find(')');
+      std::string at = rest.substr(9, close - 9);
+      const auto& placed = g_.shafts[static_cast<size_t>(sh)].placed;
+      for (size_t k = 0; k < placed.size() && r.gear == -1; ++k)
+        if (placed[k].kind == ir::Shaft::Place::Notch && units::showQuantity(placed[k].at, units::dims::length) == at)
+          r.gear = static_cast<std::int8_t>(-2 - static_cast<int>(k));
+      r.key = cat::keyOf(rest.substr(std::min(rest.size(), close + 2))).value_or(Q::None);
+      return r;
+    }
     if (auto open = rest.find('('); open != std::string::npos) {
       std::string gear = rest.substr(open + 1, rest.size() - open - 2);
       const auto& placed = g_.shafts[static_cast<size_t>(sh)].placed;

@@ -33,6 +33,7 @@ std::string describe(const Type& t, const std::string& written) {
   case Type::Split: return "a split";
   case Type::Shaft: return "a shaft";
   case Type::Bearing: return "a bearing";
+  case Type::Notch: return "a notch";
   case Type::PerGear: return "a per-gear quantity";
   case Type::Block: return "a settings block";
   case Type::Error: return "an erroneous expression";
@@ -444,6 +445,7 @@ ir::ExprPtr ExprChecker::member(const ast::Expr& e, const Scope& s) {
                              suggestion(closest(m, names))));
     return error(e.span);
   }
+  case Type::Notch: return notchMember(obj->name, m, e.span);
   case Type::Bearing: {
     for (const auto& o : cat::bearingOutputs())
       if (o.name == m) return quantity(obj->name + "." + m, o, e.span);
@@ -773,6 +775,7 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
 ir::ExprPtr ExprChecker::shaftAt(const ast::Expr& e, const ast::Expr& callee, const ir::Expr& obj,
                                  const std::vector<const ast::Expr*>& argAst, const Scope& s) {
   const std::string& fn = callee.text;
+  if (fn == "notch_at") return notchAt(e, obj, argAst, s);
   const AttrSpec* spec = nullptr;
   std::vector<std::string> fns;
   for (const auto& f : cat::shaftFunctions()) {
@@ -797,6 +800,41 @@ ir::ExprPtr ExprChecker::shaftAt(const ast::Expr& e, const ast::Expr& callee, co
     return error(e.span);
   }
   return quantity(fmt::format("{}.{}({})", obj.name, fn, gear), *spec, e.span);
+}
+
+// `input.notch_at(60 mm).fatigue_safety`: one notch's result.
+ir::ExprPtr ExprChecker::notchMember(const std::string& notch, const std::string& m, const source::Span& span) {
+  for (const auto& o : cat::notchOutputs())
+    if (o.name == m) return quantity(notch + "." + m, o, span);
+  diags_.error("E0219", span,
+               fmt::format("a notch has no `{}` (it reports fatigue_safety and static_safety){}", m,
+                           suggestion(closest(m, {"fatigue_safety", "static_safety"}))));
+  return error(span);
+}
+
+// `input.notch_at(60 mm)`: the shaft's notch at that position.
+ir::ExprPtr ExprChecker::notchAt(const ast::Expr& e, const ir::Expr& obj, const std::vector<const ast::Expr*>& argAst,
+                                 const Scope& s) {
+  ir::ExprPtr at = argAst.size() == 1 && argAst[0] ? check(argAst[0], s) : nullptr;
+  if (at && at->type.isError()) return at;
+  std::vector<std::string> where;
+  std::optional<std::string> found;
+  if (const ast::Stmt* sh = s.gearbox ? s.gearbox->findShaft(obj.name) : nullptr)
+    for (const auto& b : sh->body) {
+      if (b.kind != ast::StmtKind::Placed || b.name != "notch" || !b.value) continue;
+      auto x = check(b.value.get(), s);
+      if (!x->isConst() || !x->type.isNumber()) continue;
+      std::string text = units::showQuantity(x->value, units::dims::length);
+      where.push_back(text);
+      if (at && at->isConst() && at->type.dim == units::dims::length && x->value.compare(at->value) == 0) found = text;
+    }
+  if (!found) {
+    diags_.error("E0219", argAst.size() == 1 && argAst[0] ? argAst[0]->span : e.span,
+                 fmt::format("`{}.notch_at` takes the position of one of its notches ({})", obj.name,
+                             where.empty() ? std::string("it has none") : fmt::format("{}", fmt::join(where, ", "))));
+    return error(e.span);
+  }
+  return make(Op::Quantity, Type{Type::Notch, {}, false, obj.name}, e.span, fmt::format("{}.notch_at({})", obj.name, *found));
 }
 
 ir::ExprPtr ExprChecker::sceneResult(const ast::Expr& e, const ast::Expr& calleeRef, const std::vector<const ast::Expr*>& argAst,

@@ -77,6 +77,9 @@ private:
   ir::ExprPtr forall(const ast::Expr& e, const Scope& s);
   ir::ExprPtr stageMember(const StageModel& st, const std::string& m, const source::Span& span);
   ir::ExprPtr quantity(const std::string& path, const AttrSpec& spec, const source::Span& span);
+  ir::ExprPtr notchMember(const std::string& notch, const std::string& m, const source::Span& span);
+  ir::ExprPtr notchAt(const ast::Expr& e, const ir::Expr& obj, const std::vector<const ast::Expr*>& argAst,
+                      const Scope& s);
   ir::ExprPtr shaftAt(const ast::Expr& e, const ast::Expr& callee, const ir::Expr& obj, const std::vector<const ast::Expr*>& argAst,
                       const Scope& s);
   ir::ExprPtr requireNumber(ir::ExprPtr x, const char* what);

@@ -369,6 +369,17 @@ Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignm
   const std::optional<ShaftResult>& s = *hit;
   if (!s) return Value::invalid();
   if (r.key == Q::DeflectionAt || r.key == Q::SlopeAt || r.key == Q::TorsionAt) return gearLine(ev, *s, r, a);
+  if (r.gear <= -2) {
+    // A notch's own safety: the rating at its position.
+    const auto& placed = ev.model().gearbox.shafts[static_cast<size_t>(r.index)].placed;
+    size_t k = static_cast<size_t>(-2 - r.gear);
+    if (k >= placed.size()) return Value::invalid();
+    double x = placed[k].at.toDouble();
+    for (const auto& n : s->notches)
+      if (n.x == x && n.kind == placed[k].name)
+        return r.key == Q::FatigueSafety ? Value::number(n.result.SD) : Value::number(n.result.SF);
+    return Value::invalid();
+  }
   if (r.gear < 0) {
     switch (r.key) {
     case Q::Deflection: return Value::number(s->deflection);

@@ -208,6 +208,8 @@ void blocks(std::string& out) {
   table(out, cat::shaftOutputs(), "input.");
   out += "Results at one of its gears, read as `NAME.deflection_at(STAGE.GEAR)`:\n\n";
   table(out, cat::shaftFunctions(), "input.");
+  out += "Results at one of its notches, read as `NAME.notch_at(X).fatigue_safety` (X the notch's position):\n\n";
+  table(out, cat::notchOutputs(), "input.notch_at(60 mm).");
   out += "Results of each bearing, read as `NAME.BEARING.life`:\n\n";
   table(out, cat::bearingOutputs(), "input.A.");
   out += "## Studies\n\nA sweep of a scene takes:\n\n";

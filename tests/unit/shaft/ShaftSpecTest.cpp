@@ -216,6 +216,10 @@ TEST(ShaftSpec, AShouldersSafetiesMatchTheReferenceOnStatics) {
   // The beam's moments come from its element stiffness: round-off of about 1e-8 relative.
   EXPECT_NEAR(ev.quantity("input.fatigue_safety", a).mid(), ref.SD, 1e-7 * ref.SD);
   EXPECT_NEAR(ev.quantity("input.static_safety", a).mid(), ref.SF, 1e-7 * ref.SF);
+  // The one notch's own safeties, read by its position.
+  EXPECT_NEAR(ev.quantity("input.notch_at(60 mm).fatigue_safety", a).mid(), ref.SD, 1e-7 * ref.SD);
+  EXPECT_NEAR(ev.quantity("input.notch_at(60 mm).static_safety", a).mid(), ref.SF, 1e-7 * ref.SF);
+  EXPECT_EQ(codes(text + "gearbox H extends G { require input.notch_at(61 mm).fatigue_safety >= 1; }\n"), "E0219 ");
 }
 
 // Without `life.viscosity`, kappa takes the oil of the rated stage the shaft carries: nu at
