@@ -22,13 +22,7 @@ std::optional<MeshShafts> meshShafts(const ir::Gearbox& g, int stage) {
 namespace {
 
 double stageValue(const Evaluator& ev, const Assignment& a, int st, int gear, Q key) {
-  ir::QuantityRef r;
-  r.owner = ir::QuantityRef::Stage;
-  r.index = static_cast<std::int16_t>(st);
-  r.gear = static_cast<std::int8_t>(gear);
-  r.key = key;
-  Value v = ev.quantity(r, a);
-  return v.isNumber() ? v.mid() : std::nan("");
+  return stageNumber(ev, a, st, gear, key).value_or(std::nan(""));
 }
 
 double gearAt(const ir::Shaft& sh, int stage, int gear) {

@@ -16,6 +16,17 @@
 
 namespace gbx::rt {
 
+std::optional<double> stageNumber(const Evaluator& ev, const Assignment& a, int stage, int gear, Q key) {
+  ir::QuantityRef r;
+  r.owner = ir::QuantityRef::Stage;
+  r.index = static_cast<std::int16_t>(stage);
+  r.gear = static_cast<std::int8_t>(gear);
+  r.key = key;
+  Value v = ev.quantity(r, a);
+  if (!v.isNumber()) return std::nullopt;
+  return v.mid();
+}
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -43,16 +54,7 @@ struct Ctx {
   const Assignment& a;
   std::string* error;
   const LoadSpread* spread = nullptr;
-  std::optional<double> stage(int st, int gear, Q key) const {
-    ir::QuantityRef r;
-    r.owner = ir::QuantityRef::Stage;
-    r.index = static_cast<std::int16_t>(st);
-    r.gear = static_cast<std::int8_t>(gear);
-    r.key = key;
-    Value v = ev.quantity(r, a);
-    if (!v.isNumber()) return std::nullopt;
-    return v.mid();
-  }
+  std::optional<double> stage(int st, int gear, Q key) const { return stageNumber(ev, a, st, gear, key); }
 };
 
 // The shaft's own material: E, G (or E / 2(1 + nu)) and density.

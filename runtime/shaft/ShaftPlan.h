@@ -54,6 +54,9 @@ struct LoadSpread {
 std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error = nullptr,
                                         bool modes = true, const LoadSpread* spread = nullptr);
 
+// A quantity of a stage (gear -1) or of one of its gears at the design; nullopt where it has no number.
+std::optional<double> stageNumber(const Evaluator& ev, const Assignment& a, int stage, int gear, cat::Q key);
+
 // `input.deflection`, `input.A.life`: one quantity of a shaft or of its bearing (`r.gear`).
 Value shaftQuantity(const Evaluator& ev, const ir::QuantityRef& r, const Assignment& a);
 

@@ -349,22 +349,14 @@ inline Din743Result din743Reference(const Din743Input& in) {
     r.tension.Gprime = 2.3 / s.r * (1.0 + r.phi);
     r.bending.Gprime = 2.3 / s.r * (1.0 + r.phi);
     r.torsion.Gprime = 1.15 / s.r;
-    for (auto* f : {&r.tension, &r.bending, &r.torsion}) {
-      f->n = supportNumber(f->Gprime, r.sigmaSd);
-      f->beta = f->alpha / f->n;
-    }
   } else if (vNotchP) {
     // DIN 743-2 4.2: experimental beta at d_BK = 15 mm, scaled to d with K3.
     constexpr double dBK = 15.0;
     r.dBK = dBK;
-    r.tension.betaDBK = 0.109 * r.sigmaBd / 100.0 + 1.074;
-    r.bending.betaDBK = 0.0923 * r.sigmaBd / 100.0 + 0.985;
-    r.torsion.betaDBK = 0.8 * r.bending.betaDBK;
-    for (auto* f : {&r.tension, &r.bending, &r.torsion}) {
-      f->K3dBK = K3(dBK, f->betaDBK);
-      f->K3d = K3(d, f->betaDBK);
-      f->beta = f->betaDBK * f->K3dBK / f->K3d;
-    }
+    const double bending = 0.0923 * r.sigmaBd / 100.0 + 0.985;
+    scaleExperimentalBeta(r.tension, 0.109 * r.sigmaBd / 100.0 + 1.074, dBK, d);
+    scaleExperimentalBeta(r.bending, bending, dBK, d);
+    scaleExperimentalBeta(r.torsion, 0.8 * bending, dBK, d);
     if (in.vNotchKFRelativeToRz20) {
       kfs /= KFsigma(20.0, r.sigmaBd);
       kft /= KFtau(20.0, r.sigmaBd);
@@ -382,10 +374,6 @@ inline Din743Result din743Reference(const Din743Input& in) {
     r.tension.Gprime = 2.0 / g.r * (1.0 + r.phi);
     r.bending.Gprime = 2.0 / g.r * (1.0 + r.phi);
     r.torsion.Gprime = 1.0 / g.r;
-    for (auto* f : {&r.tension, &r.bending, &r.torsion}) {
-      f->n = supportNumber(f->Gprime, r.sigmaSd);
-      f->beta = f->alpha / f->n;
-    }
   } else if (holeP) {
     // DIN 743-2 clause 5 fits and Table 3 G' for a transverse hole, r = d_L/2; beta = alpha / n.
     // G': 2.3/r (tension), 2.3/r + 2/d (bending), 1.15/r + 2/d (torsion); confidence: fair (the 2/d
@@ -399,10 +387,6 @@ inline Din743Result din743Reference(const Din743Input& in) {
     r.tension.Gprime = 2.3 / rh;
     r.bending.Gprime = 2.3 / rh + 2.0 / d;
     r.torsion.Gprime = 1.15 / rh + 2.0 / d;
-    for (auto* f : {&r.tension, &r.bending, &r.torsion}) {
-      f->n = supportNumber(f->Gprime, r.sigmaSd);
-      f->beta = f->alpha / f->n;
-    }
   } else if (keywayP) {
     // DIN 743-2 Table 1: experimental beta at d_BK = 40 mm (test pieces of the connection, roughness
     // included: K_F = 1). Not circumferential: gamma_F = 1.
@@ -426,6 +410,12 @@ inline Din743Result din743Reference(const Din743Input& in) {
     kfs = 1.0;
     kft = 1.0;
   }
+  // A notch with a form factor: beta = alpha / n (743-2 4.3).
+  if (shoulderP || grooveP || holeP)
+    for (auto* f : {&r.tension, &r.bending, &r.torsion}) {
+      f->n = supportNumber(f->Gprime, r.sigmaSd);
+      f->beta = f->alpha / f->n;
+    }
   r.tension.KF = kfs;
   r.bending.KF = kfs;
   r.torsion.KF = kft;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "Din743Cases.h"
 #include "Din743Reference.h"
 #include "shaft/Din743.h"
 
@@ -121,15 +122,7 @@ void expectSameAsReference(const Case& c, const gbx::test::Din743Input& in) {
 
 TEST(Din743, ShoulderAndVNotchFactorByFactorAsTheReference) {
   using namespace gbx::test;
-  Din743Input a;
-  a.material = {1100.0, 900.0, Din743SteelGroup::quenched_tempered};
-  a.dEff = 100.0;
-  a.notch = Din743Shoulder{84.0, 100.0, 4.0};
-  a.tensionN = {443341.6, 0.0, 443341.6};
-  a.bendingNm = {23275.43, 2909.429, 26184.86};
-  a.torsionNm = {13965.26, 0.0, 13965.26};
-  a.loadCase = Din743LoadCase::one;
-  a.rzUm = 10.0;
+  Din743Input a = din743S2Input();
   expectSameAsReference(s2(), a);
   // The same shoulder in load case 2 with a torque amplitude too.
   Case c = s2();
@@ -138,14 +131,7 @@ TEST(Din743, ShoulderAndVNotchFactorByFactorAsTheReference) {
   a.loadCase = Din743LoadCase::two;
   a.torsionNm = {13965.26, 3000, 16965.26};
   expectSameAsReference(c, a);
-  Din743Input b;
-  b.material = {360.0, 235.0, Din743SteelGroup::structural};
-  b.dEff = 80.0;
-  b.notch = Din743VNotch{80.0, 60.0};
-  b.tensionN = {40000.0, 0.0, 60000.0};
-  b.bendingNm = {12666.667, 0.0, 19000.0};
-  b.loadCase = Din743LoadCase::two;
-  b.rzUm = 25.0;
+  Din743Input b = din743S4Input();
   expectSameAsReference(s4(), b);
   // The V-notch with a bending amplitude, in both load cases.
   for (int lc : {1, 2}) {

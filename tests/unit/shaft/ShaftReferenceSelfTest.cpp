@@ -1,6 +1,7 @@
 // Self-checks of the DIN 743 and ISO 281 references against the check values of DOMAIN §12
 // (S2, S4, S6), and of the DIN 743 notch kinds beyond shoulder and V-notch against hand calculations.
 // Each printed value is met to half a unit of its last printed digit.
+#include "Din743Cases.h"
 #include "Din743Reference.h"
 #include "Iso281Reference.h"
 
@@ -17,41 +18,14 @@ void expectPrinted(double x, double printed, int decimals) {
   EXPECT_NEAR(x, printed, 0.5 * std::pow(10.0, -decimals)) << "printed " << printed;
 }
 
-// S2: 50CrMo4, shoulder 84/100 r 4, d_eff 100, load case 1, Rz 10 um.
-Din743Input s2Input() {
-  Din743Input in;
-  in.material = {1100.0, 900.0, Din743SteelGroup::quenched_tempered};
-  in.dEff = 100.0;
-  in.notch = Din743Shoulder{84.0, 100.0, 4.0};
-  in.tensionN = {443341.6, 0.0, 443341.6};
-  in.bendingNm = {23275.43, 2909.429, 26184.86};
-  in.torsionNm = {13965.26, 0.0, 13965.26};
-  in.loadCase = Din743LoadCase::one;
-  in.rzUm = 10.0;
-  return in;
-}
-
-// S4: S235, V-notch 10 mm deep in an 80 mm shaft (root 60), d_eff 80, load case 2, static only.
-Din743Input s4Input() {
-  Din743Input in;
-  in.material = {360.0, 235.0, Din743SteelGroup::structural};
-  in.dEff = 80.0;
-  in.notch = Din743VNotch{80.0, 60.0};
-  in.tensionN = {40000.0, 0.0, 60000.0};
-  in.bendingNm = {12666.667, 0.0, 19000.0};
-  in.loadCase = Din743LoadCase::two;
-  in.rzUm = 25.0;
-  return in;
-}
-
 TEST(ShaftReference, Din743S2Safeties) {
-  const auto r = din743Reference(s2Input());
+  const auto r = din743Reference(din743S2Input());
   expectPrinted(r.SD, 2.373, 3);
   expectPrinted(r.SF, 1.464, 3);
 }
 
 TEST(ShaftReference, Din743S2Intermediates) {
-  const auto r = din743Reference(s2Input());
+  const auto r = din743Reference(din743S2Input());
   expectPrinted(r.tension.nominal.mean, 80.0, 0);
   expectPrinted(r.bending.nominal.mean, 400.0, 0);
   expectPrinted(r.bending.nominal.amplitude, 50.0, 0);
@@ -67,7 +41,7 @@ TEST(ShaftReference, Din743S2Intermediates) {
 }
 
 TEST(ShaftReference, Din743S2Consistency) {
-  const auto r = din743Reference(s2Input());
+  const auto r = din743Reference(din743S2Input());
   // S_D here is sigma_bADK / sigma_ba (bending is the only amplitude).
   EXPECT_NEAR(r.SD, r.bending.sigmaADK / r.bending.nominal.amplitude, 1e-12);
   // Load case 1 below the yield line: sigma_ADK = sigma_WK - psi sigma_mv.
@@ -81,7 +55,7 @@ TEST(ShaftReference, Din743S2Consistency) {
 }
 
 TEST(ShaftReference, Din743S4StaticSafety) {
-  const auto r = din743Reference(s4Input());
+  const auto r = din743Reference(din743S4Input());
   expectPrinted(r.SF, 0.274, 3);
   EXPECT_TRUE(std::isinf(r.SD)); // no amplitude
   EXPECT_EQ(r.K1B, 1.0);
