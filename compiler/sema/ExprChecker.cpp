@@ -41,9 +41,7 @@ std::string describe(const Type& t, const std::string& written) {
   return "?";
 }
 
-namespace {
-
-ir::ExprPtr make(Op op, Type t, source::Span span, std::string name = {}) {
+ir::ExprPtr make(Op op, Type t, source::Span span, std::string name) {
   auto e = std::make_unique<ir::Expr>();
   e->op = op;
   e->type = std::move(t);
@@ -51,6 +49,8 @@ ir::ExprPtr make(Op op, Type t, source::Span span, std::string name = {}) {
   e->name = std::move(name);
   return e;
 }
+
+namespace {
 
 std::string writtenUnit(const ast::Expr* e) {
   if (e && e->kind == ast::ExprKind::Number && e->unit) return e->unit->text;
@@ -429,31 +429,9 @@ ir::ExprPtr ExprChecker::member(const ast::Expr& e, const Scope& s) {
                              obj->name, m, suggestion(hint)));
     return error(e.span);
   }
-  case Type::Shaft: {
-    for (const auto& o : cat::shaftOutputs())
-      if (o.name == m) return quantity(obj->name + "." + m, o, e.span);
-    std::vector<std::string> names;
-    for (const auto& o : cat::shaftOutputs()) names.push_back(o.name);
-    if (const ast::Stmt* sh = s.gearbox ? s.gearbox->findShaft(obj->name) : nullptr)
-      for (const auto& b : sh->body)
-        if (b.kind == ast::StmtKind::Placed && b.name == "bearing" && b.path.parts.size() == 1) {
-          if (b.path.parts[0] == m) return make(Op::Quantity, Type{Type::Bearing, {}, false, obj->name}, e.span, obj->name + "." + m);
-          names.push_back(b.path.parts[0]);
-        }
-    diags_.error("E0219", e.span,
-                 fmt::format("shaft `{}` has no `{}` (it reports deflection, critical_speed, mass, and each bearing's values){}", obj->name, m,
-                             suggestion(closest(m, names))));
-    return error(e.span);
-  }
+  case Type::Shaft: return shaftMember(obj->name, m, e.span, s);
   case Type::Notch: return notchMember(obj->name, m, e.span);
-  case Type::Bearing: {
-    for (const auto& o : cat::bearingOutputs())
-      if (o.name == m) return quantity(obj->name + "." + m, o, e.span);
-    std::vector<std::string> names;
-    for (const auto& o : cat::bearingOutputs()) names.push_back(o.name);
-    diags_.error("E0219", e.span, fmt::format("bearing `{}` has no `{}`{}", obj->name, m, suggestion(closest(m, names))));
-    return error(e.span);
-  }
+  case Type::Bearing: return bearingMember(obj->name, m, e.span);
   case Type::Block: {
     std::string split = obj->name.substr(0, obj->name.find('.'));
     std::string path = obj->type.detail + "." + m;
@@ -769,72 +747,6 @@ ir::ExprPtr ExprChecker::call(const ast::Expr& e, const Scope& s) {
   n->fn = spec->id;
   n->args = std::move(args);
   return n;
-}
-
-// `input.deflection_at(hs.pinion)`: a shaft's line at one of its gears.
-ir::ExprPtr ExprChecker::shaftAt(const ast::Expr& e, const ast::Expr& callee, const ir::Expr& obj,
-                                 const std::vector<const ast::Expr*>& argAst, const Scope& s) {
-  const std::string& fn = callee.text;
-  if (fn == "notch_at") return notchAt(e, obj, argAst, s);
-  const AttrSpec* spec = nullptr;
-  std::vector<std::string> fns;
-  for (const auto& f : cat::shaftFunctions()) {
-    fns.push_back(f.name);
-    if (f.name == fn) spec = &f;
-  }
-  if (!spec) {
-    diags_.error("E0220", callee.span,
-                 fmt::format("shaft `{}` has no function `{}` (it takes {}){}", obj.name, fn, fmt::join(fns, ", "),
-                             suggestion(closest(fn, fns))));
-    return error(e.span);
-  }
-  std::string gear = argAst.size() == 1 && argAst[0] ? ast::print(*argAst[0]) : "";
-  std::vector<std::string> gears;
-  if (const ast::Stmt* sh = s.gearbox ? s.gearbox->findShaft(obj.name) : nullptr)
-    for (const auto& b : sh->body)
-      if (b.kind == ast::StmtKind::Placed && b.name == "gear") gears.push_back(b.path.str());
-  if (std::find(gears.begin(), gears.end(), gear) == gears.end()) {
-    diags_.error("E0219", argAst.size() == 1 && argAst[0] ? argAst[0]->span : e.span,
-                 fmt::format("`{}.{}` takes one gear that shaft `{}` carries ({}){}", obj.name, fn, obj.name,
-                             gears.empty() ? std::string("it carries none") : fmt::format("{}", fmt::join(gears, ", ")), suggestion(closest(gear, gears))));
-    return error(e.span);
-  }
-  return quantity(fmt::format("{}.{}({})", obj.name, fn, gear), *spec, e.span);
-}
-
-// `input.notch_at(60 mm).fatigue_safety`: one notch's result.
-ir::ExprPtr ExprChecker::notchMember(const std::string& notch, const std::string& m, const source::Span& span) {
-  for (const auto& o : cat::notchOutputs())
-    if (o.name == m) return quantity(notch + "." + m, o, span);
-  diags_.error("E0219", span,
-               fmt::format("a notch has no `{}` (it reports fatigue_safety and static_safety){}", m,
-                           suggestion(closest(m, {"fatigue_safety", "static_safety"}))));
-  return error(span);
-}
-
-// `input.notch_at(60 mm)`: the shaft's notch at that position.
-ir::ExprPtr ExprChecker::notchAt(const ast::Expr& e, const ir::Expr& obj, const std::vector<const ast::Expr*>& argAst,
-                                 const Scope& s) {
-  ir::ExprPtr at = argAst.size() == 1 && argAst[0] ? check(argAst[0], s) : nullptr;
-  if (at && at->type.isError()) return at;
-  std::vector<std::string> where;
-  std::optional<std::string> found;
-  if (const ast::Stmt* sh = s.gearbox ? s.gearbox->findShaft(obj.name) : nullptr)
-    for (const auto& b : sh->body) {
-      if (b.kind != ast::StmtKind::Placed || b.name != "notch" || !b.value) continue;
-      auto x = check(b.value.get(), s);
-      if (!x->isConst() || !x->type.isNumber()) continue;
-      std::string text = units::showQuantity(x->value, units::dims::length);
-      where.push_back(text);
-      if (at && at->isConst() && at->type.dim == units::dims::length && x->value.compare(at->value) == 0) found = text;
-    }
-  if (!found) {
-    diags_.error("E0219", argAst.size() == 1 && argAst[0] ? argAst[0]->span : e.span,
-                 fmt::format("`{}.notch_at` takes the position of one of its notches ({})", obj.name,
-                             where.empty() ? std::string("it has none") : fmt::format("{}", fmt::join(where, ", "))));
-    return error(e.span);
-  }
-  return make(Op::Quantity, Type{Type::Notch, {}, false, obj.name}, e.span, fmt::format("{}.notch_at({})", obj.name, *found));
 }
 
 ir::ExprPtr ExprChecker::sceneResult(const ast::Expr& e, const ast::Expr& calleeRef, const std::vector<const ast::Expr*>& argAst,

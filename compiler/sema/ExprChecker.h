@@ -15,6 +15,9 @@
 
 namespace gbx::sema {
 
+// A typed node of the checked tree.
+ir::ExprPtr make(ir::Op op, ir::Type t, source::Span span, std::string name = {});
+
 struct Scope {
   enum Context { General, Modify, EffectParam, ConstExpr };
   const GearboxModel* gearbox = nullptr;
@@ -77,6 +80,9 @@ private:
   ir::ExprPtr forall(const ast::Expr& e, const Scope& s);
   ir::ExprPtr stageMember(const StageModel& st, const std::string& m, const source::Span& span);
   ir::ExprPtr quantity(const std::string& path, const AttrSpec& spec, const source::Span& span);
+  // ExprShafts.cpp: a shaft's, a bearing's and a notch's results.
+  ir::ExprPtr shaftMember(const std::string& shaft, const std::string& m, const source::Span& span, const Scope& s);
+  ir::ExprPtr bearingMember(const std::string& bearing, const std::string& m, const source::Span& span);
   ir::ExprPtr notchMember(const std::string& notch, const std::string& m, const source::Span& span);
   ir::ExprPtr notchAt(const ast::Expr& e, const ir::Expr& obj, const std::vector<const ast::Expr*>& argAst,
                       const Scope& s);
