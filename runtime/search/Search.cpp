@@ -112,6 +112,7 @@ private:
     bool overKept = false;             // an unlimited listing reached opt.maxKept
     double walked = 0;                 // designs visited one by one (not counted by arithmetic)
     double asked = 0;                  // of which the evaluator asked the rules across stages
+    bool cutShort = false;             // the time limit came before an evaluator call
   };
   // One thread's walk over its range of left entries.
   struct Walk {
@@ -849,6 +850,12 @@ private:
         holds = up.brackets[cand[up.stage]][static_cast<size_t>(r)].at(ratio);
       }
       if (holds < 0) {
+        // An evaluator call can rate a design (shafts, contact analysis): milliseconds each,
+        // so the clock is asked before every one, not only at the walk's intervals.
+        if (Deadline::expired()) {
+          lo.cutShort = true;
+          return false;
+        }
         if (!filled) fill(a, cand);
         filled = true;
         lo.asked += 1;
@@ -894,7 +901,10 @@ private:
       }
       if (!counted) {
         lo.inWindow += 1;
-        if (!counts(lo, a, cand)) continue;
+        if (!counts(lo, a, cand)) {
+          if (lo.cutShort) return;
+          continue;
+        }
         lo.count += 1;
         if (undecidedAny) {
           bool undecided = false;
@@ -955,7 +965,11 @@ private:
       if ((lo.asked > walkBudget || lo.walked > walkBudget * 50) && !opt.exhaustive) overWalked = true;
       // Counted one by one; keyed only where the window's bound lets a design in.
       bool keyed = keep > 0 && !bounded(lo, partial, x * right->ratio(from), x * right->ratio(to - 1));
+      double asked = lo.asked;
       visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, false, keyed);
+      // An evaluator call weighs as much as 4 096 entries walked in the check interval; one
+      // cut short by the time limit makes the next check stop the walk.
+      w.sinceCheck += lo.cutShort ? (1u << 17) : static_cast<size_t>(lo.asked - asked) << 12;
       return;
     }
     unsigned long long c = exactCount(w.cand.data(), x, from, to);
@@ -1213,6 +1227,8 @@ private:
     bool report = t == 0 && opt.progress;
     Walk w{t, lo, Assignment(m), std::vector<std::uint32_t>(kk + 1, 0), std::vector<double>(nk + 1, 0), begin, end, 0, report};
     bool done = rows ? sweepRows(w) : sweepHalves(w);
+    // A walk cut short in its last window had no check after it.
+    if (lo.cutShort) timedOut = true;
     if (report && done) opt.progress(1.0);
   }
 
