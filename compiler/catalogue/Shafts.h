@@ -1,6 +1,6 @@
 #pragma once
 // The `shaft` member of a gearbox: its settings and those of its segments, bearings, loads,
-// disks and `life` block, and the quantities it reports (docs/shafts.md).
+// disks and `life` block, and the quantities it reports (docs/language.md, "Shafts and bearings").
 #include <string>
 #include <vector>
 

@@ -45,6 +45,7 @@ Setting Setting::clone() const {
   s.members = members;
   s.lo = lo;
   s.hi = hi;
+  s.memberTexts = memberTexts;
   s.span = span;
   return s;
 }

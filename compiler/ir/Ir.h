@@ -195,7 +195,8 @@ struct Setting {
   bool sceneRef = false;
   ExprPtr expr;              // when the value is an expression over other quantities
   std::vector<Number> members;  // `rtol in {…}`
-  std::optional<Number> lo, hi;  // `harmonics in 1..8`
+  std::optional<Number> lo, hi;  // `harmonics in 1..8`, a shaft's `diameter in 50 mm..70 mm`
+  std::vector<std::string> memberTexts;  // a shaft setting's set, as written
   Span span;
   Setting clone() const;
 };
@@ -262,7 +263,7 @@ struct Split {
   Span span;
 };
 
-// A shaft of the gearbox (docs/shafts.md): positions along its own axis from its left end.
+// A shaft of the gearbox (docs/language.md, "Shafts and bearings"): positions along its own axis from its left end.
 struct Shaft {
   std::string name;
   std::vector<Setting> settings;  // material (symbol), shear, speed, heat_treatment_diameter, life.*

@@ -83,6 +83,8 @@ private:
   void notAllowed(const Stmt& st, const std::string& owner);
   ir::Setting setting(const std::string& name, const Binding& b, const AttrSpec& spec, const Scope& scope,
                       const std::string& owner);
+  ir::Setting domainSetting(ir::Setting out, const Stmt& st, const AttrSpec& spec, const Scope& scope,
+                            const std::string& owner);
   std::vector<ir::Setting> settings(const std::vector<std::pair<std::string, Binding>>& items,
                                     const std::vector<AttrSpec>& specs, const Scope& scope, const std::string& owner,
                                     Span ownerSpan, const char* missingCode);
@@ -104,6 +106,12 @@ private:
   void override(GearboxModel& m, const Stmt& st, const std::string& origin);
   void unknownAttribute(const StageModel& st, const std::string& path, Span where);
   std::optional<Number> boundOf(const AttrSpec& spec, const std::string& path, bool tooth, ir::ExprPtr x);
+  struct Domain {
+    std::optional<Number> lo, hi;
+    std::vector<Number> members;
+    std::vector<std::string> memberTexts;  // as written, when every member is a literal
+  };
+  Domain domain(const AttrSpec& spec, const std::string& path, const Stmt& s, const Scope& scope, bool tooth = false);
   ir::Attribute attribute(const StageModel& st, const std::string& path, const Binding& b, const Scope& scope);
   ir::Stage stage(const StageModel& st, const Scope& gbScope);
   template <class T, class Key>
@@ -182,6 +190,8 @@ private:
   std::map<std::string, int> letSense_;  // the direction each let reading `worst` was used in (0: both)
   std::set<std::pair<std::string, std::string>> misspelt_;  // (stage, attribute) a reported misspelling meant
   diag::DiagnosticEngine& diags_;
+  // Within a shaft: its numeric settings may be ranges and sets (searched like attributes).
+  bool shaftDomains_ = false;
   Globals globals_;
   ExprChecker checker_;
   std::map<std::string, std::unique_ptr<GearboxModel>> models_;

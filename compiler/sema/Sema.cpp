@@ -94,7 +94,7 @@ void Analyser::checkConsts() {
 void Analyser::flatten(const std::vector<Stmt>& body, const std::string& prefix, const std::string& owner, std::vector<std::pair<std::string, Binding>>& out, const std::set<std::string>& blocks, const std::set<std::string>& skip) {
   for (const auto& st : body) {
     if (st.kind == StmtKind::Block && skip.count(prefix + st.name)) continue;
-    if (st.kind == StmtKind::Assign) {
+    if (st.kind == StmtKind::Assign || (st.kind == StmtKind::Domain && shaftDomains_)) {
       std::string p = prefix + st.path.str();
       bool dup = false;
       for (auto& [q, b] : out)
@@ -124,6 +124,22 @@ void Analyser::notAllowed(const Stmt& st, const std::string& owner) {
                            st.kind == StmtKind::Block && st.name == kRatingBlock ? " (a `rating` belongs inside the stage it rates)" : ""));
 }
 
+// `x in lo..hi` or `x in {…}`: within a shaft, a number searched like an attribute; elsewhere
+// refused.
+ir::Setting Analyser::domainSetting(ir::Setting out, const Stmt& st, const AttrSpec& spec, const Scope& scope,
+                                    const std::string& owner) {
+  if (!shaftDomains_ || spec.value != ValueKind::Number) {
+    diags_.error("E0110", st.span, fmt::format("`{}` of {} takes one value (`=`), not a domain", out.name, owner));
+    return out;
+  }
+  Domain d = domain(spec, out.name, st, scope);
+  out.lo = std::move(d.lo);
+  out.hi = std::move(d.hi);
+  out.members = std::move(d.members);
+  out.memberTexts = std::move(d.memberTexts);
+  return out;
+}
+
 // Checks one value against its spec; returns the setting (value unset on error).
 ir::Setting Analyser::setting(const std::string& name, const Binding& b, const AttrSpec& spec, const Scope& scope, const std::string& owner) {
   ir::Setting out;
@@ -134,10 +150,7 @@ ir::Setting Analyser::setting(const std::string& name, const Binding& b, const A
   const Stmt& st = *b.stmt;
   out.span = st.span;
   if (st.when) diags_.error("E0408", st.when->span, "`x when condition` is only allowed in a `modify` block");
-  if (st.kind == StmtKind::Domain) {
-    diags_.error("E0110", st.span, fmt::format("`{}` of {} takes one value (`=`), not a domain", name, owner));
-    return out;
-  }
+  if (st.kind == StmtKind::Domain) return domainSetting(std::move(out), st, spec, scope, owner);
   const ast::Expr* v = st.value.get();
   if (spec.value == ValueKind::Symbol || spec.value == ValueKind::Stage || spec.value == ValueKind::Material) {
     if (!v || v->kind != ast::ExprKind::Name) {

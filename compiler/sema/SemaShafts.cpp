@@ -1,9 +1,11 @@
+#include <cmath>
+
 #include "catalogue/Shafts.h"
 #include "catalogue/StageKinds.h"
 #include "diag/Suggest.h"
 #include "sema/Analyser.h"
 
-// `shaft NAME { … }`: its settings, segments, gears, bearings, loads and disks (docs/shafts.md).
+// `shaft NAME { … }`: its settings, segments, gears, bearings, loads and disks (docs/language.md, "Shafts and bearings").
 
 namespace gbx::sema {
 
@@ -47,11 +49,13 @@ void Analyser::notchNeeds(const ir::Shaft::Placed& p, const std::string& what, c
 // A notch's place on the shaft: a shoulder where the diameter steps, a groove or V-notch
 // shallower than the segment's radius; with notches, the material's DIN 743 strengths.
 void Analyser::notchGeometry(const ir::Shaft& sh, const std::string& owner) {
+  // A diameter searched over a range or a set (NaN) is checked at each design instead.
   auto diameterAt = [&](const Number& x, bool left) -> std::optional<double> {
     for (const auto& seg : sh.segments) {
       bool in = left ? x.compare(seg.x0) > 0 && x.compare(seg.x1) <= 0 : x.compare(seg.x0) >= 0 && x.compare(seg.x1) < 0;
       const ir::Setting* d = ir::findSetting(seg.settings, Q::Diameter);
       if (in && d && d->value) return d->value->toDouble();
+      if (in && d && (d->lo || !d->members.empty())) return std::nan("");
     }
     return std::nullopt;
   };
@@ -61,6 +65,8 @@ void Analyser::notchGeometry(const ir::Shaft& sh, const std::string& owner) {
     any = true;
     auto l = diameterAt(p.at, true), r = diameterAt(p.at, false);
     std::string where = units::showQuantity(p.at, units::dims::length);
+    const bool searched = (l && std::isnan(*l)) || (r && std::isnan(*r));
+    if (searched) continue;
     if (p.notch == cat::notchKind::Shoulder && (!l || !r || *l == *r)) {
       diags_.error("E0405", p.span,
                    fmt::format("{}: a shoulder stands where the diameter steps, and it does not at {}", owner, where));
@@ -214,6 +220,12 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
   const std::string owner = fmt::format("shaft `{}`", st.name);
   std::vector<std::pair<std::string, Binding>> items;
   std::set<std::string> bearings;
+  // A shaft's numeric settings may be ranges and sets, searched like a stage's attributes.
+  struct Domains {
+    bool& on;
+    explicit Domains(bool& f) : on(f) { on = true; }
+    ~Domains() { on = false; }
+  } domains(shaftDomains_);
   for (const auto& s : st.body) {
     switch (s.kind) {
     case StmtKind::Assign: items.emplace_back(s.path.str(), Binding{&s, owner}); break;

@@ -412,6 +412,77 @@ std::optional<Number> Analyser::boundOf(const AttrSpec& spec, const std::string&
   return x->value;
 }
 
+// A domain's bounds (`in lo..hi`) or members (`in {…}`, a named set): constants in the
+// setting's unit, checked against its limits; members sorted.
+Analyser::Domain Analyser::domain(const AttrSpec& spec, const std::string& path, const Stmt& s, const Scope& scope, bool tooth) {
+  Domain d;
+  auto checkBound = [&](ir::ExprPtr x) { return boundOf(spec, path, tooth, std::move(x)); };
+  if (s.domain == ast::DomainKind::Range) {
+    auto [lo, hi] = checker_.checkRange(s.lo.get(), s.hi.get(), scope);
+    Span span = source::cover(lo->span, hi->span);
+    // Both bounds bare numbers where a quantity with a unit belongs: one error, with the fix.
+    auto bare = [&](const ir::ExprPtr& x) { return x->isConst() && x->type.isNumber() && x->type.dim.dimensionless(); };
+    if (!spec.dim.dimensionless() && bare(lo) && bare(hi)) {
+      auto unit = units::displayUnitFor(spec.dim);
+      diags_.error("E0302", span,
+                   fmt::format("unit mismatch: `{}` needs {}, got plain numbers{}", path, spec.dim.describe(),
+                               unit.name.empty() ? ""
+                                                 : fmt::format("; write the range with a unit, as `{}..{} {}`", lo->value.str(),
+                                                               hi->value.str(), spec.unitHint.empty() ? unit.name : spec.unitHint)));
+      return d;
+    }
+    d.lo = checkBound(std::move(lo));
+    d.hi = checkBound(std::move(hi));
+    if (d.lo && d.hi && d.lo->compare(*d.hi) > 0) {
+      diags_.error("E0401", span, fmt::format("empty range for `{}`: {} is above {}", path, units::showQuantity(*d.lo, spec.dim),
+                                              units::showQuantity(*d.hi, spec.dim)));
+    } else if (d.lo && d.hi && spec.integer) {
+      // Every value of a decision range is listed: its size is a budget (counted exactly:
+      // bounds near 2^80 are one double apart).
+      units::Number width = d.hi->sub(*d.lo);
+      double values = width.toDouble() + 1;
+      if (width.compare(units::Number::exact(units::Rational(cat::budget::kDomainValues - 1))) > 0) {
+        diags_.error("E0411", span,
+                     fmt::format("`{}` in {}..{} holds {:.0f} values, beyond the budget of {} a search lists per decision; "
+                                 "narrow the range",
+                                 path, d.lo->str(), d.hi->str(), values, cat::budget::kDomainValues));
+      }
+    }
+    return d;
+  }
+  std::vector<ir::ExprPtr> members;
+  std::vector<std::string> texts;  // literals as written, for reports
+  Span span = s.span;
+  if (s.domain == ast::DomainKind::Named) {
+    auto v = checker_.check(s.value.get(), scope);
+    if (v->type.isError()) return d;
+    if (v->op != Op::Set) {
+      diags_.error("E0306", v->span, fmt::format("`{}` must be a set `{{…}}` to serve as a domain", ast::print(*s.value)));
+      return d;
+    }
+    span = v->span;
+    members = std::move(v->args);
+  } else {
+    for (const auto& m : s.exprs) {
+      members.push_back(checker_.check(m.get(), scope));
+      texts.push_back(m && m->kind == ast::ExprKind::Number ? ast::print(*m) : std::string());
+    }
+  }
+  if (members.empty()) diags_.error("E0404", span, fmt::format("empty set: `{}` has no value to take", path));
+  std::vector<std::pair<Number, std::string>> checked;
+  for (size_t i = 0; i < members.size(); ++i)
+    if (auto v = checkBound(std::move(members[i]))) checked.emplace_back(*v, i < texts.size() ? texts[i] : std::string());
+  std::stable_sort(checked.begin(), checked.end(), [](const auto& x, const auto& y) { return x.first.compare(y.first) < 0; });
+  bool written = !checked.empty();
+  for (const auto& [v, t] : checked) {
+    d.members.push_back(v);
+    written = written && !t.empty();
+  }
+  if (written)
+    for (const auto& [v, t] : checked) d.memberTexts.push_back(t);
+  return d;
+}
+
 ir::Attribute Analyser::attribute(const StageModel& st, const std::string& path, const Binding& b, const Scope& scope) {
   ir::Attribute a;
   a.name = path;
@@ -446,70 +517,11 @@ ir::Attribute Analyser::attribute(const StageModel& st, const std::string& path,
     return a;
   }
   a.role = spec->integer ? ir::Attribute::Decision : ir::Attribute::Freedom;
-  auto checkBound = [&](ir::ExprPtr x) { return boundOf(*spec, path, tooth, std::move(x)); };
-  if (s.domain == ast::DomainKind::Range) {
-    auto [lo, hi] = checker_.checkRange(s.lo.get(), s.hi.get(), scope);
-    Span span = source::cover(lo->span, hi->span);
-    // Both bounds bare numbers where a quantity with a unit belongs: one error, with the fix.
-    auto bare = [&](const ir::ExprPtr& x) { return x->isConst() && x->type.isNumber() && x->type.dim.dimensionless(); };
-    if (!spec->dim.dimensionless() && bare(lo) && bare(hi)) {
-      auto unit = units::displayUnitFor(spec->dim);
-      diags_.error("E0302", span,
-                   fmt::format("unit mismatch: `{}` needs {}, got plain numbers{}", path, spec->dim.describe(),
-                               unit.name.empty() ? ""
-                                                 : fmt::format("; write the range with a unit, as `{}..{} {}`", lo->value.str(),
-                                                               hi->value.str(), spec->unitHint.empty() ? unit.name : spec->unitHint)));
-      return a;
-    }
-    a.lo = checkBound(std::move(lo));
-    a.hi = checkBound(std::move(hi));
-    if (a.lo && a.hi && a.lo->compare(*a.hi) > 0) {
-      diags_.error("E0401", span, fmt::format("empty range for `{}`: {} is above {}", path, units::showQuantity(*a.lo, a.dim),
-                                              units::showQuantity(*a.hi, a.dim)));
-    } else if (a.lo && a.hi && spec->integer) {
-      // Every value of a decision range is listed: its size is a budget (counted exactly:
-      // bounds near 2^80 are one double apart).
-      units::Number width = a.hi->sub(*a.lo);
-      double values = width.toDouble() + 1;
-      if (width.compare(units::Number::exact(units::Rational(cat::budget::kDomainValues - 1))) > 0) {
-        diags_.error("E0411", span,
-                     fmt::format("`{}` in {}..{} holds {:.0f} values, beyond the budget of {} a search lists per decision; "
-                                 "narrow the range",
-                                 path, a.lo->str(), a.hi->str(), values, cat::budget::kDomainValues));
-      }
-    }
-    return a;
-  }
-  std::vector<ir::ExprPtr> members;
-  std::vector<std::string> texts;  // literals as written, for reports
-  Span span = s.span;
-  if (s.domain == ast::DomainKind::Named) {
-    auto v = checker_.check(s.value.get(), scope);
-    if (v->type.isError()) return a;
-    if (v->op != Op::Set) {
-      diags_.error("E0306", v->span, fmt::format("`{}` must be a set `{{…}}` to serve as a domain", ast::print(*s.value)));
-      return a;
-    }
-    span = v->span;
-    members = std::move(v->args);
-  } else {
-    for (const auto& m : s.exprs) {
-      members.push_back(checker_.check(m.get(), scope));
-      texts.push_back(m && m->kind == ast::ExprKind::Number ? ast::print(*m) : std::string());
-    }
-  }
-  if (members.empty()) diags_.error("E0404", span, fmt::format("empty set: `{}` has no value to take", path));
-  std::vector<std::pair<Number, std::string>> checked;
-  for (size_t i = 0; i < members.size(); ++i)
-    if (auto v = checkBound(std::move(members[i]))) checked.emplace_back(*v, i < texts.size() ? texts[i] : std::string());
-  std::stable_sort(checked.begin(), checked.end(), [](const auto& x, const auto& y) { return x.first.compare(y.first) < 0; });
-  bool written = !checked.empty();
-  for (const auto& [v, t] : checked) {
-    a.members.push_back(v);
-    written = written && !t.empty();
-  }
-  if (written)
-    for (const auto& [v, t] : checked) a.memberTexts.push_back(t);
+  Domain d = domain(*spec, path, s, scope, tooth);
+  a.lo = std::move(d.lo);
+  a.hi = std::move(d.hi);
+  a.members = std::move(d.members);
+  a.memberTexts = std::move(d.memberTexts);
   return a;
 }
 

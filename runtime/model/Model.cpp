@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "catalogue/StageKinds.h"
 #include "model/StageKind.h"
 
@@ -61,6 +63,8 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
         s.stage = si;
         s.gear = a.gear;
         s.key = a.key;
+        s.dim = a.dim;
+        if (a.memberTexts.size() == a.members.size()) s.texts = a.memberTexts;
         if (!a.members.empty()) {
           for (const auto& m : a.members) s.values.push_back(constant(m));
         } else if (a.lo && a.hi) {
@@ -78,6 +82,7 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
         f.stage = si;
         f.gear = a.gear;
         f.key = a.key;
+        f.dim = a.dim;
         f.lo = a.lo->toDouble();
         f.hi = a.hi->toDouble();
         at(a).freedom = static_cast<int>(freedoms.size());
@@ -127,7 +132,101 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
                                      [&](const ir::Attribute& a) { return !a.value || readsOwnStage(*a.value, si); });
     stages.push_back(std::move(info));
   }
+  addShaftDomains();
   for (const auto& sc : g.scenes) scenes.push_back(planScene(sc));
+}
+
+namespace {
+
+std::string mm(const units::Number& x) { return fmt::format("{:g}", x.toDouble() * 1e3); }
+
+// A searched shaft setting's name in reports: `input.segment(35..70 mm).diameter`,
+// `input.A.radial_stiffness`, `input.notch_at(60 mm).radius`, `input.heat_treatment_diameter`.
+std::string shaftSettingPath(const ir::Shaft& sh, const ir::Setting& s) {
+  for (const auto& seg : sh.segments)
+    for (const auto& x : seg.settings)
+      if (&x == &s) return fmt::format("{}.segment({}..{} mm).{}", sh.name, mm(seg.x0), mm(seg.x1), s.name);
+  for (const auto& p : sh.placed)
+    for (const auto& x : p.settings) {
+      if (&x != &s) continue;
+      if (p.kind == ir::Shaft::Place::Bearing) return fmt::format("{}.{}.{}", sh.name, p.name, s.name);
+      const char* word = p.kind == ir::Shaft::Place::Notch ? "notch" : p.kind == ir::Shaft::Place::Disk ? "disk" : "load";
+      return fmt::format("{}.{}_at({} mm).{}", sh.name, word, mm(p.at), s.name);
+    }
+  return sh.name + "." + s.name;
+}
+
+} // namespace
+
+void Model::addShaftDomains() {
+  shaftDomains.resize(gearbox.shafts.size());
+  if (stages.empty()) return;
+  for (size_t k = 0; k < gearbox.shafts.size(); ++k) {
+    const ir::Shaft& sh = gearbox.shafts[k];
+    int host = -1;
+    for (const auto& p : sh.placed)
+      if (p.kind == ir::Shaft::Place::Gear && p.stage >= 0 && (host < 0 || p.stage < host)) host = p.stage;
+    if (host < 0) host = 0;
+    StageInfo& info = stages[static_cast<size_t>(host)];
+    auto add = [&](const ir::Setting& s) {
+      if (s.value || (s.members.empty() && !(s.lo && s.hi))) return;
+      ShaftSetting ref{static_cast<int>(k), &s};
+      std::string path = shaftSettingPath(sh, s);
+      if (!s.members.empty() || s.integer) {
+        Slot sl;
+        sl.path = path;
+        sl.attr = path;
+        sl.stage = host;
+        sl.key = s.key;
+        sl.dim = s.dim;
+        sl.shaft = ref;
+        if (!s.members.empty()) {
+          for (const auto& m : s.members) sl.values.push_back(constant(m));
+          if (s.memberTexts.size() == s.members.size()) sl.texts = s.memberTexts;
+        } else {
+          for (auto v = s.lo->rational().num(); v <= s.hi->rational().num(); ++v)
+            sl.values.push_back(Value::rational(Rational(static_cast<std::int64_t>(v))));
+        }
+        info.slots.push_back(static_cast<int>(slots.size()));
+        shaftDomains[k].slots.push_back(static_cast<int>(slots.size()));
+        slots.push_back(std::move(sl));
+        return;
+      }
+      Freedom f;
+      f.path = path;
+      f.attr = path;
+      f.stage = host;
+      f.key = s.key;
+      f.dim = s.dim;
+      f.shaft = ref;
+      f.lo = s.lo->toDouble();
+      f.hi = s.hi->toDouble();
+      info.freedoms.push_back(static_cast<int>(freedoms.size()));
+      shaftDomains[k].freedoms.push_back(static_cast<int>(freedoms.size()));
+      freedoms.push_back(f);
+      shaftFreedoms = true;
+    };
+    for (const auto& s : sh.settings) add(s);
+    for (const auto& seg : sh.segments)
+      for (const auto& s : seg.settings) add(s);
+    for (const auto& p : sh.placed)
+      for (const auto& s : p.settings) add(s);
+  }
+}
+
+Value shaftSettingValue(const Model& m, const ir::Setting& s, const Assignment& a) {
+  if (s.value) return constant(*s.value);
+  for (size_t i = 0; i < m.slots.size(); ++i)
+    if (m.slots[i].shaft.setting == &s) {
+      int c = i < a.choice.size() ? a.choice[i] : -1;
+      return c < 0 ? Value::invalid() : m.slots[i].values[static_cast<size_t>(c)];
+    }
+  for (size_t f = 0; f < m.freedoms.size(); ++f)
+    if (m.freedoms[f].shaft.setting == &s) {
+      auto [lo, hi] = f < a.box.size() ? a.box[f] : std::pair{m.freedoms[f].lo, m.freedoms[f].hi};
+      return lo == hi ? Value::number(lo) : Value::range(lo, hi);
+    }
+  return Value::invalid();
 }
 
 std::optional<double> Model::operating(Q key) const {

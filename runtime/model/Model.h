@@ -16,13 +16,24 @@ namespace gbx::rt {
 class StageKindImpl;
 using cat::Q;
 
+// A shaft's setting searched over a set or a range (`diameter in 50 mm..70 mm`): a slot or
+// a freedom of the stage of the first gear the shaft carries (the first stage when it carries
+// none), kept out of that stage's (gear, key) table.
+struct ShaftSetting {
+  int shaft = -1;
+  const ir::Setting* setting = nullptr;
+};
+
 struct Slot {
   std::string path;  // "upper.pinion.z"
   std::string attr;  // "pinion.z"
   int stage = 0;
   int gear = -1;
   Q key = Q::None;
+  units::Dim dim;
   std::vector<Value> values;  // the domain, ascending
+  std::vector<std::string> texts;  // the members as written, when all are literals
+  ShaftSetting shaft;
 };
 
 struct Freedom {
@@ -31,6 +42,8 @@ struct Freedom {
   int stage = 0;
   int gear = -1;
   Q key = Q::None;
+  units::Dim dim;
+  ShaftSetting shaft;
   double lo = 0, hi = 0;
   // Fixed by an equation of its stage's kind (a planetary stage's one shift given as a range,
   // by its concentricity): computed at each design, never searched; not among its stage's
@@ -85,6 +98,12 @@ public:
   std::vector<Slot> slots;
   std::vector<Freedom> freedoms;
   std::vector<ScenePlan> scenes;  // the gearbox's scenes, planned once, in its order
+  // Per shaft, the slots and freedoms of its searched settings.
+  struct ShaftDomains {
+    std::vector<int> slots, freedoms;
+  };
+  std::vector<ShaftDomains> shaftDomains;
+  bool shaftFreedoms = false;  // some shaft setting is a continuous freedom
 
   int stageIndex(const std::string& name) const { return gearbox.stageIndex(name); }
   const ir::Attribute* attribute(int stage, int gear, Q key) const { return info(stage).entry(gear, key).attr; }
@@ -98,6 +117,11 @@ public:
   // A gear's material: its own, else the stage's, or nullptr.
   const ir::Material* material(int stage, int gear) const;
   const StageInfo& info(int stage) const { return stages[static_cast<size_t>(stage)]; }
+
+private:
+  void addShaftDomains();
+
+public:
   bool hasStage(int stage) const { return stage >= 0 && static_cast<size_t>(stage) < stages.size(); }
 };
 
@@ -114,6 +138,10 @@ struct Assignment {
   double upstreamRatio = 1;
   explicit Assignment(const Model& m);
 };
+
+// A shaft setting's value at the design: its own, or its slot's or freedom's (an interval
+// while the search has not decided it; invalid for a slot not chosen yet).
+Value shaftSettingValue(const Model& m, const ir::Setting& s, const Assignment& a);
 
 // Whether an expression reads nothing but stage `stage`'s quantities and materials.
 bool readsOwnStage(const ir::Expr& e, int stage, int depth = 0);

@@ -111,7 +111,7 @@ FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
     if (!r.expr) continue;
     std::vector<const ir::Expr*> parts;
     split(*r.expr, parts);
-    for (const auto* e : parts) parts_.push_back({e, parts.size() == 1 ? r.text : ir::print(*e)});
+    for (const auto* e : parts) parts_.push_back({e, parts.size() == 1 ? r.text : ruleText(*e)});
   }
   // No freedoms: the design's one point, where every rule is checked (`worst` over the
   // tolerances, which the search defers).
@@ -128,6 +128,11 @@ FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
     g.allObjectives = true;
     groups.push_back(std::move(g));
   };
+  // A shaft's freedom moves what its stages' ratings read: every freedom decided together.
+  if (m.shaftFreedoms) {
+    whole();
+    return;
+  }
   // Separable when every rule reads the freedoms of one stage at most and the one objective
   // is a sum of terms that each do: then each stage's freedoms are decided on their own.
   std::vector<std::set<int>> ruleStages;

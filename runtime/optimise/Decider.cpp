@@ -430,9 +430,8 @@ struct Printed {
   }
 };
 
-std::optional<Printed> printedDigits(const Model& m, const Freedom& f, double x) {
-  const ir::Attribute* attr = m.attribute(f.stage, f.gear, f.key);
-  units::Dim dim = attr ? attr->dim : units::Dim{};
+std::optional<Printed> printedDigits(const Freedom& f, double x) {
+  units::Dim dim = f.dim;
   auto du = units::displayUnitFor(dim);
   double shown = x / du.scale;
   double mag = std::fabs(shown);
@@ -460,7 +459,7 @@ Decider::Point Decider::printed(const Point& p) {
   if (n > 6) return p;
   std::vector<std::optional<Printed>> digits(n);
   for (size_t i = 0; i < n; ++i)
-    digits[i] = printedDigits(m_, m_.freedoms[static_cast<size_t>(g_.freedoms[i])], p.x[i]);
+    digits[i] = printedDigits(m_.freedoms[static_cast<size_t>(g_.freedoms[i])], p.x[i]);
   // The nearest roundings first (floor, ceil); then a digit further either way, for a rule
   // whose boundary the two nearest both miss.
   for (int reach = 1; reach <= 3; ++reach) {

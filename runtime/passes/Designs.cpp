@@ -54,16 +54,14 @@ public:
     slotShown_.resize(m.slots.size());
     for (size_t sl = 0; sl < m.slots.size(); ++sl) {
       const Slot& slot = m.slots[sl];
-      const ir::Stage& st = *m.stages[static_cast<size_t>(slot.stage)].ir;
-      const ir::Attribute* at = st.find(slot.attr);
-      auto du = units::displayUnitFor(at ? at->dim : units::Dim{});
+      auto du = units::displayUnitFor(slot.dim);
       // A set's member reads as it was written (`0.2 rad`), its value in the display unit.
-      bool written = at && !du.name.empty() && at->memberTexts.size() == slot.values.size();
+      bool written = !du.name.empty() && slot.texts.size() == slot.values.size();
       for (size_t vi = 0; vi < slot.values.size(); ++vi) {
         const Value& v = slot.values[vi];
         // A member of a named set (`iso54_series1`) to twelve digits, as a literal would read: `3 mm`, `1.125 mm`.
-        std::string text = written ? at->memberTexts[vi] : fmt::format("{:.12g}", v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name);
-        slotShown_[sl].push_back({text, {v.lo / du.scale, du.name, v.lo, du.scale, units::siUnitName(at ? at->dim : units::Dim{})}});
+        std::string text = written ? slot.texts[vi] : fmt::format("{:.12g}", v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name);
+        slotShown_[sl].push_back({text, {v.lo / du.scale, du.name, v.lo, du.scale, units::siUnitName(slot.dim)}});
       }
     }
     // Columns that read only the gearbox ratio: from the design's exact ratio directly.
@@ -94,11 +92,10 @@ public:
     if (i < freedoms_.size())
       for (size_t f = 0; f < freedoms_[i].size(); ++f) {
         const Freedom& fr = m.freedoms[f];
-        const ir::Attribute* at = m.attribute(fr.stage, fr.gear, fr.key);
-        auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
+        auto u = units::displayUnitFor(fr.dim);
         row.choices.emplace_back(m.freedoms[f].path,
                                  formatNumber(freedoms_[i][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
-        row.choiceValues.push_back({freedoms_[i][f] / u.scale, u.name, freedoms_[i][f], u.scale, units::siUnitName(at ? at->dim : units::Dim{})});
+        row.choiceValues.push_back({freedoms_[i][f] / u.scale, u.name, freedoms_[i][f], u.scale, units::siUnitName(fr.dim)});
       }
     row.choice = a.choice;
     row.box = a.box;
@@ -433,8 +430,7 @@ void boundWarnings(const Model& m, const Optimised& o, GearboxReport& g) {
     double v = o.freedoms[0][f], tol = 1e-9 * std::max(std::fabs(fr.hi - fr.lo), 1e-300);
     bool low = std::fabs(v - fr.lo) <= tol, high = std::fabs(v - fr.hi) <= tol;
     if (fr.solved || !(low || high) || fr.hi <= fr.lo) continue;
-    const ir::Attribute* at = m.attribute(fr.stage, fr.gear, fr.key);
-    auto u = units::displayUnitFor(at ? at->dim : units::Dim{});
+    auto u = units::displayUnitFor(fr.dim);
     g.warnings.push_back(fmt::format("design 1's `{}` is decided at the {} end of its range ({}{}): the objectives may be better "
                                      "beyond it; widen the range to see",
                                      fr.path, low ? "lower" : "upper", formatNumber(v / u.scale), u.name.empty() ? "" : " " + u.name));

@@ -205,8 +205,7 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
     OptimisationSummary::Optimum& b = s.best.emplace();
     b.ratio = best.ratio;
     for (size_t f = 0; f < m.freedoms.size() && f < best.freedoms.size(); ++f) {
-      const ir::Attribute* at = m.attribute(m.freedoms[f].stage, m.freedoms[f].gear, m.freedoms[f].key);
-      b.freedoms.push_back({m.freedoms[f].path, best.freedoms[f], units::displayUnitFor(at ? at->dim : units::Dim{})});
+      b.freedoms.push_back({m.freedoms[f].path, best.freedoms[f], units::displayUnitFor(m.freedoms[f].dim)});
     }
     b.objective = best.objective;
     b.terms = best.terms;

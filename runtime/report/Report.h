@@ -178,7 +178,7 @@ struct ModifyReport {
 
 // A stage's load-capacity rating at design 1: each factor per gear (or of the mesh), the
 // safeties against their minimums, and which one governs.
-// A shaft at design 1 (docs/shafts.md): its bearings, the gears' forces on it, its speed,
+// A shaft at design 1 (docs/language.md, "Shafts and bearings"): its bearings, the gears' forces on it, its speed,
 // critical speed, largest deflection and mass. SI throughout.
 struct ShaftReport {
   std::string name;

@@ -89,10 +89,14 @@ std::string ruleText(const ir::Expr& e) {
   if (!compare || e.args.size() != 2 || !e.args[0] || !e.args[1]) return ir::print(e);
   const ir::Expr& q = *e.args[0];
   const ir::Expr& k = *e.args[1];
-  if (q.op != Op::Quantity || k.op != Op::Const || !k.type.isNumber()) return ir::print(e);
-  units::DisplayUnit u = displayUnitOf(q);
+  // `abs(input.slope_at(hs.pinion)) <= 0.1 mrad` alike, in the quantity's unit.
+  const bool absOf = q.op == Op::Call && q.fn == cat::Fn::Abs && q.args.size() == 1 && q.args[0] &&
+                     q.args[0]->op == Op::Quantity;
+  if ((q.op != Op::Quantity && !absOf) || k.op != Op::Const || !k.type.isNumber()) return ir::print(e);
+  units::DisplayUnit u = displayUnitOf(absOf ? *q.args[0] : q);
   const char* op = e.op == Op::Ge ? ">=" : e.op == Op::Gt ? ">" : e.op == Op::Le ? "<=" : e.op == Op::Lt ? "<" : "==";
-  return fmt::format("{} {} {:g}{}", q.name, op, u.shown(k.value.toDouble()), u.name.empty() ? "" : " " + u.name);
+  std::string lhs = absOf ? fmt::format("abs({})", q.args[0]->name) : q.name;
+  return fmt::format("{} {} {:g}{}", lhs, op, u.shown(k.value.toDouble()), u.name.empty() ? "" : " " + u.name);
 }
 
 void split(const ir::Expr& e, std::vector<const ir::Expr*>& out) {

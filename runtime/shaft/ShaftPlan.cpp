@@ -78,7 +78,7 @@ double diameterAt(const shaft::Model& m, double x) {
 
 // A gear's mesh forces on its shaft, at the working pitch circle. The stages lie in one
 // plane: the driving gear's mate at +y, the driven gear's at -y; the input turns positively
-// about the axis and every external mesh reverses the sense (docs/shafts.md).
+// about the axis and every external mesh reverses the sense (docs/language.md, "Shafts and bearings").
 bool gearLoad(const Ctx& c, const ir::Shaft::Placed& p, shaft::Model& m, ShaftResult& out, double& speed) {
   auto fail = [&](const std::string& s) {
     if (c.error) *c.error = fmt::format("gear `{}`: {}", p.name, s);
@@ -205,15 +205,104 @@ void stageOil(const Evaluator& ev, const ir::Shaft& sh, const Assignment& a, sha
   }
 }
 
+// Each bearing's life at the shaft's speed, with kappa where the oil's viscosity is given;
+// what stops a bearing's rating, or "".
+std::string bearingLives(const Evaluator& ev, const ir::Shaft& sh, const Assignment& a,
+                         const std::vector<const ir::Shaft::Placed*>& bearings, ShaftResult& out) {
+  const shaft::Model& m = out.model;
+  const double speed = out.speed;
+  shaft::LifeSettings life;
+  life.reliability = given(sh.settings, "life.reliability").value_or(0.9);
+  const ir::Setting* clean = ir::findSetting(sh.settings, "life.cleanliness");
+  life.contamination = given(sh.settings, "life.contamination")
+                           .value_or(cat::cleanliness::kEc[clean && clean->choice >= 0 ? clean->choice : 2]);
+  life.viscosity = given(sh.settings, "life.viscosity").value_or(-1);
+  if (life.viscosity < 0) stageOil(ev, sh, a, life);
+  for (size_t k = 0; k < bearings.size(); ++k) {
+    const auto& p = *bearings[k];
+    shaft::BearingData b;
+    b.kind = static_cast<shaft::BearingKind>(choiceOf(p.settings, Q::BearingKind, 0));
+    out.kinds.push_back(b.kind);
+    b.C = given(p.settings, Q::DynamicRating).value_or(0);
+    b.C0 = given(p.settings, Q::StaticRating).value_or(0);
+    b.e = given(p.settings, Q::LoadRatioLimit).value_or(-1);
+    b.X = given(p.settings, Q::RadialFactor).value_or(-1);
+    b.Y = given(p.settings, Q::AxialFactor).value_or(-1);
+    b.X0 = given(p.settings, Q::StaticRadialFactor).value_or(-1);
+    b.Y0 = given(p.settings, Q::StaticAxialFactor).value_or(-1);
+    b.pitchDiameter = given(p.settings, Q::PitchDiameter).value_or(1.4 * diameterAt(m, p.at.toDouble()));
+    const auto& r = out.solution.reactions[k];
+    try {
+      out.lives.push_back(shaft::life(b, {r.radial(), r.Fx, speed}, life));
+    } catch (const std::invalid_argument& e) {
+      return fmt::format("bearing `{}`: {}", p.name, e.what());
+    }
+  }
+  return "";
+}
+
+// The shaft with each searched setting at the design's value; nullopt (`why` said) where the
+// design has not decided one yet (a freedom's interval, a slot not chosen).
+std::optional<ir::Shaft> atDesign(const Model& model, const ir::Shaft& sh, const Assignment& a, std::string& why) {
+  auto copy = [&](const std::vector<ir::Setting>& from, std::vector<ir::Setting>& to) {
+    for (const auto& x : from) {
+      to.push_back(x.clone());
+      if (x.value) continue;
+      if (x.members.empty() && !(x.lo && x.hi)) continue;
+      Value v = shaftSettingValue(model, x, a);
+      if (!v.isNumber() || v.lo != v.hi) {
+        if (why.empty()) why = fmt::format("its `{}` is not decided at this design", x.name);
+        continue;
+      }
+      to.back().value = v.exact ? units::Number::exact(*v.exact) : units::Number::approx(v.mid());
+    }
+  };
+  ir::Shaft out;
+  out.name = sh.name;
+  out.span = sh.span;
+  copy(sh.settings, out.settings);
+  for (const auto& seg : sh.segments) {
+    ir::Shaft::Segment c;
+    c.x0 = seg.x0;
+    c.x1 = seg.x1;
+    c.span = seg.span;
+    copy(seg.settings, c.settings);
+    out.segments.push_back(std::move(c));
+  }
+  for (const auto& p : sh.placed) {
+    ir::Shaft::Placed c;
+    c.kind = p.kind;
+    c.name = p.name;
+    c.at = p.at;
+    c.stage = p.stage;
+    c.gear = p.gear;
+    c.notch = p.notch;
+    c.span = p.span;
+    copy(p.settings, c.settings);
+    out.placed.push_back(std::move(c));
+  }
+  if (!why.empty()) return std::nullopt;
+  return out;
+}
+
 } // namespace
 
 std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error, bool modes,
                                         const LoadSpread* spread) {
-  const ir::Shaft& sh = ev.model().gearbox.shafts[static_cast<size_t>(index)];
+  const Model& model = ev.model();
+  const ir::Shaft& written = model.gearbox.shafts[static_cast<size_t>(index)];
   auto fail = [&](const std::string& what) -> std::optional<ShaftResult> {
-    if (error) *error = fmt::format("shaft `{}`: {}", sh.name, what);
+    if (error) *error = fmt::format("shaft `{}`: {}", written.name, what);
     return std::nullopt;
   };
+  // Searched settings at the design's values.
+  std::optional<ir::Shaft> decided;
+  if (const auto& d = model.shaftDomains[static_cast<size_t>(index)]; !d.slots.empty() || !d.freedoms.empty()) {
+    std::string why;
+    decided = atDesign(model, written, a, why);
+    if (!decided) return fail(why);
+  }
+  const ir::Shaft& sh = decided ? *decided : written;
   ShaftResult out;
   shaft::Model& m = out.model;
   auto mat = materialOf(ev, sh);
@@ -290,34 +379,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
     }
   for (const auto& s : m.sections)
     out.mass += m.material.density * kPi / 4 * (s.diameter * s.diameter - s.bore * s.bore) * (s.x1 - s.x0);
-  // Each bearing's life at the shaft's speed, with kappa where the oil's viscosity is given.
-  shaft::LifeSettings life;
-  life.reliability = given(sh.settings, "life.reliability").value_or(0.9);
-  const ir::Setting* clean = ir::findSetting(sh.settings, "life.cleanliness");
-  life.contamination = given(sh.settings, "life.contamination")
-                           .value_or(cat::cleanliness::kEc[clean && clean->choice >= 0 ? clean->choice : 2]);
-  life.viscosity = given(sh.settings, "life.viscosity").value_or(-1);
-  if (life.viscosity < 0) stageOil(ev, sh, a, life);
-  for (size_t k = 0; k < bearings.size(); ++k) {
-    const auto& p = *bearings[k];
-    shaft::BearingData b;
-    b.kind = static_cast<shaft::BearingKind>(choiceOf(p.settings, Q::BearingKind, 0));
-    out.kinds.push_back(b.kind);
-    b.C = given(p.settings, Q::DynamicRating).value_or(0);
-    b.C0 = given(p.settings, Q::StaticRating).value_or(0);
-    b.e = given(p.settings, Q::LoadRatioLimit).value_or(-1);
-    b.X = given(p.settings, Q::RadialFactor).value_or(-1);
-    b.Y = given(p.settings, Q::AxialFactor).value_or(-1);
-    b.X0 = given(p.settings, Q::StaticRadialFactor).value_or(-1);
-    b.Y0 = given(p.settings, Q::StaticAxialFactor).value_or(-1);
-    b.pitchDiameter = given(p.settings, Q::PitchDiameter).value_or(1.4 * diameterAt(m, p.at.toDouble()));
-    const auto& r = out.solution.reactions[k];
-    try {
-      out.lives.push_back(shaft::life(b, {r.radial(), r.Fx, speed}, life));
-    } catch (const std::invalid_argument& e) {
-      return fail(fmt::format("bearing `{}`: {}", p.name, e.what()));
-    }
-  }
+  if (auto why = bearingLives(ev, sh, a, bearings, out); !why.empty()) return fail(why);
   if (!rateStrength(ev, sh, out, error)) return std::nullopt;
   if (speed > 0 && out.criticalSpeed > 0 && std::fabs(speed - out.criticalSpeed) < 0.2 * out.criticalSpeed)
     out.warnings.push_back(
@@ -328,8 +390,8 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
 
 namespace {
 
-// Everything a shaft reads that a design can change: each of its gears' load and geometry (a
-// shaft's own settings are constants). Missing values count as themselves.
+// Everything a shaft reads that a design can change: each of its gears' load and geometry,
+// and its searched settings. Missing values count as themselves.
 std::vector<double> inputsKey(const Evaluator& ev, int index, const Assignment& a, bool modes) {
   std::vector<double> k = {static_cast<double>(ev.model().serial), static_cast<double>(index), modes ? 1.0 : 0.0};
   Ctx c{ev, a, nullptr};
@@ -339,6 +401,11 @@ std::vector<double> inputsKey(const Evaluator& ev, int index, const Assignment& 
                           {-1, Q::WorkingPressureAngle}, {-1, Q::FaceWidth}, {-1, Q::HelixAngle}})
       k.push_back(c.stage(p.stage, g, key).value_or(-1.5e308));
   }
+  // Its searched settings: their choices and intervals.
+  const Model& m = ev.model();
+  for (int sl : m.shaftDomains[static_cast<size_t>(index)].slots) k.push_back(a.choice[static_cast<size_t>(sl)]);
+  for (int f : m.shaftDomains[static_cast<size_t>(index)].freedoms)
+    k.insert(k.end(), {a.box[static_cast<size_t>(f)].first, a.box[static_cast<size_t>(f)].second});
   return k;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// A gearbox's shaft at a design (docs/shafts.md): its beam model with the mesh forces of
+// A gearbox's shaft at a design (docs/language.md, "Shafts and bearings"): its beam model with the mesh forces of
 // the gears it carries, solved, with each bearing's life and its first critical speed.
 #include <optional>
 #include <string>
