@@ -206,7 +206,8 @@ private:
 // Typed functions from parse-tree contexts to AST nodes.
 class Builder {
 public:
-  Builder(int file, diag::DiagnosticEngine& diags) : file_(file), diags_(diags) {}
+  Builder(int file, diag::DiagnosticEngine& diags, bool recovered = false)
+      : file_(file), diags_(diags), recovered_(recovered) {}
 
   Span span(antlr4::ParserRuleContext* ctx) const {
     if (!ctx || !ctx->getStart()) return {};
@@ -272,7 +273,7 @@ private:
       }
       setName(s, c->ID(1));
       body(s, c->block());
-      if (s.word != "material") {
+      if (s.word != "material" && !recovered_) {
         diags_.error("E0111", s.wordSpan,
                      fmt::format("unknown declaration `{}`; a file holds import, const, material, preset and "
                                  "gearbox declarations",
@@ -749,6 +750,7 @@ private:
 
   int file_;
   diag::DiagnosticEngine& diags_;
+  bool recovered_ = false;  // the parse recovered from a syntax error
 };
 
 // A cheap bound on parser recursion: brackets and prefix operators nest rule calls.
@@ -864,13 +866,16 @@ ParsedTree parseTree(const source::SourceManager& sm, int fileId, diag::Diagnost
 }
 
 ast::File parseFile(const source::SourceManager& sm, int fileId, diag::DiagnosticEngine& diags) {
+  const int before = diags.errorCount();
   ParsedTree p = parseTree(sm, fileId, diags);
   if (!p.tree) {
     ast::File empty;
     empty.fileId = fileId;
     return empty;
   }
-  Builder builder(fileId, diags);
+  // After a syntax error the parser's recovery reads the rest of a block as declarations:
+  // one error for the mistake, not one per word after it.
+  Builder builder(fileId, diags, diags.errorCount() > before);
   return builder.file(p.tree);
 }
 
