@@ -261,7 +261,9 @@ namespace gbx::cat {
   X(YFa, "Y_Fa")                                                                                \
   X(YSa, "Y_Sa")                                                                                \
   X(RatingMounting, "rating.mounting")                                                          \
-  X(RatingContactPattern, "rating.contact_pattern")
+  X(RatingContactPattern, "rating.contact_pattern")                                            \
+  X(SpiralHand, "spiral_hand")                                                                  \
+  X(Apex, "apex")
 
 enum class Q : std::uint8_t {
 #define GBX_KEY_ENUM(id, name) id,

@@ -87,6 +87,13 @@ const std::vector<AttrSpec>& loadSettings() {
   return s;
 }
 
+const std::vector<AttrSpec>& gearSettings() {
+  static const std::vector<AttrSpec> s = {
+      symbol("apex", {"left", "right"}, "the end of the shaft a bevel gear's cone apex points to (its thrust's sense)"),
+  };
+  return s;
+}
+
 const std::vector<AttrSpec>& diskSettings() {
   static const std::vector<AttrSpec> s = {
       required(hinted(pos("diameter", length, "outer diameter of the disk"), "mm")),

@@ -13,6 +13,7 @@ const std::vector<AttrSpec>& segmentSettings(); // diameter, bore, roughness
 const std::vector<AttrSpec>& bearingSettings(); // kind, C, C0, radial_stiffness, axial, e, X, Y, X0, Y0, pitch_diameter
 const std::vector<AttrSpec>& loadSettings();    // radial, axial, torque, angle
 const std::vector<AttrSpec>& diskSettings();    // diameter, width, bore
+const std::vector<AttrSpec>& gearSettings();    // apex (a bevel gear's)
 const std::vector<std::string>& notchKinds();   // shoulder, groove, keyway, press_fit, hole, v_notch
 const std::vector<AttrSpec>& notchSettings();   // radius, depth, diameter, keys
 const std::vector<AttrSpec>& shaftOutputs();    // deflection, critical_speed, mass, fatigue_safety, static_safety

@@ -353,6 +353,7 @@ std::vector<KindSpec> buildKinds() {
         derived("mmn_b", none, "mean normal module over face width (docs/search.md)"),
     };
     a[1].role = a[4].role = a[5].role = AttrRole::Either;
+    a.insert(a.begin() + 1, symbol("spiral_hand", {"right", "left"}, "the pinion's spiral hand: the sense of the spiral's thrust on a shaft"));
     for (auto& d : commonDerived()) a.push_back(d);
     for (auto& r : bevelStageAttrs()) a.push_back(r);
     std::vector<AttrSpec> g = {

@@ -158,9 +158,10 @@ std::optional<ir::Shaft::Placed> Analyser::placed(const Stmt& s, const GearboxMo
                                diag::suggestion(diag::closest(s.path.str(), gears))));
       return std::nullopt;
     }
-    if (stage->kind->kind != ir::StageKind::Spur && stage->kind->kind != ir::StageKind::Helical) {
+    const ir::StageKind sk = stage->kind->kind;
+    if (sk != ir::StageKind::Spur && sk != ir::StageKind::Helical && sk != ir::StageKind::Bevel) {
       diags_.error("E0235", s.path.span,
-                   fmt::format("`{}`: a shaft carries spur and helical gears so far (not a {} stage's)", s.path.str(),
+                   fmt::format("`{}`: a shaft carries spur, helical and bevel gears so far (not a {} stage's)", s.path.str(),
                                stage->kind->name));
       return std::nullopt;
     }
@@ -196,7 +197,11 @@ std::optional<ir::Shaft::Placed> Analyser::placed(const Stmt& s, const GearboxMo
   } else if (!s.path.empty()) {
     diags_.error("E0110", s.path.span, fmt::format("a {} of {} takes no name", s.name, owner));
   }
-  if (s.hasBody && (*kind == Place::Gear || *kind == Place::Coupling))
+  const bool bevel = *kind == Place::Gear && p.stage >= 0 && m.stages[static_cast<size_t>(p.stage)].kind &&
+                     m.stages[static_cast<size_t>(p.stage)].kind->kind == ir::StageKind::Bevel;
+  if (bevel) {
+    bevelGear(s, m, gs, owner, p);
+  } else if (s.hasBody && (*kind == Place::Gear || *kind == Place::Coupling))
     diags_.error("E0110", nameOr(s), fmt::format("a {} of {} takes no block", s.name, owner));
   else if (*kind != Place::Gear && *kind != Place::Coupling) {
     std::vector<std::pair<std::string, Binding>> own;
@@ -211,6 +216,27 @@ std::optional<ir::Shaft::Placed> Analyser::placed(const Stmt& s, const GearboxMo
     if (*kind == Place::Notch) notchNeeds(p, what, nameOr(s));
   }
   return p;
+}
+
+// A bevel gear on a shaft: where its cone apex points (`{ apex = left; }`), and its stage's
+// spiral hand, which with the rotation sets the sense of the spiral's thrust.
+void Analyser::bevelGear(const Stmt& s, const GearboxModel& m, const Scope& gs, const std::string& owner,
+                         ir::Shaft::Placed& p) {
+  std::vector<std::pair<std::string, Binding>> own;
+  std::string what = fmt::format("{}'s gear {}", owner, p.name);
+  flatten(s.body, "", what, own, {});
+  p.settings = settings(own, cat::gearSettings(), gs, what, nameOr(s), "E0225");
+  if (!ir::findSetting(p.settings, Q::Apex))
+    diags_.error("E0225", nameOr(s),
+                 fmt::format("{} is a bevel gear: say which end of the shaft its cone apex points to "
+                             "(`gear {} at … {{ apex = left; }}` or `right`)",
+                             what, p.name));
+  const StageModel& st = m.stages[static_cast<size_t>(p.stage)];
+  if (!st.findAttr("spiral_hand"))
+    diags_.error("E0225", nameOr(s),
+                 fmt::format("stage `{}` has a gear on {}: give its pinion's `spiral_hand` (`right` or `left`; for a "
+                             "straight bevel pair either), which sets the sense of the spiral's thrust",
+                             st.name, owner));
 }
 
 ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs) {

@@ -123,7 +123,9 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
       for (const auto& p : g.shafts[k].placed)
         if (p.kind == ir::Shaft::Place::Gear && p.stage == static_cast<int>(si))
           (p.gear == cat::gear::Pinion ? pinionShaft : wheelShaft) = static_cast<int>(k);
-    if (pinionShaft >= 0 && wheelShaft >= 0)
+    // A bevel stage's K_Hbeta comes from its mounting, not from its shafts.
+    const bool cylindrical = st.kind == ir::StageKind::Spur || st.kind == ir::StageKind::Helical;
+    if (pinionShaft >= 0 && wheelShaft >= 0 && cylindrical)
       for (int k : {pinionShaft, wheelShaft})
         for (const auto& p : g.shafts[static_cast<size_t>(k)].placed)
           info.shaftStagesUpTo = std::max(info.shaftStagesUpTo, p.stage);

@@ -76,9 +76,105 @@ double diameterAt(const shaft::Model& m, double x) {
   return m.sections.empty() ? 0 : m.sections.back().diameter;
 }
 
-// A gear's mesh forces on its shaft, at the working pitch circle. The stages lie in one
-// plane: the driving gear's mate at +y, the driven gear's at -y; the input turns positively
-// about the axis and every external mesh reverses the sense (docs/language.md, "Shafts and bearings").
+// The sense of rotation of a gear about its own shaft's +x: + on the input; a parallel mesh
+// reverses it, a bevel mesh turns the wheel as the two apexes point (its sense the pinion's
+// times -a_pinion a_wheel, a = +1 for an apex to the right; reversed when either gear is on
+// no shaft) (docs/language.md, "Shafts and bearings").
+double senseOf(const Model& model, int stage, bool driving) {
+  auto apexOf = [&](int st, int gear) -> double {
+    for (const auto& sh : model.gearbox.shafts)
+      for (const auto& q : sh.placed)
+        if (q.kind == Place::Gear && q.stage == st && q.gear == gear) {
+          const ir::Setting* a = ir::findSetting(q.settings, Q::Apex);
+          return a && a->choice == 1 ? 1 : a ? -1 : 0;
+        }
+    return 0;
+  };
+  double sigma = 1;
+  for (int st = 0; st < stage || (st == stage && !driving); ++st) {
+    double a1 = 0, a2 = 0;
+    if (model.info(st).ir->kind == ir::StageKind::Bevel) {
+      a1 = apexOf(st, cat::gear::Pinion);
+      a2 = apexOf(st, cat::gear::Wheel);
+    }
+    sigma *= (a1 != 0 && a2 != 0) ? -a1 * a2 : -1;
+    if (st == stage) break;
+  }
+  return sigma;
+}
+
+// A gear's mesh forces at its pitch point: tangential (its magnitude), radial (away from its
+// mate), axial (along +x), at radius r.
+struct MeshForces {
+  double Ft = 0, Fr = 0, Fx = 0, r = 0, d = 0;
+};
+
+// A spur or helical gear, at the working pitch circle: F_r = F_t tan(alpha_wt), F_a = F_t
+// tan(beta_w), its sense from the pinion's helix hand and the rotation.
+std::optional<MeshForces> cylindricalForces(const Ctx& c, const ir::Shaft::Placed& p, double T, double sigma,
+                                            std::string& why) {
+  const Model& model = c.ev.model();
+  int st = p.stage, g = p.gear;
+  bool helical = model.info(st).ir->kind == ir::StageKind::Helical;
+  auto z = c.stage(st, g, Q::Z), mn = c.stage(st, -1, Q::NormalModule);
+  auto alphaN = c.stage(st, -1, Q::PressureAngle), alphaWt = c.stage(st, -1, Q::WorkingPressureAngle);
+  std::optional<double> beta = helical ? c.stage(st, -1, Q::HelixAngle) : std::optional<double>(0.0);
+  if (!z || !mn || !alphaN || !alphaWt || !beta) {
+    why = "its geometry is not known at this design";
+    return std::nullopt;
+  }
+  double d = *z * *mn / std::cos(*beta), alphaT = std::atan(std::tan(*alphaN) / std::cos(*beta));
+  double dw = d * std::cos(alphaT) / std::cos(*alphaWt);
+  double tanBw = std::tan(*beta) * dw / d;
+  MeshForces f{2 * std::fabs(T) / dw, 0, 0, dw / 2, d};
+  f.Fr = f.Ft * std::tan(*alphaWt);
+  bool driving = g == cat::gear::Pinion;
+  double Ftheta = driving ? -sigma * f.Ft : sigma * f.Ft;
+  const ir::Attribute* hand = model.attribute(st, Q::HelixHand);
+  double h = (hand && hand->choice == cat::helixHand::Left) ? -1 : 1;
+  if (!driving) h = -h; // the mate's hand is the opposite
+  f.Fx = helical ? -h * Ftheta * tanBw : 0;
+  return f;
+}
+
+// A bevel gear at its mean point (shaft angle 90 deg): with F_mt = 2 T / d_m,
+// F_a = F_mt (tan(alpha_n) sin(delta) + s sin(beta_m) cos(delta)) / cos(beta_m) away from the
+// apex and F_r = F_mt (tan(alpha_n) cos(delta) - s sin(beta_m) sin(delta)) / cos(beta_m) away
+// from the mate, s = +1 on the driving pinion where its spiral hand and its rotation seen from
+// its back (its large end) agree (right hand clockwise, left counter-clockwise), -1 where
+// they do not, and the opposite on the driven wheel.
+std::optional<MeshForces> bevelForces(const Ctx& c, const ir::Shaft::Placed& p, double T, double sigma, std::string& why) {
+  const Model& model = c.ev.model();
+  int st = p.stage, g = p.gear;
+  auto dm = c.stage(st, g, Q::MeanDiameter), delta = c.stage(st, g, Q::ConeAngle), beta = c.stage(st, -1, Q::SpiralAngle),
+       alpha = c.stage(st, -1, Q::PressureAngle), sigmaShaft = c.stage(st, -1, Q::ShaftAngle);
+  if (!dm || !delta || !beta || !alpha) {
+    why = "its geometry is not known at this design";
+    return std::nullopt;
+  }
+  if (sigmaShaft && std::fabs(*sigmaShaft - kPi / 2) > 1e-9) {
+    why = "a bevel pair on shafts needs a shaft angle of 90 deg so far";
+    return std::nullopt;
+  }
+  const ir::Setting* apex = ir::findSetting(p.settings, Q::Apex);
+  double a = apex && apex->choice == 1 ? 1 : -1;
+  bool driving = g == cat::gear::Pinion;
+  const ir::Attribute* hand = model.attribute(st, Q::SpiralHand);
+  double h = (hand && hand->choice == 1) ? -1 : 1; // the pinion's: right +1, left -1
+  if (!driving) h = -h;
+  // Seen from its back (the side away from the apex), positive about +x reads clockwise
+  // where the apex points to +x.
+  bool clockwise = sigma * a > 0;
+  double agree = (h > 0) == clockwise ? 1 : -1, s = driving ? agree : -agree;
+  double Ft = 2 * std::fabs(T) / *dm, cb = std::cos(*beta), sb = std::sin(*beta), ta = std::tan(*alpha);
+  double Fa = Ft * (ta * std::sin(*delta) + s * sb * std::cos(*delta)) / cb;
+  double Fr = Ft * (ta * std::cos(*delta) - s * sb * std::sin(*delta)) / cb;
+  return MeshForces{Ft, Fr, -a * Fa, *dm / 2, *dm};
+}
+
+// A gear's mesh forces on its shaft. The stages lie in one plane: the driving gear's mate at
+// +y, the driven gear's at -y; the tangential force opposes a driving gear's rotation and
+// drives a driven one's (docs/language.md, "Shafts and bearings").
 bool gearLoad(const Ctx& c, const ir::Shaft::Placed& p, shaft::Model& m, ShaftResult& out, double& speed) {
   auto fail = [&](const std::string& s) {
     if (c.error) *c.error = fmt::format("gear `{}`: {}", p.name, s);
@@ -86,28 +182,18 @@ bool gearLoad(const Ctx& c, const ir::Shaft::Placed& p, shaft::Model& m, ShaftRe
   };
   const Model& model = c.ev.model();
   int st = p.stage, g = p.gear;
-  bool helical = model.info(st).ir->kind == ir::StageKind::Helical;
-  auto T = c.stage(st, g, Q::Torque), w = c.stage(st, g, Q::Speed), z = c.stage(st, g, Q::Z),
-       mn = c.stage(st, -1, Q::NormalModule);
-  auto alphaN = c.stage(st, -1, Q::PressureAngle), alphaWt = c.stage(st, -1, Q::WorkingPressureAngle),
-       b = c.stage(st, -1, Q::FaceWidth);
-  std::optional<double> beta = helical ? c.stage(st, -1, Q::HelixAngle) : std::optional<double>(0.0);
+  auto T = c.stage(st, g, Q::Torque), w = c.stage(st, g, Q::Speed), b = c.stage(st, -1, Q::FaceWidth);
   if (!T || !w) return fail("its torque and speed need the operating point");
-  if (!z || !mn || !alphaN || !alphaWt || !beta) return fail("its geometry is not known at this design");
   if (!b) return fail("its stage gives no `face_width`");
-  double d = *z * *mn / std::cos(*beta), alphaT = std::atan(std::tan(*alphaN) / std::cos(*beta));
-  double dw = d * std::cos(alphaT) / std::cos(*alphaWt), rw = dw / 2;
-  double tanBw = std::tan(*beta) * dw / d;
-  double Ft = 2 * std::fabs(*T) / dw, Fr = Ft * std::tan(*alphaWt), Fa = Ft * tanBw;
   bool driving = g == cat::gear::Pinion;
+  double sigma = senseOf(model, st, driving);
+  std::string why;
+  auto f = model.info(st).ir->kind == ir::StageKind::Bevel ? bevelForces(c, p, *T, sigma, why)
+                                                           : cylindricalForces(c, p, *T, sigma, why);
+  if (!f) return fail(why);
   double s = driving ? 1 : -1;
-  // The sense of rotation: + on the input, reversed by each stage before this gear.
-  double sigma = ((st + (driving ? 0 : 1)) % 2 == 0) ? 1 : -1;
-  double Ftheta = driving ? -sigma * Ft : sigma * Ft;
-  const ir::Attribute* hand = model.attribute(st, Q::HelixHand);
-  double h = (hand && hand->choice == cat::helixHand::Left) ? -1 : 1;
-  if (!driving) h = -h; // the mate's hand is the opposite
-  double Fx = helical ? -h * Ftheta * tanBw : 0;
+  double Ftheta = driving ? -sigma * f->Ft : sigma * f->Ft;
+  const double Ft = f->Ft, Fr = f->Fr, Fa = std::fabs(f->Fx), rw = f->r, d = f->d, Fx = f->Fx;
   double x = p.at.toDouble();
   shaft::PointLoad whole{x, -s * Fr, s * Ftheta, Fx, -s * rw * Fx, 0, rw * Ftheta};
   if (c.spread && c.spread->stage == st && !c.spread->share.empty()) {

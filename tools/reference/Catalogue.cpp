@@ -193,6 +193,8 @@ void blocks(std::string& out) {
   table(out, cat::shaftSettings());
   out += "A `segment A .. B { … }`:\n\n";
   table(out, cat::segmentSettings());
+  out += "A bevel gear's `gear STAGE.GEAR at X { … }`:\n\n";
+  table(out, cat::gearSettings());
   out += "A `bearing NAME at X { … }`:\n\n";
   table(out, cat::bearingSettings());
   out += "A `load at X { … }`:\n\n";
