@@ -194,6 +194,7 @@ public:
         settings(p.settings, p.kind == ir::Shaft::Place::Bearing ? cat::bearingSettings()
                              : p.kind == ir::Shaft::Place::Disk  ? cat::diskSettings()
                              : p.kind == ir::Shaft::Place::Notch ? cat::notchSettings()
+                             : p.kind == ir::Shaft::Place::Gear  ? cat::gearSettings()
                                                                  : cat::loadSettings());
     }
     for (auto& t : g.tolerances) t.ref = quantity(t.target);

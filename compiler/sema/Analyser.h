@@ -114,6 +114,7 @@ private:
   Domain domain(const AttrSpec& spec, const std::string& path, const Stmt& s, const Scope& scope, bool tooth = false);
   ir::Attribute attribute(const StageModel& st, const std::string& path, const Binding& b, const Scope& scope);
   void bevelGear(const Stmt& s, const GearboxModel& m, const Scope& gs, const std::string& owner, ir::Shaft::Placed& p);
+  void noStageToSearch(const ir::Shaft& out, const GearboxModel& m, const std::string& owner);
   ir::Stage stage(const StageModel& st, const Scope& gbScope);
   template <class T, class Key>
   static void replaceOrAdd(std::vector<T>& v, T item, Key key) {

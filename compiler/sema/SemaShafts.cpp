@@ -239,6 +239,25 @@ void Analyser::bevelGear(const Stmt& s, const GearboxModel& m, const Scope& gs, 
                              st.name, owner));
 }
 
+// A range or a set is searched with the stages' candidates: a gearbox of none has no search.
+void Analyser::noStageToSearch(const ir::Shaft& out, const GearboxModel& m, const std::string& owner) {
+  auto domainIn = [](const std::vector<ir::Setting>& v) -> const ir::Setting* {
+    for (const auto& x : v)
+      if (!x.value && (x.lo || !x.members.empty())) return &x;
+    return nullptr;
+  };
+  const ir::Setting* searched = domainIn(out.settings);
+  for (const auto& seg : out.segments)
+    if (!searched) searched = domainIn(seg.settings);
+  for (const auto& p : out.placed)
+    if (!searched) searched = domainIn(p.settings);
+  if (searched && m.stages.empty())
+    diags_.error("E0235", searched->span,
+                 fmt::format("{}: `{}` is a range or a set, searched with the stages' tooth counts, but gearbox `{}` has "
+                             "no stage; give it one value",
+                             owner, searched->name, m.name));
+}
+
 ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs) {
   ir::Shaft out;
   out.name = st.name;
@@ -254,7 +273,8 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
   } domains(shaftDomains_);
   for (const auto& s : st.body) {
     switch (s.kind) {
-    case StmtKind::Assign: items.emplace_back(s.path.str(), Binding{&s, owner}); break;
+    case StmtKind::Assign:
+    case StmtKind::Domain: items.emplace_back(s.path.str(), Binding{&s, owner}); break;
     case StmtKind::Block:
       if (s.name == "life")
         flatten(s.body, "life.", owner, items, {});
@@ -342,6 +362,7 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
   if (held > 1)
     diags_.error("E0202", nameOr(st),
                  fmt::format("{}: {} bearings hold the axial force; one does (`axial = held`)", owner, held));
+  noStageToSearch(out, m, owner);
   if (!m.hasOperating)
     diags_.error("E0231", nameOr(st),
                  fmt::format("{} needs an operating point, but gearbox `{}` has no `operating` block", owner, m.name));

@@ -116,7 +116,7 @@ public:
         if (slot.key == Q::Z && slot.gear >= 0) continue;
         size_t vi = static_cast<size_t>(d.choice[static_cast<size_t>(sl)]);
         const Value& v = slot.values[vi];
-        if (v.exact && v.exact->isInteger())
+        if (v.exact && v.exact->isInteger() && slot.dim.dimensionless() && !slot.shaft.setting)
           row.teeth.emplace_back(slot.path, static_cast<long long>(v.exact->num()));
         else {
           const Shown& shown = slotShown_[static_cast<size_t>(sl)][vi];

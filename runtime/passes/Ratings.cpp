@@ -612,7 +612,8 @@ Ratings ratings(const Model& m, const Assignment& best) {
           if (std::isnan(row.si[g]) && !(internalRoot && g == 1))
             result.errors.push_back(fmt::format("stage `{}`: the rating's `{}` is not a number at design 1", st.name, row.key));
       for (int f : m.stages[s].freedoms)
-        if (best.box[static_cast<size_t>(f)].first != best.box[static_cast<size_t>(f)].second) {
+        if (!m.freedoms[static_cast<size_t>(f)].shaft.setting &&
+            best.box[static_cast<size_t>(f)].first != best.box[static_cast<size_t>(f)].second) {
           r.note += std::string(r.note.empty() ? "" : "; ") + "rated at the middle of each free attribute's interval";
           break;
         }

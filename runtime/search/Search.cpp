@@ -357,6 +357,7 @@ private:
         if (gx != -2) stageSwapsOnly = false;
         for (int sa : m.stages[static_cast<size_t>(a)].slots) {
           const Slot& slot = m.slots[static_cast<size_t>(sa)];
+          if (slot.shaft.setting) continue;  // a shaft's searched setting: no stage's own
           if (gx != -2 && slot.gear != gx) continue;
           int sb = m.slotOf(b, gx == -2 ? slot.gear : gy, slot.key);
           if (sb < 0) {
@@ -1227,8 +1228,11 @@ private:
     bool report = t == 0 && opt.progress;
     Walk w{t, lo, Assignment(m), std::vector<std::uint32_t>(kk + 1, 0), std::vector<double>(nk + 1, 0), begin, end, 0, report};
     bool done = rows ? sweepRows(w) : sweepHalves(w);
-    // A walk cut short in its last window had no check after it.
-    if (lo.cutShort) timedOut = true;
+    // A walk cut short in its last window had no check after it: not all of it was done.
+    if (lo.cutShort) {
+      timedOut = true;
+      joinDone[static_cast<size_t>(t)] = std::min(joinDone[static_cast<size_t>(t)], 0.999);
+    }
     if (report && done) opt.progress(1.0);
   }
 

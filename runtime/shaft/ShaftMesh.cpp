@@ -60,7 +60,7 @@ std::vector<double> shaftSeparation(const Evaluator& ev, const Assignment& a, in
   // (+x on the input, each stage reversing): n is its direction, along which the pinion
   // moving away from the wheel opens the flanks. A twist phi moves the pinion's flank by
   // phi r_w along z, the wheel's (at -y from its centre) by -phi r_w.
-  double sigma = stage % 2 == 0 ? 1.0 : -1.0;
+  double sigma = senseOf(ev.model(), stage, true);
   double ny = -std::sin(alpha), nz = -sigma * std::cos(alpha);
   using Plane = shaft::Solution::Plane;
   std::vector<double> gap(static_cast<size_t>(points));

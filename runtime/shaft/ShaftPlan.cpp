@@ -27,6 +27,34 @@ std::optional<double> stageNumber(const Evaluator& ev, const Assignment& a, int 
   return v.mid();
 }
 
+// The sense of rotation of a gear about its own shaft's +x: + on the input; a parallel mesh
+// reverses it, a bevel mesh turns the wheel as the two apexes point (its sense the pinion's
+// times -a_pinion a_wheel, a = +1 for an apex to the right; reversed when either gear is on
+// no shaft) (docs/language.md, "Shafts and bearings").
+double senseOf(const Model& model, int stage, bool driving) {
+  using Place = ir::Shaft::Place;
+  auto apexOf = [&](int st, int gear) -> double {
+    for (const auto& sh : model.gearbox.shafts)
+      for (const auto& q : sh.placed)
+        if (q.kind == Place::Gear && q.stage == st && q.gear == gear) {
+          const ir::Setting* a = ir::findSetting(q.settings, Q::Apex);
+          return a && a->choice == 1 ? 1 : a ? -1 : 0;
+        }
+    return 0;
+  };
+  double sigma = 1;
+  for (int st = 0; st < stage || (st == stage && !driving); ++st) {
+    double a1 = 0, a2 = 0;
+    if (model.info(st).ir->kind == ir::StageKind::Bevel) {
+      a1 = apexOf(st, cat::gear::Pinion);
+      a2 = apexOf(st, cat::gear::Wheel);
+    }
+    sigma *= (a1 != 0 && a2 != 0) ? -a1 * a2 : -1;
+    if (st == stage) break;
+  }
+  return sigma;
+}
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -74,33 +102,6 @@ double diameterAt(const shaft::Model& m, double x) {
   for (const auto& s : m.sections)
     if (x >= s.x0 - 1e-12 && x <= s.x1 + 1e-12) return s.diameter;
   return m.sections.empty() ? 0 : m.sections.back().diameter;
-}
-
-// The sense of rotation of a gear about its own shaft's +x: + on the input; a parallel mesh
-// reverses it, a bevel mesh turns the wheel as the two apexes point (its sense the pinion's
-// times -a_pinion a_wheel, a = +1 for an apex to the right; reversed when either gear is on
-// no shaft) (docs/language.md, "Shafts and bearings").
-double senseOf(const Model& model, int stage, bool driving) {
-  auto apexOf = [&](int st, int gear) -> double {
-    for (const auto& sh : model.gearbox.shafts)
-      for (const auto& q : sh.placed)
-        if (q.kind == Place::Gear && q.stage == st && q.gear == gear) {
-          const ir::Setting* a = ir::findSetting(q.settings, Q::Apex);
-          return a && a->choice == 1 ? 1 : a ? -1 : 0;
-        }
-    return 0;
-  };
-  double sigma = 1;
-  for (int st = 0; st < stage || (st == stage && !driving); ++st) {
-    double a1 = 0, a2 = 0;
-    if (model.info(st).ir->kind == ir::StageKind::Bevel) {
-      a1 = apexOf(st, cat::gear::Pinion);
-      a2 = apexOf(st, cat::gear::Wheel);
-    }
-    sigma *= (a1 != 0 && a2 != 0) ? -a1 * a2 : -1;
-    if (st == stage) break;
-  }
-  return sigma;
 }
 
 // A gear's mesh forces at its pitch point: tangential (its magnitude), radial (away from its
@@ -327,6 +328,15 @@ std::string bearingLives(const Evaluator& ev, const ir::Shaft& sh, const Assignm
   return "";
 }
 
+// Whether any setting of the shaft is a range or a set.
+bool searchesSettings(const ir::Shaft& sh) {
+  auto any = [](const std::vector<ir::Setting>& v) {
+    return std::any_of(v.begin(), v.end(), [](const ir::Setting& s) { return !s.value && (s.lo || !s.members.empty()); });
+  };
+  return any(sh.settings) || std::any_of(sh.segments.begin(), sh.segments.end(), [&](const auto& g) { return any(g.settings); }) ||
+         std::any_of(sh.placed.begin(), sh.placed.end(), [&](const auto& p) { return any(p.settings); });
+}
+
 // The shaft with each searched setting at the design's value; nullopt (`why` said) where the
 // design has not decided one yet (a freedom's interval, a slot not chosen).
 std::optional<ir::Shaft> atDesign(const Model& model, const ir::Shaft& sh, const Assignment& a, std::string& why) {
@@ -337,7 +347,9 @@ std::optional<ir::Shaft> atDesign(const Model& model, const ir::Shaft& sh, const
       if (x.members.empty() && !(x.lo && x.hi)) continue;
       Value v = shaftSettingValue(model, x, a);
       if (!v.isNumber() || v.lo != v.hi) {
-        if (why.empty()) why = fmt::format("its `{}` is not decided at this design", x.name);
+        if (why.empty())
+          why = model.stages.empty() ? fmt::format("its `{}` is a range or a set, which only a gearbox with stages searches", x.name)
+                                     : fmt::format("its `{}` is not decided at this design", x.name);
         continue;
       }
       to.back().value = v.exact ? units::Number::exact(*v.exact) : units::Number::approx(v.mid());
@@ -383,7 +395,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
   };
   // Searched settings at the design's values.
   std::optional<ir::Shaft> decided;
-  if (const auto& d = model.shaftDomains[static_cast<size_t>(index)]; !d.slots.empty() || !d.freedoms.empty()) {
+  if (searchesSettings(written)) {
     std::string why;
     decided = atDesign(model, written, a, why);
     if (!decided) return fail(why);
@@ -484,7 +496,8 @@ std::vector<double> inputsKey(const Evaluator& ev, int index, const Assignment& 
   for (const auto& p : ev.model().gearbox.shafts[static_cast<size_t>(index)].placed) {
     if (p.kind != Place::Gear) continue;
     for (auto [g, key] : {std::pair{p.gear, Q::Torque}, {p.gear, Q::Speed}, {p.gear, Q::Z}, {-1, Q::NormalModule}, {-1, Q::PressureAngle},
-                          {-1, Q::WorkingPressureAngle}, {-1, Q::FaceWidth}, {-1, Q::HelixAngle}})
+                          {-1, Q::WorkingPressureAngle}, {-1, Q::FaceWidth}, {-1, Q::HelixAngle}, {p.gear, Q::MeanDiameter},
+                          {p.gear, Q::ConeAngle}, {-1, Q::SpiralAngle}, {-1, Q::ShaftAngle}, {p.gear, Q::D}})
       k.push_back(c.stage(p.stage, g, key).value_or(-1.5e308));
   }
   // Its searched settings: their choices and intervals.

@@ -14,6 +14,7 @@
 namespace gbx::rt {
 
 class Evaluator;
+class Model;
 struct Assignment;
 
 struct ShaftResult {
@@ -53,6 +54,9 @@ struct LoadSpread {
 // bearing's life does not pay for it).
 std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const Assignment& a, std::string* error = nullptr,
                                         bool modes = true, const LoadSpread* spread = nullptr);
+
+// The sense of rotation of a stage's pinion (driving) or wheel about its own shaft's +x (+1 or -1).
+double senseOf(const Model& model, int stage, bool driving);
 
 // A quantity of a stage (gear -1) or of one of its gears at the design; nullopt where it has no number.
 std::optional<double> stageNumber(const Evaluator& ev, const Assignment& a, int stage, int gear, cat::Q key);

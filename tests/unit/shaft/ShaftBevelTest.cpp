@@ -7,10 +7,13 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "Compiled.h"
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
+#include "shaft/ShaftPlan.h"
 
 using namespace gbx;
 
@@ -131,4 +134,41 @@ TEST(ShaftBevel, ABevelGearOnAShaftSaysWhereItsApexPoints) {
   std::string noHand = s;
   noHand.replace(noHand.find("spiral_hand = right;"), 20, "");
   EXPECT_NE(codes(noHand).find("E0225"), std::string::npos) << codes(noHand);
+}
+
+TEST(ShaftBevel, ASearchedSpiralAngleSolvesTheShaftAtEachValue) {
+  // The shaft's cache is keyed on everything a bevel gear's forces read: each spiral angle
+  // of a set gives the thrust that angle alone gives.
+  auto axial = [](const std::string& text) {
+    Compiled c = compileFirst(text);
+    rt::Evaluator ev(*c.m);
+    rt::Assignment a(*c.m);
+    std::vector<double> out;
+    if (c.m->slots.empty()) return std::vector<double>{ev.quantity("input.B.axial_reaction", a).mid()};
+    for (int k = 0; k < static_cast<int>(c.m->slots[0].values.size()); ++k) {
+      a.choice[0] = k;
+      out.push_back(ev.quantity("input.B.axial_reaction", a).mid());
+    }
+    return out;
+  };
+  std::string base = spec("right", "right", "left"), both = base;
+  both.replace(both.find("spiral_angle = 35 deg;"), 22, "spiral_angle in {20 deg, 35 deg};");
+  std::string at20 = base;
+  at20.replace(at20.find("spiral_angle = 35 deg;"), 22, "spiral_angle = 20 deg;");
+  auto v = axial(both);
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_NEAR(v[0], axial(at20)[0], 1e-9 * v[0]);
+  EXPECT_NEAR(v[1], axial(base)[0], 1e-9 * v[1]);
+  EXPECT_GT(std::fabs(v[1] - v[0]), 100);
+}
+
+TEST(ShaftBevel, ABevelPairTurnsTheWheelShaftAsItsApexesPoint) {
+  // The wheel turns about its own +x with the pinion's sense times -a1 a2; a later stage's
+  // gears follow the wheel's shaft.
+  for (auto [pa, wa, sense] :
+       {std::tuple{"right", "left", 1.0}, {"right", "right", -1.0}, {"left", "left", -1.0}, {"left", "right", 1.0}}) {
+    Compiled c = compileFirst(spec("right", pa, wa));
+    EXPECT_EQ(rt::senseOf(*c.m, 0, true), 1.0);
+    EXPECT_EQ(rt::senseOf(*c.m, 0, false), sense) << pa << " " << wa;
+  }
 }

@@ -135,3 +135,43 @@ TEST(ShaftDomain, ADomainASettingCannotTakeIsRefused) {
   EXPECT_NE(codes(spec("diameter in {};", "")).find("E0", 0), std::string::npos);
   EXPECT_EQ(codes(spec("diameter in 30 mm .. 60 mm;", "")), "");
 }
+
+TEST(ShaftDomain, EveryNumericSettingOfAShaftMayBeSearched) {
+  // At the shaft's own level too, and a bearing's rating with its unit (N), not as a count.
+  std::string s = spec("diameter = 50 mm;", "  require input.deflection <= 30 um;\n");
+  const std::string shear = "    shear = off;";
+  s.replace(s.find(shear), shear.size(), shear + "\n    heat_treatment_diameter in 40 mm .. 60 mm;");
+  EXPECT_EQ(codes(s), "");
+  s.replace(s.find("C = 50 kN;"), 10, "C in {40 kN, 50 kN};");
+  auto path = std::filesystem::temp_directory_path() / "gbx_shaft_domain_c.gbx";
+  std::ofstream(path) << s;
+  std::ostringstream out, err;
+  EXPECT_EQ(driver::run({"solve", path.string(), "--format", "csv", "--quiet"}, out, err), 0) << err.str();
+  std::filesystem::remove(path);
+  EXPECT_NE(out.str().find("input.A.C [N]"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("input.heat_treatment_diameter [mm]"), std::string::npos) << out.str();
+}
+
+TEST(ShaftDomain, ARangeNeedsAStageToBeSearchedWith) {
+  std::string s = R"(import materials;
+gearbox G {
+  operating { input_speed = 1500 rpm;  input_torque = 300 N*m; }
+  shaft input {
+    material = steel_42CrMo4;  speed = 1500 rpm;
+    segment 0 mm .. 200 mm { diameter in 40 mm .. 60 mm; }
+    bearing A at 0 mm { kind = deep_groove_ball;  C = 50 kN;  C0 = 30 kN; }
+    bearing B at 200 mm { kind = deep_groove_ball;  C = 50 kN;  C0 = 30 kN; }
+  }
+}
+)";
+  EXPECT_NE(codes(s).find("E0235"), std::string::npos) << codes(s);
+}
+
+TEST(ShaftDomain, InterchangeableStagesLeaveAShaftsSetAlone) {
+  std::string s = spec("diameter in {40 mm, 50 mm};", "");
+  s.replace(s.find("  operating"), 0,
+            "  stage b: spur { pinion.z = 20;  wheel.z = 60;  normal_module = 3 mm;  face_width = 40 mm; }\n"
+            "  interchangeable hs, b;\n");
+  auto v = rows(s);
+  EXPECT_EQ(v.size(), 2u);
+}
