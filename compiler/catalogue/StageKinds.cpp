@@ -324,7 +324,7 @@ std::vector<KindSpec> buildKinds() {
       a.insert(a.begin() + 1, required(bounded(in("helix_angle", angle, "helix angle at the reference circle"), deg(0), deg(45))));
     for (auto& d : commonDerived()) a.push_back(d);
     // The sense of the pinion's wind-up and bending mismatch across the face (docs/rating.md).
-    if (helical) a.push_back(symbol("helix_hand", {"right", "left"}, "the pinion's helix hand: the sense of its bending mismatch across the face"));
+    if (helical) a.push_back(symbol("helix_hand", {"right", "left"}, "the pinion's helix hand: the sense of its bending mismatch across the face and of its thrust on a shaft"));
     a.push_back(symbol("torque_side", {"coupling", "free"}, "the end of the pinion's face where the torque enters: the sense of its wind-up"));
     for (auto& r : ratingInputs()) a.push_back(r);
     for (auto& r : ratingStageQuantities()) a.push_back(r);

@@ -348,9 +348,8 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
     diags_.error("E0225", nameOr(st), fmt::format("{} needs two bearings (`bearing A at … {{ … }}`) to stand", owner));
   bool thrust = false;
   for (const auto& p : out.placed) {
-    if (p.kind == Place::Gear && p.stage >= 0 && m.stages[static_cast<size_t>(p.stage)].kind &&
-        m.stages[static_cast<size_t>(p.stage)].kind->kind == ir::StageKind::Helical)
-      thrust = true;
+    const auto* kind = p.kind == Place::Gear && p.stage >= 0 ? m.stages[static_cast<size_t>(p.stage)].kind : nullptr;
+    if (kind && (kind->kind == ir::StageKind::Helical || kind->kind == ir::StageKind::Bevel)) thrust = true;
     if (p.kind == Place::Load && ir::findSetting(p.settings, "axial")) thrust = true;
   }
   if (thrust && held == 0 && nBearings >= 2)
@@ -359,6 +358,15 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
         fmt::format("{} carries an axial force (a helical gear's thrust or an axial load), but no bearing holds it: "
                     "give one bearing `axial = held`",
                     owner));
+  // The bearing that holds the thrust rates it by its catalogue's X and Y beyond e.
+  for (const auto& p : out.placed)
+    if (thrust && p.kind == Place::Bearing && ir::findSetting(p.settings, "axial") &&
+        ir::findSetting(p.settings, "axial")->choice == 0 &&
+        (!ir::findSetting(p.settings, "e") || !ir::findSetting(p.settings, "X") || !ir::findSetting(p.settings, "Y")))
+      diags_.error("E0225", p.span,
+                   fmt::format("{}: bearing `{}` holds the shaft's thrust, which its life rates by P = X F_r + Y F_a "
+                               "beyond F_a/F_r = e: give its catalogue's `e`, `X` and `Y`",
+                               owner, p.name));
   if (held > 1)
     diags_.error("E0202", nameOr(st),
                  fmt::format("{}: {} bearings hold the axial force; one does (`axial = held`)", owner, held));

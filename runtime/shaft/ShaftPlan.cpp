@@ -328,6 +328,49 @@ std::string bearingLives(const Evaluator& ev, const ir::Shaft& sh, const Assignm
   return "";
 }
 
+// The largest deflection: sampled eight times per element (the line is a cubic in each plane
+// there), then found by golden sections between the best sample's neighbours, where the
+// deflection's magnitude has one peak.
+void largestDeflection(ShaftResult& out) {
+  const auto& sol = out.solution;
+  const auto& xs = sol.x;
+  double h = 0;
+  for (size_t i = 0; i < xs.size(); ++i)
+    for (int k = 0; k < (i + 1 < xs.size() ? 8 : 1); ++k) {
+      double step = i + 1 < xs.size() ? (xs[i + 1] - xs[i]) / 8 : 0;
+      double x = xs[i] + step * k, d = sol.deflectionAt(x);
+      if (d > out.deflection) {
+        out.deflection = d;
+        out.deflectionAt = x;
+        h = std::max(step, i > 0 ? (xs[i] - xs[i - 1]) / 8 : step);
+      }
+    }
+  if (h <= 0 || xs.empty()) return;
+  double a = std::max(xs.front(), out.deflectionAt - h), b = std::min(xs.back(), out.deflectionAt + h);
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double c = b - g * (b - a), d = a + g * (b - a), fc = sol.deflectionAt(c), fd = sol.deflectionAt(d);
+  for (int it = 0; it < 60 && b - a > 1e-12 * (1 + std::fabs(b)); ++it) {
+    if (fc > fd) {
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - g * (b - a);
+      fc = sol.deflectionAt(c);
+    } else {
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + g * (b - a);
+      fd = sol.deflectionAt(d);
+    }
+  }
+  double x = (a + b) / 2, v = sol.deflectionAt(x);
+  if (v > out.deflection) {
+    out.deflection = v;
+    out.deflectionAt = x;
+  }
+}
+
 // Whether any setting of the shaft is a range or a set.
 bool searchesSettings(const ir::Shaft& sh) {
   auto any = [](const std::vector<ir::Setting>& v) {
@@ -465,16 +508,7 @@ std::optional<ShaftResult> computeShaft(const Evaluator& ev, int index, const As
   out.speed = speed;
   // A mesh's misalignment reads the deflections alone.
   if (spread) return out;
-  // The largest deflection: at a station, or between two (the line is a cubic there).
-  const auto& xs = out.solution.x;
-  for (size_t i = 0; i < xs.size(); ++i)
-    for (int k = 0; k < (i + 1 < xs.size() ? 8 : 1); ++k) {
-      double x = i + 1 < xs.size() ? xs[i] + (xs[i + 1] - xs[i]) * k / 8 : xs[i], d = out.solution.deflectionAt(x);
-      if (d > out.deflection) {
-        out.deflection = d;
-        out.deflectionAt = x;
-      }
-    }
+  largestDeflection(out);
   for (const auto& s : m.sections)
     out.mass += m.material.density * kPi / 4 * (s.diameter * s.diameter - s.bore * s.bore) * (s.x1 - s.x0);
   if (auto why = bearingLives(ev, sh, a, bearings, out); !why.empty()) return fail(why);

@@ -15,6 +15,7 @@
 #include "Iso281Reference.h"
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
+#include "shaft/ShaftPlan.h"
 
 using namespace gbx;
 
@@ -245,4 +246,41 @@ TEST(ShaftSpec, KappaTakesTheStagesOilAtItsTemperature) {
   auto aIso = gbx::test::iso281AIso(gbx::test::Iso281BearingType::radial_ball, kappa, 0.55, 38e3 / 22, P);
   EXPECT_NEAR(ev.quantity("input.B.modified_life", a).mid() / 3600, aIso.aIso * L10h, 1e-6 * aIso.aIso * L10h);
   EXPECT_GT(aIso.aIso, 1.0);
+}
+
+TEST(ShaftSpec, TheLargestDeflectionIsTheLinesPeakNotASample) {
+  // 10 kN a from A (a third of a 300 mm span) on a solid 50 mm shaft (Euler-Bernoulli): the
+  // peak F a (L^2 - a^2)^(3/2) / (9 sqrt(3) L E I) stands in the longer part, sqrt((L^2 - a^2)/3)
+  // from B, between the stations, not under the load.
+  Compiled c = compileFirst(R"(material beam_steel { youngs_modulus = 210 GPa;  poisson = 0.3;  density = 7850 kg/m^3; }
+gearbox G {
+  operating { input_speed = 1500 rpm;  input_torque = 100 N*m; }
+  shaft input {
+    material = beam_steel;  shear = off;  speed = 1500 rpm;
+    segment 0 mm .. 300 mm { diameter = 50 mm; }
+    load at 100 mm { radial = 10 kN; }
+    bearing A at 0 mm { kind = deep_groove_ball;  C = 50 kN;  C0 = 30 kN; }
+    bearing B at 300 mm { kind = deep_groove_ball;  C = 50 kN;  C0 = 30 kN; }
+  }
+}
+)");
+  rt::Evaluator ev(*c.m);
+  rt::Assignment a(*c.m);
+  const double F = 10e3, L = 0.3, aF = 0.1, E = 210e9, I = std::numbers::pi * std::pow(0.05, 4) / 64;
+  const double peak = F * aF * std::pow(L * L - aF * aF, 1.5) / (9 * std::sqrt(3.0) * L * E * I);
+  EXPECT_NEAR(ev.quantity("input.deflection", a).mid(), peak, 1e-9 * peak);
+  std::string err;
+  auto s = rt::computeShaft(ev, 0, a, &err);
+  ASSERT_TRUE(s) << err;
+  EXPECT_NEAR(s->deflectionAt, L - std::sqrt((L * L - aF * aF) / 3), 1e-6);
+}
+
+TEST(ShaftSpec, TheBearingHoldingTheThrustGivesItsEquivalentLoadFactors) {
+  // Without e, X and Y the held bearing's life has no equivalent load: said at check time,
+  // not as a rule that could not be evaluated.
+  std::string s = spec("pinion.z = 23;", "  require input.deflection <= 30 um;\n");
+  const std::string factors = "  e = 0.3;  X = 0.56;  Y = 1.5;";
+  s.replace(s.find(factors), factors.size(), "");
+  EXPECT_NE(codes(s).find("E0225"), std::string::npos) << codes(s);
+  EXPECT_EQ(codes(spec("pinion.z = 23;", "")), "");
 }
