@@ -195,8 +195,8 @@ struct Setting {
   bool sceneRef = false;
   ExprPtr expr;              // when the value is an expression over other quantities
   std::vector<Number> members;  // `rtol in {…}`
-  std::optional<Number> lo, hi;  // `harmonics in 1..8`, a shaft's `diameter in 50 mm..70 mm`
-  std::vector<std::string> memberTexts;  // a shaft setting's set, as written
+  std::optional<Number> lo, hi; // `harmonics in 1..8`, a shaft's `diameter in 50 mm..70 mm`
+  std::vector<std::string> memberTexts; // a shaft setting's set, as written
   Span span;
   Setting clone() const;
 };

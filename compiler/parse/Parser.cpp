@@ -750,7 +750,7 @@ private:
 
   int file_;
   diag::DiagnosticEngine& diags_;
-  bool recovered_ = false;  // the parse recovered from a syntax error
+  bool recovered_ = false; // the parse recovered from a syntax error
 };
 
 // A cheap bound on parser recursion: brackets and prefix operators nest rule calls.

@@ -109,7 +109,7 @@ private:
   struct Domain {
     std::optional<Number> lo, hi;
     std::vector<Number> members;
-    std::vector<std::string> memberTexts;  // as written, when every member is a literal
+    std::vector<std::string> memberTexts; // as written, when every member is a literal
   };
   Domain domain(const AttrSpec& spec, const std::string& path, const Stmt& s, const Scope& scope, bool tooth = false);
   ir::Attribute attribute(const StageModel& st, const std::string& path, const Binding& b, const Scope& scope);

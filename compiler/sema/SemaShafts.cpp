@@ -5,7 +5,8 @@
 #include "diag/Suggest.h"
 #include "sema/Analyser.h"
 
-// `shaft NAME { … }`: its settings, segments, gears, bearings, loads and disks (docs/language.md, "Shafts and bearings").
+// `shaft NAME { … }`: its settings, segments, gears, bearings, loads and disks (docs/language.md, "Shafts and
+// bearings").
 
 namespace gbx::sema {
 
@@ -161,8 +162,8 @@ std::optional<ir::Shaft::Placed> Analyser::placed(const Stmt& s, const GearboxMo
     const ir::StageKind sk = stage->kind->kind;
     if (sk != ir::StageKind::Spur && sk != ir::StageKind::Helical && sk != ir::StageKind::Bevel) {
       diags_.error("E0235", s.path.span,
-                   fmt::format("`{}`: a shaft carries spur, helical and bevel gears so far (not a {} stage's)", s.path.str(),
-                               stage->kind->name));
+                   fmt::format("`{}`: a shaft carries spur, helical and bevel gears so far (not a {} stage's)",
+                               s.path.str(), stage->kind->name));
       return std::nullopt;
     }
     p.name = s.path.str();
@@ -252,10 +253,11 @@ void Analyser::noStageToSearch(const ir::Shaft& out, const GearboxModel& m, cons
   for (const auto& p : out.placed)
     if (!searched) searched = domainIn(p.settings);
   if (searched && m.stages.empty())
-    diags_.error("E0235", searched->span,
-                 fmt::format("{}: `{}` is a range or a set, searched with the stages' tooth counts, but gearbox `{}` has "
-                             "no stage; give it one value",
-                             owner, searched->name, m.name));
+    diags_.error(
+        "E0235", searched->span,
+        fmt::format("{}: `{}` is a range or a set, searched with the stages' tooth counts, but gearbox `{}` has "
+                    "no stage; give it one value",
+                    owner, searched->name, m.name));
 }
 
 ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs) {

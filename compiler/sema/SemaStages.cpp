@@ -414,7 +414,8 @@ std::optional<Number> Analyser::boundOf(const AttrSpec& spec, const std::string&
 
 // A domain's bounds (`in lo..hi`) or members (`in {…}`, a named set): constants in the
 // setting's unit, checked against its limits; members sorted.
-Analyser::Domain Analyser::domain(const AttrSpec& spec, const std::string& path, const Stmt& s, const Scope& scope, bool tooth) {
+Analyser::Domain Analyser::domain(const AttrSpec& spec, const std::string& path, const Stmt& s, const Scope& scope,
+                                  bool tooth) {
   Domain d;
   auto checkBound = [&](ir::ExprPtr x) { return boundOf(spec, path, tooth, std::move(x)); };
   if (s.domain == ast::DomainKind::Range) {
@@ -426,26 +427,29 @@ Analyser::Domain Analyser::domain(const AttrSpec& spec, const std::string& path,
       auto unit = units::displayUnitFor(spec.dim);
       diags_.error("E0302", span,
                    fmt::format("unit mismatch: `{}` needs {}, got plain numbers{}", path, spec.dim.describe(),
-                               unit.name.empty() ? ""
-                                                 : fmt::format("; write the range with a unit, as `{}..{} {}`", lo->value.str(),
-                                                               hi->value.str(), spec.unitHint.empty() ? unit.name : spec.unitHint)));
+                               unit.name.empty()
+                                   ? ""
+                                   : fmt::format("; write the range with a unit, as `{}..{} {}`", lo->value.str(),
+                                                 hi->value.str(), spec.unitHint.empty() ? unit.name : spec.unitHint)));
       return d;
     }
     d.lo = checkBound(std::move(lo));
     d.hi = checkBound(std::move(hi));
     if (d.lo && d.hi && d.lo->compare(*d.hi) > 0) {
-      diags_.error("E0401", span, fmt::format("empty range for `{}`: {} is above {}", path, units::showQuantity(*d.lo, spec.dim),
-                                              units::showQuantity(*d.hi, spec.dim)));
+      diags_.error("E0401", span,
+                   fmt::format("empty range for `{}`: {} is above {}", path, units::showQuantity(*d.lo, spec.dim),
+                               units::showQuantity(*d.hi, spec.dim)));
     } else if (d.lo && d.hi && spec.integer) {
       // Every value of a decision range is listed: its size is a budget (counted exactly:
       // bounds near 2^80 are one double apart).
       units::Number width = d.hi->sub(*d.lo);
       double values = width.toDouble() + 1;
       if (width.compare(units::Number::exact(units::Rational(cat::budget::kDomainValues - 1))) > 0) {
-        diags_.error("E0411", span,
-                     fmt::format("`{}` in {}..{} holds {:.0f} values, beyond the budget of {} a search lists per decision; "
-                                 "narrow the range",
-                                 path, d.lo->str(), d.hi->str(), values, cat::budget::kDomainValues));
+        diags_.error(
+            "E0411", span,
+            fmt::format("`{}` in {}..{} holds {:.0f} values, beyond the budget of {} a search lists per decision; "
+                        "narrow the range",
+                        path, d.lo->str(), d.hi->str(), values, cat::budget::kDomainValues));
       }
     }
     return d;
@@ -479,7 +483,8 @@ Analyser::Domain Analyser::domain(const AttrSpec& spec, const std::string& path,
     written = written && !t.empty();
   }
   if (written)
-    for (const auto& [v, t] : checked) d.memberTexts.push_back(t);
+    for (const auto& [v, t] : checked)
+      d.memberTexts.push_back(t);
   return d;
 }
 
@@ -499,7 +504,9 @@ ir::Attribute Analyser::attribute(const StageModel& st, const std::string& path,
   a.dim = spec->dim;
   a.integer = spec->integer;
   if (spec->role == AttrRole::Derived) {
-    diags_.error("E0212", where, fmt::format("`{}` is derived ({}) and cannot be set; constrain it with `require`", path, spec->meaning));
+    diags_.error(
+        "E0212", where,
+        fmt::format("`{}` is derived ({}) and cannot be set; constrain it with `require`", path, spec->meaning));
     return a;
   }
   bool tooth = isKey(lastPart(path), Q::Z);

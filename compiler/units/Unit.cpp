@@ -38,10 +38,10 @@ const std::vector<AtomEntry>& table() {
       {"Hz", dec(1), frequency},
       {"kHz", dec(1000), frequency},
       {"rad", dec(1), angle},
-      {"mrad", dec(1, 1000), angle},  // a shaft's slope at a gear is reported in it
+      {"mrad", dec(1, 1000), angle}, // a shaft's slope at a gear is reported in it
       {"deg", dec(1, 180, 1), angle},
       {"\u00B0", dec(1, 180, 1), angle},
-      {"r", dec(2, 1, 1), angle},  // one revolution, so that r/min reads as rpm
+      {"r", dec(2, 1, 1), angle}, // one revolution, so that r/min reads as rpm
       {"rev", dec(2, 1, 1), angle},
       {"rpm", dec(1, 30, 1), angularSpeed},
       {"N", dec(1), force},

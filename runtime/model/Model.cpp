@@ -152,7 +152,9 @@ std::string shaftSettingPath(const ir::Shaft& sh, const ir::Setting& s) {
     for (const auto& x : p.settings) {
       if (&x != &s) continue;
       if (p.kind == ir::Shaft::Place::Bearing) return fmt::format("{}.{}.{}", sh.name, p.name, s.name);
-      const char* word = p.kind == ir::Shaft::Place::Notch ? "notch" : p.kind == ir::Shaft::Place::Disk ? "disk" : "load";
+      const char* word = p.kind == ir::Shaft::Place::Notch  ? "notch"
+                         : p.kind == ir::Shaft::Place::Disk ? "disk"
+                                                            : "load";
       return fmt::format("{}.{}_at({} mm).{}", sh.name, word, mm(p.at), s.name);
     }
   return sh.name + "." + s.name;
@@ -183,7 +185,8 @@ void Model::addShaftDomains() {
         sl.dim = s.dim;
         sl.shaft = ref;
         if (!s.members.empty()) {
-          for (const auto& m : s.members) sl.values.push_back(constant(m));
+          for (const auto& m : s.members)
+            sl.values.push_back(constant(m));
           if (s.memberTexts.size() == s.members.size()) sl.texts = s.memberTexts;
         } else {
           for (auto v = s.lo->rational().num(); v <= s.hi->rational().num(); ++v)
@@ -208,11 +211,14 @@ void Model::addShaftDomains() {
       freedoms.push_back(f);
       shaftFreedoms = true;
     };
-    for (const auto& s : sh.settings) add(s);
+    for (const auto& s : sh.settings)
+      add(s);
     for (const auto& seg : sh.segments)
-      for (const auto& s : seg.settings) add(s);
+      for (const auto& s : seg.settings)
+        add(s);
     for (const auto& p : sh.placed)
-      for (const auto& s : p.settings) add(s);
+      for (const auto& s : p.settings)
+        add(s);
   }
 }
 

@@ -32,7 +32,7 @@ struct Slot {
   Q key = Q::None;
   units::Dim dim;
   std::vector<Value> values;  // the domain, ascending
-  std::vector<std::string> texts;  // the members as written, when all are literals
+  std::vector<std::string> texts; // the members as written, when all are literals
   ShaftSetting shaft;
 };
 
@@ -103,7 +103,7 @@ public:
     std::vector<int> slots, freedoms;
   };
   std::vector<ShaftDomains> shaftDomains;
-  bool shaftFreedoms = false;  // some shaft setting is a continuous freedom
+  bool shaftFreedoms = false; // some shaft setting is a continuous freedom
 
   int stageIndex(const std::string& name) const { return gearbox.stageIndex(name); }
   const ir::Attribute* attribute(int stage, int gear, Q key) const { return info(stage).entry(gear, key).attr; }

@@ -23,7 +23,7 @@ std::vector<std::pair<double, double>> cutAt(double lo, double hi, const std::ve
 std::vector<double> toleranceEdges(const Evaluator& ev, const Assignment& a, int f) {
   const Model& m = ev.model();
   const Freedom& fr = m.freedoms[static_cast<size_t>(f)];
-  if (fr.shaft.setting) return {};  // a shaft's setting: no table of the standards steps with it
+  if (fr.shaft.setting) return {}; // a shaft's setting: no table of the standards steps with it
   const double lo = a.box[static_cast<size_t>(f)].first, hi = a.box[static_cast<size_t>(f)].second;
   std::vector<double> out;
   auto add = [&](double x) {

@@ -111,7 +111,8 @@ FreedomPlan::FreedomPlan(const Model& m) : m_(m) {
     if (!r.expr) continue;
     std::vector<const ir::Expr*> parts;
     split(*r.expr, parts);
-    for (const auto* e : parts) parts_.push_back({e, parts.size() == 1 ? r.text : ruleText(*e)});
+    for (const auto* e : parts)
+      parts_.push_back({e, parts.size() == 1 ? r.text : ruleText(*e)});
   }
   // No freedoms: the design's one point, where every rule is checked (`worst` over the
   // tolerances, which the search defers).

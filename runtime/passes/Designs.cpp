@@ -60,7 +60,8 @@ public:
       for (size_t vi = 0; vi < slot.values.size(); ++vi) {
         const Value& v = slot.values[vi];
         // A member of a named set (`iso54_series1`) to twelve digits, as a literal would read: `3 mm`, `1.125 mm`.
-        std::string text = written ? slot.texts[vi] : fmt::format("{:.12g}", v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name);
+        std::string text =
+            written ? slot.texts[vi] : fmt::format("{:.12g}", v.lo / du.scale) + (du.name.empty() ? "" : " " + du.name);
         slotShown_[sl].push_back({text, {v.lo / du.scale, du.name, v.lo, du.scale, units::siUnitName(slot.dim)}});
       }
     }
@@ -95,7 +96,8 @@ public:
         auto u = units::displayUnitFor(fr.dim);
         row.choices.emplace_back(m.freedoms[f].path,
                                  formatNumber(freedoms_[i][f] / u.scale) + (u.name.empty() ? "" : " " + u.name));
-        row.choiceValues.push_back({freedoms_[i][f] / u.scale, u.name, freedoms_[i][f], u.scale, units::siUnitName(fr.dim)});
+        row.choiceValues.push_back(
+            {freedoms_[i][f] / u.scale, u.name, freedoms_[i][f], u.scale, units::siUnitName(fr.dim)});
       }
     row.choice = a.choice;
     row.box = a.box;

@@ -90,8 +90,8 @@ std::string ruleText(const ir::Expr& e) {
   const ir::Expr& q = *e.args[0];
   const ir::Expr& k = *e.args[1];
   // `abs(input.slope_at(hs.pinion)) <= 0.1 mrad` alike, in the quantity's unit.
-  const bool absOf = q.op == Op::Call && q.fn == cat::Fn::Abs && q.args.size() == 1 && q.args[0] &&
-                     q.args[0]->op == Op::Quantity;
+  const bool absOf =
+      q.op == Op::Call && q.fn == cat::Fn::Abs && q.args.size() == 1 && q.args[0] && q.args[0]->op == Op::Quantity;
   if ((q.op != Op::Quantity && !absOf) || k.op != Op::Const || !k.type.isNumber()) return ir::print(e);
   units::DisplayUnit u = displayUnitOf(absOf ? *q.args[0] : q);
   const char* op = e.op == Op::Ge ? ">=" : e.op == Op::Gt ? ">" : e.op == Op::Le ? "<=" : e.op == Op::Lt ? "<" : "==";

@@ -357,7 +357,7 @@ private:
         if (gx != -2) stageSwapsOnly = false;
         for (int sa : m.stages[static_cast<size_t>(a)].slots) {
           const Slot& slot = m.slots[static_cast<size_t>(sa)];
-          if (slot.shaft.setting) continue;  // a shaft's searched setting: no stage's own
+          if (slot.shaft.setting) continue; // a shaft's searched setting: no stage's own
           if (gx != -2 && slot.gear != gx) continue;
           int sb = m.slotOf(b, gx == -2 ? slot.gear : gy, slot.key);
           if (sb < 0) {

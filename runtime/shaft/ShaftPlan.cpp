@@ -144,11 +144,13 @@ std::optional<MeshForces> cylindricalForces(const Ctx& c, const ir::Shaft::Place
 // from the mate, s = +1 on the driving pinion where its spiral hand and its rotation seen from
 // its back (its large end) agree (right hand clockwise, left counter-clockwise), -1 where
 // they do not, and the opposite on the driven wheel.
-std::optional<MeshForces> bevelForces(const Ctx& c, const ir::Shaft::Placed& p, double T, double sigma, std::string& why) {
+std::optional<MeshForces> bevelForces(const Ctx& c, const ir::Shaft::Placed& p, double T, double sigma,
+                                      std::string& why) {
   const Model& model = c.ev.model();
   int st = p.stage, g = p.gear;
-  auto dm = c.stage(st, g, Q::MeanDiameter), delta = c.stage(st, g, Q::ConeAngle), beta = c.stage(st, -1, Q::SpiralAngle),
-       alpha = c.stage(st, -1, Q::PressureAngle), sigmaShaft = c.stage(st, -1, Q::ShaftAngle);
+  auto dm = c.stage(st, g, Q::MeanDiameter), delta = c.stage(st, g, Q::ConeAngle),
+       beta = c.stage(st, -1, Q::SpiralAngle), alpha = c.stage(st, -1, Q::PressureAngle),
+       sigmaShaft = c.stage(st, -1, Q::ShaftAngle);
   if (!dm || !delta || !beta || !alpha) {
     why = "its geometry is not known at this design";
     return std::nullopt;
@@ -374,9 +376,11 @@ void largestDeflection(ShaftResult& out) {
 // Whether any setting of the shaft is a range or a set.
 bool searchesSettings(const ir::Shaft& sh) {
   auto any = [](const std::vector<ir::Setting>& v) {
-    return std::any_of(v.begin(), v.end(), [](const ir::Setting& s) { return !s.value && (s.lo || !s.members.empty()); });
+    return std::any_of(v.begin(), v.end(),
+                       [](const ir::Setting& s) { return !s.value && (s.lo || !s.members.empty()); });
   };
-  return any(sh.settings) || std::any_of(sh.segments.begin(), sh.segments.end(), [&](const auto& g) { return any(g.settings); }) ||
+  return any(sh.settings) ||
+         std::any_of(sh.segments.begin(), sh.segments.end(), [&](const auto& g) { return any(g.settings); }) ||
          std::any_of(sh.placed.begin(), sh.placed.end(), [&](const auto& p) { return any(p.settings); });
 }
 
@@ -391,8 +395,9 @@ std::optional<ir::Shaft> atDesign(const Model& model, const ir::Shaft& sh, const
       Value v = shaftSettingValue(model, x, a);
       if (!v.isNumber() || v.lo != v.hi) {
         if (why.empty())
-          why = model.stages.empty() ? fmt::format("its `{}` is a range or a set, which only a gearbox with stages searches", x.name)
-                                     : fmt::format("its `{}` is not decided at this design", x.name);
+          why = model.stages.empty()
+                    ? fmt::format("its `{}` is a range or a set, which only a gearbox with stages searches", x.name)
+                    : fmt::format("its `{}` is not decided at this design", x.name);
         continue;
       }
       to.back().value = v.exact ? units::Number::exact(*v.exact) : units::Number::approx(v.mid());
@@ -529,14 +534,25 @@ std::vector<double> inputsKey(const Evaluator& ev, int index, const Assignment& 
   Ctx c{ev, a, nullptr};
   for (const auto& p : ev.model().gearbox.shafts[static_cast<size_t>(index)].placed) {
     if (p.kind != Place::Gear) continue;
-    for (auto [g, key] : {std::pair{p.gear, Q::Torque}, {p.gear, Q::Speed}, {p.gear, Q::Z}, {-1, Q::NormalModule}, {-1, Q::PressureAngle},
-                          {-1, Q::WorkingPressureAngle}, {-1, Q::FaceWidth}, {-1, Q::HelixAngle}, {p.gear, Q::MeanDiameter},
-                          {p.gear, Q::ConeAngle}, {-1, Q::SpiralAngle}, {-1, Q::ShaftAngle}, {p.gear, Q::D}})
+    for (auto [g, key] : {std::pair{p.gear, Q::Torque},
+                          {p.gear, Q::Speed},
+                          {p.gear, Q::Z},
+                          {-1, Q::NormalModule},
+                          {-1, Q::PressureAngle},
+                          {-1, Q::WorkingPressureAngle},
+                          {-1, Q::FaceWidth},
+                          {-1, Q::HelixAngle},
+                          {p.gear, Q::MeanDiameter},
+                          {p.gear, Q::ConeAngle},
+                          {-1, Q::SpiralAngle},
+                          {-1, Q::ShaftAngle},
+                          {p.gear, Q::D}})
       k.push_back(c.stage(p.stage, g, key).value_or(-1.5e308));
   }
   // Its searched settings: their choices and intervals.
   const Model& m = ev.model();
-  for (int sl : m.shaftDomains[static_cast<size_t>(index)].slots) k.push_back(a.choice[static_cast<size_t>(sl)]);
+  for (int sl : m.shaftDomains[static_cast<size_t>(index)].slots)
+    k.push_back(a.choice[static_cast<size_t>(sl)]);
   for (int f : m.shaftDomains[static_cast<size_t>(index)].freedoms)
     k.insert(k.end(), {a.box[static_cast<size_t>(f)].first, a.box[static_cast<size_t>(f)].second});
   return k;
