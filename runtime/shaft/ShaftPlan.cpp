@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -534,20 +535,17 @@ std::vector<double> inputsKey(const Evaluator& ev, int index, const Assignment& 
   Ctx c{ev, a, nullptr};
   for (const auto& p : ev.model().gearbox.shafts[static_cast<size_t>(index)].placed) {
     if (p.kind != Place::Gear) continue;
-    for (auto [g, key] : {std::pair{p.gear, Q::Torque},
-                          {p.gear, Q::Speed},
-                          {p.gear, Q::Z},
-                          {-1, Q::NormalModule},
-                          {-1, Q::PressureAngle},
-                          {-1, Q::WorkingPressureAngle},
-                          {-1, Q::FaceWidth},
-                          {-1, Q::HelixAngle},
-                          {p.gear, Q::MeanDiameter},
-                          {p.gear, Q::ConeAngle},
-                          {-1, Q::SpiralAngle},
-                          {-1, Q::ShaftAngle},
-                          {p.gear, Q::D}})
+    const bool bevel = ev.model().info(p.stage).ir->kind == ir::StageKind::Bevel;
+    static const std::pair<bool, Q> cylindrical[] = {{true, Q::Torque}, {true, Q::Speed}, {true, Q::Z}, {false, Q::NormalModule},
+                                                     {false, Q::PressureAngle}, {false, Q::WorkingPressureAngle}, {false, Q::FaceWidth},
+                                                     {false, Q::HelixAngle}};
+    static const std::pair<bool, Q> conical[] = {{true, Q::Torque}, {true, Q::Speed}, {true, Q::Z}, {true, Q::MeanDiameter},
+                                                 {true, Q::ConeAngle}, {false, Q::SpiralAngle}, {false, Q::ShaftAngle},
+                                                 {false, Q::PressureAngle}, {false, Q::FaceWidth}};
+    for (auto [own, key] : bevel ? std::span<const std::pair<bool, Q>>(conical) : std::span<const std::pair<bool, Q>>(cylindrical)) {
+      int g = own ? p.gear : -1;
       k.push_back(c.stage(p.stage, g, key).value_or(-1.5e308));
+    }
   }
   // Its searched settings: their choices and intervals.
   const Model& m = ev.model();
