@@ -199,6 +199,8 @@ struct Setting {
   std::vector<std::string> memberTexts; // a shaft setting's set, as written
   Span span;
   Setting clone() const;
+  // A range or a set in place of one value (a shaft's searched setting).
+  bool searched() const { return !value && (lo || !members.empty()); }
 };
 
 const Setting* findSetting(const std::vector<Setting>& s, const std::string& name);

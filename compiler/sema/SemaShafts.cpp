@@ -56,7 +56,7 @@ void Analyser::notchGeometry(const ir::Shaft& sh, const std::string& owner) {
       bool in = left ? x.compare(seg.x0) > 0 && x.compare(seg.x1) <= 0 : x.compare(seg.x0) >= 0 && x.compare(seg.x1) < 0;
       const ir::Setting* d = ir::findSetting(seg.settings, Q::Diameter);
       if (in && d && d->value) return d->value->toDouble();
-      if (in && d && (d->lo || !d->members.empty())) return std::nan("");
+      if (in && d && d->searched()) return std::nan("");
     }
     return std::nullopt;
   };
@@ -244,7 +244,7 @@ void Analyser::bevelGear(const Stmt& s, const GearboxModel& m, const Scope& gs, 
 void Analyser::noStageToSearch(const ir::Shaft& out, const GearboxModel& m, const std::string& owner) {
   auto domainIn = [](const std::vector<ir::Setting>& v) -> const ir::Setting* {
     for (const auto& x : v)
-      if (!x.value && (x.lo || !x.members.empty())) return &x;
+      if (x.searched()) return &x;
     return nullptr;
   };
   const ir::Setting* searched = domainIn(out.settings);
@@ -328,6 +328,12 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
   if (out.segments.empty())
     diags_.error("E0225", nameOr(st), fmt::format("{} has no `segment a .. b {{ diameter = …; }}`", owner));
   notchGeometry(out, owner);
+  bool thrust = false;
+  for (const auto& p : out.placed) {
+    const auto* kind = p.kind == Place::Gear && p.stage >= 0 ? m.stages[static_cast<size_t>(p.stage)].kind : nullptr;
+    if (kind && (kind->kind == ir::StageKind::Helical || kind->kind == ir::StageKind::Bevel)) thrust = true;
+    if (p.kind == Place::Load && ir::findSetting(p.settings, "axial")) thrust = true;
+  }
   int nBearings = 0, held = 0;
   for (const auto& p : out.placed) {
     if (!out.segments.empty() && p.at.compare(end) > 0)
@@ -345,30 +351,22 @@ ir::Shaft Analyser::shaft(const Stmt& st, const GearboxModel& m, const Scope& gs
                    fmt::format("{}: bearing `{}` is a cylindrical roller bearing, which takes no axial load: let another "
                                "bearing hold the thrust (`axial = held`)",
                                owner, p.name));
+    // The bearing that holds the thrust rates it by its catalogue's X and Y beyond e.
+    if (thrust && ax && ax->choice == 0 &&
+        (!ir::findSetting(p.settings, "e") || !ir::findSetting(p.settings, "X") || !ir::findSetting(p.settings, "Y")))
+      diags_.error("E0225", p.span,
+                   fmt::format("{}: bearing `{}` holds the shaft's thrust, which its life rates by P = X F_r + Y F_a "
+                               "beyond F_a/F_r = e: give its catalogue's `e`, `X` and `Y`",
+                               owner, p.name));
   }
   if (nBearings < 2)
     diags_.error("E0225", nameOr(st), fmt::format("{} needs two bearings (`bearing A at … {{ … }}`) to stand", owner));
-  bool thrust = false;
-  for (const auto& p : out.placed) {
-    const auto* kind = p.kind == Place::Gear && p.stage >= 0 ? m.stages[static_cast<size_t>(p.stage)].kind : nullptr;
-    if (kind && (kind->kind == ir::StageKind::Helical || kind->kind == ir::StageKind::Bevel)) thrust = true;
-    if (p.kind == Place::Load && ir::findSetting(p.settings, "axial")) thrust = true;
-  }
   if (thrust && held == 0 && nBearings >= 2)
     diags_.error(
         "E0225", nameOr(st),
         fmt::format("{} carries an axial force (a helical gear's thrust or an axial load), but no bearing holds it: "
                     "give one bearing `axial = held`",
                     owner));
-  // The bearing that holds the thrust rates it by its catalogue's X and Y beyond e.
-  for (const auto& p : out.placed)
-    if (thrust && p.kind == Place::Bearing && ir::findSetting(p.settings, "axial") &&
-        ir::findSetting(p.settings, "axial")->choice == 0 &&
-        (!ir::findSetting(p.settings, "e") || !ir::findSetting(p.settings, "X") || !ir::findSetting(p.settings, "Y")))
-      diags_.error("E0225", p.span,
-                   fmt::format("{}: bearing `{}` holds the shaft's thrust, which its life rates by P = X F_r + Y F_a "
-                               "beyond F_a/F_r = e: give its catalogue's `e`, `X` and `Y`",
-                               owner, p.name));
   if (held > 1)
     diags_.error("E0202", nameOr(st),
                  fmt::format("{}: {} bearings hold the axial force; one does (`axial = held`)", owner, held));

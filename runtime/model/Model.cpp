@@ -19,6 +19,19 @@ Value constant(const units::Number& n) {
   return Value::number(n.toDouble());
 }
 
+// A decision's values, ascending: its set's members, else every whole number of its range
+// (sema checked the bounds to be whole numbers).
+std::vector<Value> domainValues(const std::vector<units::Number>& members, const std::optional<units::Number>& lo,
+                                const std::optional<units::Number>& hi) {
+  std::vector<Value> out;
+  for (const auto& m : members)
+    out.push_back(constant(m));
+  if (members.empty() && lo && hi)
+    for (auto v = lo->rational().num(); v <= hi->rational().num(); ++v)
+      out.push_back(Value::rational(Rational(static_cast<std::int64_t>(v))));
+  return out;
+}
+
 std::uint64_t nextSerial() {
   static std::atomic<std::uint64_t> n{0};
   return ++n;
@@ -65,13 +78,7 @@ Model::Model(const ir::Program& p, const ir::Gearbox& g) : program(p), gearbox(g
         s.key = a.key;
         s.dim = a.dim;
         if (a.memberTexts.size() == a.members.size()) s.texts = a.memberTexts;
-        if (!a.members.empty()) {
-          for (const auto& m : a.members) s.values.push_back(constant(m));
-        } else if (a.lo && a.hi) {
-          // Integer ranges: bounds were checked to be whole numbers by sema.
-          auto lo = a.lo->rational().num(), hi = a.hi->rational().num();
-          for (auto v = lo; v <= hi; ++v) s.values.push_back(Value::rational(Rational(static_cast<std::int64_t>(v))));
-        }
+        s.values = domainValues(a.members, a.lo, a.hi);
         at(a).slot = static_cast<int>(slots.size());
         info.slots.push_back(static_cast<int>(slots.size()));
         slots.push_back(std::move(s));
@@ -173,7 +180,7 @@ void Model::addShaftDomains() {
     if (host < 0) host = 0;
     StageInfo& info = stages[static_cast<size_t>(host)];
     auto add = [&](const ir::Setting& s) {
-      if (s.value || (s.members.empty() && !(s.lo && s.hi))) return;
+      if (!s.searched()) return;
       ShaftSetting ref{static_cast<int>(k), &s};
       std::string path = shaftSettingPath(sh, s);
       if (!s.members.empty() || s.integer) {
@@ -184,14 +191,8 @@ void Model::addShaftDomains() {
         sl.key = s.key;
         sl.dim = s.dim;
         sl.shaft = ref;
-        if (!s.members.empty()) {
-          for (const auto& m : s.members)
-            sl.values.push_back(constant(m));
-          if (s.memberTexts.size() == s.members.size()) sl.texts = s.memberTexts;
-        } else {
-          for (auto v = s.lo->rational().num(); v <= s.hi->rational().num(); ++v)
-            sl.values.push_back(Value::rational(Rational(static_cast<std::int64_t>(v))));
-        }
+        sl.values = domainValues(s.members, s.lo, s.hi);
+        if (!s.members.empty() && s.memberTexts.size() == s.members.size()) sl.texts = s.memberTexts;
         info.slots.push_back(static_cast<int>(slots.size()));
         shaftDomains[k].slots.push_back(static_cast<int>(slots.size()));
         slots.push_back(std::move(sl));

@@ -378,7 +378,7 @@ void largestDeflection(ShaftResult& out) {
 bool searchesSettings(const ir::Shaft& sh) {
   auto any = [](const std::vector<ir::Setting>& v) {
     return std::any_of(v.begin(), v.end(),
-                       [](const ir::Setting& s) { return !s.value && (s.lo || !s.members.empty()); });
+                       [](const ir::Setting& s) { return s.searched(); });
   };
   return any(sh.settings) ||
          std::any_of(sh.segments.begin(), sh.segments.end(), [&](const auto& g) { return any(g.settings); }) ||
@@ -391,8 +391,7 @@ std::optional<ir::Shaft> atDesign(const Model& model, const ir::Shaft& sh, const
   auto copy = [&](const std::vector<ir::Setting>& from, std::vector<ir::Setting>& to) {
     for (const auto& x : from) {
       to.push_back(x.clone());
-      if (x.value) continue;
-      if (x.members.empty() && !(x.lo && x.hi)) continue;
+      if (!x.searched()) continue;
       Value v = shaftSettingValue(model, x, a);
       if (!v.isNumber() || v.lo != v.hi) {
         if (why.empty())

@@ -19,3 +19,12 @@ inline Compiled compileFirst(const std::string& text) {
   out.m = std::make_unique<gbx::rt::Model>(out.c->program, out.c->program.gearboxes[0]);
   return out;
 }
+
+// The codes of a text's diagnostics, in order, each followed by a space ("" when it checks clean).
+inline std::string diagnosticCodes(const std::string& text) {
+  auto c = gbx::driver::compileText("s.gbx", text);
+  std::string out;
+  for (const auto& d : c->diags.sorted())
+    out += d.code + " ";
+  return out;
+}

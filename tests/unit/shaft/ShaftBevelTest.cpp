@@ -119,21 +119,14 @@ TEST(ShaftBevel, TheWheelsThrustIsThePinionsRadialForce) {
 }
 
 TEST(ShaftBevel, ABevelGearOnAShaftSaysWhereItsApexPoints) {
-  auto codes = [](const std::string& text) {
-    auto c = driver::compileText("s.gbx", text);
-    std::string out;
-    for (const auto& d : c->diags.sorted())
-      out += d.code + " ";
-    return out;
-  };
   std::string s = spec("right", "right", "left");
-  EXPECT_EQ(codes(s), "");
+  EXPECT_EQ(diagnosticCodes(s), "");
   std::string noApex = s;
   noApex.replace(noApex.find(" { apex = right; }"), 18, ";");
-  EXPECT_NE(codes(noApex).find("E0225"), std::string::npos) << codes(noApex);
+  EXPECT_NE(diagnosticCodes(noApex).find("E0225"), std::string::npos) << diagnosticCodes(noApex);
   std::string noHand = s;
   noHand.replace(noHand.find("spiral_hand = right;"), 20, "");
-  EXPECT_NE(codes(noHand).find("E0225"), std::string::npos) << codes(noHand);
+  EXPECT_NE(diagnosticCodes(noHand).find("E0225"), std::string::npos) << diagnosticCodes(noHand);
 }
 
 TEST(ShaftBevel, ASearchedSpiralAngleSolvesTheShaftAtEachValue) {

@@ -73,14 +73,6 @@ std::vector<std::vector<std::string>> rows(const std::string& text) {
   return v;
 }
 
-std::string codes(const std::string& text) {
-  auto c = driver::compileText("s.gbx", text);
-  std::string out;
-  for (const auto& d : c->diags.sorted())
-    out += d.code + " ";
-  return out;
-}
-
 } // namespace
 
 TEST(ShaftDomain, TheModelReadsAFreedomsPointFromTheAssignment) {
@@ -128,12 +120,12 @@ TEST(ShaftDomain, ADomainASettingCannotTakeIsRefused) {
   // A word-valued setting takes one value.
   std::string kinds = spec("diameter = 50 mm;", "");
   kinds.replace(kinds.find("kind = deep_groove_ball;"), 24, "kind in {deep_groove_ball};");
-  EXPECT_NE(codes(kinds).find("E0110"), std::string::npos) << codes(kinds);
+  EXPECT_NE(diagnosticCodes(kinds).find("E0110"), std::string::npos) << diagnosticCodes(kinds);
   // Bounds in the setting's unit.
-  EXPECT_NE(codes(spec("diameter in 30 .. 60;", "")).find("E0302"), std::string::npos);
-  EXPECT_NE(codes(spec("diameter in 60 mm .. 30 mm;", "")).find("E0401"), std::string::npos);
-  EXPECT_NE(codes(spec("diameter in {};", "")).find("E0", 0), std::string::npos);
-  EXPECT_EQ(codes(spec("diameter in 30 mm .. 60 mm;", "")), "");
+  EXPECT_NE(diagnosticCodes(spec("diameter in 30 .. 60;", "")).find("E0302"), std::string::npos);
+  EXPECT_NE(diagnosticCodes(spec("diameter in 60 mm .. 30 mm;", "")).find("E0401"), std::string::npos);
+  EXPECT_NE(diagnosticCodes(spec("diameter in {};", "")).find("E0", 0), std::string::npos);
+  EXPECT_EQ(diagnosticCodes(spec("diameter in 30 mm .. 60 mm;", "")), "");
 }
 
 TEST(ShaftDomain, EveryNumericSettingOfAShaftMayBeSearched) {
@@ -141,7 +133,7 @@ TEST(ShaftDomain, EveryNumericSettingOfAShaftMayBeSearched) {
   std::string s = spec("diameter = 50 mm;", "  require input.deflection <= 30 um;\n");
   const std::string shear = "    shear = off;";
   s.replace(s.find(shear), shear.size(), shear + "\n    heat_treatment_diameter in 40 mm .. 60 mm;");
-  EXPECT_EQ(codes(s), "");
+  EXPECT_EQ(diagnosticCodes(s), "");
   s.replace(s.find("C = 50 kN;"), 10, "C in {40 kN, 50 kN};");
   auto path = std::filesystem::temp_directory_path() / "gbx_shaft_domain_c.gbx";
   std::ofstream(path) << s;
@@ -164,7 +156,7 @@ gearbox G {
   }
 }
 )";
-  EXPECT_NE(codes(s).find("E0235"), std::string::npos) << codes(s);
+  EXPECT_NE(diagnosticCodes(s).find("E0235"), std::string::npos) << diagnosticCodes(s);
 }
 
 TEST(ShaftDomain, InterchangeableStagesLeaveAShaftsSetAlone) {
