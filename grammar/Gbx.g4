@@ -78,7 +78,7 @@ stmt
   | {isWord("segment")}? ID tolExpr '..' tolExpr block        # segmentStmt  // `segment 0 mm .. 60 mm { … }`
   | {placed()}? ID path? AT expr (block | ';')      # placedStmt  // `bearing A at 30 mm { … }`, `gear hs.pinion at 175 mm;`
   | ID ID block                                    # memberStmt  // `shaft input { … }`
-  | ID block                                       # blockStmt
+  | path block                                     # blockStmt  // `rating { … }`, `ring.cutter { … }`
   | ID ';'                                         # flagStmt
   ;
 

@@ -41,6 +41,7 @@ struct AttrSpec {
   std::vector<std::string> symbols;    // accepted words for ValueKind::Symbol; for a Number, words it takes instead of one
   bool sceneRef = false;               // a Number that may instead name a scene (`dynamic_factor = scene vib`)
   std::string example;                 // a typical value as a spec writes it, for the reference (else from the bounds)
+  std::string exampleGear;             // the gear a gear row's example names (else the kind's first)
 };
 
 // Row builders shared by the catalogue files.

@@ -263,9 +263,26 @@ namespace gbx::cat {
   X(RatingMounting, "rating.mounting")                                                          \
   X(RatingContactPattern, "rating.contact_pattern")                                            \
   X(SpiralHand, "spiral_hand")                                                                  \
-  X(Apex, "apex")
+  X(Apex, "apex")                                                                               \
+  X(SunSupport, "sun_support")                                                                  \
+  X(PinError, "pin_error")                                                                      \
+  X(CutterTeeth, "cutter.teeth")                                                                \
+  X(CutterShift, "cutter.shift")                                                                \
+  X(CutterTipRadius, "cutter.tip_radius")                                                       \
+  X(GearFlankRz, "roughness.flank_rz")                                                          \
+  X(GearRootRz, "roughness.root_rz")                                                            \
+  X(RatingRingPlanetDynamicFactor, "rating.ring_planet.dynamic_factor")                         \
+  X(PlanetBearingKind, "bearing.kind")                                                          \
+  X(PlanetBearingC, "bearing.C")                                                                \
+  X(PlanetBearingC0, "bearing.C0")                                                              \
+  X(PlanetBearingCount, "bearing.count")                                                        \
+  X(PlanetBearingPitchDiameter, "bearing.pitch_diameter")                                       \
+  X(PlanetBearingContamination, "bearing.contamination")                                        \
+  X(BearingLoad, "bearing_load")                                                                \
+  X(BearingLife, "bearing_life")                                                                \
+  X(BearingModifiedLife, "bearing_modified_life")
 
-enum class Q : std::uint8_t {
+enum class Q : std::uint16_t {
 #define GBX_KEY_ENUM(id, name) id,
   GBX_KEYS(GBX_KEY_ENUM)
 #undef GBX_KEY_ENUM

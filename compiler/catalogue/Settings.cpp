@@ -198,8 +198,10 @@ bool dependsOnOperatingPoint(Q key) {
 
 bool isRatingQuantity(Q key) {
   auto k = static_cast<int>(key);
-  return (k >= static_cast<int>(Q::ContactSafety) && k <= static_cast<int>(Q::YM)) || key == Q::ContactDamage || key == Q::BendingDamage ||
-         scuffingInput(key) != Q::None || (k >= static_cast<int>(Q::ZMB) && k <= static_cast<int>(Q::YSa));
+  return (k >= static_cast<int>(Q::ContactSafety) && k <= static_cast<int>(Q::YM)) || key == Q::ContactDamage ||
+         key == Q::BendingDamage || scuffingInput(key) != Q::None ||
+         (k >= static_cast<int>(Q::ZMB) && k <= static_cast<int>(Q::YSa)) || key == Q::BearingLoad ||
+         key == Q::BearingLife || key == Q::BearingModifiedLife;
 }
 
 Q scuffingInput(Q key) {

@@ -101,6 +101,13 @@ inline constexpr int Coupling = 0, Free = 1;
 namespace faceLoad {
 inline constexpr int ContactAnalysis = 0;
 }
+// The word `rating.mesh_load_factor` of a planetary stage takes, and the sun's support.
+namespace meshLoad {
+inline constexpr int LoadSharing = 0;
+}
+namespace sunSupport {
+inline constexpr int Floating = 0, Fixed = 1;
+}
 // How a bevel pair is mounted (ISO 10300-1 K_Hbeta-be): straddle or cantilever bearings.
 namespace mounting {
 inline constexpr int BothStraddle = 0, OneCantilever = 1, BothCantilever = 2;

@@ -121,6 +121,99 @@ std::vector<AttrSpec> ratingInputs() {
   };
 }
 
+// A planetary stage's rating inputs: K_gamma may come from the planets' load sharing, with
+// the sun held or floating (docs/rating.md "Load sharing of a planetary stage").
+std::vector<AttrSpec> planetaryRatingInputs() {
+  auto a = ratingInputs();
+  for (auto& r : a)
+    if (r.key == Q::RatingMeshLoadFactor) {
+      r.symbols = {"load_sharing"};
+      r.meaning = "mesh load factor K_gamma: given, or `load_sharing` (from the planets' mesh stiffnesses, pin errors "
+                  "and the sun's "
+                  "support); by the number of planets (IEC 61400-4) when absent";
+    }
+  for (const auto& r : ratingInputs())
+    if (r.key == Q::RatingDynamicFactor) {
+      auto kv = r;
+      kv.name = "rating.ring_planet.dynamic_factor";
+      kv.key = Q::RatingRingPlanetDynamicFactor;
+      kv.sceneRef = false;
+      kv.meaning =
+          "dynamic factor K_v of the planet-ring mesh, where it differs from `dynamic_factor` (the sun-planet mesh's)";
+      a.push_back(kv);
+    }
+  a.push_back(
+      symbol("sun_support", {"floating", "fixed"},
+             "the sun's support (default fixed): floating leaves its two translations free, as a spline-coupled sun"));
+  return a;
+}
+
+// What a planetary stage's gears give beyond the plain gear's: a planet's pin position error
+// (the load sharing), the ring's pinion-type cutter (its tooth root, ISO 6336-3).
+std::vector<AttrSpec> planetaryGearAttrs() {
+  auto of = [](std::string gear, AttrSpec a, std::string example) {
+    a.exampleGear = std::move(gear);
+    a.example = std::move(example);
+    return a;
+  };
+  return {
+      of("planet",
+         hinted(in("pin_error", length,
+                   "tangential position error of a planet's pin (the first planet's; positive: displaced the way the "
+                   "sun pushes it, "
+                   "so it carries less)"),
+                "um"),
+         "20 um"),
+      of("ring",
+         bounded(
+             count("cutter.teeth", "teeth of the pinion-type cutter that cuts the ring (its tooth root, ISO 6336-3)"),
+             num(8), std::nullopt),
+         "36"),
+      of("ring", in("cutter.shift", none, "profile shift coefficient of the ring's cutter (default 0)"), "0"),
+      // Each planet's bearings (docs/rating.md "Planet bearings"): ISO 281 at the planet's
+      // speed relative to the carrier, the load shared equally between `count` bearings.
+      of("planet",
+         symbol(
+             "bearing.kind",
+             {"deep_groove_ball", "angular_contact_ball", "cylindrical_roller", "tapered_roller", "spherical_roller"},
+             "type of each planet's bearings: the ISO 281 life exponent (ball 3, roller 10/3) and a_ISO curve"),
+         "cylindrical_roller"),
+      of("planet", hinted(pos("bearing.C", force, "basic dynamic load rating of one planet bearing"), "kN"), "2800 kN"),
+      of("planet", hinted(pos("bearing.C0", force, "basic static load rating of one planet bearing"), "kN"), "4300 kN"),
+      of("planet",
+         bounded(count("bearing.count", "bearings per planet, sharing its load equally (default 1)"), num(1), num(4)),
+         "2"),
+      of("planet",
+         hinted(pos("bearing.pitch_diameter", length,
+                    "rolling-element pitch diameter D_pw of a planet bearing (kappa, C_u; for the modified life)"),
+                "mm"),
+         "500 mm"),
+      of("planet",
+         bounded(pos("bearing.contamination", none,
+                     "contamination factor e_C of ISO 281 (default 0.5, normal cleanliness)"),
+                 std::nullopt, num(1)),
+         "0.5"),
+      of("planet",
+         derived(
+             "bearing_load", force,
+             "radial load on each planet bearing: the planet's two mesh forces summed, times K_gamma, over `count`"),
+         ""),
+      of("planet", hinted(derived("bearing_life", time, "basic rating life L10h of a planet bearing (ISO 281)"), "h"),
+         ""),
+      of("planet",
+         hinted(derived("bearing_modified_life", time,
+                        "modified rating life L_nmh = a1 a_ISO L10h, kappa from the rating's lubricant at its oil "
+                        "temperature"),
+                "h"),
+         ""),
+      of("ring",
+         bounded(pos("cutter.tip_radius", none,
+                     "tip radius of the ring's cutter as a share of the module (default the basic rack's root radius)"),
+                 std::nullopt, num(1)),
+         "0.3"),
+  };
+}
+
 std::vector<AttrSpec> ratingStageQuantities() {
   return {
       derived("K_v", none, "dynamic factor (ISO 6336-1 method B)"),
@@ -155,12 +248,23 @@ std::vector<AttrSpec> ratingGearExtras() {
       pos("helix_slope_deviation", length, "helix slope deviation f_H_beta (else ISO 1328-1 from the grade)"),
       pos("bore_diameter", length, "inner diameter of the gear blank (0: solid; for the reduced mass of K_v)"),
       pos("web_thickness", length, "web thickness b_s of a webbed gear blank (for C_R; solid when absent)"),
-      pos("rim_thickness", length, "rim thickness s_R of a webbed gear blank (for C_R)"),
+      pos("rim_thickness", length,
+          "rim thickness s_R under the root: of a webbed gear blank (for C_R), of a ring (for Y_B)"),
+      hinted(bounded(pos("roughness.flank_rz", length,
+                         "this gear's flank Rz, where it differs from the rating's (the pair's is the mean)"),
+                     std::nullopt, num(150, 1000000)),
+             "um"),
+      hinted(bounded(pos("roughness.root_rz", length, "this gear's root Rz, where it differs from the rating's"),
+                     std::nullopt, num(150, 1000000)),
+             "um"),
       exampled(hinted(in("upper_thickness_allowance", length,
-                         "upper normal tooth-thickness allowance A_sne (thinner teeth: negative; for the backlash of a rated stage)"),
+                         "upper normal tooth-thickness allowance A_sne (thinner teeth: negative; for the backlash of a "
+                         "rated stage)"),
                       "um"),
                "-50 um"),
-      exampled(hinted(in("lower_thickness_allowance", length, "lower normal tooth-thickness allowance A_sni (with the upper one)"), "um"),
+      exampled(hinted(in("lower_thickness_allowance", length,
+                         "lower normal tooth-thickness allowance A_sni (with the upper one)"),
+                      "um"),
                "-90 um"),
   };
 }
@@ -381,9 +485,10 @@ std::vector<KindSpec> buildKinds() {
     };
     for (auto& d : commonDerived()) a.push_back(d);
     // Rated as its sun-planet and planet-ring meshes (K_gamma: `rating.mesh_load_factor`).
-    for (auto& r : ratingInputs()) a.push_back(r);
+    for (auto& r : planetaryRatingInputs()) a.push_back(r);
     for (auto& r : ratingStageQuantities()) a.push_back(r);
     auto g = plainGearAttrs();
+    for (auto& r : planetaryGearAttrs()) g.push_back(r);
     // Given, or from the geometry and the material's density.
     g.push_back(pos("mass", mass,
                     "gear mass (planets: each); else the sun and a planet solid discs at the reference diameter across the face "

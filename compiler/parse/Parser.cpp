@@ -431,8 +431,11 @@ private:
       bin(s, c);
     } else if (shaftStmt(s, ctx)) {
     } else if (auto* c = dynamic_cast<GbxParser::BlockStmtContext*>(ctx)) {
+      // A gear's block (`ring.cutter { … }`) is named by its whole path.
       s.kind = K::Block;
-      setName(s, c->ID());
+      s.path = path(c->path());
+      s.name = s.path.str();
+      s.nameSpan = s.path.span;
       body(s, c->block());
     } else if (auto* c = dynamic_cast<GbxParser::FlagStmtContext*>(ctx)) {
       s.kind = K::Flag;

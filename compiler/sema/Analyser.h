@@ -128,6 +128,9 @@ private:
 
   // ---- SemaRatings.cpp: ratings and what they need ----------------------------------------------
   void ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen);
+  void gearBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen);
+  void stageItems(StageModel& m, std::vector<std::pair<std::string, Binding>>& items,
+                  std::map<std::string, const Stmt*>& seen);
   void ratingInputs(const StageModel& st, Span where, bool bearingsReadOil = false);
   void bevelRatingInputs(const StageModel& st, Span where);
   static bool rateable(const cat::KindSpec& kind);
@@ -136,6 +139,9 @@ private:
   void requireRating(const ir::Gearbox& g, const GearboxModel& m);
   void thicknessAllowances(const ir::Gearbox& g, const GearboxModel& m);
   void sceneFactors(const ir::Gearbox& g);
+  void planetaryGears(const ir::Gearbox& g);
+  void planetBearingInputs(const StageModel& st, const ir::Expr& x, Q k, const char* where,
+                           std::set<std::pair<int, int>>& reported);
   std::vector<ir::SpectrumBin> spectrumBins(const StageModel& st);
   void requireOperating(const ir::Gearbox& g);
   void checkOperating(const GearboxModel& m, const std::vector<ir::Setting>& op, const Stmt* decl);

@@ -125,6 +125,7 @@ ir::Gearbox Analyser::lowerGearbox(const GearboxModel& m) {
   requireRating(g, m);
   thicknessAllowances(g, m);
   sceneFactors(g);
+  planetaryGears(g);
   if (!m.hasOperating)
     for (const auto& st : m.stages)
       if (st.rated)

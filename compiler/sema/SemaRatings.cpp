@@ -43,7 +43,8 @@ void Analyser::ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, c
   std::vector<std::pair<std::string, Binding>> items;
   std::string spectrum = std::string(kRatingBlock) + "." + std::string(kSpectrumBlock);
   flatten(b.body, std::string(kRatingBlock) + ".", fmt::format("the `rating` of stage `{}`", m.name), items,
-          {"rating.lubricant", "rating.roughness", "rating.basic_rack", "rating.min_safety"}, {spectrum});
+          {"rating.lubricant", "rating.roughness", "rating.basic_rack", "rating.min_safety", "rating.ring_planet"},
+          {spectrum});
   for (const auto& st : b.body)
     if (st.kind == StmtKind::Block && st.name == kSpectrumBlock) {
       if (m.spectrum) {
@@ -53,6 +54,13 @@ void Analyser::ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, c
       }
       m.spectrum = &st;
     }
+  stageItems(m, items, seen);
+  m.rated = true;
+}
+
+// A block's flattened settings as the stage's attributes, each given once.
+void Analyser::stageItems(StageModel& m, std::vector<std::pair<std::string, Binding>>& items,
+                          std::map<std::string, const Stmt*>& seen) {
   for (auto& [p, bind] : items) {
     if (auto it = seen.find(p); it != seen.end()) {
       auto& d = diags_.error("E0202", bind.stmt->path.span, fmt::format("duplicate declaration: `{}` is already given in stage `{}`", p, m.name));
@@ -62,7 +70,14 @@ void Analyser::ratingBlock(StageModel& m, const Stmt& b, std::map<std::string, c
     seen[p] = bind.stmt;
     m.setAttr(p, {bind.stmt, "stage"});
   }
-  m.rated = true;
+}
+
+// A gear's block (`ring.cutter { teeth = 36; … }`): its settings become the gear's
+// `cutter.…` attributes, checked like any other.
+void Analyser::gearBlock(StageModel& m, const Stmt& b, std::map<std::string, const Stmt*>& seen) {
+  std::vector<std::pair<std::string, Binding>> items;
+  flatten(b.body, b.name + ".", fmt::format("`{}` of stage `{}`", b.name, m.name), items, {});
+  stageItems(m, items, seen);
 }
 
 // `load_spectrum { bin 130% torque for 0.1% of life; … }` (docs/rating.md): each bin a
@@ -373,15 +388,21 @@ void Analyser::requireRating(const ir::Gearbox& g, const GearboxModel& m) {
       const StageModel* st = dot == std::string::npos ? nullptr : m.findStage(x.name.substr(0, dot));
       if (!st || !st->kind) return;
       if (st->rated) {
-        // An internal gear's tooth root: ISO 6336-3 for internal gears is not implemented.
+        // An internal gear's tooth root is the one its pinion-type cutter generates.
         static const std::set<Q> root = {Q::BendingSafety, Q::BendingStress, Q::PermissibleBendingStress, Q::YF, Q::YS, Q::Ybeta,
                                          Q::YNT, Q::YdeltarelT, Q::YRrelT, Q::YX};
-        bool ring = st->kind->kind == ir::StageKind::Planetary && x.name.find("." + st->kind->gears[2] + ".") != std::string::npos;
-        if (ring && root.count(*k) && reported.insert({x.span.line, x.span.col}).second)
-          diags_.error("E0235", x.span,
-                       fmt::format("`{}`: the tooth root of an internal gear is not rated (ISO 6336-3 for internal gears is not "
-                                   "implemented; its contact is rated) ({})",
-                                   x.name, where));
+        const std::string& ringName = st->kind->gears[cat::gear::Ring];
+        bool ring =
+            st->kind->kind == ir::StageKind::Planetary && x.name.find("." + ringName + ".") != std::string::npos;
+        if (ring && root.count(*k) && !st->findAttr(ringName + ".cutter.teeth") &&
+            reported.insert({x.span.line, x.span.col}).second)
+          diags_.error(
+              "E0225", x.span,
+              fmt::format(
+                  "`{}` needs the ring's pinion-type cutter, `{}.cutter {{ teeth = …; }}` in stage `{}` (its tooth "
+                  "root is the one the cutter generates; its contact is rated without) ({})",
+                  x.name, ringName, st->name, where));
+        planetBearingInputs(*st, x, *k, where, reported);
         // Scuffing needs the oil's FZG load stage, micropitting its FVA load stage.
         Q test = scuffingInput(*k);
         std::string testName(keyName(test));
@@ -398,6 +419,65 @@ void Analyser::requireRating(const ir::Gearbox& g, const GearboxModel& m) {
     });
   };
   eachUse(g, false, visit);
+}
+
+// A planet bearing's quantities need its kind and rating; its modified life also its pitch
+// diameter and the oil's viscosity line at its temperature (E0225).
+void Analyser::planetBearingInputs(const StageModel& st, const ir::Expr& x, Q k, const char* where,
+                                   std::set<std::pair<int, int>>& reported) {
+  if (k != Q::BearingLoad && k != Q::BearingLife && k != Q::BearingModifiedLife) return;
+  const std::string& planet = st.kind->gears[cat::gear::Planet];
+  if (x.name.find("." + planet + ".") == std::string::npos) {
+    if (reported.insert({x.span.line, x.span.col}).second)
+      diags_.error(
+          "E0214", x.span,
+          fmt::format("`{}`: the stage's bearings are its planets' (`{}.{}.{}`)", x.name, st.name, planet, keyName(k)));
+    return;
+  }
+  std::vector<std::string> need;
+  if (k != Q::BearingLoad)
+    for (const char* n : {".bearing.kind", ".bearing.C"})
+      if (!st.findAttr(planet + n)) need.push_back("`" + planet + n + "`");
+  if (k == Q::BearingModifiedLife) {
+    if (!st.findAttr(planet + ".bearing.pitch_diameter")) need.push_back("`" + planet + ".bearing.pitch_diameter`");
+    for (const char* n : {"rating.lubricant.viscosity_100", "rating.lubricant.oil_temperature"})
+      if (!st.findAttr(n)) need.push_back(fmt::format("`{}`", n));
+  }
+  if (need.empty() || !reported.insert({x.span.line, x.span.col}).second) return;
+  diags_.error("E0225", x.span,
+               fmt::format("`{}` needs {} in stage `{}` ({})", x.name, fmt::join(need, ", "), st.name, where));
+}
+
+// A planetary stage's gear settings that belong to one of its gears: the pin error to the
+// planet (the load sharing's), the pinion-type cutter to the ring.
+void Analyser::planetaryGears(const ir::Gearbox& g) {
+  for (const auto& st : g.stages) {
+    if (st.kind != ir::StageKind::Planetary) continue;
+    for (const auto& a : st.attributes) {
+      auto dot = a.name.find('.');
+      if (dot == std::string::npos) continue;
+      int gear = cat::gearIndex(cat::kindSpec(st.kind), a.name.substr(0, dot));
+      auto key = cat::keyOf(a.name.substr(dot + 1));
+      if (!key) continue;
+      bool cutter = *key == Q::CutterTeeth || *key == Q::CutterShift || *key == Q::CutterTipRadius;
+      if (cutter && gear != cat::gear::Ring)
+        diags_.error(
+            "E0214", a.span,
+            fmt::format("`{}` of stage `{}`: only the ring is cut by a pinion-type cutter (`ring.cutter {{ … }}`)",
+                        a.name, st.name));
+      if (*key == Q::PinError && gear != cat::gear::Planet)
+        diags_.error(
+            "E0214", a.span,
+            fmt::format("`{}` of stage `{}`: a pin error belongs to a planet (`planet.pin_error`)", a.name, st.name));
+      bool bearing = *key == Q::PlanetBearingKind || *key == Q::PlanetBearingC || *key == Q::PlanetBearingC0 ||
+                     *key == Q::PlanetBearingCount || *key == Q::PlanetBearingPitchDiameter ||
+                     *key == Q::PlanetBearingContamination;
+      if (bearing && gear != cat::gear::Planet)
+        diags_.error("E0214", a.span,
+                     fmt::format("`{}` of stage `{}`: the stage's bearings are its planets' (`planet.bearing {{ … }}`)",
+                                 a.name, st.name));
+    }
+  }
 }
 
 // `dynamic_factor = scene NAME`: K_v by method A from a periodic single-mesh scene on the

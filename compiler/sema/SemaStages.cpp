@@ -55,6 +55,8 @@ StageModel Analyser::makeStage(const Stmt& st) {
     case StmtKind::Require: m.rules.push_back({&b, st.name}); break;
     case StmtKind::Block:
       if (b.name == kRatingBlock) ratingBlock(m, b, seen);
+      else if (b.path.parts.size() == 2)
+        gearBlock(m, b, seen);
       else diags_.error("E0224", nameOr(b), fmt::format("stage `{}` has no block `{}` (a stage's one block is `{}`)", st.name, b.name, kRatingBlock));
       break;
     case StmtKind::Let:

@@ -12,6 +12,9 @@
 #include "model/Recent.h"
 #include "model/Standards.h"
 #include "model/ToleranceEdges.h"
+#include "rating/LoadSharing.h"
+#include "rating/PlanetBearing.h"
+#include "shaft/Iso281.h"
 
 namespace gbx::rt::rating {
 
@@ -226,6 +229,7 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
     in.gear[1].cyclesPerRev = mesh.internal ? planets : 1;
     in.planets = mesh.internal ? 0 : static_cast<int>(planets);
     in.gear[1].internal = mesh.internal;
+    if (mesh.internal) in.KvGiven = num(Q::RatingRingPlanetDynamicFactor, in.KvGiven);
   }
   for (int slot = 0; slot < 2; ++slot) {
     GearInput& gi = in.gear[static_cast<size_t>(slot)];
@@ -240,6 +244,15 @@ std::optional<PairInput> fixedInputs(const KindContext& c, const Mesh& mesh, std
     // b_s/b outside 0.2..1.2 takes the nearer limit; a web as wide as the face is solid.
     if (std::isfinite(bs) && std::isfinite(sr) && bs / b < 1.2)
       gi.webFactor = 1 + std::log(std::max(bs / b, 0.2)) / (5 * std::exp(sr / (5 * mn)));
+    gi.RzFlank = num2(c, g, Q::GearFlankRz, kNaN);
+    gi.RzRoot = num2(c, g, Q::GearRootRz, kNaN);
+    if (mesh.internal && slot == 1) {
+      // The ring: its root from its pinion-type cutter, Y_B from its rim.
+      gi.cutterTeeth = num2(c, g, Q::CutterTeeth, 0.0);
+      gi.cutterShift = num2(c, g, Q::CutterShift, 0.0);
+      gi.cutterTipRadius = num2(c, g, Q::CutterTipRadius, kNaN);
+      gi.rimThickness = sr;
+    }
   }
   return in;
 }
@@ -367,8 +380,15 @@ int governing(const std::vector<PairRating>& r, const std::vector<Mesh>& meshes,
   return best;
 }
 
+// `mesh_load_factor = load_sharing`: the first planet's pin error and the sun's support.
+struct Sharing {
+  double pinError = 0;
+  bool floatingSun = false;
+};
+
 struct Rated {
   std::vector<SpectrumBin> bins;  // the stage's load spectrum, empty without one
+  std::optional<Sharing> sharing;
   std::vector<Mesh> meshes;
   std::vector<PairInput> fixed;  // per mesh
   std::vector<std::vector<Value>> varying;
@@ -398,6 +418,13 @@ std::optional<Rated> gather(const KindContext& c, std::string* why) {
   if (r.meshes.empty()) {
     if (why) *why = "this stage kind has no ISO 6336 rating";
     return std::nullopt;
+  }
+  const Model& m = c.ev.model();
+  if (const ir::Attribute* kg = m.attribute(c.stage, Q::RatingMeshLoadFactor);
+      kg && kg->choice == cat::meshLoad::LoadSharing) {
+    const ir::Attribute* support = m.attribute(c.stage, Q::SunSupport);
+    r.sharing =
+        Sharing{num2(c, cat::gear::Planet, Q::PinError, 0.0), support && support->choice == cat::sunSupport::Floating};
   }
   for (const auto& mesh : r.meshes) {
     auto fixed = fixedInputs(c, mesh, why);
@@ -431,7 +458,34 @@ void underSpectrum(const Rated& g, const PairInput& in, PairRating& r, bool dama
 
 // Each mesh's rating at one corner of the concatenated varying inputs; `scuffing` adds the
 // scuffing and micropitting ratings where the oil's load stages are given.
+std::vector<PairRating> rateMeshes(const Rated& g, const V& x, bool damage, bool scuffing, double Kgamma);
+
+// K_gamma from the planets' load sharing (rating/LoadSharing.h): each planet's path the sun
+// and ring meshes' c_gamma_alpha b in series, at the rated load.
+double sharedLoadFactor(const Rated& g, const std::vector<PairRating>& r) {
+  LoadSharingInput in;
+  in.planets = g.fixed[0].planets;
+  in.kSun = r[0].cgammaAlpha * 1e9 * r[0].b;
+  in.kRing = r[1].cgammaAlpha * 1e9 * r[1].b;
+  in.alphaSun = r[0].alphaWt;
+  in.alphaRing = r[1].alphaWt;
+  in.pinError = {g.sharing->pinError};
+  in.floatingSun = g.sharing->floatingSun;
+  in.force = r[0].Ft * in.planets;
+  return shareLoad(in).Kgamma;
+}
+
+// Each mesh's rating at one corner of the concatenated varying inputs; `scuffing` adds the
+// scuffing and micropitting ratings where the oil's load stages are given. With the planets'
+// load sharing the meshes are rated twice: first for their stiffness (c_gamma does not
+// depend on K_gamma), then at the K_gamma the sharing gives.
 std::vector<PairRating> rateAll(const Rated& g, const V& x, bool damage = false, bool scuffing = false) {
+  if (!g.sharing) return rateMeshes(g, x, damage, scuffing, kNaN);
+  return rateMeshes(g, x, damage, scuffing, sharedLoadFactor(g, rateMeshes(g, x, false, false, 1.0)));
+}
+
+// The meshes rated; `Kgamma` replaces the inputs' unless NaN.
+std::vector<PairRating> rateMeshes(const Rated& g, const V& x, bool damage, bool scuffing, double Kgamma) {
   std::vector<PairRating> out;
   for (size_t k = 0; k < g.meshes.size(); ++k) {
     auto at = x.begin() + static_cast<long>(k * In::Count);
@@ -440,6 +494,7 @@ std::vector<PairRating> rateAll(const Rated& g, const V& x, bool damage = false,
     // (whose tip alteration shortened it), unless the spec gives it.
     if (g.meshes[k].planetary && g.meshes[k].internal && xk[Da1] == kAbsent && !out.empty()) xk[Da1] = out[0].gear[1].tipDiameter;
     PairInput in = inputAt(g.fixed[k], xk);
+    if (std::isfinite(Kgamma)) in.Kgamma = Kgamma;
     out.push_back(rate(in));
     underSpectrum(g, in, out.back(), damage);
     if (scuffing) out.back().scuffing = scuffingOf(in, out.back());
@@ -486,8 +541,8 @@ bool modelFactors(const KindContext& c, Rated& g, std::string* why, bool estimat
       return fail(e.what());
     }
     const PairInput& in = g.fixed[0];
-    double load = r.Ft * in.KA * in.Kgamma * r.Kv;
-    g.faceLoad = contactAnalysis(c.ev, c.a, c.stage, load, r.fma, in.KA * in.Kgamma * r.Kv);
+    double load = r.Ft * in.KA * r.Kgamma * r.Kv;
+    g.faceLoad = contactAnalysis(c.ev, c.a, c.stage, load, r.fma, in.KA * r.Kgamma * r.Kv);
     if (!g.faceLoad->failure.empty()) return fail(fmt::format("K_Hbeta by contact analysis: {}", g.faceLoad->failure));
     for (auto& f : g.fixed) f.KHbetaGiven = g.faceLoad->KHbeta;
   }
@@ -677,7 +732,90 @@ DerivedRow gearRow(Q key) {
           }};
 }
 
+// A quantity of the stage's meshes at each rated corner, enclosed as `rated` encloses one.
+template <class F> Value overCorners(const KindContext& c, F pick) {
+  const RatedCorners& p = ratedCorners(c, false, false);
+  if (!p.g || p.corners.empty() || p.corners[0].size() < 2) return Value::invalid();
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t k = 0; k < p.corners.size(); ++k) {
+    double v = p.failed[k] ? kNaN : pick(p.corners[k]);
+    if (!std::isfinite(v)) return Value::invalid();
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (p.corners.size() == 1) return Value::number(lo);
+  return Value::range(std::nextafter(lo, -INFINITY), std::nextafter(hi, INFINITY));
+}
+
+// Each planet bearing's radial load at a corner: the planet's pin load (its two mesh forces)
+// times K_gamma (the most loaded planet's) over the bearings that share it.
+double planetBearingLoad(const std::vector<PairRating>& r, double count) {
+  return planetPinLoad(r[0].Fbt, r[0].alphaWt, r[1].alphaWt) * r[0].Kgamma / count;
+}
+
+// A planet bearing's ISO 281 inputs; nullopt without its kind or rating (sema asks for them).
+struct PlanetBearingInputs {
+  shaft::BearingData data;
+  shaft::LifeSettings life;
+  double count = 1;
+};
+
+std::optional<PlanetBearingInputs> planetBearingInputs(const KindContext& c, bool modified) {
+  using cat::gear::Planet;
+  const ir::Attribute* kind = c.ev.model().attribute(c.stage, Planet, Q::PlanetBearingKind);
+  PlanetBearingInputs in;
+  in.data.C = num2(c, Planet, Q::PlanetBearingC, kNaN);
+  if (!kind || kind->choice < 0 || !std::isfinite(in.data.C)) return std::nullopt;
+  in.data.kind = static_cast<shaft::BearingKind>(kind->choice);
+  in.data.C0 = num2(c, Planet, Q::PlanetBearingC0, in.data.C);
+  in.data.pitchDiameter = num2(c, Planet, Q::PlanetBearingPitchDiameter, 0.0);
+  in.count = num2(c, Planet, Q::PlanetBearingCount, 1.0);
+  in.life.contamination = num2(c, Planet, Q::PlanetBearingContamination, 0.5);
+  if (modified) {
+    Lubricant oil;
+    oil.nu40 = c.at(Q::RatingViscosity40).mid();
+    oil.nu100 = c.at(Q::RatingViscosity100).mid();
+    oil.oilTemperature = c.at(Q::RatingOilTemperature).mid();
+    if (!(in.data.pitchDiameter > 0 && oil.nu40 > 0 && oil.nu100 > 0 && oil.oilTemperature > 0)) return std::nullopt;
+    in.life.viscosity = oil.kinematic(oil.oilTemperature);
+    in.life.viscositySource = "the rating's lubricant at its oil temperature";
+  }
+  return in;
+}
+
+// A planet bearing's life at a corner, at the planet's speed relative to the carrier (the
+// planet drives the ring in the second mesh: omega = 2 v / d).
+double planetBearingLife(const PlanetBearingInputs& in, const std::vector<PairRating>& r, bool modified) {
+  shaft::BearingLoad load{planetBearingLoad(r, in.count), 0.0, 2 * r[1].v / r[1].dPinion};
+  try {
+    shaft::BearingLife l = shaft::life(in.data, load, in.life);
+    return (modified ? l.Lnmh : l.L10h) * 3600;
+  } catch (const std::invalid_argument&) {
+    return kNaN;
+  }
+}
+
+template <Q K> DerivedRow planetBearingRow() {
+  return {K, true, [](const KindContext& c, int g) {
+            if (g != cat::gear::Planet) return Value::invalid();
+            if (K == Q::BearingLoad) {
+              double count = num2(c, cat::gear::Planet, Q::PlanetBearingCount, 1.0);
+              return overCorners(c, [&](const std::vector<PairRating>& r) { return planetBearingLoad(r, count); });
+            }
+            auto in = planetBearingInputs(c, K == Q::BearingModifiedLife);
+            if (!in) return Value::invalid();
+            return overCorners(c, [&](const std::vector<PairRating>& r) {
+              return planetBearingLife(*in, r, K == Q::BearingModifiedLife);
+            });
+          }};
+}
+
 } // namespace
+
+std::vector<DerivedRow> planetBearingRows() {
+  return {planetBearingRow<Q::BearingLoad>(), planetBearingRow<Q::BearingLife>(),
+          planetBearingRow<Q::BearingModifiedLife>()};
+}
 
 std::optional<std::vector<SpectrumBin>> spectrumBins(const KindContext& c, std::string* why) {
   std::vector<SpectrumBin> out;
@@ -714,7 +852,7 @@ std::optional<ScuffingRating> scuffingOf(const PairInput& in, const PairRating& 
   m.da2 = r.gear[1].tipDiameter;
   m.Ft = r.Ft;
   m.KA = in.KA;
-  m.Kgamma = in.Kgamma;
+  m.Kgamma = r.Kgamma;
   m.Kv = r.Kv;
   m.KHbeta = r.KHbeta;
   m.KHalpha = r.KHalpha;
@@ -753,8 +891,20 @@ std::vector<MeshRating> rateStage(const KindContext& c, std::string* why) {
     std::vector<MeshRating> out;
     for (size_t k = 0; k < r.size(); ++k) {
       auto at = point.begin() + static_cast<long>(k * In::Count);
-      out.push_back({g->meshes[k].g0, g->meshes[k].g1, g->meshes[k].internal, inputAt(g->fixed[k], V(at, at + In::Count)), r[k], g->faceLoad,
-                     g->kv, {}});
+      out.push_back({g->meshes[k].g0,
+                     g->meshes[k].g1,
+                     g->meshes[k].internal,
+                     inputAt(g->fixed[k], V(at, at + In::Count)),
+                     r[k],
+                     g->faceLoad,
+                     g->kv,
+                     {},
+                     {}});
+      out.back().input.Kgamma = r[k].Kgamma;
+      if (g->sharing)
+        out.back().loadSharing =
+            fmt::format("load sharing of {} planets, the sun {}, pin error {:g} um", g->fixed[0].planets,
+                        g->sharing->floatingSun ? "floating" : "held", g->sharing->pinError * 1e6);
       for (int slot = 0; slot < 2; ++slot) {
         int gear = slot == 0 ? g->meshes[k].g0 : g->meshes[k].g1;
         auto given = [&](Q key) { return givenOnly(c, gear, key).isNumber(); };

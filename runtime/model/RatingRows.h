@@ -17,6 +17,8 @@
 namespace gbx::rt::rating {
 
 std::vector<DerivedRow> pairRows();
+// A planetary stage's planet bearings: each bearing's load, basic and modified life (ISO 281).
+std::vector<DerivedRow> planetBearingRows();
 
 // The stage's load spectrum (ISO 6336-6) as shares of its operating torque and of its life:
 // a bin's torque over the stage's input torque, its cycles as revolutions of the input member
@@ -68,6 +70,7 @@ struct MeshRating {
     bool pitch = false, profileForm = false, profileTotal = false, helix = false;
   };
   std::array<Given, 2> given;
+  std::string loadSharing; // how K_gamma came from the planets' load sharing (empty: given or tabulated)
 };
 
 // Every mesh of the stage rated at the design (a freedom spanning an interval is taken at

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "rating/InternalRoot.h"
+
 namespace gbx::rt::rating {
 
 LifeCurve contactCurve(Treatment t) { return t == Treatment::Nitrided ? LifeCurve{1e5, 1.3, 2e6} : LifeCurve{1e5, 1.6, 5e7}; }
@@ -458,7 +460,10 @@ Shared sharedFactors(const PairInput& in, const Geometry& g, const PairRating& r
   const double sigmaHlim = g.sigmaHlim, ea = r.epsAlpha, eb = r.epsBeta;
   // Lubricant, velocity and roughness factors (clause 11), from the softer flank.
   double rho1 = 0.5 * g.db1 * std::tan(g.awt), rho2 = 0.5 * g.db2 * std::tan(g.awt);
-  FlankFactors f = flankFactors(sigmaHlim, in.nu40 * 1e6, r.v, in.RzFlank * 1e6, rho1 * rho2 / (rho1 + rho2));
+  // The pair's Rz: the mean of the two flanks' (ISO 6336-2), each the gear's own or the pair's.
+  auto rz = [&](size_t i) { return std::isfinite(in.gear[i].RzFlank) ? in.gear[i].RzFlank : in.RzFlank; };
+  FlankFactors f =
+      flankFactors(sigmaHlim, in.nu40 * 1e6, r.v, 0.5 * (rz(0) + rz(1)) * 1e6, rho1 * rho2 / (rho1 + rho2));
   s.ZL = f.ZL;
   s.Zv = f.Zv;
   s.ZR = f.ZR;
@@ -507,7 +512,12 @@ void rateFlank(const PairInput& in, const PairRating& r, const Shared& s, int i,
 void rateRoot(const PairInput& in, const Geometry& g, const PairRating& r, const Shared& s, int i, GearRating& o) {
   const auto& gi = in.gear[static_cast<size_t>(i)];
   const double mn = g.mn;
-  ToothForm t = toothForm(gi.z, gi.x, g.da[i], mn, g.an, g.beta, r.epsAlpha, in.hfP, in.rhoFP);
+  const bool internal = i == 1 && g.internal;
+  PinionCutter cutter{gi.cutterTeeth, gi.cutterShift,
+                      std::isfinite(gi.cutterTipRadius) ? gi.cutterTipRadius : in.rhoFP};
+  ToothForm t = internal ? internalToothForm(gi.z, gi.x, std::fabs(g.da[i]), std::fabs(g.df[i]), mn, g.an, g.beta,
+                                             r.epsAlpha, in.hfP, cutter)
+                         : toothForm(gi.z, gi.x, g.da[i], mn, g.an, g.beta, r.epsAlpha, in.hfP, in.rhoFP);
   o.sFn = t.sFn * 1e-3;
   o.hFe = t.hFe * 1e-3;
   o.rhoF = t.rhoF * 1e-3;
@@ -515,9 +525,10 @@ void rateRoot(const PairInput& in, const Geometry& g, const PairRating& r, const
   o.YF = t.YF;
   o.YS = t.YS;
   o.Ybeta = s.Ybeta;
-  o.YB = 1;
+  o.YB = internal && std::isfinite(gi.rimThickness) ? internalRimFactor(gi.rimThickness * 1e3, mn) : 1.0;
   o.YDT = s.YDT;
-  RootFactors rf = rootFactors(treatmentOf(in, i), t.sFn / (2 * t.rhoF), t.YS, in.RzRoot * 1e6, mn, o.cycles);
+  double rzRoot = std::isfinite(gi.RzRoot) ? gi.RzRoot : in.RzRoot;
+  RootFactors rf = rootFactors(treatmentOf(in, i), t.sFn / (2 * t.rhoF), t.YS, rzRoot * 1e6, mn, o.cycles);
   o.YdeltarelT = rf.YdeltarelT;
   o.YRrelT = rf.YRrelT;
   o.YX = rf.YX;
@@ -540,8 +551,8 @@ void rateGear(const PairInput& in, const Geometry& g, const PairRating& r, const
   o.fHb = gi.fHb;
   lifeFactors(in, treatmentOf(in, i), o);
   rateFlank(in, r, s, i, o);
-  if (i == 1 && g.internal) {
-    // ISO 6336-3 for internal gears is not implemented: the ring's root is not rated.
+  if (i == 1 && g.internal && !(gi.cutterTeeth > 0)) {
+    // Without its pinion-type cutter an internal gear's fillet is not known: not rated.
     o.sFn = o.hFe = o.rhoF = o.alphaFen = o.YF = o.YS = o.Ybeta = o.YB = o.YDT = kNaN;
     o.YNT = o.YdeltarelT = o.YRrelT = o.YX = kNaN;
     o.YM = gi.YM;
@@ -569,9 +580,11 @@ PairRating rate(const PairInput& in) {
   // Load and speed.
   r.u = g.z2s / g.z1;
   r.Ft = 2000.0 * in.torque1 / g.d1;                 // N
+  r.Fbt = r.Ft / std::cos(g.at);
   r.v = in.gear[0].speed * in.mn * g.z1 / std::cos(g.beta) / 2;  // m/s
   const double w = in.KA * r.Ft / g.b;                // N/mm
   r.b = in.b;
+  r.Kgamma = in.Kgamma;
   r.dPinion = (g.internal ? g.d1 : std::min(g.d1, g.d2)) * 1e-3;
   const Deviations dev = deviations(in, g, r);
   meshStiffness(in, g, w, r);

@@ -38,6 +38,11 @@ struct GearInput {
   double E = kNaN, nu = kNaN, brinell = kNaN;
   // Normal tooth-thickness allowances A_sne, A_sni [m]: the report's backlash (NaN: not given).
   double upperAllowance = kNaN, lowerAllowance = kNaN;
+  // An internal gear's pinion-type cutter (teeth 0: not given, and its root is not rated; tip
+  // radius NaN: the basic rack's root radius) and its rim under the root s_R [m] (NaN: Y_B 1).
+  double cutterTeeth = 0, cutterShift = 0, cutterTipRadius = kNaN;
+  double rimThickness = kNaN;
+  double RzFlank = kNaN, RzRoot = kNaN; // this gear's own roughness [m]; NaN: the pair's
 };
 
 struct PairInput {
@@ -82,11 +87,13 @@ struct GearRating {
 
 struct PairRating {
   double Ft, v, u, alphaWt, epsAlpha, epsBeta, epsGamma;
+  double Fbt;         // transverse force along the line of action, F_t / cos alpha_t [N]
   double b, dPinion;  // face width and the smaller external gear's reference diameter [m]
   double cprime, cgammaAlpha, cgammaBeta, mred, nE1, N, NS;
   KvRange kvRange;
   double fsh, fma, FbetaX, FbetaY, yBeta, yAlpha;  // fma: the manufacturing misalignment used [m]
   double B1, B2;                                   // the lead modification factors used
+  double Kgamma;                                   // the mesh load factor rated with (the input's)
   double Kv, KHbeta, KFbeta, KHalpha, KFalpha;
   double ZH, ZE, Zeps, Zbeta, sigmaH0;
   std::array<GearRating, 2> gear;
@@ -95,8 +102,8 @@ struct PairRating {
 
 // Every factor and both safeties of the mesh. Throws std::domain_error with a sentence
 // when the geometry admits no rating (no contact, no 30-degree tangent in the fillet).
-// An internal wheel's tooth root is not rated (ISO 6336-3 for internal gears is not
-// implemented): its bending values are NaN.
+// An internal wheel's tooth root is rated from its pinion-type cutter (rating/InternalRoot.h);
+// without one its bending values are NaN.
 PairRating rate(const PairInput& in);
 
 // A treatment's life curve: its static point and its knee (ISO 6336-2 Table 2, ISO 6336-3

@@ -131,7 +131,8 @@ void kindRows(std::string& out, bool gear) {
       std::string signature = a.name + "|" + middleCells(a) + "|" + example(a, "");
       auto [it, fresh] = bySignature.emplace(signature, rows.size());
       if (fresh)
-        rows.push_back({a, "`" + k.name + "`", gear ? k.gears.front() + "." : ""});
+        rows.push_back(
+            {a, "`" + k.name + "`", gear ? (a.exampleGear.empty() ? k.gears.front() : a.exampleGear) + "." : ""});
       else
         rows[it->second].kinds += ", `" + k.name + "`";
     }

@@ -128,6 +128,8 @@ std::vector<DerivedRow> rows() {
   r.insert(r.end(), own.begin(), own.end());
   auto rating = rating::pairRows();
   r.insert(r.end(), rating.begin(), rating.end());
+  auto bearings = rating::planetBearingRows();
+  r.insert(r.end(), bearings.begin(), bearings.end());
   return r;
 }
 

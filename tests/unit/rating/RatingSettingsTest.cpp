@@ -57,6 +57,7 @@ const std::map<std::string, std::string>& otherValues() {
       {"basic_rack.root_radius", "0.25"},
       {"face_load_factor", "1.7"},
       {"dynamic_factor", "1.3"},
+      {"ring_planet.dynamic_factor", "1.3"},
       {"transverse_load_factor", "1.3"},
       {"mesh_load_factor", "1.3"},
       {"mesh_misalignment", "40 um"},
