@@ -108,6 +108,11 @@ inline constexpr int LoadSharing = 0;
 namespace sunSupport {
 inline constexpr int Floating = 0, Fixed = 1;
 }
+// A setting of a planet's bearings (`planet.bearing { … }`).
+inline bool isPlanetBearingSetting(Q k) {
+  return k == Q::PlanetBearingKind || k == Q::PlanetBearingC || k == Q::PlanetBearingC0 || k == Q::PlanetBearingCount ||
+         k == Q::PlanetBearingPitchDiameter || k == Q::PlanetBearingContamination;
+}
 // How a bevel pair is mounted (ISO 10300-1 K_Hbeta-be): straddle or cantilever bearings.
 namespace mounting {
 inline constexpr int BothStraddle = 0, OneCantilever = 1, BothCantilever = 2;

@@ -389,11 +389,20 @@ void Analyser::requireRating(const ir::Gearbox& g, const GearboxModel& m) {
       if (!st || !st->kind) return;
       if (st->rated) {
         // An internal gear's tooth root is the one its pinion-type cutter generates.
-        static const std::set<Q> root = {Q::BendingSafety, Q::BendingStress, Q::PermissibleBendingStress, Q::YF, Q::YS, Q::Ybeta,
-                                         Q::YNT, Q::YdeltarelT, Q::YRrelT, Q::YX};
-        const std::string& ringName = st->kind->gears[cat::gear::Ring];
-        bool ring =
-            st->kind->kind == ir::StageKind::Planetary && x.name.find("." + ringName + ".") != std::string::npos;
+        static const std::set<Q> root = {Q::BendingSafety,
+                                         Q::BendingStress,
+                                         Q::PermissibleBendingStress,
+                                         Q::YF,
+                                         Q::YS,
+                                         Q::Ybeta,
+                                         Q::YNT,
+                                         Q::YdeltarelT,
+                                         Q::YRrelT,
+                                         Q::YX,
+                                         Q::BendingDamage};
+        const bool planetary = st->kind->kind == ir::StageKind::Planetary;
+        const std::string ringName = planetary ? st->kind->gears[cat::gear::Ring] : std::string();
+        bool ring = planetary && x.name.find("." + ringName + ".") != std::string::npos;
         if (ring && root.count(*k) && !st->findAttr(ringName + ".cutter.teeth") &&
             reported.insert({x.span.line, x.span.col}).second)
           diags_.error(
@@ -425,7 +434,9 @@ void Analyser::requireRating(const ir::Gearbox& g, const GearboxModel& m) {
 // diameter and the oil's viscosity line at its temperature (E0225).
 void Analyser::planetBearingInputs(const StageModel& st, const ir::Expr& x, Q k, const char* where,
                                    std::set<std::pair<int, int>>& reported) {
-  if (k != Q::BearingLoad && k != Q::BearingLife && k != Q::BearingModifiedLife) return;
+  if ((k != Q::BearingLoad && k != Q::BearingLife && k != Q::BearingModifiedLife) ||
+      st.kind->kind != ir::StageKind::Planetary)
+    return;
   const std::string& planet = st.kind->gears[cat::gear::Planet];
   if (x.name.find("." + planet + ".") == std::string::npos) {
     if (reported.insert({x.span.line, x.span.col}).second)
@@ -452,13 +463,22 @@ void Analyser::planetBearingInputs(const StageModel& st, const ir::Expr& x, Q k,
 // planet (the load sharing's), the pinion-type cutter to the ring.
 void Analyser::planetaryGears(const ir::Gearbox& g) {
   for (const auto& st : g.stages) {
-    if (st.kind != ir::StageKind::Planetary) continue;
+    const ir::Attribute *kind = nullptr, *rating = nullptr, *loadSharing = nullptr, *pinError = nullptr,
+                        *support = nullptr;
+    bool bearingGiven = false;
     for (const auto& a : st.attributes) {
       auto dot = a.name.find('.');
-      if (dot == std::string::npos) continue;
-      int gear = cat::gearIndex(cat::kindSpec(st.kind), a.name.substr(0, dot));
-      auto key = cat::keyOf(a.name.substr(dot + 1));
+      int gear = dot == std::string::npos ? -1 : cat::gearIndex(cat::kindSpec(st.kind), a.name.substr(0, dot));
+      auto key = cat::keyOf(gear < 0 ? a.name : a.name.substr(dot + 1));
       if (!key) continue;
+      // Read at one value by the rating: a range or set would be rated at its middle.
+      bool plain = *key == Q::PinError || *key == Q::CutterTeeth || *key == Q::CutterShift ||
+                   *key == Q::CutterTipRadius || *key == Q::GearFlankRz || *key == Q::GearRootRz ||
+                   *key == Q::RatingRingPlanetDynamicFactor || cat::isPlanetBearingSetting(*key);
+      if (plain && (a.role == ir::Attribute::Decision || a.role == ir::Attribute::Freedom))
+        diags_.error("E0110", a.span,
+                     fmt::format("`{}` of stage `{}` takes one value: it is not searched", a.name, st.name));
+      if (st.kind != ir::StageKind::Planetary) continue;
       bool cutter = *key == Q::CutterTeeth || *key == Q::CutterShift || *key == Q::CutterTipRadius;
       if (cutter && gear != cat::gear::Ring)
         diags_.error(
@@ -469,14 +489,33 @@ void Analyser::planetaryGears(const ir::Gearbox& g) {
         diags_.error(
             "E0214", a.span,
             fmt::format("`{}` of stage `{}`: a pin error belongs to a planet (`planet.pin_error`)", a.name, st.name));
-      bool bearing = *key == Q::PlanetBearingKind || *key == Q::PlanetBearingC || *key == Q::PlanetBearingC0 ||
-                     *key == Q::PlanetBearingCount || *key == Q::PlanetBearingPitchDiameter ||
-                     *key == Q::PlanetBearingContamination;
-      if (bearing && gear != cat::gear::Planet)
+      if (cat::isPlanetBearingSetting(*key) && gear != cat::gear::Planet)
         diags_.error("E0214", a.span,
                      fmt::format("`{}` of stage `{}`: the stage's bearings are its planets' (`planet.bearing {{ … }}`)",
                                  a.name, st.name));
+      bool planet = gear == cat::gear::Planet;
+      bearingGiven = bearingGiven || (cat::isPlanetBearingSetting(*key) && planet);
+      if (planet && *key == Q::PlanetBearingKind) kind = &a;
+      if (planet && *key == Q::PlanetBearingC) rating = &a;
+      if (planet && *key == Q::PinError) pinError = &a;
+      if (*key == Q::RatingMeshLoadFactor && !a.symbol.empty()) loadSharing = &a; // its one word, `load_sharing`
+      if (*key == Q::SunSupport) support = &a;
     }
+    if (bearingGiven && (!kind || !rating))
+      diags_.error(
+          "E0225", st.span,
+          fmt::format("stage `{}`: the planets' bearings need `planet.bearing {{ kind = …; C = …; }}`", st.name));
+    if (loadSharing && !pinError)
+      diags_.warning(
+          "W0504", loadSharing->span,
+          fmt::format("stage `{}`: load sharing without `planet.pin_error` shares the load equally (K_gamma = 1)",
+                      st.name));
+    for (const ir::Attribute* a : {pinError, support})
+      if (a && !loadSharing)
+        diags_.warning(
+            "W0505", a->span,
+            fmt::format("`{}` of stage `{}` does nothing unless `rating {{ mesh_load_factor = load_sharing; }}`",
+                        a->name, st.name));
   }
 }
 

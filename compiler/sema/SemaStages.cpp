@@ -55,9 +55,13 @@ StageModel Analyser::makeStage(const Stmt& st) {
     case StmtKind::Require: m.rules.push_back({&b, st.name}); break;
     case StmtKind::Block:
       if (b.name == kRatingBlock) ratingBlock(m, b, seen);
-      else if (b.path.parts.size() == 2)
+      else if (b.path.parts.size() == 2 && m.kind && cat::gearIndex(*m.kind, b.path.parts[0]) >= 0)
         gearBlock(m, b, seen);
-      else diags_.error("E0224", nameOr(b), fmt::format("stage `{}` has no block `{}` (a stage's one block is `{}`)", st.name, b.name, kRatingBlock));
+      else
+        diags_.error(
+            "E0224", nameOr(b),
+            fmt::format("stage `{}` has no block `{}` (its blocks are `{}` and a gear's, as `ring.cutter {{ … }}`)",
+                        st.name, b.name, kRatingBlock));
       break;
     case StmtKind::Let:
       if (std::any_of(m.lets.begin(), m.lets.end(), [&](const Stmt* l) { return l->name == b.name; }))

@@ -471,7 +471,7 @@ double sharedLoadFactor(const Rated& g, const std::vector<PairRating>& r) {
   in.alphaRing = r[1].alphaWt;
   in.pinError = {g.sharing->pinError};
   in.floatingSun = g.sharing->floatingSun;
-  in.force = r[0].Ft * in.planets;
+  in.force = r[0].Fbt * in.planets; // along the lines of action, as c_gamma deflects them
   return shareLoad(in).Kgamma;
 }
 

@@ -382,9 +382,12 @@ std::string formFactorMethod(const rating::MeshRating& mr, const RatingReport& o
 // micropitting.
 void internalNotes(const rating::MeshRating& mr, RatingReport& out) {
   if (!mr.internal) return;
-  const bool rootRated = mr.input.gear[1].cutterTeeth > 0;
+  const bool cutter = mr.input.gear[1].cutterTeeth > 0, rootRated = cutter && mr.rating.rootError.empty();
   std::vector<std::string> notes;
-  if (!rootRated) {
+  if (cutter && !rootRated) {
+    out.notRated.push_back({out.gears[1], "tooth root", mr.rating.rootError + " (its flank is rated)", true});
+    notes.push_back(fmt::format("the {}'s tooth root is not rated: {}", out.gears[1], mr.rating.rootError));
+  } else if (!rootRated) {
     out.notRated.push_back({out.gears[1], "tooth root",
                             "its pinion-type cutter is not given (`ring.cutter { teeth = …; }`; its flank is rated)",
                             true});
@@ -482,7 +485,7 @@ RatingReport table(const ir::Stage& st, const rating::MeshRating& mr, bool sever
   gear("permissible_contact_stress", &GearRating::sigmaHP, pressure);
   size_t contactRow = out.rows.size();
   gear("contact_safety", &GearRating::SH, units::dims::none, Row::Contact);
-  const bool ringRoot = mr.internal && in.gear[1].cutterTeeth > 0;
+  const bool ringRoot = mr.internal && in.gear[1].cutterTeeth > 0 && r.rootError.empty();
   if (ringRoot) criticalSectionRows(r, out);
   gear("Y_F", &GearRating::YF);
   method(formFactorMethod(mr, out));
@@ -643,23 +646,30 @@ RatingReport bevelTable(const ir::Stage& st, const rating::BevelStageRating& br)
 // The planet bearings, in the sun-planet mesh's table, where the planet gives them; the
 // modified life where its pitch diameter and the oil's viscosity line are given.
 void planetBearingRows(const KindContext& c, RatingReport& out) {
-  if (!c.ev.model().attribute(c.stage, cat::gear::Planet, Q::PlanetBearingKind)) return;
+  const Model& m = c.ev.model();
+  if (!m.attribute(c.stage, cat::gear::Planet, Q::PlanetBearingKind)) return;
   const units::DisplayUnit h{"h", 3600};
-  auto row = [&](const char* key, Q q, const units::DisplayUnit& u, const char* method) {
+  std::vector<std::string> missing;
+  auto row = [&](const char* key, Q q, const units::DisplayUnit& u, const char* method, std::string why) {
     Value v = c.derived(cat::gear::Planet, q);
-    if (!v.isNumber()) return false;
+    if (!v.isNumber()) return missing.push_back(fmt::format("`{}` is not computed: {}", key, why));
     out.rows.push_back({key, key, u.name, u.scale, false, {v.mid()}});
     out.rows.back().method = method;
-    return true;
   };
   row("planet_bearing_load", Q::BearingLoad, units::displayUnitFor(units::dims::force),
-      "each bearing: the planet's two mesh forces summed, times K_gamma, over its bearings");
-  row("planet_bearing_life", Q::BearingLife, h, "ISO 281 L10h at the planet's speed relative to the carrier");
-  if (!row("planet_bearing_modified_life", Q::BearingModifiedLife, h,
-           "ISO 281 a1 a_ISO L10h, kappa from the rating's lubricant"))
+      "each bearing: the planet's two mesh forces summed, times K_gamma, over its bearings",
+      "the meshes are not rated at this design");
+  row("planet_bearing_life", Q::BearingLife, h, "ISO 281 L10h at the planet's speed relative to the carrier",
+      "ISO 281 refuses the bearing's load or rating");
+  bool modifiable = m.attribute(c.stage, cat::gear::Planet, Q::PlanetBearingPitchDiameter) &&
+                    m.attribute(c.stage, Q::RatingViscosity100) && m.attribute(c.stage, Q::RatingOilTemperature);
+  row("planet_bearing_modified_life", Q::BearingModifiedLife, h,
+      "ISO 281 a1 a_ISO L10h, kappa from the rating's lubricant",
+      modifiable ? "ISO 281 refuses the bearing's load or rating"
+                 : "it needs the bearing's `pitch_diameter` and the lubricant's `viscosity_100` and `oil_temperature`");
+  if (!missing.empty())
     out.note +=
-        std::string(out.note.empty() ? "" : "; ") + "the planet bearings' modified life needs their `pitch_diameter` "
-                                                    "and the lubricant's `viscosity_100` and `oil_temperature`";
+        std::string(out.note.empty() ? "" : "; ") + fmt::format("planet bearings: {}", fmt::join(missing, "; "));
 }
 
 } // namespace

@@ -541,7 +541,19 @@ void rateRoot(const PairInput& in, const Geometry& g, const PairRating& r, const
 }
 
 // One gear of the pair: its cycles, life factors, flank and root; stresses back to SI.
-void rateGear(const PairInput& in, const Geometry& g, const PairRating& r, const Shared& s, int i, GearRating& o) {
+// A gear's root left unrated (an internal gear without its cutter, or one its cutter cannot
+// cut): NaN, which the report lists with the reason.
+void unratedRoot(const GearInput& gi, GearRating& o) {
+  o.sFn = o.hFe = o.rhoF = o.alphaFen = o.YF = o.YS = o.Ybeta = o.YB = o.YDT = kNaN;
+  o.YNT = o.YdeltarelT = o.YRrelT = o.YX = kNaN;
+  o.YM = gi.YM;
+  o.sigmaF0 = o.sigmaF = o.sigmaFP = o.SF = kNaN;
+}
+
+// One gear of the pair: its cycles, life factors, flank and root; stresses back to SI. A
+// ring whose root cannot be rated keeps its flank's rating; `rootError` says why.
+void rateGear(const PairInput& in, const Geometry& g, const PairRating& r, const Shared& s, int i, GearRating& o,
+              std::string& rootError) {
   const auto& gi = in.gear[static_cast<size_t>(i)];
   o.tipDiameter = std::fabs(g.da[i]) * 1e-3;
   o.rootDiameter = std::fabs(g.df[i]) * 1e-3;
@@ -551,20 +563,17 @@ void rateGear(const PairInput& in, const Geometry& g, const PairRating& r, const
   o.fHb = gi.fHb;
   lifeFactors(in, treatmentOf(in, i), o);
   rateFlank(in, r, s, i, o);
-  if (i == 1 && g.internal && !(gi.cutterTeeth > 0)) {
-    // Without its pinion-type cutter an internal gear's fillet is not known: not rated.
-    o.sFn = o.hFe = o.rhoF = o.alphaFen = o.YF = o.YS = o.Ybeta = o.YB = o.YDT = kNaN;
-    o.YNT = o.YdeltarelT = o.YRrelT = o.YX = kNaN;
-    o.YM = gi.YM;
-    o.sigmaF0 = o.sigmaF = o.sigmaFP = o.SF = kNaN;
-    o.sigmaH *= 1e6;
-    o.sigmaHP *= 1e6;
-    return;
-  }
-  rateRoot(in, g, r, s, i, o);
-  // Back to SI.
   o.sigmaH *= 1e6;
   o.sigmaHP *= 1e6;
+  const bool internal = i == 1 && g.internal;
+  if (internal && !(gi.cutterTeeth > 0)) return unratedRoot(gi, o);
+  try {
+    rateRoot(in, g, r, s, i, o);
+  } catch (const std::domain_error& e) {
+    if (!internal) throw;
+    rootError = e.what();
+    return unratedRoot(gi, o);
+  }
   o.sigmaF0 *= 1e6;
   o.sigmaF *= 1e6;
   o.sigmaFP *= 1e6;
@@ -595,7 +604,7 @@ PairRating rate(const PairInput& in) {
   r.sigmaH0 = r.ZH * r.ZE * r.Zeps * r.Zbeta * std::sqrt(r.Ft / (g.d1 * g.b) * (r.u + 1) / r.u);
   const Shared s = sharedFactors(in, g, r);
   for (int i = 0; i < 2; ++i)
-    rateGear(in, g, r, s, i, r.gear[static_cast<size_t>(i)]);
+    rateGear(in, g, r, s, i, r.gear[static_cast<size_t>(i)], r.rootError);
   r.sigmaH0 *= 1e6;
   return r;
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 
 #include "rating/Scuffing.h"
 
@@ -98,6 +99,7 @@ struct PairRating {
   double ZH, ZE, Zeps, Zbeta, sigmaH0;
   std::array<GearRating, 2> gear;
   std::optional<ScuffingRating> scuffing = std::nullopt;  // when the oil's load stages are given
+  std::string rootError; // why an internal gear's root is not rated though its cutter is given
 };
 
 // Every factor and both safeties of the mesh. Throws std::domain_error with a sentence

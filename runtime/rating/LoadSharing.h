@@ -22,11 +22,11 @@ struct LoadSharingInput {
 struct LoadSharing {
   std::vector<double> share; // each planet's load over the mean load
   double Kgamma = 1;         // the largest share
-  int unloaded = 0;          // planets whose meshes opened (no load)
+  int unloaded = 0;          // planets that carry nothing (meshes open, or just touching)
 };
 
 // Throws std::domain_error with a sentence when the inputs admit no solution (no planets,
-// no stiffness, no load, or a floating sun left on fewer than three loaded planets).
+// no stiffness, no load, a floating sun whose loaded planets cannot balance it).
 LoadSharing shareLoad(const LoadSharingInput& in);
 
 } // namespace gbx::rt::rating
