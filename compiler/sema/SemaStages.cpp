@@ -573,6 +573,10 @@ ir::Stage Analyser::stage(const StageModel& st, const Scope& gbScope) {
       }
       bearingsReadOil = bearingsReadOil || (carries && !own);
     }
+  // A planet bearing's modified life reads the stage's oil too.
+  if (st.kind->kind == ir::StageKind::Planetary &&
+      st.findAttr(st.kind->gears[cat::gear::Planet] + ".bearing.pitch_diameter"))
+    bearingsReadOil = true;
   if (st.rated) ratingInputs(st, where, bearingsReadOil);
   out.spectrum = spectrumBins(st);
   return out;

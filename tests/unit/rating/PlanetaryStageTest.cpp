@@ -285,6 +285,21 @@ TEST(PlanetaryStage, PlanetarySettingsAreChecked) {
   EXPECT_EQ(diagnosticCodes(replaced(text, "mesh_load_factor   = 1.10;", "mesh_load_factor = load_sharing;")),
             "W0504 ");
   EXPECT_EQ(diagnosticCodes(replaced(text, at, at + " carrier.bearing { kind = cylindrical_roller; }")), "E0224 ");
+  // The oil's viscosity line read by a planet bearing's modified life only: no W0502.
+  const std::string oil = R"(import materials;
+gearbox W {
+  stage p1: planetary {
+    sun.z = 21;  planet.z = 30;  ring.z = 81;  planets = 3;  module = 8 mm;  face_width = 120 mm;
+    material = steel_18CrNiMo7_6;  accuracy = 6;  BEARING
+    rating { life = 50000 h; lubricant { viscosity_40 = 320 mm^2/s; viscosity_100 = 24 mm^2/s; oil_temperature = 70 degC; }
+             roughness { flank = 0.6 um; root = 3.0 um; } }
+  }
+  operating { input_speed = 1000 rpm; input_torque = 12000 N*m; }
+})";
+  EXPECT_EQ(diagnosticCodes(replaced(oil, "BEARING", "")), "W0502 W0502 ");
+  EXPECT_EQ(diagnosticCodes(replaced(
+                oil, "BEARING", "planet.bearing { kind = cylindrical_roller; C = 900 kN; pitch_diameter = 160 mm; }")),
+            "");
 }
 
 // Settings that belong to one gear of a planetary stage are refused on another.
