@@ -676,6 +676,21 @@ const RatedCorners& ratedCorners(const KindContext& c, bool damage, bool scuffin
   return out;
 }
 
+// A quantity of the stage's meshes at each rated corner: no value where any corner has none
+// (as arith::corners); an enclosure over a box.
+template <class F> Value overCorners(const RatedCorners& p, F pick) {
+  if (!p.g || p.corners.empty()) return Value::invalid();
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t k = 0; k < p.corners.size(); ++k) {
+    double v = p.failed[k] ? kNaN : pick(p.corners[k]);
+    if (!std::isfinite(v)) return Value::invalid();
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (p.corners.size() == 1) return Value::number(lo); // every input a point
+  return Value::range(std::nextafter(lo, -INFINITY), std::nextafter(hi, INFINITY));
+}
+
 Value rated(const KindContext& c, int gear, Side side, double (*select)(const PairRating&, int slot), bool damage = false,
             Worst worst = Worst::Governing) {
   bool scuffing = worst != Worst::Governing;
@@ -698,16 +713,7 @@ Value rated(const KindContext& c, int gear, Side side, double (*select)(const Pa
     int slot = gear < 0 ? 0 : g.meshes[static_cast<size_t>(k)].g0 == gear ? 0 : 1;
     return select(r[static_cast<size_t>(k)], slot);
   };
-  // As arith::corners: no value where any corner has none; an enclosure over a box.
-  double lo = INFINITY, hi = -INFINITY;
-  for (size_t k = 0; k < p.corners.size(); ++k) {
-    double v = p.failed[k] ? kNaN : pick(p.corners[k]);
-    if (!std::isfinite(v)) return Value::invalid();
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  if (p.corners.size() == 1) return Value::number(lo);  // every input a point
-  return Value::range(std::nextafter(lo, -INFINITY), std::nextafter(hi, INFINITY));
+  return overCorners(p, pick);
 }
 
 template <double PairRating::*M>
@@ -732,19 +738,11 @@ DerivedRow gearRow(Q key) {
           }};
 }
 
-// A quantity of the stage's meshes at each rated corner, enclosed as `rated` encloses one.
-template <class F> Value overCorners(const KindContext& c, F pick) {
+// A planetary stage's two meshes at each rated corner (none where the stage has other meshes).
+const RatedCorners& planetMeshes(const KindContext& c) {
+  static const RatedCorners none;
   const RatedCorners& p = ratedCorners(c, false, false);
-  if (!p.g || p.corners.empty() || p.corners[0].size() < 2) return Value::invalid();
-  double lo = INFINITY, hi = -INFINITY;
-  for (size_t k = 0; k < p.corners.size(); ++k) {
-    double v = p.failed[k] ? kNaN : pick(p.corners[k]);
-    if (!std::isfinite(v)) return Value::invalid();
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  if (p.corners.size() == 1) return Value::number(lo);
-  return Value::range(std::nextafter(lo, -INFINITY), std::nextafter(hi, INFINITY));
+  return p.g && p.g->meshes.size() == 2 && p.g->meshes[1].internal ? p : none;
 }
 
 // Each planet bearing's radial load at a corner: the planet's pin load (its two mesh forces)
@@ -800,11 +798,12 @@ template <Q K> DerivedRow planetBearingRow() {
             if (g != cat::gear::Planet) return Value::invalid();
             if (K == Q::BearingLoad) {
               double count = num2(c, cat::gear::Planet, Q::PlanetBearingCount, 1.0);
-              return overCorners(c, [&](const std::vector<PairRating>& r) { return planetBearingLoad(r, count); });
+              return overCorners(planetMeshes(c),
+                                 [&](const std::vector<PairRating>& r) { return planetBearingLoad(r, count); });
             }
             auto in = planetBearingInputs(c, K == Q::BearingModifiedLife);
             if (!in) return Value::invalid();
-            return overCorners(c, [&](const std::vector<PairRating>& r) {
+            return overCorners(planetMeshes(c), [&](const std::vector<PairRating>& r) {
               return planetBearingLife(*in, r, K == Q::BearingModifiedLife);
             });
           }};
