@@ -56,6 +56,8 @@ Better betterOf(Q q) {
   case Q::PermissibleFilmThickness:
   case Q::Life:
   case Q::ModifiedLife:
+  case Q::BearingLife:
+  case Q::BearingModifiedLife:
   case Q::StaticSafety: return Better::Larger;
   case Q::ContactStress:
   case Q::BendingStress:

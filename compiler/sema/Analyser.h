@@ -140,6 +140,7 @@ private:
   void thicknessAllowances(const ir::Gearbox& g, const GearboxModel& m);
   void sceneFactors(const ir::Gearbox& g);
   void planetaryGears(const ir::Gearbox& g);
+  void ringRim(const ir::Stage& st);
   void planetBearingInputs(const StageModel& st, const ir::Expr& x, Q k, const char* where,
                            std::set<std::pair<int, int>>& reported);
   std::vector<ir::SpectrumBin> spectrumBins(const StageModel& st);

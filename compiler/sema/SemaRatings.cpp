@@ -504,7 +504,12 @@ void Analyser::planetaryGears(const ir::Gearbox& g) {
     if (bearingGiven && (!kind || !rating))
       diags_.error(
           "E0225", st.span,
-          fmt::format("stage `{}`: the planets' bearings need `planet.bearing {{ kind = …; C = …; }}`", st.name));
+          fmt::format("stage `{}`: the planets' bearings need their {} (`planet.bearing {{ kind = …; C = …; }}`)",
+                      st.name,
+                      !kind && !rating ? "`kind` and `C`"
+                      : !kind          ? "`kind`"
+                                       : "`C`"));
+    ringRim(st);
     if (loadSharing && !pinError)
       diags_.warning(
           "W0504", loadSharing->span,
@@ -517,6 +522,32 @@ void Analyser::planetaryGears(const ir::Gearbox& g) {
             fmt::format("`{}` of stage `{}` does nothing unless `rating {{ mesh_load_factor = load_sharing; }}`",
                         a->name, st.name));
   }
+}
+
+// A cut ring's rim given thinner than ISO 6336-3's rim factor covers (1.75 modules), where
+// both are constants: said at check time rather than as an unrated root.
+void Analyser::ringRim(const ir::Stage& st) {
+  if (st.kind != ir::StageKind::Planetary) return;
+  const ir::Attribute *rim = nullptr, *module = nullptr, *cutter = nullptr;
+  const std::string ring = cat::kindSpec(st.kind).gears[cat::gear::Ring] + ".";
+  for (const auto& a : st.attributes) {
+    auto key = a.name.rfind(ring, 0) == 0 ? cat::keyOf(a.name.substr(ring.size())) : std::nullopt;
+    if (key == Q::RimThickness) rim = &a;
+    if (key == Q::CutterTeeth) cutter = &a;
+    if (cat::keyOf(a.name) == Q::Module) module = &a;
+  }
+  auto constant = [](const ir::Attribute* a) {
+    return a && a->role == ir::Attribute::Fixed && a->value && a->value->isConst();
+  };
+  if (!cutter || !constant(rim) || !constant(module)) return; // Y_B is read only where the root is rated
+  double sR = rim->value->value.toDouble(), m = module->value->value.toDouble();
+  if (sR < 1.75 * m)
+    diags_.error(
+        "E0405", rim->span,
+        fmt::format(
+            "`{}` of stage `{}` is {:g} mm, below 1.75 modules ({:g} mm): ISO 6336-3's rim factor of an internal gear "
+            "does not cover so thin a rim",
+            rim->name, st.name, sR * 1e3, 1.75 * m * 1e3));
 }
 
 // `dynamic_factor = scene NAME`: K_v by method A from a periodic single-mesh scene on the

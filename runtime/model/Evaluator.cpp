@@ -707,7 +707,9 @@ units::DisplayUnit valueUnitOf(const ir::Expr& e) {
 
 units::DisplayUnit displayUnitOf(const ir::Expr& e) {
   if (e.op == ir::Op::Quantity && e.ref.key == Q::Imbalance) return {"%", 0.01};
-  if (e.op == ir::Op::Quantity && (e.ref.key == Q::Life || e.ref.key == Q::ModifiedLife)) return {"h", 3600};
+  if (e.op == ir::Op::Quantity && (e.ref.key == Q::Life || e.ref.key == Q::ModifiedLife ||
+                                   e.ref.key == Q::BearingLife || e.ref.key == Q::BearingModifiedLife))
+    return {"h", 3600};
   if (e.op == ir::Op::Quantity && e.ref.key == Q::SlopeAt) return {"mrad", 1e-3};
   return valueUnitOf(e);
 }

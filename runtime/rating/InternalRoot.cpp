@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Dense>
@@ -32,21 +33,34 @@ template <class F> double bisect(F f, double lo, double hi) {
 }
 
 // The centre of the cutter's tip rounding (radius rho) on its tooth's right flank, the tooth
-// on the cutter's +y axis: tangent to the tip circle and to the involute.
-V2 roundingCentre(double m, double alpha, double z0, double x0, double ha0, double rho) {
+// on the cutter's +y axis: tangent to the tip circle and to the involute; none where the
+// rounding does not fit (a pointed or over-rounded tooth).
+std::optional<V2> fittedCentre(double m, double alpha, double z0, double x0, double ha0, double rho) {
   const double r0 = 0.5 * m * z0, rb = r0 * std::cos(alpha), ra = r0 + m * (ha0 + x0);
   const double halfAngle = (kPi / 2 + 2 * x0 * std::tan(alpha)) / z0;
   auto centre = [&](double r) -> V2 {
     double ar = std::acos(rb / r), eta = halfAngle + inv(alpha) - inv(ar), tau = eta - ar;
     return V2(r * std::sin(eta), r * std::cos(eta)) + rho * V2(-std::cos(tau), std::sin(tau));
   };
-  if (!(ra - rho > rb) || centre(ra).norm() < ra - rho)
-    throw std::domain_error("the ring's cutter has no room for its tip radius (pointed or over-rounded cutter teeth)");
-  double r = bisect([&](double s) { return centre(s).norm() - (ra - rho); }, rb, ra);
-  V2 c = centre(r);
-  if (!(c.x() > 0))
-    throw std::domain_error("the ring's cutter has no room for its tip radius (pointed or over-rounded cutter teeth)");
+  auto gap = [&](double r) { return centre(r).norm() - (ra - rho); };
+  if (!(ra - rho > rb) || !(gap(rb) < 0) || !(gap(ra) >= 0)) return std::nullopt;
+  V2 c = centre(bisect(gap, rb, ra));
+  if (!(c.x() > 0)) return std::nullopt;
   return c;
+}
+
+// The rounding's centre, or a sentence with the largest tip radius that fits this cutter.
+V2 roundingCentre(double m, double alpha, double z0, double x0, double ha0, double rho) {
+  if (auto c = fittedCentre(m, alpha, z0, x0, ha0, rho)) return *c;
+  double lo = 0, hi = rho;
+  for (int i = 0; i < 60; ++i) {
+    double mid = 0.5 * (lo + hi);
+    (fittedCentre(m, alpha, z0, x0, ha0, mid) ? lo : hi) = mid;
+  }
+  throw std::domain_error(
+      fmt::format("the ring's cutter has no room for its tip radius {:.3f} m_n: with {:g} teeth and shift {:g} "
+                  "at most {:.3f} m_n fits",
+                  rho / m, z0, x0, lo / m));
 }
 
 // The rounding centre's path in the internal gear's frame (its tooth space on +y): the
