@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "catalogue/Budgets.h"
+#include "catalogue/Shafts.h"
 
 namespace gbx::cat {
 
@@ -150,6 +151,14 @@ std::vector<AttrSpec> planetaryRatingInputs() {
 
 // What a planetary stage's gears give beyond the plain gear's: a planet's pin position error
 // (the load sharing), the ring's pinion-type cutter (its tooth root, ISO 6336-3).
+// A shaft bearing's kinds, in their order (the runtime reads a planet bearing's as the same
+// ISO 281 kind).
+std::vector<std::string> shaftBearingKinds() {
+  for (const auto& a : bearingSettings())
+    if (a.key == Q::BearingKind) return a.symbols;
+  return {};
+}
+
 std::vector<AttrSpec> planetaryGearAttrs() {
   auto of = [](std::string gear, AttrSpec a, std::string example) {
     a.exampleGear = std::move(gear);
@@ -173,10 +182,8 @@ std::vector<AttrSpec> planetaryGearAttrs() {
       // Each planet's bearings (docs/rating.md "Planet bearings"): ISO 281 at the planet's
       // speed relative to the carrier, the load shared equally between `count` bearings.
       of("planet",
-         symbol(
-             "bearing.kind",
-             {"deep_groove_ball", "angular_contact_ball", "cylindrical_roller", "tapered_roller", "spherical_roller"},
-             "type of each planet's bearings: the ISO 281 life exponent (ball 3, roller 10/3) and a_ISO curve"),
+         symbol("bearing.kind", shaftBearingKinds(),
+                "type of each planet's bearings: the ISO 281 life exponent (ball 3, roller 10/3) and a_ISO curve"),
          "cylindrical_roller"),
       of("planet", hinted(pos("bearing.C", force, "basic dynamic load rating of one planet bearing"), "kN"), "2800 kN"),
       of("planet", hinted(pos("bearing.C0", force, "basic static load rating of one planet bearing"), "kN"), "4300 kN"),

@@ -472,14 +472,13 @@ void Analyser::planetaryGears(const ir::Gearbox& g) {
       auto key = cat::keyOf(gear < 0 ? a.name : a.name.substr(dot + 1));
       if (!key) continue;
       // Read at one value by the rating: a range or set would be rated at its middle.
-      bool plain = *key == Q::PinError || *key == Q::CutterTeeth || *key == Q::CutterShift ||
-                   *key == Q::CutterTipRadius || *key == Q::GearFlankRz || *key == Q::GearRootRz ||
+      bool cutter = *key == Q::CutterTeeth || *key == Q::CutterShift || *key == Q::CutterTipRadius;
+      bool plain = cutter || *key == Q::PinError || *key == Q::GearFlankRz || *key == Q::GearRootRz ||
                    *key == Q::RatingRingPlanetDynamicFactor || cat::isPlanetBearingSetting(*key);
       if (plain && (a.role == ir::Attribute::Decision || a.role == ir::Attribute::Freedom))
         diags_.error("E0110", a.span,
                      fmt::format("`{}` of stage `{}` takes one value: it is not searched", a.name, st.name));
       if (st.kind != ir::StageKind::Planetary) continue;
-      bool cutter = *key == Q::CutterTeeth || *key == Q::CutterShift || *key == Q::CutterTipRadius;
       if (cutter && gear != cat::gear::Ring)
         diags_.error(
             "E0214", a.span,

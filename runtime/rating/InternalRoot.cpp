@@ -138,9 +138,7 @@ ToothForm internalToothForm(double z, double x, double da, double df, double mn,
   t.hFe = s.radius - loadRadius;
   t.theta = kPi / 3;
   if (!(t.sFn > 0 && t.hFe > 0)) throw std::domain_error("the ring's critical section lies above its load point");
-  t.YF = 6 * (t.hFe / mn) * std::cos(t.alphaFen) / (sq(t.sFn / mn) * std::cos(alphaN));
-  double L = t.sFn / t.hFe, qs = t.sFn / (2 * t.rhoF);
-  t.YS = (1.2 + 0.13 * L) * std::pow(qs, 1.0 / (1.21 + 2.3 / L));
+  formAndStressFactors(t, mn, alphaN);
   return t;
 }
 

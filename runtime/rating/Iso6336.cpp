@@ -164,10 +164,14 @@ ToothForm filletForm(double zn, double mn, double alphaN, double x, double xsm, 
   t.hFe = hFe;
   t.alphaFen = alphaFen;
   t.gamma = gammaE;
-  t.YF = 6 * (hFe / mn) * std::cos(alphaFen) / (sq(sFn / mn) * std::cos(alphaN));
-  double L = sFn / hFe, qs = sFn / (2 * rhoF);
-  t.YS = (1.2 + 0.13 * L) * std::pow(qs, 1.0 / (1.21 + 2.3 / L));
+  formAndStressFactors(t, mn, alphaN);
   return t;
+}
+
+void formAndStressFactors(ToothForm& t, double mn, double alphaN) {
+  t.YF = 6 * (t.hFe / mn) * std::cos(t.alphaFen) / (sq(t.sFn / mn) * std::cos(alphaN));
+  double L = t.sFn / t.hFe, qs = t.sFn / (2 * t.rhoF);
+  t.YS = (1.2 + 0.13 * L) * std::pow(qs, 1.0 / (1.21 + 2.3 / L));
 }
 
 ToothForm toothForm(double z, double x, double da, double mn, double alphaN, double beta, double epsAlpha, double hfP, double rhoFP) {

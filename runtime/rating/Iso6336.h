@@ -151,6 +151,9 @@ struct ToothForm {
 // dedendum and root radius as multiples of m_n. Unchecked: the caller refuses a section
 // without a tangent.
 ToothForm filletForm(double zn, double mn, double alphaN, double x, double xsm, double hfP, double rhoFP, double dLoad);
+// Y_F and Y_S of a critical section (its s_Fn, h_Fe, rho_F, alpha_Fen in mm and rad), by
+// ISO 6336-3's formulas, external or internal alike.
+void formAndStressFactors(ToothForm& t, double mn, double alphaN);
 ToothForm toothForm(double z, double x, double tipDiameter, double mn, double alphaN, double beta, double epsAlpha,
                     double hfP, double rhoFP);
 
