@@ -497,7 +497,8 @@ std::vector<PairRating> rateMeshes(const Rated& g, const V& x, bool damage, bool
     if (std::isfinite(Kgamma)) in.Kgamma = Kgamma;
     out.push_back(rate(in));
     underSpectrum(g, in, out.back(), damage);
-    if (scuffing) out.back().scuffing = scuffingOf(in, out.back());
+    // An internal mesh's scuffing and micropitting are for information: not the design's.
+    if (scuffing && !g.meshes[k].internal) out.back().scuffing = scuffingOf(in, out.back());
   }
   return out;
 }
@@ -837,10 +838,11 @@ std::optional<std::vector<SpectrumBin>> spectrumBins(const KindContext& c, std::
 }
 
 std::optional<ScuffingRating> scuffingOf(const PairInput& in, const PairRating& r, ScuffingEdition edition, std::string* why) {
-  if (!in.oil || in.gear[1].internal) return std::nullopt;
+  if (!in.oil) return std::nullopt;
   ScuffingMesh m;
+  const double sign = in.gear[1].internal ? -1.0 : 1.0; // a ring in the signed convention
   m.z1 = in.gear[0].z;
-  m.z2 = in.gear[1].z;
+  m.z2 = sign * in.gear[1].z;
   m.mn = in.mn;
   m.alphaN = in.alphaN;
   m.beta = in.beta;
@@ -848,7 +850,7 @@ std::optional<ScuffingRating> scuffingOf(const PairInput& in, const PairRating& 
   m.a = (m.z1 + m.z2) * mt / 2 * std::cos(alphaT) / std::cos(r.alphaWt);
   m.b = in.b;
   m.da1 = r.gear[0].tipDiameter;
-  m.da2 = r.gear[1].tipDiameter;
+  m.da2 = sign * r.gear[1].tipDiameter;
   m.Ft = r.Ft;
   m.KA = in.KA;
   m.Kgamma = r.Kgamma;
@@ -868,8 +870,9 @@ std::optional<ScuffingRating> scuffingOf(const PairInput& in, const PairRating& 
   auto nitrided = [&](size_t k) { return in.gear[k].treatment.value_or(in.treatment) == Treatment::Nitrided; };
   m.XW = nitrided(0) && nitrided(1) ? 1.5 : 1.0;
   // A gear in n_p meshes heats the bulk by (1 + n_p)/2: the sun among its planets, an idler or
-  // a planet between two mates.
-  m.Xmp = in.planets > 0 ? (1.0 + in.planets) / 2 : (in.gear[0].YM < 1 || in.gear[1].YM < 1) ? 1.5 : 1.0;
+  // a planet between two mates (the planet drives the ring mesh).
+  const bool twoMates = in.gear[0].YM < 1 || in.gear[1].YM < 1 || in.gear[1].internal;
+  m.Xmp = in.planets > 0 && !in.gear[1].internal ? (1.0 + in.planets) / 2 : twoMates ? 1.5 : 1.0;
   m.grade = in.grade;
   try {
     return rateScuffing(m, *in.oil, edition);

@@ -132,11 +132,9 @@ void spectrumRows(const PairRating& r, size_t contactRow, RatingReport& out) {
 void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
   const rating::PairInput& in = mr.input;
   if (!in.oil) return;
-  if (mr.internal) {
-    out.notRated.push_back({out.gears[1], "scuffing and micropitting",
-                            "the flash temperature and film thickness along the path are implemented for external meshes", true});
-    return;
-  }
+  // The standards are written for external gears: an internal mesh's results are printed for
+  // information, with no minimum beside them, and stay out of the design's quantities.
+  const bool info = mr.internal;
   // The rating of the stage has the TS's; without it, asking again gives the reason.
   std::string why;
   auto ts = mr.rating.scuffing ? mr.rating.scuffing : rating::scuffingOf(in, mr.rating, rating::ScuffingEdition::TS, &why);
@@ -146,9 +144,10 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
   }
   auto tr = rating::scuffingOf(in, mr.rating, rating::ScuffingEdition::TR);
   using Row = RatingReport::Row;
-  auto row = [&](std::string key, double v, std::string unit, double scale, std::string method, Row::Minimum min = Row::NoMinimum,
-                 double offset = 0) {
-    Row r{key, key, std::move(unit), scale, false, {v}, Row::Plain, min, std::move(method)};
+  auto row = [&](std::string key, double v, std::string unit, double scale, std::string method,
+                 Row::Minimum min = Row::NoMinimum, double offset = 0) {
+    if (info && min != Row::NoMinimum) method += "; for information (written for external gears)";
+    Row r{key, key, std::move(unit), scale, false, {v}, Row::Plain, info ? Row::NoMinimum : min, std::move(method)};
     r.offset = offset;
     out.rows.push_back(std::move(r));
   };
@@ -195,8 +194,8 @@ void scuffingRows(const rating::MeshRating& mr, RatingReport& out) {
     out.warnings.push_back(fmt::format("the pitch-line velocity on the working circle, {} m/s, is beyond the 80 m/s of the running tests "
                                        "behind the scuffing methods (ISO/TS 6336-20): their results are less certain here",
                                        formatNumber(s.vw)));
-  out.scuffing = s.scuffing;
-  out.micropitting = s.micropitting;
+  out.scuffing = s.scuffing && !info;
+  out.micropitting = s.micropitting && !info;
   out.minScuffing = in.SBmin;
   out.minIntegralScuffing = in.SintSmin;
   out.minMicropitting = in.SLmin;
@@ -317,7 +316,7 @@ void backlashRows(const rating::PairInput& in, const std::array<double, 2>& db, 
 void inputRows(const rating::MeshRating& mr, RatingReport& out) {
   const rating::PairInput& in = mr.input;
   const PairRating& r = mr.rating;
-  constexpr double pi = 3.14159265358979323846, nan = std::numeric_limits<double>::quiet_NaN();
+  constexpr double pi = 3.14159265358979323846;
   const units::DisplayUnit mm{"mm", 1e-3}, deg{"deg", pi / 180}, plain{"", 1};
   GivenRows rows{out};
   double alphaT = std::atan(std::tan(in.alphaN) / std::cos(in.beta));
@@ -395,8 +394,8 @@ void internalNotes(const rating::MeshRating& mr, RatingReport& out) {
   }
   if (mr.input.oil)
     notes.push_back(
-        fmt::format("{} (the flash temperature and film along the path are implemented for external meshes)",
-                    rootRated ? "its scuffing and micropitting are not rated" : "nor its scuffing and micropitting"));
+        "its scuffing and micropitting are for information: ISO/TS 6336-20, -21 and -22 are written for external "
+        "gears");
   out.note = fmt::format("{}", fmt::join(notes, "; "));
 }
 

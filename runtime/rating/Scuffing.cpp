@@ -47,13 +47,16 @@ Path pathOf(const ScuffingMesh& m) {
   p.alphaT = std::atan(std::tan(m.alphaN) / std::cos(m.beta));
   p.betaB = std::asin(std::sin(m.beta) * std::cos(m.alphaN));
   double mt = mn / std::cos(m.beta), rb1 = m.z1 * mt / 2 * std::cos(p.alphaT), rb2 = m.z2 * mt / 2 * std::cos(p.alphaT);
+  // An internal gear's z2, r_b2, r_a2 and the centre distance a are negative (the signed
+  // convention): the same formulas then hold for both kinds of mesh.
   double c = (rb1 + rb2) / a;
-  if (!(c < 1)) throw std::domain_error("the centre distance is too small for the base circles");
+  if (!(c > 0 && c < 1)) throw std::domain_error("the centre distance is too small for the base circles");
   p.alphaWt = std::acos(c);
   p.rhoC1 = rb1 * std::tan(p.alphaWt);
   double ra1 = m.da1 * 1e3 / 2, ra2 = m.da2 * 1e3 / 2;
-  if (!(ra1 > rb1 && ra2 > rb2)) throw std::domain_error("a tip circle lies inside its base circle");
-  double rhoE1 = std::sqrt(sq(ra1) - sq(rb1)), rhoA2 = std::sqrt(sq(ra2) - sq(rb2));
+  if (!(ra1 > rb1 && std::fabs(ra2) > std::fabs(rb2) && ra2 * rb2 > 0))
+    throw std::domain_error("a tip circle lies inside its base circle");
+  double rhoE1 = std::sqrt(sq(ra1) - sq(rb1)), rhoA2 = std::copysign(std::sqrt(sq(ra2) - sq(rb2)), m.z2);
   p.pbt = 2 * kPi * rb1 / m.z1;
   p.gE = rhoE1 / p.rhoC1 - 1;
   p.gA = (a * std::sin(p.alphaWt) - rhoA2) / p.rhoC1 - 1;
@@ -105,8 +108,11 @@ double friction(const Path& p, double wBt, double KBgamma, double eta, double Ra
   return 0.045 * std::pow(w / (v * p.rhoRedC), 0.2) * std::pow(eta, -0.05) * (roughness ? XR : 1.0) * XL;
 }
 
+// X_G; for an internal mesh (u < 0) u + 1 and u - Gamma are both negative and enter as
+// magnitudes, their ratio being the concave flank's share of the relative curvature.
 double geometryFactor(const Path& p, double g) {
-  return 0.51 * std::sqrt(p.u + 1) * std::fabs(std::sqrt(1 + g) - std::sqrt(1 - g / p.u)) / (std::pow(1 + g, 0.25) * std::pow(p.u - g, 0.25));
+  return 0.51 * std::sqrt(std::fabs(p.u + 1)) * std::fabs(std::sqrt(1 + g) - std::sqrt(1 - g / p.u)) /
+         (std::pow(1 + g, 0.25) * std::pow(std::fabs(p.u - g), 0.25));
 }
 
 // X_epsilon of the integral temperature (ISO/TS 6336-21) from the addendum contact ratios.
@@ -157,11 +163,13 @@ Film film(const ScuffingMesh& m, const Path& p, const Lubricant& oil, double the
   Film f;
   double KBg = helicalLoadFactor(p.epsAlpha + p.epsBeta);
   f.mu = friction(p, lineLoad(m), KBg, oil.dynamic(thetaOil + kZeroC) * 1e3, m.Ra * 1e6, oilTypeFactor(oil.base), true);
+  // The loss factor; an internal mesh's negative z2 lowers it (less sliding).
   double HV = (sq(p.eps1) + sq(p.eps2) + 1 - p.epsAlpha) * (1 / m.z1 + 1 / m.z2) * kPi / std::cos(p.betaB);
   double emax = std::max(p.eps1, p.eps2);
   double XCa = std::min(m.Ca[0], m.Ca[1]) * 1e6 >= m.effectiveRelief() ? 1 + 0.24 * emax + 0.71 * sq(emax) : 1.0;
   double XS = oil.injection ? 1.2 : 1.0;
-  f.thetaM = thetaOil + 7400 * std::pow(m.power * 1e-3 * f.mu * HV / (m.a * 1e3 * m.b * 1e3), 0.72) * XS / (1.2 * XCa);
+  f.thetaM = thetaOil +
+             7400 * std::pow(m.power * 1e-3 * f.mu * HV / (std::fabs(m.a) * 1e3 * m.b * 1e3), 0.72) * XS / (1.2 * XCa);
   double etaM = oil.dynamic(f.thetaM + kZeroC), alphaM = pressureViscosity(oil, f.thetaM);
   double load = m.loadFactor();
   f.lambdaMin = INFINITY;
@@ -232,6 +240,35 @@ double cachedTestFilmThickness(const Lubricant& oil, int stage, double Er, doubl
   return v;
 }
 
+// The integral temperature (ISO/TS 6336-21), run in (Phi_E = 1: X_E = 1), into r; muC the
+// friction at the pitch point, a [mm].
+void integralTemperature(const ScuffingMesh& m, const Path& p, const Lubricant& oil, double muC, double a,
+                         ScuffingRating& r) {
+  const double thetaOil = oil.oilTemperature - kZeroC, Ltype = oilTypeFactor(oil.base);
+  double XBE = geometryFactor(p, p.gE);
+  double ratio = p.eps2 / std::max(p.eps1, 1e-12); // approach over recess, pinion driving
+  double XQ = ratio <= 1.5 ? 1.0 : ratio < 3 ? 1.4 - 4.0 / 15 * ratio : 0.6;
+  double emax = std::max(p.eps1, p.eps2);
+  double Ca = std::min(p.eps1 >= p.eps2 ? m.Ca[0] * 1e6 : m.Ca[1] * 1e6, r.Ceff);
+  double q = r.Ceff > 0 ? Ca / r.Ceff : 0;
+  double XCa = 1 + (0.06 + 0.18 * q) * emax + (0.02 + 0.69 * q) * sq(emax);
+  double flaE = muC * r.XM * r.XalphaBeta * XBE * std::pow(r.KBgamma * r.wBt, 0.75) * std::sqrt(p.v) /
+                (std::pow(a, 0.25) * XQ * XCa);
+  r.thetaFlaInt = flaE * contactRatioFactor(p.epsAlpha, p.eps1, p.eps2);
+  r.thetaMInt = thetaOil + 0.7 * m.Xmp * r.XS * r.thetaFlaInt;
+  r.thetaInt = r.thetaMInt + 1.5 * r.thetaFlaInt;
+  double T1T = fzgPinionTorque(oil.fzgStage);
+  double thetaMT = 80 + 0.23 * T1T * Ltype, thetaFlaIntT = 0.2 * T1T * std::pow(100 / (oil.nu40 * 1e6), 0.02) * Ltype;
+  r.thetaIntS = thetaMT + 1.5 * thetaFlaIntT;
+  // S_intS is a ratio of Celsius temperatures, as the standard states it: it needs both above 0 degC.
+  if (!(r.thetaInt > 0))
+    throw std::domain_error(
+        fmt::format("the integral temperature {:.4g} degC is not above 0 degC, where S_intS (a ratio of Celsius "
+                    "temperatures) has no meaning",
+                    r.thetaInt));
+  r.SintS = r.thetaIntS / r.thetaInt;
+}
+
 } // namespace
 
 double Lubricant::kinematic(double T) const {
@@ -249,7 +286,9 @@ double Lubricant::dynamic(double T) const { return kinematic(T) * density(T); }
 double fzgPinionTorque(int stage) { return 3.726 * stage * stage; }
 
 ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, ScuffingEdition edition) {
-  if (!(m.z1 > 0 && m.z2 > 0)) throw std::domain_error("scuffing and micropitting are rated for external meshes only");
+  if (!(m.z1 > 0 && (m.z2 > 0 || -m.z2 > m.z1) && m.a * m.z2 > 0 && m.da2 * m.z2 > 0))
+    throw std::domain_error("an internal mesh's ring needs more teeth than its pinion, and its z, tip diameter and "
+                            "centre distance negative");
   if (!(oil.nu40 > oil.nu100 && oil.nu100 > 0))
     throw std::domain_error("the oil's viscosity at 40 degC must exceed its viscosity at 100 degC (the ASTM D341 line)");
   const Path p = pathOf(m);
@@ -283,7 +322,7 @@ ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, Scuffin
   r.muM = tr ? friction(p, r.wBt, r.KBgamma, etaMPas, m.Ra * 1e6, Ltype, false) : muC;
   const double Ceff = m.effectiveRelief();  // um
   r.Ceff = Ceff;
-  const double a = m.a * 1e3;
+  const double a = std::fabs(m.a) * 1e3;
   // Flash temperature along the path (pinion driving: the approach is Gamma < 0).
   const std::vector<double> gammas = grid(p, points);
   std::vector<double> fla, XG;
@@ -316,29 +355,7 @@ ScuffingRating rateScuffing(const ScuffingMesh& m, const Lubricant& oil, Scuffin
     throw std::domain_error(fmt::format("the scuffing temperature of FZG load stage {} ({:.4g} degC) is not above the oil's {:.4g} degC",
                                         oil.fzgStage, r.thetaS, thetaOil));
   r.SB = (r.thetaS - thetaOil) / (r.thetaBmax - thetaOil);
-  // Integral temperature (ISO/TS 6336-21), run in (Phi_E = 1: X_E = 1).
-  {
-    double XBE = geometryFactor(p, p.gE);
-    double ratio = p.eps2 / std::max(p.eps1, 1e-12);  // approach over recess, pinion driving
-    double XQ = ratio <= 1.5 ? 1.0 : ratio < 3 ? 1.4 - 4.0 / 15 * ratio : 0.6;
-    double emax = std::max(p.eps1, p.eps2);
-    double Ca = std::min(p.eps1 >= p.eps2 ? m.Ca[0] * 1e6 : m.Ca[1] * 1e6, Ceff);
-    double q = Ceff > 0 ? Ca / Ceff : 0;
-    double XCa = 1 + (0.06 + 0.18 * q) * emax + (0.02 + 0.69 * q) * sq(emax);
-    double flaE = muC * r.XM * r.XalphaBeta * XBE * std::pow(r.KBgamma * r.wBt, 0.75) * std::sqrt(p.v) / (std::pow(a, 0.25) * XQ * XCa);
-    r.thetaFlaInt = flaE * contactRatioFactor(p.epsAlpha, p.eps1, p.eps2);
-    r.thetaMInt = thetaOil + 0.7 * m.Xmp * r.XS * r.thetaFlaInt;
-    r.thetaInt = r.thetaMInt + 1.5 * r.thetaFlaInt;
-    double T1T = fzgPinionTorque(oil.fzgStage);
-    double thetaMT = 80 + 0.23 * T1T * Ltype, thetaFlaIntT = 0.2 * T1T * std::pow(100 / (oil.nu40 * 1e6), 0.02) * Ltype;
-    r.thetaIntS = thetaMT + 1.5 * thetaFlaIntT;
-    // S_intS is a ratio of Celsius temperatures, as the standard states it: it needs both above 0 degC.
-    if (!(r.thetaInt > 0))
-      throw std::domain_error(fmt::format("the integral temperature {:.4g} degC is not above 0 degC, where S_intS (a ratio of Celsius "
-                                          "temperatures) has no meaning",
-                                          r.thetaInt));
-    r.SintS = r.thetaIntS / r.thetaInt;
-  }
+  integralTemperature(m, p, oil, muC, a, r);
   r.scuffing = oil.fzgStage > 0;
   if (!r.scuffing) r.thetaS = r.SB = r.thetaIntS = r.SintS = std::numeric_limits<double>::quiet_NaN();
   // Micropitting (ISO/TS 6336-22 method B).

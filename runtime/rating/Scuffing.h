@@ -1,9 +1,11 @@
 #pragma once
 // Scuffing by the flash temperature (ISO/TS 6336-20) and by the integral temperature
 // (ISO/TS 6336-21), and micropitting by the specific film thickness (ISO/TS 6336-22
-// method B) of one external cylindrical mesh, along its path of contact (docs/rating.md).
-// Inputs are SI; inside, the formulas run in the standards' units (mm, N, m/s, N/mm^2,
-// mPa s, degC).
+// method B) of one cylindrical mesh, along its path of contact (docs/rating.md). An internal
+// mesh is written in the signed convention (its ring's z2, tip diameter and the centre
+// distance negative); the standards are written for external gears, so its results are for
+// information. Inputs are SI; inside, the formulas run in the standards' units (mm, N, m/s,
+// N/mm^2, mPa s, degC).
 #include <array>
 #include <limits>
 #include <vector>
@@ -33,9 +35,9 @@ struct Lubricant {
 
 // The mesh as the ISO 6336 rating found it: geometry, the load with its factors, speed.
 struct ScuffingMesh {
-  double z1 = 0, z2 = 0;          // pinion (driving) and wheel tooth counts
-  double mn = 0, alphaN = 0, beta = 0, a = 0, b = 0;  // [m], [rad], working centre distance [m]
-  double da1 = 0, da2 = 0;        // tip diameters [m]
+  double z1 = 0, z2 = 0;                             // pinion (driving) and wheel tooth counts (a ring's negative)
+  double mn = 0, alphaN = 0, beta = 0, a = 0, b = 0; // [m], [rad], working centre distance [m] (negative: internal)
+  double da1 = 0, da2 = 0;                           // tip diameters [m] (a ring's negative)
   double Ft = 0;                  // nominal tangential force at the reference circle [N]
   double KA = 1, Kgamma = 1, Kv = 1, KHbeta = 1, KHalpha = 1;
   double speed1 = 0;              // pinion [rad/s]

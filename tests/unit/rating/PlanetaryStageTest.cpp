@@ -21,6 +21,7 @@
 #include "driver/Driver.h"
 #include "model/Evaluator.h"
 #include "model/RatingRows.h"
+#include "passes/Ratings.h"
 #include "rating/InternalRoot.h"
 #include "rating/LoadSharing.h"
 
@@ -270,6 +271,36 @@ TEST(PlanetaryStage, ARingRootThatCannotBeRatedLeavesTheRestRated) {
   EXPECT_TRUE(std::isnan(pr.gear[1].SF));
   EXPECT_NEAR(pr.gear[1].SH, 0.96, 0.02);
   EXPECT_GT(pr.gear[0].SF, 1.0);
+}
+
+// The planet-ring mesh's scuffing and micropitting are printed for information (the standards
+// are written for external gears): rows in its table with no minimum and the reason, nothing
+// in the stage's quantities, which stay the sun-planet mesh's.
+TEST(PlanetaryStage, RingMeshScuffingAndMicropittingForInformation) {
+  Rated r = rateSpec(readSpec("nrel5mw_planetary_stage.gbx"));
+  ASSERT_EQ(r.meshes.size(), 2u);
+  EXPECT_TRUE(r.meshes[0].rating.scuffing.has_value());
+  EXPECT_FALSE(r.meshes[1].rating.scuffing.has_value());
+  rt::Assignment a(*r.model);
+  auto tables = rt::passes::ratings(*r.model, a).ratings;
+  ASSERT_EQ(tables.size(), 2u);
+  const rt::RatingReport& ring = tables[1];
+  EXPECT_FALSE(ring.scuffing);
+  EXPECT_FALSE(ring.micropitting);
+  int info = 0;
+  for (const auto& row : ring.rows)
+    if (row.key == "scuffing_safety" || row.key == "integral_scuffing_safety" || row.key == "micropitting_safety") {
+      ++info;
+      EXPECT_EQ(row.minimum, rt::RatingReport::Row::NoMinimum) << row.key;
+      EXPECT_NE(row.method.find("for information"), std::string::npos) << row.method;
+      ASSERT_EQ(row.si.size(), 1u);
+      EXPECT_GT(row.si[0], 1.0) << row.key; // a slow, lightly sliding internal mesh
+    }
+  EXPECT_EQ(info, 3);
+  EXPECT_NE(ring.note.find("for information"), std::string::npos) << ring.note;
+  EXPECT_FALSE(ring.pathGamma.empty());
+  EXPECT_EQ(ring.filmThickness.size(), ring.pathGamma.size());
+  EXPECT_TRUE(tables[0].scuffing);
 }
 
 // What the checker says of the planetary settings: a range where one value is read, a

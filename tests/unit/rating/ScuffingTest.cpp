@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <vector>
 
 #include "ScuffingReference.h"
 #include "rating/Scuffing.h"
@@ -243,6 +245,119 @@ TEST(Scuffing, ViscosityLineThroughItsTwoPoints) {
   EXPECT_NEAR(oil.kinematic(40 + kZeroC), 220e-6, 1e-12);
   EXPECT_NEAR(oil.kinematic(100 + kZeroC), 19e-6, 1e-12);
   EXPECT_NEAR(oil.kinematic(80 + kZeroC) * 1e6, ref::kinematicViscosityASTM(220, 19, 80), 1e-9);
+}
+
+// The NREL 5 MW planetary stage's planet-ring mesh in the signed convention (the ring's z,
+// tip diameter and the centre distance negative), its load as the commercial report's.
+ScuffingMesh planetRing() {
+  ScuffingMesh m;
+  m.z1 = 17;
+  m.z2 = -56;
+  m.mn = 45e-3;
+  m.alphaN = 20 * kPi / 180;
+  m.a = -863e-3;
+  m.b = 491e-3;
+  m.da1 = 905.470e-3;
+  m.da2 = -2475.118e-3;
+  m.Ft = 779454.877;
+  m.KA = 1.25;
+  m.Kgamma = 1.1;
+  m.Kv = 1.05;
+  m.KHbeta = 1.15;
+  m.speed1 = 39.86 * kPi / 30; // the planet relative to the carrier
+  m.power = m.Ft * m.z1 * m.mn / 2 * m.speed1;
+  m.Ra = 0.8e-6;
+  m.Ca = {200e-6, 200e-6}; // above C_eff: X_J = 1
+  m.grade = 6;
+  m.Xmp = 1.5;
+  return m;
+}
+
+// The path of contact of the planet-ring mesh as the commercial report measures it from the
+// planet's tangent point: T1A 105.462, T1C 110.993, T1E 275.277 mm, eps_alpha 1.278.
+TEST(ScuffingInternal, PathOfContactAsThePublishedLengths) {
+  ScuffingRating r = rateScuffing(planetRing(), vg220());
+  EXPECT_NEAR(r.gammaA, 105.462 / 110.993 - 1, 2e-4);
+  EXPECT_NEAR(r.gammaE, 275.277 / 110.993 - 1, 2e-4);
+  EXPECT_NEAR(r.epsAlpha, 1.278, 1e-3);
+}
+
+// Blok's flash temperature from each point's own radii (the ring's flank concave: 1/rho_n =
+// 1/rho_1 - 1/|rho_2|) and rolling speeds: the ratio of the factor form to it is one constant
+// along the path, and the same as an external mesh's.
+TEST(ScuffingInternal, FlashTemperatureFollowsBlokWithTheConcaveFlank) {
+  auto ratios = [](const ScuffingMesh& m) {
+    ScuffingRating r = rateScuffing(m, vg220());
+    const double mt = m.mn * 1e3, rb1 = m.z1 * mt / 2 * std::cos(m.alphaN),
+                 rb2 = std::fabs(m.z2) * mt / 2 * std::cos(m.alphaN);
+    const double alphaWt = std::acos((rb1 + (m.z2 > 0 ? rb2 : -rb2)) / (m.a * 1e3)),
+                 T1T2 = std::fabs(m.a * 1e3) * std::sin(alphaWt);
+    const double rhoC1 = rb1 * std::tan(alphaWt), Er = 206000 / (1 - 0.09), omega2 = m.speed1 * m.z1 / std::fabs(m.z2);
+    std::vector<double> out;
+    for (const auto& q : r.path) {
+      if (q.gamma == 0) continue;
+      double rho1 = rhoC1 * (1 + q.gamma), rho2 = m.z2 > 0 ? T1T2 - rho1 : T1T2 + rho1;
+      double rhoN = m.z2 > 0 ? rho1 * rho2 / (rho1 + rho2) : rho1 * rho2 / (rho2 - rho1);
+      double wn = q.XGamma * r.wBt / std::cos(m.alphaN); // the normal load: F_t at the reference circle, spur
+      double blok = ref::flashTemperatureBlok(r.muM, wn, m.speed1 * rho1 * 1e-3, omega2 * rho2 * 1e-3, rhoN, Er,
+                                              m.BM[0], m.BM[1]);
+      out.push_back(q.thetaFla / blok);
+    }
+    return out;
+  };
+  ScuffingMesh external = planetRing();
+  external.z2 = 56;
+  external.a = (17 + 56) * 45e-3 / 2 * std::cos(20 * kPi / 180) / std::cos(24 * kPi / 180);
+  external.da2 = (56 + 2) * 45e-3;
+  std::vector<double> in = ratios(planetRing()), ex = ratios(external);
+  ASSERT_GT(in.size(), 100u);
+  for (double x : in)
+    EXPECT_NEAR(x / in.front(), 1.0, 1e-9);
+  for (double x : ex)
+    EXPECT_NEAR(x / ex.front(), 1.0, 1e-9);
+  EXPECT_NEAR(in.front() / ex.front(), 1.0, 1e-9);
+}
+
+// The micropitting bulk temperature's loss factor H_V with the ring's z negative: 0.161 as
+// the commercial report prints it (with +1/56 it would be 0.302), and theta_M from it (a tip
+// relief above C_eff: X_Ca = 1 + 0.24 eps_max + 0.71 eps_max^2).
+TEST(ScuffingInternal, LossFactorTakesTheRingsTeethNegative) {
+  ScuffingMesh m = planetRing();
+  ScuffingRating r = rateScuffing(m, vg220());
+  const double e1 = (275.277 - 110.993) / 132.846, e2 = (110.993 - 105.462) / 132.846;
+  const double HV = (e1 * e1 + e2 * e2 + 1 - (e1 + e2)) * (1 / m.z1 + 1 / m.z2) * kPi;
+  EXPECT_NEAR(HV, 0.161, 5e-4);
+  const double XCa = 1 + 0.24 * e1 + 0.71 * e1 * e1;
+  double rise = 7400 * std::pow(m.power * 1e-3 * r.muMmp * HV / (863 * 491), 0.72) / (1.2 * XCa);
+  EXPECT_NEAR(degC(r.thetaMmp) - 80, rise, 2e-3 * rise);
+}
+
+// At the pitch point the film is Dowson-Higginson's with the concave flank's relative radius.
+TEST(ScuffingInternal, FilmAtThePitchPointWithTheConcaveFlank) {
+  ScuffingMesh m = planetRing();
+  Lubricant oil = vg220();
+  ScuffingRating r = rateScuffing(m, oil);
+  auto c = std::find_if(r.path.begin(), r.path.end(), [](const PathPoint& p) { return p.gamma == 0; });
+  ASSERT_NE(c, r.path.end());
+  const double rb1 = 17 * 45e-3 / 2 * std::cos(m.alphaN), rb2 = 56 * 45e-3 / 2 * std::cos(m.alphaN);
+  const double alphaWt = std::acos((rb2 - rb1) / 0.863), rho1 = rb1 * std::tan(alphaWt), rho2 = rb2 * std::tan(alphaWt);
+  const double R = rho1 * rho2 / (rho2 - rho1), Er = 206e9 / (1 - 0.09), ue = m.speed1 * rho1;
+  const double w = m.Ft * c->XGamma * m.loadFactor() / (m.b * std::cos(m.alphaN));
+  const double T = r.thetaMmp, eta = oil.dynamic(T);
+  const double eta38 = oil.dynamic(311.15),
+               alpha = 2.657e-8 * std::pow(eta38, 0.1348) * (1 + 516 * (1 / (T - 0.15) - 1.0 / 311));
+  double h = 1.6 * R * std::pow(alpha * Er, 0.6) * std::pow(eta * ue / (Er * R), 0.7) * std::pow(w / (Er * R), -0.13);
+  EXPECT_NEAR(c->h / h, 1.0, 1e-9);
+}
+
+// A ring with fewer teeth than its pinion, or a sign left positive, is refused with a sentence.
+TEST(ScuffingInternal, InconsistentSignsAreRefused) {
+  ScuffingMesh m = planetRing();
+  m.da2 = -m.da2;
+  EXPECT_THROW(rateScuffing(m, vg220()), std::domain_error);
+  m = planetRing();
+  m.z2 = -12;
+  EXPECT_THROW(rateScuffing(m, vg220()), std::domain_error);
 }
 
 } // namespace
