@@ -395,3 +395,4 @@ rm -f "$mitm" "$out" "$dyn" "$dyn.rhs" "$dyn.rating" "$dyn.steady" "$dyn.opt.set
 # The sizing and shaft sections, appended to the file just written.
 bench/sizing.sh >/dev/null
 bench/shaft.sh >/dev/null
+bench/python.sh >/dev/null

@@ -3,9 +3,13 @@
 #include <iosfwd>
 #include <string>
 
+#include <vector>
+
 #include "ir/Ir.h"
 
 namespace gbx::rt {
+
+struct GearboxReport;
 
 struct SolveOptions {
   std::string gearbox;  // only this one, when set
@@ -19,6 +23,9 @@ struct SolveOptions {
   std::string title;    // the spec's file name, for the report's header
   std::string version;  // gbxc's
   int optimiserIterations = 0;  // a test setting: Nelder-Mead iterations per candidate; 0: its own
+  // An embedding program's copy of the reports as they go to the renderer (the Python
+  // module's arrays); null: none kept.
+  std::vector<GearboxReport>* keep = nullptr;
 };
 
 // Returns the exit status: 0 solved (an empty design list included), 3 a runtime failure.

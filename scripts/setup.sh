@@ -14,7 +14,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 build_dir=build
-cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
+# The release build has the Python module (docs/python.md), built for Debian's python3.
+cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DGBX_PYTHON=ON -DPython3_EXECUTABLE=/usr/bin/python3)
 extra_packages=()
 if [[ "${1:-}" == "--sanitize" || "${1:-}" == "--fuzz" ]]; then
   build_dir=build-asan
@@ -39,9 +40,12 @@ fi
 # pandoc, mkdocs: the manual page (from docs/cli.md) and the documentation site.
 # libopenmpi-dev, openmpi-bin: build/gbxc-mpi, and the test that four MPI ranks write the
 # same report as one thread.
+# python3-dev, pybind11-dev: the Python module; python3-numpy its arrays; python3-pytest its
+# tests; python3-pandas, python3-matplotlib the documentation's scripts, run as tests.
 packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
           libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium poppler-utils python3-jsonschema dpkg-dev file universal-ctags
-          libopenmpi-dev openmpi-bin libnlopt-dev pandoc mkdocs ${extra_packages[@]+"${extra_packages[@]}"})
+          libopenmpi-dev openmpi-bin libnlopt-dev pandoc mkdocs python3-dev pybind11-dev python3-numpy python3-pytest
+          python3-pandas python3-matplotlib ${extra_packages[@]+"${extra_packages[@]}"})
 missing=()
 for p in "${packages[@]}"; do
   # Installed, not merely known to dpkg (a removed package keeps its config-files state).

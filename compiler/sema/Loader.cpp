@@ -36,16 +36,22 @@ std::vector<std::string> folderList(const char* variable) {
 // executable or one above it. An installed gbxc (PREFIX/bin/gbxc) finds PREFIX/share/gbxc/stdlib,
 // the build tree's (build/gbxc) build/share/gbxc/stdlib, a test program deeper in the build
 // tree the same folder a few levels up. Nothing depends on where the sources were.
+std::string& programLocation() {
+  static std::string file;
+  return file;
+}
+
 std::string stdlibBesideProgram() {
   std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  fs::path exe = programLocation().empty() ? fs::read_symlink("/proc/self/exe", ec) : fs::path(programLocation());
 #ifdef GBX_INSTALL_DATADIR
   // Without /proc (a bare container): where the installation put it.
   if (ec) return fs::is_directory(fs::path(GBX_INSTALL_DATADIR) / "gbxc" / "stdlib", ec) ? (fs::path(GBX_INSTALL_DATADIR) / "gbxc" / "stdlib").string() : "";
 #endif
   if (ec) return {};
   fs::path dir = exe.parent_path();
-  for (int up = 0; up < 4 && !dir.empty(); ++up, dir = dir.parent_path()) {
+  // Up to PREFIX from PREFIX/lib/python3/dist-packages/gbxc, the Python module's folder.
+  for (int up = 0; up < 5 && !dir.empty(); ++up, dir = dir.parent_path()) {
     fs::path candidate = dir / "share" / "gbxc" / "stdlib";
     if (fs::is_directory(candidate, ec)) return candidate.string();
     if (dir == dir.parent_path()) break;
@@ -54,6 +60,8 @@ std::string stdlibBesideProgram() {
 }
 
 } // namespace
+
+void setProgramLocation(const std::string& file) { programLocation() = file; }
 
 std::vector<std::string> modulePath() { return folderList("GBX_PATH"); }
 

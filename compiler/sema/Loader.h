@@ -29,6 +29,10 @@ std::vector<std::string> modulePath();
 // Folders searched for stdlib modules: $GBX_STDLIB_PATH (colon-separated), then the stdlib
 // installed beside the program (share/gbxc/stdlib next to or above its folder).
 std::vector<std::string> stdlibSearchPath();
+// Where the running program is, for a program that is not its process's executable (the
+// Python module, a shared object in python3): the stdlib is looked for beside and above it.
+// Set before the first compilation.
+void setProgramLocation(const std::string& file);
 // The modules found in all of them, by name, sorted.
 std::vector<std::string> stdlibModules();
 

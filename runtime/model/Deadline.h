@@ -25,6 +25,9 @@ public:
   static void expireNow() {
     if (limit_.load(std::memory_order_relaxed) > 0) at_.store(1, std::memory_order_relaxed);
   }
+  // Stop now, limit or not (an embedding program's interrupt: Ctrl-C in Python). The loops
+  // stop as at the time limit; `clear()` or the next `start()` lifts it.
+  static void interrupt() { at_.store(1, std::memory_order_relaxed); }
   static bool expired() {
     auto at = at_.load(std::memory_order_relaxed);
     return at != 0 && Clock::now().time_since_epoch().count() >= at;

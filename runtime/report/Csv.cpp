@@ -200,6 +200,21 @@ std::string spectra(const std::vector<GearboxReport>& reports) {
   return any ? o : "";
 }
 
+// Each scene's plotted outputs sample by sample: a signal over time (x in s) or a spectrum
+// (x in Hz), its values in their display unit (what the charts draw).
+std::string signals(const std::vector<GearboxReport>& reports) {
+  std::string o = row({"gearbox", "scene", "output", "x", "x_unit", "value", "unit"});
+  bool any = false;
+  for (const auto& g : reports)
+    for (const auto& s : g.scenes)
+      for (const auto& p : s.plots)
+        for (size_t i = 0; i < p.x.size() && i < p.y.size(); ++i) {
+          any = true;
+          o += row({g.name, s.name, p.key, number(p.x[i]), p.spectrum ? "Hz" : "s", number(p.y[i]), p.unit});
+        }
+  return any ? o : "";
+}
+
 std::string sweeps(const std::vector<GearboxReport>& reports) {
   std::string o = row({"gearbox", "study", "swept", "x", "x_unit", "output", "value", "unit", "stability", "branch"});
   bool any = false;
@@ -313,6 +328,7 @@ std::vector<TableFile> otherTables(const std::vector<GearboxReport>& reports, co
   };
   add("scenes.csv", scenes(reports));
   add("spectra.csv", spectra(reports));
+  add("signals.csv", signals(reports));
   add("sweeps.csv", sweeps(reports));
   add("work_precision.csv", workPrecision(reports, o.timings));
   add("modifications.csv", modifications(reports));

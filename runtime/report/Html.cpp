@@ -431,22 +431,36 @@ std::string pageStyle(const std::string& title, const RenderOptions& ro) {
 
 } // namespace
 
-std::string renderHtml(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
-  std::string title = ro.title.empty() ? "gbxc report" : ro.title;
-  std::string o = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-                  "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
-                  esc(title) + " · gbxc</title>\n" + kStyle + pageStyle(title, ro) + "</head><body>\n";
-  // docs/reports.md: the body opens with the summary.
-  o += "<section class=\"summary\">\n<header><h1>" + esc(title) + "</h1>\n";
+namespace {
+
+// The summary section: per gearbox what it is, what was found and what governs.
+std::string summarySection(const std::vector<GearboxReport>& reports, const RenderOptions& ro,
+                           const std::string& title) {
+  std::string o = "<section class=\"summary\">\n<header><h1>" + esc(title) + "</h1>\n";
   std::vector<std::string> meta;
   if (!ro.version.empty()) meta.push_back("gbxc " + ro.version);
   if (!ro.date.empty()) meta.push_back(ro.date);
   meta.push_back(fmt::format("{} gearbox{}", reports.size(), reports.size() == 1 ? "" : "es"));
   o += "<p class=\"meta\">" + esc(fmt::format("{}", fmt::join(meta, " · "))) + "</p></header>\n";
   for (const auto& g : reports) o += summaryCard(g);
-  o += "</section>\n";
+  return o + "</section>\n";
+}
+
+} // namespace
+
+std::string renderHtml(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
+  std::string title = ro.title.empty() ? "gbxc report" : ro.title;
+  std::string o = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+                  "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
+                  esc(title) + " · gbxc</title>\n" + kStyle + pageStyle(title, ro) + "</head><body>\n";
+  // docs/reports.md: the body opens with the summary.
+  o += summarySection(reports, ro, title);
   for (const auto& g : reports) o += gearboxDetails(g, ro);
   return o + "</body></html>\n";
+}
+
+std::string renderHtmlSummary(const std::vector<GearboxReport>& reports, const RenderOptions& ro) {
+  return std::string(kStyle) + summarySection(reports, ro, ro.title.empty() ? "gbxc report" : ro.title);
 }
 
 } // namespace gbx::rt

@@ -408,5 +408,7 @@ std::vector<TableFile> csvTables(const std::vector<GearboxReport>& r, const Rend
 std::vector<std::string> csvOtherTables(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderMarkdown(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderHtml(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
+// The HTML report's summary section alone, with its style (a notebook's view of a report).
+std::string renderHtmlSummary(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 
 } // namespace gbx::rt

@@ -24,3 +24,10 @@ for f in ./usr/bin/gbxc ./usr/share/gbxc/stdlib/klingelnberg.gbx ./usr/share/doc
          ./usr/share/bash-completion/completions/gbxc ./usr/share/zsh/vendor-completions/_gbxc; do
   grep -q " $f\$" <<<"$contents" || { echo "FAIL: the package lacks $f" >&2; exit 1; }
 done
+# The Python module, where the build has it, where Debian's python3 finds it.
+if [[ -d $build/python/gbxc ]]; then
+  for f in ./usr/lib/python3/dist-packages/gbxc/__init__.py ./usr/lib/python3/dist-packages/gbxc/py.typed; do
+    grep -q " $f\$" <<<"$contents" || { echo "FAIL: the package lacks $f" >&2; exit 1; }
+  done
+  grep -q ' ./usr/lib/python3/dist-packages/gbxc/_gbxc\..*\.so$' <<<"$contents" || { echo "FAIL: the package lacks the module's native part" >&2; exit 1; }
+fi

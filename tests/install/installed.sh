@@ -50,6 +50,17 @@ out=$(bash -c 'source "$1"; COMP_WORDS=(gbxc solve "$2" --gearbox ""); COMP_CWOR
 out=$(bash -c 'source "$1"; COMP_WORDS=(gbxc solve --format ""); COMP_CWORD=3; _gbxc; echo "${COMPREPLY[*]}"' _ \
   "$work/moved/share/bash-completion/completions/gbxc")
 [[ $out == "text json csv md html" ]] || { echo "FAIL: bash completion of --format gave '$out'" >&2; exit 1; }
+# The Python module from the moved prefix, where the build has it: it imports with the
+# prefix's folder on PYTHONPATH, finds the stdlib beside itself and solves a spec that
+# imports from it.
+if [[ -d $build/python/gbxc ]]; then
+  printf 'import materials;\ngearbox P { stage s: spur { pinion.z = 20; wheel.z = 40; normal_module = 2 mm; face_width = 20 mm; material = steel_18CrNiMo7_6; } operating { input_speed = 1000 rpm; power = 5 kW; } }\n' >"$work/py.gbx"
+  out=$(PYTHONPATH="$work/moved/lib/python3/dist-packages" "${GBX_PYTHON:-/usr/bin/python3}" -c \
+    'import sys, gbxc; r = gbxc.solve(sys.argv[1]); assert r.gearboxes["P"].designs, r.errors; print(gbxc.__file__)' "$work/py.gbx") ||
+    { echo "FAIL: the Python module of the moved installation did not solve" >&2; exit 1; }
+  [[ $out == "$work/moved/"* ]] || { echo "FAIL: Python imported gbxc from $out, not the moved installation" >&2; exit 1; }
+  echo "ok: the Python module from the moved prefix ($out)"
+fi
 status=0
 for spec in "$@"; do
   if ! "$work/moved/bin/gbxc" solve "$spec" --no-timings --quiet >"$work/out.txt" 2>"$work/err.txt"; then
