@@ -30,6 +30,7 @@ elif [[ "${1:-}" == "--mpi" ]]; then
   cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DGBX_MPI=ON)
 fi
 
+# ccache: the compiler launcher (scripts/ccache-launch).
 # uuid-dev: the ANTLR runtime's CMake target links -luuid, and libantlr4-runtime-dev does
 # not depend on it.
 # chromium: the tests render every example's HTML report in a real (headless) browser.
@@ -42,7 +43,7 @@ fi
 # same report as one thread.
 # python3-dev, pybind11-dev: the Python module; python3-numpy its arrays; python3-pytest its
 # tests; python3-pandas, python3-matplotlib the documentation's scripts, run as tests.
-packages=(g++ cmake ninja-build antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
+packages=(g++ cmake ninja-build ccache antlr4 default-jre-headless libantlr4-runtime-dev uuid-dev
           libeigen3-dev libgsl-dev libfmt-dev googletest libgtest-dev chromium poppler-utils python3-jsonschema dpkg-dev file universal-ctags
           libopenmpi-dev openmpi-bin libnlopt-dev pandoc mkdocs python3-dev pybind11-dev python3-numpy python3-pytest
           python3-pandas python3-matplotlib ${extra_packages[@]+"${extra_packages[@]}"})
@@ -69,6 +70,9 @@ if ((${#missing[@]})); then
   echo "setup: packages installed in ${SECONDS}s"
 fi
 
+# Compiles through ccache (scripts/ccache-launch): a rebuild of sources compiled before, in
+# this checkout or another on the machine, takes the objects from the cache.
+cmake_args+=("-DCMAKE_CXX_COMPILER_LAUNCHER=$PWD/scripts/ccache-launch")
 # GBX_ACCEPTANCE_DIR: a folder of acceptance specs kept outside the repository (optional).
 cmake -S . -B "$build_dir" -G Ninja "${cmake_args[@]}" -DGBX_ACCEPTANCE_DIR="${GBX_ACCEPTANCE_DIR:-}" >/dev/null
 cmake --build "$build_dir"

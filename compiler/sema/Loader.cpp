@@ -187,12 +187,18 @@ public:
       std::vector<std::string> missing;
       for (const auto& dir : user)
         if (!fs::is_directory(dir, ec)) missing.push_back(dir);
-      diags_.error("E0203", at,
-                   fmt::format("cannot import `{}`: no folder of modules was found (no share/gbxc/stdlib beside {}{}); reinstall "
-                               "gbxc, or set GBX_PATH to folders of .gbx modules",
-                               d.word, fs::read_symlink("/proc/self/exe", ec).parent_path().string(),
-                               missing.empty() ? "" : fmt::format("; GBX_PATH names {}, which {} not exist", fmt::join(missing, ", "),
-                                                                   missing.size() == 1 ? "does" : "do")));
+      diags_.error(
+          "E0203", at,
+          fmt::format(
+              "cannot import `{}`: no folder of modules was found (no share/gbxc/stdlib beside {}{}); reinstall "
+              "gbxc, or set GBX_PATH to folders of .gbx modules",
+              d.word,
+              (programLocation().empty() ? fs::read_symlink("/proc/self/exe", ec) : fs::path(programLocation()))
+                  .parent_path()
+                  .string(),
+              missing.empty() ? ""
+                              : fmt::format("; GBX_PATH names {}, which {} not exist", fmt::join(missing, ", "),
+                                            missing.size() == 1 ? "does" : "do")));
     } else
       diags_.error("E0203", at,
                    fmt::format("cannot import `{}`: no module of that name beside the spec, in GBX_PATH or in the stdlib (modules: {}; "

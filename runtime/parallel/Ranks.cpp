@@ -11,10 +11,26 @@
 
 namespace gbx::rt::par {
 
+namespace {
+
+// Whether this thread is running a share of onThreads' work: a `map` inside it runs serially
+// (no pool inside a pool), whichever thread started the outer one (the program's main
+// thread, or a thread of the Python module's).
+thread_local bool tSharing = false;
+
+} // namespace
+
 void onThreads(int threads, const std::function<void()>& work) {
+  auto share = [&work] {
+    bool was = tSharing;
+    tSharing = true;
+    work();
+    tSharing = was;
+  };
   std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
+  for (int t = 1; t < threads; ++t)
+    pool.emplace_back(share);
+  share();
   for (auto& th : pool) th.join();
 }
 
@@ -24,8 +40,6 @@ int gRank = 0, gRanks = 1;
 bool gStarted = false;
 bool gLoneRank = false;  // under mpirun, in a build without MPI
 std::atomic<int> gJobs{1};
-// Static initialisation runs on the main thread.
-const std::thread::id gMain = std::this_thread::get_id();
 
 // The iterations of this rank, over the threads, each result in its slot.
 void runShare(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f, std::vector<std::vector<double>>& out, int rank,
@@ -102,14 +116,14 @@ Session::~Session() {
 
 int rank() { return gRank; }
 bool alone() { return gLoneRank; }
-int sharingRanks() { return std::this_thread::get_id() == gMain && gStarted && gRanks > 1 ? gRanks : 1; }
+int sharingRanks() { return !tSharing && gStarted && gRanks > 1 ? gRanks : 1; }
 
 void setJobs(int jobs) { gJobs = std::max(1, jobs); }
 int jobs() { return gJobs; }
 
 std::vector<std::vector<double>> map(size_t n, int jobs, const std::function<std::vector<double>(size_t)>& f, bool shareRanks) {
   std::vector<std::vector<double>> out(n);
-  if (std::this_thread::get_id() != gMain) {
+  if (tSharing) {
     for (size_t i = 0; i < n; ++i) out[i] = f(i);
     return out;
   }

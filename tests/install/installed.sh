@@ -55,7 +55,7 @@ out=$(bash -c 'source "$1"; COMP_WORDS=(gbxc solve --format ""); COMP_CWORD=3; _
 # imports from it.
 if [[ -d $build/python/gbxc ]]; then
   printf 'import materials;\ngearbox P { stage s: spur { pinion.z = 20; wheel.z = 40; normal_module = 2 mm; face_width = 20 mm; material = steel_18CrNiMo7_6; } operating { input_speed = 1000 rpm; power = 5 kW; } }\n' >"$work/py.gbx"
-  out=$(PYTHONPATH="$work/moved/lib/python3/dist-packages" "${GBX_PYTHON:-/usr/bin/python3}" -c \
+  out=$(PYTHONPATH="$work/moved/${GBX_PYTHON_DIR:-lib/python3/dist-packages}" "${GBX_PYTHON:-/usr/bin/python3}" -c \
     'import sys, gbxc; r = gbxc.solve(sys.argv[1]); assert r.gearboxes["P"].designs, r.errors; print(gbxc.__file__)' "$work/py.gbx") ||
     { echo "FAIL: the Python module of the moved installation did not solve" >&2; exit 1; }
   [[ $out == "$work/moved/"* ]] || { echo "FAIL: Python imported gbxc from $out, not the moved installation" >&2; exit 1; }

@@ -1,5 +1,6 @@
 """check(), solve()'s errors, overrides, the DataFrame and the notebook view."""
 
+import html
 import json
 
 import pytest
@@ -29,7 +30,9 @@ def test_check_gives_the_clis_diagnostics(spec):
         span = e["span"] or {}
         assert (d.code, d.severity, d.message) == (e["code"], e["severity"], e["message"])
         assert (d.file, d.line, d.column) == (span.get("file"), span.get("line"), span.get("column"))
-        assert d.fix == ("; ".join(n["message"] for n in e["notes"]) or None)
+        notes = "; ".join(n["message"] for n in e["notes"])
+        # The notes, or the suggestion the message ends with.
+        assert d.fix == notes if notes else (d.fix is None or e["message"].endswith("; " + d.fix))
 
 
 def test_check_takes_text_and_never_raises():
@@ -78,6 +81,59 @@ def test_a_bad_override_raises_with_the_diagnostics_text(override, words):
     assert words in str(e.value)
 
 
+def test_a_diagnostic_says_its_fix():
+    found = gbxc.check(SMALL.replace("face_width = 20 mm", "face_widht = 20 mm"))
+    assert found[0].code == "E0211" and found[0].fix == "did you mean `face_width`?"
+    bare = gbxc.check(SMALL.replace("face_width = 20 mm", "face_width = 20"))
+    assert bare[0].fix and bare[0].fix.startswith("write it with a unit")
+
+
+@pytest.mark.parametrize(
+    "kwargs, error",
+    [({"jobs": 0}, ValueError), ({"jobs": 1000}, ValueError), ({"jobs": 1.5}, ValueError), ({"time_limit": 0}, ValueError),
+     ({"time_limit": -1}, ValueError), ({"time_limit": float("nan")}, ValueError), ({"overrides": [("a", "b")]}, TypeError)],
+)
+def test_bad_arguments_are_refused_as_the_command_line_refuses_them(kwargs, error):
+    with pytest.raises(error):
+        gbxc.solve(SMALL, **kwargs)
+
+
+def test_a_failed_override_names_the_gearbox_not_its_variant():
+    with pytest.raises(gbxc.SpecError) as e:
+        gbxc.solve(SMALL, overrides={"s9.face_width": "20 mm"})
+    assert "gbxc_override" not in str(e.value)
+    assert "gearbox `Small`" in str(e.value)
+    assert all("gbxc_override" not in d.message for d in e.value.diagnostics)
+
+
+def test_an_override_with_one_gearbox_keeps_its_baseline():
+    """`relative(…)` reads the gearbox's baseline: asked for one gearbox, its baseline is there,
+    overridden alike (here with the spec's own value: the CLI's bytes)."""
+    spec = ROOT / "specs" / "turbine_modification.gbx"
+    out, _, status = cli("solve", str(spec), "--gearbox", "TurbineReducer", "--format", "json", "--no-timings", "-q")
+    report = gbxc.solve(str(spec), gearbox="TurbineReducer", overrides={"operating.power": "7500 kW"}, timings=False)
+    assert report.status == status == 0
+    assert report.to_json() == out
+    values = report.gearboxes["TurbineReducer"].designs[0].values
+    relative = [k for k in values if k.startswith("relative(")]
+    assert relative and all(values[k] is not None for k in relative)
+
+
+def test_a_path_like_is_a_path_and_a_folder_is_refused_as_one():
+    import pathlib
+
+    assert gbxc.check(pathlib.Path("no/such/spec.gbx"))[0].code == "E0001"
+    with pytest.raises(gbxc.SpecError) as e:
+        gbxc.solve(str(ROOT / "specs"), overrides={"s1.face_width": "20 mm"})
+    assert [d.code for d in e.value.diagnostics] == ["E0001"]
+
+
+def test_designs_frame_of_a_gearbox_the_report_lacks():
+    pytest.importorskip("pandas")
+    with pytest.raises(KeyError, match="Big"):
+        gbxc.solve(SMALL, timings=False).designs_frame("Big")
+
+
 def test_unknown_gearbox_raises():
     with pytest.raises(gbxc.SpecError, match="no gearbox `Big`"):
         gbxc.solve(SMALL, gearbox="Big")
@@ -115,9 +171,11 @@ def test_notebook_view_is_the_html_reports_summary(tmp_path):
     page = (tmp_path / "report.html").read_text()
     start = page.index('<section class="summary">')
     end = page.index("</section>", start) + len("</section>")
-    html = gbxc.solve(str(spec), timings=False)._repr_html_()
-    assert page[start:end] in html
-    assert html.startswith("<style>")
+    framed = gbxc.solve(str(spec), timings=False)._repr_html_()
+    assert framed.startswith("<iframe srcdoc=")
+    inner = html.unescape(framed.split('srcdoc="', 1)[1].split('" style=', 1)[0])
+    assert page[start:end] in inner
+    assert "<style>" in inner  # the report's style, inside the frame only
 
 
 def test_report_reads_as_the_spec():

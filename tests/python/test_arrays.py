@@ -4,9 +4,14 @@ that `gbxc solve -o DIR --format csv` writes."""
 import csv
 
 import numpy
+import pytest
 
 import gbxc
 from conftest import ROOT, cli
+
+
+# The display units the sweep's CSV uses here, in SI.
+SI = {"rpm": 2 * numpy.pi / 60, "": 1.0, "m/s^2": 1.0, "N": 1.0}
 
 
 def read(path):
@@ -33,6 +38,15 @@ def test_signals_and_spectra_equal_the_csv_series(tmp_path):
                 seen += 1
     assert seen >= 1
     assert any(sig.spectrum for g in report.gearboxes.values() for s in g.scenes.values() for sig in s.signals.values())
+    # Each peak spectra.csv lists (written from the scene's peaks, not its plot) is a line of
+    # the spectrum's arrays.
+    peaks = read(tmp_path / "spectra.csv")
+    assert peaks
+    for p in peaks:
+        sig = report.gearboxes[p["gearbox"]].scenes[p["scene"]].signals[p["spectrum"]]
+        at = numpy.flatnonzero(numpy.isclose(sig.x, float(p["frequency [Hz]"]), rtol=1e-12, atol=0))
+        assert len(at) == 1, p
+        assert sig.y[at[0]] == pytest.approx(float(p["amplitude"]), rel=1e-12)
 
 
 def test_sweeps_equal_the_csv_table(tmp_path):
@@ -47,8 +61,8 @@ def test_sweeps_equal_the_csv_table(tmp_path):
         for output, values in sweep.outputs.items():
             mine = [r for r in rows if (r["study"], r["output"]) == (name, output)]
             assert len(mine) == len(values)
-            # The CSV is in the display unit (rpm, say): one factor from the SI arrays.
-            x = numpy.array([float(r["x"]) for r in mine])
-            numpy.testing.assert_allclose(x / x[0], sweep.x / sweep.x[0], rtol=1e-12)
-            y = numpy.array([float(r["value"]) for r in mine])
-            numpy.testing.assert_allclose(y / y[0], values / values[0], rtol=1e-12)
+            # The CSV is in the display unit, the arrays in SI.
+            x = numpy.array([float(r["x"]) for r in mine]) * SI[mine[0]["x_unit"]]
+            numpy.testing.assert_allclose(x, sweep.x, rtol=1e-12, atol=0)
+            y = numpy.array([float(r["value"]) for r in mine]) * SI[mine[0]["unit"]]
+            numpy.testing.assert_allclose(y, values, rtol=1e-12, atol=0)

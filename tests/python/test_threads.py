@@ -60,3 +60,42 @@ def test_ctrl_c_stops_a_long_solve_within_a_second():
     # The process solves again afterwards, with nothing left of the interrupt.
     again = gbxc.solve(str(SPECS[0]), timings=False)
     assert again.to_json() == cli("solve", str(SPECS[0]), "--format", "json", "--no-timings", "-q")[0]
+
+
+def test_ctrl_c_stops_its_own_solve_not_the_next_one():
+    expected = cli("solve", str(SPECS[0]), "--format", "json", "--no-timings", "-q")[0]
+    queued = {}
+
+    def second():
+        queued["json"] = gbxc.solve(str(SPECS[0]), timings=False).to_json()
+
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    other = threading.Thread(target=second)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        other.start()  # waits for the long solve below, then solves
+        gbxc.solve(str(ROOT / "specs" / "marine_reducer.gbx"), timings=False)
+    other.join()
+    timer.join()
+    assert queued["json"] == expected
+
+
+def test_jobs_are_worker_threads_from_any_thread():
+    """A solve from a thread of Python's, not the main one, shares its work over `jobs`
+    threads: more threads run during it than the one solving."""
+    task = "/proc/self/task"
+    before = set(os.listdir(task))
+    seen = set()
+    result = {}
+
+    def run():
+        result["report"] = gbxc.solve(str(ROOT / "specs" / "marine_tolerances.gbx"), timings=False, jobs=2)
+
+    t = threading.Thread(target=run)
+    t.start()
+    while t.is_alive():
+        seen |= set(os.listdir(task))
+        time.sleep(0.002)
+    t.join()
+    assert result["report"].ok
+    assert len(seen - before) >= 3  # the waiting thread, the solving thread and a worker or more

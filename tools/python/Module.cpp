@@ -3,6 +3,7 @@
 // (docs/python.md); nothing here is meant to be called from a script directly.
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -35,6 +36,18 @@ std::mutex& solveLock() {
   return m;
 }
 
+// One compilation at a time (the parser's caches are shared): a check need not wait for a
+// solve's runtime, only for another compilation.
+std::mutex& frontLock() {
+  static std::mutex m;
+  return m;
+}
+
+// The running solve's token, so that Ctrl-C stops that solve and never the next one: an
+// interrupt, a solve's start and its end each hold `tokenLock` (docs/python.md).
+std::mutex tokenLock;
+unsigned long long running = 0;
+
 struct Source {
   std::string text; // the spec, or a path when `isText` is false
   bool isText = false;
@@ -50,7 +63,7 @@ py::dict check(const Source& s) {
   std::unique_ptr<driver::Compilation> c;
   {
     py::gil_scoped_release free;
-    std::lock_guard one(solveLock());
+    std::lock_guard one(frontLock());
     c = compileSource(s);
   }
   py::list names;
@@ -65,6 +78,7 @@ py::dict check(const Source& s) {
 }
 
 struct SolveArgs {
+  unsigned long long token = 0; // the caller's, for `interrupt`
   Source source;
   std::string gearbox;
   int jobs = 1;
@@ -81,22 +95,42 @@ struct Solved {
   std::vector<rt::GearboxReport> reports;
 };
 
-std::unique_ptr<driver::Compilation> compileWithOverrides(const SolveArgs& a, Solved& out) {
+// Every `from` in `text` replaced by `to`.
+void replaceAll(std::string& text, const std::string& from, const std::string& to) {
+  for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+}
+
+std::unique_ptr<driver::Compilation> compileWithOverrides(const SolveArgs& a, Solved& out, Overridden& o) {
   if (a.overrides.empty()) return compileSource(a.source);
   std::string text = a.source.text;
   if (!a.source.isText) {
+    std::error_code ec;
     std::ifstream in(a.source.text, std::ios::binary);
-    if (!in) return compileSource(a.source); // the front end's own "cannot read" diagnostic
+    // The front end's own "cannot read" diagnostic for what is not a readable file.
+    if (!std::filesystem::is_regular_file(a.source.text, ec) || !in) return compileSource(a.source);
     text.assign(std::istreambuf_iterator<char>(in), {});
   }
   const std::string& display = a.source.isText ? a.source.display : a.source.text;
   // The spec alone first, for its gearboxes' names: each gets a variant with the overrides.
   auto plain = driver::compileText(display, text);
   if (!plain->ok()) return plain;
+  // Every gearbox, or the one asked for with its baselines (a `relative(…)` reads its
+  // baseline, overridden alike, as it is without `gearbox`).
   std::vector<std::string> names;
-  for (const auto& g : plain->program.gearboxes)
-    if (a.gearbox.empty() || g.name == a.gearbox) names.push_back(g.name);
-  Overridden o = withOverrides(text, names, a.overrides);
+  for (std::string want = a.gearbox; !want.empty();) {
+    std::string next;
+    for (const auto& g : plain->program.gearboxes)
+      if (g.name == want && std::find(names.begin(), names.end(), want) == names.end()) {
+        names.insert(names.begin(), want);
+        next = g.baseline;
+      }
+    want = next;
+  }
+  if (a.gearbox.empty())
+    for (const auto& g : plain->program.gearboxes)
+      names.push_back(g.name);
+  o = withOverrides(text, names, a.overrides);
   if (!o.error.empty()) {
     out.status = 2;
     out.errors = o.error;
@@ -109,16 +143,25 @@ std::unique_ptr<driver::Compilation> compileWithOverrides(const SolveArgs& a, So
 
 Solved solveNow(const SolveArgs& a) {
   Solved out;
-  auto c = compileWithOverrides(a, out);
+  Overridden o;
+  std::unique_ptr<driver::Compilation> c;
+  {
+    std::lock_guard one(frontLock());
+    c = compileWithOverrides(a, out, o);
+  }
   if (!c) return out;
+  // The diagnostics (errors, or the warnings of a spec that checks) name the gearboxes, not
+  // the variants the overrides were written as.
+  out.diagnostics = c->diags.renderJson(c->sources);
+  out.diagnosticsText = c->diags.renderText(c->sources);
+  for (const auto& [variant, base] : o.variants) {
+    replaceAll(out.diagnostics, variant, base);
+    replaceAll(out.diagnosticsText, variant, base);
+  }
   if (!c->ok()) {
     out.status = 1;
-    out.diagnostics = c->diags.renderJson(c->sources);
-    out.diagnosticsText = c->diags.renderText(c->sources);
     return out;
   }
-  out.diagnostics = c->diags.renderJson(c->sources); // warnings
-  out.diagnosticsText = c->diags.renderText(c->sources);
   if (!a.gearbox.empty()) {
     bool found = false;
     for (const auto& g : c->program.gearboxes)
@@ -155,9 +198,28 @@ Solved solveNow(const SolveArgs& a) {
 Solved solve(const SolveArgs& a) {
   py::gil_scoped_release free;
   std::lock_guard one(solveLock());
-  Solved done = solveNow(a);
+  {
+    std::lock_guard t(tokenLock);
+    running = a.token;
+  }
+  Solved done;
+  try {
+    done = solveNow(a);
+  } catch (const std::exception& e) { // as the command's exit 3: said, not a crash
+    done = Solved{};
+    done.status = 3;
+    done.errors = std::string("gbxc: ") + e.what() + "\n";
+  }
+  std::lock_guard t(tokenLock);
+  running = 0;
   rt::Deadline::clear();
   return done;
+}
+
+// Stops the solve of `token`, if it is the running one, as its time limit would.
+void interrupt(unsigned long long token) {
+  std::lock_guard t(tokenLock);
+  if (token != 0 && running == token) rt::Deadline::interrupt();
 }
 
 // Each scene's plotted outputs: its signals (x in s) and spectra (x in Hz) as NumPy arrays.
@@ -236,9 +298,8 @@ PYBIND11_MODULE(_gbxc, m) {
       .def("remarks", &remarks);
 
   m.def("cli", &cli, py::arg("args"));
-  // Stops the running solve's loops as its time limit would (Ctrl-C); a solve that starts
-  // later is not affected.
-  m.def("interrupt", [] { gbx::rt::Deadline::interrupt(); });
+  // Stops the solve of a token, if it is the running one, as its time limit would (Ctrl-C).
+  m.def("interrupt", &interrupt, py::arg("token"));
   m.def(
       "check",
       [](const std::string& source, bool isText, const std::string& display) {
@@ -247,10 +308,11 @@ PYBIND11_MODULE(_gbxc, m) {
       py::arg("source"), py::arg("is_text"), py::arg("display"));
   m.def(
       "solve",
-      [](const std::string& source, bool isText, const std::string& display, const std::string& gearbox, int jobs,
-         double timeLimit, bool timings, const std::vector<std::pair<std::string, std::string>>& overrides) {
-        return solve({{source, isText, display}, gearbox, jobs, timeLimit, timings, overrides});
+      [](unsigned long long token, const std::string& source, bool isText, const std::string& display,
+         const std::string& gearbox, int jobs, double timeLimit, bool timings,
+         const std::vector<std::pair<std::string, std::string>>& overrides) {
+        return solve({token, {source, isText, display}, gearbox, jobs, timeLimit, timings, overrides});
       },
-      py::arg("source"), py::arg("is_text"), py::arg("display"), py::arg("gearbox"), py::arg("jobs"),
+      py::arg("token"), py::arg("source"), py::arg("is_text"), py::arg("display"), py::arg("gearbox"), py::arg("jobs"),
       py::arg("time_limit"), py::arg("timings"), py::arg("overrides"));
 }

@@ -10,6 +10,8 @@ The same compiler and runtime as the `gbxc` command: `Report.to_json()` is the b
 
 from __future__ import annotations
 
+import html
+import itertools
 import json
 import os
 import threading
@@ -67,6 +69,21 @@ class SolveError(Exception):
     """The spec checked but solving it failed (exit 3 of `gbxc solve`): the message says why."""
 
 
+# How a diagnostic's message words its suggestion, after its last "; " (docs/diagnostics.md).
+_SUGGESTIONS = ("did you mean", "write ", "use ", "give ", "add ", "remove ", "declare ", "import ", "put ")
+
+
+def _fix(message: str, notes: List[str]) -> Optional[str]:
+    """What to do about a diagnostic: its notes' suggestions, else the suggestion its message
+    ends with (`did you mean `face_width`?`, `write it in mm`), else None."""
+    if notes:
+        return "; ".join(notes)
+    for clause in reversed(message.split("; ")[1:]):
+        if clause.startswith(_SUGGESTIONS):
+            return clause
+    return None
+
+
 def _diagnostics(text: str) -> List[Diagnostic]:
     out = []
     for d in json.loads(text) if text else []:
@@ -80,7 +97,7 @@ def _diagnostics(text: str) -> List[Diagnostic]:
                 line=span.get("line"),
                 column=span.get("column"),
                 message=d["message"],
-                fix="; ".join(notes) if notes else None,
+                fix=_fix(d["message"], notes),
             )
         )
     return out
@@ -89,7 +106,9 @@ def _diagnostics(text: str) -> List[Diagnostic]:
 def _source(path_or_text: PathOrText) -> tuple:
     """(source, is_text, display): a path names a file; text holding a newline or a brace
     is a spec itself, shown in diagnostics as <text>.gbx."""
-    s = os.fspath(path_or_text)
+    if isinstance(path_or_text, os.PathLike):
+        return os.fsdecode(path_or_text), False, os.fsdecode(path_or_text)
+    s = os.fsdecode(path_or_text)
     if os.path.exists(s) or ("\n" not in s and "{" not in s):
         return s, False, s
     return s, True, "<text>.gbx"
@@ -214,7 +233,7 @@ class Report:
     and sweeps; `to_json()` is the JSON report itself."""
 
     def __init__(self, solved: Any):
-        self._solved = solved
+        self._summary: str = solved.summary_html
         self._json: str = solved.json
         self.data: Dict[str, Any] = json.loads(self._json) if self._json else {"gearboxes": []}
         self.status: int = solved.status  # 0 solved; 3 a part failed or the time limit cut the search
@@ -238,6 +257,8 @@ class Report:
             import pandas
         except ImportError as e:
             raise ImportError("Report.designs_frame() needs pandas: apt install python3-pandas (or pip install pandas)") from e
+        if gearbox is not None and gearbox not in self.gearboxes:
+            raise KeyError(f"the report has no gearbox {gearbox!r} (it has {', '.join(self.gearboxes) or 'none'})")
         rows = []
         for g in self.gearboxes.values():
             if gearbox is not None and g.name != gearbox:
@@ -253,15 +274,28 @@ class Report:
                 rows.append(row)
         return pandas.DataFrame(rows)
 
+    @property
+    def ok(self) -> bool:
+        """Solved whole: status 0, every gearbox searched, rated and simulated."""
+        return self.status == 0
+
     def _repr_html_(self) -> str:
-        return self._solved.summary_html
+        """The HTML report's summary card, in a frame of its own so that its style stays
+        out of the notebook's."""
+        height = 120 + 300 * max(1, len(self.gearboxes))
+        page = "<!DOCTYPE html><html><head><meta charset=\"utf-8\"></head><body>" + self._summary + "</body></html>"
+        return (f'<iframe srcdoc="{html.escape(page, quote=True)}" style="width:100%;height:{height}px;border:none" '
+                f'title="gbxc report summary"></iframe>')
 
     def __repr__(self) -> str:
         names = ", ".join(self.gearboxes) or "no gearbox"
         return f"<gbxc.Report: {names}>"
 
 
-def _interruptible(call, *args):
+_tokens = itertools.count(1)
+
+
+def _interruptible(token: int, call, *args):
     """Runs the native call (which releases the GIL) on a thread of its own and waits for it
     here, where Ctrl-C arrives as KeyboardInterrupt: the solve is then told to stop, as its
     time limit would stop it, and the interrupt raised once it has."""
@@ -280,7 +314,7 @@ def _interruptible(call, *args):
             worker.join(0.1)
     except KeyboardInterrupt:
         while worker.is_alive():
-            _gbxc.interrupt()
+            _gbxc.interrupt(token)
             worker.join(0.05)
         raise
     if "error" in result:
@@ -302,9 +336,17 @@ def solve(
     spec or an override does not check, SolveError when solving fails, and KeyboardInterrupt
     on Ctrl-C (within a second). `timings=False` leaves CPU times out (same bytes each run)."""
     source, is_text, display = _source(path_or_text)
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or not 1 <= jobs <= 256:
+        raise ValueError(f"jobs needs a whole number from 1 to 256, not {jobs!r}")
+    if time_limit is not None and not (isinstance(time_limit, (int, float)) and 0 < time_limit < float("inf")):
+        raise ValueError(f"time_limit needs a positive number of seconds (or None), not {time_limit!r}")
+    if overrides is not None and not isinstance(overrides, Mapping):
+        raise TypeError(f"overrides needs a mapping of path to value, such as {{'hs.face_width': '60 mm'}}, "
+                        f"not a {type(overrides).__name__}")
     pairs = [(str(k), str(v)) for k, v in (overrides or {}).items()]
-    solved = _interruptible(_gbxc.solve, source, is_text, display, gearbox or "", int(jobs), float(time_limit or 0),
-                            bool(timings), pairs)
+    token = next(_tokens)
+    solved = _interruptible(token, _gbxc.solve, token, source, is_text, display, gearbox or "", int(jobs),
+                            float(time_limit or 0), bool(timings), pairs)
     if solved.status == 1:
         raise SpecError(solved.diagnostics_text.strip() or "the spec has errors", _diagnostics(solved.diagnostics))
     if solved.status == 2:
