@@ -164,15 +164,6 @@ bind /dev /dev
 bind /dev/pts /dev/pts
 mount -t tmpfs -o mode=1777 shm "$root/dev/shm"; mounts+=("$root/dev/shm")
 bind "$repo" /mnt/src ro
-# The machine's compiler cache (scripts/ccache-launch), lent to the chroot: it serves only a
-# compile whose every source and header is there and the same, so a package the bare
-# machine lacks still fails the build; it spares recompiling what the release build just
-# compiled. GBX_BARE_CCACHE= (empty) builds without it.
-ccache_dir=${GBX_BARE_CCACHE-$(ccache -k cache_dir 2>/dev/null || true)}
-if [[ -n $ccache_dir && -d $ccache_dir ]]; then
-  say "compiler cache $ccache_dir lent to the chroot"
-  bind "$ccache_dir" /root/.cache/ccache
-fi
 
 # Runs a command in the chroot in a clean environment: nothing from the host or the CI
 # runner leaks in. In the background and a process group of its own, so that a signal to
@@ -199,6 +190,15 @@ in_root "git -c safe.directory='*' clone -q --no-local /mnt/src /work/main && gi
   die "git clone in the chroot failed"
 cp -a "$shared" "$root/work/shared"
 umount "$root/mnt/src"; unset 'mounts[${#mounts[@]}-1]'
+# The machine's compiler cache (scripts/ccache-launch), lent to the chroot: it serves only a
+# compile whose every source and header is there and the same, so a package the bare
+# machine lacks still fails the build; it spares recompiling what the release build just
+# compiled. GBX_BARE_CCACHE= (empty) builds without it.
+ccache_dir=${GBX_BARE_CCACHE-$(ccache -k cache_dir 2>/dev/null || true)}
+if [[ -n $ccache_dir && -d $ccache_dir ]]; then
+  say "compiler cache $ccache_dir lent to the chroot"
+  bind "$ccache_dir" /root/.cache/ccache
+fi
 
 log=$root/work/readme-1.log
 t=$SECONDS

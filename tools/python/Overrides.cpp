@@ -71,7 +71,8 @@ Overridden withOverrides(const std::string& spec, const std::vector<std::string>
 
 void keepVariants(ir::Program& program, const std::vector<std::pair<std::string, std::string>>& variants) {
   std::vector<ir::Gearbox> kept;
-  for (const auto& [variant, base] : variants) {
+  for (const auto& pair : variants) {
+    const std::string &variant = pair.first, &base = pair.second;
     std::string baseline;
     for (const auto& g : program.gearboxes)
       if (g.name == base) baseline = g.baseline;
