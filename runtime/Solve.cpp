@@ -198,8 +198,8 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
   ro.version = o.version;
   if (o.timings) ro.date = today();
   ro.charts = !o.outDir.empty();
-  if (o.keep) *o.keep = reports;
   passes::Rendered rendered = passes::render(std::move(reports), *format, ro);
+  if (o.keep) *o.keep = std::move(rendered.reports);
   // Under mpirun every rank has solved the same; rank 0 alone writes.
   if (!par::root()) return status;
   out << rendered.report;

@@ -23,8 +23,8 @@ struct SolveOptions {
   std::string title;    // the spec's file name, for the report's header
   std::string version;  // gbxc's
   int optimiserIterations = 0;  // a test setting: Nelder-Mead iterations per candidate; 0: its own
-  // An embedding program's copy of the reports as they go to the renderer (the Python
-  // module's arrays); null: none kept.
+  // Where an embedding program keeps the reports once rendered (the Python module's arrays);
+  // null: none kept.
   std::vector<GearboxReport>* keep = nullptr;
 };
 

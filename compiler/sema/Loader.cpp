@@ -41,9 +41,14 @@ std::string& programLocation() {
   return file;
 }
 
+// The running program: the one set, else the process's executable.
+fs::path programPath(std::error_code& ec) {
+  return programLocation().empty() ? fs::read_symlink("/proc/self/exe", ec) : fs::path(programLocation());
+}
+
 std::string stdlibBesideProgram() {
   std::error_code ec;
-  fs::path exe = programLocation().empty() ? fs::read_symlink("/proc/self/exe", ec) : fs::path(programLocation());
+  fs::path exe = programPath(ec);
 #ifdef GBX_INSTALL_DATADIR
   // Without /proc (a bare container): where the installation put it.
   if (ec) return fs::is_directory(fs::path(GBX_INSTALL_DATADIR) / "gbxc" / "stdlib", ec) ? (fs::path(GBX_INSTALL_DATADIR) / "gbxc" / "stdlib").string() : "";
@@ -192,10 +197,7 @@ public:
           fmt::format(
               "cannot import `{}`: no folder of modules was found (no share/gbxc/stdlib beside {}{}); reinstall "
               "gbxc, or set GBX_PATH to folders of .gbx modules",
-              d.word,
-              (programLocation().empty() ? fs::read_symlink("/proc/self/exe", ec) : fs::path(programLocation()))
-                  .parent_path()
-                  .string(),
+              d.word, programPath(ec).parent_path().string(),
               missing.empty() ? ""
                               : fmt::format("; GBX_PATH names {}, which {} not exist", fmt::join(missing, ", "),
                                             missing.size() == 1 ? "does" : "do")));

@@ -16,6 +16,7 @@ Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, 
     r.reportFile.clear();
   }
   if (!o.charts && format.unwritten) r.unwritten = format.unwritten(reports, o);
+  r.reports = std::move(reports);
   return r;
 }
 

@@ -17,6 +17,7 @@ struct Rendered {
   // Without an output folder: the format's further tables that have rows and were not
   // written (stdout holds one table), for a note that names them.
   std::vector<std::string> unwritten;
+  std::vector<GearboxReport> reports; // what was rendered, for an embedding program to keep
 };
 
 Rendered render(std::vector<GearboxReport> reports, const ReportFormat& format, const RenderOptions& options);

@@ -51,7 +51,7 @@ unsigned long long running = 0;
 struct Source {
   std::string text; // the spec, or a path when `isText` is false
   bool isText = false;
-  std::string display; // the name diagnostics and the report's title give it
+  std::string display; // the name diagnostics and the report's title give it (a path: itself)
 };
 
 std::unique_ptr<driver::Compilation> compileSource(const Source& s) {
@@ -73,7 +73,6 @@ py::dict check(const Source& s) {
   out["ok"] = c->ok();
   out["gearboxes"] = names;
   out["diagnostics"] = c->diags.renderJson(c->sources);
-  out["text"] = c->diags.renderText(c->sources);
   return out;
 }
 
@@ -111,7 +110,7 @@ std::unique_ptr<driver::Compilation> compileWithOverrides(const SolveArgs& a, So
     if (!std::filesystem::is_regular_file(a.source.text, ec) || !in) return compileSource(a.source);
     text.assign(std::istreambuf_iterator<char>(in), {});
   }
-  const std::string& display = a.source.isText ? a.source.display : a.source.text;
+  const std::string& display = a.source.display;
   // The spec alone first, for its gearboxes' names: each gets a variant with the overrides.
   auto plain = driver::compileText(display, text);
   if (!plain->ok()) return plain;
@@ -179,7 +178,7 @@ Solved solveNow(const SolveArgs& a) {
   so.quiet = true;
   so.timings = a.timings;
   so.timeLimit = a.timeLimit;
-  so.title = std::filesystem::path(a.source.isText ? a.source.display : a.source.text).filename().string();
+  so.title = std::filesystem::path(a.source.display).filename().string();
   so.version = GBX_VERSION;
   so.keep = &out.reports;
   std::ostringstream json, errors;

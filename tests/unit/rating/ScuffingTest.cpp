@@ -101,6 +101,21 @@ ref::Pair refPair(const Case& c = {}) {
 
 double degC(double K) { return K - kZeroC; }
 
+// The point of the path where Gamma is 0 (the pitch point), or none.
+const PathPoint* pitchPoint(const ScuffingRating& r) {
+  auto c = std::find_if(r.path.begin(), r.path.end(), [](const PathPoint& p) { return p.gamma == 0; });
+  return c == r.path.end() ? nullptr : &*c;
+}
+
+// Dowson-Higginson's film at a point of pure rolling (SI, E' = E_r): h = 1.6 R G^0.6 U^0.7
+// W^-0.13, the oil's viscosity (ASTM D341 line, density rho15 - 0.7 (T - 289)) and ISO/TS
+// 6336-22's pressure-viscosity coefficient of a mineral oil at T [K].
+double dowsonHigginson(double R, double Er, double ue, double w, double T, const Lubricant& oil) {
+  auto eta = [&](double t) { return oil.kinematic(t) * (oil.density15 - 0.7 * (t - 289)); };
+  double alpha = 2.657e-8 * std::pow(eta(311.15), 0.1348) * (1 + 516 * (1 / (T - 0.15) - 1.0 / 311));
+  return 1.6 * R * std::pow(alpha * Er, 0.6) * std::pow(eta(T) * ue / (Er * R), 0.7) * std::pow(w / (Er * R), -0.13);
+}
+
 // Factor by factor against the independent reference, both editions.
 void compare(ScuffingEdition e, ref::Edition re) {
   ScuffingRating r = rateScuffing(mesh(), vg220(), e);
@@ -176,8 +191,8 @@ TEST(Scuffing, ReproducesThePublishedNrelHighSpeedStage) {
 
 TEST(Scuffing, NoFlashTemperatureAtThePitchPoint) {
   ScuffingRating r = rateScuffing(mesh(), vg220());
-  auto c = std::find_if(r.path.begin(), r.path.end(), [](const PathPoint& p) { return p.gamma == 0; });
-  ASSERT_NE(c, r.path.end());
+  const PathPoint* c = pitchPoint(r);
+  ASSERT_NE(c, nullptr);
   EXPECT_EQ(c->thetaFla, 0.0);
   EXPECT_DOUBLE_EQ(c->thetaB, r.thetaM);
   for (const auto& p : r.path)
@@ -217,8 +232,8 @@ TEST(Scuffing, FilmThicknessAtThePitchPointIsDowsonHigginson) {
   ScuffingMesh m = mesh();
   Lubricant oil = vg220();
   ScuffingRating r = rateScuffing(m, oil);
-  auto c = std::find_if(r.path.begin(), r.path.end(), [](const PathPoint& p) { return p.gamma == 0; });
-  ASSERT_NE(c, r.path.end());
+  const PathPoint* c = pitchPoint(r);
+  ASSERT_NE(c, nullptr);
   double alphaT = std::atan(std::tan(m.alphaN) / std::cos(m.beta)), betaB = std::asin(std::sin(m.beta) * std::cos(m.alphaN));
   double rb1 = m.z1 * m.mn / std::cos(m.beta) / 2 * std::cos(alphaT), rb2 = rb1 * m.z2 / m.z1;
   double alphaWt = std::acos((rb1 + rb2) / m.a);
@@ -228,14 +243,10 @@ TEST(Scuffing, FilmThicknessAtThePitchPointIsDowsonHigginson) {
   double ue = m.speed1 * rho1;  // both surfaces roll at the same speed
   double X = 1 / r.epsAlpha;    // wide helical load sharing away from the ends
   double w = m.Ft * X * m.KA * m.Kv * m.KHalpha * m.KHbeta / (m.b * std::cos(alphaT) * std::cos(betaB));
-  double T = r.thetaMmp;
-  double nu = oil.kinematic(T), rho = oil.density15 - 0.7 * (T - 289);
-  double eta = nu * rho;
   double eta38 = oil.kinematic(311.15) * (oil.density15 - 0.7 * (311.15 - 289));  // Pa s
   // A mineral VG 220 oil's pressure-viscosity coefficient is about 2e-8 m^2/N.
   EXPECT_NEAR(2.657e-8 * std::pow(eta38, 0.1348), 2.2e-8, 0.2e-8);
-  double alpha = 2.657e-8 * std::pow(eta38, 0.1348) * (1 + 516 * (1 / (T - 0.15) - 1.0 / 311));
-  double h = 1.6 * R * std::pow(alpha * Er, 0.6) * std::pow(eta * ue / (Er * R), 0.7) * std::pow(w / (Er * R), -0.13);
+  double h = dowsonHigginson(R, Er, ue, w, r.thetaMmp, oil);
   EXPECT_NEAR(c->h / h, 1.0, 1e-9);
   EXPECT_NEAR(c->lambda, h / m.Ra, 1e-9 * c->lambda);
 }
@@ -337,17 +348,13 @@ TEST(ScuffingInternal, FilmAtThePitchPointWithTheConcaveFlank) {
   ScuffingMesh m = planetRing();
   Lubricant oil = vg220();
   ScuffingRating r = rateScuffing(m, oil);
-  auto c = std::find_if(r.path.begin(), r.path.end(), [](const PathPoint& p) { return p.gamma == 0; });
-  ASSERT_NE(c, r.path.end());
+  const PathPoint* c = pitchPoint(r);
+  ASSERT_NE(c, nullptr);
   const double rb1 = 17 * 45e-3 / 2 * std::cos(m.alphaN), rb2 = 56 * 45e-3 / 2 * std::cos(m.alphaN);
   const double alphaWt = std::acos((rb2 - rb1) / 0.863), rho1 = rb1 * std::tan(alphaWt), rho2 = rb2 * std::tan(alphaWt);
   const double R = rho1 * rho2 / (rho2 - rho1), Er = 206e9 / (1 - 0.09), ue = m.speed1 * rho1;
   const double w = m.Ft * c->XGamma * m.loadFactor() / (m.b * std::cos(m.alphaN));
-  const double T = r.thetaMmp, eta = oil.dynamic(T);
-  const double eta38 = oil.dynamic(311.15),
-               alpha = 2.657e-8 * std::pow(eta38, 0.1348) * (1 + 516 * (1 / (T - 0.15) - 1.0 / 311));
-  double h = 1.6 * R * std::pow(alpha * Er, 0.6) * std::pow(eta * ue / (Er * R), 0.7) * std::pow(w / (Er * R), -0.13);
-  EXPECT_NEAR(c->h / h, 1.0, 1e-9);
+  EXPECT_NEAR(c->h / dowsonHigginson(R, Er, ue, w, r.thetaMmp, oil), 1.0, 1e-9);
 }
 
 // A ring with fewer teeth than its pinion, or a sign left positive, is refused with a sentence.
