@@ -28,6 +28,11 @@ AttrSpec count(std::string n, std::string meaning) {
   a.positive = true;
   return a;
 }
+AttrSpec list(std::string n, Dim d, std::string meaning) {
+  auto a = in(std::move(n), d, std::move(meaning));
+  a.value = ValueKind::List;
+  return a;
+}
 AttrSpec derived(std::string n, Dim d, std::string meaning, bool integer) {
   auto a = in(std::move(n), d, std::move(meaning));
   a.role = AttrRole::Derived;

@@ -20,7 +20,7 @@ enum class AttrRole {
   Either,   // derived unless the spec fixes it (center_distance)
 };
 
-enum class ValueKind { Number, Material, Symbol, Stage };
+enum class ValueKind { Number, Material, Symbol, Stage, List }; // List: `{a, b, …}` of numbers
 
 struct AttrSpec {
   std::string name;
@@ -49,6 +49,8 @@ namespace rows {
 AttrSpec in(std::string n, Dim d, std::string meaning);
 AttrSpec pos(std::string n, Dim d, std::string meaning);
 AttrSpec count(std::string n, std::string meaning);
+// A list of constant numbers of one dimension (`{1 um, -2 um, 0 um}`).
+AttrSpec list(std::string n, Dim d, std::string meaning);
 // A whole number of any sign (its range set by `bounded`).
 AttrSpec whole(std::string n, std::string meaning);
 AttrSpec derived(std::string n, Dim d, std::string meaning, bool integer = false);

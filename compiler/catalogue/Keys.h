@@ -280,7 +280,11 @@ namespace gbx::cat {
   X(PlanetBearingContamination, "bearing.contamination")                                        \
   X(BearingLoad, "bearing_load")                                                                \
   X(BearingLife, "bearing_life")                                                                \
-  X(BearingModifiedLife, "bearing_modified_life")
+  X(BearingModifiedLife, "bearing_modified_life")                                                \
+  X(CornerContact, "corner_contact")                                                             \
+  X(PitchSeed, "pitch_seed")                                                                     \
+  X(PinionPitchDeviations, "pinion_pitch_deviations")                                            \
+  X(WheelPitchDeviations, "wheel_pitch_deviations")
 
 enum class Q : std::uint16_t {
 #define GBX_KEY_ENUM(id, name) id,

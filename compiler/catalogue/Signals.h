@@ -73,18 +73,34 @@ inline units::DisplayUnit signalUnit(Signal id) {
 }
 
 // Functions of a signal: a number over the recorded window, or an artefact.
-enum class SignalFn : std::uint8_t { Rms, Peak, Mean, Min, Max, PeakToPeak, Spectrum, Plot };
+enum class SignalFn : std::uint8_t { Rms, Peak, Mean, Min, Max, PeakToPeak, Spectrum, Plot, Harmonic, Level, LevelA };
+
+// Whether a function takes the order of the mesh frequency as a second argument
+// (`harmonic(static_transmission_error, 2)`).
+enum class OrderArg : std::uint8_t { None, Optional, Required };
 
 struct SignalFnSpec {
   SignalFn id;
   std::string_view name;
-  bool number;  // false: a spectrum or a plot
+  bool number; // false: a spectrum or a plot
+  OrderArg order = OrderArg::None;
+  bool decibels = false; // a level in dB (plain), whatever the signal's dimension
 };
 
 inline constexpr SignalFnSpec kSignalFns[] = {
-    {SignalFn::Rms, "rms", true},        {SignalFn::Peak, "peak", true}, {SignalFn::Mean, "mean", true},
-    {SignalFn::Min, "min", true},        {SignalFn::Max, "max", true},   {SignalFn::PeakToPeak, "peak_to_peak", true},
-    {SignalFn::Spectrum, "spectrum", false}, {SignalFn::Plot, "plot", false},
+    {SignalFn::Rms, "rms", true},
+    {SignalFn::Peak, "peak", true},
+    {SignalFn::Mean, "mean", true},
+    {SignalFn::Min, "min", true},
+    {SignalFn::Max, "max", true},
+    {SignalFn::PeakToPeak, "peak_to_peak", true},
+    {SignalFn::Spectrum, "spectrum", false},
+    {SignalFn::Plot, "plot", false},
+    // The amplitude of mesh order k; the level in dB of order k (or of every order together);
+    // the same A-weighted at each order's frequency (docs/dynamics.md).
+    {SignalFn::Harmonic, "harmonic", true, OrderArg::Required},
+    {SignalFn::Level, "level", true, OrderArg::Optional, true},
+    {SignalFn::LevelA, "level_a", true, OrderArg::Optional, true},
 };
 
 inline const SignalFnSpec* findSignalFn(std::string_view name) {

@@ -85,6 +85,7 @@ struct SceneOutputRef {
   bool bare = false;  // a single result (`scene.dynamic_factor`): matched by its signal alone
   cat::SignalFn fn = cat::SignalFn::Rms;
   cat::Signal signal = cat::Signal::Displacement;
+  int order = 0; // `harmonic(x, k)`: k
 };
 
 struct Expr {
@@ -220,8 +221,10 @@ struct SceneOutput {
   cat::SignalFn fn = cat::SignalFn::Rms;  // when not bare
   cat::Signal id = cat::Signal::Displacement;
   std::string mesh;  // a whole-gearbox scene's mesh, "stage.mesh" or "stage" (docs/dynamics.md)
+  int order = 0;     // the mesh order a function takes (`harmonic(x, 2)`); 0: none
   std::string key() const {
     std::string s = mesh.empty() ? signal : signal + "(" + mesh + ")";
+    if (order > 0) s += ", " + std::to_string(order);
     return function.empty() ? s : function + "(" + s + ")";
   }
   Span span;

@@ -90,7 +90,15 @@ public:
       }
       if (close == std::string::npos) break;
       if (const auto* f = cat::findSignalFn(e.name.substr(dot + 1, open - dot - 1))) e.output.fn = f->id;
-      if (const auto* s = cat::findSignal(e.name.substr(open + 1, close - open - 1))) e.output.signal = s->id;
+      {
+        // "scene.fn(signal, k)": a mesh order after the signal.
+        std::string inside = e.name.substr(open + 1, close - open - 1);
+        if (auto comma = inside.find(','); comma != std::string::npos) {
+          e.output.order = std::stoi(inside.substr(comma + 1));
+          inside.resize(comma);
+        }
+        if (const auto* s = cat::findSignal(inside)) e.output.signal = s->id;
+      }
       break;
     }
     default: break;

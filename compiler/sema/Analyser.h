@@ -83,6 +83,10 @@ private:
   void notAllowed(const Stmt& st, const std::string& owner);
   ir::Setting setting(const std::string& name, const Binding& b, const AttrSpec& spec, const Scope& scope,
                       const std::string& owner);
+  std::optional<int> orderArgument(const cat::SignalFnSpec& fn, const ast::Expr* k, Span span,
+                                   const std::string& signal);
+  static ir::Setting switchSetting(ir::Setting out, bool on);
+  ir::Setting listSetting(ir::Setting out, const ast::Expr* v, const AttrSpec& spec, const Scope& scope);
   ir::Setting domainSetting(ir::Setting out, const Stmt& st, const AttrSpec& spec, const Scope& scope,
                             const std::string& owner);
   std::vector<ir::Setting> settings(const std::vector<std::pair<std::string, Binding>>& items,

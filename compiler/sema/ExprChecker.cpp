@@ -773,8 +773,16 @@ ir::ExprPtr ExprChecker::sceneResult(const ast::Expr& e, const ast::Expr& callee
                              obj->name, fn, ast::print(*argAst[0])));
     return error(e.span);
   }
-  if (argAst.size() != 1 || !argAst[0] || argAst[0]->kind != ast::ExprKind::Name) {
-    diags_.error("E0221", e.span, fmt::format("`{}` takes one signal, as in `{}.{}(acceleration)`", fn, obj->name, fn));
+  bool ordered = fnSpec->order != OrderArg::None;
+  if (argAst.empty() || argAst.size() > (ordered ? 2u : 1u) || !argAst[0] || argAst[0]->kind != ast::ExprKind::Name ||
+      (fnSpec->order == OrderArg::Required && argAst.size() != 2)) {
+    diags_.error(
+        "E0221", e.span,
+        fnSpec->order == OrderArg::Required
+            ? fmt::format("`{}` takes a signal and a mesh order, as in `{}.{}(mesh_force, 1)`", fn, obj->name, fn)
+        : ordered ? fmt::format("`{}` takes a signal and, if one order, its number, as in `{}.{}(mesh_force, 1)`", fn,
+                                obj->name, fn)
+                  : fmt::format("`{}` takes one signal, as in `{}.{}(acceleration)`", fn, obj->name, fn));
     return error(e.span);
   }
   const std::string& sig = argAst[0]->text;
@@ -784,7 +792,8 @@ ir::ExprPtr ExprChecker::sceneResult(const ast::Expr& e, const ast::Expr& callee
     return error(e.span);
   }
   const ast::Stmt* scene = s.gearbox->findScene(obj->name);
-  std::string key = fn + "(" + sig + ")";
+  std::string key =
+      fn + "(" + sig + (argAst.size() == 2 && argAst[1] ? ", " + ast::print(*argAst[1]) : std::string()) + ")";
   bool declared = false;
   for (const auto& st : scene->body)
     if (st.kind == ast::StmtKind::Output)
@@ -795,7 +804,9 @@ ir::ExprPtr ExprChecker::sceneResult(const ast::Expr& e, const ast::Expr& callee
                  fmt::format("scene `{}` does not output `{}`; add it to the scene's `output` list", obj->name, key));
     return error(e.span);
   }
-  Type t = fnSpec->number ? Type::number(spec->dim) : Type{Type::Signal, spec->dim, false, {}};
+  Type t = fnSpec->decibels ? Type::number(units::dims::none)
+           : fnSpec->number ? Type::number(spec->dim)
+                            : Type{Type::Signal, spec->dim, false, {}};
   return make(Op::SceneOutput, t, e.span, obj->name + "." + key);
 }
 

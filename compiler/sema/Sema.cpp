@@ -140,6 +140,40 @@ ir::Setting Analyser::domainSetting(ir::Setting out, const Stmt& st, const AttrS
   return out;
 }
 
+// `name = {a, b, …}`: constant numbers of the row's dimension, kept in order.
+ir::Setting Analyser::listSetting(ir::Setting out, const ast::Expr* v, const AttrSpec& spec, const Scope& scope) {
+  if (!v || v->kind != ast::ExprKind::Set) {
+    diags_.error("E0406", v ? v->span : out.span,
+                 fmt::format("`{}` takes a list of {} in braces, as `{{0 {}, 2 {}, -1 {}}}`", out.name,
+                             spec.dim.describe(), spec.unitHint, spec.unitHint, spec.unitHint));
+    return out;
+  }
+  std::vector<units::Number> members;
+  for (const auto& m : v->args) {
+    auto x = checker_.check(m.get(), scope);
+    if (x->type.isError()) return out;
+    if (!x->isConst() || !x->type.isNumber()) {
+      diags_.error("E0306", x->span, fmt::format("each member of `{}` is a constant number", out.name));
+      return out;
+    }
+    if (x->type.dim != spec.dim) {
+      diags_.error(
+          "E0302", x->span,
+          fmt::format("unit mismatch: `{}` lists {}, got {}", out.name, spec.dim.describe(), describe(x->type)));
+      return out;
+    }
+    members.push_back(x->value);
+  }
+  out.members = std::move(members);
+  return out;
+}
+
+ir::Setting Analyser::switchSetting(ir::Setting out, bool on) {
+  out.symbol = on ? "true" : "false";
+  out.choice = on ? 1 : 0;
+  return out;
+}
+
 // Checks one value against its spec; returns the setting (value unset on error).
 ir::Setting Analyser::setting(const std::string& name, const Binding& b, const AttrSpec& spec, const Scope& scope, const std::string& owner) {
   ir::Setting out;
@@ -152,6 +186,10 @@ ir::Setting Analyser::setting(const std::string& name, const Binding& b, const A
   if (st.when) diags_.error("E0408", st.when->span, "`x when condition` is only allowed in a `modify` block");
   if (st.kind == StmtKind::Domain) return domainSetting(std::move(out), st, spec, scope, owner);
   const ast::Expr* v = st.value.get();
+  if (spec.value == ValueKind::List) return listSetting(std::move(out), v, spec, scope);
+  // A switch (`corner_contact = true`): its row's words are false and true.
+  if (spec.value == ValueKind::Symbol && spec.symbols == std::vector<std::string>{"false", "true"} && v && v->kind == ast::ExprKind::Bool)
+    return switchSetting(std::move(out), v->boolValue);
   if (spec.value == ValueKind::Symbol || spec.value == ValueKind::Stage || spec.value == ValueKind::Material) {
     if (!v || v->kind != ast::ExprKind::Name) {
       diags_.error("E0406", v ? v->span : st.span,

@@ -84,8 +84,17 @@ ir::Scene Analyser::scene(const Stmt& st, const GearboxModel& m, const Scope& gs
       diags_.error("E0232", nameOr(st), fmt::format("{}: `steady_state = periodic` needs a scene on a stage; a whole-gearbox scene runs "
                                                    "from rest (`duration`) or settles (`settle`)", owner));
   }
-  if (!ir::findSetting(out.settings, "duration") && !ir::findSetting(out.settings, "record"))
-    diags_.error("E0225", nameOr(st), fmt::format("{} needs `duration` (a run from rest) or `record` (a steady-state window)", owner));
+  // A loaded mesh whose outputs all read its static transmission error runs no dynamics.
+  const bool staticOnly = stage && out.findEffect(Effect::LoadedMesh) && !out.outputs.empty() &&
+                          std::all_of(out.outputs.begin(), out.outputs.end(), [](const ir::SceneOutput& o) {
+                            return isSignal(o, cat::Signal::StaticTransmissionError);
+                          });
+  if (!staticOnly && !ir::findSetting(out.settings, "duration") && !ir::findSetting(out.settings, "record"))
+    diags_.error("E0225", nameOr(st),
+                 fmt::format("{} needs `duration` (a run from rest) or `record` (a steady-state window){}", owner,
+                             out.findEffect(Effect::LoadedMesh)
+                                 ? ", unless every output reads `static_transmission_error`"
+                                 : ""));
   for (const auto& o : out.outputs)
     if (isSignal(o, cat::Signal::Stability) && !ir::findSetting(out.settings, Q::SteadyState))  // else E0202 already says it
       for (const char* transient : {"settle", "duration"})
@@ -217,6 +226,30 @@ std::vector<std::string> Analyser::meshNames(const StageModel& st) {
   }
 }
 
+// The mesh order of `harmonic(x, k)` and `level(x, k)`: a whole constant from 1, where the
+// function takes one; 0 where it takes none or leaves it out. Empty after an error.
+std::optional<int> Analyser::orderArgument(const SignalFnSpec& fn, const ast::Expr* k, Span span,
+                                           const std::string& signal) {
+  if (!k) {
+    if (fn.order != OrderArg::Required) return 0;
+    diags_.error("E0221", span,
+                 fmt::format("`{}` takes a signal and a mesh order, as in `{}({}, 1)`", fn.name, fn.name, signal));
+    return std::nullopt;
+  }
+  if (fn.order == OrderArg::None) {
+    diags_.error("E0221", k->span, fmt::format("`{}` takes one signal, as in `{}({})`", fn.name, fn.name, signal));
+    return std::nullopt;
+  }
+  double v = k->kind == ast::ExprKind::Number && !k->unit ? std::strtod(k->text.c_str(), nullptr) : 0.0;
+  if (!(v >= 1 && v <= 1000 && v == std::floor(v))) {
+    diags_.error("E0306", k->span,
+                 fmt::format("the mesh order of `{}` is a whole number from 1 to 1000, as in `{}({}, 2)`", fn.name,
+                             fn.name, signal));
+    return std::nullopt;
+  }
+  return static_cast<int>(v);
+}
+
 void Analyser::sceneOutput(const ast::Expr* e, ir::Scene& out, const StageModel* stage, const GearboxModel& m, bool whole) {
   if (!e) return;
   ir::SceneOutput o;
@@ -260,15 +293,20 @@ void Analyser::sceneOutput(const ast::Expr* e, ir::Scene& out, const StageModel*
                    fmt::format("gearbox `{}` has no mesh `{}`{} (meshes: {})", m.name, o.mesh, suggestion(hint), fmt::join(names, ", ")));
       return;
     }
-  } else if (e->kind == ast::ExprKind::Call && e->args.size() == 2 && e->args[0] &&
+  } else if (e->kind == ast::ExprKind::Call && (e->args.size() == 2 || e->args.size() == 3) && e->args[0] &&
              e->args[0]->kind == ast::ExprKind::Name && e->args[1] && e->args[1]->kind == ast::ExprKind::Name) {
     o.function = e->args[0]->text;
     o.signal = e->args[1]->text;
-    if (!findSignalFn(o.function)) {
+    const SignalFnSpec* fn = findSignalFn(o.function);
+    if (!fn) {
       diags_.error("E0220", e->args[0]->span,
                    fmt::format("`{}` is not a scene result function ({})", o.function, signalFnList()));
       return;
     }
+    if (auto k = orderArgument(*fn, e->args.size() == 3 ? e->args[2].get() : nullptr, e->span, o.signal))
+      o.order = *k;
+    else
+      return;
   } else {
     diags_.error("E0306", e->span, "a scene output is a function of a signal, as in `rms(acceleration)`, or `modes`");
     return;

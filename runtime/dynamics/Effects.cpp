@@ -66,6 +66,10 @@ const std::vector<EffectRow>& kRowsTable() {
        fx.slices = e.loaded->slices * ov.loadedRefine;
        fx.positions = e.loaded->positions * ov.loadedRefine;
        fx.loadedHarmonics = ov.harmonics ? *ov.harmonics : e.loaded->tableHarmonics();
+       fx.loadedCorner = e.loaded->corner;
+       fx.pitchSeed = e.loaded->pitchSeed;
+       for (int g = 0; g < 2; ++g)
+         fx.pitchListed[g] = e.loaded->pitch[g].empty() ? nullptr : &e.loaded->pitch[g];
      },
      false, false, true},
   };

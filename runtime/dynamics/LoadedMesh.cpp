@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "dynamics/CornerContact.h"
 #include "model/Recent.h"
 
 namespace gbx::rt::dyn {
@@ -59,8 +60,9 @@ struct Separation {
 struct Contacts {
   std::vector<double> gap, c;
   std::vector<int> slice;
+  std::vector<char> corner; // the pair touches outside the path, at a tip corner
   size_t n = 0;
-  explicit Contacts(size_t most) : gap(most), c(most), slice(most) {}
+  explicit Contacts(size_t most) : gap(most), c(most), slice(most), corner(most) {}
 };
 
 // The approach delta at which F(delta) = sum c max(0, delta - gap) carries the load. F is
@@ -92,7 +94,7 @@ Approach approach(const Contacts& pts, double load, double start) {
   };
   size_t count = 0, last = n + 1;
   double K = 0, delta = start;
-  for (size_t it = 0; it < n + 2; ++it) {
+  for (size_t it = 0; it < 2 * n + 4; ++it) {
     double next = pass(delta, count, K);
     // No pair touches below delta: every pair in contact bounds the root from above.
     if (count == 0) next = pass(INFINITY, count, K);
@@ -110,13 +112,37 @@ Approach approach(const Contacts& pts, double load, double start) {
 std::vector<double> loadedMeshKey(const LoadedMeshInput& in) {
   const FlankGeometry& g = in.g;
   const FlankSeparations& s = in.sep;
-  std::vector<double> k = {g.rb1,           g.rb2,           g.ra1,          g.ra2,          g.centerDistance, g.workingPressureAngle,
-          g.basePitch,     g.baseHelix,     g.faceWidth,    s.tipRelief[0], s.tipRelief[1],   s.reliefLength[0],
-          s.reliefLength[1], s.leadCrowning, s.leadSlope,   s.basePitch,    s.profileForm,    s.endRelief,
-          s.endReliefWidth, in.singleStiffness, in.load,    static_cast<double>(in.slices), static_cast<double>(in.positions),
-          in.sliceLoads ? 1.0 : 0.0};
+  std::vector<double> k = {g.rb1,
+                           g.rb2,
+                           g.ra1,
+                           g.ra2,
+                           g.centerDistance,
+                           g.workingPressureAngle,
+                           g.basePitch,
+                           g.baseHelix,
+                           g.faceWidth,
+                           s.tipRelief[0],
+                           s.tipRelief[1],
+                           s.reliefLength[0],
+                           s.reliefLength[1],
+                           s.leadCrowning,
+                           s.leadSlope,
+                           s.basePitch,
+                           s.profileForm,
+                           s.endRelief,
+                           s.endReliefWidth,
+                           in.singleStiffness,
+                           in.load,
+                           static_cast<double>(in.slices),
+                           static_cast<double>(in.positions),
+                           in.sliceLoads ? 1.0 : 0.0,
+                           in.cornerContact ? 1.0 : 0.0};
   k.push_back(static_cast<double>(s.leadProfile.size()));
   k.insert(k.end(), s.leadProfile.begin(), s.leadProfile.end());
+  for (const auto& v : in.toothLateness) {
+    k.push_back(static_cast<double>(v.size()));
+    k.insert(k.end(), v.begin(), v.end());
+  }
   return k;
 }
 
@@ -134,6 +160,129 @@ LoadedMeshTable loadedMesh(const LoadedMeshInput& in) {
 }
 
 namespace {
+
+// The pairs of every slice at one mesh position, over one mesh period or over the hunting
+// period of two gears with tooth errors.
+struct Slices {
+  const LoadedMeshInput& in;
+  Separation sep;
+  double p, path, eps, db, cScale, invPath;
+  int S;
+  std::vector<double> phase, lead; // per slice: its contact lines' phase (fraction of a base pitch) and lead separation
+  std::vector<long> whole;         // per slice: the whole base pitches of its stagger (which tooth its lines belong to)
+  std::vector<double> corner;      // corner separation per step of the extension, when corners touch
+  double ext = 0;                  // how far outside the path a pair is looked at, base pitches
+  long z[2] = {1, 1};
+  bool errors = false;
+  double rigidSum = 0;
+  // Per position, slice and end of the path: the outside pair's separation, the same in every
+  // mesh period (computed once, when the corners are asked for).
+  std::vector<double> outsideCache;
+
+  Slices(const LoadedMeshInput& in, double path)
+      : in(in), sep(in.sep, path, in.g.basePitch), p(in.g.basePitch), path(path) {
+    const FlankGeometry& g = in.g;
+    double b = g.faceWidth, shift = std::tan(g.baseHelix);
+    eps = path / p;
+    S = std::max(1, in.slices);
+    db = b / S;
+    cScale = in.singleStiffness * db;
+    invPath = 1.0 / path;
+    phase.resize(static_cast<size_t>(S));
+    lead.resize(static_cast<size_t>(S));
+    whole.resize(static_cast<size_t>(S));
+    for (int j = 0; j < S; ++j) {
+      double y = (j + 0.5) * db;
+      double o = y * shift / p;
+      whole[static_cast<size_t>(j)] = static_cast<long>(std::floor(o));
+      phase[static_cast<size_t>(j)] = o - std::floor(o);
+      lead[static_cast<size_t>(j)] = Separation::lead(in.sep, y, b);
+    }
+    errors = !in.toothLateness[0].empty() || !in.toothLateness[1].empty();
+    for (int k = 0; k < 2; ++k)
+      z[k] = std::max<long>(1, static_cast<long>(in.toothLateness[k].size()));
+    if (in.cornerContact) ext = 1.0;
+  }
+  // A pair outside the path: its separation where it stands (the profile's at the path's
+  // end, the base pitch deviation's slope carried on) plus the corner's.
+  double outside(double s) const {
+    double end = std::clamp(s, 0.0, path);
+    return sep.profile(end) + sep.pitchSlope * (s - end) + cornerSeparation(in.g, s);
+  }
+  double outsideAt(int i, int j, bool beyond, double s) {
+    double& c =
+        outsideCache[(static_cast<size_t>(i) * static_cast<size_t>(S) + static_cast<size_t>(j)) * 2 + (beyond ? 1 : 0)];
+    if (std::isnan(c)) c = outside(s);
+    return c;
+  }
+  // The errors of the pair whose tooth count from the start is N (later teeth larger).
+  double toothError(long N) const {
+    if (!errors) return 0.0;
+    auto at = [&](int k) {
+      const auto& v = in.toothLateness[k];
+      if (v.empty()) return 0.0;
+      long i = N % z[k];
+      return v[static_cast<size_t>(i < 0 ? i + z[k] : i)];
+    };
+    return at(0) - at(1);
+  }
+  // Every pair of every slice at mesh position i of period n.
+  size_t collect(long n, int i, int P, Contacts& pts) {
+    double tau = static_cast<double>(i) / P;
+    size_t count = 0;
+    for (int j = 0; j < S; ++j) {
+      const size_t js = static_cast<size_t>(j);
+      // The slice's first pair lies at (tau - phase) mod 1 base pitches along the path.
+      double t0 = tau - phase[js];
+      long base = n - whole[js];
+      if (t0 < 0) {
+        t0 += 1.0;
+        base -= 1;
+      }
+      if (t0 >= 1.0) { // just below 0 and rounded up to 1: the pair is coming in
+        t0 = 0.0;
+        base += 1;
+      }
+      // Each pair touches over [0, eps_alpha) base pitches (to within a billionth of one):
+      // where one pair leaves as the next comes in (a whole contact ratio), a position
+      // counts one of them, not both. Outside, within ext of either end, at its corner.
+      long m = ext > 0 ? -1 : 0;
+      for (double t = t0 - (ext > 0 ? 1.0 : 0.0); t < eps + ext - 1e-9; t += 1.0, ++m) {
+        double s = t * p;
+        bool onPath = t >= 0 && t < eps - 1e-9;
+        if (!onPath && (t < -ext || !in.cornerContact)) continue;
+        double c = cScale * singlePairShape(std::clamp(s * invPath, 0.0, 1.0));
+        double gap = onPath ? sep.profile(s) : outsideAt(i, j, t > 0, s);
+        if (!std::isfinite(gap)) continue;
+        pts.gap[count] = gap + lead[js] + toothError(base - m);
+        pts.c[count] = c;
+        pts.slice[count] = j;
+        pts.corner[count] = !onPath;
+        ++count;
+        if (onPath) rigidSum += c;
+      }
+    }
+    pts.n = count;
+    return count;
+  }
+};
+
+long gcdOf(long a, long b) { return b == 0 ? a : gcdOf(b, a % b); }
+
+void summarise(LoadedMeshTable& out, double rigidSum) {
+  size_t N = out.te.size();
+  double sumK = 0, sumT = 0;
+  for (size_t i = 0; i < N; ++i) {
+    sumK += out.stiffness[i];
+    sumT += out.te[i];
+  }
+  out.meanStiffness = sumK / static_cast<double>(N);
+  out.meanTe = sumT / static_cast<double>(N);
+  auto [lo, hi] = std::minmax_element(out.te.begin(), out.te.end());
+  out.peakToPeakTe = *hi - *lo;
+  out.lightLoadStiffness = rigidSum / static_cast<double>(N);
+}
+
 LoadedMeshTable tabulate(const LoadedMeshInput& in) {
   LoadedMeshTable out;
   const FlankGeometry& g = in.g;
@@ -151,76 +300,52 @@ LoadedMeshTable tabulate(const LoadedMeshInput& in) {
                               in.load);
     return out;
   }
-  double p = g.basePitch, b = g.faceWidth, shift = std::tan(g.baseHelix);
-  out.epsAlpha = path / p;
-  out.epsBeta = b * shift / p;
-  int S = std::max(1, in.slices), P = std::max(2, in.positions);
-  double db = b / S;
-  Separation sep(in.sep, path, p);
-  // Per slice: the phase of its contact lines along the path (in base pitches, its
-  // fractional part) and its lead separation.
-  std::vector<double> phase(static_cast<size_t>(S)), lead(static_cast<size_t>(S));
-  for (int j = 0; j < S; ++j) {
-    double y = (j + 0.5) * db;
-    double o = y * shift / p;
-    phase[static_cast<size_t>(j)] = o - std::floor(o);
-    lead[static_cast<size_t>(j)] = Separation::lead(in.sep, y, b);
-  }
-  double cScale = in.singleStiffness * db, invPath = 1.0 / path, eps = path / p;
-  // A slice holds at most floor(eps_alpha) + 1 pairs at once.
-  Contacts pts(static_cast<size_t>(S) * (static_cast<size_t>(eps) + 2));
-  if (in.sliceLoads) out.sliceLineLoad.assign(static_cast<size_t>(S), 0.0);
-  out.te.reserve(static_cast<size_t>(P));
-  out.stiffness.reserve(static_cast<size_t>(P));
-  double rigidSum = 0, delta = NAN;
-  for (int i = 0; i < P; ++i) {
-    double tau = static_cast<double>(i) / P;
-    size_t n = 0;
-    for (int j = 0; j < S; ++j) {
-      // The slice's first pair lies at (tau - phase) mod 1 base pitches along the path.
-      double t0 = tau - phase[static_cast<size_t>(j)];
-      if (t0 < 0) t0 += 1.0;
-      if (t0 >= 1.0) t0 = 0.0;  // just below 0 and rounded up to 1: the pair is coming in
-      // Each pair touches over [0, eps_alpha) base pitches (to within a billionth of one):
-      // where one pair leaves as the next comes in (a whole contact ratio), a position
-      // counts one of them, not both.
-      for (double t = t0; t < eps - 1e-9; t += 1.0) {
-        double s = t * p;
-        double c = cScale * singlePairShape(s * invPath);
-        pts.gap[n] = sep.profile(s) + lead[static_cast<size_t>(j)];
-        pts.c[n] = c;
-        pts.slice[n] = j;
-        ++n;
-        rigidSum += c;
+  Slices sl(in, path);
+  if (in.cornerContact)
+    sl.outsideCache.assign(static_cast<size_t>(std::max(2, in.positions)) * static_cast<size_t>(sl.S) * 2, NAN);
+  out.epsAlpha = sl.eps;
+  out.epsBeta = g.faceWidth * std::tan(g.baseHelix) / g.basePitch;
+  int P = std::max(2, in.positions);
+  // With tooth errors: every tooth meets every tooth it can, once, over lcm(z1, z2) periods.
+  long periods = sl.errors ? sl.z[0] / gcdOf(sl.z[0], sl.z[1]) * sl.z[1] : 1;
+  out.periods = static_cast<int>(periods);
+  // A slice holds at most floor(eps_alpha) + 1 pairs at once, and two corners.
+  Contacts pts(static_cast<size_t>(sl.S) * (static_cast<size_t>(sl.eps) + 4));
+  if (in.sliceLoads) out.sliceLineLoad.assign(static_cast<size_t>(sl.S), 0.0);
+  size_t total = static_cast<size_t>(P) * static_cast<size_t>(periods);
+  out.te.reserve(total);
+  out.stiffness.reserve(total);
+  double delta = NAN;
+  for (long n = 0; n < periods; ++n)
+    for (int i = 0; i < P; ++i) {
+      size_t count = sl.collect(n, i, P, pts);
+      if (count == 0) {
+        out.failure = fmt::format("no tooth pair touches at mesh position {}/{} (a contact ratio below 1)", i, P);
+        return out;
       }
+      Approach a = approach(pts, in.load, std::isnan(delta) ? -INFINITY : delta);
+      if (!a.settled) {
+        out.failure = fmt::format(
+            "the load balance at mesh position {}/{} did not settle (the pairs in contact kept changing)", i, P);
+        return out;
+      }
+      delta = a.delta;
+      double cornerLoad = 0;
+      for (size_t q = 0; q < count; ++q) {
+        if (!(delta > pts.gap[q])) continue;
+        double f = pts.c[q] * (delta - pts.gap[q]);
+        if (in.sliceLoads)
+          out.sliceLineLoad[static_cast<size_t>(pts.slice[q])] += f / (sl.db * static_cast<double>(total));
+        if (pts.corner[q]) cornerLoad += f;
+      }
+      if (cornerLoad > 0) {
+        ++out.cornerPositions;
+        out.cornerShare = std::max(out.cornerShare, cornerLoad / in.load);
+      }
+      out.te.push_back(delta);
+      out.stiffness.push_back(a.K);
     }
-    pts.n = n;
-    if (n == 0) {
-      out.failure = fmt::format("no tooth pair touches at mesh position {}/{} (a contact ratio below 1)", i, P);
-      return out;
-    }
-    Approach a = approach(pts, in.load, std::isnan(delta) ? -INFINITY : delta);
-    if (!a.settled) {
-      out.failure = fmt::format("the load balance at mesh position {}/{} did not settle (the pairs in contact kept changing)", i, P);
-      return out;
-    }
-    delta = a.delta;
-    if (in.sliceLoads)
-      for (size_t q = 0; q < n; ++q)
-        if (delta > pts.gap[q]) out.sliceLineLoad[static_cast<size_t>(pts.slice[q])] += pts.c[q] * (delta - pts.gap[q]) / (db * P);
-    out.te.push_back(delta);
-    out.stiffness.push_back(a.K);
-  }
-  double sumK = 0, sumT = 0;
-  for (int i = 0; i < P; ++i) {
-    sumK += out.stiffness[static_cast<size_t>(i)];
-    sumT += out.te[static_cast<size_t>(i)];
-  }
-  out.meanStiffness = sumK / P;
-  out.meanTe = sumT / P;
-  auto [lo, hi] = std::minmax_element(out.te.begin(), out.te.end());
-  out.peakToPeakTe = *hi - *lo;
-  out.lightLoadStiffness = rigidSum / P;
+  summarise(out, sl.rigidSum);
   return out;
 }
 } // namespace

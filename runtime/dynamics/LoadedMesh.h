@@ -44,11 +44,25 @@ struct LoadedMeshInput {
   double load = 0;             // transverse force along the line of action, N
   int slices = 40, positions = 64;
   bool sliceLoads = false;     // also the line load of each slice, mean over the period
+  // Contact outside the path (dynamics/CornerContact.h): a pair within a base pitch of either
+  // end of the path touches at its tip corner where the load closes the corner's separation.
+  bool cornerContact = false;
+  // Per gear (pinion, wheel), each tooth's position error along the line of action in the
+  // order the teeth enter the mesh, positive for a tooth late (the pinion's touches later, the
+  // wheel's earlier), m. Either given: the table runs over the hunting period, lcm(z1, z2)
+  // mesh periods, each tooth meeting each tooth it can meet. Empty: the teeth are perfect.
+  std::vector<double> toothLateness[2];
 };
 
 struct LoadedMeshTable {
+  // Per position over `periods` mesh periods (one, or the hunting period with tooth errors).
   std::vector<double> te;         // loaded static transmission error per position, m
   std::vector<double> stiffness;  // mesh stiffness per position, N/m
+  int periods = 1;
+  // Contact outside the path: the positions where a corner carries load, and the largest share
+  // of the load a corner carries.
+  int cornerPositions = 0;
+  double cornerShare = 0;
   double pathLength = 0, epsAlpha = 0, epsBeta = 0;
   double meanStiffness = 0, meanTe = 0, peakToPeakTe = 0;
   double lightLoadStiffness = 0;  // the mean of every pair's stiffness, all in contact (for c_gamma)

@@ -1,12 +1,14 @@
 #include "dynamics/LoadedMeshInputs.h"
 
 #include <cmath>
+#include <numeric>
 
 #include <fmt/format.h>
 
 #include "catalogue/Settings.h"
 #include "catalogue/StageKinds.h"
 #include "dynamics/SceneSupport.h"
+#include "model/Sampling.h"
 #include "model/Standards.h"
 
 namespace gbx::rt::dyn {
@@ -256,6 +258,78 @@ LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int st
                              "deviation {} (mean of {} and {}), the ends of the path proud by it",
                              um(sep.basePitch), dev(fp1), dev(fp2), um(sep.profileForm), dev(ff1), dev(ff2)));
   return in;
+}
+
+std::vector<double> toothLateness(const std::vector<double>& singlePitch, double cosAlphaT) {
+  size_t z = singlePitch.size();
+  double sum = 0;
+  for (double f : singlePitch)
+    sum += f;
+  std::vector<double> out(z);
+  double run = 0;
+  for (size_t i = 0; i < z; ++i) {
+    run += singlePitch[i];
+    out[i] = (run - sum * static_cast<double>(i + 1) / static_cast<double>(z)) * cosAlphaT;
+  }
+  return out;
+}
+
+void toothErrors(const Evaluator& ev, const Assignment& a, int st, const ToothErrors& errors, LoadedMeshInput& in,
+                 std::vector<std::string>& prov) {
+  if (!errors.any()) return;
+  const char* names[2] = {"pinion", "wheel"};
+  double cosAlphaT = std::cos(in.g.workingPressureAngle);
+  // The transverse pressure angle at the reference circle: the base pitch over the transverse
+  // pitch (pi m_t cos alpha_t / pi m_t).
+  double mn = needNumber(ev.quantity(stageRef(st, -1, Q::NormalModule), a), "`normal_module`");
+  double beta = ev.model().stages[static_cast<size_t>(st)].ir->kind == ir::StageKind::Helical
+                    ? needNumber(ev.quantity(stageRef(st, -1, Q::HelixAngle), a), "the helix angle")
+                    : 0.0;
+  cosAlphaT = in.g.basePitch / (M_PI * mn / std::cos(beta));
+  for (int g = 0; g < 2; ++g) {
+    long z = std::lround(needNumber(ev.quantity(stageRef(st, g, Q::Z), a), "the tooth count"));
+    std::vector<double> f;
+    if (errors.listed[g] && !errors.listed[g]->empty()) {
+      f = *errors.listed[g];
+      if (static_cast<long>(f.size()) != z)
+        throw SceneFailure{
+            fmt::format("`{}_pitch_deviations` lists {} teeth; the {} has {}", names[g], f.size(), names[g], z)};
+      prov.push_back(fmt::format("loaded mesh: the {}'s {} single pitch deviations as listed", names[g], z));
+    } else if (errors.seed) {
+      double fpt = optionalQuantity(ev, a, st, g, Q::PitchDeviation);
+      if (!std::isfinite(fpt))
+        throw SceneFailure{
+            fmt::format("`pitch_seed` draws from the {}'s `pitch_deviation`, which it neither gives nor has from an "
+                        "`accuracy` grade",
+                        names[g])};
+      auto seed = static_cast<std::uint64_t>(*errors.seed);
+      for (long i = 0; i < z; ++i)
+        f.push_back(fpt / 3.0 * sampleNormal(seed, static_cast<std::uint64_t>(g), static_cast<std::uint64_t>(i)));
+      double most = 0;
+      for (double v : f)
+        most = std::max(most, std::fabs(v));
+      prov.push_back(
+          fmt::format("loaded mesh: the {}'s {} single pitch deviations drawn (seed {}) from f_pt {} as three standard "
+                      "deviations, the largest {}",
+                      names[g], z, seed, um(fpt), um(most)));
+    } else {
+      f.assign(static_cast<size_t>(z), 0.0);
+    }
+    in.toothLateness[g] = toothLateness(f, cosAlphaT);
+  }
+  long z1 = static_cast<long>(in.toothLateness[0].size()), z2 = static_cast<long>(in.toothLateness[1].size());
+  long periods = z1 / std::gcd(z1, z2) * z2;
+  // The table grows with the hunting period: a bound on its work, not on the pairs' count.
+  double work = static_cast<double>(periods) * in.positions * in.slices;
+  if (work > 4e8)
+    throw SceneFailure{
+        fmt::format("the loaded mesh over the hunting period ({} mesh periods) would take {:.3g} slice positions; give "
+                    "fewer `positions` or `slices` (at most 4e8 together)",
+                    periods, work)};
+  prov.push_back(fmt::format(
+      "loaded mesh: over the hunting period, lcm({}, {}) = {} mesh periods, the teeth's pitch deviations along the "
+      "line of action (times cos alpha_t {:.4f})",
+      z1, z2, periods, cosAlphaT));
 }
 
 } // namespace gbx::rt::dyn

@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 // The loaded mesh of a design's spur or helical stage: its flank geometry, the single-pair
 // stiffness, and the separations its `modify` rules (or a sweep's value of a modification)
 // and its deviations give.
@@ -28,5 +29,22 @@ struct LoadedMeshUse {
 // `load` is the transverse force along the line of action, N. Every choice is said in `prov`.
 LoadedMeshInput loadedMeshInput(const Evaluator& ev, const Assignment& a, int stage, double load, int slices, int positions,
                                 std::vector<std::string>& prov, const LoadedMeshUse& use = {});
+
+// The teeth's single pitch deviations (each tooth's pitch from the one before it, minus the
+// nominal, on the reference circle) as the teeth's lateness along the line of action: summed
+// tooth by tooth, the sum closed over the circumference (the last tooth is the reference),
+// times cos(alpha_t).
+std::vector<double> toothLateness(const std::vector<double>& singlePitch, double cosAlphaT);
+
+// Per-tooth pitch deviations for the loaded mesh: a gear's list as written, or, with a seed,
+// each tooth's drawn from a normal distribution with the gear's `pitch_deviation` (f_pt, given
+// or from its accuracy grade) as three standard deviations. Fills in.toothLateness.
+struct ToothErrors {
+  const std::vector<double>* listed[2] = {nullptr, nullptr};
+  std::optional<double> seed;
+  bool any() const { return seed || (listed[0] && !listed[0]->empty()) || (listed[1] && !listed[1]->empty()); }
+};
+void toothErrors(const Evaluator& ev, const Assignment& a, int stage, const ToothErrors& errors, LoadedMeshInput& in,
+                 std::vector<std::string>& prov);
 
 } // namespace gbx::rt::dyn

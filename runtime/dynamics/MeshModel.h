@@ -4,6 +4,7 @@
 // when the model is composed; an effect that is not listed has no state, no term and no
 // test in the right-hand side.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,13 @@ struct MeshEffects {
   bool loadedMesh = false;
   int slices = 40, positions = 64, loadedHarmonics = 16;
   PeriodicSeries loadedStiffness, loadedTe, loadedSeparation;
+  // Contact outside the path, and the teeth's pitch deviations (listed per gear, or drawn with
+  // a seed): the table then runs over the hunting period, the dynamics reading its mean period.
+  bool loadedCorner = false;
+  std::optional<double> pitchSeed;
+  const std::vector<double>* pitchListed[2] = {nullptr, nullptr};
+  std::vector<double> loadedTable; // the static transmission error over the table's periods
+  int loadedPeriods = 1;
 };
 
 // Quantities of one instant, for outputs.

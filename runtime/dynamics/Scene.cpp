@@ -10,16 +10,17 @@
 #include "catalogue/Budgets.h"
 #include "catalogue/StageKinds.h"
 #include "dynamics/Effects.h"
-#include "dynamics/MeshModel.h"
+#include "dynamics/Gearbox.h"
+#include "dynamics/Levels.h"
 #include "dynamics/LoadedMesh.h"
 #include "dynamics/LoadedMeshInputs.h"
-#include "dynamics/Gearbox.h"
 #include "dynamics/Lumped.h"
-#include "dynamics/Statistics.h"
-#include "model/StageKind.h"
+#include "dynamics/MeshModel.h"
 #include "dynamics/Periodic.h"
 #include "dynamics/Planetary.h"
 #include "dynamics/SceneSupport.h"
+#include "dynamics/Statistics.h"
+#include "model/StageKind.h"
 #include "model/Standards.h"
 
 namespace gbx::rt::dyn {
@@ -31,7 +32,7 @@ const SceneNumber* SceneResult::find(const std::string& key) const {
 }
 
 const SceneNumber* SceneResult::find(const ir::SceneOutputRef& ref) const {
-  if (!ref.bare) return find(ref.fn, ref.signal);
+  if (!ref.bare) return find(ref.fn, ref.signal, ref.order);
   for (const auto& n : numbers)
     if (n.signal == ref.signal) return &n;
   // Every periodic scene has a stability, listed or not.
@@ -39,12 +40,12 @@ const SceneNumber* SceneResult::find(const ir::SceneOutputRef& ref) const {
   return nullptr;
 }
 
-const SceneNumber* SceneResult::find(cat::SignalFn fn, cat::Signal signal) const {
+const SceneNumber* SceneResult::find(cat::SignalFn fn, cat::Signal signal, int order) const {
   // A single result (`dynamic_factor`) is written bare: its signal names it, whatever
   // function a reference carries.
   const bool single = cat::signalSpec(signal).scalar;
   for (const auto& n : numbers)
-    if (n.signal == signal && (single || n.fn == fn)) return &n;
+    if (n.signal == signal && (single || (n.fn == fn && n.order == order))) return &n;
   return nullptr;
 }
 
@@ -85,7 +86,19 @@ struct Samples {
   // fluctuation the application factor K_A covers is not counted again in K_v.
   double quasiStaticPeak = NAN;
   std::vector<double> modes;  // natural frequencies of a lumped model, Hz
+  // The loaded mesh's static transmission error as tabulated, over its periods (one, or the
+  // hunting period), and whether the scene's outputs read nothing else.
+  std::vector<double> staticTable;
+  int staticPeriods = 1;
+  bool staticOnly = false;
 };
+
+// Every output reads the loaded mesh's static transmission error: the dynamics are not run.
+bool readsOnlyTheTable(const ScenePlan& scene) {
+  return scene.fx.loaded && !scene.outputs.empty() &&
+         std::all_of(scene.outputs.begin(), scene.outputs.end(),
+                     [](const ir::SceneOutput& o) { return o.id == Signal::StaticTransmissionError; });
+}
 
 // The scene's `accuracy { … }` with a study's overrides.
 Accuracy sceneAccuracy(const ScenePlan& scene, const SceneOverrides& ov) {
@@ -99,13 +112,47 @@ Accuracy sceneAccuracy(const ScenePlan& scene, const SceneOverrides& ov) {
   return acc;
 }
 
+// A table over several periods as its mean period, position by position.
+std::vector<double> foldedPeriod(const std::vector<double>& table, int periods) {
+  size_t P = table.size() / static_cast<size_t>(periods);
+  std::vector<double> out(P, 0.0);
+  for (size_t i = 0; i < table.size(); ++i)
+    out[i % P] += table[i] / periods;
+  return out;
+}
+
 // The loaded mesh's tables over one mesh period (dynamics/LoadedMesh.h) as the series the
 // right-hand side reads; the mean mesh stiffness becomes the tables' mean.
 void loadMesh(const Evaluator& ev, const Assignment& a, int st, MeshParameters& p, MeshEffects& fx, std::vector<std::string>& prov) {
   if (fx.hertz) throw Failure{"`loaded_mesh` gives the mesh its stiffness and `hertz_contact` describes it again: list one"};
   LoadedMeshInput in = loadedMeshInput(ev, a, st, p.staticLoad, fx.slices, fx.positions, prov);
+  in.cornerContact = fx.loadedCorner;
+  ToothErrors errors;
+  errors.seed = fx.pitchSeed;
+  for (int g = 0; g < 2; ++g)
+    errors.listed[g] = fx.pitchListed[g];
+  toothErrors(ev, a, st, errors, in, prov);
   LoadedMeshTable tab = loadedMesh(in);
   if (!tab.failure.empty()) throw Failure{"the loaded mesh: " + tab.failure};
+  fx.loadedTable = tab.te;
+  fx.loadedPeriods = tab.periods;
+  if (in.cornerContact)
+    prov.push_back(
+        tab.cornerPositions > 0
+            ? fmt::format(
+                  "loaded mesh: contact outside the path at {} of {} positions, a tip corner carrying up to {:.3g} % "
+                  "of the load",
+                  tab.cornerPositions, tab.te.size(), 100 * tab.cornerShare)
+            : std::string("loaded mesh: no tip corner touches outside the path at this load"));
+  // Over the hunting period the dynamics read the mean mesh period (every tooth pair's average).
+  if (tab.periods > 1) {
+    tab.te = foldedPeriod(tab.te, tab.periods);
+    tab.stiffness = foldedPeriod(tab.stiffness, tab.periods);
+    prov.push_back(
+        fmt::format("loaded mesh: the dynamics read the mean of the {} mesh periods; the static transmission error's "
+                    "outputs read all of them",
+                    tab.periods));
+  }
   std::vector<double> u(tab.te.size());
   for (size_t i = 0; i < u.size(); ++i) u[i] = tab.te[i] - p.staticLoad / tab.stiffness[i];
   int H = fx.loadedHarmonics;
@@ -240,6 +287,49 @@ SceneSeries recorded(const ir::SceneOutput& o, Dim dim, const std::vector<double
   return s;
 }
 
+// The reference of a level by the signal's kind: ISO 1683's for displacement (1 pm), velocity
+// (1 nm/s), acceleration (1 um/s^2) and force (1 uN); one SI unit for any other.
+double levelReference(const Dim& d) {
+  if (d == units::dims::length) return 1e-12;
+  if (d == units::dims::velocity) return 1e-9;
+  if (d == units::dims::acceleration) return 1e-6;
+  if (d == units::dims::force) return 1e-6;
+  return 1.0;
+}
+
+// `harmonic(x, k)`, `level(x[, k])`, `level_a(x[, k])`: of the loaded mesh's table for the
+// static transmission error, else of the recorded window, which spans whole mesh periods.
+SceneNumber orderNumber(const ir::SceneOutput& o, const Samples& samples, const std::vector<double>& w, double dt,
+                        double fz) {
+  Dim dim = cat::signalSpec(o.id).dim;
+  const bool table = o.id == Signal::StaticTransmissionError && !samples.staticTable.empty();
+  OrderSpectrum sp;
+  if (table) {
+    sp = orderSpectrum(samples.staticTable, samples.staticPeriods);
+  } else {
+    double periods = static_cast<double>(w.size()) * dt * fz;
+    if (w.size() < 4 || std::fabs(periods - std::round(periods)) > 1e-6 * periods)
+      throw Failure{
+          fmt::format("`{}` reads the mesh orders of a recorded window of whole mesh periods; record a whole number of "
+                      "`mesh_periods`",
+                      o.key())};
+    sp = orderSpectrum(w, static_cast<int>(std::lround(periods)));
+  }
+  double ref = levelReference(dim);
+  double value = NAN;
+  switch (o.fn) {
+  case cat::SignalFn::Harmonic: value = sp.harmonic(o.order); break;
+  case cat::SignalFn::Level: value = o.order > 0 ? levelOf(sp.harmonic(o.order), ref) : sp.total(ref); break;
+  case cat::SignalFn::LevelA:
+    value = o.order > 0 ? levelOf(sp.harmonic(o.order), ref) + aWeighting(o.order * fz) : sp.total(ref, fz);
+    break;
+  default: break;
+  }
+  SceneNumber n{o.key(), value, cat::signalFnSpec(o.fn).decibels ? Dim{} : dim, o.fn, o.id};
+  n.order = o.order;
+  return n;
+}
+
 // A whole-gearbox scene in time (docs/dynamics.md): the outputs of its meshes by name.
 SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov,
                             SceneResult r) {
@@ -287,6 +377,10 @@ SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignmen
     if (!cat::signalFnSpec(o.fn).number) {
       if (!ov.keepSeries) continue;
       r.series.push_back(recorded(o, dim, g.t, first, std::move(w), g.plan.dt, fz));
+      continue;
+    }
+    if (cat::signalFnSpec(o.fn).order != cat::OrderArg::None) {
+      r.numbers.push_back(orderNumber(o, Samples{}, w, g.plan.dt, fz));
       continue;
     }
     r.numbers.push_back({o.key(), w.empty() ? NAN : statistic(o.fn)(w), dim, o.fn, o.id, w.empty() ? 0.0 : statistic(cat::SignalFn::Rms)(w)});
@@ -422,6 +516,15 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
   r.harmonics = ms.harmonics;
   r.naturalFrequency = 1.0 / model.naturalPeriod();
   r.steady = tp.steady;
+  samples.staticTable = ms.effects.loadedTable;
+  samples.staticPeriods = ms.effects.loadedPeriods;
+  samples.staticLoad = p.staticLoad;
+  if (readsOnlyTheTable(scene)) {
+    samples.staticOnly = true;
+    r.steady = SteadyMethod::Static;
+    r.model.push_back("the outputs read only the loaded mesh's table: the dynamics are not run");
+    return "";
+  }
   std::vector<double> y = model.initialState();
   // A transient may start from a given state (a study's run from another initial condition).
   if (tp.steady != SteadyMethod::Periodic && ov.guess && ov.guess->size() == y.size()) y = *ov.guess;
@@ -515,6 +618,17 @@ void runWarnings(const ScenePlan& scene, const SceneOverrides& ov, const Samples
   }
 }
 
+// The loaded mesh's table as a series over its periods (a plot or a spectrum of the static
+// transmission error over the hunting period).
+SceneSeries tableSeries(const ir::SceneOutput& o, const Samples& samples, double fz) {
+  size_t n = samples.staticTable.size();
+  double dt = static_cast<double>(samples.staticPeriods) / (fz * static_cast<double>(n));
+  std::vector<double> t(n);
+  for (size_t i = 0; i < n; ++i)
+    t[i] = static_cast<double>(i) * dt;
+  return recorded(o, cat::signalSpec(o.id).dim, t, 0, samples.staticTable, dt, fz);
+}
+
 // The scene's outputs over the statistics window.
 void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Samples& samples, const TimePlan& tp, SceneResult& r) {
   // Outputs over the statistics window.
@@ -548,9 +662,26 @@ void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Sample
       r.numbers.push_back({"dynamic_factor", peak / samples.quasiStaticPeak, {}, cat::SignalFn::Peak, Signal::DynamicFactor});
       continue;
     }
-    if (!cat::signalFnSpec(o.fn).number) {
+    // The static transmission error over the hunting period, or of a scene without dynamics:
+    // the table itself, every position.
+    const bool table = o.id == Signal::StaticTransmissionError && !samples.staticTable.empty() &&
+                       (samples.staticOnly || samples.staticPeriods > 1);
+    const cat::SignalFnSpec& fn = cat::signalFnSpec(o.fn);
+    if (fn.order != cat::OrderArg::None) {
+      r.numbers.push_back(orderNumber(o, samples, window(o.id), tp.dt, r.meshFrequency));
+      continue;
+    }
+    if (!fn.number) {
       if (!ov.keepSeries) continue;
-      r.series.push_back(recorded(o, dim, samples.t, first, window(o.id), tp.dt, r.meshFrequency));
+      if (table)
+        r.series.push_back(tableSeries(o, samples, r.meshFrequency));
+      else
+        r.series.push_back(recorded(o, dim, samples.t, first, window(o.id), tp.dt, r.meshFrequency));
+      continue;
+    }
+    if (table) {
+      r.numbers.push_back(
+          {o.key(), over(o.fn, samples.staticTable), dim, o.fn, o.id, over(cat::SignalFn::Rms, samples.staticTable)});
       continue;
     }
     // An output's error is measured against its signal's size, a force against at least the
@@ -722,6 +853,11 @@ std::vector<double> outputDifferences(const SceneResult& r, const SceneResult& r
   for (size_t i = 0; i < r.numbers.size() && i < ref.numbers.size(); ++i) {
     const auto &n = r.numbers[i], &x = ref.numbers[i];
     if (n.signal == Signal::Stability || !std::isfinite(n.value) || !std::isfinite(x.value)) continue;
+    // A level's difference in dB as the relative difference of the amplitude it stands for.
+    if (cat::signalFnSpec(n.fn).decibels) {
+      d[i] = std::fabs(n.value - x.value) * std::log(10.0) / 20.0;
+      continue;
+    }
     double scale = std::max({std::fabs(x.value), x.scale, n.scale, 1e-300});
     d[i] = std::fabs(n.value - x.value) / scale;
   }
@@ -758,9 +894,12 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
       if (std::isfinite(d[i])) perOutput[i] += d[i];
     return largest(d);
   };
-  r.errorParts.push_back({"integration", part(ref),
-                          fmt::format("against a rerun at rtol {:.0e} with half the maximum step", tight.rtol.value())});
-  if (r.harmonics > 0) {
+  const bool integrated = r.steady != SteadyMethod::Static; // a static scene has only its table's discretisation
+  if (integrated)
+    r.errorParts.push_back(
+        {"integration", part(ref),
+         fmt::format("against a rerun at rtol {:.0e} with half the maximum step", tight.rtol.value())});
+  if (r.harmonics > 0 && integrated) {
     SceneOverrides twice = tight;
     twice.rtol = ov.rtol;
     twice.maxStepFactor = ov.maxStepFactor;

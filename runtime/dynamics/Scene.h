@@ -26,6 +26,7 @@ struct SceneNumber {
   // signal over the recorded window, a force at least the static load; 0: the value itself.
   double scale = 0;
   double error = NAN;  // its own error estimate, relative to that scale
+  int order = 0;       // `harmonic(x, k)`, `level(x, k)`: k
 };
 
 struct SceneSeries {
@@ -72,7 +73,7 @@ struct SceneResult {
   std::vector<std::string> model;  // how the model was built, parameter by parameter
   std::string failure;             // set when the run failed (exit 3)
   std::vector<std::string> warnings;  // results to read with care (teeth that would separate)
-  const SceneNumber* find(cat::SignalFn fn, cat::Signal signal) const;
+  const SceneNumber* find(cat::SignalFn fn, cat::Signal signal, int order = 0) const;
   const SceneNumber* find(const std::string& key) const;  // by the report's key, for tests
   const SceneNumber* find(const ir::SceneOutputRef& ref) const;
   SceneNumber stabilityNumber;  // `scene.stability` read where the scene does not list it

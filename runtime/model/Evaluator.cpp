@@ -239,6 +239,10 @@ Value Evaluator::eval(const ir::Expr& e, const Assignment& a) const {
   case Op::Relative: {
     // The baseline evaluates the argument as lowering resolved it in the baseline gearbox.
     if (!baseline || !e.inBaseline) return Value::invalid();
+    // A level in dB against the baseline's is their difference, in dB.
+    const ir::Expr& x = *e.args[0];
+    if (x.op == Op::SceneOutput && cat::signalFnSpec(x.output.fn).decibels)
+      return arith::sub(arg(0), baseline(*e.inBaseline));
     return builtin(cat::Fn::Relative)({arg(0), baseline(*e.inBaseline)});
   }
   default: return Value::invalid();  // Tol and Set stand only inside comparisons
@@ -711,6 +715,9 @@ units::DisplayUnit displayUnitOf(const ir::Expr& e) {
                                    e.ref.key == Q::BearingLife || e.ref.key == Q::BearingModifiedLife))
     return {"h", 3600};
   if (e.op == ir::Op::Quantity && e.ref.key == Q::SlopeAt) return {"mrad", 1e-3};
+  // A level, and a level against the baseline's (their difference).
+  const ir::Expr* x = e.op == ir::Op::Relative && !e.args.empty() ? e.args[0].get() : &e;
+  if (x->op == ir::Op::SceneOutput && cat::signalFnSpec(x->output.fn).decibels) return {"dB", 1};
   return valueUnitOf(e);
 }
 

@@ -40,19 +40,23 @@ std::vector<double> Sampling::deviations(const std::vector<ir::Tolerance>& tol, 
       d[i] = tol[i].amount * (2 * sampleUniform(seed, static_cast<std::uint64_t>(k), i, 0) - 1);
       continue;
     }
-    // Box-Muller, the amount three standard deviations; a draw beyond it is drawn again (the
-    // part would fail inspection), so no sample leaves the tolerance and `worst` does not
-    // grow with the number of samples. One draw in 370 is redrawn.
-    double z = 0;
-    for (std::uint64_t attempt = 0; attempt < 64; ++attempt) {
-      double a = sampleUniform(seed, static_cast<std::uint64_t>(k), i, 2 * attempt);
-      double b = sampleUniform(seed, static_cast<std::uint64_t>(k), i, 2 * attempt + 1);
-      z = std::sqrt(-2 * std::log(a)) * std::cos(2 * std::numbers::pi * b);
-      if (std::fabs(z) <= 3) break;
-    }
-    d[i] = tol[i].amount / 3 * std::clamp(z, -3.0, 3.0);
+    d[i] = tol[i].amount / 3 * sampleNormal(seed, static_cast<std::uint64_t>(k), i);
   }
   return d;
+}
+
+double sampleNormal(std::uint64_t seed, std::uint64_t sample, std::uint64_t index) {
+  // Box-Muller; a draw beyond three standard deviations is drawn again (the part would fail
+  // inspection), so no sample leaves the tolerance and `worst` does not grow with the number
+  // of samples. One draw in 370 is redrawn.
+  double z = 0;
+  for (std::uint64_t attempt = 0; attempt < 64; ++attempt) {
+    double a = sampleUniform(seed, sample, index, 2 * attempt);
+    double b = sampleUniform(seed, sample, index, 2 * attempt + 1);
+    z = std::sqrt(-2 * std::log(a)) * std::cos(2 * std::numbers::pi * b);
+    if (std::fabs(z) <= 3) break;
+  }
+  return std::clamp(z, -3.0, 3.0);
 }
 
 const char* Sampling::distributionName() const { return distribution == cat::distribution::Uniform ? "uniform" : "normal"; }

@@ -25,6 +25,9 @@ struct Sampling {
 // draws of one deviation: two per normal draw and its redraws).
 double sampleUniform(std::uint64_t seed, std::uint64_t sample, std::uint64_t tolerance, std::uint64_t stream);
 
+// A standard normal number within +-3 from the same stream (a draw beyond is drawn again).
+double sampleNormal(std::uint64_t seed, std::uint64_t sample, std::uint64_t index);
+
 // Statistics of sample values (NaNs left out by the caller).
 double sampleMean(const std::vector<double>& x);
 double sampleStdDev(const std::vector<double>& x);  // with n - 1

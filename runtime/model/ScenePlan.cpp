@@ -49,6 +49,7 @@ Fn compile(const ir::Expr& e) {
 double inSi(Q key, double v, units::Dim dim) { return key == Q::Frequency && dim == units::dims::frequency ? v * 2.0 * M_PI : v; }
 
 EffectValue valueOf(const ir::Setting& s) {
+  if (s.choice >= 0) return EffectValue(static_cast<double>(s.choice));
   if (s.value) return EffectValue(inSi(s.key, s.value->toDouble(), s.dim));
   if (s.expr) return EffectValue(*s.expr);
   return EffectValue(0.0);
@@ -103,8 +104,14 @@ SceneEffects effectsOf(const std::vector<ListedEffect>& listed) {
     }
     case Effect::LoadedMesh:
       if (fx.loaded) break;
-      fx.loaded = SceneEffects::Loaded{static_cast<int>(get(e, Q::Slices, 40)), static_cast<int>(get(e, Q::Positions, 64)), std::nullopt};
+      fx.loaded.emplace();
+      fx.loaded->slices = static_cast<int>(get(e, Q::Slices, 40));
+      fx.loaded->positions = static_cast<int>(get(e, Q::Positions, 64));
       if (e.param(Q::Harmonics)) fx.loaded->harmonics = static_cast<int>(get(e, Q::Harmonics, 0));
+      fx.loaded->corner = get(e, Q::CornerContact, 0) == 1.0; // `true`, the row's second word
+      if (e.param(Q::PitchSeed)) fx.loaded->pitchSeed = get(e, Q::PitchSeed, 0);
+      if (const auto* v = e.list(Q::PinionPitchDeviations)) fx.loaded->pitch[0] = *v;
+      if (const auto* v = e.list(Q::WheelPitchDeviations)) fx.loaded->pitch[1] = *v;
       break;
     }
   }
@@ -126,6 +133,12 @@ void resolveEffects(ScenePlan& p) {
 } // namespace
 
 EffectValue::EffectValue(const ir::Expr& e) : fn_(compile(e)) {}
+
+const std::vector<double>* ListedEffect::list(Q key) const {
+  for (const auto& [k, v] : lists)
+    if (k == key) return &v;
+  return nullptr;
+}
 
 const EffectValue* ListedEffect::param(Q key) const {
   for (const auto& [k, v] : params)
@@ -181,8 +194,17 @@ ScenePlan planScene(const ir::Scene& scene) {
   p.ramp = timeOf(scene.settings, Q::Ramp);
   p.periodicWritten = ir::findSetting(scene.settings, Q::SteadyState) != nullptr;
   for (const auto& e : scene.effects) {
-    ListedEffect l{e.kind, e.name, {}};
-    for (const auto& s : e.params) l.params.emplace_back(s.key, valueOf(s));
+    ListedEffect l{e.kind, e.name, {}, {}};
+    for (const auto& s : e.params) {
+      if (s.members.empty()) {
+        l.params.emplace_back(s.key, valueOf(s));
+        continue;
+      }
+      std::vector<double> v;
+      for (const auto& m : s.members)
+        v.push_back(m.toDouble());
+      l.lists.emplace_back(s.key, std::move(v));
+    }
     p.listed.push_back(std::move(l));
   }
   resolveEffects(p);

@@ -21,9 +21,10 @@ struct SceneFailure {
 
 // How a scene reaches its steady state (docs/dynamics.md).
 enum class SteadyMethod {
-  FromRest,  // `duration`: a run from rest, start-up included
-  Settle,    // `settle = N mesh_periods`: exactly N periods, then record
-  Periodic,  // `steady_state = periodic`, or the default where the excitation is periodic
+  FromRest, // `duration`: a run from rest, start-up included
+  Settle,   // `settle = N mesh_periods`: exactly N periods, then record
+  Periodic, // `steady_state = periodic`, or the default where the excitation is periodic
+  Static,   // no dynamics: every output reads the loaded mesh's static table
 };
 
 // A time written in seconds or in the scene's mesh periods (`settle = 200 mesh_periods`).
@@ -60,7 +61,9 @@ struct ListedEffect {
   cat::Effect kind = cat::Effect::VaryingStiffness;
   std::string name;
   std::vector<std::pair<Q, EffectValue>> params;
+  std::vector<std::pair<Q, std::vector<double>>> lists; // list parameters, SI
   const EffectValue* param(Q key) const;
+  const std::vector<double>* list(Q key) const;
   // Sets one parameter from a value in the unit `dim` (a sweep of `scene.effect.parameter`).
   void set(Q key, double si, units::Dim dim);
 };
@@ -93,6 +96,9 @@ struct SceneEffects {
     int slices = 40, positions = 64;
     std::optional<int> harmonics;  // the tables' Fourier harmonics; default positions / 4
     int tableHarmonics() const { return harmonics.value_or(positions / 4); }
+    bool corner = false;             // contact outside the path
+    std::optional<double> pitchSeed; // draw the teeth's pitch deviations with this seed
+    std::vector<double> pitch[2];    // the teeth's single pitch deviations as listed, SI
   };
   std::optional<Varying> varying;
   std::optional<Damping> damping;

@@ -163,7 +163,7 @@ void installHooks(Evaluator& ev, const Model& m, const Model* baseline, const As
       if (!asking.offsets().empty()) ov.evaluator = &asking;
       it = cache->emplace(k, dyn::runScene(m, a, m.scenes[static_cast<size_t>(scene)], ov)).first;
     }
-    const auto* n = it->second.find(e.output.fn, e.output.signal);
+    const auto* n = it->second.find(e.output.fn, e.output.signal, e.output.order);
     return n ? Value::number(n->value) : Value::invalid();
   };
   if (baseline && baseDesign) {

@@ -34,11 +34,17 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ScenePlan& scene) {
   s.errorMethod = r.errorMethod;
   for (const auto& p : r.errorParts) s.errorParts.emplace_back(p.name, p.value);
   s.stepRule = r.stepRule;
-  s.steady = r.steady == dyn::SteadyMethod::Periodic ? "periodic" : r.steady == dyn::SteadyMethod::Settle ? "settle" : "from rest";
+  s.steady = r.steady == dyn::SteadyMethod::Periodic ? "periodic"
+             : r.steady == dyn::SteadyMethod::Settle ? "settle"
+             : r.steady == dyn::SteadyMethod::Static ? "static"
+                                                     : "from rest";
+  s.integrated = r.steady != dyn::SteadyMethod::Static;
   s.model = r.model;
   s.warnings = r.warnings;
   for (const auto& n : r.numbers) {
-    auto u = n.dim == units::dims::length ? cat::signalUnit(n.signal) : units::displayUnitFor(n.dim);
+    auto u = cat::signalFnSpec(n.fn).decibels ? units::DisplayUnit{"dB", 1}
+             : n.dim == units::dims::length   ? cat::signalUnit(n.signal)
+                                              : units::displayUnitFor(n.dim);
     s.outputs.push_back({n.key, u.name, n.value, n.value / u.scale, n.error});
   }
   for (const auto& ser : r.series) {
@@ -114,7 +120,7 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns,
       }
       r = &it->second;
     }
-    const auto* n = r->find(e.output.fn, e.output.signal);
+    const auto* n = r->find(e.output.fn, e.output.signal, e.output.order);
     return n && std::isfinite(n->value) ? Value::number(n->value) : Value::invalid();
   };
   for (size_t i = 0; i < columns.exprs.size(); ++i) {

@@ -299,6 +299,8 @@ std::string sceneHtml(const SceneReport& sc, const GearboxReport& g) {
   if (!rows.empty()) o += tableHtml({"output", "value", "unit", "own error estimate"}, rows, 0, rows.size());
   std::vector<std::string> items;
   if (sc.eigen) items.push_back("accuracy: generalised eigenproblem (Eigen), double precision");
+  else if (!sc.integrated)
+    items.push_back("accuracy: nothing integrated, the outputs read the loaded mesh's table; steady state: static");
   else
     items.push_back(fmt::format("accuracy: {}, rtol {:.0e}, atol {:.0e}{}; steady state: {}", sc.method, sc.rtol, sc.atol,
                                 sc.stepRule.empty() ? "" : ", " + sc.stepRule, sc.steady));

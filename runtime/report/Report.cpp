@@ -222,6 +222,8 @@ std::string textScene(const SceneReport& sc, const GearboxReport& g, const Rende
   std::string o = fmt::format("  scene {} on {} (design 1)\n", sc.name, sc.target.empty() ? g.name : sc.target);
   if (!sc.failure.empty()) return o + "    failed: " + sc.failure + "\n";
   if (sc.eigen) o += "    accuracy: generalised eigenproblem (Eigen), double precision\n";
+  else if (!sc.integrated)
+    o += "    accuracy: nothing integrated, the outputs read the loaded mesh's table; steady state: static\n";
   else
     o += fmt::format("    accuracy: {}, rtol {:.0e}, atol {:.0e} (scaled){}; steady state: {}\n", sc.method, sc.rtol, sc.atol,
                      sc.stepRule.empty() ? "" : ", " + sc.stepRule, sc.steady);

@@ -69,7 +69,8 @@ struct SceneReport {
   std::string errorMethod;
   std::vector<std::pair<std::string, double>> errorParts;  // integration, stiffness series, Newton residual
   std::string stepRule;     // the maximum step and its rule
-  std::string steady;       // "periodic", "settle", "from rest"
+  std::string steady;       // "periodic", "settle", "from rest", "static"
+  bool integrated = true;   // false: every output read the loaded mesh's table (steady "static")
   struct Output {
     std::string key, unit;
     double si = 0, shown = 0;
