@@ -170,7 +170,8 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
       passes::Modifications mods = passes::modifications(m, *best);
       fail(gb.name, mods.errors);
       rep.modifications = std::move(mods.modifications);
-      rep.studies = passes::studies(m, *best, progress(gb.name + " studies"));
+      rep.studies = passes::studies(m, *best, progress(gb.name + " studies"), designs.baseline.get(),
+                                    designs.baselineDesign.get());
       std::vector<std::string> studyErrors;
       for (const auto& st : rep.studies)
         if (const auto* s = std::get_if<SweepStudy>(&st.study); s && !s->failure.empty()) studyErrors.push_back(s->failure);

@@ -305,6 +305,20 @@ struct Study {
     int scene = -1, effect = -1;
     Q key = Q::None;
   } sweptEffect;
+  // `hs.tip_relief in {0 um, 20 um};` in a sweep: the sweep is run once per value, a line each
+  // on its plot. Resolved by lowering like the swept quantity.
+  struct Series {
+    std::string target;
+    QuantityRef ref;
+    EffectParam effect;
+    Dim dim;
+    std::vector<Number> members;
+  };
+  std::optional<Series> series;
+  // The swept quantity and the series as the baseline gearbox names them (`relative(…)` in an
+  // output reads the baseline at the same point), resolved by lowering.
+  QuantityRef sweptInBaseline, seriesInBaseline;
+  EffectParam sweptEffectInBaseline, seriesEffectInBaseline;
   int scene = -1;      // resolved by lowering: the scene of a work-precision study
   std::optional<Dim> dim;
   std::optional<Number> lo, hi, step;

@@ -63,6 +63,20 @@ public:
 
   QuantityRef quantity(const std::string& path) const { return quantityRef(p_, g_, path); }
 
+  // `scene.effect.parameter` in gearbox g: the scene, the effect's position and the key.
+  static ir::Study::EffectParam effectParam(const ir::Gearbox& g, const std::string& target) {
+    auto d1 = target.find('.'), d2 = target.find('.', d1 == std::string::npos ? d1 : d1 + 1);
+    if (d1 == std::string::npos || d2 == std::string::npos) return {};
+    for (size_t i = 0; i < g.scenes.size(); ++i)
+      if (g.scenes[i].name == target.substr(0, d1))
+        for (size_t k = 0; k < g.scenes[i].effects.size(); ++k)
+          if (g.scenes[i].effects[k].name == target.substr(d1 + 1, d2 - d1 - 1))
+            if (const auto* spec = cat::findEffect(g.scenes[i].effects[k].name))
+              for (const auto& prm : spec->params)
+                if (prm.name == target.substr(d2 + 1)) return {static_cast<int>(i), static_cast<int>(k), prm.key};
+    return {};
+  }
+
   void expr(ir::Expr& e) const {
     switch (e.op) {
     case ir::Op::Quantity:
@@ -210,16 +224,19 @@ public:
     for (auto& st : g.studies) {
       if (st.kind == ir::Study::Sweep) {
         st.swept = quantity(st.target);
-        // `scene.effect.parameter`
-        auto d1 = st.target.find('.'), d2 = st.target.find('.', d1 == std::string::npos ? d1 : d1 + 1);
-        if (d1 != std::string::npos && d2 != std::string::npos)
-          for (size_t i = 0; i < g.scenes.size(); ++i)
-            if (g.scenes[i].name == st.target.substr(0, d1))
-              for (size_t k = 0; k < g.scenes[i].effects.size(); ++k)
-                if (g.scenes[i].effects[k].name == st.target.substr(d1 + 1, d2 - d1 - 1))
-                  if (const auto* spec = cat::findEffect(g.scenes[i].effects[k].name))
-                    for (const auto& prm : spec->params)
-                      if (prm.name == st.target.substr(d2 + 1)) st.sweptEffect = {static_cast<int>(i), static_cast<int>(k), prm.key};
+        st.sweptEffect = effectParam(g_, st.target);
+        if (st.series) {
+          st.series->ref = quantity(st.series->target);
+          st.series->effect = effectParam(g_, st.series->target);
+        }
+        if (baseline_) {
+          st.sweptInBaseline = baseline_->quantity(st.target);
+          st.sweptEffectInBaseline = effectParam(baseline_->g_, st.target);
+          if (st.series) {
+            st.seriesInBaseline = baseline_->quantity(st.series->target);
+            st.seriesEffectInBaseline = effectParam(baseline_->g_, st.series->target);
+          }
+        }
       }
       for (size_t i = 0; i < g.scenes.size(); ++i)
         if (g.scenes[i].name == st.target) st.scene = static_cast<int>(i);

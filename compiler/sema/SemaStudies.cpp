@@ -74,6 +74,10 @@ ir::Study Analyser::study(const Stmt& st, const GearboxModel& m, const Scope& gs
   }
   checkContinuation(out, owner);
   for (const auto& [name, b] : domains) {
+    if (sweep) {
+      seriesOf(*b, m, gs, owner, out);
+      continue;
+    }
     if (!wp) {
       diags_.error("E0110", b->span, fmt::format("`{} in …` belongs in a work-precision study", name));
       continue;
@@ -89,6 +93,50 @@ ir::Study Analyser::study(const Stmt& st, const GearboxModel& m, const Scope& gs
   }
   if (wp) checkRuns(out, st, owner);
   return out;
+}
+
+// `Y in {a, b, …};` beside a sweep: the sweep once per value, a line each on its plot.
+void Analyser::seriesOf(const Stmt& b, const GearboxModel& m, const Scope& gs, const std::string& owner,
+                        ir::Study& out) {
+  if (out.series) {
+    diags_.error("E0202", b.span,
+                 fmt::format("{} already draws a line per value of `{}`; a sweep takes one such set", owner,
+                             out.series->target));
+    return;
+  }
+  if (b.domain != ast::DomainKind::Set) {
+    diags_.error("E0306", b.span,
+                 fmt::format("{}: `{}` beside the sweep takes a set of values, as `{} in {{a, b}};`", owner,
+                             b.path.str(), b.path.str()));
+    return;
+  }
+  ir::Study::Series series;
+  series.target = b.path.str();
+  if (series.target == out.target) {
+    diags_.error("E0202", b.path.span,
+                 fmt::format("{} sweeps `{}` already; a line per value names another quantity", owner, series.target));
+    return;
+  }
+  std::optional<units::Dim> dim = sweepTarget(b.path, m, nullptr);
+  if (!dim) return;
+  series.dim = *dim;
+  for (const auto& e : b.exprs) {
+    auto x = checker_.check(e.get(), gs);
+    if (x->type.isError()) return;
+    if (!x->isConst() || x->type.dim != *dim) {
+      diags_.error("E0302", x->span,
+                   fmt::format("`{}` takes constants of {}, as the quantity it sets, but this is {}", series.target,
+                               dim->describe(), describe(x->type)));
+      return;
+    }
+    series.members.push_back(x->value);
+  }
+  if (series.members.size() > 12) {
+    diags_.error("E0411", b.span,
+                 fmt::format("{}: {} lines, beyond the 12 a plot keeps apart", owner, series.members.size()));
+    return;
+  }
+  out.series = std::move(series);
 }
 
 // `sweep X in a..b step s;`: what is swept and its start, end and step.

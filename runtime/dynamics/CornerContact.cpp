@@ -53,11 +53,12 @@ double cornerSeparation(const FlankGeometry& g, double s) {
   double lo = 0, flo = miss(0);
   if (!std::isfinite(flo)) return INFINITY;
   if (flo >= 0) return 0.0;
-  double hi = -flo / rb1, fhi = miss(hi);
+  // The wheel's own measure is within a few per cent of the turn: bracket just past it.
+  double hi = -1.05 * flo / rb1, fhi = miss(hi);
   for (int k = 0; k < 30 && std::isfinite(fhi) && fhi < 0; ++k) {
     lo = hi;
     flo = fhi;
-    hi *= 2;
+    hi *= 1.5;
     fhi = miss(hi);
   }
   if (!std::isfinite(fhi) || fhi < 0 || hi > 0.5) return INFINITY; // the corner no longer meets that flank
@@ -65,7 +66,7 @@ double cornerSeparation(const FlankGeometry& g, double s) {
   for (int it = 0; it < 100 && hi - lo > 1e-16 * hi; ++it) {
     double mid = (lo * fhi - hi * flo) / (fhi - flo), fm = miss(mid);
     if (!std::isfinite(fm)) return INFINITY;
-    if (fm == 0) return rb1 * mid;
+    if (std::fabs(fm) < 1e-15) return rb1 * mid; // a femtometre of roll
     if (fm < 0) {
       lo = mid;
       flo = fm;

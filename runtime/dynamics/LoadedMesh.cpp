@@ -175,9 +175,6 @@ struct Slices {
   long z[2] = {1, 1};
   bool errors = false;
   double rigidSum = 0;
-  // Per position, slice and end of the path: the outside pair's separation, the same in every
-  // mesh period (computed once, when the corners are asked for).
-  std::vector<double> outsideCache;
 
   Slices(const LoadedMeshInput& in, double path)
       : in(in), sep(in.sep, path, in.g.basePitch), p(in.g.basePitch), path(path) {
@@ -209,12 +206,6 @@ struct Slices {
     double end = std::clamp(s, 0.0, path);
     return sep.profile(end) + sep.pitchSlope * (s - end) + cornerSeparation(in.g, s);
   }
-  double outsideAt(int i, int j, bool beyond, double s) {
-    double& c =
-        outsideCache[(static_cast<size_t>(i) * static_cast<size_t>(S) + static_cast<size_t>(j)) * 2 + (beyond ? 1 : 0)];
-    if (std::isnan(c)) c = outside(s);
-    return c;
-  }
   // The errors of the pair whose tooth count from the start is N (later teeth larger).
   double toothError(long N) const {
     if (!errors) return 0.0;
@@ -227,14 +218,38 @@ struct Slices {
     return at(0) - at(1);
   }
   // Every pair of every slice at mesh position i of period n.
-  size_t collect(long n, int i, int P, Contacts& pts) {
+  // The pairs of one position as every period has them, the tooth errors aside: `offset` is
+  // the pair's tooth count from the start less the period's number.
+  struct Pair {
+    double gap, c;
+    int slice;
+    bool corner;
+    long offset;
+  };
+  std::vector<std::vector<Pair>> templates; // per position, built in the first period
+  std::vector<double> templateRigid;        // per position, the stiffness of the pairs on the path
+  // The tooth errors of period n for every offset the pairs have (a division per tooth pair
+  // met, not per pair and position).
+  long lowest = 0, highest = 0, errorsOf = -1;
+  std::vector<double> errorAt;
+  double errorFor(long n, long offset) {
+    if (n == 0) return toothError(offset);
+    if (errorsOf != n) {
+      errorAt.resize(static_cast<size_t>(highest - lowest + 1));
+      for (long k = lowest; k <= highest; ++k)
+        errorAt[static_cast<size_t>(k - lowest)] = toothError(n + k);
+      errorsOf = n;
+    }
+    return errorAt[static_cast<size_t>(offset - lowest)];
+  }
+
+  void build(int i, int P, std::vector<Pair>& out, double& rigid) {
     double tau = static_cast<double>(i) / P;
-    size_t count = 0;
     for (int j = 0; j < S; ++j) {
       const size_t js = static_cast<size_t>(j);
       // The slice's first pair lies at (tau - phase) mod 1 base pitches along the path.
       double t0 = tau - phase[js];
-      long base = n - whole[js];
+      long base = -whole[js];
       if (t0 < 0) {
         t0 += 1.0;
         base -= 1;
@@ -252,16 +267,33 @@ struct Slices {
         bool onPath = t >= 0 && t < eps - 1e-9;
         if (!onPath && (t < -ext || !in.cornerContact)) continue;
         double c = cScale * singlePairShape(std::clamp(s * invPath, 0.0, 1.0));
-        double gap = onPath ? sep.profile(s) : outsideAt(i, j, t > 0, s);
+        double gap = onPath ? sep.profile(s) : outside(s);
         if (!std::isfinite(gap)) continue;
-        pts.gap[count] = gap + lead[js] + toothError(base - m);
-        pts.c[count] = c;
-        pts.slice[count] = j;
-        pts.corner[count] = !onPath;
-        ++count;
-        if (onPath) rigidSum += c;
+        out.push_back({gap + lead[js], c, j, !onPath, base - m});
+        lowest = std::min(lowest, base - m);
+        highest = std::max(highest, base - m);
+        if (onPath) rigid += c;
       }
     }
+  }
+
+  // Every pair of every slice at mesh position i of period n.
+  size_t collect(long n, int i, int P, Contacts& pts) {
+    if (templates.empty()) {
+      templates.resize(static_cast<size_t>(P));
+      templateRigid.assign(static_cast<size_t>(P), 0.0);
+    }
+    std::vector<Pair>& pairs = templates[static_cast<size_t>(i)];
+    if (n == 0) build(i, P, pairs, templateRigid[static_cast<size_t>(i)]);
+    size_t count = 0;
+    for (const Pair& q : pairs) {
+      pts.gap[count] = q.gap + (errors ? errorFor(n, q.offset) : 0.0);
+      pts.c[count] = q.c;
+      pts.slice[count] = q.slice;
+      pts.corner[count] = q.corner;
+      ++count;
+    }
+    rigidSum += templateRigid[static_cast<size_t>(i)];
     pts.n = count;
     return count;
   }
@@ -301,8 +333,6 @@ LoadedMeshTable tabulate(const LoadedMeshInput& in) {
     return out;
   }
   Slices sl(in, path);
-  if (in.cornerContact)
-    sl.outsideCache.assign(static_cast<size_t>(std::max(2, in.positions)) * static_cast<size_t>(sl.S) * 2, NAN);
   out.epsAlpha = sl.eps;
   out.epsBeta = g.faceWidth * std::tan(g.baseHelix) / g.basePitch;
   int P = std::max(2, in.positions);

@@ -278,14 +278,13 @@ void toothErrors(const Evaluator& ev, const Assignment& a, int st, const ToothEr
                  std::vector<std::string>& prov) {
   if (!errors.any()) return;
   const char* names[2] = {"pinion", "wheel"};
-  double cosAlphaT = std::cos(in.g.workingPressureAngle);
   // The transverse pressure angle at the reference circle: the base pitch over the transverse
   // pitch (pi m_t cos alpha_t / pi m_t).
   double mn = needNumber(ev.quantity(stageRef(st, -1, Q::NormalModule), a), "`normal_module`");
   double beta = ev.model().stages[static_cast<size_t>(st)].ir->kind == ir::StageKind::Helical
                     ? needNumber(ev.quantity(stageRef(st, -1, Q::HelixAngle), a), "the helix angle")
                     : 0.0;
-  cosAlphaT = in.g.basePitch / (M_PI * mn / std::cos(beta));
+  double cosAlphaT = in.g.basePitch / (M_PI * mn / std::cos(beta));
   for (int g = 0; g < 2; ++g) {
     long z = std::lround(needNumber(ev.quantity(stageRef(st, g, Q::Z), a), "the tooth count"));
     std::vector<double> f;
@@ -317,6 +316,13 @@ void toothErrors(const Evaluator& ev, const Assignment& a, int st, const ToothEr
     }
     in.toothLateness[g] = toothLateness(f, cosAlphaT);
   }
+  // Each tooth's own position takes the place of the adverse base pitch deviation every pair
+  // had (the two would count the pitch twice).
+  if (in.sep.basePitch != 0)
+    prov.push_back(fmt::format(
+        "loaded mesh: the teeth's own pitch deviations replace the adverse base pitch deviation of {} per pair",
+        um(in.sep.basePitch)));
+  in.sep.basePitch = 0;
   long z1 = static_cast<long>(in.toothLateness[0].size()), z2 = static_cast<long>(in.toothLateness[1].size());
   long periods = z1 / std::gcd(z1, z2) * z2;
   // The table grows with the hunting period: a bound on its work, not on the pairs' count.

@@ -143,6 +143,10 @@ Optimised optimise(const ir::Program& program, const Model& m, SearchResult foun
     for (const auto& c : gb.report->columns)
       reportsRelative = reportsRelative || relative(c.get());
   }
+  // A sweep's `relative(…)` reads the baseline at each of its points.
+  for (const auto& st : gb.studies)
+    for (const auto& o : st.outputs)
+      reportsRelative = reportsRelative || relative(o.get());
   // `worst(…)` over catalogue quantities: decided by the search pass.
   bool optimised = needsOptimiser(gb) && needsScenes(gb);
   // Freedoms the search pass decided: the design table, scenes and ratings read them.

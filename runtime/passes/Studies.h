@@ -9,6 +9,8 @@
 namespace gbx::rt::passes {
 
 // `progress`, when set, hears the fraction of the work-precision runs done.
-std::vector<StudyReport> studies(const Model& m, const Assignment& best, std::function<void(double)> progress = {});
+// `baseline` and its design: for `relative(…)` in a sweep's outputs.
+std::vector<StudyReport> studies(const Model& m, const Assignment& best, std::function<void(double)> progress = {},
+                                 const Model* baseline = nullptr, const Assignment* baseDesign = nullptr);
 
 } // namespace gbx::rt::passes

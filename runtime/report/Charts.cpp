@@ -101,6 +101,22 @@ void sceneCharts(const std::string& gearbox, SceneReport& sc, std::vector<ChartF
   }
 }
 
+// A sweep with a set of lines (`Y in {…}`): one line of output i per value of Y, in order.
+void seriesLines(const SweepStudy& s, size_t i, SvgChart& c) {
+  for (size_t k = 0; k < s.points.size();) {
+    SvgSeries line;
+    line.colour = static_cast<int>(c.series.size());
+    double at = s.points[k].series;
+    line.label = fmt::format("{} = {:.6g}{}", s.seriesTarget, s.seriesUnit.shown(at),
+                             s.seriesUnit.name.empty() ? "" : " " + s.seriesUnit.name);
+    for (; k < s.points.size() && s.points[k].series == at; ++k) {
+      line.x.push_back(s.unit.shown(s.points[k].x));
+      line.y.push_back(s.outputs[i].unit.shown(s.points[k].y[i]));
+    }
+    c.series.push_back(std::move(line));
+  }
+}
+
 void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<std::string>& files, std::vector<ChartFile>& out) {
   if (!s.plot) return;
   // One chart per output: outputs of different units do not share an axis.
@@ -109,6 +125,12 @@ void sweepCharts(const std::string& gearbox, const SweepStudy& s, std::vector<st
     c.title = fmt::format("{}: {} against {}", s.name, s.outputs[i].text, s.target);
     c.xLabel = withUnit(s.target, s.unit.name);
     c.yLabel = withUnit(s.outputs[i].text, s.outputs[i].unit.name);
+    if (!s.seriesTarget.empty()) {
+      seriesLines(s, i, c);
+      add(out, files,
+          fileSafe(gearbox) + "." + s.name + (s.outputs.size() > 1 ? fmt::format(".{}", i + 1) : "") + ".svg", c);
+      continue;
+    }
     // A scene's response: stable parts solid, unstable parts dashed, one colour; each part
     // shares its end point with the next so the curve stays whole.
     bool labelledStable = false, labelledUnstable = false;

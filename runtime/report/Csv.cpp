@@ -216,7 +216,8 @@ std::string signals(const std::vector<GearboxReport>& reports) {
 }
 
 std::string sweeps(const std::vector<GearboxReport>& reports) {
-  std::string o = row({"gearbox", "study", "swept", "x", "x_unit", "output", "value", "unit", "stability", "branch"});
+  std::string o = row({"gearbox", "study", "swept", "x", "x_unit", "output", "value", "unit", "stability", "branch",
+                       "line", "line_value", "line_unit"});
   bool any = false;
   for (const auto& g : reports)
     for (const auto& st : g.studies)
@@ -224,9 +225,15 @@ std::string sweeps(const std::vector<GearboxReport>& reports) {
         for (const auto& p : s->points)
           for (size_t i = 0; i < s->outputs.size() && i < p.y.size(); ++i) {
             any = true;
-            o += row({g.name, s->name, s->target, csvNumber(p.x, s->unit.name, s->unit.scale, s->unit.offset), s->unit.name, s->outputs[i].text,
-                      csvNumber(p.y[i], s->outputs[i].unit.name, s->outputs[i].unit.scale, s->outputs[i].unit.offset), s->outputs[i].unit.name, number(p.stability),
-                      s->continuation == "arclength" ? std::to_string(p.branch) : ""});
+            o += row({g.name, s->name, s->target, csvNumber(p.x, s->unit.name, s->unit.scale, s->unit.offset),
+                      s->unit.name, s->outputs[i].text,
+                      csvNumber(p.y[i], s->outputs[i].unit.name, s->outputs[i].unit.scale, s->outputs[i].unit.offset),
+                      s->outputs[i].unit.name, number(p.stability),
+                      s->continuation == "arclength" ? std::to_string(p.branch) : "", s->seriesTarget,
+                      s->seriesTarget.empty()
+                          ? ""
+                          : csvNumber(p.series, s->seriesUnit.name, s->seriesUnit.scale, s->seriesUnit.offset),
+                      s->seriesUnit.name});
           }
   return any ? o : "";
 }

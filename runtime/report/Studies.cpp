@@ -14,13 +14,17 @@ StudyTable table(const SweepStudy& s) {
   StudyTable t;
   t.name = s.name;
   t.kind = "sweep";
+  const bool lines = !s.seriesTarget.empty();
+  if (lines) t.header.push_back(s.seriesTarget + (s.seriesUnit.name.empty() ? "" : " [" + s.seriesUnit.name + "]"));
   t.header.push_back(s.target + (s.unit.name.empty() ? "" : " [" + s.unit.name + "]"));
   for (const auto& out : s.outputs) t.header.push_back(out.text + (out.unit.name.empty() ? "" : " [" + out.unit.name + "]"));
   bool arclength = s.continuation == "arclength";
   if (s.scene) t.header.push_back("stability of " + s.stabilityScene);
   if (arclength) t.header.push_back("branch");
   for (const auto& p : s.points) {
-    std::vector<std::string> row = {fmt::format("{:.6g}", s.unit.shown(p.x))};
+    std::vector<std::string> row;
+    if (lines) row.push_back(fmt::format("{:.6g}", s.seriesUnit.shown(p.series)));
+    row.push_back(fmt::format("{:.6g}", s.unit.shown(p.x)));
     bool unstable = std::isfinite(p.stability) && p.stability >= 1.0;
     for (size_t i = 0; i < s.outputs.size() && i < p.y.size(); ++i) {
       bool u = i < p.unstable.size() ? p.unstable[i] : unstable;
@@ -91,6 +95,9 @@ std::string json(const SweepStudy& s) {
         flags += fmt::format("{}{}", i ? ", " : "", i < p.unstable.size() && p.unstable[i] ? "true" : "false");
       extra += ", \"unstable\": [" + flags + "]";
     }
+    // The line's quantity under its own name, SI.
+    if (!s.seriesTarget.empty())
+      extra += fmt::format(", \"{}\": {}", diag::jsonEscape(s.seriesTarget), jsonNumber(p.series));
     // The swept quantity under its own name too (docs/dynamics.md).
     points += fmt::format("{}{{\"x\": {}, \"{}\": {}{}, \"outputs\": {{{}}}}}", k ? ", " : "", jsonNumber(p.x), diag::jsonEscape(s.target), jsonNumber(p.x), extra, outs);
   }
@@ -100,11 +107,15 @@ std::string json(const SweepStudy& s) {
   for (size_t i = 0; i < s.marks.size(); ++i)
     marks += fmt::format("{}{{\"at\": {}, \"label\": \"{}\"}}", i ? ", " : "", jsonNumber(s.marks[i].first), diag::jsonEscape(s.marks[i].second));
   for (size_t i = 0; i < s.notes.size(); ++i) notes += fmt::format("{}\"{}\"", i ? ", " : "", diag::jsonEscape(s.notes[i]));
-  return fmt::format("{{\"sweep\": \"{}\", \"unit\": \"SI\"{}, \"points\": [{}]}}", diag::jsonEscape(s.target),
-                     s.scene ? fmt::format(", \"continuation\": \"{}\", \"stability_of\": \"{}\", \"folds\": [{}], \"gaps\": [{}], \"marks\": [{}], \"notes\": [{}]",
-                                           s.continuation, diag::jsonEscape(s.stabilityScene), folds, gaps, marks, notes)
-                             : "",
-                     points);
+  std::string series =
+      s.seriesTarget.empty() ? "" : fmt::format(", \"lines\": \"{}\"", diag::jsonEscape(s.seriesTarget));
+  return fmt::format(
+      "{{\"sweep\": \"{}\"{}, \"unit\": \"SI\"{}, \"points\": [{}]}}", diag::jsonEscape(s.target), series,
+      s.scene ? fmt::format(", \"continuation\": \"{}\", \"stability_of\": \"{}\", \"folds\": [{}], \"gaps\": [{}], "
+                            "\"marks\": [{}], \"notes\": [{}]",
+                            s.continuation, diag::jsonEscape(s.stabilityScene), folds, gaps, marks, notes)
+              : "",
+      points);
 }
 
 std::string json(const WorkPrecisionStudy& s, bool timings) {

@@ -19,6 +19,9 @@ struct SweepStudy {
     units::DisplayUnit unit{"", 1};
   };
   std::vector<Output> outputs;
+  // `Y in {…}` beside the sweep: the sweep once per value of Y, a line each.
+  std::string seriesTarget; // "" without one
+  units::DisplayUnit seriesUnit{"", 1};
   struct Point {
     double x = 0;
     std::vector<double> y;              // one per output; NaN where it has no value
@@ -29,6 +32,7 @@ struct SweepStudy {
     double error = NAN;                 // the scene's error estimate at this point
     std::vector<bool> unstable;         // per output: it reads a scene whose orbit is unstable here
     bool afterGap = false;              // continuation: the first point after a stretch not followed
+    double series = NAN;                // the series' value (SI) of the line it lies on; NaN without one
   };
   std::vector<Point> points;
   bool plot = false;                    // `plot;`: one chart per output

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <memory>
 #include <set>
 
 #include <fmt/format.h>
@@ -32,7 +33,154 @@ void resonanceMarks(SweepStudy& r, const ir::Study& st, double x, double fm, dou
     if (double at = x * k * fn / fm; at >= lo && at <= hi) r.marks.emplace_back(at, label);
 }
 
-SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
+namespace {
+
+// Where a sweep stands: the swept value and the series' value (NaN without a series).
+struct At {
+  double x = 0, series = NAN;
+};
+
+// One scene of gearbox m at a sweep's point: the swept or series effect parameter set where
+// it is this scene's.
+dyn::SceneResult sceneAt(const Model& m, const Assignment& a, int s, const ir::Study::EffectParam& swept,
+                         const ir::Study::EffectParam& series, const ir::Study& st, At at, dyn::SceneOverrides ov) {
+  ScenePlan plan = m.scenes[static_cast<size_t>(s)];
+  if (s == swept.scene) plan = plan.withEffectParam(swept.effect, swept.key, at.x, st.dim.value_or(units::Dim{}));
+  if (st.series && s == series.scene) plan = plan.withEffectParam(series.effect, series.key, at.series, st.series->dim);
+  return dyn::runScene(m, a, plan, ov);
+}
+
+// The overrides of a quantity swept or set by the series.
+void overrideAt(Evaluator& ev, const ir::Study& st, const ir::QuantityRef& swept, const ir::Study::EffectParam& sweptFx,
+                const ir::QuantityRef& series, const ir::Study::EffectParam& seriesFx, At at) {
+  if (sweptFx.scene < 0 && swept.owner != ir::QuantityRef::Unresolved) ev.setOverride(swept, Value::number(at.x));
+  if (st.series && seriesFx.scene < 0 && series.owner != ir::QuantityRef::Unresolved)
+    ev.setOverride(series, Value::number(at.series));
+}
+
+// `relative(…)` in an output: the baseline gearbox at the same point, its scenes run there.
+struct BaselineAt {
+  const Model* model = nullptr;
+  const Assignment* design = nullptr;
+  std::set<int> scenes; // the baseline's scenes the outputs' baselines read
+
+  explicit BaselineAt(const ir::Study& st, const Model* m, const Assignment* d) : model(m), design(d) {
+    std::function<void(const ir::Expr&)> visit = [&](const ir::Expr& e) {
+      if (e.inBaseline) scenesOf(*e.inBaseline, scenes);
+      for (const auto& x : e.args)
+        if (x) visit(*x);
+    };
+    for (const auto& o : st.outputs)
+      visit(*o);
+  }
+  bool on() const { return model && design; }
+  // Installs the baseline's view of point `at` in ev; its evaluator and scene results live in
+  // the holders given.
+  void install(Evaluator& ev, const ir::Study& st, At at, std::unique_ptr<Evaluator>& bev,
+               std::map<int, dyn::SceneResult>& runs, std::string& failure) const {
+    bev = std::make_unique<Evaluator>(*model);
+    overrideAt(*bev, st, st.sweptInBaseline, st.sweptEffectInBaseline, st.seriesInBaseline, st.seriesEffectInBaseline,
+               at);
+    for (int s : scenes) {
+      dyn::SceneOverrides ov;
+      ov.evaluator = bev.get();
+      ov.keepSeries = false;
+      ov.estimateError = false;
+      dyn::SceneResult r = sceneAt(*model, *design, s, st.sweptEffectInBaseline, st.seriesEffectInBaseline, st, at, ov);
+      if (!r.failure.empty() && failure.empty()) failure = "the baseline's " + r.failure;
+      runs.emplace(s, std::move(r));
+    }
+    bev->sceneOutput = [&runs](const ir::Expr& e, const Assignment&, const Evaluator&) {
+      auto it = runs.find(e.output.scene);
+      const dyn::SceneNumber* n = it == runs.end() ? nullptr : it->second.find(e.output);
+      return n && std::isfinite(n->value) ? Value::number(n->value) : Value::invalid();
+    };
+    const Evaluator* b = bev.get();
+    const Assignment* d = design;
+    ev.baseline = [b, d](const ir::Expr& e) { return b->eval(e, *d); };
+  }
+};
+
+// One point of a sweep (`first`: the first of the first line); false, with r.failure, where
+// it cannot be solved.
+bool sweepPoint(const Model& m, const Assignment& a, const ir::Study& st, At at, bool first, const BaselineAt& base,
+                const std::set<int>& scenes, const std::vector<std::set<int>>& outputScenes,
+                std::map<int, std::vector<double>>& guesses, SweepStudy& r) {
+  const ir::Study::EffectParam seriesFx = st.series ? st.series->effect : ir::Study::EffectParam{};
+  Evaluator ev(m);
+  overrideAt(ev, st, st.swept, st.sweptEffect, st.series ? st.series->ref : ir::QuantityRef{}, seriesFx, at);
+  SweepStudy::Point p;
+  p.x = at.x;
+  p.series = at.series;
+  auto where = [&] {
+    std::string line =
+        st.series ? fmt::format(", {} = {:.6g} {}", r.seriesTarget, r.seriesUnit.shown(at.series), r.seriesUnit.name)
+                  : "";
+    return fmt::format("study `{}` at {} = {:.6g} {}{}", st.name, st.target, r.unit.shown(at.x), r.unit.name, line);
+  };
+  std::map<int, dyn::SceneResult> results;
+  for (int s : scenes) {
+    dyn::SceneOverrides ov;
+    ov.evaluator = &ev;
+    ov.keepSeries = false;
+    if (guesses.count(s)) ov.guess = guesses[s];
+    dyn::SceneResult res = sceneAt(m, a, s, st.sweptEffect, seriesFx, st, at, ov);
+    if (!res.failure.empty()) {
+      r.failure = fmt::format("{}: {}", where(), res.failure);
+      return false;
+    }
+    if (!res.orbit.empty()) guesses[s] = res.orbit;
+    if (s == *scenes.begin()) {
+      if (first) resonanceMarks(r, st, at.x, res.meshFrequency, res.naturalFrequency);
+      p.stability = res.stability;
+      p.error = res.errorEstimate >= 0 ? res.errorEstimate : NAN;
+    }
+    results.emplace(s, std::move(res));
+  }
+  std::unique_ptr<Evaluator> bev;
+  std::map<int, dyn::SceneResult> baseRuns;
+  if (base.on()) {
+    std::string failure;
+    base.install(ev, st, at, bev, baseRuns, failure);
+    if (!failure.empty()) {
+      r.failure = fmt::format("{}: {}", where(), failure);
+      return false;
+    }
+  }
+  if (r.scene)
+    ev.sceneOutput = [&](const ir::Expr& e, const Assignment& aa, const Evaluator& asking) {
+      auto it = results.find(e.output.scene);
+      const dyn::SceneResult* run = it == results.end() ? nullptr : &it->second;
+      // At a corner of the tolerance box (`worst`, `mean`) the scene runs again there.
+      dyn::SceneResult corner;
+      if (run && !asking.offsets().empty()) {
+        dyn::SceneOverrides ov;
+        ov.evaluator = &asking;
+        ov.keepSeries = false;
+        ov.estimateError = false;
+        if (guesses.count(e.output.scene)) ov.guess = guesses[e.output.scene];
+        corner = sceneAt(m, aa, e.output.scene, st.sweptEffect, seriesFx, st, at, ov);
+        run = &corner;
+      }
+      const dyn::SceneNumber* num = run ? run->find(e.output) : nullptr;
+      return num && std::isfinite(num->value) ? Value::number(num->value) : Value::invalid();
+    };
+  for (size_t i = 0; i < st.outputs.size(); ++i) {
+    Value v = ev.eval(*st.outputs[i], a);
+    p.y.push_back(v.isNumber() ? v.mid() : NAN);
+    bool unstable = false;
+    for (int s : outputScenes[i])
+      unstable = unstable || results.at(s).unstable;
+    p.unstable.push_back(unstable);
+  }
+  r.points.push_back(std::move(p));
+  return true;
+}
+
+} // namespace
+
+SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st, const Model* baseline,
+                 const Assignment* baseDesign) {
   SweepStudy r;
   r.name = st.name;
   // Where the design itself stands on the swept axis, when the axis is one of its quantities.
@@ -62,6 +210,13 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
   bool arclength = cont && cont->choice == cat::continuation::Arclength;
   if (r.scene) r.continuation = arclength ? "arclength" : "natural";
   const auto& fxp = st.sweptEffect;
+  if (arclength && (st.series || (baseline && baseDesign))) {
+    r.failure = fmt::format(
+        "study `{}`: `continuation = arclength` follows one line without a baseline; leave out `continuation`, "
+        "or the set of lines and `relative(…)`",
+        st.name);
+    return r;
+  }
   if (arclength && fxp.scene >= 0) {
     r.failure = fmt::format("study `{}`: `continuation = arclength` follows the operating point or a stage attribute; sweep `{}` "
                             "point by point (leave out `continuation`)",
@@ -79,63 +234,27 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st) {
     r.notes.push_back("the scene is linear: its response has no turning points, only poles where a Floquet multiplier passes 1, so it "
                       "is followed point by point");
   }
-  // Natural continuation: point by point, each periodic orbit the next point's first guess.
-  std::map<int, std::vector<double>> guesses;
-  for (long k = 0; k < n; ++k) {
-    double x = lo + static_cast<double>(k) * step;
-    Evaluator ev(m);
-    if (fxp.scene < 0) ev.setOverride(st.swept, Value::number(x));
-    SweepStudy::Point p;
-    p.x = x;
-    std::map<int, dyn::SceneResult> results;
-    for (int s : scenes) {
-      dyn::SceneOverrides ov;
-      ov.evaluator = &ev;
-      ov.keepSeries = false;
-      if (guesses.count(s)) ov.guess = guesses[s];
-      const ScenePlan& declared = m.scenes[static_cast<size_t>(s)];
-      dyn::SceneResult res = s == fxp.scene ? dyn::runScene(m, a, declared.withEffectParam(fxp.effect, fxp.key, x, st.dim.value_or(units::Dim{})), ov)
-                                            : dyn::runScene(m, a, declared, ov);
-      if (!res.failure.empty()) {
-        r.failure = fmt::format("study `{}` at {} = {:.6g} {}: {}", st.name, st.target, r.unit.shown(x), r.unit.name, res.failure);
-        return r;
-      }
-      if (!res.orbit.empty()) guesses[s] = res.orbit;
-      if (s == *scenes.begin()) {
-        if (k == 0) resonanceMarks(r, st, x, res.meshFrequency, res.naturalFrequency);
-        p.stability = res.stability;
-        p.error = res.errorEstimate >= 0 ? res.errorEstimate : NAN;
-      }
-      results.emplace(s, std::move(res));
+  if (st.series) {
+    r.seriesTarget = st.series->target;
+    units::Dim d = st.series->dim;
+    bool microSeries =
+        d == units::dims::length && (st.series->effect.scene >= 0 || cat::readsInMicrometres(st.series->ref.key));
+    r.seriesUnit = microSeries ? units::micrometres() : units::displayUnitFor(d);
+  }
+  BaselineAt base(st, baseline, baseDesign);
+  std::vector<double> lines;
+  if (st.series)
+    for (const auto& v : st.series->members)
+      lines.push_back(v.toDouble());
+  else
+    lines.push_back(NAN);
+  for (size_t l = 0; l < lines.size(); ++l) {
+    // Natural continuation along each line: each periodic orbit the next point's first guess.
+    std::map<int, std::vector<double>> guesses;
+    for (long k = 0; k < n; ++k) {
+      At at{lo + static_cast<double>(k) * step, lines[l]};
+      if (!sweepPoint(m, a, st, at, k == 0 && l == 0, base, scenes, outputScenes, guesses, r)) return r;
     }
-    if (r.scene)
-      ev.sceneOutput = [&](const ir::Expr& e, const Assignment& aa, const Evaluator& asking) {
-        auto it = results.find(e.output.scene);
-        const dyn::SceneResult* r = it == results.end() ? nullptr : &it->second;
-        // At a corner of the tolerance box (`worst`, `mean`) the scene runs again there.
-        dyn::SceneResult corner;
-        if (r && !asking.offsets().empty()) {
-          dyn::SceneOverrides ov;
-          ov.evaluator = &asking;
-          ov.keepSeries = false;
-          ov.estimateError = false;
-          if (guesses.count(e.output.scene)) ov.guess = guesses[e.output.scene];
-          const ScenePlan& declared = m.scenes[static_cast<size_t>(e.output.scene)];
-          corner = e.output.scene == fxp.scene ? dyn::runScene(m, aa, declared.withEffectParam(fxp.effect, fxp.key, x, st.dim.value_or(units::Dim{})), ov)
-                                               : dyn::runScene(m, aa, declared, ov);
-          r = &corner;
-        }
-        const dyn::SceneNumber* num = r ? r->find(e.output) : nullptr;
-        return num && std::isfinite(num->value) ? Value::number(num->value) : Value::invalid();
-      };
-    for (size_t i = 0; i < st.outputs.size(); ++i) {
-      Value v = ev.eval(*st.outputs[i], a);
-      p.y.push_back(v.isNumber() ? v.mid() : NAN);
-      bool unstable = false;
-      for (int s : outputScenes[i]) unstable = unstable || results.at(s).unstable;
-      p.unstable.push_back(unstable);
-    }
-    r.points.push_back(std::move(p));
   }
   // Every point's scene estimated its error; the report gives the largest.
   const SweepStudy::Point* worst = nullptr;

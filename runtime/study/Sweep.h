@@ -7,7 +7,9 @@
 
 namespace gbx::rt {
 
-SweepStudy sweep(const Model& m, const Assignment& design, const ir::Study& study);
+// `relative(…)` in an output reads `baseline` (its design `baseDesign`) at the same point.
+SweepStudy sweep(const Model& m, const Assignment& design, const ir::Study& study, const Model* baseline = nullptr,
+                 const Assignment* baseDesign = nullptr);
 
 // A speed sweep's resonance marks: where the mesh frequency (fm at x) meets the natural
 // frequency fn, half of it, or twice it (the principal parametric resonance).

@@ -66,3 +66,28 @@ def test_sweeps_equal_the_csv_table(tmp_path):
             numpy.testing.assert_allclose(x, sweep.x, rtol=1e-12, atol=0)
             y = numpy.array([float(r["value"]) for r in mine]) * SI[mine[0]["unit"]]
             numpy.testing.assert_allclose(y, values, rtol=1e-12, atol=0)
+
+
+def test_a_sweeps_lines_equal_the_csv_table(tmp_path):
+    spec = tmp_path / "lines.gbx"
+    spec.write_text(
+        """gearbox G {
+  stage hs: spur { pinion.z = 20; wheel.z = 40; normal_module = 4 mm; face_width = 40 mm; }
+  operating { input_speed = 1500 rpm; input_torque = 400 N*m; }
+  scene te on hs { effects { loaded_mesh { slices = 1; positions = 100; } } output level(static_transmission_error, 1); }
+  study map { sweep input_torque in 100 N*m..700 N*m step 300 N*m; hs.tip_relief in {0 um, 20 um};
+              output te.level(static_transmission_error, 1); }
+}
+"""
+    )
+    out = tmp_path / "out"
+    cli("solve", str(spec), "--format", "csv", "--no-timings", "-q", "-o", str(out))
+    rows = read(out / "sweeps.csv")
+    sweep = gbxc.solve(str(spec), timings=False).gearboxes["G"].sweeps["map"]
+    assert sweep.lines == "hs.tip_relief"
+    assert [r["line"] for r in rows] == ["hs.tip_relief"] * 6
+    assert {r["unit"] for r in rows} == {"dB"}
+    line = numpy.array([float(r["line_value"]) for r in rows]) * 1e-6  # um
+    numpy.testing.assert_allclose(sweep.line, line, rtol=1e-12, atol=1e-18)
+    numpy.testing.assert_allclose(sweep.outputs["te.level(static_transmission_error, 1)"],
+                                  [float(r["value"]) for r in rows], rtol=1e-12, atol=0)

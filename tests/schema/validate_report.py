@@ -121,7 +121,11 @@ def report_errors(report, timings):
                         out.append(f"{where}: no key '{target}' (the swept quantity under its own name)")
                     elif p[target] != p.get("x"):
                         out.append(f"{where}['{target}']: {p[target]} differs from x = {p.get('x')}")
-                    extra = set(p) - fixed - {target}
+                    # With lines, the line's quantity under its own name too.
+                    line = st.get("lines")
+                    if line is not None and line not in p:
+                        out.append(f"{where}: no key '{line}' (the line's quantity under its own name)")
+                    extra = set(p) - fixed - {target} - ({line} if line else set())
                     if extra:
                         out.append(f"{where}: unexpected keys {sorted(extra)}")
                     if (st.get("continuation") == "arclength") != ("branch" in p):

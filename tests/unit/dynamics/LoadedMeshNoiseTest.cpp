@@ -9,13 +9,17 @@
 #include <complex>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "FlankPair.h"
+#include "SceneFixture.h"
 #include "dynamics/CornerContact.h"
 #include "dynamics/Levels.h"
 #include "dynamics/LoadedMesh.h"
 #include "dynamics/LoadedMeshInputs.h"
+#include "dynamics/Scene.h"
+#include "study/Sweep.h"
 
 using namespace gbx::rt::dyn;
 using gbx::rt::dyn::testing::pair;
@@ -303,4 +307,90 @@ TEST(Levels, LevelOfAnOrderIsItsRmsInDecibels) {
   EXPECT_NEAR(s.harmonic(1), 0.5, 1e-12);
   EXPECT_NEAR(s.harmonic(2), 0.25, 1e-12);
   EXPECT_NEAR(s.total(1.0), 10 * std::log10(0.5 * (0.25 + 0.0625)), 1e-12);
+}
+
+namespace {
+
+// A spur pair with perfect teeth, no relief and no corner contact, and its load sweep; a
+// variant with relief and the sweep against it in lines and in dB.
+const char* kLoadSweep = R"(
+gearbox Plain {
+  stage hs: spur { pinion.z = 20;  wheel.z = 40;  normal_module = 4 mm;  face_width = 40 mm;  pressure_angle = 20 deg; }
+  operating { input_speed = 1500 rpm; input_torque = TORQUE; }
+  scene te on hs {
+    effects { loaded_mesh { slices = 1; positions = 400; } }
+    output peak_to_peak(static_transmission_error), mean(static_transmission_error), harmonic(static_transmission_error, 1),
+           level_a(static_transmission_error);
+  }
+  study load { sweep input_torque in 20 N*m..1220 N*m step 300 N*m; output te.peak_to_peak(static_transmission_error),
+               te.mean(static_transmission_error), te.harmonic(static_transmission_error, 1); }
+}
+gearbox Relieved extends Plain {
+  modify hs { tip_relief = 15 um; }
+  study map {
+    sweep input_torque in 20 N*m..1220 N*m step 300 N*m;
+    hs.tip_relief in {0 um, 15 um};
+    output te.peak_to_peak(static_transmission_error), relative(te.level_a(static_transmission_error));
+  }
+}
+)";
+
+std::string withTorque(double newtonMetres) {
+  std::string s = kLoadSweep;
+  s.replace(s.find("TORQUE"), 6, fmt::format("{} N*m", newtonMetres));
+  return s;
+}
+
+// A scene's number at the spec's operating point.
+double sceneNumber(const gbx::test::Fixture& f, const std::string& key) {
+  gbx::rt::dyn::SceneResult r = gbx::rt::dyn::runScene(*f.model, *f.design, f.scene("te"));
+  EXPECT_TRUE(r.failure.empty()) << r.failure;
+  const auto* n = r.find(key);
+  return n ? n->value : NAN;
+}
+
+} // namespace
+
+// The load sweep's transmission error at each load is the loaded mesh solved at that load
+// as the operating point, to 1e-9.
+TEST(LoadSweep, EachPointIsTheLoadedMeshAtThatLoad) {
+  auto f = gbx::test::compile("load.gbx", withTorque(400), "Plain");
+  gbx::rt::SweepStudy s = gbx::rt::sweep(*f.model, *f.design, f.study("load"));
+  ASSERT_TRUE(s.failure.empty()) << s.failure;
+  ASSERT_EQ(s.points.size(), 5u);
+  const char* keys[] = {"peak_to_peak(static_transmission_error)", "mean(static_transmission_error)",
+                        "harmonic(static_transmission_error, 1)"};
+  for (const auto& p : s.points) {
+    auto at = gbx::test::compile("load.gbx", withTorque(p.x), "Plain");
+    for (size_t i = 0; i < 3; ++i) {
+      double single = sceneNumber(at, keys[i]);
+      EXPECT_NEAR(p.y[i], single, 1e-9 * std::fabs(single)) << keys[i] << " at " << p.x << " N*m";
+    }
+  }
+  // The mean approach grows with the load; a static scene has no stability.
+  EXPECT_GT(s.points.back().y[1], 10 * s.points.front().y[1]);
+  EXPECT_TRUE(std::isnan(s.points.front().stability));
+}
+
+// A set of lines beside the sweep: the sweep once per value; `relative` of a level reads the
+// baseline at the same load and line, so where both carry the same relief it is 0 dB and
+// otherwise the difference of the two levels.
+TEST(LoadSweep, LinesAndRelativeLevelsReadTheBaselineAtTheSamePoint) {
+  auto f = gbx::test::compile("load.gbx", withTorque(400), "Relieved");
+  auto base = gbx::test::compile("load.gbx", withTorque(400), "Plain");
+  gbx::rt::SweepStudy s = gbx::rt::sweep(*f.model, *f.design, f.study("map"), base.model.get(), base.design.get());
+  ASSERT_TRUE(s.failure.empty()) << s.failure;
+  ASSERT_EQ(s.points.size(), 10u);
+  EXPECT_EQ(s.seriesTarget, "hs.tip_relief");
+  for (size_t k = 0; k < s.points.size(); ++k) {
+    const auto& p = s.points[k];
+    EXPECT_DOUBLE_EQ(p.series, k < 5 ? 0.0 : 15e-6);
+    EXPECT_NEAR(p.y[1], 0.0, 1e-12) << "the baseline carries the line's relief too";
+  }
+  // Relief of 15 um: least peak-to-peak at a middle load, not at the lightest (Harris).
+  double light = s.points[5].y[0], middle = std::min(s.points[6].y[0], s.points[7].y[0]);
+  EXPECT_LT(middle, 0.5 * light);
+  // Without the lines, the variant's relief against the plain pair: a level difference in dB.
+  gbx::rt::SweepStudy plain = gbx::rt::sweep(*f.model, *f.design, f.study("map"), nullptr, nullptr);
+  EXPECT_TRUE(std::isnan(plain.points[0].y[1])) << "no baseline, no relative";
 }

@@ -167,6 +167,8 @@ class Sweep:
     x: Any  # numpy.ndarray of the swept value (SI)
     outputs: Dict[str, Any]  # output -> numpy.ndarray
     data: Dict[str, Any]
+    lines: str = ""  # the quantity drawn a line per value (`hs.tip_relief in {…}`), "" without
+    line: Any = None  # numpy.ndarray of each point's line value (SI), or None without lines
 
 
 @dataclass
@@ -225,7 +227,9 @@ def _sweep(name: str, body: Dict[str, Any]) -> Sweep:
                 keys.append(k)
     x = numpy.array([p["x"] for p in points], dtype=float)
     outputs = {k: numpy.array([p.get("outputs", {}).get(k, numpy.nan) for p in points], dtype=float) for k in keys}
-    return Sweep(name, x, outputs, body)
+    lines = body.get("lines", "")
+    line = numpy.array([p[lines] for p in points], dtype=float) if lines else None
+    return Sweep(name, x, outputs, body, lines, line)
 
 
 class Report:
