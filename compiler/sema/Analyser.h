@@ -86,6 +86,7 @@ private:
   std::optional<int> orderArgument(const cat::SignalFnSpec& fn, const ast::Expr* k, Span span,
                                    const std::string& signal);
   static ir::Setting switchSetting(ir::Setting out, bool on);
+  bool sweptValueFits(const AttrSpec& spec, const std::string& target, const ir::Expr& x);
   void seriesOf(const Stmt& b, const GearboxModel& m, const Scope& gs, const std::string& owner, ir::Study& out);
   ir::Setting listSetting(ir::Setting out, const ast::Expr* v, const AttrSpec& spec, const Scope& scope);
   ir::Setting domainSetting(ir::Setting out, const Stmt& st, const AttrSpec& spec, const Scope& scope,

@@ -84,16 +84,18 @@ ir::Scene Analyser::scene(const Stmt& st, const GearboxModel& m, const Scope& gs
       diags_.error("E0232", nameOr(st), fmt::format("{}: `steady_state = periodic` needs a scene on a stage; a whole-gearbox scene runs "
                                                    "from rest (`duration`) or settles (`settle`)", owner));
   }
-  // A loaded mesh whose outputs all read its static transmission error runs no dynamics.
-  const bool staticOnly = stage && out.findEffect(Effect::LoadedMesh) && !out.outputs.empty() &&
-                          std::all_of(out.outputs.begin(), out.outputs.end(), [](const ir::SceneOutput& o) {
-                            return isSignal(o, cat::Signal::StaticTransmissionError);
-                          });
+  // A loaded mesh whose outputs all read its static transmission error or its stiffness runs no
+  // dynamics.
+  const bool staticOnly =
+      stage && out.findEffect(Effect::LoadedMesh) && !out.outputs.empty() &&
+      std::all_of(out.outputs.begin(), out.outputs.end(), [](const ir::SceneOutput& o) {
+        return isSignal(o, cat::Signal::StaticTransmissionError) || isSignal(o, cat::Signal::Stiffness);
+      });
   if (!staticOnly && !ir::findSetting(out.settings, "duration") && !ir::findSetting(out.settings, "record"))
     diags_.error("E0225", nameOr(st),
                  fmt::format("{} needs `duration` (a run from rest) or `record` (a steady-state window){}", owner,
                              out.findEffect(Effect::LoadedMesh)
-                                 ? ", unless every output reads `static_transmission_error`"
+                                 ? ", unless every output reads `static_transmission_error` or `stiffness`"
                                  : ""));
   for (const auto& o : out.outputs)
     if (isSignal(o, cat::Signal::Stability) && !ir::findSetting(out.settings, Q::SteadyState))  // else E0202 already says it
@@ -254,7 +256,8 @@ void Analyser::sceneOutput(const ast::Expr* e, ir::Scene& out, const StageModel*
   if (!e) return;
   ir::SceneOutput o;
   o.span = e->span;
-  const ast::Expr* inner = e->kind == ast::ExprKind::Call && e->args.size() == 2 ? e->args[1].get() : nullptr;
+  const ast::Expr* inner =
+      e->kind == ast::ExprKind::Call && (e->args.size() == 2 || e->args.size() == 3) ? e->args[1].get() : nullptr;
   if (e->kind == ast::ExprKind::Name) {
     o.signal = e->text;
   } else if (inner && e->args[0] && e->args[0]->kind == ast::ExprKind::Name && inner->kind == ast::ExprKind::Call &&
@@ -267,6 +270,11 @@ void Analyser::sceneOutput(const ast::Expr* e, ir::Scene& out, const StageModel*
       diags_.error("E0220", e->args[0]->span, fmt::format("`{}` is not a scene result function ({})", o.function, signalFnList()));
       return;
     }
+    if (auto k = orderArgument(*findSignalFn(o.function), e->args.size() == 3 ? e->args[2].get() : nullptr, e->span,
+                               o.signal))
+      o.order = *k;
+    else
+      return;
     if (o.mesh.empty()) {
       diags_.error("E0306", inner->args[1]->span, "a mesh is named by its stage, and its mesh on a planetary or idler stage, as in `transfer.driver_idler`");
       return;

@@ -117,7 +117,8 @@ void Analyser::seriesOf(const Stmt& b, const GearboxModel& m, const Scope& gs, c
                  fmt::format("{} sweeps `{}` already; a line per value names another quantity", owner, series.target));
     return;
   }
-  std::optional<units::Dim> dim = sweepTarget(b.path, m, nullptr);
+  const AttrSpec* spec = nullptr;
+  std::optional<units::Dim> dim = sweepTarget(b.path, m, &spec);
   if (!dim) return;
   series.dim = *dim;
   for (const auto& e : b.exprs) {
@@ -129,6 +130,7 @@ void Analyser::seriesOf(const Stmt& b, const GearboxModel& m, const Scope& gs, c
                                dim->describe(), describe(x->type)));
       return;
     }
+    if (spec && !sweptValueFits(*spec, series.target, *x)) return;
     series.members.push_back(x->value);
   }
   if (series.members.size() > 12) {
@@ -137,6 +139,20 @@ void Analyser::seriesOf(const Stmt& b, const GearboxModel& m, const Scope& gs, c
     return;
   }
   out.series = std::move(series);
+}
+
+// A value a sweep or its lines give the quantity: its row's whole-number rule and limits.
+bool Analyser::sweptValueFits(const AttrSpec& spec, const std::string& target, const ir::Expr& x) {
+  if (spec.integer && !(x.value.isRational() && x.value.rational().isInteger())) {
+    diags_.error("E0403", x.span, fmt::format("`{}` must be a whole number, got {}", target, x.value.str()));
+    return false;
+  }
+  if ((spec.atLeast && x.value.compare(*spec.atLeast) < 0) ||
+      (spec.atMost && !spec.budget && x.value.compare(*spec.atMost) > 0)) {
+    diags_.error("E0405", x.span, fmt::format("`{}` cannot be {}", target, units::showQuantity(x.value, x.type.dim)));
+    return false;
+  }
+  return true;
 }
 
 // `sweep X in a..b step s;`: what is swept and its start, end and step.
@@ -164,8 +180,18 @@ void Analyser::sweepOf(const Stmt& b, const GearboxModel& m, const Scope& gs, co
                                describe(x->type)));
       return std::nullopt;
     }
-    // The values a sweep gives take the swept attribute's own limits (its step is its own).
-    if (!limit) return x->value;
+    // The values a sweep gives take the swept attribute's own limits (its step is its own,
+    // but a whole-number quantity takes whole steps).
+    if (!limit) {
+      if (swept && swept->integer && !(x->value.isRational() && x->value.rational().isInteger())) {
+        diags_.error(
+            "E0403", x->span,
+            fmt::format("`{}` is a whole number: the sweep's step must be whole, got {}", out.target, x->value.str()));
+        return std::nullopt;
+      }
+      return x->value;
+    }
+    if (swept && !sweptValueFits(*swept, out.target, *x)) return std::nullopt;
     if (swept && swept->positive && x->value.sign() <= 0) {
       diags_.error("E0405", x->span, fmt::format("`{}` must be positive, but the sweep's {} is {}", out.target, what,
                                                  units::showQuantity(x->value, x->type.dim)));

@@ -156,6 +156,8 @@ LoadedMeshTable loadedMesh(const LoadedMeshInput& in) {
   // A NaN has no order: such an input is tabulated (and fails) without the cache.
   if (std::any_of(key.begin(), key.end(), [](double v) { return std::isnan(v); })) return tabulate(in);
   if (const LoadedMeshTable* hit = recent.find(key)) return *hit;
+  // A table over the hunting period is not kept: a few of them would hold the memory of many.
+  if (!in.toothLateness[0].empty() || !in.toothLateness[1].empty()) return tabulate(in);
   return recent.put(std::move(key), tabulate(in));
 }
 
@@ -330,6 +332,15 @@ LoadedMeshTable tabulate(const LoadedMeshInput& in) {
     out.failure = fmt::format("the mesh carries no load ({:.4g} N along the line of action): the loaded contact needs a positive "
                               "torque through the stage",
                               in.load);
+    return out;
+  }
+  // The corner's geometry needs the path within the two interference points.
+  double L = g.centerDistance * std::sin(g.workingPressureAngle);
+  if (in.cornerContact && (roll2 > L || roll1 > L)) {
+    out.failure = fmt::format(
+        "the path of contact runs past the {}'s interference point (its tip reaches beyond the other's base "
+        "circle tangent), where contact outside the path is not modelled; leave out `corner_contact`",
+        roll1 > L ? "pinion" : "wheel");
     return out;
   }
   Slices sl(in, path);

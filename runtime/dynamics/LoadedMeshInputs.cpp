@@ -327,6 +327,12 @@ void toothErrors(const Evaluator& ev, const Assignment& a, int st, const ToothEr
   long periods = z1 / std::gcd(z1, z2) * z2;
   // The table grows with the hunting period: a bound on its work, not on the pairs' count.
   double work = static_cast<double>(periods) * in.positions * in.slices;
+  // The tables hold every position of every period: a bound on their size as well.
+  if (static_cast<double>(periods) * in.positions > 1e7)
+    throw SceneFailure{
+        fmt::format("the loaded mesh over the hunting period ({} mesh periods) would hold {:.3g} positions; give fewer "
+                    "`positions` (at most 1e7 over the hunting period)",
+                    periods, static_cast<double>(periods) * in.positions)};
   if (work > 4e8)
     throw SceneFailure{
         fmt::format("the loaded mesh over the hunting period ({} mesh periods) would take {:.3g} slice positions; give "

@@ -56,6 +56,7 @@ struct MeshEffects {
   std::optional<double> pitchSeed;
   const std::vector<double>* pitchListed[2] = {nullptr, nullptr};
   std::vector<double> loadedTable; // the static transmission error over the table's periods
+  std::vector<double> loadedStiffnessTable; // the mesh stiffness over the same periods
   int loadedPeriods = 1;
 };
 

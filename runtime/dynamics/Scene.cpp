@@ -88,16 +88,27 @@ struct Samples {
   std::vector<double> modes;  // natural frequencies of a lumped model, Hz
   // The loaded mesh's static transmission error as tabulated, over its periods (one, or the
   // hunting period), and whether the scene's outputs read nothing else.
-  std::vector<double> staticTable;
+  std::vector<double> staticTable, staticStiffness;
   int staticPeriods = 1;
   bool staticOnly = false;
+  // The table an output of signal s reads in place of a recorded window: the static
+  // transmission error's over the hunting period or without dynamics, the stiffness's without
+  // dynamics; nullptr for a recorded window.
+  const std::vector<double>* table(Signal s) const {
+    if (s == Signal::StaticTransmissionError && !staticTable.empty() && (staticOnly || staticPeriods > 1))
+      return &staticTable;
+    if (s == Signal::Stiffness && staticOnly && !staticStiffness.empty()) return &staticStiffness;
+    return nullptr;
+  }
 };
 
-// Every output reads the loaded mesh's static transmission error: the dynamics are not run.
+// Every output reads the loaded mesh's tables (its static transmission error, its stiffness):
+// the dynamics are not run.
 bool readsOnlyTheTable(const ScenePlan& scene) {
   return scene.fx.loaded && !scene.outputs.empty() &&
-         std::all_of(scene.outputs.begin(), scene.outputs.end(),
-                     [](const ir::SceneOutput& o) { return o.id == Signal::StaticTransmissionError; });
+         std::all_of(scene.outputs.begin(), scene.outputs.end(), [](const ir::SceneOutput& o) {
+           return o.id == Signal::StaticTransmissionError || o.id == Signal::Stiffness;
+         });
 }
 
 // The scene's `accuracy { … }` with a study's overrides.
@@ -135,6 +146,7 @@ void loadMesh(const Evaluator& ev, const Assignment& a, int st, MeshParameters& 
   LoadedMeshTable tab = loadedMesh(in);
   if (!tab.failure.empty()) throw Failure{"the loaded mesh: " + tab.failure};
   fx.loadedTable = tab.te;
+  fx.loadedStiffnessTable = tab.stiffness;
   fx.loadedPeriods = tab.periods;
   if (in.cornerContact)
     prov.push_back(
@@ -302,13 +314,17 @@ double levelReference(const Dim& d) {
 SceneNumber orderNumber(const ir::SceneOutput& o, const Samples& samples, const std::vector<double>& w, double dt,
                         double fz, std::map<Signal, OrderSpectrum>* spectra = nullptr) {
   Dim dim = cat::signalSpec(o.id).dim;
-  const bool table = o.id == Signal::StaticTransmissionError && !samples.staticTable.empty();
+  // The static transmission error's orders are always the table's (its recorded series holds
+  // only the harmonics the dynamics read).
+  const std::vector<double>* table = o.id == Signal::StaticTransmissionError && !samples.staticTable.empty()
+                                         ? &samples.staticTable
+                                         : samples.table(o.id);
   OrderSpectrum sp;
   // One transform per signal, however many of its orders the scene reads.
   if (spectra && spectra->count(o.id)) {
     sp = spectra->at(o.id);
   } else if (table) {
-    sp = orderSpectrum(samples.staticTable, samples.staticPeriods);
+    sp = orderSpectrum(*table, samples.staticPeriods);
   } else {
     double periods = static_cast<double>(w.size()) * dt * fz;
     if (w.size() < 4 || std::fabs(periods - std::round(periods)) > 1e-6 * periods)
@@ -319,6 +335,11 @@ SceneNumber orderNumber(const ir::SceneOutput& o, const Samples& samples, const 
     sp = orderSpectrum(w, static_cast<int>(std::lround(periods)));
   }
   if (spectra) spectra->emplace(o.id, sp);
+  if (o.order > 0 && static_cast<size_t>(o.order) * static_cast<size_t>(sp.periods) > sp.amplitude.size())
+    throw Failure{
+        fmt::format("`{}` reads mesh order {}, above the {} its samples resolve ({} per mesh period); take more `{}`",
+                    o.key(), o.order, sp.amplitude.size() / static_cast<size_t>(sp.periods),
+                    2 * sp.amplitude.size() / static_cast<size_t>(sp.periods), table ? "positions" : "samples")};
   double ref = levelReference(dim);
   double value = NAN;
   switch (o.fn) {
@@ -522,6 +543,7 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
   r.naturalFrequency = 1.0 / model.naturalPeriod();
   r.steady = tp.steady;
   samples.staticTable = ms.effects.loadedTable;
+  samples.staticStiffness = ms.effects.loadedStiffnessTable;
   samples.staticPeriods = ms.effects.loadedPeriods;
   samples.staticLoad = p.staticLoad;
   if (readsOnlyTheTable(scene)) {
@@ -627,13 +649,13 @@ void runWarnings(const ScenePlan& scene, const SceneOverrides& ov, const Samples
 
 // The loaded mesh's table as a series over its periods (a plot or a spectrum of the static
 // transmission error over the hunting period).
-SceneSeries tableSeries(const ir::SceneOutput& o, const Samples& samples, double fz) {
-  size_t n = samples.staticTable.size();
+SceneSeries tableSeries(const ir::SceneOutput& o, const std::vector<double>& table, const Samples& samples, double fz) {
+  size_t n = table.size();
   double dt = static_cast<double>(samples.staticPeriods) / (fz * static_cast<double>(n));
   std::vector<double> t(n);
   for (size_t i = 0; i < n; ++i)
     t[i] = static_cast<double>(i) * dt;
-  return recorded(o, cat::signalSpec(o.id).dim, t, 0, samples.staticTable, dt, fz);
+  return recorded(o, cat::signalSpec(o.id).dim, t, 0, table, dt, fz);
 }
 
 // The scene's outputs over the statistics window.
@@ -672,8 +694,7 @@ void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Sample
     }
     // The static transmission error over the hunting period, or of a scene without dynamics:
     // the table itself, every position.
-    const bool table = o.id == Signal::StaticTransmissionError && !samples.staticTable.empty() &&
-                       (samples.staticOnly || samples.staticPeriods > 1);
+    const std::vector<double>* table = samples.table(o.id);
     const cat::SignalFnSpec& fn = cat::signalFnSpec(o.fn);
     if (fn.order != cat::OrderArg::None) {
       r.numbers.push_back(orderNumber(o, samples, window(o.id), tp.dt, r.meshFrequency, &spectra));
@@ -682,14 +703,13 @@ void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Sample
     if (!fn.number) {
       if (!ov.keepSeries) continue;
       if (table)
-        r.series.push_back(tableSeries(o, samples, r.meshFrequency));
+        r.series.push_back(tableSeries(o, *table, samples, r.meshFrequency));
       else
         r.series.push_back(recorded(o, dim, samples.t, first, window(o.id), tp.dt, r.meshFrequency));
       continue;
     }
     if (table) {
-      r.numbers.push_back(
-          {o.key(), over(o.fn, samples.staticTable), dim, o.fn, o.id, over(cat::SignalFn::Rms, samples.staticTable)});
+      r.numbers.push_back({o.key(), over(o.fn, *table), dim, o.fn, o.id, over(cat::SignalFn::Rms, *table)});
       continue;
     }
     // An output's error is measured against its signal's size, a force against at least the
@@ -892,9 +912,13 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
   tight.keepSeries = false;
   tight.estimateError = false;
   if (r.steady == SteadyMethod::Periodic && !r.orbit.empty()) tight.guess = r.orbit;
-  SceneResult ref = runOnce(m, a, scene, tight);
-  if (!ref.failure.empty()) return;
-  r.referenceStats = ref.stats;
+  // A static scene integrates nothing: no rerun at a tighter tolerance.
+  SceneResult ref;
+  if (r.steady != SteadyMethod::Static) {
+    ref = runOnce(m, a, scene, tight);
+    if (!ref.failure.empty()) return;
+    r.referenceStats = ref.stats;
+  }
   std::vector<double> perOutput(r.numbers.size(), 0.0);
   auto part = [&](const SceneResult& other) {
     auto d = outputDifferences(r, other);

@@ -127,7 +127,9 @@ SceneRuns scenes(const Model& m, const Assignment& best, const Columns& columns,
     const ir::Expr& c = *columns.exprs[i];
     if (c.op == ir::Op::SceneOutput) {
       if (c.output.scene < 0) continue;
-      if (const auto* n = results[static_cast<size_t>(c.output.scene)].find(c.output.fn, c.output.signal)) out.columns.push_back({i, n->value});
+      if (const auto* n =
+              results[static_cast<size_t>(c.output.scene)].find(c.output.fn, c.output.signal, c.output.order))
+        out.columns.push_back({i, n->value});
       continue;
     }
     // `relative(…)` columns: the optimiser's pass.

@@ -1,5 +1,6 @@
 #include "study/Sweep.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -210,7 +211,11 @@ SweepStudy sweep(const Model& m, const Assignment& a, const ir::Study& st, const
   bool arclength = cont && cont->choice == cat::continuation::Arclength;
   if (r.scene) r.continuation = arclength ? "arclength" : "natural";
   const auto& fxp = st.sweptEffect;
-  if (arclength && (st.series || (baseline && baseDesign))) {
+  // The baseline only where an output reads it.
+  bool readsBaseline = std::any_of(st.outputs.begin(), st.outputs.end(),
+                                   [](const ir::ExprPtr& o) { return ir::uses(o.get(), {ir::Op::Relative}); });
+  if (!readsBaseline) baseline = nullptr;
+  if (arclength && (st.series || readsBaseline)) {
     r.failure = fmt::format(
         "study `{}`: `continuation = arclength` follows one line without a baseline; leave out `continuation`, "
         "or the set of lines and `relative(…)`",

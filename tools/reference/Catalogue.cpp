@@ -62,6 +62,8 @@ std::string sample(const AttrSpec& a) {
   if (a.value == ValueKind::Material) return "steel_18CrNiMo7_6";
   if (a.value == ValueKind::Stage) return "first";
   if (a.value == ValueKind::Symbol) return a.symbols.empty() ? "?" : a.symbols.front();
+  if (a.value == ValueKind::List)
+    return "{0 " + shownUnit(a).name + ", 2.5 " + shownUnit(a).name + ", -1.5 " + shownUnit(a).name + ", …}";
   if (!a.example.empty()) return a.example;
   if (a.dflt) return show(*a.dflt, a);
   if (a.atLeast && a.atMost) return show(*a.atMost, a);

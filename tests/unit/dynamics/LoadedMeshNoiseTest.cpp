@@ -4,9 +4,14 @@
 // tooth's pitch deviation over the hunting period and its sidebands against a hand-made
 // discrete Fourier transform, Harris's map of relief against load, and IEC 61672-1's
 // A-weighting table.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include <fmt/format.h>
@@ -14,6 +19,7 @@
 
 #include "FlankPair.h"
 #include "SceneFixture.h"
+#include "driver/Driver.h"
 #include "dynamics/CornerContact.h"
 #include "dynamics/Levels.h"
 #include "dynamics/LoadedMesh.h"
@@ -320,10 +326,10 @@ gearbox Plain {
   scene te on hs {
     effects { loaded_mesh { slices = 1; positions = 400; } }
     output peak_to_peak(static_transmission_error), mean(static_transmission_error), harmonic(static_transmission_error, 1),
-           level_a(static_transmission_error);
+           level_a(static_transmission_error), mean(stiffness);
   }
   study load { sweep input_torque in 20 N*m..1220 N*m step 300 N*m; output te.peak_to_peak(static_transmission_error),
-               te.mean(static_transmission_error), te.harmonic(static_transmission_error, 1); }
+               te.mean(static_transmission_error), te.harmonic(static_transmission_error, 1), te.mean(stiffness); }
 }
 gearbox Relieved extends Plain {
   modify hs { tip_relief = 15 um; }
@@ -359,16 +365,19 @@ TEST(LoadSweep, EachPointIsTheLoadedMeshAtThatLoad) {
   ASSERT_TRUE(s.failure.empty()) << s.failure;
   ASSERT_EQ(s.points.size(), 5u);
   const char* keys[] = {"peak_to_peak(static_transmission_error)", "mean(static_transmission_error)",
-                        "harmonic(static_transmission_error, 1)"};
+                        "harmonic(static_transmission_error, 1)", "mean(stiffness)"};
   for (const auto& p : s.points) {
     auto at = gbx::test::compile("load.gbx", withTorque(p.x), "Plain");
-    for (size_t i = 0; i < 3; ++i) {
+    for (size_t i = 0; i < 4; ++i) {
       double single = sceneNumber(at, keys[i]);
       EXPECT_NEAR(p.y[i], single, 1e-9 * std::fabs(single)) << keys[i] << " at " << p.x << " N*m";
     }
   }
-  // The mean approach grows with the load; a static scene has no stability.
+  // The mean approach grows with the load; perfect teeth without relief keep every pair on
+  // the path in contact at any load, so the mean stiffness does not change; a static scene
+  // has no stability.
   EXPECT_GT(s.points.back().y[1], 10 * s.points.front().y[1]);
+  EXPECT_NEAR(s.points.back().y[3], s.points.front().y[3], 1e-12 * s.points.front().y[3]);
   EXPECT_TRUE(std::isnan(s.points.front().stability));
 }
 
@@ -393,4 +402,30 @@ TEST(LoadSweep, LinesAndRelativeLevelsReadTheBaselineAtTheSamePoint) {
   // Without the lines, the variant's relief against the plain pair: a level difference in dB.
   gbx::rt::SweepStudy plain = gbx::rt::sweep(*f.model, *f.design, f.study("map"), nullptr, nullptr);
   EXPECT_TRUE(std::isnan(plain.points[0].y[1])) << "no baseline, no relative";
+}
+
+// Report columns of a scene's orders read each its own order: the column of order 2 is not
+// order 1's, nor the level of every order together.
+TEST(LoadSweep, ReportColumnsReadTheirOwnOrder) {
+  std::string spec = withTorque(400);
+  spec.insert(
+      spec.find("  study load"),
+      "  report { columns te.harmonic(static_transmission_error, 1), te.level_a(static_transmission_error); }\n");
+  auto f = gbx::test::compile("load.gbx", spec, "Plain");
+  gbx::rt::dyn::SceneResult r = gbx::rt::dyn::runScene(*f.model, *f.design, f.scene("te"));
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  std::filesystem::path file = std::filesystem::temp_directory_path() / fmt::format("gbxc-orders-{}.gbx", ::getpid());
+  std::ofstream(file) << spec;
+  std::ostringstream out, err;
+  ASSERT_EQ(gbx::driver::run(
+                {"solve", "--format", "csv", "--no-timings", "--quiet", "--gearbox", "Plain", file.string()}, out, err),
+            0)
+      << err.str();
+  std::filesystem::remove(file);
+  std::string csv = out.str();
+  std::string second = csv.substr(csv.find('\n') + 1);
+  double harmonic = r.find("harmonic(static_transmission_error, 1)")->value * 1e6;
+  double level = r.find("level_a(static_transmission_error)")->value;
+  EXPECT_NE(second.find(fmt::format("{:.6g}", harmonic).substr(0, 6)), std::string::npos) << csv;
+  EXPECT_NE(second.find(fmt::format("{:.6g}", level).substr(0, 6)), std::string::npos) << csv;
 }
