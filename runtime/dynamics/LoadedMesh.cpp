@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 
 #include <fmt/format.h>
@@ -172,7 +173,6 @@ struct Slices {
   int S;
   std::vector<double> phase, lead; // per slice: its contact lines' phase (fraction of a base pitch) and lead separation
   std::vector<long> whole;         // per slice: the whole base pitches of its stagger (which tooth its lines belong to)
-  std::vector<double> corner;      // corner separation per step of the extension, when corners touch
   double ext = 0;                  // how far outside the path a pair is looked at, base pitches
   long z[2] = {1, 1};
   bool errors = false;
@@ -219,7 +219,6 @@ struct Slices {
     };
     return at(0) - at(1);
   }
-  // Every pair of every slice at mesh position i of period n.
   // The pairs of one position as every period has them, the tooth errors aside: `offset` is
   // the pair's tooth count from the start less the period's number.
   struct Pair {
@@ -301,8 +300,6 @@ struct Slices {
   }
 };
 
-long gcdOf(long a, long b) { return b == 0 ? a : gcdOf(b, a % b); }
-
 void summarise(LoadedMeshTable& out, double rigidSum) {
   size_t N = out.te.size();
   double sumK = 0, sumT = 0;
@@ -348,7 +345,7 @@ LoadedMeshTable tabulate(const LoadedMeshInput& in) {
   out.epsBeta = g.faceWidth * std::tan(g.baseHelix) / g.basePitch;
   int P = std::max(2, in.positions);
   // With tooth errors: every tooth meets every tooth it can, once, over lcm(z1, z2) periods.
-  long periods = sl.errors ? sl.z[0] / gcdOf(sl.z[0], sl.z[1]) * sl.z[1] : 1;
+  long periods = sl.errors ? std::lcm(sl.z[0], sl.z[1]) : 1;
   out.periods = static_cast<int>(periods);
   // A slice holds at most floor(eps_alpha) + 1 pairs at once, and two corners.
   Contacts pts(static_cast<size_t>(sl.S) * (static_cast<size_t>(sl.eps) + 4));

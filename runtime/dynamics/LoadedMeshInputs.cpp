@@ -324,7 +324,7 @@ void toothErrors(const Evaluator& ev, const Assignment& a, int st, const ToothEr
         um(in.sep.basePitch)));
   in.sep.basePitch = 0;
   long z1 = static_cast<long>(in.toothLateness[0].size()), z2 = static_cast<long>(in.toothLateness[1].size());
-  long periods = z1 / std::gcd(z1, z2) * z2;
+  long periods = std::lcm(z1, z2);
   // The table grows with the hunting period: a bound on its work, not on the pairs' count.
   double work = static_cast<double>(periods) * in.positions * in.slices;
   // The tables hold every position of every period: a bound on their size as well.

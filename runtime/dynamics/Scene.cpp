@@ -16,6 +16,7 @@
 #include "dynamics/LoadedMeshInputs.h"
 #include "dynamics/Lumped.h"
 #include "dynamics/MeshModel.h"
+#include "dynamics/OrderOutputs.h"
 #include "dynamics/Periodic.h"
 #include "dynamics/Planetary.h"
 #include "dynamics/SceneSupport.h"
@@ -99,6 +100,12 @@ struct Samples {
       return &staticTable;
     if (s == Signal::Stiffness && staticOnly && !staticStiffness.empty()) return &staticStiffness;
     return nullptr;
+  }
+  // The table an order of signal s reads: the static transmission error's always (its recorded
+  // series holds only the harmonics the dynamics read), else as `table`.
+  OrderSource orderTable(Signal s) const {
+    if (s == Signal::StaticTransmissionError && !staticTable.empty()) return {&staticTable, staticPeriods};
+    return {table(s), staticPeriods};
   }
 };
 
@@ -299,62 +306,6 @@ SceneSeries recorded(const ir::SceneOutput& o, Dim dim, const std::vector<double
   return s;
 }
 
-// The reference of a level by the signal's kind: ISO 1683's for displacement (1 pm), velocity
-// (1 nm/s), acceleration (1 um/s^2) and force (1 uN); one SI unit for any other.
-double levelReference(const Dim& d) {
-  if (d == units::dims::length) return 1e-12;
-  if (d == units::dims::velocity) return 1e-9;
-  if (d == units::dims::acceleration) return 1e-6;
-  if (d == units::dims::force) return 1e-6;
-  return 1.0;
-}
-
-// `harmonic(x, k)`, `level(x[, k])`, `level_a(x[, k])`: of the loaded mesh's table for the
-// static transmission error, else of the recorded window, which spans whole mesh periods.
-SceneNumber orderNumber(const ir::SceneOutput& o, const Samples& samples, const std::vector<double>& w, double dt,
-                        double fz, std::map<Signal, OrderSpectrum>* spectra = nullptr) {
-  Dim dim = cat::signalSpec(o.id).dim;
-  // The static transmission error's orders are always the table's (its recorded series holds
-  // only the harmonics the dynamics read).
-  const std::vector<double>* table = o.id == Signal::StaticTransmissionError && !samples.staticTable.empty()
-                                         ? &samples.staticTable
-                                         : samples.table(o.id);
-  OrderSpectrum sp;
-  // One transform per signal, however many of its orders the scene reads.
-  if (spectra && spectra->count(o.id)) {
-    sp = spectra->at(o.id);
-  } else if (table) {
-    sp = orderSpectrum(*table, samples.staticPeriods);
-  } else {
-    double periods = static_cast<double>(w.size()) * dt * fz;
-    if (w.size() < 4 || std::fabs(periods - std::round(periods)) > 1e-6 * periods)
-      throw Failure{
-          fmt::format("`{}` reads the mesh orders of a recorded window of whole mesh periods; record a whole number of "
-                      "`mesh_periods`",
-                      o.key())};
-    sp = orderSpectrum(w, static_cast<int>(std::lround(periods)));
-  }
-  if (spectra) spectra->emplace(o.id, sp);
-  if (o.order > 0 && static_cast<size_t>(o.order) * static_cast<size_t>(sp.periods) > sp.amplitude.size())
-    throw Failure{
-        fmt::format("`{}` reads mesh order {}, above the {} its samples resolve ({} per mesh period); take more `{}`",
-                    o.key(), o.order, sp.amplitude.size() / static_cast<size_t>(sp.periods),
-                    2 * sp.amplitude.size() / static_cast<size_t>(sp.periods), table ? "positions" : "samples")};
-  double ref = levelReference(dim);
-  double value = NAN;
-  switch (o.fn) {
-  case cat::SignalFn::Harmonic: value = sp.harmonic(o.order); break;
-  case cat::SignalFn::Level: value = o.order > 0 ? levelOf(sp.harmonic(o.order), ref) : sp.total(ref); break;
-  case cat::SignalFn::LevelA:
-    value = o.order > 0 ? levelOf(sp.harmonic(o.order), ref) + aWeighting(o.order * fz) : sp.total(ref, fz);
-    break;
-  default: break;
-  }
-  SceneNumber n{o.key(), value, cat::signalFnSpec(o.fn).decibels ? Dim{} : dim, o.fn, o.id};
-  n.order = o.order;
-  return n;
-}
-
 // A whole-gearbox scene in time (docs/dynamics.md): the outputs of its meshes by name.
 SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov,
                             SceneResult r) {
@@ -405,7 +356,7 @@ SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignmen
       continue;
     }
     if (cat::signalFnSpec(o.fn).order != cat::OrderArg::None) {
-      r.numbers.push_back(orderNumber(o, Samples{}, w, g.plan.dt, fz));
+      r.numbers.push_back(orderNumber(o, {nullptr, 1}, w, g.plan.dt, fz));
       continue;
     }
     r.numbers.push_back({o.key(), w.empty() ? NAN : statistic(o.fn)(w), dim, o.fn, o.id, w.empty() ? 0.0 : statistic(cat::SignalFn::Rms)(w)});
@@ -697,7 +648,7 @@ void sceneOutputs(const ScenePlan& scene, const SceneOverrides& ov, const Sample
     const std::vector<double>* table = samples.table(o.id);
     const cat::SignalFnSpec& fn = cat::signalFnSpec(o.fn);
     if (fn.order != cat::OrderArg::None) {
-      r.numbers.push_back(orderNumber(o, samples, window(o.id), tp.dt, r.meshFrequency, &spectra));
+      r.numbers.push_back(orderNumber(o, samples.orderTable(o.id), window(o.id), tp.dt, r.meshFrequency, &spectra));
       continue;
     }
     if (!fn.number) {
@@ -912,9 +863,10 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
   tight.keepSeries = false;
   tight.estimateError = false;
   if (r.steady == SteadyMethod::Periodic && !r.orbit.empty()) tight.guess = r.orbit;
-  // A static scene integrates nothing: no rerun at a tighter tolerance.
+  // A static scene integrates nothing: its estimate is its table's discretisation alone.
+  const bool integrated = r.steady != SteadyMethod::Static;
   SceneResult ref;
-  if (r.steady != SteadyMethod::Static) {
+  if (integrated) {
     ref = runOnce(m, a, scene, tight);
     if (!ref.failure.empty()) return;
     r.referenceStats = ref.stats;
@@ -926,7 +878,6 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
       if (std::isfinite(d[i])) perOutput[i] += d[i];
     return largest(d);
   };
-  const bool integrated = r.steady != SteadyMethod::Static; // a static scene has only its table's discretisation
   if (integrated)
     r.errorParts.push_back(
         {"integration", part(ref),
