@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "dynamics/CornerContact.h"
+#include "model/Deadline.h"
 #include "model/Recent.h"
 
 namespace gbx::rt::dyn {
@@ -227,8 +228,16 @@ struct Slices {
     bool corner;
     long offset;
   };
-  std::vector<std::vector<Pair>> templates; // per position, built in the first period
-  std::vector<double> templateRigid;        // per position, the stiffness of the pairs on the path
+  // Every position's pairs, built in the first period, one after another in a buffer the
+  // thread keeps (a table is built thousands of times in a search: no allocation each time).
+  std::vector<Pair>& templates = scratch();
+  std::vector<size_t> templateFrom;  // per position, where its pairs start in `templates`
+  std::vector<double> templateRigid; // per position, the stiffness of the pairs on the path
+  static std::vector<Pair>& scratch() {
+    thread_local std::vector<Pair> buffer;
+    buffer.clear();
+    return buffer;
+  }
   // The tooth errors of period n for every offset the pairs have (a division per tooth pair
   // met, not per pair and position).
   long lowest = 0, highest = 0, errorsOf = -1;
@@ -280,14 +289,19 @@ struct Slices {
 
   // Every pair of every slice at mesh position i of period n.
   size_t collect(long n, int i, int P, Contacts& pts) {
-    if (templates.empty()) {
-      templates.resize(static_cast<size_t>(P));
+    const size_t ip = static_cast<size_t>(i);
+    if (templateFrom.empty()) {
+      templateFrom.assign(static_cast<size_t>(P) + 1, 0);
       templateRigid.assign(static_cast<size_t>(P), 0.0);
     }
-    std::vector<Pair>& pairs = templates[static_cast<size_t>(i)];
-    if (n == 0) build(i, P, pairs, templateRigid[static_cast<size_t>(i)]);
+    if (n == 0) { // positions are built in order, each once
+      templateFrom[ip] = templates.size();
+      build(i, P, templates, templateRigid[ip]);
+      templateFrom[ip + 1] = templates.size();
+    }
     size_t count = 0;
-    for (const Pair& q : pairs) {
+    for (size_t k = templateFrom[ip]; k < templateFrom[ip + 1]; ++k) {
+      const Pair& q = templates[k];
       pts.gap[count] = q.gap + (errors ? errorFor(n, q.offset) : 0.0);
       pts.c[count] = q.c;
       pts.slice[count] = q.slice;
@@ -354,7 +368,12 @@ LoadedMeshTable tabulate(const LoadedMeshInput& in) {
   out.te.reserve(total);
   out.stiffness.reserve(total);
   double delta = NAN;
-  for (long n = 0; n < periods; ++n)
+  for (long n = 0; n < periods; ++n) {
+    if (n > 0 && Deadline::expired()) { // the first period is cached and so never cut short
+      out.failure = fmt::format("time limit of {:g} s (--time-limit) reached after {} of {} mesh periods",
+                                Deadline::seconds(), n, periods);
+      return out;
+    }
     for (int i = 0; i < P; ++i) {
       size_t count = sl.collect(n, i, P, pts);
       if (count == 0) {
@@ -383,6 +402,7 @@ LoadedMeshTable tabulate(const LoadedMeshInput& in) {
       out.te.push_back(delta);
       out.stiffness.push_back(a.K);
     }
+  }
   summarise(out, sl.rigidSum);
   return out;
 }

@@ -21,6 +21,7 @@
 #include "dynamics/Planetary.h"
 #include "dynamics/SceneSupport.h"
 #include "dynamics/Statistics.h"
+#include "model/Deadline.h"
 #include "model/StageKind.h"
 #include "model/Standards.h"
 
@@ -933,6 +934,11 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
 
 SceneResult runScene(const Model& m, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov) {
   SceneResult r;
+  if (Deadline::expired()) { // no table and no integration past the time limit
+    r.name = scene.name;
+    r.failure = fmt::format("scene `{}`: time limit of {:g} s (--time-limit) reached", scene.name, Deadline::seconds());
+    return r;
+  }
   try {
     r = runOnce(m, a, scene, ov);
     bool steadyNumbers = std::any_of(r.numbers.begin(), r.numbers.end(),

@@ -11,6 +11,7 @@
 
 #include "dynamics/LoadedMeshInputs.h"
 #include "dynamics/Scene.h"
+#include "model/Deadline.h"
 #include "model/Recent.h"
 #include "shaft/ShaftMesh.h"
 
@@ -213,6 +214,7 @@ SceneFactor sceneDynamicFactor(const Evaluator& ev, const Assignment& a, int sce
   const dyn::SceneNumber* n = r.failure.empty() ? r.find(cat::SignalFn::Peak, cat::Signal::DynamicFactor) : nullptr;
   if (!r.failure.empty()) {
     out.failure = r.failure;
+    if (Deadline::expired()) return out; // cut short by the time limit: not this design's answer
   } else if (!n || !std::isfinite(n->value)) {
     out.failure = fmt::format("scene `{}` has no steady dynamic factor{}", plan.name,
                               r.unstable ? " (its periodic response is unstable)" : "");

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "catalogue/Settings.h"
+#include "model/Deadline.h"
 #include "model/Evaluator.h"
 
 namespace gbx::rt {
@@ -191,6 +192,11 @@ Verdict decide(const Evaluator& ev, Assignment& a, const std::vector<const Conju
   int budget = 4000;
   Verdict verdict = Verdict::Infeasible;
   while (!stack.empty() && budget-- > 0) {
+    // Past the time limit every rule that runs a scene fails at once: undecided, not infeasible.
+    if (Deadline::expired()) {
+      undecided = true;
+      break;
+    }
     Box box = std::move(stack.back());
     stack.pop_back();
     a.box = box.b;

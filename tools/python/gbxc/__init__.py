@@ -312,8 +312,9 @@ def _interruptible(token: int, call, *args):
             result["error"] = e
 
     worker = threading.Thread(target=target, name="gbxc solve", daemon=True)
-    worker.start()
     try:
+        # Started inside the try: a Ctrl-C that lands while it starts still stops the solve.
+        worker.start()
         while worker.is_alive():
             worker.join(0.1)
     except KeyboardInterrupt:
