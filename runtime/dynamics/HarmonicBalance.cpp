@@ -1,0 +1,450 @@
+#include "dynamics/HarmonicBalance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "dynamics/Periodic.h"
+
+namespace gbx::rt::dyn {
+
+namespace {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The series' values at L instants (synthesis, L x K) and the Galerkin projection back (K x L).
+struct Basis {
+  int N = 0, L = 0;
+  Eigen::MatrixXd phi, proj;
+  std::vector<double> cosTable, sinTable; // cos and sin of 2 pi i / L
+};
+
+const Basis& basisFor(int N, int L) {
+  thread_local std::vector<std::unique_ptr<Basis>> kept;
+  for (const auto& b : kept)
+    if (b->N == N && b->L == L) return *b;
+  auto b = std::make_unique<Basis>();
+  b->N = N;
+  b->L = L;
+  int K = 2 * N + 1;
+  b->phi.resize(L, K);
+  for (int k = 0; k < L; ++k) {
+    b->phi(k, 0) = 1.0;
+    for (int j = 1; j <= N; ++j) {
+      double th = 2.0 * M_PI * static_cast<double>(j) * static_cast<double>(k) / static_cast<double>(L);
+      b->phi(k, 2 * j - 1) = std::cos(th);
+      b->phi(k, 2 * j) = std::sin(th);
+    }
+  }
+  for (int i = 0; i < L; ++i) {
+    b->cosTable.push_back(std::cos(2.0 * M_PI * i / L));
+    b->sinTable.push_back(std::sin(2.0 * M_PI * i / L));
+  }
+  b->proj = b->phi.transpose() * (2.0 / L);
+  b->proj.row(0) *= 0.5;
+  if (kept.size() >= 8) kept.erase(kept.begin());
+  kept.push_back(std::move(b));
+  return *kept.back();
+}
+
+std::vector<double> scaleOf(const System& sys) {
+  std::vector<double> s = sys.scale;
+  s.resize(sys.dim, 1.0);
+  for (double& x : s)
+    if (!(x > 0)) x = 1.0;
+  return s;
+}
+
+int timePointsFor(int N, int given) {
+  if (given >= 2 * N + 1) return given;
+  int L = 4;
+  while (L < 3 * N + 2)
+    L *= 2;
+  return L;
+}
+
+// One pass over the L instants: the right-hand side F (L x n) and, when asked, each
+// instant's state Jacobian (row-major n x n, one after another).
+struct Sampled {
+  RowMatrix Y, F;
+  std::vector<double> J;
+};
+
+void sample(const System& sys, const Basis& B, const BalanceOrbit& o, bool jacobian, Sampled& s) {
+  const size_t n = sys.dim;
+  const int L = B.L;
+  s.Y.noalias() = B.phi * o.coeffs;
+  s.F.resize(L, static_cast<long>(n));
+  if (jacobian) s.J.resize(static_cast<size_t>(L) * n * n);
+  std::vector<double> dy(n), yp(n), fp(n);
+  for (int k = 0; k < L; ++k) {
+    double t = o.period * k / L;
+    double* y = s.Y.row(k).data();
+    for (size_t a = 0; a < n && a < o.drift.size(); ++a)
+      y[a] += o.drift[a] * k / L;
+    double* f = s.F.row(k).data();
+    if (!jacobian) {
+      sys.rhs(t, y, f);
+      continue;
+    }
+    double* J = s.J.data() + static_cast<size_t>(k) * n * n;
+    if (sys.rhsDfdy) {
+      sys.rhsDfdy(t, y, f, J);
+    } else if (sys.dfdy) {
+      sys.rhs(t, y, f);
+      sys.dfdy(t, y, J);
+    } else { // central differences, column by column
+      sys.rhs(t, y, f);
+      for (size_t b = 0; b < n; ++b) {
+        double h = 1e-7 * std::max(std::fabs(y[b]), 1e-3);
+        std::copy(y, y + n, yp.begin());
+        yp[b] = y[b] + h;
+        sys.rhs(t, yp.data(), fp.data());
+        yp[b] = y[b] - h;
+        sys.rhs(t, yp.data(), dy.data());
+        for (size_t a = 0; a < n; ++a)
+          J[a * n + b] = (fp[a] - dy[a]) / (2 * h);
+      }
+    }
+  }
+}
+
+// R = D c - P f (+ the drift's constant rate), K x n.
+Eigen::MatrixXd residual(const Basis& B, const BalanceOrbit& o, const Sampled& s) {
+  double w = 2.0 * M_PI / o.period;
+  Eigen::MatrixXd R = -(B.proj * s.F);
+  for (int j = 1; j <= B.N; ++j) {
+    R.row(2 * j - 1) += (j * w) * o.coeffs.row(2 * j);
+    R.row(2 * j) -= (j * w) * o.coeffs.row(2 * j - 1);
+  }
+  for (long a = 0; a < R.cols() && a < static_cast<long>(o.drift.size()); ++a)
+    R(0, a) += o.drift[static_cast<size_t>(a)] / o.period;
+  return R;
+}
+
+// dR/dc, unknowns ordered harmonic by harmonic (h n + a): D (x) I - sum_k P_k Phi_k (x) J_k.
+// The block of one Jacobian entry, P diag(w) Phi, holds only the discrete Fourier sums of w
+// at the orders |j - m| and j + m (products of cosines and sines): 2N + 1 sums of L terms
+// each, then the K x K entries from them.
+Eigen::MatrixXd jacobianOf(const Basis& B, size_t n, double period, const Sampled& s) {
+  const long K = 2 * B.N + 1, nn = static_cast<long>(n);
+  const int L = B.L, Q = 2 * B.N;
+  Eigen::MatrixXd Jac = Eigen::MatrixXd::Zero(K * nn, K * nn);
+  std::vector<double> C(static_cast<size_t>(Q) + 1), S(static_cast<size_t>(Q) + 1), w(static_cast<size_t>(L));
+  auto c = [&](long q) { return C[static_cast<size_t>(std::labs(q))]; };
+  auto sn = [&](long q) { return q >= 0 ? S[static_cast<size_t>(q)] : -S[static_cast<size_t>(-q)]; };
+  for (size_t a = 0; a < n; ++a)
+    for (size_t b = 0; b < n; ++b) {
+      bool any = false;
+      for (int k = 0; k < L; ++k) {
+        w[static_cast<size_t>(k)] = s.J[static_cast<size_t>(k) * n * n + a * n + b];
+        any = any || w[static_cast<size_t>(k)] != 0.0;
+      }
+      if (!any) continue; // no coupling from b to a (most of a mechanical system's pairs)
+      for (int q = 0; q <= Q; ++q) {
+        double cs = 0, ss = 0;
+        long idx = 0; // q k mod L: the table row of cos(2 pi q k / L)
+        for (int k = 0; k < L; ++k) {
+          cs += w[static_cast<size_t>(k)] * B.cosTable[static_cast<size_t>(idx)];
+          ss += w[static_cast<size_t>(k)] * B.sinTable[static_cast<size_t>(idx)];
+          idx += q;
+          if (idx >= L) idx %= L;
+        }
+        C[static_cast<size_t>(q)] = cs / L;
+        S[static_cast<size_t>(q)] = ss / L;
+      }
+      auto at = [&](long h, long m) -> double& {
+        return Jac(h * nn + static_cast<long>(a), m * nn + static_cast<long>(b));
+      };
+      at(0, 0) = -c(0);
+      for (long m = 1; m <= B.N; ++m) {
+        at(0, 2 * m - 1) = -c(m);
+        at(0, 2 * m) = -sn(m);
+        at(2 * m - 1, 0) = -2 * c(m);
+        at(2 * m, 0) = -2 * sn(m);
+      }
+      for (long j = 1; j <= B.N; ++j)
+        for (long m = 1; m <= B.N; ++m) {
+          at(2 * j - 1, 2 * m - 1) = -(c(j - m) + c(j + m));
+          at(2 * j - 1, 2 * m) = -(sn(m + j) + sn(m - j));
+          at(2 * j, 2 * m - 1) = -(sn(j + m) + sn(j - m));
+          at(2 * j, 2 * m) = -(c(j - m) - c(j + m));
+        }
+    }
+  double omega = 2.0 * M_PI / period;
+  for (long j = 1; j <= B.N; ++j)
+    for (long a = 0; a < nn; ++a) {
+      Jac((2 * j - 1) * nn + a, 2 * j * nn + a) += j * omega;
+      Jac(2 * j * nn + a, (2 * j - 1) * nn + a) -= j * omega;
+    }
+  return Jac;
+}
+
+// Hill's method: the eigenvalues of the linearised operator J(t) - d/dt in the truncated basis
+// come in families lambda + i k w; the n nearest the real axis are the Floquet exponents.
+void hill(const Eigen::MatrixXd& Jac, size_t n, BalanceOrbit& o) {
+  Eigen::EigenSolver<Eigen::MatrixXd> es(-Jac, false);
+  if (es.info() != Eigen::Success) return;
+  std::vector<std::complex<double>> ev(es.eigenvalues().data(), es.eigenvalues().data() + es.eigenvalues().size());
+  std::stable_sort(ev.begin(), ev.end(), [](auto x, auto y) { return std::fabs(x.imag()) < std::fabs(y.imag()); });
+  // One exponent per family: members of a family differ by a whole multiple of i w (a
+  // period-doubling pair sits at +-w/2 twice).
+  const double w = 2.0 * M_PI / o.period;
+  std::vector<std::complex<double>> picked;
+  for (auto l : ev) {
+    if (picked.size() == n) break;
+    bool same = std::any_of(picked.begin(), picked.end(), [&](std::complex<double> p) {
+      double k = (l.imag() - p.imag()) / w;
+      return std::fabs(l.real() - p.real()) <= 1e-8 * (std::fabs(p.real()) + w) && std::fabs(k - std::round(k)) < 1e-6;
+    });
+    if (!same) picked.push_back(l);
+  }
+  o.multipliers.clear();
+  for (auto l : picked)
+    o.multipliers.push_back(std::exp(l * o.period));
+  std::stable_sort(o.multipliers.begin(), o.multipliers.end(),
+                   [](auto a, auto b) { return std::abs(a) > std::abs(b); });
+  o.stability = o.multipliers.empty() ? NAN : std::abs(o.multipliers.front());
+}
+
+// The series and its derivative at time t.
+void synthesise(const BalanceOrbit& o, double t, double* y, double* dy) {
+  const long n = o.coeffs.cols();
+  double w = 2.0 * M_PI / o.period;
+  std::complex<double> step(std::cos(w * t), std::sin(w * t)), e = step;
+  for (long a = 0; a < n; ++a) {
+    double d = a < static_cast<long>(o.drift.size()) ? o.drift[static_cast<size_t>(a)] : 0.0;
+    y[a] = o.coeffs(0, a) + d * t / o.period;
+    if (dy) dy[a] = d / o.period;
+  }
+  for (int j = 1; j <= o.harmonics; ++j, e *= step)
+    for (long a = 0; a < n; ++a) {
+      double c = o.coeffs(2 * j - 1, a), s = o.coeffs(2 * j, a);
+      y[a] += c * e.real() + s * e.imag();
+      if (dy) dy[a] += j * w * (s * e.real() - c * e.imag());
+    }
+}
+
+// Largest |y' - f| between the samples over the largest |y'| of the same state, and the
+// tail of the series.
+void check(const System& sys, const BalanceOptions& opt, BalanceOrbit& o) {
+  const size_t n = sys.dim;
+  long M = static_cast<long>(o.timePoints) * std::max(1, opt.checkRefine);
+  std::vector<double> y(n), dy(n), f(n), worst(n, 0.0), top(n, 0.0);
+  for (long m = 0; m < M; ++m) {
+    double t = o.period * static_cast<double>(m) / static_cast<double>(M);
+    synthesise(o, t, y.data(), dy.data());
+    sys.rhs(t, y.data(), f.data());
+    for (size_t a = 0; a < n; ++a) {
+      worst[a] = std::max(worst[a], std::fabs(dy[a] - f[a]));
+      top[a] = std::max(top[a], std::fabs(dy[a]));
+    }
+  }
+  o.stats.rhsEvaluations += M;
+  std::vector<double> sc = scaleOf(sys);
+  double w = 2.0 * M_PI / o.period;
+  o.gapResidual = 0;
+  o.tail = 0;
+  for (size_t a = 0; a < n; ++a) {
+    double floor = 1e-12 * w * sc[a]; // a state that does not move
+    o.gapResidual = std::max(o.gapResidual, worst[a] / std::max(top[a], floor));
+    double peak = 0, last = 0;
+    for (int j = 1; j <= o.harmonics; ++j) {
+      double amp = std::hypot(o.coeffs(2 * j - 1, static_cast<long>(a)), o.coeffs(2 * j, static_cast<long>(a)));
+      peak = std::max(peak, amp);
+      if (j == o.harmonics) last = amp;
+    }
+    if (peak > 1e-12 * sc[a]) o.tail = std::max(o.tail, last / peak);
+  }
+}
+
+} // namespace
+
+void BalanceOrbit::state(double t, double* y) const { synthesise(*this, t, y, nullptr); }
+
+std::vector<double> BalanceOrbit::state(double t) const {
+  std::vector<double> y(static_cast<size_t>(coeffs.cols()));
+  state(t, y.data());
+  return y;
+}
+
+BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const std::vector<double>& guess,
+                             const Eigen::MatrixXd* start) {
+  double cpu0 = threadCpuSeconds();
+  BalanceOrbit o;
+  const size_t n = sys.dim;
+  const int N = std::max(1, opt.harmonics);
+  o.harmonics = N;
+  o.timePoints = timePointsFor(N, opt.timePoints);
+  o.period = opt.period;
+  o.drift = opt.drift;
+  o.drift.resize(n, 0.0);
+  const long K = 2 * N + 1, nn = static_cast<long>(n);
+  o.coeffs = Eigen::MatrixXd::Zero(K, nn);
+  if (start && start->cols() == nn) {
+    long rows = std::min<long>(K, start->rows());
+    o.coeffs.topRows(rows) = start->topRows(rows);
+  } else {
+    for (size_t a = 0; a < n && a < guess.size(); ++a)
+      o.coeffs(0, static_cast<long>(a)) = guess[a];
+  }
+  const Basis& B = basisFor(N, o.timePoints);
+  std::vector<double> sc = scaleOf(sys);
+  const double w = 2.0 * M_PI / opt.period;
+  Sampled s;
+  Eigen::MatrixXd Jac;
+  double lastStep = INFINITY;
+  for (int it = 0; it <= opt.maxIterations; ++it) {
+    bool needJacobian = !(opt.linear && it > 0);
+    sample(sys, B, o, needJacobian, s);
+    o.stats.rhsEvaluations += o.timePoints;
+    if (needJacobian) o.stats.jacobianEvaluations += o.timePoints;
+    Eigen::MatrixXd R = residual(B, o, s);
+    o.residual = 0;
+    for (long a = 0; a < nn; ++a)
+      o.residual = std::max(o.residual, R.col(a).cwiseAbs().maxCoeff() / (w * sc[static_cast<size_t>(a)]));
+    if (!std::isfinite(o.residual)) {
+      o.failure = "the right-hand side is not finite on the series (a state outside the model's range)";
+      break;
+    }
+    if ((opt.linear && it > 0) || lastStep <= opt.newtonTolerance) {
+      // A step that no longer moves with a residual left is a least-squares stall (the
+      // teeth apart over the whole period), not an orbit.
+      o.converged = opt.linear || o.residual <= std::max(1e-6, 1e3 * opt.newtonTolerance);
+      if (!o.converged)
+        o.failure = fmt::format(
+            "Newton stalled with a residual of {:.3g} of the state scale (from a guess outside the orbit's basin)",
+            o.residual);
+      break;
+    }
+    if (it == opt.maxIterations) {
+      o.failure = fmt::format("Newton did not converge in {} iterations (last step {:.3g} of the state scale)",
+                              opt.maxIterations, lastStep);
+      break;
+    }
+    Jac = jacobianOf(B, n, opt.period, s);
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(Jac);
+    Eigen::VectorXd rhs(K * nn);
+    for (long h = 0; h < K; ++h)
+      for (long a = 0; a < nn; ++a)
+        rhs(h * nn + a) = -R(h, a);
+    Eigen::VectorXd d = lu.solve(rhs);
+    // A singular step (an iterate that leaves the teeth apart over the whole period, where
+    // the mean displacement does not enter): the least-squares step of least norm instead.
+    if (!d.allFinite() || (Jac * d - rhs).norm() > 1e-6 * rhs.norm())
+      d = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jac).solve(rhs);
+    if (!d.allFinite()) {
+      o.failure = "the balance's Jacobian is singular (an orbit that is not isolated: a resonance without damping?)";
+      break;
+    }
+    double sn = 0;
+    for (long h = 0; h < K; ++h)
+      for (long a = 0; a < nn; ++a)
+        sn = std::max(sn, std::fabs(d(h * nn + a)) / sc[static_cast<size_t>(a)]);
+    double damp = sn > 10.0 ? 10.0 / sn : 1.0; // never more than ten state scales at once
+    for (long h = 0; h < K; ++h)
+      for (long a = 0; a < nn; ++a)
+        o.coeffs(h, a) += damp * d(h * nn + a);
+    lastStep = damp * sn;
+    ++o.iterations;
+  }
+  if (o.converged) {
+    check(sys, opt, o);
+    if (!(o.gapResidual <= opt.gapLimit)) {
+      o.converged = false;
+      o.unresolved = true;
+      o.failure = fmt::format(
+          "the equation's residual between the {} instants of the transform is {:.2g} of the state's rate (a "
+          "change the instants step over, such as a brief contact loss): {} harmonics do not resolve the orbit",
+          o.timePoints, o.gapResidual, N);
+    }
+  }
+  if (o.converged && opt.stability) {
+    if (K * nn <= opt.hillLimit) {
+      // Hill's: the Jacobian at the orbit itself, the last evaluation's (a linear system's does not move).
+      if (!opt.linear || Jac.size() == 0) Jac = jacobianOf(B, n, opt.period, s);
+      hill(Jac, n, o);
+      o.stabilityMethod = "Hill's method";
+    } else {
+      // A large basis: one period of the variational equations from the orbit's start costs
+      // less than the eigenvalues of the whole operator.
+      FlowResult f = flowWithMonodromy(sys, opt.floquet, 0.0, opt.period, o.state(0), o.stats);
+      if (f.ok) {
+        o.stability = spectralRadius(f.phi, &o.multipliers);
+        o.stabilityMethod = "one period of the variational equations";
+      }
+    }
+  }
+  o.stats.cpuSeconds = threadCpuSeconds() - cpu0;
+  return o;
+}
+
+Eigen::MatrixXd seriesOfSamples(const std::vector<std::vector<double>>& samples, const std::vector<double>& drift,
+                                int N) {
+  const size_t M = samples.size();
+  const long n = M ? static_cast<long>(samples.front().size()) : 0;
+  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(2 * N + 1, n);
+  for (size_t k = 0; k < M; ++k) {
+    double frac = static_cast<double>(k) / static_cast<double>(M);
+    for (long a = 0; a < n; ++a) {
+      double v = samples[k][static_cast<size_t>(a)] -
+                 (static_cast<size_t>(a) < drift.size() ? drift[static_cast<size_t>(a)] * frac : 0.0);
+      c(0, a) += v / static_cast<double>(M);
+      for (int j = 1; j <= N && 2 * j < static_cast<int>(M); ++j) {
+        double th = 2.0 * M_PI * j * frac;
+        c(2 * j - 1, a) += 2.0 * v * std::cos(th) / static_cast<double>(M);
+        c(2 * j, a) += 2.0 * v * std::sin(th) / static_cast<double>(M);
+      }
+    }
+  }
+  return c;
+}
+
+BalanceOrbit harmonicBalanceTo(const System& sys, BalanceOptions opt, double target, const std::vector<double>& guess,
+                               int first, long maxUnknowns, const Eigen::MatrixXd* start) {
+  opt.harmonics = std::max(1, first);
+  const bool stability = opt.stability;
+  opt.stability = false; // of the last orbit only
+  Stats total;
+  BalanceOrbit o, last;
+  const Eigen::MatrixXd* previous = start;
+  Eigen::MatrixXd kept;
+  std::vector<double> sc = scaleOf(sys);
+  for (;;) {
+    o = harmonicBalance(sys, opt, guess, previous);
+    total += o.stats;
+    // The truncation: how far the orbit moved from the one with half the harmonics.
+    if (last.converged && o.converged) {
+      o.truncation = 0;
+      for (int k = 0; k < 4 * o.timePoints; ++k) {
+        double t = o.period * k / (4.0 * o.timePoints);
+        std::vector<double> a = o.state(t), b = last.state(t);
+        for (size_t i = 0; i < a.size(); ++i)
+          o.truncation = std::max(o.truncation, std::fabs(a[i] - b[i]) / sc[i]);
+      }
+    }
+    bool met = o.converged && o.truncation <= target;
+    long next = (4L * opt.harmonics + 1) * static_cast<long>(sys.dim);
+    if (met || next > maxUnknowns) break;
+    if (o.converged || o.unresolved) {
+      kept = o.coeffs;
+      previous = &kept;
+    }
+    last = o;
+    opt.harmonics *= 2;
+  }
+  if (o.converged && stability) { // the same orbit again, with its stability (a linear one in one step)
+    opt.stability = true;
+    kept = o.coeffs;
+    double truncation = o.truncation;
+    o = harmonicBalance(sys, opt, guess, &kept);
+    total += o.stats;
+    o.truncation = truncation;
+  }
+  o.stats = total;
+  return o;
+}
+
+} // namespace gbx::rt::dyn
