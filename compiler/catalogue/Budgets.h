@@ -14,6 +14,7 @@ inline constexpr std::int64_t kSamplesPerPeriod = 100'000;    // a scene's `samp
 inline constexpr std::int64_t kRecordedSamples = 2'000'000;   // recorded samples of one scene run
 inline constexpr std::int64_t kMeshPeriods = 1'000'000'000;   // settle, record or duration in mesh periods
 inline constexpr std::int64_t kHarmonics = 1'000;             // Fourier harmonics of an effect or a study
+inline constexpr std::int64_t kBalanceHarmonics = 256; // a harmonic-balance orbit's harmonics (a dense Newton system)
 inline constexpr std::int64_t kSlices = 2'000;                // loaded_mesh slices
 inline constexpr std::int64_t kPositions = 8'192;             // loaded_mesh positions per mesh period
 inline constexpr std::int64_t kMaxSteps = 1'000'000'000;      // accuracy { max_steps }

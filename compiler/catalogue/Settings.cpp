@@ -63,10 +63,18 @@ const std::vector<AttrSpec>& sceneSettings() {
     return std::vector<AttrSpec>{
         t("settle", "transient discarded before recording"),
         t("record", "recorded steady-state window"),
-        withDefault(budgeted(count("samples", "samples per recorded mesh period"), budget::kSamplesPerPeriod), num(160)),
+        withDefault(budgeted(count("samples", "samples per recorded mesh period"), budget::kSamplesPerPeriod),
+                    num(160)),
         t("duration", "simulated time from rest"),
         t("ramp", "smooth start-up time of the drive speed"),
-        symbol("steady_state", {"periodic"}, "solve for the periodic response directly (Floquet, shooting with Newton)"),
+        symbol("steady_state", {"periodic", "harmonic_balance"},
+               "solve for the periodic response directly: `periodic` by shooting with Newton (Floquet multipliers), "
+               "`harmonic_balance` as a Fourier series (Hill's multipliers)"),
+        budgeted(
+            count("harmonics",
+                  "harmonic balance: the orbit's harmonics (default: doubled from 8 until the orbit moves less than "
+                  "rtol of its scale)"),
+            budget::kBalanceHarmonics),
     };
   }();
   return s;

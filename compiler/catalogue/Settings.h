@@ -14,6 +14,8 @@ const std::vector<AttrSpec>& gearboxQuantities();
 const std::vector<AttrSpec>& operatingSettings();
 const std::vector<AttrSpec>& materialProperties();
 const std::vector<AttrSpec>& sceneSettings();
+// `steady_state`'s words in the order sceneSettings() lists them (a setting's `choice`).
+enum SteadyStateWord : int { kSteadyPeriodic = 0, kSteadyHarmonicBalance = 1 };
 const std::vector<AttrSpec>& accuracySettings();
 const std::vector<AttrSpec>& splitSettings();
 const std::vector<AttrSpec>& splitOutputs();

@@ -30,6 +30,46 @@ std::vector<std::string> Analyser::interchangeable(const Stmt& st, const Gearbox
   return out;
 }
 
+// `steady_state` and `harmonics`: what the periodic steady state refuses beside it and needs.
+void Analyser::steadyStateRules(const ir::Scene& out, const Stmt& st, const StageModel* stage,
+                                const std::string& target, const std::string& owner) {
+  if (const ir::Setting* steady = ir::findSetting(out.settings, "steady_state")) {
+    const std::string written = "steady_state = " + steady->symbol;
+    for (const char* other : {"settle", "duration", "ramp"})
+      if (const auto* s = ir::findSetting(out.settings, other))
+        diags_.error("E0202", s->span,
+                     fmt::format("{} asks for the periodic steady state (`{}`), which has no `{}`: the periodic "
+                                 "response is found directly; drop one of the two",
+                                 owner, written, other));
+    if (!ir::findSetting(out.settings, "record"))
+      diags_.error("E0225", nameOr(st),
+                   fmt::format("{} needs `record` (the steady-state window) with `{}`", owner, written));
+    if (!stage)
+      diags_.error("E0232", nameOr(st),
+                   fmt::format("{}: `{}` needs a scene on a stage; a whole-gearbox scene runs "
+                               "from rest (`duration`) or settles (`settle`)",
+                               owner, written));
+    else if (steady->choice == cat::kSteadyHarmonicBalance && stage->kind && stage->kind->kind != ir::StageKind::Spur &&
+             stage->kind->kind != ir::StageKind::Helical)
+      diags_.error(
+          "E0232", steady->span,
+          fmt::format(
+              "{}: `harmonic_balance` solves a spur or helical stage's mesh; `{}` is {}, whose periodic steady state "
+              "is found by shooting (`steady_state = periodic`)",
+              owner, target, stage->kind->name));
+  }
+  if (const ir::Setting* h = ir::findSetting(out.settings, "harmonics")) {
+    const ir::Setting* steady = ir::findSetting(out.settings, "steady_state");
+    if (!steady || steady->choice != cat::kSteadyHarmonicBalance)
+      diags_.error(
+          "E0225", h->span,
+          fmt::format(
+              "{}: `harmonics` is the harmonic-balance orbit's number of harmonics, which needs `steady_state = "
+              "harmonic_balance` (a stiffness series' harmonics go in `varying_stiffness {{ harmonics = …; }}`)",
+              owner));
+  }
+}
+
 ir::Scene Analyser::scene(const Stmt& st, const GearboxModel& m, const Scope& gs) {
   ir::Scene out;
   out.name = st.name;
@@ -71,19 +111,7 @@ ir::Scene Analyser::scene(const Stmt& st, const GearboxModel& m, const Scope& gs
   out.settings = settings(items, sceneSettings(), gs, owner, nameOr(st), "E0225");
   out.accuracy = settings(acc, accuracySettings(), gs, owner + " accuracy", nameOr(st), "E0225");
   sceneBudgets(out, owner);
-  if (ir::findSetting(out.settings, "steady_state")) {
-    for (const char* other : {"settle", "duration", "ramp"})
-      if (const auto* s = ir::findSetting(out.settings, other))
-        diags_.error("E0202", s->span,
-                     fmt::format("{} asks for the periodic steady state (`steady_state = periodic`), which has no `{}`: the periodic "
-                                 "response is found directly; drop one of the two",
-                                 owner, other));
-    if (!ir::findSetting(out.settings, "record"))
-      diags_.error("E0225", nameOr(st), fmt::format("{} needs `record` (the steady-state window) with `steady_state = periodic`", owner));
-    if (!stage)
-      diags_.error("E0232", nameOr(st), fmt::format("{}: `steady_state = periodic` needs a scene on a stage; a whole-gearbox scene runs "
-                                                   "from rest (`duration`) or settles (`settle`)", owner));
-  }
+  steadyStateRules(out, st, stage, target, owner);
   // A loaded mesh whose outputs all read its static transmission error or its stiffness runs no
   // dynamics.
   const bool staticOnly =

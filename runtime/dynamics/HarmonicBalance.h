@@ -28,12 +28,12 @@ struct BalanceOptions {
   bool stability = true; // Hill's multipliers
   // The residual y' - f(t, y) is checked at this many instants per sample interval (between
   // the samples the transform used): an event the samples step over shows up there.
-  int checkRefine = 8;
+  int checkRefine = 2;
   double newtonTolerance = 1e-12; // of the state scale
   double gapLimit = 0.05;         // a larger residual between the samples is not an orbit
   // Hill's method up to this many unknowns; beyond, one period of the variational equations
   // from the orbit's start, at this accuracy.
-  long hillLimit = 96;
+  long hillLimit = 40;
   Accuracy floquet;
 };
 

@@ -11,6 +11,7 @@
 #include "catalogue/StageKinds.h"
 #include "dynamics/Effects.h"
 #include "dynamics/Gearbox.h"
+#include "dynamics/HarmonicBalance.h"
 #include "dynamics/Levels.h"
 #include "dynamics/LoadedMesh.h"
 #include "dynamics/LoadedMeshInputs.h"
@@ -381,16 +382,78 @@ SceneResult wholeGearboxModes(const Model& m, const Assignment& a, SceneResult r
 
 void describeOrbit(SceneResult& r, double Tz);
 
+// The orbit by harmonic balance (`steady_state = harmonic_balance`): with the scene's
+// harmonics, or doubled from 8 until the orbit moves less than rtol of its scale. False, with
+// a model line saying why, where it is not found (shooting then takes over).
+bool balanceOrbit(const MeshModel& model, const ScenePlan& scene, const SceneOverrides& ov, const Accuracy& acc,
+                  double T, double Tz, SceneResult& r, std::vector<double>& y, std::optional<BalanceOrbit>& out) {
+  BalanceOptions bo;
+  bo.period = T;
+  bo.linear = model.linear();
+  bo.floquet = acc;
+  // An override of 0: chosen for the target whatever the scene writes (a work-precision curve).
+  const int N = ov.balanceHarmonics ? *ov.balanceHarmonics : scene.balanceHarmonics.value_or(0);
+  std::vector<double> guess = ov.guess && ov.guess->size() == y.size() ? *ov.guess : y;
+  BalanceOrbit o;
+  if (N > 0) {
+    bo.harmonics = N;
+    o = harmonicBalance(model.system(), bo, guess);
+  } else {
+    o = harmonicBalanceTo(model.system(), bo, acc.rtol, guess, 8, 1024);
+  }
+  r.stats += o.stats;
+  if (!o.converged) {
+    r.model.push_back(fmt::format("harmonic balance with {} harmonics did not find the orbit ({}): shooting instead",
+                                  o.harmonics, o.failure));
+    return false;
+  }
+  if (N <= 0 && !(o.truncation <= acc.rtol))
+    r.warnings.push_back(
+        fmt::format("scene `{}`: harmonic balance stopped at {} harmonics (the Newton system's size), where the orbit "
+                    "still moves by {:.2e} of its scale against half as many; write `harmonics` or loosen rtol",
+                    scene.name, o.harmonics, o.truncation));
+  y = o.state(0);
+  r.orbit = y;
+  r.period = T;
+  r.stability = o.stability;
+  r.unstable = o.stability >= 1.0;
+  r.newtonIterations = o.iterations;
+  r.newtonResidual = o.gapResidual;
+  r.balanceHarmonics = o.harmonics;
+  r.balanceTruncation = o.truncation;
+  r.orbitMethod = fmt::format("harmonic balance with {} harmonics at {} instants", o.harmonics, o.timePoints);
+  r.method = "harmonic_balance";
+  r.stepRule = fmt::format("{} harmonics at {} instants{}", o.harmonics, o.timePoints,
+                           N > 0 ? "" : " (doubled from 8 until the orbit moves less than rtol of its scale)");
+  r.model.push_back(fmt::format(
+      "periodic steady state: period {:.6g} ms ({} mesh period{}), {}, {} Newton iteration{}, residual "
+      "between the instants {:.2e} of the state's rate{}, largest Floquet multiplier {:.6f} ({})",
+      T * 1e3, std::lround(T / Tz), std::lround(T / Tz) == 1 ? "" : "s", r.orbitMethod, o.iterations,
+      o.iterations == 1 ? "" : "s", o.gapResidual,
+      std::isfinite(o.truncation) ? fmt::format(", {:.2e} of the state scale from half the harmonics", o.truncation)
+                                  : "",
+      o.stability, o.stabilityMethod));
+  out = std::move(o);
+  return true;
+}
+
 // The periodic orbit of a single-mesh scene, from the model's initial state or the caller's
 // guess; false (with r.failure) where it is not found.
-bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, const ScenePlan& scene, const SceneOverrides& ov,
-                 const Accuracy& acc, SceneResult& r, std::vector<double>& y) {
+bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, const ScenePlan& scene,
+                 const SceneOverrides& ov, const Accuracy& acc, SceneResult& r, std::vector<double>& y,
+                 std::optional<BalanceOrbit>& balance) {
   double Tz = 1.0 / ms.meshFrequency, T = model.excitationPeriod();
   if (T <= 0)
     throw Failure{fmt::format("the excitation is not periodic (a start-up ramp, or a fluctuation whose period holds no whole number of "
                               "mesh periods), so there is no periodic steady state{}; write `settle = N mesh_periods` to settle a "
                               "transient, or `duration` for a run from rest",
                               tp.periodicWritten ? "" : " (the default when a scene neither settles nor runs from rest)")};
+  if (ov.harmonicBalance.value_or(scene.harmonicBalance) && balanceOrbit(model, scene, ov, acc, T, Tz, r, y, balance)) {
+    if (widenToPeriod(tp, T))
+      r.model.push_back(
+          fmt::format("record window widened to the orbit's period, {} mesh periods", std::lround(T / Tz)));
+    return true;
+  }
   PeriodicOptions po;
   po.period = T;
   po.linear = model.linear();
@@ -509,12 +572,12 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
   std::vector<double> y = model.initialState();
   // A transient may start from a given state (a study's run from another initial condition).
   if (tp.steady != SteadyMethod::Periodic && ov.guess && ov.guess->size() == y.size()) y = *ov.guess;
-  if (tp.steady == SteadyMethod::Periodic && !steadyOrbit(model, ms, tp, scene, ov, acc, r, y)) return "";
-  Integrator integ(model.system(), acc);
-  double t = 0;
+  std::optional<BalanceOrbit> balance;
+  if (tp.steady == SteadyMethod::Periodic && !steadyOrbit(model, ms, tp, scene, ov, acc, r, y, balance)) return "";
   std::vector<double> atPeriod;  // the state a whole orbit period on, where the record window reaches it
-  bool ok = integ.advance(t, y, tp.end, tp.samples, [&](double ts, const double* ys) {
-    if (r.orbitUnconfirmed && atPeriod.empty() && std::fabs(ts - r.period) <= 1e-9 * r.period) atPeriod.assign(ys, ys + y.size());
+  auto take = [&](double ts, const double* ys) {
+    if (r.orbitUnconfirmed && atPeriod.empty() && std::fabs(ts - r.period) <= 1e-9 * r.period)
+      atPeriod.assign(ys, ys + y.size());
     MeshSignals s = model.signals(ts, ys);
     // A settled run's first sample lies on its orbit at phase 0 (a whole number of periods).
     if (samples.t.empty() && tp.steady == SteadyMethod::Settle) r.orbit.assign(ys, ys + model.system().dim);
@@ -529,14 +592,28 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
     record(Signal::StaticTransmissionError, s.staticTransmissionError);
     record(Signal::InputSpeed, s.inputSpeed);
     record(Signal::OutputSpeed, s.outputSpeed);
-  });
-  std::string confirmFailure;
-  if (ok) confirmFailure = confirmOrbit(integ, t, y, atPeriod.empty() ? nullptr : &atPeriod, model.system(), acc, r, 1.0 / ms.meshFrequency);
-  r.stats += integ.stats();
+  };
+  if (balance) { // the samples from the series: nothing is integrated
+    double cpu = threadCpuSeconds();
+    for (double ts : tp.samples) {
+      balance->state(ts, y.data());
+      take(ts, y.data());
+    }
+    r.stats.cpuSeconds += threadCpuSeconds() - cpu;
+  }
   samples.staticLoad = p.staticLoad;
   const MeshEffects& fx = ms.effects;
   samples.quasiStaticPeak = fx.torqueFluctuation ? (std::fabs(fx.torqueMean) + std::fabs(fx.torqueAmplitude)) / std::fabs(p.outputRadius * p.downstream)
                                                  : p.staticLoad;
+  if (balance) return "";
+  Integrator integ(model.system(), acc);
+  double t = 0;
+  bool ok = integ.advance(t, y, tp.end, tp.samples, take);
+  std::string confirmFailure;
+  if (ok)
+    confirmFailure = confirmOrbit(integ, t, y, atPeriod.empty() ? nullptr : &atPeriod, model.system(), acc, r,
+                                  1.0 / ms.meshFrequency);
+  r.stats += integ.stats();
   if (!ok) return integ.error();
   if (!confirmFailure.empty()) return confirmFailure;
   checkSettled(model, tp, acc, r);
@@ -864,6 +941,9 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
   tight.keepSeries = false;
   tight.estimateError = false;
   if (r.steady == SteadyMethod::Periodic && !r.orbit.empty()) tight.guess = r.orbit;
+  // Harmonic balance: its truncation against twice the harmonics, the other parts at its own.
+  const int N = r.balanceHarmonics;
+  if (N > 0) tight.balanceHarmonics = 2 * N;
   // A static scene integrates nothing: its estimate is its table's discretisation alone.
   const bool integrated = r.steady != SteadyMethod::Static;
   SceneResult ref;
@@ -879,7 +959,9 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
       if (std::isfinite(d[i])) perOutput[i] += d[i];
     return largest(d);
   };
-  if (integrated)
+  if (integrated && N > 0)
+    r.errorParts.push_back({"harmonic truncation", part(ref), fmt::format("{} against {} harmonics", N, 2 * N)});
+  else if (integrated)
     r.errorParts.push_back(
         {"integration", part(ref),
          fmt::format("against a rerun at rtol {:.0e} with half the maximum step", tight.rtol.value())});
@@ -888,6 +970,7 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
     twice.rtol = ov.rtol;
     twice.maxStepFactor = ov.maxStepFactor;
     twice.harmonics = 2 * r.harmonics;
+    if (N > 0) twice.balanceHarmonics = N;
     SceneResult h2 = runOnce(m, a, scene, twice);
     if (h2.failure.empty()) {
       r.referenceStats += h2.stats;
@@ -900,13 +983,17 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
     fine.rtol = ov.rtol;
     fine.maxStepFactor = ov.maxStepFactor;
     fine.loadedRefine = 2 * ov.loadedRefine;
+    if (N > 0) fine.balanceHarmonics = N;
     SceneResult f2 = runOnce(m, a, scene, fine);
     if (f2.failure.empty()) {
       r.referenceStats += f2.stats;
       r.errorParts.push_back({"loaded mesh", part(f2), "against twice the slices and positions"});
     }
   }
-  if (r.steady == SteadyMethod::Periodic)
+  if (N > 0)
+    r.errorParts.push_back({"residual between the instants", r.newtonResidual,
+                            "of the state's rate, at the instants and halfway between them"});
+  else if (r.steady == SteadyMethod::Periodic)
     r.errorParts.push_back({"Newton residual", r.newtonResidual, fmt::format("of the state scale, after {} iteration{}", r.newtonIterations,
                                                                              r.newtonIterations == 1 ? "" : "s")});
   // Each output's own estimate: the parts that differ per output, and the residual all share.

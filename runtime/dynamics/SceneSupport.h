@@ -26,6 +26,10 @@ using cat::Q;
 // error and keep the series.
 struct SceneOverrides {
   std::optional<int> harmonics;
+  // Harmonic balance: on or off whatever the scene says (a work-precision curve), and its
+  // number of harmonics (an error-estimate rerun at twice the scene's).
+  std::optional<bool> harmonicBalance;
+  std::optional<int> balanceHarmonics; // 0: chosen for rtol whatever the scene writes
   std::optional<cat::Method> method;
   std::optional<double> rtol;
   bool estimateError = true;

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "catalogue/Settings.h"
+
 namespace gbx::rt {
 
 namespace {
@@ -192,7 +194,10 @@ ScenePlan planScene(const ir::Scene& scene) {
   p.record = timeOf(scene.settings, Q::Record);
   p.duration = timeOf(scene.settings, Q::Duration);
   p.ramp = timeOf(scene.settings, Q::Ramp);
-  p.periodicWritten = ir::findSetting(scene.settings, Q::SteadyState) != nullptr;
+  const ir::Setting* steady = ir::findSetting(scene.settings, Q::SteadyState);
+  p.periodicWritten = steady != nullptr;
+  p.harmonicBalance = steady && steady->choice == cat::kSteadyHarmonicBalance;
+  if (auto n = number(scene.settings, Q::Harmonics)) p.balanceHarmonics = static_cast<int>(*n);
   for (const auto& e : scene.effects) {
     ListedEffect l{e.kind, e.name, {}, {}};
     for (const auto& s : e.params) {

@@ -121,7 +121,9 @@ struct ScenePlan {
   // The time plan.
   int samplesPerPeriod = 160;
   SceneTime settle, record, duration, ramp;
-  bool periodicWritten = false;  // `steady_state = periodic`
+  bool periodicWritten = false;        // `steady_state = periodic` or `harmonic_balance`
+  bool harmonicBalance = false;        // `steady_state = harmonic_balance`
+  std::optional<int> balanceHarmonics; // its `harmonics`, when written
   // The effects, as listed and by kind.
   std::vector<ListedEffect> listed;
   SceneEffects fx;

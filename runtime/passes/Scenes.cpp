@@ -34,10 +34,11 @@ SceneReport sceneReport(const dyn::SceneResult& r, const ScenePlan& scene) {
   s.errorMethod = r.errorMethod;
   for (const auto& p : r.errorParts) s.errorParts.emplace_back(p.name, p.value);
   s.stepRule = r.stepRule;
-  s.steady = r.steady == dyn::SteadyMethod::Periodic ? "periodic"
-             : r.steady == dyn::SteadyMethod::Settle ? "settle"
-             : r.steady == dyn::SteadyMethod::Static ? "static"
-                                                     : "from rest";
+  s.steady = r.balanceHarmonics > 0                    ? "harmonic_balance"
+             : r.steady == dyn::SteadyMethod::Periodic ? "periodic"
+             : r.steady == dyn::SteadyMethod::Settle   ? "settle"
+             : r.steady == dyn::SteadyMethod::Static   ? "static"
+                                                       : "from rest";
   s.integrated = r.steady != dyn::SteadyMethod::Static;
   s.model = r.model;
   s.warnings = r.warnings;

@@ -389,7 +389,7 @@ void forEachRow(const GearboxReport& g, F&& f) {
 }
 
 // The version of docs/report.schema.json the JSON report follows (its top-level "schema").
-inline constexpr const char* kReportSchemaVersion = "1.6";
+inline constexpr const char* kReportSchemaVersion = "1.7";
 
 std::string formatNumber(double v);
 // A JSON number, shortest round-trip; null where the value is not finite (never nan or inf).

@@ -8,8 +8,33 @@
 #include <fmt/format.h>
 
 #include "dynamics/Scene.h"
+#include "model/StageKind.h"
 
 namespace gbx::rt {
+
+namespace {
+
+struct Steady {
+  std::string name;
+  bool periodic;
+  bool balance = false; // harmonic balance, its harmonics doubled until the orbit moves less than rtol
+};
+
+// The ways to the steady state a study draws: shooting, harmonic balance beside it where a
+// single mesh has a periodic steady state, and settling (or the run from rest).
+std::vector<Steady> steadiesOf(const Model& m, const ScenePlan& scene, bool fromRest, long settle) {
+  std::vector<Steady> steadies;
+  if (!fromRest) steadies.push_back({"periodic", true});
+  if (!fromRest && scene.stage >= 0 && m.info(scene.stage).kind->scene == SceneModel::SingleMesh)
+    steadies.push_back({"harmonic_balance", true, true});
+  if (fromRest)
+    steadies.push_back({"from rest", false});
+  else if (!scene.settle || scene.settle.meshPeriods)
+    steadies.push_back({fmt::format("settle {}", settle), false});
+  return steadies;
+}
+
+} // namespace
 
 WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const ir::Study& study, const ScenePlan& scene,
                                  const std::function<void(double)>& progress) {
@@ -39,21 +64,21 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
   // `settle = N`, or 200 periods when the scene is periodic by default.
   bool fromRest = scene.duration && !scene.record;
   long settle = scene.settle.value && scene.settle.meshPeriods ? std::lround(*scene.settle.value) : 200;
-  struct Steady {
-    std::string name;
-    bool periodic;
-  };
-  std::vector<Steady> steadies;
-  if (!fromRest) steadies.push_back({"periodic", true});
-  if (fromRest) steadies.push_back({"from rest", false});
-  else if (!scene.settle || scene.settle.meshPeriods) steadies.push_back({fmt::format("settle {}", settle), false});
+  std::vector<Steady> steadies = steadiesOf(m, scene, fromRest, settle);
   auto steadyOv = [&](dyn::SceneOverrides ov, const Steady& s) {
-    if (s.periodic) ov.forcePeriodic = true;
-    else if (!fromRest) ov.settlePeriods = settle;
+    ov.harmonicBalance = s.balance;
+    if (s.balance) ov.balanceHarmonics = 0; // its harmonics follow rtol
+    if (s.periodic)
+      ov.forcePeriodic = true;
+    else if (!fromRest)
+      ov.settlePeriods = settle;
     return ov;
   };
   // Runs in all: a reference and its check per harmonics setting, then every method at every tolerance.
-  double total = static_cast<double>(harmonics.size() * (2 + steadies.size() * methods.size() * rtols.size())), done = 0;
+  size_t curves = 0;
+  for (const Steady& s : steadies)
+    curves += s.balance ? 1 : methods.size();
+  double total = static_cast<double>(harmonics.size() * (2 + curves * rtols.size())), done = 0;
   auto tick = [&](double n) {
     done += n;
     if (progress) progress(done / total);
@@ -76,7 +101,7 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
     if (!ref.failure.empty() || ref.numbers.empty() || !check.failure.empty()) {
       rf.failure = ref.failure.empty() ? check.failure : ref.failure;
       r.references.push_back(rf);
-      tick(static_cast<double>(steadies.size() * methods.size() * rtols.size()));
+      tick(static_cast<double>(curves * rtols.size()));
       continue;
     }
     // The first steady output (not the stability, a property of the method).
@@ -85,7 +110,7 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
     if (o == ref.numbers.size() || o >= check.numbers.size()) {
       rf.failure = "the scene has no steady output to compare (unstable, or only its stability)";
       r.references.push_back(rf);
-      tick(static_cast<double>(steadies.size() * methods.size() * rtols.size()));
+      tick(static_cast<double>(curves * rtols.size()));
       continue;
     }
     double refValue = ref.numbers[o].value;
@@ -99,7 +124,9 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
     r.references.push_back(rf);
     for (const Steady& steady : steadies)
     for (cat::Method method : methods) {
-      WorkPrecisionStudy::Curve curve{h, std::string(cat::methodSpec(method).name), steady.name, {}};
+      if (steady.balance && method != methods.front()) continue; // no integrator: one curve
+      WorkPrecisionStudy::Curve curve{
+          h, steady.balance ? "harmonic_balance" : std::string(cat::methodSpec(method).name), steady.name, {}};
       for (double rtol : rtols) {
         auto ov = steadyOv(base, steady);
         ov.method = method;

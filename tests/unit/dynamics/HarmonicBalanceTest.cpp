@@ -81,6 +81,7 @@ TEST(HarmonicBalance, LinearMarineSceneAgreesWithShooting) {
   bo.period = po.period;
   bo.linear = true;
   bo.harmonics = 16;
+  bo.floquet = acc;
   BalanceOrbit hb = harmonicBalance(model.system(), bo, model.initialState());
   ASSERT_TRUE(hb.converged) << hb.failure;
   EXPECT_EQ(hb.iterations, 1) << "linear: one step is exact";
@@ -209,4 +210,52 @@ TEST(HarmonicBalance, BriefContactLossIsNotReportedAsConverged) {
   EXPECT_LT(diff, fine.truncation) << "the estimate covers the error";
   EXPECT_LT(diff, 1e-3) << "lost contact over " << lost << " of the period, " << fine.harmonics << " harmonics";
   EXPECT_NEAR(fine.stability, sh.stability, 1e-3) << fine.harmonics << " harmonics";
+}
+
+TEST(HarmonicBalance, SceneOutputsEqualShootingsAndCarryTheirEstimate) {
+  std::string text = readCorpusSpec("marine_reducer.gbx");
+  std::string shooting = replaced(text, "settle = 200 mesh_periods;", "steady_state = periodic;");
+  std::string balance =
+      replaced(text, "settle = 200 mesh_periods;", "steady_state = harmonic_balance; harmonics = 16;");
+  auto fs = compile("s.gbx", shooting, "MarineReducer"), fb = compile("b.gbx", balance, "MarineReducer");
+  SceneResult s = runScene(*fs.model, *fs.design, fs.scene("vibration"));
+  SceneResult b = runScene(*fb.model, *fb.design, fb.scene("vibration"));
+  ASSERT_TRUE(s.failure.empty()) << s.failure;
+  ASSERT_TRUE(b.failure.empty()) << b.failure;
+  EXPECT_EQ(b.balanceHarmonics, 16);
+  EXPECT_EQ(b.method, "harmonic_balance");
+  // Integrated: only the one period of the variational equations for the stability (66
+  // unknowns, above Hill's limit); the samples come from the series.
+  EXPECT_TRUE(std::any_of(b.model.begin(), b.model.end(), [](const std::string& l) {
+    return l.find("(one period of the variational equations)") != std::string::npos;
+  }));
+  const SceneNumber* rs = s.find("rms(acceleration)");
+  const SceneNumber* rb = b.find("rms(acceleration)");
+  ASSERT_TRUE(rs && rb);
+  EXPECT_NEAR(rb->value / rs->value, 1.0, 1e-7) << "shooting at the scene's rtol 1e-9 is good to about 4e-8";
+  EXPECT_NEAR(rb->value, 50.53239936, 5e-8) << "the independent measurement of docs/dynamics.md";
+  EXPECT_NEAR(b.stability, s.stability, 1e-6);
+  ASSERT_FALSE(b.errorParts.empty());
+  EXPECT_EQ(b.errorParts.front().name, "harmonic truncation");
+  EXPECT_LT(b.errorParts.front().value, 1e-8);
+}
+
+TEST(HarmonicBalance, ASceneFallsBackToShootingWhereNewtonStalls) {
+  std::string text = replaced(readSpec("spur_resonance.gbx"), "steady_state = periodic;",
+                              "steady_state = harmonic_balance; harmonics = 16;");
+  auto f = compile("b.gbx", text, "SpurResonance");
+  // From the teeth apart over the whole period (inside the backlash, at rest) the balance has
+  // no stiffness to work with: its least-squares steps stall, and shooting takes over.
+  SceneOverrides ov;
+  ov.estimateError = false;
+  ov.guess = std::vector<double>{0.0, 0.0};
+  SceneResult r = runScene(*f.model, *f.design, f.scene("mesh"), ov);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  EXPECT_EQ(r.balanceHarmonics, 0);
+  EXPECT_NE(r.method, "harmonic_balance");
+  EXPECT_TRUE(std::any_of(r.model.begin(), r.model.end(), [](const std::string& l) {
+    return l.find("harmonic balance with 16 harmonics did not find the orbit") != std::string::npos &&
+           l.find("shooting instead") != std::string::npos;
+  })) << "the fallback is stated in the model";
+  EXPECT_TRUE(std::isfinite(r.stability));
 }
