@@ -143,6 +143,23 @@ int main(int argc, char** argv) {
       }
       return e;
     };
+    // rms(acceleration) over the recorded window's samples, from a state at any time.
+    auto rmsOf = [&](const std::function<std::vector<double>(double)>& at) {
+      double sum = 0;
+      for (double ts : pm.plan.samples) {
+        std::vector<double> y = at(ts);
+        double a = model.signals(ts, y.data()).acceleration;
+        sum += a * a;
+      }
+      return std::sqrt(sum / static_cast<double>(pm.plan.samples.size()));
+    };
+    double refRms = rmsOf([&](double t) {
+      Integrator integ(sys, tight);
+      std::vector<double> y = ref.y0;
+      double t0 = 0;
+      if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
+      return y;
+    });
     auto median = [](const std::function<void()>& job) {
       std::vector<double> cpu;
       for (int rep = 0; rep < 7; ++rep) {
@@ -166,7 +183,8 @@ int main(int argc, char** argv) {
       bo.stability = true;
       bo.hillLimit = 1 << 20;
       double withHill = median([&] { harmonicBalance(sys, bo, model.initialState()); });
-      std::printf("balance %d %.3e %.3e %.3e\n", N, err, cpu, withHill);
+      double rmsErr = std::fabs(rmsOf([&](double t) { return o.state(t); }) / refRms - 1.0);
+      std::printf("balance %d %.3e %.3e %.3e %.3e\n", N, err, cpu, withHill, rmsErr);
     }
     for (double rtol : {1e-6, 1e-8, 1e-10, 1e-12}) {
       Accuracy acc = pm.accuracy;
@@ -180,7 +198,15 @@ int main(int argc, char** argv) {
         return y;
       });
       double cpu = median([&] { periodicOrbit(sys, acc, opt, model.initialState()); });
-      std::printf("shooting %.0e %.3e %.3e\n", rtol, err, cpu);
+      double rmsErr = std::fabs(rmsOf([&](double t) {
+                                  Integrator integ(sys, acc);
+                                  std::vector<double> y = o.y0;
+                                  double t0 = 0;
+                                  if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
+                                  return y;
+                                }) / refRms -
+                                1.0);
+      std::printf("shooting %.0e %.3e %.3e - %.3e\n", rtol, err, cpu, rmsErr);
     }
     return 0;
   }

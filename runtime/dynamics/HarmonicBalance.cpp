@@ -234,7 +234,7 @@ void check(const System& sys, const BalanceOptions& opt, BalanceOrbit& o) {
   long M = static_cast<long>(o.timePoints) * std::max(1, opt.checkRefine);
   std::vector<double> y(n), dy(n), f(n), worst(n, 0.0), top(n, 0.0);
   for (long m = 0; m < M; ++m) {
-    double t = o.period * static_cast<double>(m) / static_cast<double>(M);
+    double t = o.period * (static_cast<double>(m) + 0.5) / static_cast<double>(M); // between the instants
     synthesise(o, t, y.data(), dy.data());
     sys.rhs(t, y.data(), f.data());
     for (size_t a = 0; a < n; ++a) {
@@ -386,6 +386,26 @@ BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const
   }
   o.stats.cpuSeconds = threadCpuSeconds() - cpu0;
   return o;
+}
+
+Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, const Eigen::MatrixXd& coeffs,
+                                Eigen::MatrixXd* jacobian, Stats& stats) {
+  BalanceOrbit o;
+  o.harmonics = static_cast<int>((coeffs.rows() - 1) / 2);
+  o.timePoints = timePointsFor(o.harmonics, opt.timePoints);
+  o.period = opt.period;
+  o.drift = opt.drift;
+  o.drift.resize(sys.dim, 0.0);
+  o.coeffs = coeffs;
+  const Basis& B = basisFor(o.harmonics, o.timePoints);
+  Sampled s;
+  sample(sys, B, o, jacobian != nullptr, s);
+  stats.rhsEvaluations += o.timePoints;
+  if (jacobian) {
+    stats.jacobianEvaluations += o.timePoints;
+    *jacobian = jacobianOf(B, sys.dim, opt.period, s);
+  }
+  return residual(B, o, s);
 }
 
 Eigen::MatrixXd seriesOfSamples(const std::vector<std::vector<double>>& samples, const std::vector<double>& drift,

@@ -26,9 +26,10 @@ struct BalanceOptions {
   int maxIterations = 40;
   bool linear = false;   // the first Newton step is exact
   bool stability = true; // Hill's multipliers
-  // The residual y' - f(t, y) is checked at this many instants per sample interval (between
-  // the samples the transform used): an event the samples step over shows up there.
-  int checkRefine = 2;
+  // The residual y' - f(t, y) is checked at this many points per interval between the
+  // transform's instants, none of them on an instant: an event the instants step over shows
+  // up there.
+  int checkRefine = 1;
   double newtonTolerance = 1e-12; // of the state scale
   double gapLimit = 0.05;         // a larger residual between the samples is not an orbit
   // Hill's method up to this many unknowns; beyond, one period of the variational equations
@@ -65,6 +66,12 @@ struct BalanceOrbit {
 // cut or padded to N).
 BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const std::vector<double>& guess,
                              const Eigen::MatrixXd* start = nullptr);
+
+// The balance equations at the given coefficients (K x n, K = 2N + 1), as a continuation
+// follows them: the residual R (K x n, a state's rate) and, when asked, dR/dc with the
+// unknowns ordered harmonic by harmonic (h n + a).
+Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, const Eigen::MatrixXd& coeffs,
+                                Eigen::MatrixXd* jacobian, Stats& stats);
 
 // The first N harmonics of an orbit given by M equally spaced states over its period
 // (t = k T / M, k = 0 .. M-1) with the drift taken out: a guess from a shooting orbit.

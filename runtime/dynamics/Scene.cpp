@@ -991,8 +991,8 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
     }
   }
   if (N > 0)
-    r.errorParts.push_back({"residual between the instants", r.newtonResidual,
-                            "of the state's rate, at the instants and halfway between them"});
+    r.errorParts.push_back(
+        {"residual between the instants", r.newtonResidual, "of the state's rate, halfway between the instants"});
   else if (r.steady == SteadyMethod::Periodic)
     r.errorParts.push_back({"Newton residual", r.newtonResidual, fmt::format("of the state scale, after {} iteration{}", r.newtonIterations,
                                                                              r.newtonIterations == 1 ? "" : "s")});
