@@ -113,10 +113,10 @@ public:
   bool run() {
     if (!start()) return false;
     follow();
-    if (points >= maxPoints)
-      throw dyn::SceneFailure{fmt::format("the continuation stopped after {} points at {} = {:.6g} before the end of the range (a "
-                                          "Floquet multiplier near 1 there: the response grows without bound)",
-                                          points, st.target, sh.x(z(n)))};
+    if (points >= pointBudget())
+      throw dyn::SceneFailure{
+          fmt::format("the continuation stopped after {} points at {} = {:.6g} {}, before the end of the range", points,
+                      st.target, out.unit.shown(sh.x(z(n))), out.unit.name)};
     out.notes.push_back(fmt::format("pseudo-arclength continuation of the shooting equations: {} points, {} turning point{}, {} gap{}, {} RHS "
                                     "evaluations",
                                     out.points.size(), out.folds.size(), out.folds.size() == 1 ? "" : "s", out.gaps.size(),
@@ -289,7 +289,9 @@ private:
     for (long i = 0; i < n; ++i) guess[static_cast<size_t>(i)] = s[static_cast<size_t>(i)] * from(i);
     dyn::PeriodicOrbit o2 = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po2, guess);
     sh.stats += o2.stats;
-    if (!o2.converged) throw dyn::SceneFailure{fmt::format("the periodic response at {} = {:.6g} was not found after a gap: {}", st.target, sh.x(resume), o2.failure)};
+    if (!o2.converged)
+      throw dyn::SceneFailure{fmt::format("the periodic response at {} = {:.6g} {} was not found after a gap: {}",
+                                          st.target, out.unit.shown(sh.x(resume)), out.unit.name, o2.failure)};
     out.gaps.emplace_back(sh.x(std::max(from(n), reached)), sh.x(resume));
     out.notes.push_back(fmt::format("gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh",
                                     st.target, out.unit.shown(sh.x(std::max(from(n), reached))), out.unit.shown(sh.x(resume)),
@@ -311,24 +313,27 @@ private:
 
   // One predictor-corrector step of length ds from z. A corrector that lands far from its
   // predictor, or turns the branch sharply, may have jumped to another branch: not ok.
-  Step step() {
-    Step r;
-    VectorXd pred = z + ds * t;
-    r.zz = pred;
-    for (; r.iterations < 8; ++r.iterations) {
-      jacobian(r.zz, R, J);
+  // Newton from the predictor onto the branch, on the plane through it normal to t.
+  bool corrector(VectorXd& zz, const VectorXd& pred, int& iterations) {
+    zz = pred;
+    for (; iterations < 8; ++iterations) {
+      jacobian(zz, R, J);
       J.bottomRows(1) = t.transpose();
       VectorXd rhs(n + 1);
       rhs.head(n) = -R;
-      rhs(n) = -t.dot(r.zz - pred);
+      rhs(n) = -t.dot(zz - pred);
       VectorXd d = J.fullPivLu().solve(rhs);
-      r.zz += d;
-      if (!std::isfinite(d.norm()) || r.zz(n) < -edge || r.zz(n) > 1.0 + dsMax + edge) break;
-      if (d.lpNorm<Eigen::Infinity>() < tol) {
-        r.ok = true;
-        break;
-      }
+      zz += d;
+      if (!std::isfinite(d.norm()) || zz(n) < -edge || zz(n) > 1.0 + stepCap() + edge) return false;
+      if (d.lpNorm<Eigen::Infinity>() < tol) return true;
     }
+    return false;
+  }
+
+  Step step() {
+    Step r;
+    VectorXd pred = z + ds * t;
+    r.ok = corrector(r.zz, pred, r.iterations);
     r.aboveThere = aboveHere;
     if (r.ok) r.ok = (r.zz - pred).norm() <= 0.5 * ds + tol;
     if (r.ok) {
@@ -342,10 +347,50 @@ private:
       r.ok = r.turned;  // a reversal without a multiplier crossing +1 is an error of the step
     }
     if (r.ok && r.zz(n) <= 1.0 + 1e-12 && r.zz(n) >= 0.0) {
-      r.point = measure(r.zz);
-      r.ok = smooth(r.point) || ds <= 4 * dsMin;
+      try {
+        r.point = measure(r.zz);
+        r.ok = smooth(r.point) || ds <= 4 * dsMin;
+      } catch (const dyn::SceneFailure&) {
+        // The scene's own Newton did not settle from this point (next to a turning point, where
+        // the orbit is ill-conditioned): a shorter step, or a gap past it.
+        r.ok = false;
+      }
     }
     return r;
+  }
+
+  // Points for the range, and more for each turning point found (a resonance crossed by its
+  // folds takes small steps around each).
+  long pointBudget() const { return maxPoints + 400 * static_cast<long>(out.folds.size()); }
+
+  // The longest step: one sweep step along the swept quantity (the curve drawn at the sweep's
+  // resolution). Where the branch climbs steeply (a large response changing fast with the
+  // speed) a step bounded in the whole norm would advance the speed by a sliver of it and the
+  // points would run out before the range does; the state's part may then take up to four
+  // thousand sweep steps, the smoothness check and the corrector guarding against a jump to
+  // another branch.
+  double stepCap() const { return dLambda / std::max(std::fabs(t(n)), 2.5e-4); }
+
+  // The turning point between z and zz, to a small part of the step whatever its length: the
+  // arc from z is bisected where the branch's tangent turns back in lambda; the quadratic
+  // below where a corrector fails.
+  double foldBetween(const VectorXd& zz) {
+    double lo = 0, hi = ds, at = fold(zz);
+    VectorXd keepR = R;
+    MatrixXd keepJ = J;
+    for (int i = 0; i < 12 && hi - lo > 1e-3 * ds; ++i) {
+      double mid = 0.5 * (lo + hi);
+      VectorXd q;
+      int its = 0;
+      if (!corrector(q, z + mid * t, its)) break;
+      jacobian(q, R, J);
+      VectorXd tq = tangent(J, t);
+      ((tq(n) > 0) == (t(n) > 0) ? lo : hi) = mid;
+      at = q(n);
+    }
+    R = keepR;
+    J = keepJ;
+    return at;
   }
 
   // The turning point between z and zz: where lambda(s), the quadratic through lambda and its
@@ -358,7 +403,7 @@ private:
   }
 
   void follow() {
-    while (points < maxPoints) {
+    while (points < pointBudget()) {
       Step r = step();
       if (!r.ok) {
         ds *= 0.5;
@@ -366,7 +411,7 @@ private:
         continue;
       }
       if (r.turned) {
-        out.folds.push_back(sh.x(fold(r.zz)));
+        out.folds.push_back(sh.x(foldBetween(r.zz)));
         ++branch;
       }
       if (r.zz(n) < 0.0) {
@@ -390,7 +435,7 @@ private:
       reached = std::max(reached, z(n));
       keep(std::move(r.point));
       ++points;
-      if (r.iterations <= 2) ds = std::min(dsMax, 1.5 * ds);
+      if (r.iterations <= 2) ds = std::min(stepCap(), 1.5 * ds);
     }
   }
 };

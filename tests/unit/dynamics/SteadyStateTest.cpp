@@ -315,3 +315,30 @@ TEST(SteadyState, NaturalUpAndDownSweepsRideDifferentBranches) {
     EXPECT_LT(down.points[d].stability, 1.0);
   }
 }
+
+TEST(SteadyState, BacklashSweepFromLowSpeedCrossesTheSuperharmonicFoldsToTheEnd) {
+  // From 1000 rpm the response passes the superharmonic resonances (k f_mesh = f_n for k = 2,
+  // 3, …), each bent by the backlash into its own pair of turning points, before the primary
+  // one; the continuation reaches the end of the range, and the turning points do not move
+  // with the sweep's step.
+  std::string base = readSpec("spur_resonance.gbx");
+  auto sweepWith = [&](const std::string& range) {
+    auto f = compile("low.gbx", replaced(base, "sweep input_speed in 9000..18000 rpm step 250 rpm;", range),
+                     "SpurResonance");
+    return rt::sweep(*f.model, *f.design, f.study("resonance"));
+  };
+  rt::SweepStudy coarse = sweepWith("sweep input_speed in 1000..18000 rpm step 250 rpm;");
+  rt::SweepStudy fine = sweepWith("sweep input_speed in 1000..18000 rpm step 50 rpm;");
+  rt::SweepStudy primary = sweepWith("sweep input_speed in 9000..18000 rpm step 250 rpm;");
+  for (const auto* s : {&coarse, &fine, &primary})
+    ASSERT_TRUE(s->failure.empty()) << s->failure;
+  EXPECT_NEAR(coarse.points.back().x, rpm(18000), 1e-6);
+  ASSERT_GE(coarse.folds.size(), 4u) << "the superharmonic resonance below the primary one bends too";
+  ASSERT_EQ(coarse.folds.size(), fine.folds.size());
+  for (size_t i = 0; i < coarse.folds.size(); ++i)
+    EXPECT_NEAR(coarse.folds[i] / fine.folds[i], 1.0, 1e-4) << i;
+  // The primary resonance's jumps, the last two, as the sweep from 9000 rpm finds them.
+  ASSERT_EQ(primary.folds.size(), 2u);
+  EXPECT_NEAR(coarse.folds[coarse.folds.size() - 2] / primary.folds[0], 1.0, 1e-4);
+  EXPECT_NEAR(coarse.folds.back() / primary.folds[1], 1.0, 1e-4);
+}
