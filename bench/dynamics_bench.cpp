@@ -72,6 +72,107 @@ double rmsAcceleration(const MeshScene& ms, cat::Method method, double rtol, Sta
   return std::sqrt(sum / static_cast<double>(n));
 }
 
+// Harmonic balance against shooting on the scene's orbit (the `balance` mode).
+int balance(const Fixture& f) {
+  SceneOverrides po;
+  po.forcePeriodic = true;
+  MeshScene pm = meshScene(*f.model, *f.design, *f.scene, po);
+  MeshModel model(pm.params, pm.effects);
+  const System& sys = model.system();
+  double T = model.excitationPeriod();
+  PeriodicOptions opt;
+  opt.period = T;
+  opt.linear = model.linear();
+  Accuracy tight = pm.accuracy;
+  tight.rtol = 1e-13;
+  PeriodicOrbit ref = periodicOrbit(sys, tight, opt, model.initialState());
+  // The reference's states over a period.
+  std::vector<double> times, flat;
+  {
+    for (int k = 1; k <= 64; ++k)
+      times.push_back(T * k / 64.0);
+    Integrator integ(sys, tight);
+    std::vector<double> y = ref.y0;
+    double t = 0;
+    integ.advance(t, y, T, times, [&](double, const double* ys) { flat.insert(flat.end(), ys, ys + sys.dim); });
+  }
+  auto errorOf = [&](const std::function<std::vector<double>(double)>& at) {
+    double e = 0;
+    for (size_t k = 0; k < times.size(); ++k) {
+      std::vector<double> y = at(times[k]);
+      for (size_t a = 0; a < sys.dim; ++a)
+        e = std::max(e, std::fabs(y[a] - flat[k * sys.dim + a]) / sys.scale[a]);
+    }
+    return e;
+  };
+  // rms(acceleration) over the recorded window's samples, from a state at any time.
+  auto rmsOf = [&](const std::function<std::vector<double>(double)>& at) {
+    double sum = 0;
+    for (double ts : pm.plan.samples) {
+      std::vector<double> y = at(ts);
+      double a = model.signals(ts, y.data()).acceleration;
+      sum += a * a;
+    }
+    return std::sqrt(sum / static_cast<double>(pm.plan.samples.size()));
+  };
+  double refRms = rmsOf([&](double t) {
+    Integrator integ(sys, tight);
+    std::vector<double> y = ref.y0;
+    double t0 = 0;
+    if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
+    return y;
+  });
+  auto median = [](const std::function<void()>& job) {
+    std::vector<double> cpu;
+    for (int rep = 0; rep < 7; ++rep) {
+      double t0 = threadCpuSeconds();
+      for (int i = 0; i < 20; ++i)
+        job();
+      cpu.push_back((threadCpuSeconds() - t0) / 20);
+    }
+    std::sort(cpu.begin(), cpu.end());
+    return cpu[3];
+  };
+  for (int N : {2, 4, 6, 8, 10, 12, 16, 24}) {
+    BalanceOptions bo;
+    bo.period = T;
+    bo.linear = opt.linear;
+    bo.harmonics = N;
+    bo.stability = false;
+    BalanceOrbit o = harmonicBalance(sys, bo, model.initialState());
+    double err = errorOf([&](double t) { return o.state(t); });
+    double cpu = median([&] { harmonicBalance(sys, bo, model.initialState()); });
+    bo.stability = true;
+    bo.hillLimit = 1 << 20;
+    double withHill = median([&] { harmonicBalance(sys, bo, model.initialState()); });
+    double rmsErr = std::fabs(rmsOf([&](double t) { return o.state(t); }) / refRms - 1.0);
+    std::printf("balance %d %.3e %.3e %.3e %.3e\n", N, err, cpu, withHill, rmsErr);
+  }
+  for (double rtol : {1e-6, 1e-8, 1e-10, 1e-12}) {
+    Accuracy acc = pm.accuracy;
+    acc.rtol = rtol;
+    PeriodicOrbit o = periodicOrbit(sys, acc, opt, model.initialState());
+    double err = errorOf([&](double t) {
+      Integrator integ(sys, tight);
+      std::vector<double> y = o.y0;
+      double t0 = 0;
+      if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
+      return y;
+    });
+    double cpu = median([&] { periodicOrbit(sys, acc, opt, model.initialState()); });
+    double rmsErr = std::fabs(rmsOf([&](double t) {
+                                Integrator integ(sys, acc);
+                                std::vector<double> y = o.y0;
+                                double t0 = 0;
+                                if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
+                                return y;
+                              }) / refRms -
+                              1.0);
+    std::printf("shooting %.0e %.3e %.3e - %.3e\n", rtol, err, cpu, rmsErr);
+  }
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -111,105 +212,7 @@ int main(int argc, char** argv) {
       }
     return 0;
   }
-  if (what == "balance") {
-    SceneOverrides po;
-    po.forcePeriodic = true;
-    MeshScene pm = meshScene(*f.model, *f.design, *f.scene, po);
-    MeshModel model(pm.params, pm.effects);
-    const System& sys = model.system();
-    double T = model.excitationPeriod();
-    PeriodicOptions opt;
-    opt.period = T;
-    opt.linear = model.linear();
-    Accuracy tight = pm.accuracy;
-    tight.rtol = 1e-13;
-    PeriodicOrbit ref = periodicOrbit(sys, tight, opt, model.initialState());
-    // The reference's states over a period.
-    std::vector<double> times, flat;
-    {
-      for (int k = 1; k <= 64; ++k)
-        times.push_back(T * k / 64.0);
-      Integrator integ(sys, tight);
-      std::vector<double> y = ref.y0;
-      double t = 0;
-      integ.advance(t, y, T, times, [&](double, const double* ys) { flat.insert(flat.end(), ys, ys + sys.dim); });
-    }
-    auto errorOf = [&](const std::function<std::vector<double>(double)>& at) {
-      double e = 0;
-      for (size_t k = 0; k < times.size(); ++k) {
-        std::vector<double> y = at(times[k]);
-        for (size_t a = 0; a < sys.dim; ++a)
-          e = std::max(e, std::fabs(y[a] - flat[k * sys.dim + a]) / sys.scale[a]);
-      }
-      return e;
-    };
-    // rms(acceleration) over the recorded window's samples, from a state at any time.
-    auto rmsOf = [&](const std::function<std::vector<double>(double)>& at) {
-      double sum = 0;
-      for (double ts : pm.plan.samples) {
-        std::vector<double> y = at(ts);
-        double a = model.signals(ts, y.data()).acceleration;
-        sum += a * a;
-      }
-      return std::sqrt(sum / static_cast<double>(pm.plan.samples.size()));
-    };
-    double refRms = rmsOf([&](double t) {
-      Integrator integ(sys, tight);
-      std::vector<double> y = ref.y0;
-      double t0 = 0;
-      if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
-      return y;
-    });
-    auto median = [](const std::function<void()>& job) {
-      std::vector<double> cpu;
-      for (int rep = 0; rep < 7; ++rep) {
-        double t0 = threadCpuSeconds();
-        for (int i = 0; i < 20; ++i)
-          job();
-        cpu.push_back((threadCpuSeconds() - t0) / 20);
-      }
-      std::sort(cpu.begin(), cpu.end());
-      return cpu[3];
-    };
-    for (int N : {2, 4, 6, 8, 10, 12, 16, 24}) {
-      BalanceOptions bo;
-      bo.period = T;
-      bo.linear = opt.linear;
-      bo.harmonics = N;
-      bo.stability = false;
-      BalanceOrbit o = harmonicBalance(sys, bo, model.initialState());
-      double err = errorOf([&](double t) { return o.state(t); });
-      double cpu = median([&] { harmonicBalance(sys, bo, model.initialState()); });
-      bo.stability = true;
-      bo.hillLimit = 1 << 20;
-      double withHill = median([&] { harmonicBalance(sys, bo, model.initialState()); });
-      double rmsErr = std::fabs(rmsOf([&](double t) { return o.state(t); }) / refRms - 1.0);
-      std::printf("balance %d %.3e %.3e %.3e %.3e\n", N, err, cpu, withHill, rmsErr);
-    }
-    for (double rtol : {1e-6, 1e-8, 1e-10, 1e-12}) {
-      Accuracy acc = pm.accuracy;
-      acc.rtol = rtol;
-      PeriodicOrbit o = periodicOrbit(sys, acc, opt, model.initialState());
-      double err = errorOf([&](double t) {
-        Integrator integ(sys, tight);
-        std::vector<double> y = o.y0;
-        double t0 = 0;
-        if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
-        return y;
-      });
-      double cpu = median([&] { periodicOrbit(sys, acc, opt, model.initialState()); });
-      double rmsErr = std::fabs(rmsOf([&](double t) {
-                                  Integrator integ(sys, acc);
-                                  std::vector<double> y = o.y0;
-                                  double t0 = 0;
-                                  if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
-                                  return y;
-                                }) / refRms -
-                                1.0);
-      std::printf("shooting %.0e %.3e %.3e - %.3e\n", rtol, err, cpu, rmsErr);
-    }
-    return 0;
-  }
+  if (what == "balance") return balance(f);
   if (what == "params") {
     const auto& p = ms.params;
     MeshModel model(p, ms.effects);

@@ -32,8 +32,10 @@ std::vector<std::string> Analyser::interchangeable(const Stmt& st, const Gearbox
 
 // `steady_state` and `harmonics`: what the periodic steady state refuses beside it and needs.
 void Analyser::steadyStateRules(const ir::Scene& out, const Stmt& st, const StageModel* stage,
-                                const std::string& target, const std::string& owner) {
-  if (const ir::Setting* steady = ir::findSetting(out.settings, "steady_state")) {
+                                const std::string& owner) {
+  const ir::Setting* steady = ir::findSetting(out.settings, "steady_state");
+  if (steady && steady->choice < 0) return; // a word the setting does not take: said already
+  if (steady) {
     const std::string written = "steady_state = " + steady->symbol;
     for (const char* other : {"settle", "duration", "ramp"})
       if (const auto* s = ir::findSetting(out.settings, other))
@@ -49,17 +51,8 @@ void Analyser::steadyStateRules(const ir::Scene& out, const Stmt& st, const Stag
                    fmt::format("{}: `{}` needs a scene on a stage; a whole-gearbox scene runs "
                                "from rest (`duration`) or settles (`settle`)",
                                owner, written));
-    else if (steady->choice == cat::kSteadyHarmonicBalance && stage->kind && stage->kind->kind != ir::StageKind::Spur &&
-             stage->kind->kind != ir::StageKind::Helical)
-      diags_.error(
-          "E0232", steady->span,
-          fmt::format(
-              "{}: `harmonic_balance` solves a spur or helical stage's mesh; `{}` is {}, whose periodic steady state "
-              "is found by shooting (`steady_state = periodic`)",
-              owner, target, stage->kind->name));
   }
   if (const ir::Setting* h = ir::findSetting(out.settings, "harmonics")) {
-    const ir::Setting* steady = ir::findSetting(out.settings, "steady_state");
     if (!steady || steady->choice != cat::kSteadyHarmonicBalance)
       diags_.error(
           "E0225", h->span,
@@ -111,7 +104,7 @@ ir::Scene Analyser::scene(const Stmt& st, const GearboxModel& m, const Scope& gs
   out.settings = settings(items, sceneSettings(), gs, owner, nameOr(st), "E0225");
   out.accuracy = settings(acc, accuracySettings(), gs, owner + " accuracy", nameOr(st), "E0225");
   sceneBudgets(out, owner);
-  steadyStateRules(out, st, stage, target, owner);
+  steadyStateRules(out, st, stage, owner);
   // A loaded mesh whose outputs all read its static transmission error or its stiffness runs no
   // dynamics.
   const bool staticOnly =

@@ -183,10 +183,12 @@ Eigen::MatrixXd jacobianOf(const Basis& B, size_t n, double period, const Sample
 }
 
 // Hill's method: the eigenvalues of the linearised operator J(t) - d/dt in the truncated basis
-// come in families lambda + i k w; the n nearest the real axis are the Floquet exponents.
-void hill(const Eigen::MatrixXd& Jac, size_t n, BalanceOrbit& o) {
+// come in families lambda + i k w; the n nearest the real axis are the Floquet exponents. Their
+// sum must be the mean trace of J over the period (Liouville); where the truncation blurs the
+// families so that it is not, false (the caller integrates the variational equations instead).
+bool hill(const Eigen::MatrixXd& Jac, size_t n, double meanTrace, BalanceOrbit& o) {
   Eigen::EigenSolver<Eigen::MatrixXd> es(-Jac, false);
-  if (es.info() != Eigen::Success) return;
+  if (es.info() != Eigen::Success) return false;
   std::vector<std::complex<double>> ev(es.eigenvalues().data(), es.eigenvalues().data() + es.eigenvalues().size());
   std::stable_sort(ev.begin(), ev.end(), [](auto x, auto y) { return std::fabs(x.imag()) < std::fabs(y.imag()); });
   // One exponent per family: members of a family differ by a whole multiple of i w (a
@@ -197,16 +199,21 @@ void hill(const Eigen::MatrixXd& Jac, size_t n, BalanceOrbit& o) {
     if (picked.size() == n) break;
     bool same = std::any_of(picked.begin(), picked.end(), [&](std::complex<double> p) {
       double k = (l.imag() - p.imag()) / w;
-      return std::fabs(l.real() - p.real()) <= 1e-8 * (std::fabs(p.real()) + w) && std::fabs(k - std::round(k)) < 1e-6;
+      return std::fabs(l.real() - p.real()) <= 1e-6 * (std::fabs(p.real()) + w) && std::fabs(k - std::round(k)) < 1e-3;
     });
     if (!same) picked.push_back(l);
   }
+  double sum = 0;
+  for (auto l : picked)
+    sum += l.real();
+  if (picked.size() != n || !(std::fabs(sum - meanTrace) <= 1e-6 * (std::fabs(meanTrace) + w))) return false;
   o.multipliers.clear();
   for (auto l : picked)
     o.multipliers.push_back(std::exp(l * o.period));
   std::stable_sort(o.multipliers.begin(), o.multipliers.end(),
                    [](auto a, auto b) { return std::abs(a) > std::abs(b); });
   o.stability = o.multipliers.empty() ? NAN : std::abs(o.multipliers.front());
+  return std::isfinite(o.stability);
 }
 
 // The series and its derivative at time t.
@@ -227,8 +234,7 @@ void synthesise(const BalanceOrbit& o, double t, double* y, double* dy) {
     }
 }
 
-// Largest |y' - f| between the samples over the largest |y'| of the same state, and the
-// tail of the series.
+// Largest |y' - f| between the samples over the largest |y'| of the same state.
 void check(const System& sys, const BalanceOptions& opt, BalanceOrbit& o) {
   const size_t n = sys.dim;
   long M = static_cast<long>(o.timePoints) * std::max(1, opt.checkRefine);
@@ -238,25 +244,19 @@ void check(const System& sys, const BalanceOptions& opt, BalanceOrbit& o) {
     synthesise(o, t, y.data(), dy.data());
     sys.rhs(t, y.data(), f.data());
     for (size_t a = 0; a < n; ++a) {
-      worst[a] = std::max(worst[a], std::fabs(dy[a] - f[a]));
-      top[a] = std::max(top[a], std::fabs(dy[a]));
+      double r = std::fabs(dy[a] - f[a]), d = std::fabs(dy[a]);
+      if (!(r <= worst[a])) worst[a] = r; // a NaN stays (std::max would drop it)
+      if (!(d <= top[a])) top[a] = d;
     }
   }
   o.stats.rhsEvaluations += M;
   std::vector<double> sc = scaleOf(sys);
   double w = 2.0 * M_PI / o.period;
   o.gapResidual = 0;
-  o.tail = 0;
   for (size_t a = 0; a < n; ++a) {
     double floor = 1e-12 * w * sc[a]; // a state that does not move
-    o.gapResidual = std::max(o.gapResidual, worst[a] / std::max(top[a], floor));
-    double peak = 0, last = 0;
-    for (int j = 1; j <= o.harmonics; ++j) {
-      double amp = std::hypot(o.coeffs(2 * j - 1, static_cast<long>(a)), o.coeffs(2 * j, static_cast<long>(a)));
-      peak = std::max(peak, amp);
-      if (j == o.harmonics) last = amp;
-    }
-    if (peak > 1e-12 * sc[a]) o.tail = std::max(o.tail, last / peak);
+    double g = worst[a] / std::max(top[a], floor);
+    if (!(g <= o.gapResidual)) o.gapResidual = g;
   }
 }
 
@@ -269,6 +269,39 @@ std::vector<double> BalanceOrbit::state(double t) const {
   state(t, y.data());
   return y;
 }
+
+namespace {
+
+// The orbit's Floquet multipliers: Hill's method in a small basis, else (or where Hill's
+// exponents do not add up) one period of the variational equations from the orbit's start.
+void stabilityOf(const System& sys, const BalanceOptions& opt, BalanceOrbit& o) {
+  const size_t n = sys.dim;
+  if ((2L * o.harmonics + 1) * static_cast<long>(n) <= opt.hillLimit) {
+    const Basis& B = basisFor(o.harmonics, o.timePoints);
+    Sampled s;
+    sample(sys, B, o, true, s);
+    o.stats.rhsEvaluations += o.timePoints;
+    o.stats.jacobianEvaluations += o.timePoints;
+    double trace = 0;
+    for (int k = 0; k < B.L; ++k)
+      for (size_t a = 0; a < n; ++a)
+        trace += s.J[static_cast<size_t>(k) * n * n + a * n + a];
+    if (hill(jacobianOf(B, n, o.period, s), n, trace / B.L, o)) {
+      o.stabilityMethod = "Hill's method";
+      return;
+    }
+  }
+  FlowResult f = flowWithMonodromy(sys, opt.floquet, 0.0, o.period, o.state(0), o.stats);
+  if (f.ok) {
+    o.stability = spectralRadius(f.phi, &o.multipliers);
+    o.stabilityMethod = "one period of the variational equations";
+  } else {
+    o.stability = NAN;
+    o.stabilityMethod = "not found: " + f.failure;
+  }
+}
+
+} // namespace
 
 BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const std::vector<double>& guess,
                              const Eigen::MatrixXd* start) {
@@ -304,7 +337,10 @@ BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const
     Eigen::MatrixXd R = residual(B, o, s);
     o.residual = 0;
     for (long a = 0; a < nn; ++a)
-      o.residual = std::max(o.residual, R.col(a).cwiseAbs().maxCoeff() / (w * sc[static_cast<size_t>(a)]));
+      if (!R.col(a).allFinite())
+        o.residual = NAN;
+      else
+        o.residual = std::max(o.residual, R.col(a).cwiseAbs().maxCoeff() / (w * sc[static_cast<size_t>(a)]));
     if (!std::isfinite(o.residual)) {
       o.failure = "the right-hand side is not finite on the series (a state outside the model's range)";
       break;
@@ -343,7 +379,8 @@ BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const
     for (long h = 0; h < K; ++h)
       for (long a = 0; a < nn; ++a)
         sn = std::max(sn, std::fabs(d(h * nn + a)) / sc[static_cast<size_t>(a)]);
-    double damp = sn > 10.0 ? 10.0 / sn : 1.0; // never more than ten state scales at once
+    // Never more than ten state scales at once, except a linear system's step, which is exact.
+    double damp = sn > 10.0 && !opt.linear ? 10.0 / sn : 1.0;
     for (long h = 0; h < K; ++h)
       for (long a = 0; a < nn; ++a)
         o.coeffs(h, a) += damp * d(h * nn + a);
@@ -368,44 +405,9 @@ BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const
           o.timePoints, o.gapResidual, N);
     }
   }
-  if (o.converged && opt.stability) {
-    if (K * nn <= opt.hillLimit) {
-      // Hill's: the Jacobian at the orbit itself, the last evaluation's (a linear system's does not move).
-      if (!opt.linear || Jac.size() == 0) Jac = jacobianOf(B, n, opt.period, s);
-      hill(Jac, n, o);
-      o.stabilityMethod = "Hill's method";
-    } else {
-      // A large basis: one period of the variational equations from the orbit's start costs
-      // less than the eigenvalues of the whole operator.
-      FlowResult f = flowWithMonodromy(sys, opt.floquet, 0.0, opt.period, o.state(0), o.stats);
-      if (f.ok) {
-        o.stability = spectralRadius(f.phi, &o.multipliers);
-        o.stabilityMethod = "one period of the variational equations";
-      }
-    }
-  }
+  if (o.converged && opt.stability) stabilityOf(sys, opt, o);
   o.stats.cpuSeconds = threadCpuSeconds() - cpu0;
   return o;
-}
-
-Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, const Eigen::MatrixXd& coeffs,
-                                Eigen::MatrixXd* jacobian, Stats& stats) {
-  BalanceOrbit o;
-  o.harmonics = static_cast<int>((coeffs.rows() - 1) / 2);
-  o.timePoints = timePointsFor(o.harmonics, opt.timePoints);
-  o.period = opt.period;
-  o.drift = opt.drift;
-  o.drift.resize(sys.dim, 0.0);
-  o.coeffs = coeffs;
-  const Basis& B = basisFor(o.harmonics, o.timePoints);
-  Sampled s;
-  sample(sys, B, o, jacobian != nullptr, s);
-  stats.rhsEvaluations += o.timePoints;
-  if (jacobian) {
-    stats.jacobianEvaluations += o.timePoints;
-    *jacobian = jacobianOf(B, sys.dim, opt.period, s);
-  }
-  return residual(B, o, s);
 }
 
 Eigen::MatrixXd seriesOfSamples(const std::vector<std::vector<double>>& samples, const std::vector<double>& drift,
@@ -462,15 +464,13 @@ BalanceOrbit harmonicBalanceTo(const System& sys, BalanceOptions opt, double tar
     last = o;
     opt.harmonics *= 2;
   }
-  if (o.converged && stability) { // the same orbit again, with its stability (a linear one in one step)
-    opt.stability = true;
-    kept = o.coeffs;
-    double truncation = o.truncation;
-    o = harmonicBalance(sys, opt, guess, &kept);
-    total += o.stats;
-    o.truncation = truncation;
-  }
   o.stats = total;
+  if (o.converged && stability) {
+    opt.stability = true;
+    double cpu = threadCpuSeconds();
+    stabilityOf(sys, opt, o);
+    o.stats.cpuSeconds += threadCpuSeconds() - cpu;
+  }
   return o;
 }
 

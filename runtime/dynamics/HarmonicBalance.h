@@ -67,12 +67,6 @@ struct BalanceOrbit {
 BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const std::vector<double>& guess,
                              const Eigen::MatrixXd* start = nullptr);
 
-// The balance equations at the given coefficients (K x n, K = 2N + 1), as a continuation
-// follows them: the residual R (K x n, a state's rate) and, when asked, dR/dc with the
-// unknowns ordered harmonic by harmonic (h n + a).
-Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, const Eigen::MatrixXd& coeffs,
-                                Eigen::MatrixXd* jacobian, Stats& stats);
-
 // The first N harmonics of an orbit given by M equally spaced states over its period
 // (t = k T / M, k = 0 .. M-1) with the drift taken out: a guess from a shooting orbit.
 Eigen::MatrixXd seriesOfSamples(const std::vector<std::vector<double>>& samples, const std::vector<double>& drift,

@@ -12,6 +12,7 @@
 #include "catalogue/StageKinds.h"
 #include "dynamics/Dispatch.h"
 #include "dynamics/Effects.h"
+#include "dynamics/HarmonicBalance.h"
 #include "dynamics/Lumped.h"
 #include "dynamics/Periodic.h"
 #include "dynamics/Scene.h"
@@ -581,6 +582,57 @@ private:
                               why);
   }
 
+  // The orbit by harmonic balance (dynamics/HarmonicBalance.h), the samples from its series;
+  // false, with a line saying why, where it is not found (shooting then takes over).
+  bool balance(const PeriodicOptions& opt, int q) {
+    const SceneOverrides& ov = in_.ov;
+    BalanceOptions bo;
+    bo.period = opt.period;
+    bo.drift = opt.drift;
+    bo.linear = opt.linear;
+    bo.floquet = acc;
+    const int N = ov.balanceHarmonics ? *ov.balanceHarmonics : scene.balanceHarmonics.value_or(0);
+    std::vector<double> guess = ov.guess && ov.guess->size() == dim ? *ov.guess : y;
+    BalanceOrbit o;
+    if (N > 0) {
+      bo.harmonics = N;
+      o = harmonicBalance(sys, bo, guess);
+    } else {
+      o = harmonicBalanceTo(sys, bo, acc.rtol, guess, 4, 2048);
+    }
+    run.stats += o.stats;
+    if (o.converged && !std::isfinite(o.stability)) {
+      o.converged = false;
+      o.failure = "its stability " + o.stabilityMethod;
+    }
+    if (!o.converged) {
+      prov.push_back(fmt::format("harmonic balance with {} harmonics did not find the orbit ({}): shooting instead",
+                                 o.harmonics, o.failure));
+      return false;
+    }
+    run.newtonIterations = o.iterations;
+    run.newtonResidual = o.gapResidual;
+    run.stability = o.stability;
+    run.balanceHarmonics = o.harmonics;
+    prov.push_back(fmt::format(
+        "periodic steady state: period {:.6g} ms ({} mesh period{}), harmonic balance with {} harmonics at {} "
+        "instants, {} Newton iteration{}, residual between the instants {:.2e} of the state's rate, largest "
+        "Floquet multiplier {:.6f} ({})",
+        opt.period * 1e3, q, q == 1 ? "" : "s", o.harmonics, o.timePoints, o.iterations, o.iterations == 1 ? "" : "s",
+        o.gapResidual, o.stability, o.stabilityMethod));
+    y = o.state(0);
+    run.orbit = y;
+    run.period = opt.period;
+    double cpu = threadCpuSeconds();
+    std::vector<double> ys(dim);
+    for (double ts : run.plan.samples) {
+      o.state(ts, ys.data());
+      sample(ts, ys.data());
+    }
+    run.stats.cpuSeconds += threadCpuSeconds() - cpu;
+    return true;
+  }
+
   // The periodic steady state (dynamics/Periodic.h). The excitation repeats after whole mean
   // mesh periods that also hold whole periods of every fluctuation.
   void steadyState() {
@@ -606,6 +658,7 @@ private:
     for (size_t i = 1; i < nq; ++i) opt.drift[i] = -rbs * (sunAdvance - carrierAdvance) / rbp;
     opt.linear = !hertz && !backlash && !varying;  // the phase (carrier angle) makes varying stiffness nonlinear
     const SceneOverrides& ov = in_.ov;
+    if (ov.harmonicBalance.value_or(scene.harmonicBalance) && balance(opt, q)) return;
     PeriodicOrbit orbit = periodicOrbit(sys, acc, opt, ov.guess && ov.guess->size() == dim ? *ov.guess : y);
     run.stats = orbit.stats;
     run.newtonIterations = orbit.iterations;

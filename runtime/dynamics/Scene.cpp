@@ -402,6 +402,10 @@ bool balanceOrbit(const MeshModel& model, const ScenePlan& scene, const SceneOve
     o = harmonicBalanceTo(model.system(), bo, acc.rtol, guess, 8, 1024);
   }
   r.stats += o.stats;
+  if (o.converged && !std::isfinite(o.stability)) {
+    o.converged = false;
+    o.failure = "its stability " + o.stabilityMethod;
+  }
   if (!o.converged) {
     r.model.push_back(fmt::format("harmonic balance with {} harmonics did not find the orbit ({}): shooting instead",
                                   o.harmonics, o.failure));
@@ -640,6 +644,8 @@ std::string runPlanetaryScene(const Model& m, const Evaluator& ev, const Assignm
     r.unstable = pr.failure.empty() && pr.stability >= 1.0;
     r.newtonIterations = pr.newtonIterations;
     r.newtonResidual = pr.newtonResidual;
+    r.balanceHarmonics = pr.balanceHarmonics;
+    if (pr.balanceHarmonics > 0) r.method = "harmonic_balance";
     r.period = pr.period;
     r.orbit = pr.orbit;
   } else {
@@ -944,6 +950,8 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
   // Harmonic balance: its truncation against twice the harmonics, the other parts at its own.
   const int N = r.balanceHarmonics;
   if (N > 0) tight.balanceHarmonics = 2 * N;
+  else
+    tight.harmonicBalance = false; // shooting found this orbit: its reference is shooting's too
   // A static scene integrates nothing: its estimate is its table's discretisation alone.
   const bool integrated = r.steady != SteadyMethod::Static;
   SceneResult ref;
@@ -959,8 +967,11 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
       if (std::isfinite(d[i])) perOutput[i] += d[i];
     return largest(d);
   };
-  if (integrated && N > 0)
+  if (integrated && N > 0 && ref.balanceHarmonics == 2 * N)
     r.errorParts.push_back({"harmonic truncation", part(ref), fmt::format("{} against {} harmonics", N, 2 * N)});
+  else if (integrated && N > 0)
+    r.errorParts.push_back({"harmonic truncation", part(ref),
+                            fmt::format("{} harmonics against shooting at rtol {:.0e}", N, tight.rtol.value())});
   else if (integrated)
     r.errorParts.push_back(
         {"integration", part(ref),

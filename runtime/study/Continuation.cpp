@@ -10,6 +10,7 @@
 #include "dynamics/MeshModel.h"
 #include "dynamics/Periodic.h"
 #include "dynamics/Scene.h"
+#include "model/Deadline.h"
 #include "model/Evaluator.h"
 #include "model/StageKind.h"
 #include "study/Sweep.h"
@@ -352,7 +353,8 @@ private:
         r.ok = smooth(r.point) || ds <= 4 * dsMin;
       } catch (const dyn::SceneFailure&) {
         // The scene's own Newton did not settle from this point (next to a turning point, where
-        // the orbit is ill-conditioned): a shorter step, or a gap past it.
+        // the orbit is ill-conditioned): a shorter step, or a gap past it. Not past the time limit.
+        if (Deadline::expired()) throw;
         r.ok = false;
       }
     }
@@ -435,7 +437,7 @@ private:
       reached = std::max(reached, z(n));
       keep(std::move(r.point));
       ++points;
-      if (r.iterations <= 2) ds = std::min(stepCap(), 1.5 * ds);
+      ds = std::min(stepCap(), r.iterations <= 2 ? 1.5 * ds : ds);
     }
   }
 };

@@ -21,11 +21,11 @@ struct Steady {
 };
 
 // The ways to the steady state a study draws: shooting, harmonic balance beside it where a
-// single mesh has a periodic steady state, and settling (or the run from rest).
+// stage's scene has a periodic steady state, and settling (or the run from rest).
 std::vector<Steady> steadiesOf(const Model& m, const ScenePlan& scene, bool fromRest, long settle) {
   std::vector<Steady> steadies;
   if (!fromRest) steadies.push_back({"periodic", true});
-  if (!fromRest && scene.stage >= 0 && m.info(scene.stage).kind->scene == SceneModel::SingleMesh)
+  if (!fromRest && scene.stage >= 0 && m.info(scene.stage).kind->scene != SceneModel::None)
     steadies.push_back({"harmonic_balance", true, true});
   if (fromRest)
     steadies.push_back({"from rest", false});
@@ -135,7 +135,9 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
         tick(1);
         WorkPrecisionStudy::Run w;
         w.rtol = rtol;
-        if (run.failure.empty() && o < run.numbers.size() && std::isfinite(run.numbers[o].value)) {
+        // A balance that fell back to shooting is no point of its curve.
+        if (run.failure.empty() && o < run.numbers.size() && std::isfinite(run.numbers[o].value) &&
+            (!steady.balance || run.balanceHarmonics > 0)) {
           w.ok = true;
           w.error = std::fabs(run.numbers[o].value - refValue) / std::max(std::fabs(refValue), 1e-300);
           w.steps = run.stats.steps;

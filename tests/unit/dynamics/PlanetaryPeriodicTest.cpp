@@ -154,3 +154,18 @@ TEST(PlanetaryPeriodic, TransmissionErrorIsRecordedWhenListed) {
   PlanetaryRun none = runStage(kHertz, "record = 1 mesh_period;", true);
   EXPECT_TRUE(sig(none, cat::Signal::TransmissionError).empty());
 }
+
+TEST(PlanetaryPeriodic, HarmonicBalanceFindsTheShootingOrbit) {
+  // The same Hertz-contact stage (nonlinear: contact law and carrier phase) by harmonic balance,
+  // its harmonics doubled until the orbit moves less than rtol, against shooting.
+  PlanetaryRun shooting = runStage(kHertz, "record = 1 mesh_period;", true, 1e-10);
+  PlanetaryRun balance = runStage(kHertz, "steady_state = harmonic_balance; record = 1 mesh_period;", true, 1e-8);
+  ASSERT_TRUE(shooting.failure.empty()) << shooting.failure;
+  ASSERT_TRUE(balance.failure.empty()) << balance.failure;
+  ASSERT_GT(balance.balanceHarmonics, 0) << (balance.provenance.empty() ? "" : balance.provenance.back());
+  ASSERT_EQ(balance.t.size(), shooting.t.size());
+  Figures fb = figures(balance), fs = figures(shooting);
+  EXPECT_LT(rel(fb.rmsForce, fs.rmsForce), 1e-6);
+  EXPECT_LT(rel(fb.meanForce, fs.meanForce), 1e-6);
+  EXPECT_NEAR(balance.stability, shooting.stability, 1e-4);
+}
