@@ -72,6 +72,14 @@ double rmsAcceleration(const MeshScene& ms, cat::Method method, double rtol, Sta
   return std::sqrt(sum / static_cast<double>(n));
 }
 
+// The state a time t on from y0 (t >= 0).
+std::vector<double> flowTo(const System& sys, const Accuracy& acc, std::vector<double> y, double t) {
+  Integrator integ(sys, acc);
+  double t0 = 0;
+  if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
+  return y;
+}
+
 // Harmonic balance against shooting on the scene's orbit (the `balance` mode).
 int balance(const Fixture& f) {
   SceneOverrides po;
@@ -115,13 +123,7 @@ int balance(const Fixture& f) {
     }
     return std::sqrt(sum / static_cast<double>(pm.plan.samples.size()));
   };
-  double refRms = rmsOf([&](double t) {
-    Integrator integ(sys, tight);
-    std::vector<double> y = ref.y0;
-    double t0 = 0;
-    if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
-    return y;
-  });
+  double refRms = rmsOf([&](double t) { return flowTo(sys, tight, ref.y0, t); });
   auto median = [](const std::function<void()>& job) {
     std::vector<double> cpu;
     for (int rep = 0; rep < 7; ++rep) {
@@ -152,13 +154,7 @@ int balance(const Fixture& f) {
     Accuracy acc = pm.accuracy;
     acc.rtol = rtol;
     PeriodicOrbit o = periodicOrbit(sys, acc, opt, model.initialState());
-    double err = errorOf([&](double t) {
-      Integrator integ(sys, tight);
-      std::vector<double> y = o.y0;
-      double t0 = 0;
-      if (t > 0) integ.advance(t0, y, t, {}, [](double, const double*) {});
-      return y;
-    });
+    double err = errorOf([&](double t) { return flowTo(sys, tight, o.y0, t); });
     double cpu = median([&] { periodicOrbit(sys, acc, opt, model.initialState()); });
     double rmsErr = std::fabs(rmsOf([&](double t) {
                                 Integrator integ(sys, acc);

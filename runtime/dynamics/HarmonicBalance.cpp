@@ -49,14 +49,6 @@ const Basis& basisFor(int N, int L) {
   return *kept.back();
 }
 
-std::vector<double> scaleOf(const System& sys) {
-  std::vector<double> s = sys.scale;
-  s.resize(sys.dim, 1.0);
-  for (double& x : s)
-    if (!(x > 0)) x = 1.0;
-  return s;
-}
-
 int timePointsFor(int N, int given) {
   if (given >= 2 * N + 1) return given;
   int L = 4;
@@ -250,7 +242,7 @@ void check(const System& sys, const BalanceOptions& opt, BalanceOrbit& o) {
     }
   }
   o.stats.rhsEvaluations += M;
-  std::vector<double> sc = scaleOf(sys);
+  std::vector<double> sc = stateScale(sys);
   double w = 2.0 * M_PI / o.period;
   o.gapResidual = 0;
   for (size_t a = 0; a < n; ++a) {
@@ -324,7 +316,7 @@ BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const
       o.coeffs(0, static_cast<long>(a)) = guess[a];
   }
   const Basis& B = basisFor(N, o.timePoints);
-  std::vector<double> sc = scaleOf(sys);
+  std::vector<double> sc = stateScale(sys);
   const double w = 2.0 * M_PI / opt.period;
   Sampled s;
   Eigen::MatrixXd Jac;
@@ -440,7 +432,7 @@ BalanceOrbit harmonicBalanceTo(const System& sys, BalanceOptions opt, double tar
   BalanceOrbit o, last;
   const Eigen::MatrixXd* previous = start;
   Eigen::MatrixXd kept;
-  std::vector<double> sc = scaleOf(sys);
+  std::vector<double> sc = stateScale(sys);
   for (;;) {
     o = harmonicBalance(sys, opt, guess, previous);
     total += o.stats;

@@ -9,14 +9,6 @@ namespace gbx::rt::dyn {
 
 namespace {
 
-std::vector<double> stateScale(const System& sys) {
-  std::vector<double> s = sys.scale;
-  s.resize(sys.dim, 1.0);
-  for (double& x : s)
-    if (!(x > 0)) x = 1.0;
-  return s;
-}
-
 // The system with its variational equations: [y, Phi] with Phi' = J(t, y) Phi, Phi(0) = I.
 // Events and tolerances act on y; Phi_ij is scaled by scale_i / scale_j.
 System variational(const System& sys) {
@@ -205,6 +197,14 @@ PeriodicOrbit newton(const System& sys, const Accuracy& acc, const PeriodicOptio
 }
 
 } // namespace
+
+std::vector<double> stateScale(const System& sys) {
+  std::vector<double> s = sys.scale;
+  s.resize(sys.dim, 1.0);
+  for (double& x : s)
+    if (!(x > 0)) x = 1.0;
+  return s;
+}
 
 PeriodicOrbit periodicOrbit(const System& sys, const Accuracy& acc, const PeriodicOptions& opt, std::vector<double> guess) {
   // Newton from the guess; when it fails (a guess outside the orbit's basin: contact lost

@@ -54,6 +54,9 @@ FlowResult flowWithMonodromy(const System& sys, const Accuracy& acc, double t0, 
 // Largest modulus of the eigenvalues of M, and the eigenvalues.
 double spectralRadius(const Eigen::MatrixXd& M, std::vector<std::complex<double>>* eigenvalues = nullptr);
 
+// The system's state scale, one per state (1 where it gives none).
+std::vector<double> stateScale(const System& sys);
+
 // Scaled max norm: max |v_i| / scale_i.
 double scaledNorm(const std::vector<double>& v, const std::vector<double>& scale);
 

@@ -100,24 +100,7 @@ TEST(HarmonicBalance, LinearMarineSceneAgreesWithShooting) {
 }
 
 TEST(HarmonicBalance, HillStabilityAgreesWithFloquetAcrossAMathieuTongue) {
-  const char* text = R"(import materials;
-gearbox SpurTongue {
-  stage s1: spur {
-    pinion.z = 25;  wheel.z = 50;
-    normal_module = 3 mm; pressure_angle = 20 deg;
-    face_width = 30 mm; material = steel_42CrMo4;
-  }
-  operating { input_speed = 27693 rpm; input_torque = 200 N*m; }
-  scene mesh on s1 {
-    effects { varying_stiffness { harmonics = 10; } damping { ratio = 0.02; } }
-    steady_state = periodic;
-    record = 1 mesh_period; samples = 160;
-    accuracy { method = rk8pd; rtol = 1e-11; }
-    output rms(acceleration), stability;
-  }
-  study tongue { sweep input_speed in 20000..36000 rpm step 1000 rpm; output mesh.stability; }
-}
-)";
+  std::string text = test::spurTongueSpec("1e-11", "rms(acceleration), stability");
   auto f = compile("tongue.gbx", text, "SpurTongue");
   const auto& scene = f.scene("mesh");
   const auto& sweep = f.study("tongue");

@@ -84,26 +84,8 @@ TEST(SteadyState, LinearMarinePeriodicEqualsALongTransient) {
 }
 
 TEST(SteadyState, MathieuTongueOfASpurMesh) {
-  // A spur mesh (eps_alpha 1.68: the stiffness swings by about a third) with 2 % damping,
-  // its mesh frequency twice its natural frequency: the principal parametric resonance.
-  const char* text = R"(import materials;
-gearbox SpurTongue {
-  stage s1: spur {
-    pinion.z = 25;  wheel.z = 50;
-    normal_module = 3 mm; pressure_angle = 20 deg;
-    face_width = 30 mm; material = steel_42CrMo4;
-  }
-  operating { input_speed = 27693 rpm; input_torque = 200 N*m; }
-  scene mesh on s1 {
-    effects { varying_stiffness { harmonics = 10; } damping { ratio = 0.02; } }
-    steady_state = periodic;
-    record = 1 mesh_period; samples = 160;
-    accuracy { method = rk8pd; rtol = 1e-9; }
-    output rms(acceleration), dynamic_factor, stability;
-  }
-  study tongue { sweep input_speed in 20000..36000 rpm step 1000 rpm; output mesh.stability; }
-}
-)";
+  // The principal parametric resonance of a spur mesh (SceneFixture.h).
+  std::string text = test::spurTongueSpec("1e-9", "rms(acceleration), dynamic_factor, stability");
   auto f = compile("tongue.gbx", text, "SpurTongue");
   const auto& scene = f.scene("mesh");
   const auto& sweep = f.study("tongue");
