@@ -72,7 +72,7 @@ const std::vector<AttrSpec>& sceneSettings() {
                "`harmonic_balance` as a Fourier series (Hill's multipliers)"),
         budgeted(
             count("harmonics",
-                  "harmonic balance: the orbit's harmonics (default: doubled from 8 until the orbit moves less than "
+                  "harmonic balance: the orbit's harmonics (default: doubled from 2 until the orbit moves less than "
                   "rtol of its scale)"),
             budget::kBalanceHarmonics),
     };

@@ -598,7 +598,7 @@ private:
       bo.harmonics = N;
       o = harmonicBalance(sys, bo, guess);
     } else {
-      o = harmonicBalanceTo(sys, bo, acc.rtol, guess, 4, 2048);
+      o = harmonicBalanceTo(sys, bo, acc.rtol, guess, 2, 2048);
     }
     run.stats += o.stats;
     if (o.converged && !std::isfinite(o.stability)) {

@@ -383,7 +383,7 @@ SceneResult wholeGearboxModes(const Model& m, const Assignment& a, SceneResult r
 void describeOrbit(SceneResult& r, double Tz);
 
 // The orbit by harmonic balance (`steady_state = harmonic_balance`): with the scene's
-// harmonics, or doubled from 8 until the orbit moves less than rtol of its scale. False, with
+// harmonics, or doubled from 2 until the orbit moves less than rtol of its scale. False, with
 // a model line saying why, where it is not found (shooting then takes over).
 bool balanceOrbit(const MeshModel& model, const ScenePlan& scene, const SceneOverrides& ov, const Accuracy& acc,
                   double T, double Tz, SceneResult& r, std::vector<double>& y, std::optional<BalanceOrbit>& out) {
@@ -399,7 +399,7 @@ bool balanceOrbit(const MeshModel& model, const ScenePlan& scene, const SceneOve
     bo.harmonics = N;
     o = harmonicBalance(model.system(), bo, guess);
   } else {
-    o = harmonicBalanceTo(model.system(), bo, acc.rtol, guess, 8, 1024);
+    o = harmonicBalanceTo(model.system(), bo, acc.rtol, guess, 2, 1024);
   }
   r.stats += o.stats;
   if (o.converged && !std::isfinite(o.stability)) {
@@ -428,7 +428,7 @@ bool balanceOrbit(const MeshModel& model, const ScenePlan& scene, const SceneOve
   r.orbitMethod = fmt::format("harmonic balance with {} harmonics at {} instants", o.harmonics, o.timePoints);
   r.method = "harmonic_balance";
   r.stepRule = fmt::format("{} harmonics at {} instants{}", o.harmonics, o.timePoints,
-                           N > 0 ? "" : " (doubled from 8 until the orbit moves less than rtol of its scale)");
+                           N > 0 ? "" : " (doubled from 2 until the orbit moves less than rtol of its scale)");
   r.model.push_back(fmt::format(
       "periodic steady state: period {:.6g} ms ({} mesh period{}), {}, {} Newton iteration{}, residual "
       "between the instants {:.2e} of the state's rate{}, largest Floquet multiplier {:.6f} ({})",
