@@ -460,8 +460,9 @@ BalanceOrbit harmonicBalanceTo(const System& sys, BalanceOptions opt, double tar
   if (o.converged && stability) {
     opt.stability = true;
     double cpu = threadCpuSeconds();
+    Stats before = o.stats;
     stabilityOf(sys, opt, o);
-    o.stats.cpuSeconds += threadCpuSeconds() - cpu;
+    o.stats.cpuSeconds = before.cpuSeconds + (threadCpuSeconds() - cpu); // the flow's own CPU is inside this
   }
   return o;
 }
