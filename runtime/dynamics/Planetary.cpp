@@ -12,10 +12,10 @@
 #include "catalogue/StageKinds.h"
 #include "dynamics/Dispatch.h"
 #include "dynamics/Effects.h"
-#include "dynamics/HarmonicBalance.h"
 #include "dynamics/Lumped.h"
 #include "dynamics/Periodic.h"
 #include "dynamics/Scene.h"
+#include "dynamics/SceneBalance.h"
 #include "dynamics/Stiffness.h"
 
 namespace gbx::rt::dyn {
@@ -585,41 +585,21 @@ private:
   // The orbit by harmonic balance (dynamics/HarmonicBalance.h), the samples from its series;
   // false, with a line saying why, where it is not found (shooting then takes over).
   bool balance(const PeriodicOptions& opt, int q) {
-    const SceneOverrides& ov = in_.ov;
     BalanceOptions bo;
     bo.period = opt.period;
     bo.drift = opt.drift;
     bo.linear = opt.linear;
     bo.floquet = acc;
-    const int N = ov.balanceHarmonics ? *ov.balanceHarmonics : scene.balanceHarmonics.value_or(0);
-    std::vector<double> guess = ov.guess && ov.guess->size() == dim ? *ov.guess : y;
-    BalanceOrbit o;
-    if (N > 0) {
-      bo.harmonics = N;
-      o = harmonicBalance(sys, bo, guess);
-    } else {
-      o = harmonicBalanceTo(sys, bo, acc.rtol, guess, 2, 2048);
-    }
-    run.stats += o.stats;
-    if (o.converged && !std::isfinite(o.stability)) {
-      o.converged = false;
-      o.failure = "its stability " + o.stabilityMethod;
-    }
-    if (!o.converged) {
-      prov.push_back(fmt::format("harmonic balance with {} harmonics did not find the orbit ({}): shooting instead",
-                                 o.harmonics, o.failure));
-      return false;
-    }
+    SceneBalance b = sceneBalance(sys, bo, scene, in_.ov, acc.rtol, y, 2048, q);
+    run.stats += b.stats;
+    prov.push_back(b.line);
+    if (!b.warning.empty()) run.warnings.push_back(b.warning);
+    if (!b.orbit) return false;
+    const BalanceOrbit& o = *b.orbit;
     run.newtonIterations = o.iterations;
     run.newtonResidual = o.gapResidual;
     run.stability = o.stability;
     run.balanceHarmonics = o.harmonics;
-    prov.push_back(fmt::format(
-        "periodic steady state: period {:.6g} ms ({} mesh period{}), harmonic balance with {} harmonics at {} "
-        "instants, {} Newton iteration{}, residual between the instants {:.2e} of the state's rate, largest "
-        "Floquet multiplier {:.6f} ({})",
-        opt.period * 1e3, q, q == 1 ? "" : "s", o.harmonics, o.timePoints, o.iterations, o.iterations == 1 ? "" : "s",
-        o.gapResidual, o.stability, o.stabilityMethod));
     y = o.state(0);
     run.orbit = y;
     run.period = opt.period;

@@ -31,6 +31,7 @@ struct PlanetaryRun {
   std::string stepRule;                             // the maximum step and its rule
   double period = 0;                                // of the excitation, s
   int harmonics = 0;                                // of the stiffness series, 0 without varying_stiffness
+  std::vector<std::string> warnings;                // results to read with care (a balance short of its target)
   int balanceHarmonics = 0;                         // the orbit's harmonics when harmonic balance found it
 };
 
