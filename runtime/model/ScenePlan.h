@@ -68,6 +68,18 @@ struct ListedEffect {
   void set(Q key, double si, units::Dim dim);
 };
 
+// The loaded mesh's settings (outside SceneEffects so that std::optional of it can be default
+// constructed while SceneEffects is still being defined: its member initialisers are not
+// parsed until then, and clang refuses the emplace()).
+struct LoadedMeshPlan {
+  int slices = 40, positions = 64;
+  std::optional<int> harmonics; // the tables' Fourier harmonics; default positions / 4
+  int tableHarmonics() const { return harmonics.value_or(positions / 4); }
+  bool corner = false;             // contact outside the path
+  std::optional<double> pitchSeed; // draw the teeth's pitch deviations with this seed
+  std::vector<double> pitch[2];    // the teeth's single pitch deviations as listed, SI
+};
+
 // The listed effects by kind, each with its parameters and their defaults (the catalogue's,
 // which sema writes in where the scene leaves one out). What the scene does not list is empty.
 struct SceneEffects {
@@ -92,14 +104,7 @@ struct SceneEffects {
   struct Fluctuation {
     double mean = 0, amplitude = 0, omega = 0;  // omega in rad/s
   };
-  struct Loaded {
-    int slices = 40, positions = 64;
-    std::optional<int> harmonics;  // the tables' Fourier harmonics; default positions / 4
-    int tableHarmonics() const { return harmonics.value_or(positions / 4); }
-    bool corner = false;             // contact outside the path
-    std::optional<double> pitchSeed; // draw the teeth's pitch deviations with this seed
-    std::vector<double> pitch[2];    // the teeth's single pitch deviations as listed, SI
-  };
+  using Loaded = LoadedMeshPlan;
   std::optional<Varying> varying;
   std::optional<Damping> damping;
   std::optional<TransmissionError> transmissionError;
