@@ -18,7 +18,8 @@ using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 struct Basis {
   int N = 0, L = 0;
   Eigen::MatrixXd phi, proj;
-  std::vector<double> cosTable, sinTable; // cos and sin of 2 pi i / L
+  Eigen::MatrixXd mid, midRate; // the series and its rate over w halfway between the instants (L x K)
+  Eigen::MatrixXd cosQ, sinQ;   // cos and sin of 2 pi q k / L, q = 0 .. 2N (rows), over L
 };
 
 const Basis& basisFor(int N, int L) {
@@ -38,10 +39,27 @@ const Basis& basisFor(int N, int L) {
       b->phi(k, 2 * j) = std::sin(th);
     }
   }
-  for (int i = 0; i < L; ++i) {
-    b->cosTable.push_back(std::cos(2.0 * M_PI * i / L));
-    b->sinTable.push_back(std::sin(2.0 * M_PI * i / L));
+  b->mid.resize(L, K);
+  b->midRate.resize(L, K);
+  for (int k = 0; k < L; ++k) {
+    b->mid(k, 0) = 1.0;
+    b->midRate(k, 0) = 0.0;
+    for (int j = 1; j <= N; ++j) {
+      double th = 2.0 * M_PI * static_cast<double>(j) * (k + 0.5) / static_cast<double>(L);
+      b->mid(k, 2 * j - 1) = std::cos(th);
+      b->mid(k, 2 * j) = std::sin(th);
+      b->midRate(k, 2 * j - 1) = -j * std::sin(th);
+      b->midRate(k, 2 * j) = j * std::cos(th);
+    }
   }
+  b->cosQ.resize(2 * N + 1, L);
+  b->sinQ.resize(2 * N + 1, L);
+  for (int q = 0; q <= 2 * N; ++q)
+    for (int k = 0; k < L; ++k) {
+      long idx = (static_cast<long>(q) * k) % L; // exact angles, whatever q k
+      b->cosQ(q, k) = std::cos(2.0 * M_PI * static_cast<double>(idx) / L) / L;
+      b->sinQ(q, k) = std::sin(2.0 * M_PI * static_cast<double>(idx) / L) / L;
+    }
   b->proj = b->phi.transpose() * (2.0 / L);
   b->proj.row(0) *= 0.5;
   if (kept.size() >= 8) kept.erase(kept.begin());
@@ -124,28 +142,25 @@ Eigen::MatrixXd jacobianOf(const Basis& B, size_t n, double period, const Sample
   const long K = 2 * B.N + 1, nn = static_cast<long>(n);
   const int L = B.L, Q = 2 * B.N;
   Eigen::MatrixXd Jac = Eigen::MatrixXd::Zero(K * nn, K * nn);
-  std::vector<double> C(static_cast<size_t>(Q) + 1), S(static_cast<size_t>(Q) + 1), w(static_cast<size_t>(L));
-  auto c = [&](long q) { return C[static_cast<size_t>(std::labs(q))]; };
-  auto sn = [&](long q) { return q >= 0 ? S[static_cast<size_t>(q)] : -S[static_cast<size_t>(-q)]; };
+  Eigen::VectorXd C(Q + 1), S(Q + 1), w(L);
+  auto c = [&](long q) { return C(std::labs(q)); };
+  auto sn = [&](long q) { return q >= 0 ? S(q) : -S(-q); };
   for (size_t a = 0; a < n; ++a)
     for (size_t b = 0; b < n; ++b) {
-      bool any = false;
+      bool any = false, constant = true;
       for (int k = 0; k < L; ++k) {
-        w[static_cast<size_t>(k)] = s.J[static_cast<size_t>(k) * n * n + a * n + b];
-        any = any || w[static_cast<size_t>(k)] != 0.0;
+        w(k) = s.J[static_cast<size_t>(k) * n * n + a * n + b];
+        any = any || w(k) != 0.0;
+        constant = constant && w(k) == w(0);
       }
       if (!any) continue; // no coupling from b to a (most of a mechanical system's pairs)
-      for (int q = 0; q <= Q; ++q) {
-        double cs = 0, ss = 0;
-        long idx = 0; // q k mod L: the table row of cos(2 pi q k / L)
-        for (int k = 0; k < L; ++k) {
-          cs += w[static_cast<size_t>(k)] * B.cosTable[static_cast<size_t>(idx)];
-          ss += w[static_cast<size_t>(k)] * B.sinTable[static_cast<size_t>(idx)];
-          idx += q;
-          if (idx >= L) idx %= L;
-        }
-        C[static_cast<size_t>(q)] = cs / L;
-        S[static_cast<size_t>(q)] = ss / L;
+      if (constant) {     // a kinematic or constant coefficient: its mean alone
+        C.setZero();
+        S.setZero();
+        C(0) = w(0);
+      } else {
+        C.noalias() = B.cosQ * w;
+        S.noalias() = B.sinQ * w;
       }
       auto at = [&](long h, long m) -> double& {
         return Jac(h * nn + static_cast<long>(a), m * nn + static_cast<long>(b));
@@ -172,6 +187,97 @@ Eigen::MatrixXd jacobianOf(const Basis& B, size_t n, double period, const Sample
       Jac(2 * j * nn + a, (2 * j - 1) * nn + a) -= j * omega;
     }
   return Jac;
+}
+
+// The kinematic equations y_a' = y_b (a displacement and its velocity): where every instant's
+// Jacobian row a is exactly the unit row of b, the Newton step's block of b follows from a's,
+// d_b = D d_a + R_a, so b's unknowns leave the linear system (a mechanical model's velocities:
+// half the unknowns, an eighth of the factorisation). Pairs (a, b); b never a kinematic row.
+std::vector<std::pair<long, long>> kinematicPairs(size_t n, int L, const Sampled& s) {
+  std::vector<long> target(n, -1);
+  for (size_t a = 0; a < n; ++a) {
+    long b = -1;
+    bool unit = true;
+    for (int k = 0; k < L && unit; ++k) {
+      const double* row = s.J.data() + (static_cast<size_t>(k) * n + a) * n;
+      for (size_t c = 0; c < n && unit; ++c) {
+        if (row[c] == 0.0) continue;
+        if (row[c] != 1.0 || c == a || (b >= 0 && b != static_cast<long>(c))) unit = false;
+        b = static_cast<long>(c);
+      }
+    }
+    if (unit && b >= 0) target[a] = b;
+  }
+  std::vector<std::pair<long, long>> pairs;
+  std::vector<bool> used(n, false);
+  for (size_t a = 0; a < n; ++a) {
+    long b = target[a];
+    if (b < 0 || target[static_cast<size_t>(b)] >= 0 || used[static_cast<size_t>(b)]) continue;
+    used[static_cast<size_t>(b)] = true;
+    pairs.emplace_back(static_cast<long>(a), b);
+  }
+  return pairs;
+}
+
+// Solves Jac d = rhs (unknowns h n + a) with the kinematic pairs' velocities eliminated;
+// false where the reduced system is singular.
+bool reducedSolve(const Eigen::MatrixXd& Jac, const Eigen::VectorXd& rhs,
+                  const std::vector<std::pair<long, long>>& pairs, long K, long nn, double omega, Eigen::VectorXd& d) {
+  // Rows: every equation but the kinematic ones (they give d_b); columns: every unknown but b's.
+  std::vector<bool> rowGone(static_cast<size_t>(nn), false), colGone(static_cast<size_t>(nn), false);
+  for (auto [a, b] : pairs) {
+    rowGone[static_cast<size_t>(a)] = true;
+    colGone[static_cast<size_t>(b)] = true;
+  }
+  std::vector<long> rows, keep; // full indices of the reduced equations and unknowns
+  for (long h = 0; h < K; ++h)
+    for (long a = 0; a < nn; ++a) {
+      if (!rowGone[static_cast<size_t>(a)]) rows.push_back(h * nn + a);
+      if (!colGone[static_cast<size_t>(a)]) keep.push_back(h * nn + a);
+    }
+  const long m = static_cast<long>(keep.size());
+  // Jac's row block a is D on a and -I on b, so d_b = D d_a - rhs_a:
+  // (D d_a)_{2j-1} = j w d_a,2j and (D d_a)_{2j} = -j w d_a,2j-1.
+  std::vector<long> colOf(static_cast<size_t>(K * nn), -1);
+  for (long c = 0; c < m; ++c)
+    colOf[static_cast<size_t>(keep[static_cast<size_t>(c)])] = c;
+  Eigen::MatrixXd Jr(m, m);
+  Eigen::VectorXd rr(m);
+  for (long c = 0; c < m; ++c)
+    for (long r = 0; r < m; ++r)
+      Jr(r, c) = Jac(rows[static_cast<size_t>(r)], keep[static_cast<size_t>(c)]);
+  for (long r = 0; r < m; ++r)
+    rr(r) = rhs(rows[static_cast<size_t>(r)]);
+  for (auto [a, b] : pairs) {
+    for (long h = 0; h < K; ++h) { // Jac_{r,b} d_b moved to the right
+      double ra = rhs(h * nn + a);
+      for (long r = 0; r < m; ++r)
+        rr(r) += Jac(rows[static_cast<size_t>(r)], h * nn + b) * ra;
+    }
+    for (long h = 1; h < K; ++h) { // d_a,2j enters d_b,2j-1 with j w; d_a,2j-1 enters d_b,2j with -j w
+      long j = (h + 1) / 2, col = colOf[static_cast<size_t>(h * nn + a)];
+      long src = h % 2 == 0 ? (h - 1) * nn + b : (h + 1) * nn + b;
+      double factor = h % 2 == 0 ? j * omega : -j * omega;
+      for (long r = 0; r < m; ++r)
+        Jr(r, col) += factor * Jac(rows[static_cast<size_t>(r)], src);
+    }
+  }
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu(Jr);
+  Eigen::VectorXd dr = lu.solve(rr);
+  if (!dr.allFinite() || (Jr * dr - rr).norm() > 1e-6 * rr.norm()) return false;
+  d.setZero(K * nn);
+  for (long r = 0; r < m; ++r)
+    d(keep[static_cast<size_t>(r)]) = dr(r);
+  for (auto [a, b] : pairs)
+    for (long h = 0; h < K; ++h) {
+      double Dd = 0;
+      if (h > 0) {
+        long j = (h + 1) / 2;
+        Dd = h % 2 == 1 ? j * omega * d((h + 1) * nn + a) : -j * omega * d((h - 1) * nn + a);
+      }
+      d(h * nn + b) = Dd - rhs(h * nn + a);
+    }
+  return true;
 }
 
 // Hill's method: the eigenvalues of the linearised operator J(t) - d/dt in the truncated basis
@@ -231,9 +337,25 @@ void check(const System& sys, const BalanceOptions& opt, BalanceOrbit& o) {
   const size_t n = sys.dim;
   long M = static_cast<long>(o.timePoints) * std::max(1, opt.checkRefine);
   std::vector<double> y(n), dy(n), f(n), worst(n, 0.0), top(n, 0.0);
+  // Halfway between the instants, the basis has the series and its rate as matrices.
+  RowMatrix Ym, dYm;
+  if (M == o.timePoints) {
+    const Basis& B = basisFor(o.harmonics, o.timePoints);
+    Ym.noalias() = B.mid * o.coeffs;
+    dYm.noalias() = B.midRate * o.coeffs;
+    dYm *= 2.0 * M_PI / o.period;
+  }
   for (long m = 0; m < M; ++m) {
     double t = o.period * (static_cast<double>(m) + 0.5) / static_cast<double>(M); // between the instants
-    synthesise(o, t, y.data(), dy.data());
+    if (M == o.timePoints) {
+      for (size_t a = 0; a < n; ++a) {
+        double d = a < o.drift.size() ? o.drift[a] : 0.0;
+        y[a] = Ym(m, static_cast<long>(a)) + d * t / o.period;
+        dy[a] = dYm(m, static_cast<long>(a)) + d / o.period;
+      }
+    } else {
+      synthesise(o, t, y.data(), dy.data());
+    }
     sys.rhs(t, y.data(), f.data());
     for (size_t a = 0; a < n; ++a) {
       double r = std::fabs(dy[a] - f[a]), d = std::fabs(dy[a]);
@@ -353,16 +475,19 @@ BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const
       break;
     }
     Jac = jacobianOf(B, n, opt.period, s);
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(Jac);
     Eigen::VectorXd rhs(K * nn);
     for (long h = 0; h < K; ++h)
       for (long a = 0; a < nn; ++a)
         rhs(h * nn + a) = -R(h, a);
-    Eigen::VectorXd d = lu.solve(rhs);
-    // A singular step (an iterate that leaves the teeth apart over the whole period, where
-    // the mean displacement does not enter): the least-squares step of least norm instead.
-    if (!d.allFinite() || (Jac * d - rhs).norm() > 1e-6 * rhs.norm())
-      d = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jac).solve(rhs);
+    Eigen::VectorXd d;
+    auto pairs = kinematicPairs(n, B.L, s);
+    if (pairs.empty() || !reducedSolve(Jac, rhs, pairs, K, nn, w, d)) {
+      d = Eigen::PartialPivLU<Eigen::MatrixXd>(Jac).solve(rhs);
+      // A singular step (an iterate that leaves the teeth apart over the whole period, where
+      // the mean displacement does not enter): the least-squares step of least norm instead.
+      if (!d.allFinite() || (Jac * d - rhs).norm() > 1e-6 * rhs.norm())
+        d = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jac).solve(rhs);
+    }
     if (!d.allFinite()) {
       o.failure = "the balance's Jacobian is singular (an orbit that is not isolated: a resonance without damping?)";
       break;
