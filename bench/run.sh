@@ -396,3 +396,4 @@ rm -f "$mitm" "$out" "$dyn" "$dyn.rhs" "$dyn.rating" "$dyn.steady" "$dyn.opt.set
 bench/sizing.sh >/dev/null
 bench/shaft.sh >/dev/null
 bench/python.sh >/dev/null
+bench/balance.sh >/dev/null

@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# Harmonic balance, shooting and settling on the marine scene (bench/dynamics_bench.cpp, modes
+# `balance` and `steady`): a work-precision table and plot (docs/img/balance_work_precision.svg)
+# beside the figures of independent programs for the same scene. Rewrites the "Dynamics:
+# harmonic balance, shooting and settling" section of docs/performance.md.
+#   bench/balance.sh            (builds first if needed)
+# The middle of three runs of each mode (this machine is shared: single figures move by a third).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+[[ -x build/bench/dynamics_bench ]] || ./scripts/setup.sh >/dev/null
+cmake --build build --target dynamics_bench >/dev/null
+d=build/bench/dynamics_bench
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+for run in 1 2 3; do
+  $d balance >"$out/balance.$run"
+  $d steady >"$out/steady.$run"
+done
+mkdir -p docs/img
+/usr/bin/python3 - "$out" <<'PY'
+import sys, statistics
+import matplotlib
+matplotlib.use("svg")
+import matplotlib.pyplot as plt
+
+out = sys.argv[1]
+def runs(kind):
+    rows = {}
+    for run in (1, 2, 3):
+        for line in open(f"{out}/{kind}.{run}"):
+            f = line.split()
+            rows.setdefault((f[0], f[1]), []).append(f[2:])
+    return rows
+
+def mid(values):
+    return statistics.median(float(v) for v in values)
+
+bal = runs("balance")
+hb, shoot = [], []
+for (way, setting), rs in bal.items():
+    state_err, rms_err = float(rs[0][0]), float(rs[0][3])
+    cpu = mid(r[1] for r in rs)
+    if way == "balance":
+        hill, floq = mid(r[2] for r in rs), mid(r[4] for r in rs)
+        hb.append((int(setting), state_err, rms_err, cpu, hill, floq))
+    else:
+        shoot.append((float(setting), state_err, rms_err, cpu))
+settle = []
+for (way, setting), rs in runs("steady").items():
+    if way == "settle":
+        settle.append((float(setting), float(rs[0][0]), mid(r[1] for r in rs), int(rs[0][2])))
+
+# The issue's figures for independent programs on the same scene, all at error <= 1e-8.
+others = [("harmonic balance, N = 10 (independent program)", 14e-6, "o"),
+          ("Floquet, fixed RKF78 steps (independent program)", 111e-6, "s"),
+          ("settling 200 periods, Boost.Odeint RKF78 (independent program)", 5.21e-3, "^")]
+converged = [h for h in hb if h[2] < 1e-2]
+plt.rcParams["svg.hashsalt"] = "gbxc"
+fig, ax = plt.subplots(figsize=(8, 4.8))
+ax.loglog([h[3] * 1e6 for h in converged], [h[2] for h in converged], "o-", label="gbxc harmonic balance, orbit (N = 6 … 24)")
+ax.loglog([h[5] * 1e6 for h in converged], [h[2] for h in converged], "o--", label="gbxc harmonic balance + one variational period")
+ax.loglog([s[3] * 1e6 for s in shoot], [s[2] for s in shoot], "s-", label="gbxc shooting, rk8pd + monodromy (rtol 1e-6 … 1e-12)")
+ax.loglog([s[2] * 1e6 for s in settle], [s[1] for s in settle], "^-", label="gbxc settling 200 periods, rk8pd")
+for name, cpu, marker in others:
+    ax.loglog([cpu * 1e6], [1e-8], marker, mfc="none", mew=1.5, ms=9, label=name + ", the issue's figure")
+ax.set_xlabel("CPU time (µs)")
+ax.set_ylabel("error of rms(acceleration), relative")
+ax.set_title("Marine scene, periodic steady state: error against cost")
+ax.grid(True, which="major", alpha=0.3)
+ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
+fig.savefig("docs/img/balance_work_precision.svg", metadata={"Date": None}, bbox_inches="tight")
+
+n10 = next(h for h in hb if h[0] == 10)
+sec = ["## Dynamics: harmonic balance, shooting and settling", "",
+       "`bench/balance.sh` (`dynamics_bench balance` and `steady`): the marine scene of the corpus (linear, 5",
+       "stiffness harmonics) solved for its periodic orbit by harmonic balance with N harmonics, by",
+       "shooting at rtol, and by settling 200 periods, all against shooting at rtol 1e-13. Two errors:",
+       "the state's (the largest difference over 64 points of the period, of the state scale) and",
+       "rms(acceleration)'s over the 160 recorded samples (relative). CPU: the orbit alone, median of",
+       "seven batches of twenty solves (settling: of five), then the middle of three runs of the",
+       "benchmark. Harmonic balance without its stability, with Hill's eigenvalues of the whole operator,",
+       "and with one period of the variational equations (what a scene does above 40 unknowns).", "",
+       "![work-precision: harmonic balance, shooting, settling](img/balance_work_precision.svg)", "",
+       "| method | setting | state error | rms(acceleration) error | CPU | with Hill's stability | with one variational period |",
+       "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+us = lambda s: f"{s * 1e6:.0f} µs" if s < 1e-3 else f"{s * 1e3:.2f} ms"
+for N, se, re_, cpu, hill, floq in sorted(hb):
+    if N >= 6:
+        sec.append(f"| harmonic balance | N = {N} | {se:.1e} | {re_:.1e} | {us(cpu)} | {us(hill)} | {us(floq)} |")
+for rtol, se, re_, cpu in sorted(shoot, reverse=True):
+    sec.append(f"| shooting (rk8pd, monodromy) | rtol {rtol:.0e} | {se:.1e} | {re_:.1e} | {us(cpu)} | (included) | (included) |")
+for rtol, re_, cpu, rhs in sorted(settle, reverse=True):
+    sec.append(f"| settling 200 periods (rk8pd) | rtol {rtol:.0e} | | {re_:.1e} | {us(cpu)} | | |")
+sec += ["", "The independent programs' figures for the same scene at error ≤ 1e-8 (from the issue that asked",
+        "for harmonic balance, measured on this machine): harmonic balance at N = 10, 14 µs; Floquet with",
+        "fixed RKF78 steps landing on the samples, 111 µs; settling 200 periods with Boost.Odeint RKF78,",
+        "5.21 ms.", "",
+        f"At N = 10 (rms(acceleration) error {n10[2]:.1e}, the state's {n10[1]:.1e}) gbxc's orbit takes",
+        f"{us(n10[3])}: {n10[3] / 14e-6:.2f} times the independent program's 14 µs (target: within 2 times).",
+        "Newton's system leaves out the velocities (each kinematic equation y_a' = y_b gives b's step from",
+        "a's), and the Jacobian's Fourier sums and the residual between the instants are products with",
+        "matrices the basis keeps. Hill's eigenvalues cost far more than the orbit, so a scene uses",
+        "them up to 40 unknowns and one period of the variational equations beyond.", ""]
+sys.path.insert(0, "bench")
+from section import write_section
+write_section(sec)
+print("\n".join(sec))
+PY
