@@ -30,36 +30,47 @@ const Basis& basisFor(int N, int L) {
   b->N = N;
   b->L = L;
   int K = 2 * N + 1;
-  b->phi.resize(L, K);
-  for (int k = 0; k < L; ++k) {
-    b->phi(k, 0) = 1.0;
-    for (int j = 1; j <= N; ++j) {
-      double th = 2.0 * M_PI * static_cast<double>(j) * static_cast<double>(k) / static_cast<double>(L);
-      b->phi(k, 2 * j - 1) = std::cos(th);
-      b->phi(k, 2 * j) = std::sin(th);
-    }
+  // Every angle is a multiple of pi / L: one table of 2L cosines and sines, indexed exactly.
+  std::vector<double> ct(2 * static_cast<size_t>(L)), st(2 * static_cast<size_t>(L));
+  for (size_t i = 0; i < ct.size(); ++i) {
+    ct[i] = std::cos(M_PI * static_cast<double>(i) / L);
+    st[i] = std::sin(M_PI * static_cast<double>(i) / L);
   }
+  // Column by column (Eigen's order), the table index stepping by the column's angle mod 2L.
+  const size_t wrap = 2 * static_cast<size_t>(L);
+  auto column = [&](Eigen::MatrixXd& m, long col, bool sine, size_t first, size_t step, double factor) {
+    size_t i = first % wrap;
+    for (long k = 0; k < m.rows(); ++k) {
+      m(k, col) = factor * (sine ? st[i] : ct[i]);
+      i += step;
+      if (i >= wrap) i -= wrap;
+    }
+  };
+  b->phi.resize(L, K);
   b->mid.resize(L, K);
   b->midRate.resize(L, K);
-  for (int k = 0; k < L; ++k) {
-    b->mid(k, 0) = 1.0;
-    b->midRate(k, 0) = 0.0;
-    for (int j = 1; j <= N; ++j) {
-      double th = 2.0 * M_PI * static_cast<double>(j) * (k + 0.5) / static_cast<double>(L);
-      b->mid(k, 2 * j - 1) = std::cos(th);
-      b->mid(k, 2 * j) = std::sin(th);
-      b->midRate(k, 2 * j - 1) = -j * std::sin(th);
-      b->midRate(k, 2 * j) = j * std::cos(th);
-    }
+  b->phi.col(0).setOnes();
+  b->mid.col(0).setOnes();
+  b->midRate.col(0).setZero();
+  for (long j = 1; j <= N; ++j) {
+    size_t step = static_cast<size_t>(2 * j) % wrap, half = static_cast<size_t>(j) % wrap; // at k: 2jk, j(2k + 1)
+    double dj = static_cast<double>(j);
+    column(b->phi, 2 * j - 1, false, 0, step, 1.0);
+    column(b->phi, 2 * j, true, 0, step, 1.0);
+    column(b->mid, 2 * j - 1, false, half, step, 1.0);
+    column(b->mid, 2 * j, true, half, step, 1.0);
+    column(b->midRate, 2 * j - 1, true, half, step, -dj);
+    column(b->midRate, 2 * j, false, half, step, dj);
   }
-  b->cosQ.resize(2 * N + 1, L);
-  b->sinQ.resize(2 * N + 1, L);
-  for (int q = 0; q <= 2 * N; ++q)
-    for (int k = 0; k < L; ++k) {
-      long idx = (static_cast<long>(q) * k) % L; // exact angles, whatever q k
-      b->cosQ(q, k) = std::cos(2.0 * M_PI * static_cast<double>(idx) / L) / L;
-      b->sinQ(q, k) = std::sin(2.0 * M_PI * static_cast<double>(idx) / L) / L;
-    }
+  // (2N + 1) x L: row q at instant k is the angle 2qk; built transposed, column by column.
+  Eigen::MatrixXd cq(L, K), sq(L, K);
+  for (long q = 0; q < K; ++q) {
+    size_t step = static_cast<size_t>(2 * q) % wrap;
+    column(cq, q, false, 0, step, 1.0 / L);
+    column(sq, q, true, 0, step, 1.0 / L);
+  }
+  b->cosQ = cq.transpose();
+  b->sinQ = sq.transpose();
   b->proj = b->phi.transpose() * (2.0 / L);
   b->proj.row(0) *= 0.5;
   if (kept.size() >= 8) kept.erase(kept.begin());
@@ -527,6 +538,41 @@ BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const
   return o;
 }
 
+Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, const Eigen::MatrixXd& coeffs,
+                                Eigen::MatrixXd* jacobian, Stats& stats) {
+  BalanceOrbit o;
+  o.harmonics = static_cast<int>((coeffs.rows() - 1) / 2);
+  o.timePoints = timePointsFor(o.harmonics, opt.timePoints);
+  o.period = opt.period;
+  o.drift = opt.drift;
+  o.drift.resize(sys.dim, 0.0);
+  o.coeffs = coeffs;
+  const Basis& B = basisFor(o.harmonics, o.timePoints);
+  Sampled s;
+  sample(sys, B, o, jacobian != nullptr, s);
+  stats.rhsEvaluations += o.timePoints;
+  if (jacobian) {
+    stats.jacobianEvaluations += o.timePoints;
+    *jacobian = jacobianOf(B, sys.dim, opt.period, s);
+  }
+  return residual(B, o, s);
+}
+
+std::vector<std::pair<long, long>> balanceKinematicPairs(const System& sys, const BalanceOptions& opt,
+                                                         const Eigen::MatrixXd& coeffs) {
+  BalanceOrbit o;
+  o.harmonics = static_cast<int>((coeffs.rows() - 1) / 2);
+  o.timePoints = timePointsFor(o.harmonics, opt.timePoints);
+  o.period = opt.period;
+  o.drift = opt.drift;
+  o.drift.resize(sys.dim, 0.0);
+  o.coeffs = coeffs;
+  const Basis& B = basisFor(o.harmonics, o.timePoints);
+  Sampled s;
+  sample(sys, B, o, true, s);
+  return kinematicPairs(sys.dim, B.L, s);
+}
+
 Eigen::MatrixXd seriesOfSamples(const std::vector<std::vector<double>>& samples, const std::vector<double>& drift,
                                 int N) {
   const size_t M = samples.size();
@@ -580,6 +626,13 @@ BalanceOrbit harmonicBalanceTo(const System& sys, BalanceOptions opt, double tar
     }
     last = o;
     opt.harmonics *= 2;
+  }
+  // The change measures the error of the orbit with half the harmonics: that one is within
+  // the target, with half the unknowns.
+  if (o.converged && o.truncation <= target && last.converged) {
+    double change = o.truncation;
+    o = std::move(last);
+    o.truncation = change;
   }
   o.stats = total;
   if (o.converged && stability) {

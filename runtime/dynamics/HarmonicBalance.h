@@ -10,6 +10,7 @@
 // linearised operator in the same basis, the n nearest the real axis.
 #include <complex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -48,7 +49,7 @@ struct BalanceOrbit {
   double residual = NAN;    // the Galerkin residual after the last step, over w times the state scale
   double gapResidual = NAN; // largest |y' - f(t, y)| between the samples, over the largest |y'| of that state
   double tail = NAN;        // the amplitude of harmonic N over the largest harmonic amplitude, worst state
-  double truncation = NAN;  // the largest scaled change from the orbit with half the harmonics (harmonicBalanceTo)
+  double truncation = NAN;  // the largest scaled change to the orbit with twice the harmonics (harmonicBalanceTo)
   std::vector<std::complex<double>> multipliers;
   double stability = NAN; // largest multiplier modulus (NaN: not computed)
   std::string stabilityMethod;
@@ -67,6 +68,18 @@ struct BalanceOrbit {
 BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const std::vector<double>& guess,
                              const Eigen::MatrixXd* start = nullptr);
 
+// The Galerkin residual D c - P f(c) (+ the drift's rate) of coefficients c (K x n, K = 2N + 1,
+// rows as BalanceOrbit::coeffs) on opt's period, drift and instants, K x n; with `jacobian`,
+// also dR/dc with unknowns and equations ordered h n + a. A continuation's equations.
+Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, const Eigen::MatrixXd& coeffs,
+                                Eigen::MatrixXd* jacobian, Stats& stats);
+
+// The kinematic equations y_a' = y_b of the system along the series c (the Jacobian's row a is
+// b's unit row at every instant), as pairs (a, b): a velocity b follows from its displacement
+// a's coefficients, so a solver may leave b's out.
+std::vector<std::pair<long, long>> balanceKinematicPairs(const System& sys, const BalanceOptions& opt,
+                                                         const Eigen::MatrixXd& coeffs);
+
 // The first N harmonics of an orbit given by M equally spaced states over its period
 // (t = k T / M, k = 0 .. M-1) with the drift taken out: a guess from a shooting orbit.
 Eigen::MatrixXd seriesOfSamples(const std::vector<std::vector<double>>& samples, const std::vector<double>& drift,
@@ -74,7 +87,9 @@ Eigen::MatrixXd seriesOfSamples(const std::vector<std::vector<double>>& samples,
 
 // Chooses N for a target: from `first` harmonics, doubling while the orbit moves by more than
 // `target` of the state scale from the one with half the harmonics (and the system stays
-// within `maxUnknowns`). The last orbit, its truncation the last change.
+// within `maxUnknowns`). Where the target is met, the orbit with half the harmonics of the
+// last doubling (the change measures its error), its truncation that change; otherwise the
+// last orbit, its truncation the last change.
 BalanceOrbit harmonicBalanceTo(const System& sys, BalanceOptions opt, double target, const std::vector<double>& guess,
                                int first = 8, long maxUnknowns = 4096, const Eigen::MatrixXd* start = nullptr);
 

@@ -12,13 +12,15 @@ SceneBalance sceneBalance(const System& sys, BalanceOptions options, const Scene
   // An override of 0: chosen for the target whatever the scene writes (a work-precision curve).
   const int N = ov.balanceHarmonics ? *ov.balanceHarmonics : scene.balanceHarmonics.value_or(0);
   const std::vector<double>& guess = ov.guess && ov.guess->size() == state.size() ? *ov.guess : state;
+  const Eigen::MatrixXd* start =
+      ov.balanceStart && ov.balanceStart->cols() == static_cast<long>(state.size()) ? ov.balanceStart : nullptr;
   BalanceOrbit o;
   b.chosen = N <= 0;
   if (N > 0) {
     options.harmonics = N;
-    o = harmonicBalance(sys, options, guess);
+    o = harmonicBalance(sys, options, guess, start);
   } else {
-    o = harmonicBalanceTo(sys, options, rtol, guess, 2, maxUnknowns);
+    o = harmonicBalanceTo(sys, options, rtol, guess, 2, maxUnknowns, start);
   }
   b.stats = o.stats;
   if (o.converged && !std::isfinite(o.stability)) {
@@ -41,8 +43,9 @@ SceneBalance sceneBalance(const System& sys, BalanceOptions options, const Scene
       "iteration{}, residual between the instants {:.2e} of the state's rate{}, largest Floquet multiplier {:.6f} ({})",
       options.period * 1e3, meshPeriods, meshPeriods == 1 ? "" : "s", o.harmonics, o.timePoints, o.iterations,
       o.iterations == 1 ? "" : "s", o.gapResidual,
-      std::isfinite(o.truncation) ? fmt::format(", {:.2e} of the state scale from half the harmonics", o.truncation)
-                                  : "",
+      !std::isfinite(o.truncation) ? ""
+      : o.truncation <= rtol       ? fmt::format(", {:.2e} of the state scale from twice the harmonics", o.truncation)
+                                   : fmt::format(", {:.2e} of the state scale from half the harmonics", o.truncation),
       o.stability, o.stabilityMethod);
   b.orbit = std::move(o);
   return b;

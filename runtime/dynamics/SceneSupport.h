@@ -8,6 +8,8 @@
 #include <array>
 #include <optional>
 
+#include <Eigen/Core>
+
 #include "dynamics/Drive.h"
 #include "model/ScenePlan.h"
 #include "model/Value.h"
@@ -40,6 +42,8 @@ struct SceneOverrides {
   // The periodic orbit's initial state from a neighbouring sweep point: Newton's first guess;
   // for a transient, the state it starts from.
   std::optional<std::vector<double>> guess;
+  // Harmonic balance's first guess: a neighbouring orbit's coefficients (a continuation's point).
+  const Eigen::MatrixXd* balanceStart = nullptr;
   // Settle exactly this many mesh periods instead (a work-precision study's settled curve).
   std::optional<long> settlePeriods;
   bool forcePeriodic = false;  // the periodic steady state whatever the scene says (a study's periodic curve)

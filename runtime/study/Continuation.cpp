@@ -13,6 +13,7 @@
 #include "model/Deadline.h"
 #include "model/Evaluator.h"
 #include "model/StageKind.h"
+#include "study/BranchEquations.h"
 #include "study/Sweep.h"
 
 namespace gbx::rt {
@@ -22,85 +23,23 @@ namespace {
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-// The shooting equations R(u, lambda) = S^-1 (phi_T(S u) - S u) of the scene's mesh model
-// at lambda, the swept quantity's position in [lo, hi]; S scales the state.
-class Shooting {
-public:
-  Shooting(const Model& m, const Assignment& a, const ir::Study& st, const ScenePlan& scene)
-      : m_(m), a_(a), st_(st), scene_(scene), lo_(st.lo->toDouble()), hi_(st.hi->toDouble()) {}
-
-  double x(double lambda) const { return lo_ + lambda * (hi_ - lo_); }
-
-  struct At {
-    std::unique_ptr<Evaluator> ev;
-    dyn::MeshScene ms;
-    std::unique_ptr<dyn::MeshModel> model;
-    double period = 0;
-  };
-  At build(double lambda) const {
-    At at;
-    at.ev = std::make_unique<Evaluator>(m_);
-    at.ev->setOverride(st_.swept, Value::number(x(lambda)));
-    dyn::SceneOverrides ov;
-    ov.evaluator = at.ev.get();
-    at.ms = dyn::meshScene(m_, a_, scene_, ov);
-    at.model = std::make_unique<dyn::MeshModel>(at.ms.params, at.ms.effects);
-    at.period = at.model->excitationPeriod();
-    if (at.period <= 0) throw dyn::SceneFailure{"the excitation is not periodic, so there is no periodic response to follow"};
-    return at;
-  }
-
-  std::vector<double> scale(const At& at) const {
-    std::vector<double> s = at.model->system().scale;
-    s.resize(at.model->system().dim, 1.0);
-    return s;
-  }
-
-  // R at (u, lambda); with A, also dR/du.
-  VectorXd residual(const VectorXd& u, double lambda, MatrixXd* A) {
-    At at = build(lambda);
-    std::vector<double> s = scale(at);
-    size_t n = s.size();
-    std::vector<double> y0(n);
-    for (size_t i = 0; i < n; ++i) y0[i] = s[i] * u(static_cast<long>(i));
-    VectorXd R(static_cast<long>(n));
-    if (A) {
-      dyn::FlowResult f = dyn::flowWithMonodromy(at.model->system(), at.ms.accuracy, 0.0, at.period, y0, stats);
-      if (!f.ok) throw dyn::SceneFailure{f.failure};
-      for (size_t i = 0; i < n; ++i) R(static_cast<long>(i)) = (f.y[i] - y0[i]) / s[i];
-      A->resize(static_cast<long>(n), static_cast<long>(n));
-      for (size_t i = 0; i < n; ++i)
-        for (size_t j = 0; j < n; ++j)
-          (*A)(static_cast<long>(i), static_cast<long>(j)) = f.phi(static_cast<long>(i), static_cast<long>(j)) * s[j] / s[i] - (i == j ? 1.0 : 0.0);
-      return R;
-    }
-    dyn::Integrator integ(at.model->system(), at.ms.accuracy);
-    double t = 0;
-    std::vector<double> y = y0;
-    bool ok = integ.advance(t, y, at.period, {}, [](double, const double*) {});
-    stats += integ.stats();
-    if (!ok) throw dyn::SceneFailure{integ.error()};
-    for (size_t i = 0; i < n; ++i) R(static_cast<long>(i)) = (y[i] - y0[i]) / s[i];
-    return R;
-  }
-
-  dyn::Stats stats;
-
-private:
-  const Model& m_;
-  const Assignment& a_;
-  const ir::Study& st_;
-  const ScenePlan& scene_;
-  double lo_, hi_;
-};
+// Solves the bordered system: full pivoting for a few unknowns (the shooting equations),
+// partial for the many of harmonic balance.
+VectorXd solveBordered(const MatrixXd& J, const VectorXd& rhs) {
+  if (J.rows() <= 16) return J.fullPivLu().solve(rhs);
+  return J.partialPivLu().solve(rhs);
+}
 
 // Pseudo-arclength continuation of one scene's periodic response over a sweep, step by step:
 // the first orbit by plain shooting, then predictor and corrector along the curve, with turning
 // points found where the Floquet multipliers say so and gaps where the branch cannot be followed.
 class Continuer {
 public:
-  Continuer(const Model& model, const Assignment& design, const ir::Study& study, const ScenePlan& sc, SweepStudy& result)
-      : m(model), a(design), st(study), scene(sc), out(result), sh(model, design, study, sc) {
+  Continuer(const Model& model, const Assignment& design, const ir::Study& study, const ScenePlan& sc,
+            SweepStudy& result)
+      : m(model), a(design), st(study), scene(sc), out(result),
+        eq(sc.harmonicBalance ? balanceEquations(model, design, study, sc)
+                              : shootingEquations(model, design, study, sc)) {
     double lo = st.lo->toDouble(), hi = st.hi->toDouble(), step = st.step->toDouble();
     dLambda = step / std::fabs(hi - lo);
     ds = dLambda;
@@ -117,11 +56,12 @@ public:
     if (points >= pointBudget())
       throw dyn::SceneFailure{
           fmt::format("the continuation stopped after {} points at {} = {:.6g} {}, before the end of the range", points,
-                      st.target, out.unit.shown(sh.x(z(n))), out.unit.name)};
-    out.notes.push_back(fmt::format("pseudo-arclength continuation of the shooting equations: {} points, {} turning point{}, {} gap{}, {} RHS "
-                                    "evaluations",
-                                    out.points.size(), out.folds.size(), out.folds.size() == 1 ? "" : "s", out.gaps.size(),
-                                    out.gaps.size() == 1 ? "" : "s", sh.stats.rhsEvaluations));
+                      st.target, out.unit.shown(eq->x(z(n))), out.unit.name)};
+    out.notes.push_back(
+        fmt::format("pseudo-arclength continuation of {}: {} points, {} turning point{}, {} gap{}, {} RHS "
+                    "evaluations",
+                    eq->name(), out.points.size(), out.folds.size(), out.folds.size() == 1 ? "" : "s", out.gaps.size(),
+                    out.gaps.size() == 1 ? "" : "s", eq->stats.rhsEvaluations));
     return true;
   }
 
@@ -139,14 +79,13 @@ private:
   const ir::Study& st;
   const ScenePlan& scene;
   SweepStudy& out;
-  Shooting sh;
+  std::unique_ptr<BranchEquations> eq;
   double dLambda = 0, ds = 0, dsMax = 0, dsMin = 0, edge = 0;
   long maxPoints = 0;
   // The scene's own tolerance sets the corrector's; lambda's difference step balances the
   // integration error against truncation.
-  double rtol = 1e-6, h = 0, tol = 0;
-  std::vector<double> s;  // the state's scales
-  long n = 0;
+  double h = 0, tol = 0;
+  long n = 0; // unknowns
   VectorXd z, t, start_, R;
   MatrixXd J;
   int branch = 1;
@@ -158,8 +97,8 @@ private:
   void jacobian(const VectorXd& zz, VectorXd& Rz, MatrixXd& Jz) {
     MatrixXd A;
     VectorXd u = zz.head(n);
-    Rz = sh.residual(u, zz(n), &A);
-    VectorXd Rl = (sh.residual(u, zz(n) + h, nullptr) - Rz) / h;
+    Rz = eq->residual(u, zz(n), &A);
+    VectorXd Rl = (eq->residual(u, zz(n) + h, nullptr) - Rz) / h;
     Jz.resize(n + 1, n + 1);
     Jz.topLeftCorner(n, n) = A;
     Jz.topRightCorner(n, 1) = Rl;
@@ -169,40 +108,21 @@ private:
     Jz.bottomRows(1) = old.transpose();
     VectorXd rhs = VectorXd::Zero(n + 1);
     rhs(n) = 1.0;
-    VectorXd tt = Jz.fullPivLu().solve(rhs);
+    VectorXd tt = solveBordered(Jz, rhs);
     return VectorXd(tt / tt.norm());
   }
-  // Real Floquet multipliers above 1: their count changes by one where the branch turns
-  // (a fold), and not where a step merely reverses by error.
-  int above(const MatrixXd& Jz) const {
-    MatrixXd M = Jz.topLeftCorner(n, n) + MatrixXd::Identity(n, n);
-    Eigen::EigenSolver<MatrixXd> es(M, false);
-    int c = 0;
-    for (long i = 0; i < es.eigenvalues().size(); ++i) {
-      auto mu = es.eigenvalues()(i);
-      if (std::fabs(mu.imag()) <= 1e-9 * std::max(1.0, std::abs(mu)) && mu.real() > 1.0) ++c;
-    }
-    return c;
-  }
+  int above(const MatrixXd& Jz) const { return eq->foldIndicator(Jz.topLeftCorner(n, n)); }
 
   // The first point: the periodic orbit at the sweep's start, by plain shooting.
   bool start() {
-    auto at0 = sh.build(0.0);
-    if (at0.model->linear()) return false;
-    rtol = at0.ms.accuracy.rtol;
-    dyn::PeriodicOptions po;
-    po.period = at0.period;
-    po.linear = at0.model->linear();
-    dyn::PeriodicOrbit o = dyn::periodicOrbit(at0.model->system(), at0.ms.accuracy, po, at0.model->initialState());
-    sh.stats += o.stats;
-    if (!o.converged) throw dyn::SceneFailure{"the periodic steady state at the sweep's start was not found: " + o.failure};
-    s = sh.scale(at0);
-    n = static_cast<long>(s.size());
+    std::optional<VectorXd> u = eq->first();
+    if (!u) return false;
+    n = u->size();
     z.resize(n + 1);
-    for (long i = 0; i < n; ++i) z(i) = o.y0[static_cast<size_t>(i)] / s[static_cast<size_t>(i)];
+    z.head(n) = *u;
     z(n) = 0.0;
-    h = std::max(1e-7, 30.0 * std::sqrt(rtol)) * dLambda;
-    tol = std::max(1e-9, 100.0 * rtol);
+    h = std::max(1e-7, 30.0 * std::sqrt(eq->rtol)) * dLambda;
+    tol = eq->tolerance();
     jacobian(z, R, J);
     start_ = VectorXd::Zero(n + 1);
     start_(n) = 1.0;
@@ -215,7 +135,7 @@ private:
 
   // The point at zz: the scene's outputs and stability there (not yet kept).
   SweepStudy::Point measure(const VectorXd& zz) {
-    double x = sh.x(zz(n));
+    double x = eq->x(zz(n));
     Evaluator ev(m);
     ev.setOverride(st.swept, Value::number(x));
     dyn::SceneOverrides ov;
@@ -223,12 +143,10 @@ private:
     ov.keepSeries = false;
     ov.estimateError = false;
     ov.keepUnstable = true;
-    std::vector<double> y(static_cast<size_t>(n));
-    for (long i = 0; i < n; ++i) y[static_cast<size_t>(i)] = s[static_cast<size_t>(i)] * zz(i);
-    ov.guess = y;
+    eq->seed(zz.head(n), zz(n), ov);
     dyn::SceneResult res = dyn::runScene(m, a, scene, ov);
     if (!res.failure.empty()) throw dyn::SceneFailure{res.failure};
-    sh.stats += res.stats;
+    eq->stats += res.stats;
     SweepStudy::Point p;
     p.x = x;
     if (out.points.empty()) resonanceMarks(out, st, x, res.meshFrequency, res.naturalFrequency);
@@ -283,21 +201,18 @@ private:
   bool gapFrom(const VectorXd& from, const std::string& why) {
     double resume = std::max(from(n), reached) + dLambda;
     if (resume >= 1.0 - 1e-12) resume = 1.0;
-    auto at = sh.build(resume);
-    dyn::PeriodicOptions po2;
-    po2.period = at.period;
-    std::vector<double> guess(static_cast<size_t>(n));
-    for (long i = 0; i < n; ++i) guess[static_cast<size_t>(i)] = s[static_cast<size_t>(i)] * from(i);
-    dyn::PeriodicOrbit o2 = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po2, guess);
-    sh.stats += o2.stats;
-    if (!o2.converged)
+    VectorXd fresh;
+    try {
+      fresh = eq->afresh(from.head(n), resume);
+    } catch (const dyn::SceneFailure& f) {
       throw dyn::SceneFailure{fmt::format("the periodic response at {} = {:.6g} {} was not found after a gap: {}",
-                                          st.target, out.unit.shown(sh.x(resume)), out.unit.name, o2.failure)};
-    out.gaps.emplace_back(sh.x(std::max(from(n), reached)), sh.x(resume));
-    out.notes.push_back(fmt::format("gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh",
-                                    st.target, out.unit.shown(sh.x(std::max(from(n), reached))), out.unit.shown(sh.x(resume)),
-                                    out.unit.name, why));
-    for (long i = 0; i < n; ++i) z(i) = o2.y0[static_cast<size_t>(i)] / s[static_cast<size_t>(i)];
+                                          st.target, out.unit.shown(eq->x(resume)), out.unit.name, f.what)};
+    }
+    out.gaps.emplace_back(eq->x(std::max(from(n), reached)), eq->x(resume));
+    out.notes.push_back(fmt::format(
+        "gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh", st.target,
+        out.unit.shown(eq->x(std::max(from(n), reached))), out.unit.shown(eq->x(resume)), out.unit.name, why));
+    z.head(n) = fresh;
     z(n) = resume;
     reached = resume;
     ++branch;
@@ -323,7 +238,7 @@ private:
       VectorXd rhs(n + 1);
       rhs.head(n) = -R;
       rhs(n) = -t.dot(zz - pred);
-      VectorXd d = J.fullPivLu().solve(rhs);
+      VectorXd d = solveBordered(J, rhs);
       zz += d;
       if (!std::isfinite(d.norm()) || zz(n) < -edge || zz(n) > 1.0 + stepCap() + edge) return false;
       if (d.lpNorm<Eigen::Infinity>() < tol) return true;
@@ -413,7 +328,7 @@ private:
         continue;
       }
       if (r.turned) {
-        out.folds.push_back(sh.x(foldBetween(r.zz)));
+        out.folds.push_back(eq->x(foldBetween(r.zz)));
         ++branch;
       }
       if (r.zz(n) < 0.0) {

@@ -1,7 +1,7 @@
 #pragma once
 // `continuation = arclength`: a scene's periodic response followed through its turning
 // points (the jump-up and jump-down speeds of a mesh with backlash), by pseudo-arclength
-// continuation of the shooting equations in (initial state, swept quantity). Every point of
+// continuation of the shooting or harmonic balance equations in (orbit, swept quantity). Every point of
 // every branch is reported in the order followed, with its stability.
 #include "ir/Ir.h"
 #include "model/Model.h"

@@ -19,12 +19,18 @@ using namespace gbx;
 
 namespace {
 
-std::string spec(const std::string& range) {
+std::string spec(const std::string& range, bool balance = false) {
   std::string t = readSpec("spur_resonance.gbx");
   const std::string from = "sweep input_speed in 9000..18000 rpm step 250 rpm;";
   size_t at = t.find(from);
   EXPECT_NE(at, std::string::npos);
   t.replace(at, from.size(), "sweep input_speed in " + range + " step 250 rpm;");
+  if (balance) {
+    const std::string periodic = "steady_state = periodic;";
+    at = t.find(periodic);
+    EXPECT_NE(at, std::string::npos);
+    t.replace(at, periodic.size(), "steady_state = harmonic_balance;");
+  }
   return t;
 }
 
@@ -35,9 +41,9 @@ struct Followed {
   rt::SweepStudy study;
 };
 
-Followed follow(const std::string& range) {
+Followed follow(const std::string& range, bool balance = false) {
   Followed f;
-  f.c = driver::compileText("spur_resonance.gbx", spec(range));
+  f.c = driver::compileText("spur_resonance.gbx", spec(range, balance));
   EXPECT_TRUE(f.c->ok()) << f.c->diags.renderText(f.c->sources);
   f.m = std::make_unique<rt::Model>(f.c->program, f.c->program.gearboxes.at(0));
   f.a = std::make_unique<rt::Assignment>(*f.m);
@@ -159,6 +165,36 @@ TEST(Continuation, StaysInItsRangeAndItsFoldsAreTheTimeRunsJumps) {
           << range << ": turning point at " << x * 30 / M_PI << " rpm without a change of stability";
     }
   }
+}
+
+// The same branch by harmonic balance: the continuation of its equations (N fixed at the
+// sweep's start) finds the turning points of the shooting equations' continuation to 0.1 %,
+// the middle branch between them unstable and the outer branches stable, in fewer evaluations
+// of the right-hand side.
+TEST(Continuation, HarmonicBalanceFollowsTheShootingBranch) {
+  Followed shot = follow("9000..18000 rpm"), hb = follow("9000..18000 rpm", true);
+  ASSERT_EQ(shot.study.folds.size(), 2u);
+  ASSERT_EQ(hb.study.folds.size(), 2u);
+  for (size_t i = 0; i < 2; ++i)
+    EXPECT_NEAR(hb.study.folds[i], shot.study.folds[i], 1e-3 * shot.study.folds[i]);
+  const double up = hb.study.folds[0], down = hb.study.folds[1];
+  ASSERT_GT(up, down);
+  int branch = 0; // 0 before the upper fold, 1 between, 2 after the lower
+  for (const auto& p : hb.study.points) {
+    if (branch == 0 && p.branch > 1) branch = 1;
+    if (branch == 1 && p.stability < 1 && p.x < down * 1.01) branch = 2;
+    bool nearFold = std::fabs(p.x - up) < 0.01 * up || std::fabs(p.x - down) < 0.01 * down;
+    if (nearFold) continue;
+    if (branch == 1)
+      EXPECT_GT(p.stability, 1) << p.x * 30 / M_PI << " rpm on the middle branch";
+    else
+      EXPECT_LT(p.stability, 1) << p.x * 30 / M_PI << " rpm on an outer branch";
+  }
+  EXPECT_EQ(branch, 2);
+  bool named = false;
+  for (const auto& n : hb.study.notes)
+    named = named || n.find("harmonic balance equations") != std::string::npos;
+  EXPECT_TRUE(named);
 }
 
 // A range that starts inside a hysteresis region: the branch turns back out of the range at

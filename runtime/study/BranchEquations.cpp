@@ -1,0 +1,307 @@
+#include "study/BranchEquations.h"
+
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+
+#include "dynamics/HarmonicBalance.h"
+#include "dynamics/Periodic.h"
+
+namespace gbx::rt {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+BranchEquations::BranchEquations(const Model& m, const Assignment& a, const ir::Study& st, const ScenePlan& scene)
+    : m_(m), a_(a), st_(st), scene_(scene), lo_(st.lo->toDouble()), hi_(st.hi->toDouble()) {}
+
+BranchEquations::At BranchEquations::build(double lambda) const {
+  At at;
+  at.ev = std::make_unique<Evaluator>(m_);
+  at.ev->setOverride(st_.swept, Value::number(x(lambda)));
+  dyn::SceneOverrides ov;
+  ov.evaluator = at.ev.get();
+  at.ms = dyn::meshScene(m_, a_, scene_, ov);
+  at.model = std::make_unique<dyn::MeshModel>(at.ms.params, at.ms.effects);
+  at.period = at.model->excitationPeriod();
+  if (at.period <= 0)
+    throw dyn::SceneFailure{"the excitation is not periodic, so there is no periodic response to follow"};
+  return at;
+}
+
+std::vector<double> BranchEquations::scale(const At& at) {
+  std::vector<double> s = at.model->system().scale;
+  s.resize(at.model->system().dim, 1.0);
+  return s;
+}
+
+namespace {
+
+// R(u, lambda) = S^-1 (phi_T(S u) - S u): the state's change over one period, S its scale.
+class Shooting final : public BranchEquations {
+public:
+  using BranchEquations::BranchEquations;
+
+  std::optional<VectorXd> first() override {
+    At at = build(0.0);
+    if (at.model->linear()) return std::nullopt;
+    rtol = at.ms.accuracy.rtol;
+    s_ = scale(at);
+    dyn::PeriodicOptions po;
+    po.period = at.period;
+    dyn::PeriodicOrbit o = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po, at.model->initialState());
+    stats += o.stats;
+    if (!o.converged)
+      throw dyn::SceneFailure{"the periodic steady state at the sweep's start was not found: " + o.failure};
+    return scaled(o.y0);
+  }
+
+  VectorXd residual(const VectorXd& u, double lambda, MatrixXd* A) override {
+    At at = build(lambda);
+    const long n = u.size();
+    std::vector<double> y0 = state(u);
+    VectorXd R(n);
+    if (A) {
+      dyn::FlowResult f = dyn::flowWithMonodromy(at.model->system(), at.ms.accuracy, 0.0, at.period, y0, stats);
+      if (!f.ok) throw dyn::SceneFailure{f.failure};
+      A->resize(n, n);
+      for (long i = 0; i < n; ++i) {
+        R(i) = (f.y[static_cast<size_t>(i)] - y0[static_cast<size_t>(i)]) / s_[static_cast<size_t>(i)];
+        for (long j = 0; j < n; ++j)
+          (*A)(i, j) = f.phi(i, j) * s_[static_cast<size_t>(j)] / s_[static_cast<size_t>(i)] - (i == j ? 1.0 : 0.0);
+      }
+      return R;
+    }
+    dyn::Integrator integ(at.model->system(), at.ms.accuracy);
+    double t = 0;
+    std::vector<double> y = y0;
+    bool ok = integ.advance(t, y, at.period, {}, [](double, const double*) {});
+    stats += integ.stats();
+    if (!ok) throw dyn::SceneFailure{integ.error()};
+    for (long i = 0; i < n; ++i)
+      R(i) = (y[static_cast<size_t>(i)] - y0[static_cast<size_t>(i)]) / s_[static_cast<size_t>(i)];
+    return R;
+  }
+
+  VectorXd afresh(const VectorXd& u, double lambda) override {
+    At at = build(lambda);
+    dyn::PeriodicOptions po;
+    po.period = at.period;
+    dyn::PeriodicOrbit o = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po, state(u));
+    stats += o.stats;
+    if (!o.converged) throw dyn::SceneFailure{o.failure};
+    return scaled(o.y0);
+  }
+
+  void seed(const VectorXd& u, double, dyn::SceneOverrides& ov) override { ov.guess = state(u); }
+
+  // Real multipliers above 1: their count changes by one where the branch turns, and not
+  // where a step merely reverses by error.
+  int foldIndicator(const MatrixXd& A) const override {
+    MatrixXd M = A + MatrixXd::Identity(A.rows(), A.cols());
+    Eigen::EigenSolver<MatrixXd> es(M, false);
+    int c = 0;
+    for (long i = 0; i < es.eigenvalues().size(); ++i) {
+      auto mu = es.eigenvalues()(i);
+      if (std::fabs(mu.imag()) <= 1e-9 * std::max(1.0, std::abs(mu)) && mu.real() > 1.0) ++c;
+    }
+    return c;
+  }
+
+  std::string name() const override { return "the shooting equations"; }
+
+private:
+  std::vector<double> s_; // the state's scales
+  std::vector<double> state(const VectorXd& u) const {
+    std::vector<double> y(static_cast<size_t>(u.size()));
+    for (size_t i = 0; i < y.size(); ++i)
+      y[i] = s_[i] * u(static_cast<long>(i));
+    return y;
+  }
+  VectorXd scaled(const std::vector<double>& y) const {
+    VectorXd u(static_cast<long>(y.size()));
+    for (size_t i = 0; i < y.size(); ++i)
+      u(static_cast<long>(i)) = y[i] / s_[i];
+    return u;
+  }
+};
+
+// The Galerkin residual of N harmonics. Every kinematic equation y_a' = y_b holds exactly when
+// b's coefficients are D a's (D the derivative in the basis), so the unknowns are the other
+// states' coefficients, u(h m + i) = c(h, kept_i) / s, and the equations those of the other
+// rows, R(h, row) / (w s): half the unknowns of a mechanical model. N is the scene's
+// `harmonics`, or chosen at the sweep's start for the corrector's tolerance (doubled from 8);
+// it stays fixed along the branch, and every point's scene run solves
+// with it (a point whose contact changes between the instants falls back to shooting there,
+// as any scene's harmonic balance does).
+class Balance final : public BranchEquations {
+public:
+  using BranchEquations::BranchEquations;
+
+  std::optional<VectorXd> first() override {
+    At at = build(0.0);
+    if (at.model->linear()) return std::nullopt;
+    rtol = at.ms.accuracy.rtol;
+    s_ = scale(at);
+    dyn::BalanceOrbit o = startOrbit(at);
+    if (!o.converged)
+      throw dyn::SceneFailure{"the periodic steady state at the sweep's start was not found by harmonic balance: " +
+                              o.failure};
+    N_ = o.harmonics;
+    pairs_ = dyn::balanceKinematicPairs(at.model->system(), options(at), o.coeffs);
+    const long n = static_cast<long>(s_.size());
+    std::vector<bool> rowGone(static_cast<size_t>(n), false), colGone(static_cast<size_t>(n), false);
+    for (auto [a, b] : pairs_) {
+      rowGone[static_cast<size_t>(a)] = true;
+      colGone[static_cast<size_t>(b)] = true;
+    }
+    for (long a = 0; a < n; ++a) {
+      if (!rowGone[static_cast<size_t>(a)]) rows_.push_back(a);
+      if (!colGone[static_cast<size_t>(a)]) kept_.push_back(a);
+    }
+    return scaled(o.coeffs);
+  }
+
+  VectorXd residual(const VectorXd& u, double lambda, MatrixXd* A) override {
+    At at = build(lambda);
+    const long n = static_cast<long>(s_.size()), K = 2L * N_ + 1, m = static_cast<long>(kept_.size());
+    const double w = 2.0 * M_PI / at.period;
+    MatrixXd J;
+    MatrixXd R = dyn::balanceResidual(at.model->system(), options(at), coeffs(u, at.period), A ? &J : nullptr, stats);
+    VectorXd r(K * m);
+    for (long h = 0; h < K; ++h)
+      for (long i = 0; i < m; ++i) {
+        long row = rows_[static_cast<size_t>(i)];
+        r(h * m + i) = R(h, row) / (w * s_[static_cast<size_t>(row)]);
+      }
+    if (!A) return r;
+    // dR/dc_a plus dR/dc_b D, b's coefficients being D a's.
+    A->resize(K * m, K * m);
+    for (long hc = 0; hc < K; ++hc)
+      for (long ic = 0; ic < m; ++ic) {
+        long a = kept_[static_cast<size_t>(ic)], col = hc * n + a;
+        long b = -1;
+        for (auto [pa, pb] : pairs_)
+          if (pa == a) b = pb;
+        long src = -1;
+        double factor = 0;
+        if (b >= 0 && hc > 0) { // c_b,2j-1 = j w c_a,2j; c_b,2j = -j w c_a,2j-1
+          long j = (hc + 1) / 2;
+          src = hc % 2 == 0 ? (hc - 1) * n + b : (hc + 1) * n + b;
+          factor = hc % 2 == 0 ? j * w : -j * w;
+        }
+        for (long hr = 0; hr < K; ++hr)
+          for (long ir = 0; ir < m; ++ir) {
+            long row = rows_[static_cast<size_t>(ir)], full = hr * n + row;
+            double v = J(full, col) + (src >= 0 ? factor * J(full, src) : 0.0);
+            (*A)(hr * m + ir, hc * m + ic) = v * s_[static_cast<size_t>(a)] / (w * s_[static_cast<size_t>(row)]);
+          }
+      }
+    return r;
+  }
+
+  VectorXd afresh(const VectorXd& u, double lambda) override {
+    At at = build(lambda);
+    dyn::BalanceOptions bo = options(at);
+    bo.stability = false;
+    Eigen::MatrixXd c = coeffs(u, at.period);
+    dyn::BalanceOrbit o = dyn::harmonicBalance(at.model->system(), bo, {}, &c);
+    stats += o.stats;
+    if (!o.converged) throw dyn::SceneFailure{o.failure};
+    return scaled(o.coeffs);
+  }
+
+  void seed(const VectorXd& u, double lambda, dyn::SceneOverrides& ov) override {
+    start_ = coeffs(u, build(lambda).period);
+    ov.balanceStart = &start_;
+    ov.balanceHarmonics = N_;
+    ov.harmonicBalance = true;
+    std::vector<double> y(s_.size(), 0.0); // the state at t = 0: the sum of the cosine terms
+    for (long a = 0; a < start_.cols(); ++a)
+      for (long h = 0; h <= N_; ++h)
+        y[static_cast<size_t>(a)] += start_(h == 0 ? 0 : 2 * h - 1, a);
+    ov.guess = y;
+  }
+
+  // The sign of det(dR/du): one real eigenvalue crosses zero where the branch turns.
+  int foldIndicator(const MatrixXd& A) const override {
+    Eigen::PartialPivLU<MatrixXd> lu(A);
+    double sign = lu.permutationP().determinant();
+    for (long i = 0; i < A.rows(); ++i)
+      if (lu.matrixLU()(i, i) < 0) sign = -sign;
+    return sign < 0 ? 1 : 0;
+  }
+
+  std::string name() const override { return fmt::format("the harmonic balance equations ({} harmonics)", N_); }
+
+private:
+  std::vector<double> s_;
+  int N_ = 0;
+  std::vector<std::pair<long, long>> pairs_; // kinematic (a, b)
+  std::vector<long> rows_, kept_;            // the equations and unknowns' states kept
+  Eigen::MatrixXd start_;
+
+  dyn::BalanceOptions options(const At& at) const {
+    dyn::BalanceOptions bo;
+    bo.period = at.period;
+    bo.harmonics = N_;
+    bo.floquet = at.ms.accuracy;
+    return bo;
+  }
+  dyn::BalanceOrbit startOrbit(const At& at) {
+    dyn::BalanceOptions bo = options(at);
+    bo.stability = false;
+    if (scene_.balanceHarmonics) {
+      bo.harmonics = *scene_.balanceHarmonics;
+      dyn::BalanceOrbit o = dyn::harmonicBalance(at.model->system(), bo, at.model->initialState());
+      stats += o.stats;
+      return o;
+    }
+    dyn::BalanceOrbit o =
+        dyn::harmonicBalanceTo(at.model->system(), bo, tolerance(), at.model->initialState(), 8, 1024);
+    stats += o.stats;
+    return o;
+  }
+  // The full coefficients at the period T: the kept states' from u, the velocities' from theirs.
+  Eigen::MatrixXd coeffs(const VectorXd& u, double T) const {
+    const long n = static_cast<long>(s_.size()), m = static_cast<long>(kept_.size()), K = u.size() / m;
+    const double w = 2.0 * M_PI / T;
+    Eigen::MatrixXd c = Eigen::MatrixXd::Zero(K, n);
+    for (long h = 0; h < K; ++h)
+      for (long i = 0; i < m; ++i) {
+        long a = kept_[static_cast<size_t>(i)];
+        c(h, a) = u(h * m + i) * s_[static_cast<size_t>(a)];
+      }
+    for (auto [a, b] : pairs_)
+      for (long j = 1; 2 * j < K; ++j) {
+        c(2 * j - 1, b) = j * w * c(2 * j, a);
+        c(2 * j, b) = -j * w * c(2 * j - 1, a);
+      }
+    return c;
+  }
+  VectorXd scaled(const Eigen::MatrixXd& c) const {
+    const long K = c.rows(), m = static_cast<long>(kept_.size());
+    VectorXd u(K * m);
+    for (long h = 0; h < K; ++h)
+      for (long i = 0; i < m; ++i) {
+        long a = kept_[static_cast<size_t>(i)];
+        u(h * m + i) = c(h, a) / s_[static_cast<size_t>(a)];
+      }
+    return u;
+  }
+};
+
+} // namespace
+
+std::unique_ptr<BranchEquations> shootingEquations(const Model& m, const Assignment& a, const ir::Study& st,
+                                                   const ScenePlan& scene) {
+  return std::make_unique<Shooting>(m, a, st, scene);
+}
+
+std::unique_ptr<BranchEquations> balanceEquations(const Model& m, const Assignment& a, const ir::Study& st,
+                                                  const ScenePlan& scene) {
+  return std::make_unique<Balance>(m, a, st, scene);
+}
+
+} // namespace gbx::rt

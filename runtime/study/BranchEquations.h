@@ -1,0 +1,70 @@
+#pragma once
+// The equations an arclength continuation follows (study/Continuation.cpp): R(u, lambda) = 0 for
+// a scene's periodic orbit at lambda, the swept quantity's position in [lo, hi]. Two kinds, as
+// the scene finds its orbit: the shooting equations (u the scaled initial state, R the scaled
+// change over one period) and the harmonic balance equations (u the scaled Fourier coefficients
+// of every state, R the scaled Galerkin residual).
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "dynamics/MeshModel.h"
+#include "dynamics/Scene.h"
+#include "model/Evaluator.h"
+#include "model/Model.h"
+
+namespace gbx::rt {
+
+class BranchEquations {
+public:
+  BranchEquations(const Model& m, const Assignment& a, const ir::Study& st, const ScenePlan& scene);
+  virtual ~BranchEquations() = default;
+
+  double x(double lambda) const { return lo_ + lambda * (hi_ - lo_); }
+
+  // The orbit at the sweep's start: its unknowns, or none for a linear scene (no turning points;
+  // a plain sweep serves). Throws dyn::SceneFailure.
+  virtual std::optional<Eigen::VectorXd> first() = 0;
+  // R at (u, lambda); with A, also dR/du.
+  virtual Eigen::VectorXd residual(const Eigen::VectorXd& u, double lambda, Eigen::MatrixXd* A) = 0;
+  // The orbit at lambda found afresh from u (past a gap); throws dyn::SceneFailure.
+  virtual Eigen::VectorXd afresh(const Eigen::VectorXd& u, double lambda) = 0;
+  // What the scene's own run at u starts from; `ov` may keep a pointer into this object until
+  // the next call.
+  virtual void seed(const Eigen::VectorXd& u, double lambda, dyn::SceneOverrides& ov) = 0;
+  // Changes by one where the branch turns: the real Floquet multipliers above 1 (shooting) or
+  // the sign of the Jacobian's determinant (harmonic balance).
+  virtual int foldIndicator(const Eigen::MatrixXd& A) const = 0;
+  // For the study's note: "the shooting equations", "the harmonic balance equations (N harmonics)".
+  virtual std::string name() const = 0;
+
+  double rtol = 1e-6; // the scene's; the corrector's tolerance and lambda's difference step follow it
+  double tolerance() const { return std::max(1e-9, 100.0 * rtol); } // the corrector's, of the unknowns' scale
+  dyn::Stats stats;
+
+protected:
+  struct At {
+    std::unique_ptr<Evaluator> ev;
+    dyn::MeshScene ms;
+    std::unique_ptr<dyn::MeshModel> model;
+    double period = 0;
+  };
+  At build(double lambda) const;
+  static std::vector<double> scale(const At& at);
+
+  const Model& m_;
+  const Assignment& a_;
+  const ir::Study& st_;
+  const ScenePlan& scene_;
+  double lo_, hi_;
+};
+
+std::unique_ptr<BranchEquations> shootingEquations(const Model& m, const Assignment& a, const ir::Study& st,
+                                                   const ScenePlan& scene);
+std::unique_ptr<BranchEquations> balanceEquations(const Model& m, const Assignment& a, const ir::Study& st,
+                                                  const ScenePlan& scene);
+
+} // namespace gbx::rt
