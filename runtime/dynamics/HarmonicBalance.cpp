@@ -73,7 +73,18 @@ const Basis& basisFor(int N, int L) {
   b->sinQ = sq.transpose();
   b->proj = b->phi.transpose() * (2.0 / L);
   b->proj.row(0) *= 0.5;
-  if (kept.size() >= 8) kept.erase(kept.begin());
+  // At most 8 bases and about 32 MB a thread (a basis of N = 256 is 20 MB): the oldest go first.
+  // Callers hold a basis only while nothing asks for another (N, L).
+  auto bytes = [](const Basis& x) {
+    return 8 * (x.phi.size() + x.proj.size() + x.mid.size() + x.midRate.size() + x.cosQ.size() + x.sinQ.size());
+  };
+  size_t total = bytes(*b);
+  for (const auto& x : kept)
+    total += bytes(*x);
+  while (!kept.empty() && (kept.size() >= 8 || total > (size_t{32} << 20))) {
+    total -= bytes(*kept.front());
+    kept.erase(kept.begin());
+  }
   kept.push_back(std::move(b));
   return *kept.back();
 }
@@ -209,13 +220,16 @@ std::vector<std::pair<long, long>> kinematicPairs(size_t n, int L, const Sampled
   for (size_t a = 0; a < n; ++a) {
     long b = -1;
     bool unit = true;
-    for (int k = 0; k < L && unit; ++k) {
+    for (int k = 0; k < L && unit; ++k) { // exactly one entry, 1, in the same column at every instant
       const double* row = s.J.data() + (static_cast<size_t>(k) * n + a) * n;
+      int ones = 0;
       for (size_t c = 0; c < n && unit; ++c) {
         if (row[c] == 0.0) continue;
         if (row[c] != 1.0 || c == a || (b >= 0 && b != static_cast<long>(c))) unit = false;
         b = static_cast<long>(c);
+        ++ones;
       }
+      unit = unit && ones == 1;
     }
     if (unit && b >= 0) target[a] = b;
   }
@@ -288,7 +302,8 @@ bool reducedSolve(const Eigen::MatrixXd& Jac, const Eigen::VectorXd& rhs,
       }
       d(h * nn + b) = Dd - rhs(h * nn + a);
     }
-  return true;
+  // The whole system too: a row taken for kinematic that is not falls back to the full solve.
+  return (Jac * d - rhs).norm() <= 1e-6 * rhs.norm();
 }
 
 // Hill's method: the eigenvalues of the linearised operator J(t) - d/dt in the truncated basis

@@ -175,6 +175,13 @@ public:
         long row = rows_[static_cast<size_t>(i)];
         r(h * m + i) = R(h, row) / (w * s_[static_cast<size_t>(row)]);
       }
+    // The kinematic rows hold by construction only where y_a' is y_b alone (no term of its own,
+    // no drift): anything else is not these equations.
+    for (auto [a, b] : pairs_)
+      for (long h = 0; h < K; ++h)
+        if (!(std::fabs(R(h, a)) <= tolerance() * w * s_[static_cast<size_t>(a)]))
+          throw dyn::SceneFailure{"the harmonic balance continuation needs each velocity to be its displacement's rate "
+                                  "exactly; this model's is not"};
     if (!A) return r;
     // dR/dc_a plus dR/dc_b D, b's coefficients being D a's.
     A->resize(K * m, K * m);

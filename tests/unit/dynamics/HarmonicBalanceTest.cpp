@@ -242,3 +242,50 @@ TEST(HarmonicBalance, ASceneFallsBackToShootingWhereNewtonStalls) {
   })) << "the fallback is stated in the model";
   EXPECT_TRUE(std::isfinite(r.stability));
 }
+
+// A row that is a velocity's unit row at some instants and zero at others is not a kinematic
+// equation: the Newton step must not eliminate through it. A linear system's single step then
+// solves the Galerkin equations exactly (what is left is rounding).
+TEST(HarmonicBalance, ARowThatIsAUnitRowOnlySometimesIsNotEliminated) {
+  const double w = 2 * M_PI, T = 1.0;
+  auto gate = [&](double t) { return std::sin(w * t) >= 0 ? 1.0 : 0.0; };
+  System sys;
+  sys.dim = 2;
+  sys.scale = {1.0, 1.0};
+  sys.rhs = [&](double t, const double* y, double* f) {
+    f[0] = gate(t) * y[1] - 0.5 * y[0];
+    f[1] = -4.0 * y[0] - 0.2 * y[1] + std::cos(w * t);
+  };
+  sys.dfdy = [&](double t, const double*, double* J) {
+    J[0] = -0.5;
+    J[1] = gate(t);
+    J[2] = -4.0;
+    J[3] = -0.2;
+  };
+  // The same system with f_0 = gate y_1 alone (row 0 exactly (0, gate)): the trap.
+  System trap = sys;
+  trap.rhs = [&](double t, const double* y, double* f) {
+    f[0] = gate(t) * y[1];
+    f[1] = -4.0 * y[0] - 0.2 * y[1] + std::cos(w * t);
+  };
+  trap.dfdy = [&](double t, const double*, double* J) {
+    J[0] = 0.0;
+    J[1] = gate(t);
+    J[2] = -4.0;
+    J[3] = -0.2;
+  };
+  for (const System* s : {&sys, &trap}) {
+    BalanceOptions opt;
+    opt.period = T;
+    opt.harmonics = 8;
+    opt.linear = true;
+    opt.stability = false;
+    opt.gapLimit = INFINITY; // the gate's jumps fall between the instants: not this test's point
+    BalanceOrbit o = harmonicBalance(*s, opt, {0.0, 0.0});
+    ASSERT_TRUE(o.converged) << o.failure;
+    Stats st;
+    Eigen::MatrixXd R = balanceResidual(*s, opt, o.coeffs, nullptr, st);
+    EXPECT_LT(R.cwiseAbs().maxCoeff(), 1e-10) << (s == &trap ? "gated kinematic row" : "damped row");
+    EXPECT_TRUE(balanceKinematicPairs(*s, opt, o.coeffs).empty());
+  }
+}
