@@ -96,6 +96,40 @@ GearboxReport partialReport(const Model& m, SearchResult found, bool lazyRows) {
   return rep;
 }
 
+// Writes the reports in their format: to `out` (rank 0 alone under mpirun) and the folder of
+// -o DIR, kept for the caller that asks. CSV on stdout goes out as its rows are made.
+int writeReports(std::vector<GearboxReport> reports, const ReportFormat& format, const SolveOptions& o, bool lazyRows,
+                 int status, std::ostream& out, std::ostream& err) {
+  RenderOptions ro;
+  ro.timings = o.timings;
+  ro.title = o.title;
+  ro.version = o.version;
+  if (o.timings) ro.date = today();
+  ro.charts = !o.outDir.empty();
+  // CSV on stdout is the design table alone: a note says which tables are not in it.
+  auto noteUnwritten = [&](const std::vector<std::string>& unwritten) {
+    if (!unwritten.empty() && !o.quiet)
+      err << fmt::format("gbxc: note: stdout holds the design table only; {} {} written with -o DIR\n",
+                         fmt::join(unwritten, ", "), unwritten.size() == 1 ? "is" : "are");
+  };
+  // Under mpirun every rank has solved the same; rank 0 alone writes. CSV on stdout: the
+  // design table goes out as its rows are made, never held whole.
+  if (lazyRows) {
+    if (par::root()) streamCsv(reports, [&](const std::string& piece) { out << piece; });
+    std::vector<std::string> unwritten = csvOtherTables(reports, ro);
+    if (o.keep) *o.keep = std::move(reports);
+    if (par::root()) noteUnwritten(unwritten);
+    return status;
+  }
+  passes::Rendered rendered = passes::render(std::move(reports), format, ro);
+  if (o.keep) *o.keep = std::move(rendered.reports);
+  if (!par::root()) return status;
+  out << rendered.report;
+  noteUnwritten(rendered.unwritten);
+  if (!o.outDir.empty() && !writeFolder(rendered, o.outDir, err)) return 3;
+  return status;
+}
+
 } // namespace
 
 int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, std::ostream& err) {
@@ -193,23 +227,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     rep.inputs = passes::decisiveInputs(gb);
     reports.push_back(std::move(rep));
   }
-  RenderOptions ro;
-  ro.timings = o.timings;
-  ro.title = o.title;
-  ro.version = o.version;
-  if (o.timings) ro.date = today();
-  ro.charts = !o.outDir.empty();
-  passes::Rendered rendered = passes::render(std::move(reports), *format, ro);
-  if (o.keep) *o.keep = std::move(rendered.reports);
-  // Under mpirun every rank has solved the same; rank 0 alone writes.
-  if (!par::root()) return status;
-  out << rendered.report;
-  // CSV on stdout is the design table alone: a note says which tables are not in it.
-  if (!rendered.unwritten.empty() && !o.quiet)
-    err << fmt::format("gbxc: note: stdout holds the design table only; {} {} written with -o DIR\n",
-                       fmt::join(rendered.unwritten, ", "), rendered.unwritten.size() == 1 ? "is" : "are");
-  if (!o.outDir.empty() && !writeFolder(rendered, o.outDir, err)) return 3;
-  return status;
+  return writeReports(std::move(reports), *format, o, lazyRows, status, out, err);
 }
 
 } // namespace gbx::rt

@@ -80,7 +80,7 @@ std::vector<std::string> designHeader(const GearboxReport& g, const std::vector<
 
 // One gearbox's rows, appended to `o` in its own header's order.
 void designRows(const GearboxReport& g, const std::vector<bool>& wide, const std::vector<bool>& ranged, std::string& o,
-                const std::function<void(std::string&)>& rowDone) {
+                const std::function<void(std::string&)>& rowDone, bool reserveAll = true) {
   const std::string name = field(g.name);
   auto num = [&](double v) {
     if (std::isfinite(v)) fmt::format_to(std::back_inserter(o), FMT_COMPILE("{}"), v);
@@ -93,7 +93,8 @@ void designRows(const GearboxReport& g, const std::vector<bool>& wide, const std
   size_t rowsStart = o.size();
   forEachRow(g, [&](const DesignRow& r) {
     // A long listing: room for all of it at the size of its first row, once.
-    if (r.rank == 2 && g.source) o.reserve(o.size() + (o.size() - rowsStart) * (g.source->size() + 16) * 21 / 20);
+    if (reserveAll && r.rank == 2 && g.source)
+      o.reserve(o.size() + (o.size() - rowsStart) * (g.source->size() + 16) * 21 / 20);
     o += name;
     o += ',';
     integer(r.rank);
@@ -133,7 +134,10 @@ void designRows(const GearboxReport& g, const std::vector<bool>& wide, const std
 
 // One table for every gearbox: the union of their headers, in the order they first appear
 // (the exact ratio last), with a gearbox's row empty in the columns it does not have.
-std::string designs(const std::vector<GearboxReport>& reports) {
+// With `sink`, the table goes to it a piece at a time (about a megabyte), as its rows are
+// made, and the string returned is empty: a listing of a million designs is never held whole.
+std::string designs(const std::vector<GearboxReport>& reports, const CsvSink* sink = nullptr) {
+  constexpr size_t piece = size_t{1} << 20;
   std::vector<std::vector<std::string>> heads;
   std::vector<std::string> all;
   for (const auto& g : reports) {
@@ -145,11 +149,20 @@ std::string designs(const std::vector<GearboxReport>& reports) {
   if (reports.empty()) return "";
   all.push_back(heads.back().back());
   std::string o = row(all);
+  auto pour = [&](std::string& text) {
+    if (sink && text.size() >= piece) {
+      (*sink)(text);
+      text.clear();
+    }
+  };
   for (size_t k = 0; k < reports.size(); ++k) {
     const auto& g = reports[k];
     auto wide = intervalColumns(g), ranged = rangedColumns(g);
     if (heads[k] == all) {
-      designRows(g, wide, ranged, o, nullptr);
+      if (sink)
+        designRows(g, wide, ranged, o, pour, false);
+      else
+        designRows(g, wide, ranged, o, nullptr);
       continue;
     }
     // Each field to its place in the whole header (no field holds a comma: names are
@@ -168,7 +181,12 @@ std::string designs(const std::vector<GearboxReport>& reports) {
       }
       o += row(cells);
       l.clear();
+      pour(o);
     });
+  }
+  if (sink) {
+    (*sink)(o);
+    o.clear();
   }
   return o;
 }
@@ -354,6 +372,8 @@ std::vector<TableFile> csvTables(const std::vector<GearboxReport>& reports, cons
   for (auto& t : otherTables(reports, o)) out.push_back(std::move(t));
   return out;
 }
+
+void streamCsv(const std::vector<GearboxReport>& reports, const CsvSink& sink) { designs(reports, &sink); }
 
 std::vector<std::string> csvOtherTables(const std::vector<GearboxReport>& reports, const RenderOptions& o) {
   std::vector<std::string> names;

@@ -1,9 +1,10 @@
 #pragma once
 // Reports of solved gearboxes: text tables, JSON (keys of docs/cli.md), CSV,
 // Markdown and HTML. Numbers are printed in a fixed format so that reports are byte-stable.
+#include <cmath>
+#include <functional>
 #include <memory>
 #include <optional>
-#include <cmath>
 #include <string>
 #include <variant>
 #include <vector>
@@ -399,6 +400,10 @@ std::string formatLength(double metres);
 std::string renderText(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderJson(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
 std::string renderCsv(const std::vector<GearboxReport>& r, const RenderOptions& o = {});
+// The same design table, given to `sink` a piece at a time as its rows are made (a listing
+// of a million designs is never held whole); the bytes are renderCsv's.
+using CsvSink = std::function<void(const std::string&)>;
+void streamCsv(const std::vector<GearboxReport>& r, const CsvSink& sink);
 // With -o DIR: one tidy CSV per kind of result (designs, scenes, spectra, sweeps,
 // work-precision runs, modifications), those that have rows.
 struct TableFile {

@@ -273,7 +273,7 @@ TEST(Lsp, HoverCompletionDefinitionAndSymbols) {
   EXPECT_EQ(sym.at(0)["name"].string(), "SpurResonance");
   std::vector<std::string> children;
   for (size_t i = 0; i < sym.at(0)["children"].size(); ++i) children.push_back(sym.at(0)["children"].at(i)["name"].string());
-  EXPECT_EQ(children, (std::vector<std::string>{"s1", "mesh", "resonance"}));
+  EXPECT_EQ(children, (std::vector<std::string>{"s1", "mesh", "mesh_balance", "resonance", "resonance_balance"}));
   // Hover on a name: a material's properties, a stage's kind and bindings, a scene's effects.
   std::string material = byId[9]["contents"]["value"].string();
   EXPECT_NE(material.find("**material steel_42CrMo4**"), std::string::npos) << material;
