@@ -553,8 +553,10 @@ BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const
   return o;
 }
 
-Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, const Eigen::MatrixXd& coeffs,
-                                Eigen::MatrixXd* jacobian, Stats& stats) {
+namespace {
+
+// The series of coefficients c on opt's period, drift and instants (nothing solved).
+BalanceOrbit seriesOf(const System& sys, const BalanceOptions& opt, const Eigen::MatrixXd& coeffs) {
   BalanceOrbit o;
   o.harmonics = static_cast<int>((coeffs.rows() - 1) / 2);
   o.timePoints = timePointsFor(o.harmonics, opt.timePoints);
@@ -562,6 +564,14 @@ Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, co
   o.drift = opt.drift;
   o.drift.resize(sys.dim, 0.0);
   o.coeffs = coeffs;
+  return o;
+}
+
+} // namespace
+
+Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, const Eigen::MatrixXd& coeffs,
+                                Eigen::MatrixXd* jacobian, Stats& stats) {
+  BalanceOrbit o = seriesOf(sys, opt, coeffs);
   const Basis& B = basisFor(o.harmonics, o.timePoints);
   Sampled s;
   sample(sys, B, o, jacobian != nullptr, s);
@@ -575,13 +585,7 @@ Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, co
 
 std::vector<std::pair<long, long>> balanceKinematicPairs(const System& sys, const BalanceOptions& opt,
                                                          const Eigen::MatrixXd& coeffs) {
-  BalanceOrbit o;
-  o.harmonics = static_cast<int>((coeffs.rows() - 1) / 2);
-  o.timePoints = timePointsFor(o.harmonics, opt.timePoints);
-  o.period = opt.period;
-  o.drift = opt.drift;
-  o.drift.resize(sys.dim, 0.0);
-  o.coeffs = coeffs;
+  BalanceOrbit o = seriesOf(sys, opt, coeffs);
   const Basis& B = basisFor(o.harmonics, o.timePoints);
   Sampled s;
   sample(sys, B, o, true, s);

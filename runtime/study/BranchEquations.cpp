@@ -30,6 +30,14 @@ BranchEquations::At BranchEquations::build(double lambda) const {
   return at;
 }
 
+std::optional<BranchEquations::At> BranchEquations::atStart() {
+  At at = build(0.0);
+  if (at.model->linear()) return std::nullopt;
+  rtol = at.ms.accuracy.rtol;
+  s_ = scale(at);
+  return at;
+}
+
 std::vector<double> BranchEquations::scale(const At& at) {
   std::vector<double> s = at.model->system().scale;
   s.resize(at.model->system().dim, 1.0);
@@ -44,10 +52,9 @@ public:
   using BranchEquations::BranchEquations;
 
   std::optional<VectorXd> first() override {
-    At at = build(0.0);
-    if (at.model->linear()) return std::nullopt;
-    rtol = at.ms.accuracy.rtol;
-    s_ = scale(at);
+    std::optional<At> start = atStart();
+    if (!start) return std::nullopt;
+    At& at = *start;
     dyn::PeriodicOptions po;
     po.period = at.period;
     dyn::PeriodicOrbit o = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po, at.model->initialState());
@@ -112,7 +119,6 @@ public:
   std::string name() const override { return "the shooting equations"; }
 
 private:
-  std::vector<double> s_; // the state's scales
   std::vector<double> state(const VectorXd& u) const {
     std::vector<double> y(static_cast<size_t>(u.size()));
     for (size_t i = 0; i < y.size(); ++i)
@@ -140,10 +146,9 @@ public:
   using BranchEquations::BranchEquations;
 
   std::optional<VectorXd> first() override {
-    At at = build(0.0);
-    if (at.model->linear()) return std::nullopt;
-    rtol = at.ms.accuracy.rtol;
-    s_ = scale(at);
+    std::optional<At> start = atStart();
+    if (!start) return std::nullopt;
+    const At& at = *start;
     dyn::BalanceOrbit o = startOrbit(at);
     if (!o.converged)
       throw dyn::SceneFailure{"the periodic steady state at the sweep's start was not found by harmonic balance: " +
@@ -243,7 +248,6 @@ public:
   std::string name() const override { return fmt::format("the harmonic balance equations ({} harmonics)", N_); }
 
 private:
-  std::vector<double> s_;
   int N_ = 0;
   std::vector<std::pair<long, long>> pairs_; // kinematic (a, b)
   std::vector<long> rows_, kept_;            // the equations and unknowns' states kept

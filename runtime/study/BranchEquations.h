@@ -54,6 +54,11 @@ protected:
   };
   At build(double lambda) const;
   static std::vector<double> scale(const At& at);
+  // The scene at the sweep's start, rtol and the state's scales taken from it; none for a
+  // linear scene.
+  std::optional<At> atStart();
+
+  std::vector<double> s_; // the state's scales
 
   const Model& m_;
   const Assignment& a_;
