@@ -248,45 +248,20 @@ std::vector<std::pair<long, long>> kinematicPairs(size_t n, int L, const Sampled
 // false where the reduced system is singular.
 bool reducedSolve(const Eigen::MatrixXd& Jac, const Eigen::VectorXd& rhs,
                   const std::vector<std::pair<long, long>>& pairs, long K, long nn, double omega, Eigen::VectorXd& d) {
-  // Rows: every equation but the kinematic ones (they give d_b); columns: every unknown but b's.
-  std::vector<bool> rowGone(static_cast<size_t>(nn), false), colGone(static_cast<size_t>(nn), false);
-  for (auto [a, b] : pairs) {
-    rowGone[static_cast<size_t>(a)] = true;
-    colGone[static_cast<size_t>(b)] = true;
-  }
-  std::vector<long> rows, keep; // full indices of the reduced equations and unknowns
-  for (long h = 0; h < K; ++h)
-    for (long a = 0; a < nn; ++a) {
-      if (!rowGone[static_cast<size_t>(a)]) rows.push_back(h * nn + a);
-      if (!colGone[static_cast<size_t>(a)]) keep.push_back(h * nn + a);
-    }
+  // Jac's row block a is D on a and -I on b, so d_b = D d_a - rhs_a.
+  KinematicReduction red = withoutVelocities(Jac, pairs, K, nn, omega);
+  const std::vector<long>&rows = red.rows, &keep = red.keep;
+  const Eigen::MatrixXd& Jr = red.jacobian;
   const long m = static_cast<long>(keep.size());
-  // Jac's row block a is D on a and -I on b, so d_b = D d_a - rhs_a:
-  // (D d_a)_{2j-1} = j w d_a,2j and (D d_a)_{2j} = -j w d_a,2j-1.
-  std::vector<long> colOf(static_cast<size_t>(K * nn), -1);
-  for (long c = 0; c < m; ++c)
-    colOf[static_cast<size_t>(keep[static_cast<size_t>(c)])] = c;
-  Eigen::MatrixXd Jr(m, m);
   Eigen::VectorXd rr(m);
-  for (long c = 0; c < m; ++c)
-    for (long r = 0; r < m; ++r)
-      Jr(r, c) = Jac(rows[static_cast<size_t>(r)], keep[static_cast<size_t>(c)]);
   for (long r = 0; r < m; ++r)
     rr(r) = rhs(rows[static_cast<size_t>(r)]);
-  for (auto [a, b] : pairs) {
+  for (auto [a, b] : pairs)
     for (long h = 0; h < K; ++h) { // Jac_{r,b} d_b moved to the right
       double ra = rhs(h * nn + a);
       for (long r = 0; r < m; ++r)
         rr(r) += Jac(rows[static_cast<size_t>(r)], h * nn + b) * ra;
     }
-    for (long h = 1; h < K; ++h) { // d_a,2j enters d_b,2j-1 with j w; d_a,2j-1 enters d_b,2j with -j w
-      long j = (h + 1) / 2, col = colOf[static_cast<size_t>(h * nn + a)];
-      long src = h % 2 == 0 ? (h - 1) * nn + b : (h + 1) * nn + b;
-      double factor = h % 2 == 0 ? j * omega : -j * omega;
-      for (long r = 0; r < m; ++r)
-        Jr(r, col) += factor * Jac(rows[static_cast<size_t>(r)], src);
-    }
-  }
   Eigen::PartialPivLU<Eigen::MatrixXd> lu(Jr);
   Eigen::VectorXd dr = lu.solve(rr);
   if (!dr.allFinite() || (Jr * dr - rr).norm() > 1e-6 * rr.norm()) return false;
@@ -551,6 +526,46 @@ BalanceOrbit harmonicBalance(const System& sys, const BalanceOptions& opt, const
   if (o.converged && opt.stability) stabilityOf(sys, opt, o);
   o.stats.cpuSeconds = threadCpuSeconds() - cpu0;
   return o;
+}
+
+KinematicIndices keptIndices(const std::vector<std::pair<long, long>>& pairs, long K, long n) {
+  std::vector<bool> rowGone(static_cast<size_t>(n), false), colGone(static_cast<size_t>(n), false);
+  for (auto [a, b] : pairs) {
+    rowGone[static_cast<size_t>(a)] = true;
+    colGone[static_cast<size_t>(b)] = true;
+  }
+  KinematicIndices k;
+  for (long h = 0; h < K; ++h)
+    for (long a = 0; a < n; ++a) {
+      if (!rowGone[static_cast<size_t>(a)]) k.rows.push_back(h * n + a);
+      if (!colGone[static_cast<size_t>(a)]) k.keep.push_back(h * n + a);
+    }
+  return k;
+}
+
+KinematicReduction withoutVelocities(const Eigen::MatrixXd& Jac, const std::vector<std::pair<long, long>>& pairs,
+                                     long K, long n, double w) {
+  KinematicReduction red;
+  static_cast<KinematicIndices&>(red) = keptIndices(pairs, K, n);
+  const long m = static_cast<long>(red.keep.size());
+  std::vector<long> colOf(static_cast<size_t>(K * n), -1);
+  for (long c = 0; c < m; ++c)
+    colOf[static_cast<size_t>(red.keep[static_cast<size_t>(c)])] = c;
+  Eigen::MatrixXd& Jr = red.jacobian;
+  Jr.resize(m, m);
+  for (long c = 0; c < m; ++c)
+    for (long r = 0; r < m; ++r)
+      Jr(r, c) = Jac(red.rows[static_cast<size_t>(r)], red.keep[static_cast<size_t>(c)]);
+  // dR/dc_b D: c_b,2j-1 = j w c_a,2j and c_b,2j = -j w c_a,2j-1.
+  for (auto [a, b] : pairs)
+    for (long h = 1; h < K; ++h) {
+      long j = (h + 1) / 2, col = colOf[static_cast<size_t>(h * n + a)];
+      long src = h % 2 == 0 ? (h - 1) * n + b : (h + 1) * n + b;
+      double factor = h % 2 == 0 ? j * w : -j * w;
+      for (long r = 0; r < m; ++r)
+        Jr(r, col) += factor * Jac(red.rows[static_cast<size_t>(r)], src);
+    }
+  return red;
 }
 
 namespace {

@@ -80,6 +80,20 @@ Eigen::MatrixXd balanceResidual(const System& sys, const BalanceOptions& opt, co
 std::vector<std::pair<long, long>> balanceKinematicPairs(const System& sys, const BalanceOptions& opt,
                                                          const Eigen::MatrixXd& coeffs);
 
+// Newton's system without the velocities of the kinematic pairs (a, b): the equations but the
+// kinematic rows and the unknowns but the velocities' coefficients, as full indices h n + a in
+// that order; the reduction's Jacobian holds dR/dc_a + dR/dc_b D, each velocity's
+// coefficients being D (the derivative at frequency w) times its displacement's.
+struct KinematicIndices {
+  std::vector<long> rows, keep;
+};
+struct KinematicReduction : KinematicIndices {
+  Eigen::MatrixXd jacobian; // rows.size() x keep.size()
+};
+KinematicIndices keptIndices(const std::vector<std::pair<long, long>>& pairs, long K, long n);
+KinematicReduction withoutVelocities(const Eigen::MatrixXd& jacobian, const std::vector<std::pair<long, long>>& pairs,
+                                     long K, long n, double w);
+
 // The first N harmonics of an orbit given by M equally spaced states over its period
 // (t = k T / M, k = 0 .. M-1) with the drift taken out: a guess from a shooting orbit.
 Eigen::MatrixXd seriesOfSamples(const std::vector<std::vector<double>>& samples, const std::vector<double>& drift,

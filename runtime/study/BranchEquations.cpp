@@ -27,7 +27,15 @@ BranchEquations::At BranchEquations::build(double lambda) const {
   at.period = at.model->excitationPeriod();
   if (at.period <= 0)
     throw dyn::SceneFailure{"the excitation is not periodic, so there is no periodic response to follow"};
+  built_[1] = built_[0];
+  built_[0] = {lambda, at.period};
   return at;
+}
+
+double BranchEquations::periodAt(double lambda) const {
+  for (const auto& [l, period] : built_)
+    if (l == lambda) return period;
+  return build(lambda).period;
 }
 
 std::optional<BranchEquations::At> BranchEquations::atStart() {
@@ -188,28 +196,13 @@ public:
           throw dyn::SceneFailure{"the harmonic balance continuation needs each velocity to be its displacement's rate "
                                   "exactly; this model's is not"};
     if (!A) return r;
-    // dR/dc_a plus dR/dc_b D, b's coefficients being D a's.
-    A->resize(K * m, K * m);
-    for (long hc = 0; hc < K; ++hc)
-      for (long ic = 0; ic < m; ++ic) {
-        long a = kept_[static_cast<size_t>(ic)], col = hc * n + a;
-        long b = -1;
-        for (auto [pa, pb] : pairs_)
-          if (pa == a) b = pb;
-        long src = -1;
-        double factor = 0;
-        if (b >= 0 && hc > 0) { // c_b,2j-1 = j w c_a,2j; c_b,2j = -j w c_a,2j-1
-          long j = (hc + 1) / 2;
-          src = hc % 2 == 0 ? (hc - 1) * n + b : (hc + 1) * n + b;
-          factor = hc % 2 == 0 ? j * w : -j * w;
-        }
-        for (long hr = 0; hr < K; ++hr)
-          for (long ir = 0; ir < m; ++ir) {
-            long row = rows_[static_cast<size_t>(ir)], full = hr * n + row;
-            double v = J(full, col) + (src >= 0 ? factor * J(full, src) : 0.0);
-            (*A)(hr * m + ir, hc * m + ic) = v * s_[static_cast<size_t>(a)] / (w * s_[static_cast<size_t>(row)]);
-          }
-      }
+    // dR/dc_a plus dR/dc_b D, b's coefficients being D a's; then scaled.
+    dyn::KinematicReduction red = dyn::withoutVelocities(J, pairs_, K, n, w);
+    *A = std::move(red.jacobian);
+    for (long c = 0; c < K * m; ++c)
+      for (long i = 0; i < K * m; ++i)
+        (*A)(i, c) = (*A)(i, c) * s_[static_cast<size_t>(red.keep[static_cast<size_t>(c)] % n)] /
+                     (w * s_[static_cast<size_t>(red.rows[static_cast<size_t>(i)] % n)]);
     return r;
   }
 
@@ -225,7 +218,7 @@ public:
   }
 
   void seed(const VectorXd& u, double lambda, dyn::SceneOverrides& ov) override {
-    start_ = coeffs(u, build(lambda).period);
+    start_ = coeffs(u, periodAt(lambda));
     ov.balanceStart = &start_;
     ov.balanceHarmonics = N_;
     ov.harmonicBalance = true;

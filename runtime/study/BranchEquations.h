@@ -5,6 +5,8 @@
 // change over one period) and the harmonic balance equations (u the scaled Fourier coefficients
 // of every state, R the scaled Galerkin residual).
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -53,6 +55,10 @@ protected:
     double period = 0;
   };
   At build(double lambda) const;
+  // The excitation's period at lambda: one of the last two scenes built's where it is at the
+  // same lambda (a point measured right after its corrector's residual and lambda difference),
+  // else built afresh.
+  double periodAt(double lambda) const;
   static std::vector<double> scale(const At& at);
   // The scene at the sweep's start, rtol and the state's scales taken from it; none for a
   // linear scene.
@@ -65,6 +71,9 @@ protected:
   const ir::Study& st_;
   const ScenePlan& scene_;
   double lo_, hi_;
+
+private:
+  mutable std::array<std::pair<double, double>, 2> built_{{{NAN, 0.0}, {NAN, 0.0}}}; // (lambda, period), newest first
 };
 
 std::unique_ptr<BranchEquations> shootingEquations(const Model& m, const Assignment& a, const ir::Study& st,

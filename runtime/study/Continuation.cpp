@@ -4,11 +4,8 @@
 #include <memory>
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
-#include "dynamics/MeshModel.h"
-#include "dynamics/Periodic.h"
 #include "dynamics/Scene.h"
 #include "model/Deadline.h"
 #include "model/Evaluator.h"
@@ -31,8 +28,9 @@ VectorXd solveBordered(const MatrixXd& J, const VectorXd& rhs) {
 }
 
 // Pseudo-arclength continuation of one scene's periodic response over a sweep, step by step:
-// the first orbit by plain shooting, then predictor and corrector along the curve, with turning
-// points found where the Floquet multipliers say so and gaps where the branch cannot be followed.
+// the first orbit found by the equations' own method (shooting or harmonic balance), then
+// predictor and corrector along the curve, with turning points found where the equations' fold
+// indicator changes and gaps where the branch cannot be followed.
 class Continuer {
 public:
   Continuer(const Model& model, const Assignment& design, const ir::Study& study, const ScenePlan& sc,
