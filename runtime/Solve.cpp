@@ -169,7 +169,8 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     if (!o.gearbox.empty() && gb.name != o.gearbox) continue;
     models.push_back(std::make_unique<Model>(program, gb));
     const Model& m = *models.back();
-    SearchResult found = passes::search(m, o.jobs, o.maxDesigns, progress(gb.name), progress(gb.name + " deciding freedoms"));
+    SearchResult found =
+        passes::search(m, o.jobs, o.maxDesigns, progress(gb.name), progress(gb.name + " deciding freedoms"), lazyRows);
     // Stopped part way by the time limit: the designs of the part done, marked partial, and
     // nothing more worked out (exit 3).
     if (!found.partial.empty() && found.errors.empty()) {
@@ -194,6 +195,7 @@ int solve(const ir::Program& program, const SolveOptions& o, std::ostream& out, 
     rep.optimisation = std::move(designs.summary);
     // The table holds every listed design now; the search's copies are not read again.
     std::vector<Design>().swap(designs.designs.designs);
+    designs.designs.listing.reset();
     passes::SceneRuns scenes;
     if (best && (!gb.scenes.empty() || !gb.studies.empty() || !gb.modifies.empty())) {
       scenes = passes::scenes(m, *best, columns, o.jobs);

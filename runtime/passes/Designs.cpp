@@ -76,11 +76,16 @@ public:
     designs_ = &owned_;
     known_.assign(owned_.size() * exprs_.size(), Known{});
   }
+  // A compact listing: each design made when its row is.
+  void own(std::shared_ptr<const DesignList> list) {
+    list_ = std::move(list);
+    known_.assign(list_->size() * exprs_.size(), Known{});
+  }
 
-  size_t size() const override { return designs_->size(); }
+  size_t size() const override { return list_ ? list_->size() : designs_->size(); }
 
   void row(size_t i, DesignRow& row, bool text) const override {
-    const Design& d = (*designs_)[i];
+    const Design& d = design(i);
     const Model& m = m_;
     row.teeth.clear();
     row.choices.clear();
@@ -167,10 +172,19 @@ public:
   bool valid(size_t i, size_t c) const override { return value(i, c, assign(i)).isNumber(); }
 
 private:
+  const Design& design(size_t i) const {
+    if (!list_) return (*designs_)[i];
+    if (made_ != i) {
+      list_->get(i, made_design_);
+      made_ = i;
+    }
+    return made_design_;
+  }
+
   // Design i as the evaluator reads it: its choices, its freedoms at their optimum.
   const Assignment& assign(size_t i) const {
     a_.box = blank_.box;
-    a_.choice = (*designs_)[i].choice;
+    a_.choice = design(i).choice;
     if (i < freedoms_.size())
       for (size_t f = 0; f < freedoms_[i].size(); ++f)
         a_.box[f] = {freedoms_[i][f], freedoms_[i][f]};
@@ -179,16 +193,16 @@ private:
 
   const Assignment& wholeBox(size_t i) const {
     b_.box = blank_.box;
-    b_.choice = (*designs_)[i].choice;
+    b_.choice = design(i).choice;
     return b_;
   }
 
   // Column c of design i at its assignment. A listing's rows are made more than once
   // (checked, then written): their values are found once.
   Value value(size_t i, size_t c, const Assignment& a) const {
-    const Design& d = (*designs_)[i];
     Known* known = known_.empty() ? nullptr : &known_[i * exprs_.size() + c];
     if (known && known->set) return known->valid ? Value::range(known->lo, known->hi) : Value::invalid();
+    const Design& d = design(i);
     std::optional<Rational> q =
         direct_[c] && !d.undecided && a.box.empty() ? direct_[c]->exactAt(d.ratio) : std::nullopt;
     Value v = q ? Value::rational(*q) : ev_.eval(*exprs_[c], a);
@@ -203,6 +217,9 @@ private:
   const Model& m_;
   const std::vector<Design>* designs_;
   std::vector<Design> owned_;
+  std::shared_ptr<const DesignList> list_;
+  mutable Design made_design_; // design made_ of list_, the last one made
+  mutable size_t made_ = SIZE_MAX;
   std::vector<const ir::Expr*> exprs_;
   std::vector<Column> columns_;
   std::vector<std::vector<double>> freedoms_;
@@ -253,6 +270,21 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
                 std::none_of(columnExprs.begin(), columnExprs.end(), [](const ir::Expr* e) {
                   return ir::uses(e, {ir::Op::SceneOutput, ir::Op::Relative, ir::Op::Scatter});
                 });
+  if (lazy && points && r.listing && r.listing->size() > 0) {
+    rows->own(std::move(r.listing));
+    g.rows.resize(1);
+    rows->row(0, g.rows[0], true);
+    g.source = rows;
+    for (auto& c : g.columns)
+      c.exact = true; // points: no column shows an interval
+    return g;
+  }
+  if (r.listing) { // rows that are not points are held whole
+    r.designs.resize(r.listing->size());
+    for (size_t i = 0; i < r.designs.size(); ++i)
+      r.listing->get(i, r.designs[i]);
+    r.listing.reset();
+  }
   if (lazy && points && !r.designs.empty()) {
     rows->own(std::move(r.designs));
     r.designs.clear();
@@ -470,9 +502,16 @@ GearboxReport designTable(const Model& m, Optimised& o, const Columns& columns, 
 }
 
 std::optional<Assignment> bestDesign(const Model& m, const Optimised& o) {
-  if (o.designs.designs.empty()) return std::nullopt;
   Assignment best(m);
-  best.choice = o.designs.designs[0].choice;
+  if (!o.designs.designs.empty()) {
+    best.choice = o.designs.designs[0].choice;
+  } else if (o.designs.listing && o.designs.listing->size() > 0) {
+    Design d;
+    o.designs.listing->get(0, d);
+    best.choice = d.choice;
+  } else {
+    return std::nullopt;
+  }
   if (!o.freedoms.empty())
     for (size_t f = 0; f < o.freedoms[0].size(); ++f)
       best.box[f] = {o.freedoms[0][f], o.freedoms[0][f]};

@@ -184,9 +184,10 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, lo
 } // namespace
 
 SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<void(double)> progress,
-                    std::function<void(double)> deciding) {
+                    std::function<void(double)> deciding, bool compact) {
   const ir::Gearbox& gb = m.gearbox;
   SearchOptions so;
+  so.compact = compact && m.freedoms.empty() && !needsOptimiser(gb);
   so.jobs = jobs;
   so.maxDesigns = maxDesigns;
   so.top = gb.report && gb.report->top ? *gb.report->top : kDefaultTop;

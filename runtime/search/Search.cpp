@@ -21,6 +21,7 @@
 #include "search/Conjuncts.h"
 #include "search/FastKey.h"
 #include "search/HalfList.h"
+#include "search/RankedList.h"
 #include "search/StageFilter.h"
 #include "search/Upstream.h"
 
@@ -599,21 +600,7 @@ private:
     return stages[static_cast<size_t>(s)].candidates[cand[s]];
   }
   Rational exactRatio(const std::uint32_t* cand) const {
-    // Parts multiplied out and reduced once; stage by stage only if they would overflow.
-    units::i128 num = 1, den = 1;
-    bool fits = true;
-    for (int s = 0; s < k && fits; ++s) {
-      const Rational& r = candidate(s, cand).ratio;
-      fits = !__builtin_mul_overflow(num, r.num(), &num) && !__builtin_mul_overflow(den, r.den(), &den) &&
-             num < (units::i128{1} << 120) && num > -(units::i128{1} << 120) && den < (units::i128{1} << 120);
-    }
-    if (fits) return Rational::make(num, den);
-    Rational q(1);
-    for (int s = 0; s < k; ++s) {
-      auto p = q.mul(candidate(s, cand).ratio);
-      if (p) q = *p;
-    }
-    return q;
+    return productOf(k, [&](int s) -> const Rational& { return candidate(s, cand).ratio; });
   }
   void place(Assignment& a, int s, size_t c) const {
     const StageInfo& info = m.stages[static_cast<size_t>(s)];
@@ -1339,14 +1326,15 @@ private:
   // ---- the ranked list ----------------------------------------------------------------------
 
   struct Ref {
-    double k0; // the first key, compared before the rest is looked up
-    const Local* lo;
+    double k0;           // the first key, compared before the rest is looked up
+    std::uint32_t local; // the thread's share that holds it
     std::uint32_t id;
   };
+  const double* keysOf(const Ref& x) const { return locals[x.local].keys.data() + size_t{x.id} * nk; }
+  const std::uint32_t* candOf(const Ref& x) const { return locals[x.local].cand.data() + size_t{x.id} * kk; }
   bool refLess(const Ref& x, const Ref& y) const {
     if (x.k0 != y.k0) return x.k0 < y.k0;
-    return lessRaw(x.lo->keys.data() + x.id * nk, x.lo->cand.data() + x.id * kk, y.lo->keys.data() + y.id * nk,
-                   y.lo->cand.data() + y.id * kk);
+    return lessRaw(keysOf(x), candOf(x), keysOf(y), candOf(y));
   }
 
   // Every kept design in order: the best `keep` of them, or all, by the first key alone (a
@@ -1387,7 +1375,7 @@ private:
 
   Design design(const Ref& x) const {
     Design d;
-    const std::uint32_t* cand = x.lo->cand.data() + x.id * kk;
+    const std::uint32_t* cand = candOf(x);
     d.choice.assign(m.slots.size(), -1);
     for (int s = 0; s < k; ++s) {
       const auto& slots = m.stages[static_cast<size_t>(s)].slots;
@@ -1396,8 +1384,7 @@ private:
         d.choice[static_cast<size_t>(slots[j])] = idx[j];
     }
     d.ratio = exactRatio(cand);
-    d.keys.assign(x.lo->keys.begin() + static_cast<std::ptrdiff_t>(x.id * nk),
-                  x.lo->keys.begin() + static_cast<std::ptrdiff_t>((x.id + 1) * nk));
+    d.keys.assign(keysOf(x), keysOf(x) + nk);
     for (int s = 0; s < k; ++s)
       d.undecided = d.undecided || candidate(s, cand).undecided;
     return d;
@@ -1409,7 +1396,8 @@ private:
     double inWindow = 0, duplicates = 0;
     unsigned long long count = 0, undecided = 0;
     std::vector<Ref> hits;
-    for (const auto& lo : locals) {
+    for (size_t t = 0; t < locals.size(); ++t) {
+      const Local& lo = locals[t];
       count += lo.count;
       undecided += lo.undecided;
       inWindow += lo.inWindow;
@@ -1417,7 +1405,7 @@ private:
       for (size_t c = 0; c < cross.size(); ++c)
         crossRemoved[c] += lo.crossRemoved[c];
       for (std::uint32_t id : lo.heap)
-        hits.push_back({nk ? lo.keys[id * nk] : 0.0, &lo, id});
+        hits.push_back({nk ? lo.keys[size_t{id} * nk] : 0.0, static_cast<std::uint32_t>(t), id});
     }
     if ((capped && count > opt.maxKept) || std::any_of(locals.begin(), locals.end(), [](const Local& lo) { return lo.overKept; })) {
       res.errors.push_back(fmt::format("{} designs satisfy the rules, more than the {} a report can list (the budget of kept "
@@ -1426,10 +1414,13 @@ private:
       return;
     }
     order(hits);
-    std::vector<Design> designs;
-    designs.reserve(hits.size());
-    for (const auto& x : hits)
-      designs.push_back(design(x));
+    if (opt.compact) {
+      res.listing = listing(hits);
+    } else {
+      res.designs.reserve(hits.size());
+      for (const auto& x : hits)
+        res.designs.push_back(design(x));
+    }
     std::string windowText = windowTexts.empty() ? "ratio (no window)" : fmt::format("{}", fmt::join(windowTexts, " and "));
     // With interchangeable stages enumerated canonically, what passes the window is
     // already one design per orbit.
@@ -1444,7 +1435,21 @@ private:
     if (group.size() > 1 && !fast) res.funnel.push_back({"interchangeable: one design per orbit", "", before, duplicates});
     res.count = count;
     res.undecided = undecided;
-    res.designs = std::move(designs);
+  }
+
+  // The ranked designs as candidate indices and keys; the threads' shares are let go as the
+  // list is made, and the stages' candidates move into it.
+  std::shared_ptr<const DesignList> listing(std::vector<Ref>& hits) {
+    std::vector<std::vector<Candidate>> candidates;
+    for (auto& st : stages)
+      candidates.push_back(std::move(st.candidates));
+    auto list = std::make_shared<RankedList>(m, std::move(candidates), nk);
+    list->reserve(hits.size());
+    for (const Ref& x : hits)
+      list->add(candOf(x), keysOf(x));
+    std::vector<Ref>().swap(hits);
+    std::vector<Local>().swap(locals);
+    return list;
   }
 };
 

@@ -5,6 +5,7 @@
 // their exact ratios; `interchangeable` designs are counted once per orbit.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,15 @@ struct Design {
   std::vector<double> freedoms;
 };
 
+// The ranked designs of a listing kept compact (SearchOptions::compact): each made when read.
+class DesignList {
+public:
+  virtual ~DesignList() = default;
+  virtual size_t size() const = 0;
+  // Design i of the ranking into `out`, its vectors reused.
+  virtual void get(size_t i, Design& out) const = 0;
+};
+
 struct SearchOptions {
   int jobs = 1;
   std::optional<long long> top;  // how many designs to keep, ranked; nullopt: all
@@ -51,12 +61,16 @@ struct SearchOptions {
   // Designs a search may keep for its report, with or without `top`; finding more is a
   // failure (a `top` beyond it is cut to it, so memory stays bounded).
   size_t maxKept = SIZE_MAX;
+  // The ranked designs as a compact `listing` instead of `designs` (a long CSV listing
+  // without freedoms: its rows are made one at a time as they are written).
+  bool compact = false;
 };
 
 struct SearchResult {
   unsigned long long count = 0;      // feasible designs (orbits under `interchangeable`)
   unsigned long long undecided = 0;  // of which undecided
   std::vector<Design> designs;       // ranked, at most `top`
+  std::shared_ptr<const DesignList> listing; // the same, compact, in their place (SearchOptions::compact)
   std::vector<FunnelStep> funnel;
   std::string window;                // the exact ratio window used, if any ("[579/100, 581/100]")
   std::vector<std::string> errors;   // rules or objectives the search cannot evaluate

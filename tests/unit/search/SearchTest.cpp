@@ -571,3 +571,35 @@ TEST(Search, EqualStagesFilterOnceAndDifferentOnesEachTheirOwn) {
   EXPECT_EQ(removed["s1"], 0);   // at 4 mm every pinion is at least 48 mm
   EXPECT_EQ(removed["s2"], 33);
 }
+
+// A compact listing holds the same designs in the same order as the designs it replaces:
+// choices, exact ratios, keys, undecided flags; over three interchangeable stages and two
+// threads, whose shares it merges.
+TEST(Search, ACompactListingHoldsTheSameDesigns) {
+  const std::string text =
+      "gearbox B {\n"
+      "  stage s0: spur { pinion.z in 12..40; wheel.z in 12..40; require coprime(pinion.z, wheel.z); }\n"
+      "  stage s1 like s0;\n  stage s2 like s0;\n  interchangeable s0, s1, s2;\n"
+      "  require ratio == 5.8 +- 0.5%;\n  minimize abs(ratio - 5.8);\n}\n";
+  auto c = driver::compileText("t.gbx", text);
+  ASSERT_TRUE(c->ok()) << c->diags.renderText(c->sources);
+  rt::Model m(c->program, c->program.gearboxes[0]);
+  rt::SearchOptions o;
+  o.jobs = 2;
+  rt::SearchResult held = rt::search(m, o);
+  o.compact = true;
+  rt::SearchResult compact = rt::search(m, o);
+  ASSERT_GT(held.designs.size(), 100u);
+  ASSERT_TRUE(compact.designs.empty());
+  ASSERT_TRUE(compact.listing);
+  ASSERT_EQ(compact.listing->size(), held.designs.size());
+  EXPECT_EQ(compact.count, held.count);
+  rt::Design d;
+  for (size_t i = 0; i < held.designs.size(); ++i) {
+    compact.listing->get(i, d);
+    ASSERT_EQ(d.choice, held.designs[i].choice) << "design " << i + 1;
+    EXPECT_EQ(d.ratio.str(), held.designs[i].ratio.str());
+    EXPECT_EQ(d.keys, held.designs[i].keys);
+    EXPECT_EQ(d.undecided, held.designs[i].undecided);
+  }
+}
