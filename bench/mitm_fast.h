@@ -31,17 +31,17 @@ struct FastResult {
   std::vector<FastPair> pairs;
 };
 
+// Every design of the window, once per orbit: visit(num, den, a, b, c, d) with the exact
+// ratio num/den (not reduced) and the pair indices into `pairs` (d unused with 3 stages).
 // stages 3 or 4; the window is 13.36838 +- 1e-6 relative.
-inline FastResult mitmFast(int stages, int maxTeeth, size_t top) {
+template <class Visit> void mitmEach(int stages, int maxTeeth, std::vector<FastPair>& pairs, Visit&& visit) {
   __extension__ using i128 = __int128;
-  FastResult res;
-  auto& pairs = res.pairs;
   for (int p = 12; p <= maxTeeth; ++p)
     for (int w = p + 1; w <= maxTeeth; ++w)
       if (std::gcd(p, w) == 1) pairs.push_back({p, w, static_cast<double>(w) / p, std::log(static_cast<double>(w) / p)});
   std::sort(pairs.begin(), pairs.end(), [](const FastPair& x, const FastPair& y) { return x.r < y.r; });
   // Codes pack two pair indices in 16 bits each.
-  if (pairs.empty() || pairs.size() > 65535) return res;
+  if (pairs.empty() || pairs.size() > 65535) return;
   const std::uint32_t n = static_cast<std::uint32_t>(pairs.size());
   const double target = 13.36838, lo = target * (1 - 1e-6), hi = target * (1 + 1e-6);
   const double logLo = std::log(lo), logHi = std::log(hi), width = logHi - logLo;
@@ -67,17 +67,6 @@ inline FastResult mitmFast(int stages, int maxTeeth, size_t top) {
     for (std::uint32_t c = 0; c < n; ++c)
       for (std::uint32_t d = c; d < n; ++d) code[next[bucketOf(pairs[c].lr + pairs[d].lr)]++] = c << 16 | d;
   }
-  std::vector<FastDesign> heap;
-  auto keep = [&](const FastDesign& x) {
-    if (heap.size() < top) {
-      heap.push_back(x);
-      std::push_heap(heap.begin(), heap.end());
-    } else if (top > 0 && x.err < heap.front().err) {
-      std::pop_heap(heap.begin(), heap.end());
-      heap.back() = x;
-      std::push_heap(heap.begin(), heap.end());
-    }
-  };
   // Lower half: pairs a <= b; the upper half's first pair is at least b.
   for (std::uint32_t a = 0; a < n; ++a)
     for (std::uint32_t b = a; b < n; ++b) {
@@ -95,10 +84,30 @@ inline FastResult mitmFast(int stages, int maxTeeth, size_t top) {
         i128 num = static_cast<i128>(pairs[a].w) * pairs[b].w * pairs[c].w, den = static_cast<i128>(pairs[a].p) * pairs[b].p * pairs[c].p;
         if (upper == 2) num *= pairs[d].w, den *= pairs[d].p;
         if (loNum * den > num * scale || num * scale > hiNum * den) continue;
-        ++res.count;
-        keep({std::fabs(static_cast<double>(num) / static_cast<double>(den) - target), a, b, c, d});
+        visit(num, den, a, b, c, d);
       }
     }
+}
+
+// The count and the best `top` by |ratio - target| in a heap.
+inline FastResult mitmFast(int stages, int maxTeeth, size_t top) {
+  FastResult res;
+  std::vector<FastDesign> heap;
+  auto keep = [&](const FastDesign& x) {
+    if (heap.size() < top) {
+      heap.push_back(x);
+      std::push_heap(heap.begin(), heap.end());
+    } else if (top > 0 && x.err < heap.front().err) {
+      std::pop_heap(heap.begin(), heap.end());
+      heap.back() = x;
+      std::push_heap(heap.begin(), heap.end());
+    }
+  };
+  mitmEach(stages, maxTeeth, res.pairs,
+           [&](auto num, auto den, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+             ++res.count;
+             keep({std::fabs(static_cast<double>(num) / static_cast<double>(den) - 13.36838), a, b, c, d});
+           });
   std::sort_heap(heap.begin(), heap.end());
   res.best = std::move(heap);
   return res;

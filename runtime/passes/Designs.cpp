@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -74,12 +75,12 @@ public:
   void own(std::vector<Design> designs) {
     owned_ = std::move(designs);
     designs_ = &owned_;
-    known_.assign(owned_.size() * exprs_.size(), Known{});
+    remember(owned_.size());
   }
   // A compact listing: each design made when its row is.
   void own(std::shared_ptr<const DesignList> list) {
     list_ = std::move(list);
-    known_.assign(list_->size() * exprs_.size(), Known{});
+    remember(list_->size());
   }
 
   size_t size() const override { return list_ ? list_->size() : designs_->size(); }
@@ -87,7 +88,7 @@ public:
   void row(size_t i, DesignRow& row, bool text) const override {
     const Design& d = design(i);
     const Model& m = m_;
-    row.teeth.clear();
+    size_t tooth = 0; // row.teeth's entries are reused: their names repeat from row to row
     row.choices.clear();
     row.choiceValues.clear();
     row.cells.clear();
@@ -116,7 +117,7 @@ public:
                 ? m.slots[static_cast<size_t>(slot)].values[static_cast<size_t>(d.choice[static_cast<size_t>(slot)])]
                 : (zScratch_ = ev_.attribute(static_cast<int>(s), static_cast<int>(g), Q::Z, a));
         if (z.exact && z.exact->isInteger())
-          row.teeth.emplace_back(toothNames_[s][g], static_cast<long long>(z.exact->num()));
+          setTooth(row, tooth++, toothNames_[s][g], static_cast<long long>(z.exact->num()));
       }
       for (int sl : m.stages[s].slots) {
         const Slot& slot = m.slots[static_cast<size_t>(sl)];
@@ -124,7 +125,7 @@ public:
         size_t vi = static_cast<size_t>(d.choice[static_cast<size_t>(sl)]);
         const Value& v = slot.values[vi];
         if (v.exact && v.exact->isInteger() && slot.dim.dimensionless() && !slot.shaft.setting)
-          row.teeth.emplace_back(slot.path, static_cast<long long>(v.exact->num()));
+          setTooth(row, tooth++, slot.path, static_cast<long long>(v.exact->num()));
         else {
           const Shown& shown = slotShown_[static_cast<size_t>(sl)][vi];
           row.choices.emplace_back(slot.path, shown.text);
@@ -132,6 +133,7 @@ public:
         }
       }
     }
+    row.teeth.resize(tooth);
     for (size_t c = 0; c < exprs_.size(); ++c) {
       Value v = value(i, c, a);
       Cell cell;
@@ -172,6 +174,15 @@ public:
   bool valid(size_t i, size_t c) const override { return value(i, c, assign(i)).isNumber(); }
 
 private:
+  static void setTooth(DesignRow& row, size_t at, const std::string& name, long long z) {
+    if (at == row.teeth.size()) {
+      row.teeth.emplace_back(name, z);
+      return;
+    }
+    if (row.teeth[at].first != name) row.teeth[at].first = name;
+    row.teeth[at].second = z;
+  }
+
   const Design& design(size_t i) const {
     if (!list_) return (*designs_)[i];
     if (made_ != i) {
@@ -200,13 +211,19 @@ private:
   // Column c of design i at its assignment. A listing's rows are made more than once
   // (checked, then written): their values are found once.
   Value value(size_t i, size_t c, const Assignment& a) const {
-    Known* known = known_.empty() ? nullptr : &known_[i * exprs_.size() + c];
-    if (known && known->set) return known->valid ? Value::range(known->lo, known->hi) : Value::invalid();
+    const size_t at = i * exprs_.size() + c;
+    const bool kept = !knownState_.empty();
+    if (kept && knownState_[at] == kPoint) return Value::range(knownValue_[at], knownValue_[at]);
+    if (kept && knownState_[at] == kNone) return Value::invalid();
     const Design& d = design(i);
     std::optional<Rational> q =
         direct_[c] && !d.undecided && a.box.empty() ? direct_[c]->exactAt(d.ratio) : std::nullopt;
     Value v = q ? Value::rational(*q) : ev_.eval(*exprs_[c], a);
-    if (known) *known = {true, v.isNumber(), v.lo, v.hi};
+    if (kept && !v.isNumber()) knownState_[at] = kNone;
+    if (kept && v.isNumber() && v.lo == v.hi) {
+      knownState_[at] = kPoint;
+      knownValue_[at] = v.lo;
+    }
     return v;
   }
 
@@ -228,11 +245,15 @@ private:
   mutable Assignment a_, b_;
   bool ranges_ = false;
   mutable Value zScratch_;
-  struct Known {
-    bool set = false, valid = false;
-    double lo = 0, hi = 0;
-  };
-  mutable std::vector<Known> known_; // a listing's column values, by row and column
+  // A listing's column values, by row and column, found once: a point's value, or that
+  // there is none (an interval is found again).
+  enum : std::uint8_t { kUnknown, kPoint, kNone };
+  mutable std::vector<std::uint8_t> knownState_;
+  mutable std::unique_ptr<double[]> knownValue_; // left unset until found
+  void remember(size_t rows) {
+    knownState_.assign(rows * exprs_.size(), kUnknown);
+    knownValue_.reset(new double[rows * exprs_.size()]);
+  }
   std::map<std::string, std::pair<double, double>> bounds_;
   std::vector<std::vector<std::string>> toothNames_;
   std::vector<std::vector<Shown>> slotShown_;

@@ -85,10 +85,27 @@ void designRows(const GearboxReport& g, const std::vector<bool>& wide, const std
   auto num = [&](double v) {
     if (std::isfinite(v)) fmt::format_to(std::back_inserter(o), FMT_COMPILE("{}"), v);
   };
-  auto inUnit = [&](double si, const std::string& unit, double scale, double offset) { o += csvNumber(si, unit, scale, offset); };
+  // A plain number is written in place; one in a unit is the shortest that reads back.
+  auto inUnit = [&](double si, const std::string& unit, double scale, double offset) {
+    if (unit.empty() && scale == 1.0 && offset == 0.0)
+      num(si);
+    else
+      o += csvNumber(si, unit, scale, offset);
+  };
   auto integer = [&](long long v) {
     fmt::format_int f(v);
     o.append(f.data(), f.size());
+  };
+  auto exact = [&](const Rational& q) {
+    const units::i128 lim = units::i128{1} << 62;
+    if (q.num() >= lim || q.num() <= -lim || q.den() >= lim) {
+      o += q.str();
+      return;
+    }
+    integer(static_cast<long long>(q.num()));
+    if (q.den() == 1) return;
+    o += '/';
+    integer(static_cast<long long>(q.den()));
   };
   size_t rowsStart = o.size();
   forEachRow(g, [&](const DesignRow& r) {
@@ -126,7 +143,7 @@ void designRows(const GearboxReport& g, const std::vector<bool>& wide, const std
       }
     }
     o += ',';
-    o += r.ratio.str();
+    exact(r.ratio);
     o += '\n';
     if (rowDone) rowDone(o);
   });

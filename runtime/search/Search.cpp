@@ -792,8 +792,11 @@ private:
     }
     if (keep == SIZE_MAX || lo.heap.size() < keep) {
       auto id = static_cast<std::uint32_t>(lo.heap.size()); // stored in step with the heap until it is full
-      lo.keys.insert(lo.keys.end(), keys, keys + nk);
-      lo.cand.insert(lo.cand.end(), cand, cand + kk);
+      // Appended element by element: a range insert this short costs more than the copy.
+      for (size_t i = 0; i < nk; ++i)
+        lo.keys.push_back(keys[i]);
+      for (size_t i = 0; i < kk; ++i)
+        lo.cand.push_back(cand[i]);
       lo.heap.push_back(id);
       // A heap only once it is full: until then nothing is evicted.
       if (lo.heap.size() == keep) std::make_heap(lo.heap.begin(), lo.heap.end(), cmp);
@@ -1396,6 +1399,10 @@ private:
     double inWindow = 0, duplicates = 0;
     unsigned long long count = 0, undecided = 0;
     std::vector<Ref> hits;
+    size_t all = 0;
+    for (const auto& lo : locals)
+      all += lo.heap.size();
+    hits.reserve(all);
     for (size_t t = 0; t < locals.size(); ++t) {
       const Local& lo = locals[t];
       count += lo.count;
