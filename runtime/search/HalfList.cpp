@@ -18,6 +18,65 @@ size_t bucketIn(double r, std::uint64_t k0, int shift, size_t last) {
   return static_cast<size_t>(std::min<std::uint64_t>(b, last));
 }
 
+// One run of a list's entries put in order by (ratio, code): counted into fine buckets of
+// its order-key range (about two an entry, all in the first-level cache), then each
+// bucket, mostly of one entry or none, by insertion.
+template <class Code> struct RunOrder {
+  std::vector<std::pair<double, Code>> entries, placed;
+  std::vector<std::uint32_t> count;
+
+  template <class RatioAt> void load(const std::vector<Code>& out, size_t first, size_t last, RatioAt ratioAt) {
+    entries.clear();
+    for (size_t e = first; e < last; ++e)
+      entries.emplace_back(ratioAt(e), out[e]);
+  }
+
+  // The run's keys lie in [base, base + 2^shift) (clamped ones at its ends).
+  void byKey(std::uint64_t base, int shift) {
+    const size_t m = entries.size();
+    if (m < 2) return;
+    int bits = 1;
+    while (bits < shift && (size_t{1} << bits) < 2 * m)
+      ++bits;
+    const int fine = shift - bits;
+    const size_t buckets = size_t{1} << bits;
+    auto bucket = [&](double r) {
+      std::uint64_t k = orderKey(r);
+      if (k <= base || fine >= 64) return size_t{0};
+      return static_cast<size_t>(std::min<std::uint64_t>((k - base) >> fine, buckets - 1));
+    };
+    count.assign(buckets + 1, 0);
+    for (const auto& x : entries)
+      ++count[bucket(x.first) + 1];
+    for (size_t b = 0; b < buckets; ++b)
+      count[b + 1] += count[b];
+    placed.resize(m);
+    for (const auto& x : entries)
+      placed[count[bucket(x.first)]++] = x;
+    // count[b] is now bucket b's end: each bucket in order by insertion (a crowded one, as
+    // clamped keys could make it, by a sort).
+    size_t begin = 0;
+    for (size_t b = 0; b < buckets; ++b) {
+      const size_t end = count[b];
+      if (end - begin > 32) {
+        std::sort(placed.begin() + static_cast<std::ptrdiff_t>(begin),
+                  placed.begin() + static_cast<std::ptrdiff_t>(end));
+        begin = end;
+        continue;
+      }
+      for (size_t e = begin + 1; e < end; ++e) {
+        auto x = placed[e];
+        size_t at = e;
+        for (; at > begin && x < placed[at - 1]; --at)
+          placed[at] = placed[at - 1];
+        placed[at] = x;
+      }
+      begin = end;
+    }
+    entries.swap(placed);
+  }
+};
+
 int bitsFor(size_t n) {
   int b = 1;
   while (b < 63 && (std::uint64_t{1} << b) < n)
@@ -88,8 +147,8 @@ template <class F> void HalfList::forEach(const std::vector<std::pair<int, int>>
 
 template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>& ordered, std::vector<Code>& out) {
   const auto& R = *ratios_;
-  // Bucket bounds from the stages' extreme ratios (positive ratios: the product of the
-  // least is the least product); entries outside are clamped, which keeps the order.
+  // Key bounds from the stages' extreme ratios (positive ratios: the product of the least
+  // is the least product); entries outside are clamped, which keeps the order.
   double lo = 1, hi = 1;
   bool positive = true;
   double upper = 1; // tuples before the canonical order removes any
@@ -112,87 +171,59 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
     forEach(ordered, [&](std::uint64_t, double) { kept += 1; });
     upper = std::max(1.0, kept);
   }
-  size_t buckets = static_cast<size_t>(std::clamp(upper / 4, 1.0, static_cast<double>(1 << 22)));
-  std::uint64_t k0 = orderKey(lo), span = positive ? orderKey(hi) - k0 : 0;
-  int shift = 0;
-  while (shift < 64 && (span >> shift) >= buckets)
-    ++shift;
-  buckets = positive ? static_cast<size_t>(span >> shift) + 1 : 1;
-  auto bucketOf = [&](double r) { return bucketIn(r, k0, shift, buckets - 1); };
-  // Counting sort: counts into start[b + 2], their prefix sums, then start[b + 1] runs as
-  // bucket b's write position and ends as its end, so start[b] is its beginning.
-  std::vector<std::uint32_t> start(buckets + 2, 0);
+  const std::uint64_t k0 = orderKey(lo), span = positive ? orderKey(hi) - k0 : 0;
+  // Runs: ranges of the order key holding about kRunEntries entries each, placed in turn.
+  const double runsWanted = std::clamp(upper / static_cast<double>(kRunEntries), 1.0, static_cast<double>(1 << 20));
+  int runShift = 0;
+  while (runShift < 64 && static_cast<double>(span >> runShift) >= runsWanted)
+    ++runShift;
+  const size_t runs = positive && runShift < 64 ? static_cast<size_t>(span >> runShift) + 1 : 1;
+  auto runOf = [&](double r) { return bucketIn(r, k0, runShift, runs - 1); };
+  std::vector<std::uint32_t> at(runs + 1, 0);
   size_t n = 0;
   forEach(ordered, [&](std::uint64_t, double r) {
-    ++start[bucketOf(r) + 2];
+    ++at[runOf(r) + 1];
     ++n;
   });
-  for (size_t b = 0; b + 2 < start.size(); ++b)
-    start[b + 2] += start[b + 1];
+  for (size_t c = 0; c < runs; ++c)
+    at[c + 1] += at[c];
   out.resize(n);
   n_ = n;
-  // A short list holds each entry's ratio: placed with its code (the product forEach made,
-  // the same number codeRatio gives), then each bucket put in order by (ratio, code) in
-  // place, a fixed order for equal ratios.
-  const bool hold = n <= kHeldRatios;
-  if (hold) {
-    held_.resize(n);
+  {
+    // Each run is a sequential write stream: a few hundred of them stay in the caches,
+    // where a scatter straight to each entry's place would miss on nearly every entry.
+    std::vector<std::uint32_t> next(at.begin(), at.end() - 1);
     forEach(ordered, [&](std::uint64_t code, double r) {
-      std::uint32_t at = start[bucketOf(r) + 1]++;
-      out[at] = static_cast<Code>(code);
-      held_[at] = r;
+      std::uint32_t e = next[runOf(r)]++;
+      out[e] = static_cast<Code>(code);
     });
-    std::vector<std::pair<double, Code>> scratch;
-    for (size_t b = 0; b < buckets; ++b) {
-      if (start[b + 1] - start[b] > 32) {
-        // A crowded bucket: sorted whole (insertion would take its square).
-        scratch.clear();
-        for (size_t e = start[b]; e < start[b + 1]; ++e) scratch.emplace_back(held_[e], out[e]);
-        std::sort(scratch.begin(), scratch.end());
-        for (size_t i = 0; i < scratch.size(); ++i) {
-          held_[start[b] + i] = scratch[i].first;
-          out[start[b] + i] = scratch[i].second;
-        }
-        continue;
-      }
-      for (size_t e = start[b] + 1; e < start[b + 1]; ++e) {
-        double r = held_[e];
-        Code c = out[e];
-        size_t at = e;
-        for (; at > start[b] && (held_[at - 1] > r || (held_[at - 1] == r && out[at - 1] > c)); --at) {
-          held_[at] = held_[at - 1];
-          out[at] = out[at - 1];
-        }
-        held_[at] = r;
-        out[at] = c;
-      }
-    }
-  } else {
-    forEach(ordered, [&](std::uint64_t code, double r) { out[start[bucketOf(r) + 1]++] = static_cast<Code>(code); });
-    // Each entry's ratio computed once, into a scratch the size of the bucket.
-    std::vector<std::pair<double, Code>> scratch;
-    for (size_t b = 0; b < buckets; ++b) {
-      auto first = out.begin() + start[b], last = out.begin() + start[b + 1];
-      if (last - first < 2) continue;
-      scratch.clear();
-      for (auto it = first; it != last; ++it)
-        scratch.emplace_back(codeRatio(*it), *it);
-      std::sort(scratch.begin(), scratch.end());
-      for (size_t i = 0; i < scratch.size(); ++i)
-        first[static_cast<std::ptrdiff_t>(i)] = scratch[i].second;
+  }
+  // The coarse index over the order key, about four entries a bucket, filled as the runs
+  // are put in order.
+  keyShift_ = 0;
+  while (keyShift_ < 64 && (span >> keyShift_) + 1 > std::max<size_t>(1, n / 4))
+    ++keyShift_;
+  key0_ = k0;
+  const size_t coarse = positive && keyShift_ < 64 ? static_cast<size_t>(span >> keyShift_) + 1 : 1;
+  index_.assign(coarse + 1, 0);
+  size_t indexed = 0; // index_[0, indexed) are set
+  RunOrder<Code> order;
+  for (size_t c = 0; c < runs; ++c) {
+    order.load(out, at[c], at[c + 1], [&](size_t e) { return codeRatio(out[e]); });
+    if (positive && runShift < 64)
+      order.byKey(k0 + (static_cast<std::uint64_t>(c) << runShift), runShift);
+    else
+      std::sort(order.entries.begin(), order.entries.end());
+    for (size_t i = 0; i < order.entries.size(); ++i) {
+      const size_t e = at[c] + i;
+      const auto& [r, code] = order.entries[i];
+      out[e] = code;
+      for (size_t b = bucketIn(r, k0, keyShift_, coarse - 1); indexed <= b;)
+        index_[indexed++] = static_cast<std::uint32_t>(e);
     }
   }
-  // The coarse index: every 2^d fine buckets, about four entries each.
-  int d = 0;
-  while ((buckets >> d) > std::max<size_t>(1, n / 4))
-    ++d;
-  key0_ = k0;
-  keyShift_ = shift + d;
-  size_t coarse = ((buckets - 1) >> d) + 1;
-  index_.resize(coarse + 1);
-  for (size_t b = 0; b < coarse; ++b)
-    index_[b] = start[b << d];
-  index_[coarse] = static_cast<std::uint32_t>(n);
+  while (indexed <= coarse)
+    index_[indexed++] = static_cast<std::uint32_t>(n);
 }
 
 size_t HalfList::bucketOf(double r) const { return bucketIn(r, key0_, keyShift_, index_.size() - 2); }
@@ -204,18 +235,20 @@ size_t HalfList::bound(double v, bool strict) const {
     lo = index_[b];
     hi = index_[b + 1];
   }
-  if (!held_.empty() && lo < hi) {
-    // Branchless over the held ratios: the join asks this once per row, and the bucket's
-    // few entries would mispredict a branchy search about every other step.
-    const double* base = held_.data() + lo;
+  if (lo < hi && !identity_ && wide_.empty()) {
+    // Branchless over the bucket's codes, each probe a product of two table reads: the join
+    // asks this once per row, and a bucket's few entries would mispredict a branchy search
+    // about every other step.
+    const std::uint32_t* base = codes_.data() + lo;
     size_t len = hi - lo;
     while (len > 1) {
       size_t half = len / 2;
-      base += (strict ? base[half - 1] <= v : base[half - 1] < v) ? half : 0;
+      double r = codeRatio(base[half - 1]);
+      base += (strict ? r <= v : r < v) ? half : 0;
       len -= half;
     }
-    size_t at = static_cast<size_t>(base - held_.data());
-    return at + ((strict ? *base <= v : *base < v) ? 1 : 0);
+    double r = codeRatio(*base);
+    return static_cast<size_t>(base - codes_.data()) + ((strict ? r <= v : r < v) ? 1 : 0);
   }
   while (lo < hi) {
     size_t mid = (lo + hi) / 2;
@@ -280,6 +313,10 @@ HalfList HalfList::build(const std::vector<std::vector<double>>& ratios,
       H.width_ = 0;
       return H;
     }
+  }
+  if (H.width_ == 2) {
+    H.pair0_ = ratios[static_cast<size_t>(from)].data();
+    H.pair1_ = ratios[static_cast<size_t>(from) + 1].data();
   }
   if (bits <= 32)
     H.fill(ordered, H.codes_);

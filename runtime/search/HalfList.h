@@ -2,11 +2,12 @@
 // One half of the meet-in-the-middle join: every tuple of candidates of stages [from, to),
 // canonical within interchangeable blocks, in ascending order of its ratio product. An
 // entry is the tuple's candidate indices packed into one integer (4 bytes when they fit);
-// a list of up to 4M entries holds each entry's ratio beside it, a longer one recomputes
-// it from the stages' candidate ratios when the sweep reads it (so it costs no more than
-// its codes). Sorted by a counting sort over buckets of the
-// ratio's bits (monotone in the ratio, about uniform in its logarithm), then within each
-// bucket: no per-entry allocation, no copies of keys.
+// its ratio is recomputed from the stages' candidate ratios when the sweep reads it (for
+// two stages, two reads of small tables and a product). Holding the ratios beside the codes
+// tripled the list's memory, and a page of memory first touched costs more than the
+// products it would save. Sorted by a counting sort over runs of the ratio's bits
+// (monotone in the ratio, about uniform in its logarithm), each run then in order by finer
+// buckets of its own: no per-entry allocation, no copies of keys.
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -37,7 +38,7 @@ public:
   int width() const { return width_; }
   // Candidate index of the half's s-th stage (0-based within the half) for entry e.
   std::uint32_t index(size_t e, int s) const { return field(code(e), s); }
-  double ratio(size_t e) const { return held_.empty() ? codeRatio(code(e)) : held_[e]; }
+  double ratio(size_t e) const { return codeRatio(code(e)); }
   // First entry whose ratio is >= v (lowerBound) or > v (upperBound): a jump through a
   // coarse index of the ratio buckets, then a binary search inside one bucket.
   size_t lowerBound(double v) const { return bound(v, false); }
@@ -50,7 +51,6 @@ public:
   void prefetchEntries(double v) const {
     if (index_.empty()) return;
     size_t e = index_[bucketOf(v)];
-    if (!held_.empty()) __builtin_prefetch(&held_[std::min(e, held_.size() - 1)]);
     if (wide_.empty() && e < codes_.size()) __builtin_prefetch(&codes_[e]);
   }
   // Why the list could not be built (the tuples do not fit a 64-bit code), or empty.
@@ -62,6 +62,8 @@ private:
     return static_cast<std::uint32_t>((c >> shift_[static_cast<size_t>(s)]) & mask_[static_cast<size_t>(s)]);
   }
   double codeRatio(std::uint64_t c) const {
+    // Two stages, the usual half: two table reads and a product (the same product as below).
+    if (pair0_) return pair0_[c & mask_[0]] * pair1_[(c >> shift_[1]) & mask_[1]];
     double r = 1;
     for (int s = 0; s < width_; ++s)
       r *= (*ratios_)[static_cast<size_t>(from_ + s)][field(c, s)];
@@ -73,15 +75,13 @@ private:
   template <class F> void forEach(const std::vector<std::pair<int, int>>& ordered, F&& f) const;
 
   const std::vector<std::vector<double>>* ratios_ = nullptr;
+  const double *pair0_ = nullptr, *pair1_ = nullptr;               // a two-stage half's ratio tables
   const std::vector<std::pair<double, double>>* reach_ = nullptr;  // during build only
   int from_ = 0, width_ = 0;
   size_t n_ = 0;
   bool identity_ = false; // one stage: entry e is candidate e (the candidates are sorted)
   std::vector<std::uint32_t> codes_;
-  // Each entry's ratio, held where the list is short enough (the join reads it a few times
-  // per entry, and recomputing it costs two table reads and a product each time).
-  std::vector<double> held_;
-  static constexpr size_t kHeldRatios = size_t{1} << 22;
+  static constexpr size_t kRunEntries = 2048; // entries the build puts in order at a time
   std::vector<std::uint64_t> wide_;
   std::vector<int> shift_;
   std::vector<std::uint64_t> mask_;

@@ -2,8 +2,9 @@
 
 namespace gbx::rt {
 
-RankedList::RankedList(const Model& m, std::vector<std::vector<Candidate>> candidates, size_t keys)
-    : nSlots_(m.slots.size()), candidates_(std::move(candidates)), k_(candidates_.size()), nk_(keys) {
+RankedList::RankedList(const Model& m, std::vector<std::vector<Candidate>> lists, std::vector<size_t> listOf,
+                       size_t keys)
+    : nSlots_(m.slots.size()), lists_(std::move(lists)), listOf_(std::move(listOf)), k_(listOf_.size()), nk_(keys) {
   for (const auto& st : m.stages)
     slots_.push_back(st.slots);
 }
@@ -23,13 +24,13 @@ void RankedList::get(size_t i, Design& d) const {
   d.choice.assign(nSlots_, -1);
   d.undecided = false;
   for (size_t s = 0; s < k_; ++s) {
-    const Candidate& c = candidates_[s][cand[s]];
+    const Candidate& c = lists_[listOf_[s]][cand[s]];
     for (size_t j = 0; j < slots_[s].size(); ++j)
       d.choice[static_cast<size_t>(slots_[s][j])] = c.idx[j];
     d.undecided = d.undecided || c.undecided;
   }
   d.ratio = productOf(static_cast<int>(k_),
-                      [&](int s) -> const Rational& { return candidates_[static_cast<size_t>(s)][cand[s]].ratio; });
+                      [&](int s) -> const Rational& { return lists_[listOf_[static_cast<size_t>(s)]][cand[s]].ratio; });
   d.keys.assign(keys_.begin() + static_cast<std::ptrdiff_t>(i * nk_),
                 keys_.begin() + static_cast<std::ptrdiff_t>((i + 1) * nk_));
   d.freedoms.clear();

@@ -31,19 +31,21 @@ template <class Part> Rational productOf(int k, Part part) {
 
 class RankedList final : public DesignList {
 public:
-  // The stages' candidates (moved in: the search is done with them) and the number of keys.
-  RankedList(const Model& m, std::vector<std::vector<Candidate>> candidates, size_t keys);
+  // The stages' candidate lists (moved in: the search is done with them), the list of each
+  // stage (equal stages share one), and the number of keys.
+  RankedList(const Model& m, std::vector<std::vector<Candidate>> lists, std::vector<size_t> listOf, size_t keys);
   void reserve(size_t designs);
   // The next design of the ranking: its candidate per stage and its keys.
   void add(const std::uint32_t* cand, const double* keys);
 
-  size_t size() const override { return cand_.size() / k_; }
+  size_t size() const override { return k_ ? cand_.size() / k_ : 0; }
   void get(size_t i, Design& out) const override;
 
 private:
   std::vector<std::vector<int>> slots_; // per stage: its slots, in its candidates' order
   size_t nSlots_;
-  std::vector<std::vector<Candidate>> candidates_;
+  std::vector<std::vector<Candidate>> lists_;
+  std::vector<size_t> listOf_;
   size_t k_, nk_;
   std::vector<std::uint32_t> cand_; // k_ per design
   std::vector<double> keys_;        // nk_ per design

@@ -145,6 +145,17 @@ private:
   std::vector<UpstreamStage> upstream;
   // Stages, symmetry and the join's halves.
   std::vector<StageResult> stages;
+  std::vector<size_t>
+      source; // per stage: the stage whose result holds its candidates (itself, or an equal earlier one)
+  const std::vector<Candidate>& candidatesOf(int s) const { return stages[source[static_cast<size_t>(s)]].candidates; }
+  // Each stage its own copy of its candidates, before one stage's are changed.
+  void unshare() {
+    for (size_t s = 0; s < stages.size(); ++s)
+      if (source[s] != s) {
+        stages[s].candidates = stages[source[s]].candidates;
+        source[s] = s;
+      }
+  }
   std::vector<Perm> group;
   std::vector<std::pair<int, int>> ordered; // (a, b): index of stage a <= index of stage b
   bool fast = false;
@@ -276,13 +287,17 @@ private:
       for (int e = 0; e < s && same < 0; ++e)
         if (sameFilter(e, s)) same = e;
       if (same >= 0) {
-        stages.push_back(stages[static_cast<size_t>(same)]);
+        // Its candidates are read from that stage's list, not copied.
+        source.push_back(source[static_cast<size_t>(same)]);
+        stages.emplace_back();
+        stages.back().funnel = stages[static_cast<size_t>(same)].funnel;
         for (auto& f : stages.back().funnel) {
           f.scope = m.stages[static_cast<size_t>(s)].ir->name;
           res.funnel.push_back(f);
         }
         continue;
       }
+      source.push_back(static_cast<size_t>(s));
       stages.push_back(filterStage(ev, s, local[static_cast<size_t>(s)], opt.jobs, !opt.exhaustive));
       if (stages.back().timedOutAt >= 0) {
         res.errors.push_back(timeLimitMessage(fmt::format("filtering the candidates of stage `{}`", m.stages[static_cast<size_t>(s)].ir->name),
@@ -379,7 +394,7 @@ private:
 
   // Whether stages a and b have the same candidate list (same attributes, same values).
   bool sameList(int a, int b) const {
-    const auto &ca = stages[static_cast<size_t>(a)].candidates, &cb = stages[static_cast<size_t>(b)].candidates;
+    const auto &ca = candidatesOf(a), &cb = candidatesOf(b);
     if (ca.size() != cb.size()) return false;
     const auto &sa = m.stages[static_cast<size_t>(a)].slots, &sb = m.stages[static_cast<size_t>(b)].slots;
     if (sa.size() != sb.size()) return false;
@@ -428,8 +443,8 @@ private:
   bool downstream() {
     crossAt.assign(cross.size(), {-1, -1});
     if (opt.exhaustive || k < 2) return true;
-    for (const auto& st : stages)
-      if (st.candidates.empty() || !(st.candidates.front().r > 0)) return true;
+    for (int s = 0; s < k; ++s)
+      if (candidatesOf(s).empty() || !(candidatesOf(s).front().r > 0)) return true;
     for (int s = 1; s < k; ++s) {
       if (!m.stages[static_cast<size_t>(s)].selfContained) continue;
       std::vector<const Conjunct*> rules;
@@ -442,6 +457,7 @@ private:
       }
       if (rules.empty()) continue;
       auto placeOne = [this, s](Assignment& a, size_t c) { place(a, s, c); };
+      unshare(); // bracketing narrows a stage's own candidates
       upstream.push_back(bracketStage(ev, s, stages[static_cast<size_t>(s)].candidates, rules, local[static_cast<size_t>(s)],
                                       upstreamRange(s), placeOne, opt.jobs));
       for (size_t r = 0; r < which.size(); ++r)
@@ -456,14 +472,14 @@ private:
   std::vector<std::pair<double, double>> upstreamRange(int s) const {
     double upLo = 1, upHi = 1, downLo = 1, downHi = 1;
     for (int j = 0; j < k; ++j) {
-      const auto& c = stages[static_cast<size_t>(j)].candidates;
+      const auto& c = candidatesOf(j);
       if (j == s) continue;
       (j < s ? upLo : downLo) *= c.front().r;
       (j < s ? upHi : downHi) *= c.back().r;
     }
     const double wlo = window.lo ? window.lo->toDouble() : 0, whi = window.hi ? window.hi->toDouble() : INFINITY;
     std::vector<std::pair<double, double>> out;
-    for (const auto& c : stages[static_cast<size_t>(s)].candidates)
+    for (const auto& c : candidatesOf(s))
       out.emplace_back(std::max(upLo, wlo / (c.r * downHi)) * (1 - 1e-9), std::min(upHi, whi / (c.r * downLo)) * (1 + 1e-9));
     return out;
   }
@@ -473,18 +489,18 @@ private:
   // The join's budget: with a two-sided ratio window it builds and walks its halves; without
   // one it visits every combination.
   bool withinBudget() {
-    for (const auto& st : stages)
-      combos *= static_cast<double>(st.candidates.size());
+    for (int s = 0; s < k; ++s)
+      combos *= static_cast<double>(candidatesOf(s).size());
     double left = 1, rightSize = 1;
     for (int s = 0; s < k; ++s)
-      (s < h ? left : rightSize) *= static_cast<double>(stages[static_cast<size_t>(s)].candidates.size());
+      (s < h ? left : rightSize) *= static_cast<double>(candidatesOf(s).size());
     bool windowed = window.lo && window.hi && k > 1;
     double walked = windowed ? std::max(left, rightSize) : combos;
     if (walked <= opt.maxDesigns) return true;
     std::vector<std::string> lists;
     for (int s = 0; s < k; ++s)
       lists.push_back(fmt::format("`{}` {} candidates ({})", m.stages[static_cast<size_t>(s)].ir->name,
-                                  stages[static_cast<size_t>(s)].candidates.size(), stageRanges(m, s)));
+                                  candidatesOf(s).size(), stageRanges(m, s)));
     res.errors.push_back(fmt::format(
         "the search space is {:.3g} designs ({}){}, beyond the search budget of {:.3g} (--max-designs); narrow these ranges, "
         "{}or raise --max-designs",
@@ -528,7 +544,7 @@ private:
     bool same = sameHalves();
     ratios.resize(kk);
     for (int s = 0; s < k; ++s)
-      for (const auto& c : stages[static_cast<size_t>(s)].candidates)
+      for (const auto& c : candidatesOf(s))
         ratios[static_cast<size_t>(s)].push_back(c.r);
     if (!rows) leftList = HalfList::build(ratios, ordered, 0, h);
     std::vector<std::pair<double, double>> reach = rightReach();
@@ -538,7 +554,7 @@ private:
     if (!res.errors.empty()) return false;
     right = same ? &leftList : &rightList;
     // Rows: left entries are (i, j) packed as i * n1 + j.
-    n1 = rows ? stages[1].candidates.size() : 0;
+    n1 = rows ? candidatesOf(1).size() : 0;
     // Links of the canonical order from a left stage to a right one: a floor on a one-stage
     // right half (its entries are its sorted candidates), a test per entry otherwise.
     for (const auto& [sa, sb] : ordered)
@@ -596,15 +612,13 @@ private:
         lo = std::max<size_t>(lo, leftIndex(le, sa));
     return lo;
   }
-  const Candidate& candidate(int s, const std::uint32_t* cand) const {
-    return stages[static_cast<size_t>(s)].candidates[cand[s]];
-  }
+  const Candidate& candidate(int s, const std::uint32_t* cand) const { return candidatesOf(s)[cand[s]]; }
   Rational exactRatio(const std::uint32_t* cand) const {
     return productOf(k, [&](int s) -> const Rational& { return candidate(s, cand).ratio; });
   }
   void place(Assignment& a, int s, size_t c) const {
     const StageInfo& info = m.stages[static_cast<size_t>(s)];
-    const Candidate& cand = stages[static_cast<size_t>(s)].candidates[c];
+    const Candidate& cand = candidatesOf(s)[c];
     for (size_t j = 0; j < info.slots.size(); ++j)
       a.choice[static_cast<size_t>(info.slots[j])] = cand.idx[j];
     for (size_t j = 0; j < info.freedoms.size(); ++j) {
@@ -672,8 +686,8 @@ private:
     const ir::Expr* e = opt.sortBy ? opt.sortBy : m.gearbox.objectives[0].expr.get();
     bool maximise = !opt.sortBy && !m.gearbox.objectives[0].minimize;
     std::vector<size_t> sizes;
-    for (const auto& st : stages)
-      sizes.push_back(st.candidates.size());
+    for (int s = 0; s < k; ++s)
+      sizes.push_back(candidatesOf(s).size());
     bool any = std::all_of(sizes.begin(), sizes.end(), [](size_t x) { return x > 0; });
     auto reads = [&](const ir::Expr& x) {
       Conjunct c;
@@ -708,7 +722,7 @@ private:
     members.resize(kk);
     if (orbitCheck)
       for (int s = 0; s < k; ++s)
-        for (const auto& c : stages[static_cast<size_t>(s)].candidates)
+        for (const auto& c : candidatesOf(s))
           members[static_cast<size_t>(s)].insert(c.idx);
   }
   const Value& valueOf(int slot, int c) const { return m.slots[static_cast<size_t>(slot)].values[static_cast<size_t>(c)]; }
@@ -1235,11 +1249,11 @@ private:
     // Both bounds of the right window fall as the left ratio rises.
     wantLoC = wlo * (1 - eps);
     wantHiC = whi * (1 + eps);
-    n = rows ? stages[0].candidates.size() : leftList.size();
+    n = rows ? candidatesOf(0).size() : leftList.size();
     rn = right->size();
     threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(n / 64) + 1));
-    for (const auto& st : stages)
-      for (const auto& c : st.candidates)
+    for (int s = 0; s < k; ++s)
+      for (const auto& c : candidatesOf(s))
         undecidedAny = undecidedAny || c.undecided;
     // Counted by arithmetic (the window's length, its borders confirmed exactly) when every
     // design in a window counts: no rule across stages, no orbit test, no undecided freedom,
@@ -1447,10 +1461,14 @@ private:
   // The ranked designs as candidate indices and keys; the threads' shares are let go as the
   // list is made, and the stages' candidates move into it.
   std::shared_ptr<const DesignList> listing(std::vector<Ref>& hits) {
-    std::vector<std::vector<Candidate>> candidates;
-    for (auto& st : stages)
-      candidates.push_back(std::move(st.candidates));
-    auto list = std::make_shared<RankedList>(m, std::move(candidates), nk);
+    std::vector<std::vector<Candidate>> lists;
+    std::vector<size_t> listOf;
+    for (int s = 0; s < k; ++s) {
+      const size_t from = source[static_cast<size_t>(s)];
+      if (from == static_cast<size_t>(s)) lists.push_back(std::move(stages[from].candidates));
+      listOf.push_back(from == static_cast<size_t>(s) ? lists.size() - 1 : listOf[from]);
+    }
+    auto list = std::make_shared<RankedList>(m, std::move(lists), std::move(listOf), nk);
     list->reserve(hits.size());
     for (const Ref& x : hits)
       list->add(candOf(x), keysOf(x));

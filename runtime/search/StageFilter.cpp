@@ -81,9 +81,17 @@ StageResult collect(std::vector<Chunk>& chunks, const std::vector<StageRule>& ru
     res.funnel.push_back({"no freedom value satisfies the rules together", name, before, joint});
     before -= joint;
   }
-  for (auto& ch : chunks)
-    for (auto& c : ch.out)
-      res.candidates.push_back(std::move(c));
+  if (chunks.size() == 1) {
+    res.candidates = std::move(chunks[0].out);
+  } else {
+    size_t kept = 0;
+    for (const auto& ch : chunks)
+      kept += ch.out.size();
+    res.candidates.reserve(kept);
+    for (auto& ch : chunks)
+      for (auto& c : ch.out)
+        res.candidates.push_back(std::move(c));
+  }
   sortByRatio(res.candidates);
   return res;
 }
