@@ -18,9 +18,9 @@ size_t bucketIn(double r, std::uint64_t k0, int shift, size_t last) {
   return static_cast<size_t>(std::min<std::uint64_t>(b, last));
 }
 
-// One run of a list's entries put in order by (ratio, code): counted into fine buckets of
-// its order-key range (about two an entry, all in the first-level cache), then each
-// bucket, mostly of one entry or none, by insertion.
+// One run of a list's entries put in order by ratio, equal ratios in the order they were
+// made: counted into fine buckets of its order-key range (about two an entry), then one
+// insertion pass (a bucket holds one entry or none, mostly).
 template <class Code> struct RunOrder {
   std::vector<std::pair<double, Code>> entries, placed;
   std::vector<std::uint32_t> count;
@@ -53,25 +53,22 @@ template <class Code> struct RunOrder {
     placed.resize(m);
     for (const auto& x : entries)
       placed[count[bucket(x.first)]++] = x;
-    // count[b] is now bucket b's end: each bucket in order by insertion (a crowded one, as
-    // clamped keys could make it, by a sort).
-    size_t begin = 0;
-    for (size_t b = 0; b < buckets; ++b) {
-      const size_t end = count[b];
-      if (end - begin > 32) {
-        std::sort(placed.begin() + static_cast<std::ptrdiff_t>(begin),
-                  placed.begin() + static_cast<std::ptrdiff_t>(end));
-        begin = end;
-        continue;
-      }
-      for (size_t e = begin + 1; e < end; ++e) {
-        auto x = placed[e];
-        size_t at = e;
-        for (; at > begin && x < placed[at - 1]; --at)
-          placed[at] = placed[at - 1];
-        placed[at] = x;
-      }
-      begin = end;
+    // Entries of different buckets are in order now, and each bucket's in the order they
+    // were made (the counting is stable). One stable insertion pass by ratio puts each
+    // bucket in order, a comparison an entry; equal ratios keep the order they were made in
+    // (a fixed order). A crowded bucket (clamped keys) is sorted stably first.
+    auto byRatio = [](const std::pair<double, Code>& x, const std::pair<double, Code>& y) { return x.first < y.first; };
+    for (size_t b = 0, begin = 0; b < buckets; begin = count[b++])
+      if (count[b] - begin > 32)
+        std::stable_sort(placed.begin() + static_cast<std::ptrdiff_t>(begin),
+                         placed.begin() + static_cast<std::ptrdiff_t>(count[b]), byRatio);
+    for (size_t e = 1; e < m; ++e) {
+      if (!byRatio(placed[e], placed[e - 1])) continue;
+      auto x = placed[e];
+      size_t at = e;
+      for (; at > 0 && byRatio(x, placed[at - 1]); --at)
+        placed[at] = placed[at - 1];
+      placed[at] = x;
     }
     entries.swap(placed);
   }
@@ -213,7 +210,8 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
     if (positive && runShift < 64)
       order.byKey(k0 + (static_cast<std::uint64_t>(c) << runShift), runShift);
     else
-      std::sort(order.entries.begin(), order.entries.end());
+      std::stable_sort(order.entries.begin(), order.entries.end(),
+                       [](const auto& x, const auto& y) { return x.first < y.first; });
     for (size_t i = 0; i < order.entries.size(); ++i) {
       const size_t e = at[c] + i;
       const auto& [r, code] = order.entries[i];
