@@ -261,12 +261,20 @@ MeshScene meshSceneOf(const Model& m, const Assignment& a, const ScenePlan& scen
   MeshModel model(p, fx);
   if (fx.damping) prov.push_back(fmt::format("damping coefficient {:.6g} N*s/m", model.dampingCoefficient()));
   prov.push_back(fmt::format("mesh frequency {:.4f} Hz, natural frequency {:.4f} Hz", 1.0 / Tz, 1.0 / model.naturalPeriod()));
-  // Steps: at most a quarter period of the highest stiffness harmonic; with contact
-  // (backlash, Hertz) also a twentieth of the natural period, the scale of a contact.
+  // Steps of a smooth model: at most one period of the highest stiffness harmonic, so that
+  // no step spans a whole period of its forcing, where an error estimate could miss it;
+  // below that the tolerance alone decides (a quarter of it fixed the cost, and the error,
+  // of every looser tolerance). With contact (backlash, Hertz) the right-hand side has
+  // kinks the error estimate does not see: a quarter of it, and a twentieth of the natural
+  // period, a contact's time scale.
+  const bool contact = fx.backlash || fx.hertz;
   int harmonics = fx.varyingStiffness ? std::max(1, fx.harmonics) : fx.loadedMesh ? std::max(1, fx.loadedHarmonics) : 1;
-  acc.maxStep = Tz / (4.0 * harmonics);
-  std::string rule = fx.varyingStiffness || fx.loadedMesh ? fmt::format("Tz/(4 x {} harmonics)", harmonics) : "Tz/4";
-  if ((fx.backlash || fx.hertz) && model.naturalPeriod() / 20.0 < acc.maxStep) {
+  const int per = contact ? 4 : 1;
+  acc.maxStep = Tz / (per * harmonics);
+  std::string rule = contact ? "Tz/4" : "Tz";
+  if (fx.varyingStiffness || fx.loadedMesh)
+    rule = contact ? fmt::format("Tz/(4 x {} harmonics)", harmonics) : fmt::format("Tz/{} harmonics", harmonics);
+  if (contact && model.naturalPeriod() / 20.0 < acc.maxStep) {
     acc.maxStep = model.naturalPeriod() / 20.0;
     rule = "Tn/20 (natural period, a contact's time scale)";
   }
