@@ -291,23 +291,18 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
                 std::none_of(columnExprs.begin(), columnExprs.end(), [](const ir::Expr* e) {
                   return ir::uses(e, {ir::Op::SceneOutput, ir::Op::Relative, ir::Op::Scatter});
                 });
-  if (lazy && points && r.listing && r.listing->size() > 0) {
-    rows->own(std::move(r.listing));
-    g.rows.resize(1);
-    rows->row(0, g.rows[0], true);
-    g.source = rows;
-    for (auto& c : g.columns)
-      c.exact = true; // points: no column shows an interval
-    return g;
-  }
-  if (r.listing) { // rows that are not points are held whole
+  const bool listed = lazy && points && r.listing && r.listing->size() > 0;
+  if (r.listing && !listed) { // rows that are not points are held whole
     r.designs.resize(r.listing->size());
     for (size_t i = 0; i < r.designs.size(); ++i)
       r.listing->get(i, r.designs[i]);
     r.listing.reset();
   }
-  if (lazy && points && !r.designs.empty()) {
-    rows->own(std::move(r.designs));
+  if (listed || (lazy && points && !r.designs.empty())) {
+    if (listed)
+      rows->own(std::move(r.listing));
+    else
+      rows->own(std::move(r.designs));
     r.designs.clear();
     g.rows.resize(1);
     rows->row(0, g.rows[0], true);
