@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [[ -x build/bench/search_bench ]] || ./scripts/setup.sh >/dev/null
-cmake --build build --target search_bench dynamics_bench rating_bench mitm_program gbxc >/dev/null
+cmake --build build --target search_bench dynamics_bench rating_bench mitm_program listing_program gbxc >/dev/null
 # gbxc-mpi where Open MPI is installed (the Monte Carlo ranks' table).
 cmake --build build --target gbxc-mpi >/dev/null 2>&1 || true
 py=/usr/bin/python3

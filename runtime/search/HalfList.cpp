@@ -35,7 +35,7 @@ template <class Code> struct RunOrder {
   void byKey(std::uint64_t base, int shift) {
     const size_t m = entries.size();
     if (m < 2) return;
-    int bits = 1;
+    int bits = 0; // fine buckets 2^bits, no finer than the keys themselves (shift >= bits)
     while (bits < shift && (size_t{1} << bits) < 2 * m)
       ++bits;
     const int fine = shift - bits;
@@ -187,8 +187,9 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
   out.resize(n);
   n_ = n;
   {
-    // Each run is a sequential write stream: a few hundred of them stay in the caches,
-    // where a scatter straight to each entry's place would miss on nearly every entry.
+    // Each run is a sequential write stream: a few hundred of them (the benchmark's lists)
+    // stay in the caches, where a scatter straight to each entry's place would miss on
+    // nearly every entry.
     std::vector<std::uint32_t> next(at.begin(), at.end() - 1);
     forEach(ordered, [&](std::uint64_t code, double r) {
       std::uint32_t e = next[runOf(r)]++;

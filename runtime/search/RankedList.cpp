@@ -17,6 +17,7 @@ void RankedList::reserve(size_t designs) {
 void RankedList::add(const std::uint32_t* cand, const double* keys) {
   cand_.insert(cand_.end(), cand, cand + k_);
   keys_.insert(keys_.end(), keys, keys + nk_);
+  ++n_;
 }
 
 void RankedList::get(size_t i, Design& d) const {

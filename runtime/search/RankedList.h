@@ -38,7 +38,7 @@ public:
   // The next design of the ranking: its candidate per stage and its keys.
   void add(const std::uint32_t* cand, const double* keys);
 
-  size_t size() const override { return k_ ? cand_.size() / k_ : 0; }
+  size_t size() const override { return n_; }
   void get(size_t i, Design& out) const override;
 
 private:
@@ -47,6 +47,7 @@ private:
   std::vector<std::vector<Candidate>> lists_;
   std::vector<size_t> listOf_;
   size_t k_, nk_;
+  size_t n_ = 0;                    // designs (a gearbox without stages has one, of no candidates)
   std::vector<std::uint32_t> cand_; // k_ per design
   std::vector<double> keys_;        // nk_ per design
 };

@@ -457,7 +457,7 @@ private:
       }
       if (rules.empty()) continue;
       auto placeOne = [this, s](Assignment& a, size_t c) { place(a, s, c); };
-      unshare(); // bracketing narrows a stage's own candidates
+      if (!m.stages[static_cast<size_t>(s)].freedoms.empty()) unshare(); // bracketing narrows their freedoms
       upstream.push_back(bracketStage(ev, s, stages[static_cast<size_t>(s)].candidates, rules, local[static_cast<size_t>(s)],
                                       upstreamRange(s), placeOne, opt.jobs));
       for (size_t r = 0; r < which.size(); ++r)
@@ -1458,8 +1458,8 @@ private:
     res.undecided = undecided;
   }
 
-  // The ranked designs as candidate indices and keys; the threads' shares are let go as the
-  // list is made, and the stages' candidates move into it.
+  // The ranked designs as candidate indices and keys; the threads' shares are let go once
+  // the list is made, and the stages' candidates move into it.
   std::shared_ptr<const DesignList> listing(std::vector<Ref>& hits) {
     std::vector<std::vector<Candidate>> lists;
     std::vector<size_t> listOf;

@@ -136,3 +136,20 @@ gearbox B {
   EXPECT_EQ(a, 6);
   EXPECT_EQ(b, 4);
 }
+
+// A gearbox without stages has one design; the CSV listing on stdout (made a row at a time
+// from the search's compact list) lists it as the text report does.
+TEST(CsvRoundTrip, AGearboxWithoutStagesListsItsOneDesign) {
+  auto path = std::filesystem::temp_directory_path() / "gbx_csv_no_stages.gbx";
+  std::ofstream(path) << "gearbox Z { report { top 10; } }\n";
+  std::ostringstream csv, err;
+  ASSERT_EQ(driver::run({"solve", path.string(), "--format", "csv", "--quiet"}, csv, err), 0) << err.str();
+  std::filesystem::remove(path);
+  std::istringstream lines(csv.str());
+  std::string header, row, more;
+  std::getline(lines, header);
+  std::getline(lines, row);
+  EXPECT_EQ(header, "gearbox,rank,ratio,ratio_exact");
+  EXPECT_EQ(row, "Z,1,1,1");
+  EXPECT_FALSE(std::getline(lines, more)) << more;
+}
