@@ -145,8 +145,8 @@ private:
   std::vector<UpstreamStage> upstream;
   // Stages, symmetry and the join's halves.
   std::vector<StageResult> stages;
-  std::vector<size_t>
-      source; // per stage: the stage whose result holds its candidates (itself, or an equal earlier one)
+  // Per stage: the stage whose result holds its candidates (itself, or an equal earlier one).
+  std::vector<size_t> source;
   const std::vector<Candidate>& candidatesOf(int s) const { return stages[source[static_cast<size_t>(s)]].candidates; }
   // Each stage its own copy of its candidates, before one stage's are changed.
   void unshare() {
