@@ -10,6 +10,7 @@
 #include "model/Deadline.h"
 #include "optimise/Decide.h"
 #include "parallel/Ranks.h"
+#include "passes/Designs.h"
 
 namespace gbx::rt::passes {
 
@@ -181,13 +182,29 @@ SearchResult decideFreedoms(const Model& m, SearchOptions so, SearchResult r, lo
   r.designs = std::move(kept);
   return r;
 }
+
+// Whether the design table's rows are points made one at a time (no column, sort key or
+// study output reads a scene, a baseline or the scatter), as a compact listing's must be.
+bool pointRows(const ir::Gearbox& gb) {
+  auto dynamic = [](const ir::Expr* e) {
+    return ir::uses(e, {ir::Op::SceneOutput, ir::Op::Relative, ir::Op::Scatter});
+  };
+  for (const auto* e : reportColumns(gb).exprs)
+    if (dynamic(e)) return false;
+  if (gb.report && dynamic(gb.report->sortBy.get())) return false;
+  for (const auto& st : gb.studies)
+    for (const auto& o : st.outputs)
+      if (ir::uses(o.get(), {ir::Op::Relative})) return false;
+  return true;
+}
+
 } // namespace
 
 SearchResult search(const Model& m, int jobs, double maxDesigns, std::function<void(double)> progress,
                     std::function<void(double)> deciding, bool compact) {
   const ir::Gearbox& gb = m.gearbox;
   SearchOptions so;
-  so.compact = compact && m.freedoms.empty() && !needsOptimiser(gb);
+  so.compact = compact && m.freedoms.empty() && !needsOptimiser(gb) && pointRows(gb);
   so.jobs = jobs;
   so.maxDesigns = maxDesigns;
   so.top = gb.report && gb.report->top ? *gb.report->top : kDefaultTop;
