@@ -1,0 +1,507 @@
+// The join of the stages' candidates (search/Searcher.h): the walk over rows or over the two
+// halves, each window of right entries counted, keyed and kept, and the ranks' shares.
+#include "search/Searcher.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "model/Deadline.h"
+#include "parallel/Numbers.h"
+#include "parallel/Ranks.h"
+
+namespace gbx::rt::searching {
+
+using ir::Op;
+
+// Designs of the window [from, to) whose ratio is exactly inside; only entries within
+// the rounding margin of a bound are confirmed exactly.
+unsigned long long Searcher::exactCount(std::uint32_t* cand, double x, size_t from, size_t to) const {
+  size_t a = from, b = to, rejected = 0;
+  auto outside = [&](size_t re) {
+    for (int s = h; s < k; ++s)
+      cand[s] = rightIndex(re, s);
+    return !window.contains(exactRatio(cand));
+  };
+  for (; a < b && x * right->ratio(a) < sureLo; ++a)
+    rejected += outside(a);
+  for (; b > a && x * right->ratio(b - 1) > sureHi; --b)
+    rejected += outside(b - 1);
+  return static_cast<unsigned long long>(to - from - rejected);
+}
+
+// Whether a design that passed the window counts: the rules across stages hold, and it is
+// the least of its orbit. Counts what removes it.
+bool Searcher::counts(Local& lo, Assignment& a, const std::uint32_t* cand) const {
+  if (cross.empty() && !orbitCheck) return true;
+  bool filled = false;
+  for (size_t c = 0; c < cross.size(); ++c) {
+    int holds = -1;
+    if (const auto [u, r] = crossAt[c]; u >= 0) {
+      const UpstreamStage& up = upstream[static_cast<size_t>(u)];
+      double ratio = 1;
+      for (int s = 0; s < up.stage; ++s)
+        ratio *= candidate(s, cand).r;
+      holds = up.brackets[cand[up.stage]][static_cast<size_t>(r)].at(ratio);
+    }
+    if (holds < 0) {
+      // An evaluator call can rate a design (shafts, contact analysis): milliseconds each,
+      // so the clock is asked before every one, not only at the walk's intervals.
+      if (Deadline::expired()) {
+        lo.cutShort = true;
+        return false;
+      }
+      if (!filled) fill(a, cand);
+      filled = true;
+      lo.asked += 1;
+      holds = truthOf(ev.eval(*cross[c]->expr, a)) != Truth::False;
+    }
+    if (!holds) {
+      lo.crossRemoved[c] += 1;
+      return false;
+    }
+  }
+  if (!filled) fill(a, cand);
+  if (orbitCheck && !representative(a.choice)) {
+    lo.duplicates += 1;
+    return false;
+  }
+  return true;
+}
+
+// One left entry against the right entries [from, to): each in the window counted (unless
+// `counted` says arithmetic did), then keyed and kept when it may rank among the best.
+void Searcher::visit(Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from,
+                     size_t to, bool counted, bool keyed) const {
+  // The left indices the canonical order compares, read once.
+  const bool checkCanon = !floorOnly && !crossing.empty();
+  auto& leftAt = lo.leftAt;
+  leftAt.resize(crossing.size());
+  for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
+    leftAt[c] = leftIndex(le, crossing[c].first);
+  for (size_t re = from; re < to && re < rn; ++re) {
+    if (checkCanon) {
+      bool canonical = true;
+      for (size_t c = 0; c < crossing.size() && canonical; ++c)
+        canonical = leftAt[c] <= rightIndex(re, crossing[c].second);
+      if (!canonical) continue;
+    }
+    for (int s = h; s < k; ++s)
+      cand[s] = rightIndex(re, s);
+    double p = x * right->ratio(re);
+    std::optional<Rational> q;
+    if (p < sureLo || p > sureHi) {
+      q = exactRatio(cand);
+      if (!window.contains(*q)) continue;
+    }
+    if (!counted) {
+      lo.inWindow += 1;
+      if (!counts(lo, a, cand)) {
+        if (lo.cutShort) return;
+        continue;
+      }
+      lo.count += 1;
+      if (undecidedAny) {
+        bool undecided = false;
+        for (int s = 0; s < k; ++s)
+          undecided = undecided || candidate(s, cand).undecided;
+        lo.undecided += undecided;
+      }
+    }
+    if (keep == 0 || !keyed) continue;
+    if (fastKey && full(lo)) {
+      // Screen in doubles: only a design that may beat the worst kept one is keyed exactly.
+      double w = worst0(lo);
+      if (fastKey->lowerAt(cand, p) > w + slack(w)) continue;
+    }
+    fill(a, cand);
+    if (!q) q = exactRatio(cand);
+    a.ratio = *q;
+    keysInto(a, scratch);
+    a.ratio.reset();
+    keepHit(lo, scratch, cand);
+  }
+}
+
+// Whether no design of the window can enter the kept ones (the window's ratios span [rlo, rhi]).
+bool Searcher::bounded(const Local& lo, double partial, double rlo, double rhi) const {
+  if (!fastKey || !full(lo)) return false;
+  double w = worst0(lo);
+  double lb = partial + fastKey->ratioLower(rlo * (1 - 1e-12), rhi * (1 + 1e-12)) - fastKey->rounding();
+  return lb > w + slack(w);
+}
+
+bool Searcher::stopHere(int t, size_t at, size_t begin, size_t end) {
+  if (!Deadline::expired() && !timedOut.load(std::memory_order_relaxed) && !overWalked.load(std::memory_order_relaxed))
+    return false;
+  if (!overWalked) timedOut = true;
+  joinDone[static_cast<size_t>(t)] =
+      static_cast<double>(at - begin) / static_cast<double>(std::max<size_t>(1, end - begin));
+  return true;
+}
+
+// Whether to ask about the time limit: at a loop's own interval, or after enough work inside it.
+bool Searcher::due(Walk& w, bool interval) {
+  if (!interval && w.sinceCheck <= (1u << 16)) return false;
+  w.sinceCheck = 0;
+  return true;
+}
+
+// One left entry against its window of right entries [from, to).
+void Searcher::joinEntry(Walk& w, size_t le, double x, size_t from, size_t to, double partial) {
+  if (from >= to) return;
+  w.sinceCheck += to - from;
+  Local& lo = w.lo;
+  if (!arith) {
+    lo.walked += static_cast<double>(to - from);
+    // The exhaustive reference (tests, benchmarks) visits everything by design. A design
+    // whose rules its candidates' brackets settle costs a comparison, one they leave to
+    // the evaluator some fifty times as much as counting it.
+    if ((lo.asked > walkBudget || lo.walked > walkBudget * 50) && !opt.exhaustive) overWalked = true;
+    // Counted one by one; keyed only where the window's bound lets a design in.
+    bool keyed = keep > 0 && !bounded(lo, partial, x * right->ratio(from), x * right->ratio(to - 1));
+    double asked = lo.asked;
+    visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, false, keyed);
+    // An evaluator call weighs as much as 4 096 entries walked in the check interval; one
+    // cut short by the time limit makes the next check stop the walk.
+    w.sinceCheck += lo.cutShort ? (1u << 17) : static_cast<size_t>(lo.asked - asked) << 12;
+    return;
+  }
+  unsigned long long c = exactCount(w.cand.data(), x, from, to);
+  lo.count += c;
+  lo.inWindow += static_cast<double>(c);
+  if (c == 0 || keep == 0) return;
+  if (bounded(lo, partial, x * right->ratio(from), x * right->ratio(to - 1))) return;
+  visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, true);
+}
+
+// A short right list's rows of one left index i, from j on: the first j whose window may
+// hold an entry (the occupancy table), or m1 where the row ends (its floor's entry past
+// the window). Only products, one load and a bit test per row; the table is built (so
+// the windows are positive and finite) and the rows' floors are given as fi and floorJ.
+size_t Searcher::nextShortRow(size_t j, size_t m1, double invI, const double* inv1, const double* r2, size_t fi,
+                              bool floorJ, size_t& scanned) const {
+  const size_t start = j;
+  for (; j < m1; ++j) {
+    double inv = invI * inv1[j];
+    double wh = wantHiC * inv;
+    size_t floor = std::max(fi, floorJ ? j : 0);
+    if (floor >= rn || r2[floor] > wh) {
+      j = m1;
+      break;
+    }
+    if (occupancy.anyPositive(wantLoC * inv, wh)) break;
+  }
+  scanned += j - start;
+  return j;
+}
+
+void Searcher::buildOccupancy() {
+  if (!rows || right->width() < 1 || rn == 0 || !(wantLoC > 0) || !std::isfinite(wantHiC)) return;
+  const double lo = right->ratio(0), hi = right->ratio(rn - 1);
+  if (!(lo > 0) || !(hi >= lo) || !std::isfinite(hi)) return;
+  // A quarter of a window's keys per bucket (the window measured where the keys are
+  // densest, at the list's largest ratio), and no more buckets than the caps allow.
+  std::uint64_t k0 = orderKey(lo), span = orderKey(hi) - k0;
+  std::uint64_t window = orderKey(hi * (wantHiC / wantLoC)) - orderKey(hi);
+  int shift = 0;
+  while (shift < 62 && (std::uint64_t{1} << (shift + 1)) <= window / 4)
+    ++shift;
+  const std::uint64_t most = std::min<std::uint64_t>(std::uint64_t{64} * rn, std::uint64_t{1} << 25);
+  while (shift < 63 && (span >> shift) + 1 > most)
+    ++shift;
+  occupancy.key0 = k0;
+  occupancy.shift = shift;
+  occupancy.buckets = static_cast<size_t>(span >> shift) + 1;
+  occupancy.bits.assign((occupancy.buckets + 63) / 64 + 1, 0); // a spare word: any() reads two
+  for (size_t e = 0; e < rn; ++e) {
+    size_t kb = occupancy.bucket(right->ratio(e));
+    occupancy.bits[kb >> 6] |= std::uint64_t{1} << (kb & 63);
+  }
+}
+
+// Three to five stages: the first two walked row by row; the tight loop reads raw ratio
+// arrays, and the floor of a one-stage right half from flags.
+bool Searcher::sweepRows(Walk& w) {
+  const double* r0 = ratios[0].data();
+  const double* r1 = ratios[1].data();
+  const double* r2 = right->width() == 1 ? ratios[2].data() : nullptr;
+  const size_t m1 = ratios[1].size();
+  bool j0FromI = false, floorI = false, floorJ = false;
+  for (const auto& [sa, sb] : ordered) {
+    j0FromI = j0FromI || (sa == 0 && sb == 1);
+    floorI = floorI || (sa == 0 && sb == 2);
+    floorJ = floorJ || (sa == 1 && sb == 2);
+  }
+  // A wider right half: the least ratio its canonical entries can have, from the least
+  // index each of its stages may take (ratios ascend with the index).
+  std::vector<size_t> fl(kk, 0);
+  // The stages each right stage's index may not fall below, found once.
+  std::vector<std::vector<int>> floorsOf(kk);
+  for (const auto& [sa, sb] : ordered)
+    if (sb >= 2) floorsOf[static_cast<size_t>(sb)].push_back(sa);
+  auto leastRight = [&](size_t i, size_t j) {
+    double r = 1;
+    for (int s = 2; s < k; ++s) {
+      size_t f = 0;
+      for (int sa : floorsOf[static_cast<size_t>(s)])
+        f = std::max(f, sa == 0 ? i : sa == 1 ? j : fl[static_cast<size_t>(sa)]);
+      fl[static_cast<size_t>(s)] = f;
+      const auto& list = ratios[static_cast<size_t>(s)];
+      if (f >= list.size()) return static_cast<double>(INFINITY);
+      r *= list[f];
+    }
+    return r;
+  };
+  // Where no right stage's floor is the first stage's index, the least right ratio
+  // depends on j alone: one table for every row.
+  std::vector<double> byJ;
+  bool fromI = false;
+  for (int s = 2; s < k; ++s)
+    for (int sa : floorsOf[static_cast<size_t>(s)])
+      fromI = fromI || sa == 0;
+  if (!fromI && !r2)
+    for (size_t j = 0; j < m1; ++j)
+      byJ.push_back(leastRight(0, j));
+  const double base = fastKey ? fastKey->constant() : 0;
+  double rightLeast = 0;
+  if (fastKey)
+    for (int s = 2; s < k; ++s)
+      rightLeast += fastKey->least(s);
+  // Reciprocals once: a row's window then costs products, not divisions (its rounding is
+  // far inside the window's margin eps, and every border entry is confirmed exactly).
+  std::vector<double> inv0(ratios[0].size()), inv1(m1);
+  for (size_t i = 0; i < inv0.size(); ++i)
+    inv0[i] = 1 / r0[i];
+  for (size_t j = 0; j < m1; ++j)
+    inv1[j] = 1 / r1[j];
+  // A short right list's rows are scanned by nextShortRow, which reads the occupancy
+  // table directly: positive windows only.
+  const bool tight = r2 && !occupancy.bits.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
+                     wantLoC > 0 && wantLoC <= wantHiC;
+  auto& cand = w.cand;
+  for (size_t i = w.begin; i < w.end; ++i) {
+    if (due(w, (i - w.begin) % 64 == 0) && stopHere(w.t, i, w.begin, w.end)) return false;
+    if (w.report && (i - w.begin) % 64 == 0)
+      opt.progress(static_cast<double>(i - w.begin) / static_cast<double>(w.end - w.begin));
+    size_t j0 = j0FromI ? i : 0;
+    if (j0 >= m1) continue;
+    cand[0] = static_cast<std::uint32_t>(i);
+    double x0 = r0[i] * r1[j0];
+    size_t loP = right->lowerBound(wantLoC / x0), hiP = right->upperBound(wantHiC / x0);
+    double rowPart = fastKey ? base + fastKey->entry(0, cand[0]) : 0;
+    for (size_t j = j0; j < m1; ++j) {
+      if (tight) {
+        j = nextShortRow(j, m1, inv0[i], inv1.data(), r2, floorI ? i : 0, floorJ, w.sinceCheck);
+        if (j >= m1) break;
+      }
+      if (due(w, false) && stopHere(w.t, i, w.begin, w.end)) return false;
+      double x = r0[i] * r1[j];
+      double inv = inv0[i] * inv1[j];
+      double wl = wantLoC * inv, wh = wantHiC * inv;
+      if (r2) {
+        // A short list: the row ends where its floor's entry is past the window (the
+        // window only falls along a row); a window over buckets that hold no entry is
+        // passed over; else two binary searches find it.
+        size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
+        if (floor >= rn || r2[floor] > wh) break;
+        if (!occupancy.any(wl, wh)) continue;
+        loP = static_cast<size_t>(std::lower_bound(r2, r2 + rn, wl) - r2);
+        hiP = static_cast<size_t>(std::upper_bound(r2, r2 + rn, wh) - r2);
+      } else {
+        // A long one: the row's window ends the row past its least entry; a window over
+        // log-ratio buckets that hold no entry is passed over; else the index jumps to it.
+        if (x * (byJ.empty() ? leastRight(i, j) : byJ[j]) > wantHiC) break;
+        if (!occupancy.any(wl, wh)) continue;
+        // The queries kIndexAhead and kEntriesAhead rows ahead are known: their memory is
+        // fetched now.
+        if (j + kIndexAhead < m1) right->prefetchIndex(wantLoC * inv0[i] * inv1[j + kIndexAhead]);
+        if (j + kEntriesAhead < m1) right->prefetchEntries(wantLoC * inv0[i] * inv1[j + kEntriesAhead]);
+        loP = right->lowerBound(wl);
+        for (hiP = loP; hiP < rn && right->ratio(hiP) <= wh;)
+          ++hiP;
+      }
+      // The window only falls and the floor only rises along a row.
+      size_t from = loP;
+      if (floorOnly) {
+        size_t floor = std::max(floorI ? i : 0, floorJ ? j : 0);
+        if (hiP <= floor) break;
+        from = std::max(loP, floor);
+      }
+      if (from >= hiP) continue;
+      cand[1] = static_cast<std::uint32_t>(j);
+      double partial = 0;
+      if (fastKey && full(w.lo))
+        partial = rowPart + fastKey->entry(1, cand[1]) + (rowMin.empty() ? rightLeast : rowMin.least(from, hiP));
+      joinEntry(w, i * n1 + j, x, from, hiP, partial);
+    }
+  }
+  return true;
+}
+
+// Two halves built and sorted: one two-pointer sweep of the left list against the right.
+bool Searcher::sweepHalves(Walk& w) {
+  double rightLeast = 0;
+  if (fastKey) {
+    rightLeast = fastKey->constant();
+    for (int s = h; s < k; ++s)
+      rightLeast += fastKey->least(s);
+  }
+  size_t loP = right->lowerBound(wantLoC / leftList.ratio(w.begin)),
+         hiP = right->upperBound(wantHiC / leftList.ratio(w.begin));
+  for (size_t le = w.begin; le < w.end; ++le) {
+    if (due(w, (le - w.begin) % 4096 == 0) && stopHere(w.t, le, w.begin, w.end)) return false;
+    if (w.report && (le - w.begin) % 65536 == 0)
+      opt.progress(static_cast<double>(le - w.begin) / static_cast<double>(w.end - w.begin));
+    double x = leftList.ratio(le);
+    double inv = 1 / x;
+    double wl = wantLoC * inv, wh = wantHiC * inv;
+    while (loP > 0 && right->ratio(loP - 1) >= wl)
+      --loP;
+    while (hiP > 0 && right->ratio(hiP - 1) > wh)
+      --hiP;
+    size_t from = std::max(loP, rightFloor(le));
+    if (from >= hiP) continue;
+    double partial = rightLeast;
+    for (int s = 0; s < h; ++s) {
+      w.cand[static_cast<size_t>(s)] = leftIndex(le, s);
+      if (fastKey) partial += fastKey->entry(s, w.cand[static_cast<size_t>(s)]);
+    }
+    joinEntry(w, le, x, from, hiP, partial);
+  }
+  return true;
+}
+
+// One share of the rows: slot t of all the ranks' threads (locals.size()).
+void Searcher::sweep(int t) {
+  Local& lo = locals[static_cast<size_t>(t)];
+  lo.crossRemoved.assign(cross.size(), 0);
+  const size_t slots = locals.size();
+  size_t begin = n * static_cast<size_t>(t) / slots;
+  size_t end = n * static_cast<size_t>(t + 1) / slots;
+  if (begin >= end || rn == 0) return;
+  // The bar itself appears only once the solve has taken a second.
+  bool report = t == 0 && opt.progress;
+  Walk w{t,   lo, Assignment(m), std::vector<std::uint32_t>(kk + 1, 0), std::vector<double>(nk + 1, 0), begin,
+         end, 0,  report};
+  bool done = rows ? sweepRows(w) : sweepHalves(w);
+  // A walk cut short in its last window had no check after it: not all of it was done.
+  if (lo.cutShort) {
+    timedOut = true;
+    joinDone[static_cast<size_t>(t)] = std::min(joinDone[static_cast<size_t>(t)], 0.999);
+  }
+  if (report && done) opt.progress(1.0);
+}
+
+// The join over threads; false when it stopped (the time limit, or the designs checked one
+// by one beyond their budget).
+bool Searcher::join() {
+  const double wlo = window.lo ? window.lo->toDouble() : -INFINITY, whi = window.hi ? window.hi->toDouble() : INFINITY;
+  sureLo = wlo * (1 + 4 * eps);
+  sureHi = whi * (1 - 4 * eps);
+  // Both bounds of the right window fall as the left ratio rises.
+  wantLoC = wlo * (1 - eps);
+  wantHiC = whi * (1 + eps);
+  n = rows ? candidatesOf(0).size() : leftList.size();
+  rn = right->size();
+  threads = std::max(1, std::min<int>(opt.jobs, static_cast<int>(n / 64) + 1));
+  for (int s = 0; s < k; ++s)
+    for (const auto& c : candidatesOf(s))
+      undecidedAny = undecidedAny || c.undecided;
+  // Counted by arithmetic (the window's length, its borders confirmed exactly) when every
+  // design in a window counts: no rule across stages, no orbit test, no undecided freedom,
+  // and the canonical order at most a floor.
+  arith = !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny && (floorOnly || crossing.empty());
+  buildOccupancy();
+  // The rows dealt to every rank's threads; each rank sweeps its own slots and receives
+  // the others' counts and kept designs (a fixed point: every rank searches alike).
+  const int ranks = par::sharingRanks();
+  const size_t slots = static_cast<size_t>(threads) * static_cast<size_t>(ranks);
+  locals.resize(slots);
+  walkBudget = opt.maxDesigns * kCheckedShare / static_cast<double>(slots);
+  joinDone.assign(slots, 1.0);
+  auto shares = par::map(
+      static_cast<size_t>(ranks), 1,
+      [&](size_t r) {
+        int first = static_cast<int>(r) * threads;
+        std::vector<std::thread> pool;
+        for (int t = 1; t < threads; ++t)
+          pool.emplace_back([this, first, t] { sweep(first + t); });
+        sweep(first);
+        for (auto& th : pool)
+          th.join();
+        return ranks > 1 ? packShare(first) : std::vector<double>{};
+      },
+      true);
+  if (ranks > 1)
+    for (size_t r = 0; r < shares.size(); ++r)
+      if (static_cast<int>(r) != par::rank()) unpackShare(shares[r], static_cast<int>(r) * threads);
+  if (overWalked) {
+    res.errors.push_back(
+        fmt::format("the rules across stages are checked design by design, and more than {:.3g} designs (a fiftieth "
+                    "of the search budget, --max-designs {:.3g}) of the {:.3g} combinations need them evaluated, "
+                    "or more than {:.3g} visited; narrow the ranges or the ratio window, or raise --max-designs",
+                    opt.maxDesigns * kCheckedShare, opt.maxDesigns, combos, opt.maxDesigns));
+    return false;
+  }
+  if (timedOut) {
+    double elapsed = Deadline::seconds();
+    double done = 0;
+    for (double d : joinDone)
+      done += d / static_cast<double>(joinDone.size());
+    // The designs of the part walked are kept, the report marked partial.
+    res.partial = timeLimitMessage("joining the stages' candidates", done, elapsed, combos);
+    return true;
+  }
+  return true;
+}
+
+// A rank's share of the join as numbers: the stop flags, then per thread its counts, its
+// completed fraction and its kept designs (keys, candidates, heap).
+std::vector<double> Searcher::packShare(int first) const {
+  par::NumbersOut out;
+  out.put(timedOut ? 1.0 : 0.0);
+  out.put(overWalked ? 1.0 : 0.0);
+  for (int t = first; t < first + threads; ++t) {
+    const Local& lo = locals[static_cast<size_t>(t)];
+    out.count(lo.count);
+    out.count(lo.undecided);
+    for (double x : {lo.inWindow, lo.duplicates, lo.walked, lo.overKept ? 1.0 : 0.0, joinDone[static_cast<size_t>(t)]})
+      out.put(x);
+    out.list(lo.crossRemoved);
+    out.list(lo.keys);
+    out.list(lo.cand);
+    out.list(lo.heap);
+  }
+  return out.take();
+}
+
+void Searcher::unpackShare(const std::vector<double>& v, int first) {
+  par::NumbersIn in(v);
+  // Another rank's time limit stops this one too, so that every rank reports alike.
+  if (in.next() != 0) {
+    timedOut = true;
+    Deadline::expireNow();
+  }
+  if (in.next() != 0) overWalked = true;
+  for (int t = first; t < first + threads; ++t) {
+    Local& lo = locals[static_cast<size_t>(t)];
+    lo.count = in.count();
+    lo.undecided = in.count();
+    lo.inWindow = in.next();
+    lo.duplicates = in.next();
+    lo.walked = in.next();
+    lo.overKept = in.next() != 0;
+    joinDone[static_cast<size_t>(t)] = in.next();
+    in.list(lo.crossRemoved);
+    in.list(lo.keys);
+    in.list(lo.cand);
+    in.list(lo.heap);
+  }
+}
+
+} // namespace gbx::rt::searching
