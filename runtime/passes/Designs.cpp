@@ -293,9 +293,7 @@ GearboxReport reportOf(const Model& m, SearchResult& r, const std::vector<const 
                 });
   const bool listed = lazy && points && r.listing && r.listing->size() > 0;
   if (r.listing && !listed) { // rows that are not points are held whole
-    r.designs.resize(r.listing->size());
-    for (size_t i = 0; i < r.designs.size(); ++i)
-      r.listing->get(i, r.designs[i]);
+    r.designs = r.listing->all();
     r.listing.reset();
   }
   if (listed || (lazy && points && !r.designs.empty())) {

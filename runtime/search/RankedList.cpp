@@ -2,6 +2,13 @@
 
 namespace gbx::rt {
 
+std::vector<Design> DesignList::all() const {
+  std::vector<Design> out(size());
+  for (size_t i = 0; i < out.size(); ++i)
+    get(i, out[i]);
+  return out;
+}
+
 RankedList::RankedList(const Model& m, std::vector<std::vector<Candidate>> lists, std::vector<size_t> listOf,
                        size_t keys)
     : nSlots_(m.slots.size()), lists_(std::move(lists)), listOf_(std::move(listOf)), k_(listOf_.size()), nk_(keys) {

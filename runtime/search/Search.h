@@ -40,6 +40,8 @@ public:
   virtual size_t size() const = 0;
   // Design i of the ranking into `out`, its vectors reused.
   virtual void get(size_t i, Design& out) const = 0;
+  // Every design, made whole, in ranking order.
+  std::vector<Design> all() const;
 };
 
 struct SearchOptions {

@@ -84,23 +84,6 @@ void Searcher::order(std::vector<Ref>& hits) const {
   }
 }
 
-Design Searcher::design(const Ref& x) const {
-  Design d;
-  const std::uint32_t* cand = candOf(x);
-  d.choice.assign(m.slots.size(), -1);
-  for (int s = 0; s < k; ++s) {
-    const auto& slots = m.stages[static_cast<size_t>(s)].slots;
-    const auto& idx = candidate(s, cand).idx;
-    for (size_t j = 0; j < slots.size(); ++j)
-      d.choice[static_cast<size_t>(slots[j])] = idx[j];
-  }
-  d.ratio = exactRatio(cand);
-  d.keys.assign(keysOf(x), keysOf(x) + nk);
-  for (int s = 0; s < k; ++s)
-    d.undecided = d.undecided || candidate(s, cand).undecided;
-  return d;
-}
-
 // The threads' counts and kept designs merged, ranked, and the funnel's last steps.
 void Searcher::collect() {
   std::vector<double> crossRemoved(cross.size(), 0);
@@ -131,13 +114,12 @@ void Searcher::collect() {
     return;
   }
   order(hits);
-  if (opt.compact) {
-    res.listing = listing(hits);
-  } else {
-    res.designs.reserve(hits.size());
-    for (const auto& x : hits)
-      res.designs.push_back(design(x));
-  }
+  // The ranked designs: the compact list, or every design made whole from it.
+  std::shared_ptr<const DesignList> list = listing(hits);
+  if (opt.compact)
+    res.listing = std::move(list);
+  else
+    res.designs = list->all();
   std::string windowText =
       windowTexts.empty() ? "ratio (no window)" : fmt::format("{}", fmt::join(windowTexts, " and "));
   // With interchangeable stages enumerated canonically, what passes the window is

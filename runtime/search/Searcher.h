@@ -373,8 +373,6 @@ private:
   // plain comparison), then each run of equal first keys by the rest (most runs are one design).
   void order(std::vector<Ref>& hits) const;
 
-  Design design(const Ref& x) const;
-
   // The threads' counts and kept designs merged, ranked, and the funnel's last steps.
   void collect();
 
