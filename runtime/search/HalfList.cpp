@@ -25,7 +25,7 @@ template <class Code> struct RunOrder {
   std::vector<std::pair<double, Code>> entries, placed;
   std::vector<std::uint32_t> count;
 
-  template <class RatioAt> void load(const std::vector<Code>& out, size_t first, size_t last, RatioAt ratioAt) {
+  template <class Out, class RatioAt> void load(const Out& out, size_t first, size_t last, RatioAt ratioAt) {
     entries.clear();
     for (size_t e = first; e < last; ++e)
       entries.emplace_back(ratioAt(e), out[e]);
@@ -142,7 +142,7 @@ template <class F> void HalfList::forEach(const std::vector<std::pair<int, int>>
   }
 }
 
-template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>& ordered, std::vector<Code>& out) {
+template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>& ordered, LargeVector<Code>& out) {
   const auto& R = *ratios_;
   // Key bounds from the stages' extreme ratios (positive ratios: the product of the least
   // is the least product); entries outside are clamped, which keeps the order.

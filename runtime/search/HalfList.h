@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "search/LargePages.h"
+
 namespace gbx::rt {
 
 // The order of positive doubles is the order of their bits; this map extends it to all.
@@ -38,30 +40,26 @@ public:
   int width() const { return width_; }
   // Candidate index of the half's s-th stage (0-based within the half) for entry e.
   std::uint32_t index(size_t e, int s) const { return field(code(e), s); }
-  double ratio(size_t e) const { return codeRatio(code(e)); }
+  [[gnu::always_inline]] double ratio(size_t e) const { return codeRatio(code(e)); }
   // First entry whose ratio is >= v (lowerBound) or > v (upperBound): a jump through a
   // coarse index of the ratio buckets, then a binary search inside one bucket.
   size_t lowerBound(double v) const { return bound(v, false); }
   size_t upperBound(double v) const { return bound(v, true); }
-  // Hints for a caller that knows its next queries: the index bucket of v, then (once
-  // that is cached) the entries it points to.
-  void prefetchIndex(double v) const {
-    if (!index_.empty()) __builtin_prefetch(&index_[bucketOf(v)]);
-  }
-  void prefetchEntries(double v) const {
-    if (index_.empty()) return;
-    size_t e = index_[bucketOf(v)];
+  // A hint for a caller that knows its next entries: entry e's memory.
+  void prefetchEntry(size_t e) const {
     if (wide_.empty() && e < codes_.size()) __builtin_prefetch(&codes_[e]);
   }
   // Why the list could not be built (the tuples do not fit a 64-bit code), or empty.
   const std::string& error() const { return error_; }
 
 private:
-  std::uint64_t code(size_t e) const { return identity_ ? e : (wide_.empty() ? codes_[e] : wide_[e]); }
+  [[gnu::always_inline]] std::uint64_t code(size_t e) const {
+    return identity_ ? e : (wide_.empty() ? codes_[e] : wide_[e]);
+  }
   std::uint32_t field(std::uint64_t c, int s) const {
     return static_cast<std::uint32_t>((c >> shift_[static_cast<size_t>(s)]) & mask_[static_cast<size_t>(s)]);
   }
-  double codeRatio(std::uint64_t c) const {
+  [[gnu::always_inline]] double codeRatio(std::uint64_t c) const {
     // Two stages, the usual half: two table reads and a product (the same product as below).
     if (pair0_) return pair0_[c & mask_[0]] * pair1_[(c >> shift_[1]) & mask_[1]];
     double r = 1;
@@ -71,7 +69,7 @@ private:
   }
   size_t bound(double v, bool strict) const;
   size_t bucketOf(double r) const;
-  template <class Code> void fill(const std::vector<std::pair<int, int>>& ordered, std::vector<Code>& out);
+  template <class Code> void fill(const std::vector<std::pair<int, int>>& ordered, LargeVector<Code>& out);
   template <class F> void forEach(const std::vector<std::pair<int, int>>& ordered, F&& f) const;
 
   const std::vector<std::vector<double>>* ratios_ = nullptr;
@@ -80,15 +78,15 @@ private:
   int from_ = 0, width_ = 0;
   size_t n_ = 0;
   bool identity_ = false; // one stage: entry e is candidate e (the candidates are sorted)
-  std::vector<std::uint32_t> codes_;
+  LargeVector<std::uint32_t> codes_;
   static constexpr size_t kRunEntries = 2048; // entries the build puts in order at a time
-  std::vector<std::uint64_t> wide_;
+  LargeVector<std::uint64_t> wide_;
   std::vector<int> shift_;
   std::vector<std::uint64_t> mask_;
   std::string error_;
   // The coarse index: entries [index_[b], index_[b + 1]) lie in bucket b of the map
   // (orderKey(r) - key0_) >> shift_ (clamped), which is monotone in r.
-  std::vector<std::uint32_t> index_;
+  LargeVector<std::uint32_t> index_;
   std::uint64_t key0_ = 0;
   int keyShift_ = 0;
 };

@@ -218,9 +218,12 @@ void Searcher::buildOccupancy() {
   occupancy.shift = shift;
   occupancy.buckets = static_cast<size_t>(span >> shift) + 1;
   occupancy.bits.assign((occupancy.buckets + 63) / 64 + 1, 0); // a spare word: any() reads two
-  for (size_t e = 0; e < rn; ++e) {
+  occupancy.first.assign(occupancy.bits.size(), static_cast<std::uint32_t>(rn));
+  for (size_t e = 0, w = 0; e < rn; ++e) {
     size_t kb = occupancy.bucket(right->ratio(e));
     occupancy.bits[kb >> 6] |= std::uint64_t{1} << (kb & 63);
+    for (; w <= (kb >> 6); ++w)
+      occupancy.first[w] = static_cast<std::uint32_t>(e);
   }
 }
 
@@ -316,12 +319,15 @@ bool Searcher::sweepRows(Walk& w) {
         // A long one: the row's window ends the row past its least entry; a window over
         // log-ratio buckets that hold no entry is passed over; else the index jumps to it.
         if (x * (byJ.empty() ? leastRight(i, j) : byJ[j]) > wantHiC) break;
+        // The memory of the rows kIndexAhead and kEntriesAhead ahead is fetched now: their
+        // occupancy words, then (those read) their first entries.
+        if (!occupancy.first.empty()) {
+          if (j + kIndexAhead < m1) occupancy.prefetch(wantLoC * inv0[i] * inv1[j + kIndexAhead]);
+          if (j + kEntriesAhead < m1)
+            right->prefetchEntry(occupancy.startOf(wantLoC * inv0[i] * inv1[j + kEntriesAhead]));
+        }
         if (!occupancy.any(wl, wh)) continue;
-        // The queries kIndexAhead and kEntriesAhead rows ahead are known: their memory is
-        // fetched now.
-        if (j + kIndexAhead < m1) right->prefetchIndex(wantLoC * inv0[i] * inv1[j + kIndexAhead]);
-        if (j + kEntriesAhead < m1) right->prefetchEntries(wantLoC * inv0[i] * inv1[j + kEntriesAhead]);
-        loP = right->lowerBound(wl);
+        loP = firstAtLeast(wl);
         for (hiP = loP; hiP < rn && right->ratio(hiP) <= wh;)
           ++hiP;
       }

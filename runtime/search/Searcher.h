@@ -282,7 +282,7 @@ private:
   // How many rows ahead the long right list's index and entries are fetched: a row takes
   // about as long as a load from memory, so the index must arrive before the entries'
   // fetch reads it.
-  static constexpr size_t kIndexAhead = 2, kEntriesAhead = 1;
+  static constexpr size_t kIndexAhead = 8, kEntriesAhead = 3;
 
   // Which buckets of the right list's ratios hold an entry, a bit each: most rows' windows
   // fall between the entries, and a bit read from a small table tells so without the
@@ -295,7 +295,10 @@ private:
     std::uint64_t key0 = 0;
     int shift = 0;
     size_t buckets = 0;
-    std::vector<std::uint64_t> bits;
+    LargeVector<std::uint64_t> bits;
+    // first[w]: the first entry whose bucket is 64 w or above (the list's size past its last
+    // entry). A window's first entry is then found from its word, with no search of the list.
+    LargeVector<std::uint32_t> first;
     size_t bucket(double r) const {
       std::uint64_t k = orderKey(r);
       return k <= key0 ? 0 : static_cast<size_t>(std::min<std::uint64_t>((k - key0) >> shift, buckets - 1));
@@ -303,6 +306,13 @@ private:
     bool any(double lo, double hi) const {
       if (bits.empty() || !(lo <= hi) || lo <= 0) return true;
       return anyPositive(lo, hi);
+    }
+    // Where to start looking for the first entry >= lo: its word's first entry.
+    size_t startOf(double lo) const { return first[bucket(lo) >> 6]; }
+    void prefetch(double lo) const {
+      size_t w = bucket(lo) >> 6;
+      __builtin_prefetch(&bits[w]);
+      __builtin_prefetch(&first[w]);
     }
     // The same for a built table and 0 < lo <= hi.
     bool anyPositive(double lo, double hi) const {
@@ -326,6 +336,15 @@ private:
     }
   };
   Occupancy occupancy;
+  // The right list's first entry >= v: a few steps from its occupancy word's first entry,
+  // or the list's own search where that word is crowded.
+  size_t firstAtLeast(double v) const {
+    if (occupancy.first.empty() || !(v > 0)) return right->lowerBound(v);
+    size_t e = occupancy.startOf(v);
+    for (size_t end = std::min(rn, e + 8); e < end; ++e)
+      if (right->ratio(e) >= v) return e;
+    return e < rn ? right->lowerBound(v) : rn;
+  }
 
   // A short right list's rows of one left index i, from j on: the first j whose window may
   // hold an entry (the occupancy table), or m1 where the row ends (its floor's entry past
