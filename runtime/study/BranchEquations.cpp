@@ -52,6 +52,70 @@ std::vector<double> BranchEquations::scale(const At& at) {
   return s;
 }
 
+dyn::PeriodicOrbit BranchEquations::settledOrbit(const At& at, std::vector<double> y) {
+  const dyn::System& sys = at.model->system();
+  const double settled = std::max(1e-7, 10.0 * rtol); // a period's change that counts as settled
+  constexpr long kMostPeriods = 1000;
+  constexpr size_t kLongest = 8; // the longest repetition looked for, in periods
+  auto integ = std::make_unique<dyn::Integrator>(sys, at.ms.accuracy);
+  std::vector<std::vector<double>> last; // the states at the last kLongest + 1 period starts
+  double t = 0, change = INFINITY;
+  long k = 0;
+  auto distance = [&](const std::vector<double>& a, const std::vector<double>& b) {
+    double d = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+      d = std::max(d, std::fabs(a[i] - b[i]) / s_[i]);
+    return d;
+  };
+  bool restarted = false;
+  for (; k < kMostPeriods && !(change <= settled); ++k) {
+    double size = 0;
+    for (size_t i = 0; i < y.size(); ++i)
+      size = std::max(size, std::fabs(y[i]) / s_[i]);
+    if (!(size <= kRunaway)) {
+      // Growing without bound from there: once more from rest, as a run-up would start.
+      if (restarted)
+        throw dyn::SceneFailure{fmt::format("no orbit of one period: settled from rest, the response grows without "
+                                            "bound (past {:g} times its scale after {} periods)",
+                                            kRunaway, k)};
+      restarted = true;
+      y = at.model->initialState();
+      t = 0;
+      k = 0;
+      last.clear();
+      stats += integ->stats();
+      integ = std::make_unique<dyn::Integrator>(sys, at.ms.accuracy);
+    }
+    std::vector<double> before = y;
+    bool ok = integ->advance(t, y, static_cast<double>(k + 1) * at.period, {}, [](double, const double*) {});
+    if (!ok) {
+      stats += integ->stats();
+      throw dyn::SceneFailure{"settling from the last orbit failed: " + integ->error()};
+    }
+    change = distance(y, before);
+    last.push_back(y);
+    if (last.size() > kLongest + 1) last.erase(last.begin());
+  }
+  stats += integ->stats();
+  dyn::PeriodicOptions po;
+  po.period = at.period;
+  dyn::PeriodicOrbit o = dyn::periodicOrbit(sys, at.ms.accuracy, po, y);
+  stats += o.stats;
+  if (o.converged && (change <= settled || o.stability <= 1.0)) return o;
+  const char* from = restarted ? "rest" : "the last orbit";
+  // What the settled response does instead: repeat every p periods, or not at all.
+  for (size_t p = 2; p <= kLongest && p < last.size(); ++p)
+    if (distance(last.back(), last[last.size() - 1 - p]) <= 1e3 * settled)
+      throw dyn::SceneFailure{fmt::format(
+          "no orbit of one period: settled from {} for {} periods, the response repeats every {} periods (a "
+          "subharmonic response)",
+          from, k, p)};
+  throw dyn::SceneFailure{fmt::format(
+      "no orbit of one period: settled from {} for {} periods, the response still changes by {:.3g} of its scale each "
+      "period and repeats within none of {} periods (quasi-periodic or chaotic)",
+      from, k, change, kLongest)};
+}
+
 namespace {
 
 // R(u, lambda) = S^-1 (phi_T(S u) - S u): the state's change over one period, S its scale.
@@ -99,13 +163,14 @@ public:
     return R;
   }
 
-  VectorXd afresh(const VectorXd& u, double lambda) override {
+  VectorXd afresh(const VectorXd& u, double lambda, bool settle) override {
     At at = build(lambda);
     dyn::PeriodicOptions po;
     po.period = at.period;
+    if (settle) return scaled(settledOrbit(at, state(u)).y0);
     dyn::PeriodicOrbit o = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po, state(u));
     stats += o.stats;
-    if (!o.converged) throw dyn::SceneFailure{o.failure};
+    if (!o.converged) o = settledOrbit(at, state(u));
     return scaled(o.y0);
   }
 
@@ -206,14 +271,40 @@ public:
     return r;
   }
 
-  VectorXd afresh(const VectorXd& u, double lambda) override {
+  VectorXd afresh(const VectorXd& u, double lambda, bool settle) override {
     At at = build(lambda);
     dyn::BalanceOptions bo = options(at);
     bo.stability = false;
     Eigen::MatrixXd c = coeffs(u, at.period);
-    dyn::BalanceOrbit o = dyn::harmonicBalance(at.model->system(), bo, {}, &c);
-    stats += o.stats;
-    if (!o.converged) throw dyn::SceneFailure{o.failure};
+    dyn::BalanceOrbit o;
+    if (!settle) {
+      o = dyn::harmonicBalance(at.model->system(), bo, {}, &c);
+      stats += o.stats;
+    }
+    if (!o.converged) {
+      // From the settled orbit's samples instead (shooting's), as its series.
+      dyn::PeriodicOrbit p = settledOrbit(at, stateAtStart(c));
+      const long M = 4L * N_ + 4;
+      std::vector<std::vector<double>> samples;
+      dyn::Integrator integ(at.model->system(), at.ms.accuracy);
+      std::vector<double> y = p.y0, times;
+      for (long i = 0; i < M; ++i)
+        times.push_back(at.period * static_cast<double>(i) / static_cast<double>(M));
+      double t = 0;
+      bool ok = integ.advance(t, y, at.period, times,
+                              [&](double, const double* ys) { samples.emplace_back(ys, ys + y.size()); });
+      stats += integ.stats();
+      if (!ok || samples.size() != static_cast<size_t>(M))
+        throw dyn::SceneFailure{"the settled orbit's samples: " + integ.error()};
+      Eigen::MatrixXd fromSamples = dyn::seriesOfSamples(samples, {}, N_);
+      o = dyn::harmonicBalance(at.model->system(), bo, {}, &fromSamples);
+      stats += o.stats;
+      if (!o.converged)
+        throw dyn::SceneFailure{
+            fmt::format("shooting found the settled orbit, but harmonic balance with {} harmonics did "
+                        "not converge from it: {}",
+                        N_, o.failure)};
+    }
     return scaled(o.coeffs);
   }
 
@@ -222,11 +313,7 @@ public:
     ov.balanceStart = &start_;
     ov.balanceHarmonics = N_;
     ov.harmonicBalance = true;
-    std::vector<double> y(s_.size(), 0.0); // the state at t = 0: the sum of the cosine terms
-    for (long a = 0; a < start_.cols(); ++a)
-      for (long h = 0; h <= N_; ++h)
-        y[static_cast<size_t>(a)] += start_(h == 0 ? 0 : 2 * h - 1, a);
-    ov.guess = y;
+    ov.guess = stateAtStart(start_);
   }
 
   // The sign of det(dR/du): one real eigenvalue crosses zero where the branch turns.
@@ -242,6 +329,14 @@ public:
 
 private:
   int N_ = 0;
+  // The state at t = 0 of a series: the sum of its cosine terms.
+  std::vector<double> stateAtStart(const Eigen::MatrixXd& c) const {
+    std::vector<double> y(s_.size(), 0.0);
+    for (long a = 0; a < c.cols(); ++a)
+      for (long h = 0; h <= N_; ++h)
+        y[static_cast<size_t>(a)] += c(h == 0 ? 0 : 2 * h - 1, a);
+    return y;
+  }
   std::vector<std::pair<long, long>> pairs_; // kinematic (a, b)
   std::vector<long> rows_, kept_;            // the equations and unknowns' states kept
   Eigen::MatrixXd start_;

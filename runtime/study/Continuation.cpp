@@ -196,16 +196,39 @@ private:
   // leaves the range at its start), the stretch to the next sweep step past the farthest
   // point followed is a gap; the response there is found afresh by shooting from the last
   // orbit, and followed on as a new branch. False at the end of the range.
-  bool gapFrom(const VectorXd& from, const std::string& why) {
-    double resume = std::max(from(n), reached) + dLambda;
+  bool gapFrom(const VectorXd& from, const std::string& why, bool settle = false) {
+    const double start = std::max(from(n), reached);
+    double resume = start + dLambda;
     if (resume >= 1.0 - 1e-12) resume = 1.0;
     VectorXd fresh;
-    try {
-      fresh = eq->afresh(from.head(n), resume);
-    } catch (const dyn::SceneFailure& f) {
-      throw dyn::SceneFailure{fmt::format("the periodic response at {} = {:.6g} {} was not found after a gap: {}",
-                                          st.target, out.unit.shown(eq->x(resume)), out.unit.name, f.what)};
+    // Where no orbit is found (none of one period there), the next sweep step is tried, to
+    // the end of the range; what was found instead is said once for the whole stretch.
+    std::string none;
+    double noneFrom = resume;
+    for (;;) {
+      try {
+        fresh = eq->afresh(from.head(n), resume, settle);
+        break;
+      } catch (const dyn::SceneFailure& f) {
+        if (Deadline::expired()) throw;
+        if (none.empty()) noneFrom = resume;
+        none = f.what;
+      }
+      if (resume >= 1.0) {
+        out.gaps.emplace_back(eq->x(start), eq->x(1.0));
+        out.notes.push_back(fmt::format("gap: {} from {:.6g} {} to the end of the range not followed ({}); no periodic "
+                                        "response found from {:.6g} {} on: {}",
+                                        st.target, out.unit.shown(eq->x(start)), out.unit.name, why,
+                                        out.unit.shown(eq->x(noneFrom)), out.unit.name, none));
+        return false;
+      }
+      resume = std::min(1.0, resume + dLambda);
+      if (resume >= 1.0 - 1e-12) resume = 1.0;
     }
+    if (!none.empty())
+      out.notes.push_back(fmt::format("no periodic response followed at {} from {:.6g} to {:.6g} {}: {}", st.target,
+                                      out.unit.shown(eq->x(noneFrom)), out.unit.shown(eq->x(resume - dLambda)),
+                                      out.unit.name, none));
     out.gaps.emplace_back(eq->x(std::max(from(n), reached)), eq->x(resume));
     out.notes.push_back(fmt::format(
         "gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh", st.target,
@@ -343,6 +366,19 @@ private:
         last(n) = end;
         keep(measure(last));
         break;
+      }
+      if (r.zz.head(n).lpNorm<Eigen::Infinity>() > BranchEquations::kRunaway) {
+        // A branch climbing without bound (a mesh in contact whose instability backlash no
+        // longer limits at such amplitudes): not followed further; the response past it is
+        // found afresh, settled from rest.
+        out.notes.push_back(
+            fmt::format("the branch grows without bound towards {} = {:.6g} {}: its state passed {:g} "
+                        "times its scale (the static deflection and its rate) and was not followed further",
+                        st.target, out.unit.shown(eq->x(r.zz(n))), out.unit.name, BranchEquations::kRunaway));
+        VectorXd rest = z;
+        rest.head(n).setZero();
+        if (!gapFrom(rest, "the response grows without bound", true)) break;
+        continue;
       }
       z = r.zz;
       t = r.tn;
