@@ -55,15 +55,19 @@ def mid(values):
     return statistics.median(float(v) for v in values)
 
 bal = runs("balance")
-hb, shoot = [], []
+hb, shoot, recorded, fixed = [], [], [], []
 for (way, setting), rs in bal.items():
     state_err, rms_err = float(rs[0][0]), float(rs[0][3])
     cpu = mid(r[1] for r in rs)
     if way == "balance":
         hill, floq = mid(r[2] for r in rs), mid(r[4] for r in rs)
         hb.append((int(setting), state_err, rms_err, cpu, hill, floq))
-    else:
+    elif way == "shooting":
         shoot.append((float(setting), state_err, rms_err, cpu))
+    elif way == "recorded":
+        recorded.append((float(setting), state_err, rms_err, cpu))
+    elif way == "fixed":
+        fixed.append((float(setting), state_err, rms_err, cpu, int(rs[0][2])))
 settle = []
 for (way, setting), rs in runs("steady").items():
     if way == "settle":
@@ -79,6 +83,8 @@ fig, ax = plt.subplots(figsize=(8, 4.8))
 ax.loglog([h[3] * 1e6 for h in converged], [h[2] for h in converged], "o-", label="gbxc harmonic balance, orbit (N = 6 … 24)")
 ax.loglog([h[5] * 1e6 for h in converged], [h[2] for h in converged], "o--", label="gbxc harmonic balance + one variational period")
 ax.loglog([s[3] * 1e6 for s in shoot], [s[2] for s in shoot], "s-", label="gbxc shooting, rk8pd + monodromy (rtol 1e-6 … 1e-12)")
+ax.loglog([s[3] * 1e6 for s in sorted(recorded)], [s[2] for s in sorted(recorded)], "s:", label="gbxc shooting + its record run of the 160 samples")
+ax.loglog([s[3] * 1e6 for s in sorted(fixed)], [max(s[2], 1e-15) for s in sorted(fixed)], "D", mfc="none", label="gbxc shooting in fixed steps landing on the samples (any rtol)")
 ax.loglog([s[2] * 1e6 for s in settle], [s[1] for s in settle], "^-", label="gbxc settling 200 periods, rk8pd")
 for name, cpu, marker in others:
     ax.loglog([cpu * 1e6], [1e-8], marker, mfc="none", mew=1.5, ms=9, label=name + ", the issue's figure")
@@ -97,7 +103,9 @@ sec = ["## Dynamics: harmonic balance, shooting and settling", "",
        "the state's (the largest difference over 64 points of the period, of the state scale) and",
        "rms(acceleration)'s over the 160 recorded samples (relative). CPU: the orbit alone, median of",
        "seven batches of twenty solves (settling: of five), then the middle of three runs of the",
-       "benchmark. Harmonic balance without its stability, with Hill's eigenvalues of the whole operator,",
+       "benchmark; shooting's rows without and with its samples (a record run over the 160 samples of",
+       "the recorded period, or fixed steps landing on them, which give them on the way).",
+       "Harmonic balance without its stability, with Hill's eigenvalues of the whole operator,",
        "and with one period of the variational equations (what a scene does above 40 unknowns).", "",
        "![work-precision: harmonic balance, shooting, settling](img/balance_work_precision.svg)", "",
        "| method | setting | state error | rms(acceleration) error | CPU | with Hill's stability | with one variational period |",
@@ -108,6 +116,10 @@ for N, se, re_, cpu, hill, floq in sorted(hb):
         sec.append(f"| harmonic balance | N = {N} | {se:.1e} | {re_:.1e} | {us(cpu)} | {us(hill)} | {us(floq)} |")
 for rtol, se, re_, cpu in sorted(shoot, reverse=True):
     sec.append(f"| shooting (rk8pd, monodromy) | rtol {rtol:.0e} | {se:.1e} | {re_:.1e} | {us(cpu)} | (included) | (included) |")
+for rtol, se, re_, cpu in sorted(recorded, reverse=True):
+    sec.append(f"| shooting + record run of the samples | rtol {rtol:.0e} | {se:.1e} | {re_:.1e} | {us(cpu)} | (included) | (included) |")
+for rtol, se, re_, cpu, m in sorted(fixed, reverse=True):
+    sec.append(f"| shooting in fixed steps on the samples ({m} per sample) | rtol {rtol:.0e} | {se:.1e} | {re_:.1e} | {us(cpu)} | (included) | (included) |")
 for rtol, re_, cpu, rhs in sorted(settle, reverse=True):
     sec.append(f"| settling 200 periods (rk8pd) | rtol {rtol:.0e} | | {re_:.1e} | {us(cpu)} | | |")
 sec += ["", "The independent programs' figures for the same scene at error ≤ 1e-8 (from the issue that asked",
@@ -116,10 +128,17 @@ sec += ["", "The independent programs' figures for the same scene at error ≤ 1
         "5.21 ms.", "",
         f"At N = 10 (rms(acceleration) error {n10[2]:.1e}, the state's {n10[1]:.1e}) gbxc's orbit takes",
         f"{us(n10[3])}: {n10[3] / 14e-6:.2f} times the independent program's 14 µs (target: within 2 times).",
+
         "Newton's system leaves out the velocities (each kinematic equation y_a' = y_b gives b's step from",
         "a's), and the Jacobian's Fourier sums and the residual between the instants are products with",
         "matrices the basis keeps. Hill's eigenvalues cost far more than the orbit, so a scene uses",
-        "them up to 40 unknowns and one period of the variational equations beyond.", ""]
+        "them up to 40 unknowns and one period of the variational equations beyond.", "",
+        "Shooting with its samples (the orbit and the 160 recorded samples of its period, what a",
+        f"scene needs): adaptive steps and a record run take {us(next(r[3] for r in recorded if r[0] == 1e-8))} at rtol 1e-8;",
+        f"fixed steps that land on the samples take {us(next(f[3] for f in fixed if f[0] == 1e-8))} at any rtol (one rk8pd step per",
+        f"sample, rms error {next(f[2] for f in fixed if f[0] == 1e-8):.1e}), {next(f[3] for f in fixed if f[0] == 1e-8) / next(r[3] for r in recorded if r[0] == 1e-8):.2f} times the adaptive way and",
+        f"{next(f[3] for f in fixed if f[0] == 1e-8) / 111e-6:.2f} times the independent Floquet program's 111 µs with fixed RKF78 steps. A scene",
+        "on a smooth single mesh uses the fixed steps (docs/dynamics.md).", ""]
 def folds_and_rhs(way):
     t = " ".join(open(f"{out}/notes.{way}").read().split())
     folds = sorted({float(x) for x in re.findall(r"turning point \(jump\) at input_speed = ([0-9.]+) rpm", t)}, reverse=True)

@@ -26,6 +26,7 @@
 #include "dynamics/MeshModel.h"
 #include "dynamics/Ode.h"
 #include "dynamics/Periodic.h"
+#include "dynamics/SampledOrbit.h"
 #include "dynamics/Scene.h"
 
 using namespace gbx;
@@ -169,6 +170,21 @@ int balance(const Fixture& f) {
                               }) / refRms -
                               1.0);
     std::printf("shooting %.0e %.3e %.3e - %.3e -\n", rtol, err, cpu, rmsErr);
+    // What a scene did with it: the orbit, then a record run over the scene's samples.
+    double recorded = median([&] {
+      PeriodicOrbit q = periodicOrbit(sys, acc, opt, model.initialState());
+      Integrator integ(sys, acc);
+      std::vector<double> y = q.y0;
+      double t0 = 0;
+      integ.advance(t0, y, pm.plan.samples.back(), pm.plan.samples, [](double, const double*) {});
+    });
+    std::printf("recorded %.0e %.3e %.3e - %.3e -\n", rtol, err, recorded, rmsErr);
+    // Fixed steps landing on the scene's samples: the orbit and its samples in one run.
+    SampledOrbit so = sampledOrbit(sys, acc, opt, model.initialState(), pm.plan.dt);
+    double fixedErr = errorOf([&](double t) { return flowTo(sys, tight, so.orbit.y0, t); });
+    double fixedCpu = median([&] { sampledOrbit(sys, acc, opt, model.initialState(), pm.plan.dt); });
+    double fixedRms = std::fabs(rmsOf([&](double t) { return so.at(t); }) / refRms - 1.0);
+    std::printf("fixed %.0e %.3e %.3e %d %.3e -\n", rtol, fixedErr, fixedCpu, so.stepsPerSample, fixedRms);
   }
   return 0;
 }

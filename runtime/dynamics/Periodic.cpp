@@ -74,6 +74,8 @@ bool integrate(const System& sys, const Accuracy& acc, double t0, double period,
 
 } // namespace
 
+System variationalSystem(const System& sys) { return variational(sys); }
+
 double scaledNorm(const std::vector<double>& v, const std::vector<double>& scale) {
   double m = 0;
   for (size_t i = 0; i < v.size(); ++i) m = std::max(m, std::fabs(v[i]) / (i < scale.size() && scale[i] > 0 ? scale[i] : 1.0));

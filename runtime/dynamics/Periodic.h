@@ -51,6 +51,10 @@ struct FlowResult {
 FlowResult flowWithMonodromy(const System& sys, const Accuracy& acc, double t0, double period, const std::vector<double>& y0,
                              Stats& stats);
 
+// The system with its variational equations: [y, Phi] with Phi' = J(t, y) Phi (it reads sys,
+// which must outlive it).
+System variationalSystem(const System& sys);
+
 // Largest modulus of the eigenvalues of M, and the eigenvalues.
 double spectralRadius(const Eigen::MatrixXd& M, std::vector<std::complex<double>>* eigenvalues = nullptr);
 

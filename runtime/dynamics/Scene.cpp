@@ -421,7 +421,9 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
   // A transient may start from a given state (a study's run from another initial condition).
   if (tp.steady != SteadyMethod::Periodic && ov.guess && ov.guess->size() == y.size()) y = *ov.guess;
   std::optional<BalanceOrbit> balance;
-  if (tp.steady == SteadyMethod::Periodic && !steadyOrbit(model, ms, tp, scene, ov, acc, r, y, balance)) return "";
+  std::optional<SampledOrbit> sampled;
+  if (tp.steady == SteadyMethod::Periodic && !steadyOrbit(model, ms, tp, scene, ov, acc, r, y, balance, sampled))
+    return "";
   std::vector<double> atPeriod;  // the state a whole orbit period on, where the record window reaches it
   auto take = [&](double ts, const double* ys) {
     if (r.orbitUnconfirmed && atPeriod.empty() && std::fabs(ts - r.period) <= 1e-9 * r.period)
@@ -449,11 +451,14 @@ std::string runSingleMesh(const Model& m, const Assignment& a, const ScenePlan& 
     }
     r.stats.cpuSeconds += threadCpuSeconds() - cpu;
   }
+  if (sampled) // the samples the fixed steps landed on: nothing is integrated again
+    for (double ts : tp.samples)
+      take(ts, sampled->at(ts).data());
   samples.staticLoad = p.staticLoad;
   const MeshEffects& fx = ms.effects;
   samples.quasiStaticPeak = fx.torqueFluctuation ? (std::fabs(fx.torqueMean) + std::fabs(fx.torqueAmplitude)) / std::fabs(p.outputRadius * p.downstream)
                                                  : p.staticLoad;
-  if (balance) return "";
+  if (balance || sampled) return "";
   Integrator integ(model.system(), acc);
   double t = 0;
   bool ok = integ.advance(t, y, tp.end, tp.samples, take);
@@ -797,6 +802,8 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
   if (N > 0) tight.balanceHarmonics = 2 * N;
   else
     tight.harmonicBalance = false; // shooting found this orbit: its reference is shooting's too
+  // Fixed steps: the reference takes twice as many (a tighter rtol alone would not change them).
+  if (r.stepsPerSample > 0) tight.stepsPerSample = 2 * r.stepsPerSample;
   // A static scene integrates nothing: its estimate is its table's discretisation alone.
   const bool integrated = r.steady != SteadyMethod::Static;
   SceneResult ref;
@@ -817,6 +824,10 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
   else if (integrated && N > 0)
     r.errorParts.push_back({"harmonic truncation", part(ref),
                             fmt::format("{} harmonics against shooting at rtol {:.0e}", N, tight.rtol.value())});
+  else if (integrated && r.stepsPerSample > 0)
+    r.errorParts.push_back({"integration", part(ref),
+                            fmt::format("against a rerun with {} fixed steps per sample instead of {}",
+                                        tight.stepsPerSample, r.stepsPerSample)});
   else if (integrated)
     r.errorParts.push_back(
         {"integration", part(ref),
@@ -825,6 +836,7 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
     SceneOverrides twice = tight;
     twice.rtol = ov.rtol;
     twice.maxStepFactor = ov.maxStepFactor;
+    twice.stepsPerSample = ov.stepsPerSample;
     twice.harmonics = 2 * r.harmonics;
     if (N > 0) twice.balanceHarmonics = N;
     SceneResult h2 = runOnce(m, a, scene, twice);
@@ -838,6 +850,7 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
     SceneOverrides fine = tight;
     fine.rtol = ov.rtol;
     fine.maxStepFactor = ov.maxStepFactor;
+    fine.stepsPerSample = ov.stepsPerSample;
     fine.loadedRefine = 2 * ov.loadedRefine;
     if (N > 0) fine.balanceHarmonics = N;
     SceneResult f2 = runOnce(m, a, scene, fine);

@@ -66,6 +66,7 @@ struct SceneResult {
   std::vector<double> orbit;  // the orbit's initial state, for a neighbouring sweep point
   int harmonics = 0;          // of the stiffness series, 0 without varying_stiffness
   int balanceHarmonics = 0;   // the orbit's harmonics when harmonic balance found it, else 0
+  int stepsPerSample = 0;     // the fixed steps between two samples when shooting took them, else 0
   double balanceTruncation = NAN; // its change from half the harmonics, of the state scale (N chosen for a target)
   Stats referenceStats;
   double meshFrequency = 0;

@@ -32,6 +32,7 @@ struct SceneOverrides {
   // number of harmonics (an error-estimate rerun at twice the scene's).
   std::optional<bool> harmonicBalance;
   std::optional<int> balanceHarmonics; // 0: chosen for rtol whatever the scene writes
+  int stepsPerSample = 0;              // fixed-step shooting: the steps between two samples (0: chosen for rtol)
   std::optional<cat::Method> method;
   std::optional<double> rtol;
   bool estimateError = true;

@@ -45,13 +45,38 @@ bool balanceOrbit(const MeshModel& model, const ScenePlan& scene, const SceneOve
   return true;
 }
 
+// Shooting in fixed steps that land on the samples (a smooth model): false where it does not
+// serve (too many steps per sample, or Newton fails), and adaptive shooting then follows.
+bool fixedOrbit(const MeshModel& model, const PeriodicOptions& po, const Accuracy& acc, const SceneOverrides& ov,
+                const TimePlan& tp, double Tz, const std::vector<double>& guess, SceneResult& r,
+                std::optional<SampledOrbit>& sampled) {
+  SampledOrbit so = sampledOrbit(model.system(), acc, po, guess, tp.dt, ov.stepsPerSample);
+  r.stats += so.orbit.stats;
+  if (!so.orbit.converged) return false;
+  const PeriodicOrbit& orbit = so.orbit;
+  r.orbit = orbit.y0;
+  r.period = po.period;
+  r.stability = orbit.stability;
+  r.unstable = orbit.stability >= 1.0;
+  r.newtonIterations = orbit.iterations;
+  r.newtonResidual = orbit.residual;
+  r.stepsPerSample = so.stepsPerSample;
+  r.orbitMethod = fmt::format("{} by variational equations in fixed steps, {} per sample",
+                              po.linear ? "linear: the monodromy matrix" : "shooting with Newton", so.stepsPerSample);
+  r.stepRule = fmt::format("fixed steps of {:.4g} ms, {} per sample (each step's error within rtol)",
+                           tp.dt / so.stepsPerSample * 1e3, so.stepsPerSample);
+  describeOrbit(r, Tz);
+  sampled = std::move(so);
+  return true;
+}
+
 } // namespace
 
 // The periodic orbit of a single-mesh scene, from the model's initial state or the caller's
 // guess; false (with r.failure) where it is not found.
 bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, const ScenePlan& scene,
                  const SceneOverrides& ov, const Accuracy& acc, SceneResult& r, std::vector<double>& y,
-                 std::optional<BalanceOrbit>& balance) {
+                 std::optional<BalanceOrbit>& balance, std::optional<SampledOrbit>& sampled) {
   double Tz = 1.0 / ms.meshFrequency, T = model.excitationPeriod();
   if (T <= 0)
     throw SceneFailure{fmt::format(
@@ -70,6 +95,12 @@ bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, cons
   po.linear = model.linear();
   po.confirmLinear = false; // the record run below integrates the period and measures the residual
   std::vector<double> guess = ov.guess && ov.guess->size() == y.size() ? *ov.guess : y;
+  if (widenToPeriod(tp, T))
+    r.model.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", std::lround(T / Tz)));
+  if (fixedStepsServe(model.system(), acc) && fixedOrbit(model, po, acc, ov, tp, Tz, guess, r, sampled)) {
+    y = r.orbit;
+    return true;
+  }
   PeriodicOrbit orbit = periodicOrbit(model.system(), acc, po, guess);
   r.stats += orbit.stats;
   if (!orbit.converged) {
@@ -79,10 +110,6 @@ bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, cons
   y = orbit.y0;
   r.orbit = orbit.y0;
   r.period = T;
-  // Outputs over a whole orbit: a window shorter than its period (a fluctuation holding
-  // several mesh periods) is widened to it.
-  if (widenToPeriod(tp, T))
-    r.model.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", std::lround(T / Tz)));
   r.stability = orbit.stability;
   r.unstable = orbit.stability >= 1.0;
   r.newtonIterations = orbit.iterations;

@@ -71,8 +71,8 @@ TEST(SteadyState, LinearMarinePeriodicEqualsALongTransient) {
   EXPECT_NEAR(rp / rt, 1.0, 1e-9) << "periodic " << rp << " against transient " << rt;
   // An independent measurement (docs/dynamics.md) gives 50.53239936 for this scene.
   EXPECT_NEAR(rp, 50.53239936, 5e-8);
-  // Linear: one Newton step is exact; the record run, one period from the orbit's start,
-  // confirms it (no second variational period); the orbit is stable.
+  // Linear: one Newton step is exact (the samples, in fixed steps, by superposition: no
+  // second variational period, no record run); the orbit is stable.
   EXPECT_EQ(p.newtonIterations, 1);
   EXPECT_TRUE(std::isfinite(p.newtonResidual));
   EXPECT_LT(p.newtonResidual, 1e-10);
