@@ -824,7 +824,7 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
   else if (integrated && N > 0)
     r.errorParts.push_back({"harmonic truncation", part(ref),
                             fmt::format("{} harmonics against shooting at rtol {:.0e}", N, tight.rtol.value())});
-  else if (integrated && r.stepsPerSample > 0)
+  else if (integrated && r.stepsPerSample > 0 && ref.stepsPerSample == 2 * r.stepsPerSample)
     r.errorParts.push_back({"integration", part(ref),
                             fmt::format("against a rerun with {} fixed steps per sample instead of {}",
                                         tight.stepsPerSample, r.stepsPerSample)});
@@ -836,7 +836,7 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
     SceneOverrides twice = tight;
     twice.rtol = ov.rtol;
     twice.maxStepFactor = ov.maxStepFactor;
-    twice.stepsPerSample = ov.stepsPerSample;
+    twice.stepsPerSample = r.stepsPerSample > 0 ? r.stepsPerSample : ov.stepsPerSample;
     twice.harmonics = 2 * r.harmonics;
     if (N > 0) twice.balanceHarmonics = N;
     SceneResult h2 = runOnce(m, a, scene, twice);
@@ -850,7 +850,7 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
     SceneOverrides fine = tight;
     fine.rtol = ov.rtol;
     fine.maxStepFactor = ov.maxStepFactor;
-    fine.stepsPerSample = ov.stepsPerSample;
+    fine.stepsPerSample = r.stepsPerSample > 0 ? r.stepsPerSample : ov.stepsPerSample;
     fine.loadedRefine = 2 * ov.loadedRefine;
     if (N > 0) fine.balanceHarmonics = N;
     SceneResult f2 = runOnce(m, a, scene, fine);

@@ -33,6 +33,7 @@ struct SceneOverrides {
   std::optional<bool> harmonicBalance;
   std::optional<int> balanceHarmonics; // 0: chosen for rtol whatever the scene writes
   int stepsPerSample = 0;              // fixed-step shooting: the steps between two samples (0: chosen for rtol)
+  bool adaptiveShooting = false;       // shooting by the adaptive integrator on any model (an independent reference)
   std::optional<cat::Method> method;
   std::optional<double> rtol;
   bool estimateError = true;

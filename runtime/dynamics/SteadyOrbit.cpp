@@ -97,7 +97,8 @@ bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, cons
   std::vector<double> guess = ov.guess && ov.guess->size() == y.size() ? *ov.guess : y;
   if (widenToPeriod(tp, T))
     r.model.push_back(fmt::format("record window widened to the orbit's period, {} mesh periods", std::lround(T / Tz)));
-  if (fixedStepsServe(model.system(), acc) && fixedOrbit(model, po, acc, ov, tp, Tz, guess, r, sampled)) {
+  if (!ov.adaptiveShooting && fixedStepsServe(model.system(), acc) &&
+      fixedOrbit(model, po, acc, ov, tp, Tz, guess, r, sampled)) {
     y = r.orbit;
     return true;
   }

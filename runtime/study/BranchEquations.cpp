@@ -7,6 +7,7 @@
 
 #include "dynamics/HarmonicBalance.h"
 #include "dynamics/Periodic.h"
+#include "model/Deadline.h"
 
 namespace gbx::rt {
 
@@ -52,34 +53,42 @@ std::vector<double> BranchEquations::scale(const At& at) {
   return s;
 }
 
-dyn::PeriodicOrbit BranchEquations::settledOrbit(const At& at, std::vector<double> y) {
+dyn::PeriodicOrbit BranchEquations::settledOrbit(const At& at, std::vector<double> y, bool fromRest) {
   const dyn::System& sys = at.model->system();
   const double settled = std::max(1e-7, 10.0 * rtol); // a period's change that counts as settled
   constexpr long kMostPeriods = 1000;
   constexpr size_t kLongest = 8; // the longest repetition looked for, in periods
-  auto integ = std::make_unique<dyn::Integrator>(sys, at.ms.accuracy);
-  std::vector<std::vector<double>> last; // the states at the last kLongest + 1 period starts
-  double t = 0, change = INFINITY;
-  long k = 0;
+  auto scaledSize = [&](const std::vector<double>& v) {
+    double m = 0;
+    for (size_t i = 0; i < v.size(); ++i)
+      m = std::max(m, std::fabs(v[i]) / s_[i]);
+    return m;
+  };
   auto distance = [&](const std::vector<double>& a, const std::vector<double>& b) {
     double d = 0;
     for (size_t i = 0; i < a.size(); ++i)
       d = std::max(d, std::fabs(a[i] - b[i]) / s_[i]);
     return d;
   };
-  bool restarted = false;
+  // Growing without bound: past kRunaway times the state at rest (backlash puts that
+  // above the scale by the clearance).
+  const std::vector<double> rest = at.model->initialState();
+  const double runaway = kRunaway * std::max(1.0, scaledSize(rest));
+  if (fromRest) y = rest;
+  bool atRest = fromRest; // where the settling started
+  auto integ = std::make_unique<dyn::Integrator>(sys, at.ms.accuracy);
+  std::vector<std::vector<double>> last; // the states at the last kLongest + 1 period starts
+  double t = 0, change = INFINITY;
+  long k = 0;
   for (; k < kMostPeriods && !(change <= settled); ++k) {
-    double size = 0;
-    for (size_t i = 0; i < y.size(); ++i)
-      size = std::max(size, std::fabs(y[i]) / s_[i]);
-    if (!(size <= kRunaway)) {
+    if (!(scaledSize(y) <= runaway)) {
       // Growing without bound from there: once more from rest, as a run-up would start.
-      if (restarted)
-        throw dyn::SceneFailure{fmt::format("no orbit of one period: settled from rest, the response grows without "
-                                            "bound (past {:g} times its scale after {} periods)",
-                                            kRunaway, k)};
-      restarted = true;
-      y = at.model->initialState();
+      if (atRest)
+        throw NoOrbit{fmt::format("no orbit of one period: settled from rest, the response grows without bound "
+                                  "(past {:g} times its state at rest after {} periods)",
+                                  kRunaway, k)};
+      atRest = true;
+      y = rest;
       t = 0;
       k = 0;
       last.clear();
@@ -90,30 +99,36 @@ dyn::PeriodicOrbit BranchEquations::settledOrbit(const At& at, std::vector<doubl
     bool ok = integ->advance(t, y, static_cast<double>(k + 1) * at.period, {}, [](double, const double*) {});
     if (!ok) {
       stats += integ->stats();
-      throw dyn::SceneFailure{"settling from the last orbit failed: " + integ->error()};
+      if (Deadline::expired()) throw dyn::SceneFailure{integ->error()};
+      throw NoOrbit{fmt::format("settling from {} failed: {}", atRest ? "rest" : "the last orbit", integ->error())};
     }
     change = distance(y, before);
     last.push_back(y);
     if (last.size() > kLongest + 1) last.erase(last.begin());
   }
   stats += integ->stats();
+  const char* from = atRest ? "rest" : "the last orbit";
   dyn::PeriodicOptions po;
   po.period = at.period;
   dyn::PeriodicOrbit o = dyn::periodicOrbit(sys, at.ms.accuracy, po, y);
   stats += o.stats;
   if (o.converged && (change <= settled || o.stability <= 1.0)) return o;
-  const char* from = restarted ? "rest" : "the last orbit";
-  // What the settled response does instead: repeat every p periods, or not at all.
+  if (Deadline::expired()) throw dyn::SceneFailure{o.failure};
+  // What the settled response does instead: one period that shooting cannot converge on,
+  // a repetition every p periods (and not every one), or none.
+  if (change <= 1e3 * settled)
+    throw NoOrbit{fmt::format("settled from {} to a response of one period ({} periods), but shooting from it "
+                              "failed: {}",
+                              from, k, o.failure.empty() ? "its orbit is unstable" : o.failure)};
   for (size_t p = 2; p <= kLongest && p < last.size(); ++p)
     if (distance(last.back(), last[last.size() - 1 - p]) <= 1e3 * settled)
-      throw dyn::SceneFailure{fmt::format(
-          "no orbit of one period: settled from {} for {} periods, the response repeats every {} periods (a "
-          "subharmonic response)",
-          from, k, p)};
-  throw dyn::SceneFailure{fmt::format(
-      "no orbit of one period: settled from {} for {} periods, the response still changes by {:.3g} of its scale each "
-      "period and repeats within none of {} periods (quasi-periodic or chaotic)",
-      from, k, change, kLongest)};
+      throw NoOrbit{fmt::format("no orbit of one period: settled from {} for {} periods, the response repeats every "
+                                "{} periods (a subharmonic response)",
+                                from, k, p)};
+  throw NoOrbit{fmt::format("no orbit of one period: settled from {} for {} periods, the response still changes by "
+                            "{:.3g} of its scale each period and repeats within none of {} periods (quasi-periodic "
+                            "or chaotic)",
+                            from, k, change, kLongest)};
 }
 
 namespace {
@@ -163,14 +178,14 @@ public:
     return R;
   }
 
-  VectorXd afresh(const VectorXd& u, double lambda, bool settle) override {
+  VectorXd afresh(const VectorXd& u, double lambda, Start start) override {
     At at = build(lambda);
     dyn::PeriodicOptions po;
     po.period = at.period;
-    if (settle) return scaled(settledOrbit(at, state(u)).y0);
+    if (start != Start::Newton) return scaled(settledOrbit(at, state(u), start == Start::SettleFromRest).y0);
     dyn::PeriodicOrbit o = dyn::periodicOrbit(at.model->system(), at.ms.accuracy, po, state(u));
     stats += o.stats;
-    if (!o.converged) o = settledOrbit(at, state(u));
+    if (!o.converged) o = settledOrbit(at, state(u), false);
     return scaled(o.y0);
   }
 
@@ -271,19 +286,19 @@ public:
     return r;
   }
 
-  VectorXd afresh(const VectorXd& u, double lambda, bool settle) override {
+  VectorXd afresh(const VectorXd& u, double lambda, Start start) override {
     At at = build(lambda);
     dyn::BalanceOptions bo = options(at);
     bo.stability = false;
     Eigen::MatrixXd c = coeffs(u, at.period);
     dyn::BalanceOrbit o;
-    if (!settle) {
+    if (start == Start::Newton) {
       o = dyn::harmonicBalance(at.model->system(), bo, {}, &c);
       stats += o.stats;
     }
     if (!o.converged) {
       // From the settled orbit's samples instead (shooting's), as its series.
-      dyn::PeriodicOrbit p = settledOrbit(at, stateAtStart(c));
+      dyn::PeriodicOrbit p = settledOrbit(at, stateAtStart(c), start == Start::SettleFromRest);
       const long M = 4L * N_ + 4;
       std::vector<std::vector<double>> samples;
       dyn::Integrator integ(at.model->system(), at.ms.accuracy);

@@ -33,10 +33,16 @@ public:
   virtual std::optional<Eigen::VectorXd> first() = 0;
   // R at (u, lambda); with A, also dR/du.
   virtual Eigen::VectorXd residual(const Eigen::VectorXd& u, double lambda, Eigen::MatrixXd* A) = 0;
-  // The orbit at lambda found afresh from u (past a gap); throws dyn::SceneFailure. settle:
-  // the response settled from u first, where Newton from u could find an orbit no slow sweep
-  // reaches (an unstable one).
-  virtual Eigen::VectorXd afresh(const Eigen::VectorXd& u, double lambda, bool settle = false) = 0;
+  // Where no periodic response is found at a point (none of one period, or none Newton
+  // converges on): the continuation goes on past it. Any other SceneFailure stops it.
+  struct NoOrbit : dyn::SceneFailure {
+    explicit NoOrbit(std::string w) : dyn::SceneFailure{std::move(w)} {}
+  };
+  // How afresh starts: Newton from u (settling from u where that fails); or settled from u,
+  // or from rest, first, where Newton could find an orbit no slow sweep reaches.
+  enum class Start { Newton, SettleFromU, SettleFromRest };
+  // The orbit at lambda found afresh (past a gap); throws NoOrbit or dyn::SceneFailure.
+  virtual Eigen::VectorXd afresh(const Eigen::VectorXd& u, double lambda, Start start = Start::Newton) = 0;
   // What the scene's own run at u starts from; `ov` may keep a pointer into this object until
   // the next call.
   virtual void seed(const Eigen::VectorXd& u, double lambda, dyn::SceneOverrides& ov) = 0;
@@ -46,8 +52,9 @@ public:
   // For the study's note: "the shooting equations", "the harmonic balance equations (N harmonics)".
   virtual std::string name() const = 0;
 
-  // A state this many times its scale (the static deflection and its rate) is a response
-  // growing without bound: a mesh in contact whose instability backlash no longer limits.
+  // A state this many times its size at the sweep's start (or at rest, at least its scale: the
+  // static deflection and its rate) is a response growing without bound: a mesh in contact
+  // whose instability backlash no longer limits.
   static constexpr double kRunaway = 1e3;
   double rtol = 1e-6; // the scene's; the corrector's tolerance and lambda's difference step follow it
   double tolerance() const { return std::max(1e-9, 100.0 * rtol); } // the corrector's, of the unknowns' scale
@@ -67,10 +74,10 @@ protected:
   double periodAt(double lambda) const;
   static std::vector<double> scale(const At& at);
   // Past a gap where Newton from the last orbit fails: the response settled from that orbit's
-  // state y period by period, as a slow sweep carries it onto the branch that remains, then
-  // the orbit by shooting from there. Where the settled response does not repeat every
-  // period, throws a dyn::SceneFailure that says what it does instead.
-  dyn::PeriodicOrbit settledOrbit(const At& at, std::vector<double> y);
+  // state y (or from rest) period by period, as a slow sweep carries it onto the branch that
+  // remains, then the orbit by shooting from there. Where the settled response does not
+  // repeat every period, throws NoOrbit saying what it does instead.
+  dyn::PeriodicOrbit settledOrbit(const At& at, std::vector<double> y, bool fromRest);
   // The scene at the sweep's start, rtol and the state's scales taken from it; none for a
   // linear scene.
   std::optional<At> atStart();

@@ -90,6 +90,7 @@ private:
   bool afterGap = false;
   int aboveHere = 0;
   double reached = 0.0;  // the farthest lambda followed
+  double runaway = 0.0;  // a state this large grows without bound (kRunaway times the first's)
   long points = 0;
 
   void jacobian(const VectorXd& zz, VectorXd& Rz, MatrixXd& Jz) {
@@ -116,6 +117,7 @@ private:
     std::optional<VectorXd> u = eq->first();
     if (!u) return false;
     n = u->size();
+    runaway = BranchEquations::kRunaway * std::max(1.0, u->lpNorm<Eigen::Infinity>());
     z.resize(n + 1);
     z.head(n) = *u;
     z(n) = 0.0;
@@ -196,7 +198,8 @@ private:
   // leaves the range at its start), the stretch to the next sweep step past the farthest
   // point followed is a gap; the response there is found afresh by shooting from the last
   // orbit, and followed on as a new branch. False at the end of the range.
-  bool gapFrom(const VectorXd& from, const std::string& why, bool settle = false) {
+  bool gapFrom(const VectorXd& from, const std::string& why,
+               BranchEquations::Start how = BranchEquations::Start::Newton) {
     const double start = std::max(from(n), reached);
     double resume = start + dLambda;
     if (resume >= 1.0 - 1e-12) resume = 1.0;
@@ -204,14 +207,15 @@ private:
     // Where no orbit is found (none of one period there), the next sweep step is tried, to
     // the end of the range; what was found instead is said once for the whole stretch.
     std::string none;
-    double noneFrom = resume;
+    double noneFrom = resume, noneTo = resume;
     for (;;) {
       try {
-        fresh = eq->afresh(from.head(n), resume, settle);
+        fresh = eq->afresh(from.head(n), resume, how);
         break;
-      } catch (const dyn::SceneFailure& f) {
+      } catch (const BranchEquations::NoOrbit& f) {
         if (Deadline::expired()) throw;
         if (none.empty()) noneFrom = resume;
+        noneTo = resume;
         none = f.what;
       }
       if (resume >= 1.0) {
@@ -227,8 +231,8 @@ private:
     }
     if (!none.empty())
       out.notes.push_back(fmt::format("no periodic response followed at {} from {:.6g} to {:.6g} {}: {}", st.target,
-                                      out.unit.shown(eq->x(noneFrom)), out.unit.shown(eq->x(resume - dLambda)),
-                                      out.unit.name, none));
+                                      out.unit.shown(eq->x(noneFrom)), out.unit.shown(eq->x(noneTo)), out.unit.name,
+                                      none));
     out.gaps.emplace_back(eq->x(std::max(from(n), reached)), eq->x(resume));
     out.notes.push_back(fmt::format(
         "gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh", st.target,
@@ -367,17 +371,15 @@ private:
         keep(measure(last));
         break;
       }
-      if (r.zz.head(n).lpNorm<Eigen::Infinity>() > BranchEquations::kRunaway) {
+      if (r.zz.head(n).lpNorm<Eigen::Infinity>() > runaway) {
         // A branch climbing without bound (a mesh in contact whose instability backlash no
         // longer limits at such amplitudes): not followed further; the response past it is
         // found afresh, settled from rest.
-        out.notes.push_back(
-            fmt::format("the branch grows without bound towards {} = {:.6g} {}: its state passed {:g} "
-                        "times its scale (the static deflection and its rate) and was not followed further",
-                        st.target, out.unit.shown(eq->x(r.zz(n))), out.unit.name, BranchEquations::kRunaway));
-        VectorXd rest = z;
-        rest.head(n).setZero();
-        if (!gapFrom(rest, "the response grows without bound", true)) break;
+        out.notes.push_back(fmt::format("the branch grows without bound towards {} = {:.6g} {}: its state passed {:g} "
+                                        "times the first point's and was not followed further",
+                                        st.target, out.unit.shown(eq->x(r.zz(n))), out.unit.name,
+                                        BranchEquations::kRunaway));
+        if (!gapFrom(z, "the response grows without bound", BranchEquations::Start::SettleFromRest)) break;
         continue;
       }
       z = r.zz;

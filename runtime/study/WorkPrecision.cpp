@@ -91,6 +91,7 @@ WorkPrecisionStudy workPrecision(const Model& m, const Assignment& design, const
     // The reference, and a still tighter run that says how far it can be trusted.
     auto refOv = steadyOv(base, steadies.front());
     refOv.method = cat::Method::Rk8pd;
+    refOv.adaptiveShooting = true; // its error control set by rtol, unlike fixed steps on the samples
     refOv.rtol = tightest / 100;
     auto ref = dyn::runScene(m, design, scene, refOv);
     refOv.rtol = tightest / 1000;

@@ -146,3 +146,47 @@ TEST(SampledOrbit, DoesNotServeContactEventsOrAnImplicitMethod) {
   acc.method = cat::Method::Msbdf;
   EXPECT_FALSE(fixedStepsServe(d.sys, acc));
 }
+
+TEST(SampledOrbit, TheOrbitsOwnStepsMeetTheToleranceNotOnlyTheGuesses) {
+  // Driven hard, the orbit swings far wider than the run from rest: the steps chosen on that
+  // run are too long for the orbit, which takes more of its own.
+  Duffing d;
+  d.F = 20.0;
+  PeriodicOptions opt;
+  opt.period = 2 * M_PI / d.W;
+  Accuracy acc, tight;
+  acc.rtol = 1e-10;
+  tight.rtol = 1e-13;
+  SampledOrbit so = sampledOrbit(d.sys, acc, opt, {0.0, 0.0}, opt.period / 8);
+  ASSERT_TRUE(so.orbit.converged) << so.orbit.failure;
+  EXPECT_GE(so.stepsPerSample, 8);
+  PeriodicOrbit ref = periodicOrbit(d.sys, tight, opt, {0.0, 0.0});
+  ASSERT_TRUE(ref.converged);
+  EXPECT_LT(worstAgainst(d.sys, so, ref.y0, tight), 1e-9);
+}
+
+TEST(SampledOrbit, RefusesSamplesThatDoNotDivideThePeriodAndDriftingCoordinates) {
+  Duffing d;
+  PeriodicOptions opt;
+  opt.period = 2 * M_PI / d.W;
+  Accuracy acc;
+  SampledOrbit off = sampledOrbit(d.sys, acc, opt, {0.0, 0.0}, opt.period / 7.5);
+  EXPECT_FALSE(off.orbit.converged);
+  EXPECT_NE(off.orbit.failure.find("do not divide"), std::string::npos) << off.orbit.failure;
+  opt.drift = {1.0, 0.0};
+  SampledOrbit drifting = sampledOrbit(d.sys, acc, opt, {0.0, 0.0}, opt.period / 8);
+  EXPECT_FALSE(drifting.orbit.converged);
+  EXPECT_NE(drifting.orbit.failure.find("drift"), std::string::npos) << drifting.orbit.failure;
+}
+
+TEST(SampledOrbit, ASampleTimeBeforeTheOrbitsStartReadsTheLastSample) {
+  Duffing d;
+  PeriodicOptions opt;
+  opt.period = 2 * M_PI / d.W;
+  Accuracy acc;
+  SampledOrbit so = sampledOrbit(d.sys, acc, opt, {0.0, 0.0}, opt.period / 16);
+  ASSERT_TRUE(so.orbit.converged) << so.orbit.failure;
+  ASSERT_EQ(so.states.size(), 16u);
+  EXPECT_EQ(&so.at(-so.dt), &so.states[15]);
+  EXPECT_EQ(&so.at(17 * so.dt), &so.states[1]);
+}
