@@ -181,7 +181,7 @@ private:
   void sceneOutput(const ast::Expr* e, ir::Scene& out, const StageModel* stage, const GearboxModel& m, bool whole);
   bool beyondBudget(const AttrSpec& spec, const std::string& name, const ir::Expr& x);
   void sceneBudgets(const ir::Scene& sc, const std::string& owner);
-  void steadyStateRules(const ir::Scene& out, const Stmt& st, const StageModel* stage, const std::string& owner);
+  void steadyStateRules(const ir::Scene& out, const Stmt& st, const std::string& owner);
   ir::Modify modify(const Stmt& st, const GearboxModel& m, const Scope& gs);
   void missingInputs(const StageModel& stage, const ir::ModRule& r, const Stmt& b);
   ir::Split split(const Stmt& st, const GearboxModel& m, const Scope& gs);

@@ -31,8 +31,7 @@ std::vector<std::string> Analyser::interchangeable(const Stmt& st, const Gearbox
 }
 
 // `steady_state` and `harmonics`: what the periodic steady state refuses beside it and needs.
-void Analyser::steadyStateRules(const ir::Scene& out, const Stmt& st, const StageModel* stage,
-                                const std::string& owner) {
+void Analyser::steadyStateRules(const ir::Scene& out, const Stmt& st, const std::string& owner) {
   const ir::Setting* steady = ir::findSetting(out.settings, "steady_state");
   if (steady && steady->choice < 0) return; // a word the setting does not take: said already
   if (steady) {
@@ -46,11 +45,6 @@ void Analyser::steadyStateRules(const ir::Scene& out, const Stmt& st, const Stag
     if (!ir::findSetting(out.settings, "record"))
       diags_.error("E0225", nameOr(st),
                    fmt::format("{} needs `record` (the steady-state window) with `{}`", owner, written));
-    if (!stage)
-      diags_.error("E0232", nameOr(st),
-                   fmt::format("{}: `{}` needs a scene on a stage; a whole-gearbox scene runs "
-                               "from rest (`duration`) or settles (`settle`)",
-                               owner, written));
   }
   if (const ir::Setting* h = ir::findSetting(out.settings, "harmonics")) {
     if (!steady || steady->choice != cat::kSteadyHarmonicBalance)
@@ -104,7 +98,7 @@ ir::Scene Analyser::scene(const Stmt& st, const GearboxModel& m, const Scope& gs
   out.settings = settings(items, sceneSettings(), gs, owner, nameOr(st), "E0225");
   out.accuracy = settings(acc, accuracySettings(), gs, owner + " accuracy", nameOr(st), "E0225");
   sceneBudgets(out, owner);
-  steadyStateRules(out, st, stage, owner);
+  steadyStateRules(out, st, owner);
   // A loaded mesh whose outputs all read its static transmission error or its stiffness runs no
   // dynamics.
   const bool staticOnly =

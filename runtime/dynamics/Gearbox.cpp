@@ -15,6 +15,8 @@
 #include "dynamics/LoadedMesh.h"
 #include "dynamics/LoadedMeshInputs.h"
 #include "dynamics/Lumped.h"
+#include "dynamics/Periodic.h"
+#include "dynamics/SceneBalance.h"
 #include "dynamics/Stiffness.h"
 
 namespace gbx::rt::dyn {
@@ -708,6 +710,90 @@ private:
     return E;
   }
 
+  // The periodic steady state: every mesh's phase, and the load, repeat after q periods of
+  // the fastest mesh (q the fewest, at most 1000); the members' angles advance by their
+  // kinematic share of the input's turn, their speeds repeat. By harmonic balance where the
+  // scene asks for it and it is found (the samples then from its series), else by shooting;
+  // y becomes the orbit's start. False, with run.failure, where there is none.
+  template <class Sample> bool steadyState(const System& sys, std::vector<double>& y, Sample& sample, bool& sampled) {
+    run.periodic = true;
+    if (P.audit || P.drive.ramp > 0 || P.drive.fluctuates)
+      return notPeriodic(P.audit            ? "the energy audit integrates work done over the run"
+                         : P.drive.ramp > 0 ? "a `ramp` start-up"
+                                            : "a fluctuating drive speed");
+    std::vector<double> periods;
+    for (const auto& me : P.meshes)
+      periods.push_back(1.0 / me.meshFrequency);
+    if (torqueFx && P.tAmp != 0) periods.push_back(P.tOmega > 0 ? 2.0 * M_PI / P.tOmega : INFINITY);
+    int q = wholeMeshPeriods(Tz, periods);
+    if (q == 0)
+      return notPeriodic(
+          "the meshes' periods (and the load's) come round together in no whole number of periods of the "
+          "fastest mesh up to 1000: the response is quasi-periodic");
+    const double T = q * Tz;
+    if (widenToPeriod(run.plan, T))
+      prov.push_back(fmt::format("record window widened to the orbit's period, {} periods of the fastest mesh", q));
+    PeriodicOptions opt;
+    opt.period = T;
+    opt.drift.assign(sys.dim, 0.0);
+    for (size_t i = 0; i < nq; ++i)
+      opt.drift[i] = v(static_cast<long>(i)) * P.drive.speed0 * T;
+    opt.linear = !hertz && !backlash && !varying && !loadedFx; // a member's angle sets a mesh's phase
+    if (ov.harmonicBalance.value_or(scene.harmonicBalance)) {
+      BalanceOptions bo;
+      bo.period = T;
+      bo.drift = opt.drift;
+      bo.linear = opt.linear;
+      bo.floquet = acc;
+      SceneBalance b = sceneBalance(sys, bo, scene, ov, acc.rtol, y, 2048, q);
+      run.stats += b.stats;
+      prov.push_back(b.line);
+      if (b.orbit) {
+        const BalanceOrbit& o = *b.orbit;
+        run.newtonIterations = o.iterations;
+        run.newtonResidual = o.gapResidual;
+        run.stability = o.stability;
+        run.balanceHarmonics = o.harmonics;
+        run.orbit = o.state(0);
+        run.period = T;
+        std::vector<double> ys(sys.dim);
+        for (double ts : run.plan.samples) {
+          o.state(ts, ys.data());
+          sample(ts, ys.data());
+        }
+        sampled = true;
+        return true;
+      }
+    }
+    PeriodicOrbit orbit = periodicOrbit(sys, acc, opt, ov.guess && ov.guess->size() == sys.dim ? *ov.guess : y);
+    run.stats += orbit.stats;
+    run.newtonIterations = orbit.iterations;
+    run.newtonResidual = orbit.residual;
+    if (!orbit.converged) {
+      run.failure = "the periodic steady state was not found: " + orbit.failure;
+      return false;
+    }
+    run.stability = orbit.stability;
+    prov.push_back(fmt::format("periodic steady state: period {:.6g} ms ({} period{} of the fastest mesh), Newton {} "
+                               "iteration{} (monodromy by {}), residual {:.2e} of the state scale, largest Floquet "
+                               "multiplier {:.6f}",
+                               T * 1e3, q, q == 1 ? "" : "s", orbit.iterations, orbit.iterations == 1 ? "" : "s",
+                               orbit.variational ? "variational equations" : "differences", orbit.residual,
+                               orbit.stability));
+    y = orbit.y0;
+    run.orbit = orbit.y0;
+    run.period = T;
+    return true;
+  }
+
+  bool notPeriodic(const std::string& why) {
+    run.failure =
+        fmt::format("the excitation is not periodic ({}), so there is no periodic steady state: write `settle = "
+                    "N mesh_periods` to settle a transient, or `duration` for a run from rest",
+                    why);
+    return false;
+  }
+
   void integrate() {
     int contactKind = loadedFx ? contact::Loaded : backlash ? contact::Backlash : hertz ? contact::Hertz : contact::Linear;
     int phaseKind = P.drive.needsState() ? drivephase::State : drivephase::Closed;
@@ -750,6 +836,10 @@ private:
       run.outputSpeed.push_back(P.outSign * ys[nq + static_cast<size_t>(P.output)]);
     };
     if (P.audit && (varying || loadedFx)) throw SceneFailure{"the energy audit needs a constant mesh stiffness (leave out varying_stiffness and loaded_mesh)"};
+    if (run.plan.steady == SteadyMethod::Periodic) {
+      bool sampled = false; // harmonic balance's samples come from its series
+      if (!steadyState(sys, y, sample, sampled) || sampled) return;
+    }
     double E0 = P.audit ? energy(model, 0.0, y.data()) : 0.0;
     Integrator integ(sys, acc);
     double t = 0;

@@ -33,6 +33,12 @@ struct GearboxRun {
   // Energy over the run (SceneOverrides::energyAudit): the drive's work, the work the load
   // takes, the work the contact damping dissipates, and the kinetic and elastic energy gained.
   double driveWork = 0, loadWork = 0, dissipated = 0, energyGained = 0;
+  // The periodic steady state (`steady_state`): the orbit's start, its period (whole periods
+  // of every mesh), how it was found and its largest Floquet multiplier.
+  bool periodic = false;
+  std::vector<double> orbit;
+  double period = 0, stability = NAN, newtonResidual = 0;
+  int newtonIterations = 0, balanceHarmonics = 0;
   std::string failure;
 };
 

@@ -235,23 +235,6 @@ Compiled compile(const Params& p, bool varying, bool damped, int contactKind, bo
   return c;
 }
 
-// The fewest whole mean mesh periods Tm (at most 1000) that hold whole periods of every
-// fluctuation; 0 when there is none.
-int wholeMeshPeriods(double Tm, const std::vector<double>& periods) {
-  for (int q = 1; q <= 1000; ++q) {
-    bool whole = true;
-    for (double P : periods) {
-      double r = q * Tm / P;
-      if (std::round(r) < 1 || std::fabs(r - std::round(r)) > 1e-9 * std::max(1.0, r)) {
-        whole = false;
-        break;
-      }
-    }
-    if (whole) return q;
-  }
-  return 0;
-}
-
 // A planetary stage's scene set up and run, step by step: its geometry and inertias, the
 // effects it lists and the contact law, the load and the drive, the stiffness variation, the
 // meshes and their parameters, the modes and the time plan, the initial state, and the run

@@ -335,6 +335,16 @@ SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignmen
     r.failure = fmt::format("scene `{}`: {}", scene.name, g.failure);
     return r;
   }
+  if (g.periodic) {
+    r.stability = g.stability;
+    r.unstable = g.stability >= 1.0;
+    r.newtonIterations = g.newtonIterations;
+    r.newtonResidual = g.newtonResidual;
+    r.balanceHarmonics = g.balanceHarmonics;
+    if (g.balanceHarmonics > 0) r.method = "harmonic_balance";
+    r.period = g.period;
+    r.orbit = g.orbit;
+  }
   r.gearbox.members = g.members;
   r.gearbox.kinematic = g.kinematic;
   r.gearbox.driveWork = g.driveWork;
@@ -684,6 +694,23 @@ long recordedSamples(double n, const char* window) {
 }
 
 } // namespace
+
+// The fewest whole mean mesh periods Tm (at most 1000) that hold whole periods of every
+// fluctuation; 0 when there is none.
+int wholeMeshPeriods(double Tm, const std::vector<double>& periods) {
+  for (int q = 1; q <= 1000; ++q) {
+    bool whole = true;
+    for (double P : periods) {
+      double r = q * Tm / P;
+      if (std::round(r) < 1 || std::fabs(r - std::round(r)) > 1e-9 * std::max(1.0, r)) {
+        whole = false;
+        break;
+      }
+    }
+    if (whole) return q;
+  }
+  return 0;
+}
 
 bool widenToPeriod(TimePlan& plan, double period) {
   if (static_cast<double>(plan.samples.size()) * plan.dt >= period * (1 - 1e-9)) return false;

@@ -82,6 +82,9 @@ double needNumber(const Value& v, const std::string& what);
 TimePlan timePlan(const ScenePlan& scene, double meshPeriod, std::optional<long> settlePeriods = std::nullopt);
 // The plan of a periodic steady state: the record window from t = 0 on the orbit.
 TimePlan periodicPlan(const ScenePlan& scene, double meshPeriod);
+// The fewest whole periods Tm (at most 1000) that hold whole periods of every one given; 0 when
+// there is none.
+int wholeMeshPeriods(double Tm, const std::vector<double>& periods);
 // Widens a periodic plan's record window to a whole orbit of the given period; true when it did.
 bool widenToPeriod(TimePlan& plan, double period);
 Drive sceneDrive(const ScenePlan& scene, double nominal, double upstream, double meshPeriod);

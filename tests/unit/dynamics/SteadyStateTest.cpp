@@ -363,3 +363,94 @@ TEST(SteadyState, LightlyDampedBacklashSweepFromLowSpeedSaysWhereTheResponseRuns
     EXPECT_NEAR(resumed->y[1] / value(r, "rms(acceleration)"), 1.0, 1e-4) << resumed->x * 30 / M_PI << " rpm";
   }
 }
+
+namespace {
+
+// Two spur stages whose meshes come round together in 8 periods of the first (5 of the
+// second): 20/40 and 25/50.
+std::string twoStageBox(const std::string& ls, const std::string& steady) {
+  return R"(import materials;
+gearbox TwoStage {
+  stage hs: spur { pinion.z = 20; wheel.z = 40; normal_module = 3 mm; pressure_angle = 20 deg; face_width = 30 mm;
+                   material = steel_42CrMo4; }
+  stage ls: spur { )" +
+         ls + R"( normal_module = 4 mm; pressure_angle = 20 deg; face_width = 40 mm;
+                   material = steel_42CrMo4; }
+  operating { input_speed = 3000 rpm; input_torque = 200 N*m; }
+  scene box on TwoStage {
+    effects { varying_stiffness { harmonics = 10; } damping { ratio = 0.05; } }
+    )" + steady +
+         R"(
+    accuracy { rtol = 1e-9; }
+    output peak(mesh_force(hs)), mean(mesh_force(hs)), peak(mesh_force(ls)), min(mesh_force(ls));
+  }
+}
+)";
+}
+
+} // namespace
+
+TEST(SteadyState, WholeGearboxPeriodicEqualsALongSettleAndHarmonicBalance) {
+  const std::string teeth = "pinion.z = 25; wheel.z = 50;";
+  SceneOverrides ov;
+  ov.estimateError = false;
+  auto run = [&](const std::string& steady) {
+    auto f = compile("box.gbx", twoStageBox(teeth, steady), "TwoStage");
+    SceneResult r = runScene(*f.model, *f.design, f.scene("box"), ov);
+    EXPECT_TRUE(r.failure.empty()) << r.failure;
+    return r;
+  };
+  SceneResult p = run("steady_state = periodic; record = 1 mesh_period; samples = 64;");
+  SceneResult s = run("settle = 1600 mesh_periods; record = 8 mesh_periods; samples = 64;");
+  SceneResult b = run("steady_state = harmonic_balance; record = 1 mesh_period; samples = 64;");
+  EXPECT_EQ(p.steady, SteadyMethod::Periodic);
+  EXPECT_NEAR(p.period * 3000.0 / 60.0 * 20.0, 8.0, 1e-9) << "eight periods of the first mesh";
+  EXPECT_LT(p.stability, 1.0);
+  EXPECT_GT(p.stability, 0.0);
+  bool widened = false;
+  for (const auto& line : p.model)
+    widened = widened || line.find("8 periods of the fastest mesh") != std::string::npos;
+  EXPECT_TRUE(widened);
+  for (const char* key :
+       {"peak(mesh_force(hs))", "mean(mesh_force(hs))", "peak(mesh_force(ls))", "min(mesh_force(ls))"}) {
+    SCOPED_TRACE(key);
+    double vp = value(p, key), vs = value(s, key), vb = value(b, key);
+    // The settled transient's state has decayed by far more than its tolerance in 1 600 periods.
+    EXPECT_NEAR(vp / vs, 1.0, 1e-8);
+    // Harmonic balance: its samples from the series, against the integrated orbit's.
+    EXPECT_NEAR(vb / vp, 1.0, 1e-5);
+  }
+  EXPECT_GT(b.balanceHarmonics, 0);
+  EXPECT_NEAR(b.stability, p.stability, 1e-6);
+  // Its cost: a small fraction of the settled transient's.
+  EXPECT_LT(p.stats.rhsEvaluations * 10, s.stats.rhsEvaluations);
+}
+
+TEST(SteadyState, WholeGearboxWhoseMeshesNeverComeRoundTogetherIsRefused) {
+  // 17/97, 19/89, 23/83: the second mesh turns 19/97 as often as the first, the third
+  // 19 23/(97 89): the three come round together only every 97 x 89 = 8 633 periods of the
+  // first, beyond the 1 000 a periodic scene takes.
+  std::string text = R"(import materials;
+gearbox Three {
+  stage a: spur { pinion.z = 17; wheel.z = 97; normal_module = 3 mm; pressure_angle = 20 deg; face_width = 30 mm;
+                  material = steel_42CrMo4; }
+  stage b: spur { pinion.z = 19; wheel.z = 89; normal_module = 4 mm; pressure_angle = 20 deg; face_width = 40 mm;
+                  material = steel_42CrMo4; }
+  stage c: spur { pinion.z = 23; wheel.z = 83; normal_module = 5 mm; pressure_angle = 20 deg; face_width = 50 mm;
+                  material = steel_42CrMo4; }
+  operating { input_speed = 3000 rpm; input_torque = 20 N*m; }
+  scene box on Three {
+    effects { damping { ratio = 0.05; } }
+    steady_state = periodic; record = 1 mesh_period;
+    output peak(mesh_force(a));
+  }
+}
+)";
+  auto f = compile("three.gbx", text, "Three");
+  SceneOverrides ov;
+  ov.estimateError = false;
+  SceneResult r = runScene(*f.model, *f.design, f.scene("box"), ov);
+  ASSERT_FALSE(r.failure.empty());
+  EXPECT_NE(r.failure.find("quasi-periodic"), std::string::npos) << r.failure;
+  EXPECT_NE(r.failure.find("settle"), std::string::npos) << r.failure;
+}
