@@ -317,6 +317,18 @@ SceneSeries recorded(const ir::SceneOutput& o, Dim dim, const std::vector<double
   return s;
 }
 
+// A planetary or whole-gearbox run's periodic orbit, as the scene reports it.
+template <class Run> void takeOrbit(const Run& run, SceneResult& r) {
+  r.stability = run.stability;
+  r.unstable = run.failure.empty() && run.stability >= 1.0;
+  r.newtonIterations = run.newtonIterations;
+  r.newtonResidual = run.newtonResidual;
+  r.balanceHarmonics = run.balanceHarmonics;
+  if (run.balanceHarmonics > 0) r.method = "harmonic_balance";
+  r.period = run.period;
+  r.orbit = run.orbit;
+}
+
 // A whole-gearbox scene in time (docs/dynamics.md): the outputs of its meshes by name.
 SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignment& a, const ScenePlan& scene, const SceneOverrides& ov,
                             SceneResult r) {
@@ -335,16 +347,7 @@ SceneResult runWholeGearbox(const Model& m, const Evaluator& ev, const Assignmen
     r.failure = fmt::format("scene `{}`: {}", scene.name, g.failure);
     return r;
   }
-  if (g.periodic) {
-    r.stability = g.stability;
-    r.unstable = g.stability >= 1.0;
-    r.newtonIterations = g.newtonIterations;
-    r.newtonResidual = g.newtonResidual;
-    r.balanceHarmonics = g.balanceHarmonics;
-    if (g.balanceHarmonics > 0) r.method = "harmonic_balance";
-    r.period = g.period;
-    r.orbit = g.orbit;
-  }
+  if (g.periodic) takeOrbit(g, r);
   r.gearbox.members = g.members;
   r.gearbox.kinematic = g.kinematic;
   r.gearbox.driveWork = g.driveWork;
@@ -500,14 +503,7 @@ std::string runPlanetaryScene(const Model& m, const Evaluator& ev, const Assignm
   r.stepRule = pr.stepRule;
   if (periodic) {
     r.steady = SteadyMethod::Periodic;
-    r.stability = pr.stability;
-    r.unstable = pr.failure.empty() && pr.stability >= 1.0;
-    r.newtonIterations = pr.newtonIterations;
-    r.newtonResidual = pr.newtonResidual;
-    r.balanceHarmonics = pr.balanceHarmonics;
-    if (pr.balanceHarmonics > 0) r.method = "harmonic_balance";
-    r.period = pr.period;
-    r.orbit = pr.orbit;
+    takeOrbit(pr, r);
   } else {
     r.steady = pr.plan.steady;
   }

@@ -116,19 +116,34 @@ TEST(SampledOrbit, SparseSamplesTakeMoreStepsEachAndKeepTheTolerance) {
   EXPECT_EQ(two.stepsPerSample, 2 * so.stepsPerSample);
 }
 
-TEST(SampledOrbit, NonlinearOrbitByNewtonMatchesAdaptiveShooting) {
+// The Duffing orbit with `divisions` samples a period at rtol 1e-10, and adaptive shooting's
+// at 1e-13 from the same start.
+struct DuffingOrbits {
   Duffing d;
   PeriodicOptions opt;
-  opt.period = 2 * M_PI / d.W;
-  Accuracy acc, tight;
-  acc.rtol = 1e-10;
-  tight.rtol = 1e-13;
-  SampledOrbit so = sampledOrbit(d.sys, acc, opt, {0.0, 0.0}, opt.period / 200);
+  Accuracy tight;
+  SampledOrbit so;
+  PeriodicOrbit ref;
+  DuffingOrbits(double F, int divisions) {
+    d.F = F;
+    opt.period = 2 * M_PI / d.W;
+    Accuracy acc;
+    acc.rtol = 1e-10;
+    tight.rtol = 1e-13;
+    so = sampledOrbit(d.sys, acc, opt, {0.0, 0.0}, opt.period / divisions);
+    ref = periodicOrbit(d.sys, tight, opt, {0.0, 0.0});
+  }
+  double worst() const { return worstAgainst(d.sys, so, ref.y0, tight); }
+};
+
+TEST(SampledOrbit, NonlinearOrbitByNewtonMatchesAdaptiveShooting) {
+  DuffingOrbits o(6.0, 200);
+  const SampledOrbit& so = o.so;
   ASSERT_TRUE(so.orbit.converged) << so.orbit.failure;
   EXPECT_GT(so.orbit.iterations, 2);
-  PeriodicOrbit ref = periodicOrbit(d.sys, tight, opt, {0.0, 0.0});
+  const PeriodicOrbit& ref = o.ref;
   ASSERT_TRUE(ref.converged);
-  EXPECT_LT(worstAgainst(d.sys, so, ref.y0, tight), 1e-8);
+  EXPECT_LT(o.worst(), 1e-8);
   EXPECT_NEAR(so.orbit.stability, ref.stability, 1e-7);
   double amplitude = 0;
   for (const auto& y : so.states)
@@ -150,19 +165,11 @@ TEST(SampledOrbit, DoesNotServeContactEventsOrAnImplicitMethod) {
 TEST(SampledOrbit, TheOrbitsOwnStepsMeetTheToleranceNotOnlyTheGuesses) {
   // Driven hard, the orbit swings far wider than the run from rest: the steps chosen on that
   // run are too long for the orbit, which takes more of its own.
-  Duffing d;
-  d.F = 20.0;
-  PeriodicOptions opt;
-  opt.period = 2 * M_PI / d.W;
-  Accuracy acc, tight;
-  acc.rtol = 1e-10;
-  tight.rtol = 1e-13;
-  SampledOrbit so = sampledOrbit(d.sys, acc, opt, {0.0, 0.0}, opt.period / 8);
-  ASSERT_TRUE(so.orbit.converged) << so.orbit.failure;
-  EXPECT_GE(so.stepsPerSample, 8);
-  PeriodicOrbit ref = periodicOrbit(d.sys, tight, opt, {0.0, 0.0});
-  ASSERT_TRUE(ref.converged);
-  EXPECT_LT(worstAgainst(d.sys, so, ref.y0, tight), 1e-9);
+  DuffingOrbits o(20.0, 8);
+  ASSERT_TRUE(o.so.orbit.converged) << o.so.orbit.failure;
+  EXPECT_GE(o.so.stepsPerSample, 8);
+  ASSERT_TRUE(o.ref.converged);
+  EXPECT_LT(o.worst(), 1e-9);
 }
 
 TEST(SampledOrbit, RefusesSamplesThatDoNotDivideThePeriodAndDriftingCoordinates) {
@@ -180,11 +187,8 @@ TEST(SampledOrbit, RefusesSamplesThatDoNotDivideThePeriodAndDriftingCoordinates)
 }
 
 TEST(SampledOrbit, ASampleTimeBeforeTheOrbitsStartReadsTheLastSample) {
-  Duffing d;
-  PeriodicOptions opt;
-  opt.period = 2 * M_PI / d.W;
-  Accuracy acc;
-  SampledOrbit so = sampledOrbit(d.sys, acc, opt, {0.0, 0.0}, opt.period / 16);
+  DuffingOrbits o(6.0, 16);
+  const SampledOrbit& so = o.so;
   ASSERT_TRUE(so.orbit.converged) << so.orbit.failure;
   ASSERT_EQ(so.states.size(), 16u);
   EXPECT_EQ(&so.at(-so.dt), &so.states[15]);
