@@ -1,6 +1,6 @@
 #pragma once
-// An allocator for the search's few large arrays (the join's halves and occupancy table, a
-// long listing's ranked designs): from 512 KiB up, whole 2 MiB pages mapped for the array
+// An allocator for the search's few large arrays (the join's half list and its occupancy
+// table): from 512 KiB up, whole 2 MiB pages mapped for the array
 // alone and offered to the kernel as huge pages. The first touch of a 4 KiB page is a page
 // fault, some 12-16 us each on a virtual machine; one huge page replaces 512 of them. Where
 // the kernel gives none (transparent huge pages off) the mapping behaves as any other.

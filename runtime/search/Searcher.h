@@ -279,9 +279,9 @@ private:
   // One left entry against its window of right entries [from, to).
   void joinEntry(Walk& w, size_t le, double x, size_t from, size_t to, double partial);
 
-  // How many rows ahead the long right list's index and entries are fetched: a row takes
-  // about as long as a load from memory, so the index must arrive before the entries'
-  // fetch reads it.
+  // How many rows ahead a long right list's occupancy words and first entries are fetched:
+  // a row takes about as long as a load from memory, so the word (and its first entry's
+  // index) must arrive before the entries' fetch reads it.
   static constexpr size_t kIndexAhead = 8, kEntriesAhead = 3;
 
   // Which buckets of the right list's ratios hold an entry, a bit each: most rows' windows
