@@ -309,16 +309,17 @@ public:
       bool ok = integ.advance(t, y, at.period, times,
                               [&](double, const double* ys) { samples.emplace_back(ys, ys + y.size()); });
       stats += integ.stats();
-      if (!ok || samples.size() != static_cast<size_t>(M))
-        throw dyn::SceneFailure{"the settled orbit's samples: " + integ.error()};
+      if (!ok || samples.size() != static_cast<size_t>(M)) {
+        if (Deadline::expired()) throw dyn::SceneFailure{integ.error()};
+        throw NoOrbit{"the settled orbit's samples: " + integ.error()};
+      }
       Eigen::MatrixXd fromSamples = dyn::seriesOfSamples(samples, {}, N_);
       o = dyn::harmonicBalance(at.model->system(), bo, {}, &fromSamples);
       stats += o.stats;
       if (!o.converged)
-        throw dyn::SceneFailure{
-            fmt::format("shooting found the settled orbit, but harmonic balance with {} harmonics did "
-                        "not converge from it: {}",
-                        N_, o.failure)};
+        throw NoOrbit{fmt::format("shooting found the settled orbit, but harmonic balance with {} harmonics did not "
+                                  "converge from it: {}",
+                                  N_, o.failure)};
     }
     return scaled(o.coeffs);
   }
