@@ -76,6 +76,29 @@ bool integrate(const System& sys, const Accuracy& acc, double t0, double period,
 
 System variationalSystem(const System& sys) { return variational(sys); }
 
+std::optional<Eigen::VectorXd> newtonCorrection(const Eigen::MatrixXd& phi, const Eigen::VectorXd& R,
+                                                std::string& failure) {
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(phi - Eigen::MatrixXd::Identity(phi.rows(), phi.cols()));
+  if (!lu.isInvertible()) {
+    failure =
+        "the monodromy matrix has a multiplier at 1: the periodic orbit is not isolated (a resonance without damping?)";
+    return std::nullopt;
+  }
+  return Eigen::VectorXd(lu.solve(-R));
+}
+
+double dampedStep(std::vector<double>& y0, const Eigen::VectorXd& d, const std::vector<double>& scale, bool& whole) {
+  std::vector<double> step(y0.size());
+  for (size_t i = 0; i < step.size(); ++i)
+    step[i] = d(static_cast<long>(i));
+  double sn = scaledNorm(step, scale);
+  double damp = sn > 10.0 ? 10.0 / sn : 1.0;
+  for (size_t i = 0; i < step.size(); ++i)
+    y0[i] += damp * step[i];
+  whole = damp == 1.0 && std::isfinite(sn);
+  return damp * sn;
+}
+
 double scaledNorm(const std::vector<double>& v, const std::vector<double>& scale) {
   double m = 0;
   for (size_t i = 0; i < v.size(); ++i) m = std::max(m, std::fabs(v[i]) / (i < scale.size() && scale[i] > 0 ? scale[i] : 1.0));
@@ -141,8 +164,7 @@ PeriodicOrbit newton(const System& sys, const Accuracy& acc, const PeriodicOptio
   std::vector<double> sc = stateScale(sys);
   std::vector<double> drift = opt.drift;
   drift.resize(n, 0.0);
-  // Newton stops when the correction is at the level the integration can resolve.
-  double tol = std::max(10.0 * acc.rtol, 1e-13);
+  double tol = newtonTolerance(acc);
   std::vector<double> y0 = std::move(guess);
   double lastStep = INFINITY;
   for (int it = 0; it < opt.maxIterations; ++it) {
@@ -169,21 +191,11 @@ PeriodicOrbit newton(const System& sys, const Accuracy& acc, const PeriodicOptio
                                 o.iterations);
       break;
     }
-    Eigen::MatrixXd A = f.phi - Eigen::MatrixXd::Identity(static_cast<long>(n), static_cast<long>(n));
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
-    if (!lu.isInvertible()) {
-      o.failure = "the monodromy matrix has a multiplier at 1: the periodic orbit is not isolated (a resonance without damping?)";
-      return o;
-    }
-    Eigen::VectorXd d = lu.solve(-R);
-    // Damped Newton: never move further than ten state scales in one iteration.
-    std::vector<double> step(n);
-    for (size_t i = 0; i < n; ++i) step[i] = d(static_cast<long>(i));
-    double sn = scaledNorm(step, sc);
-    double damp = sn > 10.0 ? 10.0 / sn : 1.0;
-    for (size_t i = 0; i < n; ++i) y0[i] += damp * step[i];
-    lastStep = damp * sn;
-    if (opt.linear && !opt.confirmLinear && damp == 1.0 && std::isfinite(sn)) {
+    std::optional<Eigen::VectorXd> d = newtonCorrection(f.phi, R, o.failure);
+    if (!d) return o;
+    bool whole = false;
+    lastStep = dampedStep(y0, *d, sc, whole);
+    if (opt.linear && !opt.confirmLinear && whole) {
       o.y0 = y0;
       o.converged = true;
       o.unconfirmed = true;

@@ -5,7 +5,9 @@
 // is the monodromy matrix, from the variational equations when the system gives dfdy,
 // else by differences. For a linear system the first Newton step is exact; the eigenvalues
 // of the monodromy matrix (Floquet multipliers) give the orbit's stability.
+#include <algorithm>
 #include <complex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,17 @@ FlowResult flowWithMonodromy(const System& sys, const Accuracy& acc, double t0, 
 // The system with its variational equations: [y, Phi] with Phi' = J(t, y) Phi (it reads sys,
 // which must outlive it).
 System variationalSystem(const System& sys);
+
+// Newton on R = phi_T(y0) - y0 - drift stops when its correction is at the level the
+// integration can resolve: this, of the state scale.
+inline double newtonTolerance(const Accuracy& acc) { return std::max(10.0 * acc.rtol, 1e-13); }
+// Newton's correction d from (Phi(T) - I) d = -R; none, with the failure said, where Phi has a
+// multiplier at 1 (the orbit is not isolated).
+std::optional<Eigen::VectorXd> newtonCorrection(const Eigen::MatrixXd& phi, const Eigen::VectorXd& R,
+                                                std::string& failure);
+// y0 moved by d, damped to at most ten state scales; the scaled size of the move, and
+// whether d was taken whole.
+double dampedStep(std::vector<double>& y0, const Eigen::VectorXd& d, const std::vector<double>& scale, bool& whole);
 
 // Largest modulus of the eigenvalues of M, and the eigenvalues.
 double spectralRadius(const Eigen::MatrixXd& M, std::vector<std::complex<double>>* eigenvalues = nullptr);

@@ -124,7 +124,7 @@ SampledOrbit sampledFrom(const System& sys, const Accuracy& acc, const PeriodicO
   }
   for (double d : opt.drift)
     if (d != 0) {
-      o.failure = "coordinates that drift over a period"; // their samples would need the drift added
+      o.failure = "coordinates that drift over a period"; // their samples would need the drift added (none below)
       return out;
     }
   const long M = std::lround(ratio);
@@ -133,9 +133,8 @@ SampledOrbit sampledFrom(const System& sys, const Accuracy& acc, const PeriodicO
   System v = variationalSystem(sys);
   Stats stats;
   FixedStepper stepper(v, acc, stats);
-  std::vector<double> sc = stateScale(sys), drift = opt.drift;
-  drift.resize(n, 0.0);
-  const double tol = std::max(10.0 * acc.rtol, 1e-13);
+  const std::vector<double> sc = stateScale(sys);
+  const double tol = newtonTolerance(acc);
   // The steps per sample: as given, or the least the maximum step allows, doubled until
   // every step's error is within the tolerance (checked on the first run).
   const double least = std::ceil(spacing / (acc.maxStep > 0 ? acc.maxStep : spacing) - 1e-9);
@@ -161,7 +160,7 @@ SampledOrbit sampledFrom(const System& sys, const Accuracy& acc, const PeriodicO
     Eigen::VectorXd R(static_cast<long>(n));
     std::vector<double> res(n);
     for (size_t i = 0; i < n; ++i)
-      res[i] = R(static_cast<long>(i)) = run.yT[i] - y0[i] - drift[i];
+      res[i] = R(static_cast<long>(i)) = run.yT[i] - y0[i];
     o.residual = scaledNorm(res, sc);
     o.monodromy = run.phiT;
     if (!opt.linear && (o.residual <= tol || lastStep <= tol)) {
@@ -171,14 +170,9 @@ SampledOrbit sampledFrom(const System& sys, const Accuracy& acc, const PeriodicO
                                 o.residual, o.iterations);
       break;
     }
-    Eigen::MatrixXd A = run.phiT - Eigen::MatrixXd::Identity(static_cast<long>(n), static_cast<long>(n));
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
-    if (!lu.isInvertible()) {
-      o.failure = "the monodromy matrix has a multiplier at 1: the periodic orbit is not isolated (a resonance without "
-                  "damping?)";
-      break;
-    }
-    Eigen::VectorXd d = lu.solve(-R);
+    std::optional<Eigen::VectorXd> correction = newtonCorrection(run.phiT, R, o.failure);
+    if (!correction) break;
+    const Eigen::VectorXd& d = *correction;
     if (opt.linear) {
       // Exact in one step: the samples by superposition, the residual what rounding leaves.
       for (size_t k = 0; k < run.y.size(); ++k) {
@@ -189,21 +183,14 @@ SampledOrbit sampledFrom(const System& sys, const Accuracy& acc, const PeriodicO
       Eigen::VectorXd end = run.phiT * d;
       for (size_t i = 0; i < n; ++i) {
         y0[i] += d(static_cast<long>(i));
-        res[i] = run.yT[i] + end(static_cast<long>(i)) - y0[i] - drift[i];
+        res[i] = run.yT[i] + end(static_cast<long>(i)) - y0[i];
       }
       o.residual = scaledNorm(res, sc);
       o.converged = std::isfinite(o.residual);
       break;
     }
-    // Damped Newton, as the adaptive shooting: at most ten state scales in one iteration.
-    std::vector<double> step(n);
-    for (size_t i = 0; i < n; ++i)
-      step[i] = d(static_cast<long>(i));
-    double sn = scaledNorm(step, sc);
-    double damp = sn > 10.0 ? 10.0 / sn : 1.0;
-    for (size_t i = 0; i < n; ++i)
-      y0[i] += damp * step[i];
-    lastStep = damp * sn;
+    bool whole = false;
+    lastStep = dampedStep(y0, d, sc, whole);
     run = stepper.run(n, y0, M, spacing, m);
     if (it + 1 == opt.maxIterations)
       o.failure = fmt::format("Newton did not converge in {} iterations (residual {:.3g} of the state scale)",

@@ -825,7 +825,9 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
   if (N > 0) tight.balanceHarmonics = 2 * N;
   else
     tight.harmonicBalance = false; // shooting found this orbit: its reference is shooting's too
-  // Fixed steps: the reference takes twice as many (a tighter rtol alone would not change them).
+  // Fixed steps: the reference takes twice as many (a tighter rtol alone would not change them);
+  // the other reruns take the scene's own.
+  const int ownSteps = r.stepsPerSample > 0 ? r.stepsPerSample : ov.stepsPerSample;
   if (r.stepsPerSample > 0) tight.stepsPerSample = 2 * r.stepsPerSample;
   // A static scene integrates nothing: its estimate is its table's discretisation alone.
   const bool integrated = r.steady != SteadyMethod::Static;
@@ -859,7 +861,7 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
     SceneOverrides twice = tight;
     twice.rtol = ov.rtol;
     twice.maxStepFactor = ov.maxStepFactor;
-    twice.stepsPerSample = r.stepsPerSample > 0 ? r.stepsPerSample : ov.stepsPerSample;
+    twice.stepsPerSample = ownSteps;
     twice.harmonics = 2 * r.harmonics;
     if (N > 0) twice.balanceHarmonics = N;
     SceneResult h2 = runOnce(m, a, scene, twice);
@@ -873,7 +875,7 @@ static void estimateError(const Model& m, const Assignment& a, const ScenePlan& 
     SceneOverrides fine = tight;
     fine.rtol = ov.rtol;
     fine.maxStepFactor = ov.maxStepFactor;
-    fine.stepsPerSample = r.stepsPerSample > 0 ? r.stepsPerSample : ov.stepsPerSample;
+    fine.stepsPerSample = ownSteps;
     fine.loadedRefine = 2 * ov.loadedRefine;
     if (N > 0) fine.balanceHarmonics = N;
     SceneResult f2 = runOnce(m, a, scene, fine);

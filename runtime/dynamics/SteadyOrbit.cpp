@@ -45,6 +45,16 @@ bool balanceOrbit(const MeshModel& model, const ScenePlan& scene, const SceneOve
   return true;
 }
 
+// A shooting orbit of period T, as the scene reports it.
+void takeShot(const PeriodicOrbit& orbit, double T, SceneResult& r) {
+  r.orbit = orbit.y0;
+  r.period = T;
+  r.stability = orbit.stability;
+  r.unstable = orbit.stability >= 1.0;
+  r.newtonIterations = orbit.iterations;
+  r.newtonResidual = orbit.residual;
+}
+
 // Shooting in fixed steps that land on the samples (a smooth model): false where it does not
 // serve (too many steps per sample, or Newton fails), and adaptive shooting then follows.
 bool fixedOrbit(const MeshModel& model, const PeriodicOptions& po, const Accuracy& acc, const SceneOverrides& ov,
@@ -53,13 +63,7 @@ bool fixedOrbit(const MeshModel& model, const PeriodicOptions& po, const Accurac
   SampledOrbit so = sampledOrbit(model.system(), acc, po, guess, tp.dt, ov.stepsPerSample);
   r.stats += so.orbit.stats;
   if (!so.orbit.converged) return false;
-  const PeriodicOrbit& orbit = so.orbit;
-  r.orbit = orbit.y0;
-  r.period = po.period;
-  r.stability = orbit.stability;
-  r.unstable = orbit.stability >= 1.0;
-  r.newtonIterations = orbit.iterations;
-  r.newtonResidual = orbit.residual;
+  takeShot(so.orbit, po.period, r);
   r.stepsPerSample = so.stepsPerSample;
   r.orbitMethod = fmt::format("{} by variational equations in fixed steps, {} per sample",
                               po.linear ? "linear: the monodromy matrix" : "shooting with Newton", so.stepsPerSample);
@@ -109,12 +113,7 @@ bool steadyOrbit(const MeshModel& model, const MeshScene& ms, TimePlan& tp, cons
     return false;
   }
   y = orbit.y0;
-  r.orbit = orbit.y0;
-  r.period = T;
-  r.stability = orbit.stability;
-  r.unstable = orbit.stability >= 1.0;
-  r.newtonIterations = orbit.iterations;
-  r.newtonResidual = orbit.residual;
+  takeShot(orbit, T, r);
   r.orbitMethod = fmt::format("{} by {}", po.linear ? "linear: the monodromy matrix" : "shooting with Newton",
                               orbit.variational ? "variational equations" : "differences");
   r.orbitUnconfirmed = orbit.unconfirmed;

@@ -233,10 +233,10 @@ private:
       out.notes.push_back(fmt::format("no periodic response followed at {} from {:.6g} to {:.6g} {}: {}", st.target,
                                       out.unit.shown(eq->x(noneFrom)), out.unit.shown(eq->x(noneTo)), out.unit.name,
                                       none));
-    out.gaps.emplace_back(eq->x(std::max(from(n), reached)), eq->x(resume));
-    out.notes.push_back(fmt::format(
-        "gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh", st.target,
-        out.unit.shown(eq->x(std::max(from(n), reached))), out.unit.shown(eq->x(resume)), out.unit.name, why));
+    out.gaps.emplace_back(eq->x(start), eq->x(resume));
+    out.notes.push_back(
+        fmt::format("gap: {} from {:.6g} to {:.6g} {} not followed ({}); the response after it found afresh", st.target,
+                    out.unit.shown(eq->x(start)), out.unit.shown(eq->x(resume)), out.unit.name, why));
     z.head(n) = fresh;
     z(n) = resume;
     reached = resume;
