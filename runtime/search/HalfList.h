@@ -45,6 +45,21 @@ public:
   // coarse index of the ratio buckets, then a binary search inside one bucket.
   size_t lowerBound(double v) const { return bound(v, false); }
   size_t upperBound(double v) const { return bound(v, true); }
+  // A two-stage half held as 4-byte codes, for loops that read many entries: entry e's
+  // indices are codes[e] & mask0 and (codes[e] >> shift1) & mask1, its ratio r0[first] *
+  // r1[second] (the product ratio() computes).
+  struct PairView {
+    const std::uint32_t* codes;
+    std::uint32_t mask0, mask1;
+    int shift1;
+    const double *r0, *r1;
+  };
+  bool hasPairView() const { return pair0_ && wide_.empty() && !identity_; }
+  PairView pairView() const {
+    return {
+        codes_.data(), static_cast<std::uint32_t>(mask_[0]), static_cast<std::uint32_t>(mask_[1]), shift_[1], pair0_,
+        pair1_};
+  }
   // A hint for a caller that knows its next entries: entry e's memory.
   void prefetchEntry(size_t e) const {
     if (wide_.empty() && e < codes_.size()) __builtin_prefetch(&codes_[e]);

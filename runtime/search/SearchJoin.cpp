@@ -73,6 +73,45 @@ bool Searcher::counts(Local& lo, Assignment& a, const std::uint32_t* cand) const
   return true;
 }
 
+unsigned long long Searcher::countWindow(Local& lo, std::uint32_t* cand, size_t le, double x, size_t from,
+                                         size_t to) const {
+  const bool checkCanon = !floorOnly && !crossing.empty();
+  auto& leftAt = lo.leftAt;
+  leftAt.resize(crossing.size());
+  for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
+    leftAt[c] = leftIndex(le, crossing[c].first);
+  unsigned long long count = 0;
+  to = std::min(to, rn);
+  // A two-stage right half: each entry's indices against their floors, read from its code.
+  auto confirm = [&](size_t re) {
+    for (int s = h; s < k; ++s)
+      cand[s] = rightIndex(re, s);
+    return window.contains(exactRatio(cand));
+  };
+  if (right->hasPairView() && k - h == 2) {
+    const HalfList::PairView v = right->pairView();
+    std::uint32_t need0 = 0, need1 = 0;
+    for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
+      (crossing[c].second == h ? need0 : need1) = std::max(crossing[c].second == h ? need0 : need1, leftAt[c]);
+    for (size_t re = from; re < to; ++re) {
+      const std::uint32_t code = v.codes[re], a = code & v.mask0, b = (code >> v.shift1) & v.mask1;
+      if (a < need0 || b < need1) continue;
+      double p = x * (v.r0[a] * v.r1[b]);
+      count += (p >= sureLo && p <= sureHi) || confirm(re);
+    }
+    return count;
+  }
+  for (size_t re = from; re < to; ++re) {
+    bool canonical = true;
+    for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
+      canonical = canonical && leftAt[c] <= rightIndex(re, crossing[c].second);
+    if (!canonical) continue;
+    double p = x * right->ratio(re);
+    count += (p >= sureLo && p <= sureHi) || confirm(re);
+  }
+  return count;
+}
+
 // One left entry against the right entries [from, to): each in the window counted (unless
 // `counted` says arithmetic did), then keyed and kept when it may rank among the best.
 void Searcher::visit(Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from,
@@ -164,6 +203,12 @@ void Searcher::joinEntry(Walk& w, size_t le, double x, size_t from, size_t to, d
     if ((lo.asked > walkBudget || lo.walked > walkBudget * 50) && !opt.exhaustive) overWalked = true;
     // Counted one by one; keyed only where the window's bound lets a design in.
     bool keyed = keep > 0 && !bounded(lo, partial, x * right->ratio(from), x * right->ratio(to - 1));
+    if (!keyed && plainCount) {
+      unsigned long long c = countWindow(lo, w.cand.data(), le, x, from, to);
+      lo.count += c;
+      lo.inWindow += static_cast<double>(c);
+      return;
+    }
     double asked = lo.asked;
     visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, false, keyed);
     // An evaluator call weighs as much as 4 096 entries walked in the check interval; one
@@ -200,6 +245,54 @@ size_t Searcher::nextShortRow(size_t j, size_t m1, double invI, const double* in
   return j;
 }
 
+void Searcher::locateWindows(WindowBatch& b) const {
+  auto locate = [&](auto&& ratio) {
+    // Branchless searches over [first, end), every row a step at a time.
+    size_t len[WindowBatch::kSize], most = 0;
+    for (size_t r = 0; r < b.n; ++r) {
+      auto [first, end] = occupancy.rangeOf(b.wl[r]);
+      b.from[r] = first;
+      len[r] = end - first;
+      most = std::max(most, len[r]);
+    }
+    for (; most > 1; most -= most / 2)
+      for (size_t r = 0; r < b.n; ++r) {
+        const size_t half = len[r] / 2;
+        b.from[r] += half > 0 && ratio(b.from[r] + half - 1) < b.wl[r] ? half : 0;
+        len[r] -= half;
+      }
+    for (size_t r = 0; r < b.n; ++r) {
+      b.from[r] += len[r] == 1 && ratio(b.from[r]) < b.wl[r];
+      for (b.to[r] = b.from[r]; b.to[r] < rn && ratio(b.to[r]) <= b.wh[r];)
+        ++b.to[r];
+    }
+  };
+  if (right->hasPairView()) {
+    const HalfList::PairView v = right->pairView();
+    locate([&](size_t e) {
+      const std::uint32_t c = v.codes[e];
+      return v.r0[c & v.mask0] * v.r1[(c >> v.shift1) & v.mask1];
+    });
+  } else {
+    locate([&](size_t e) { return right->ratio(e); });
+  }
+}
+
+void Searcher::joinBatch(Walk& w, WindowBatch& b, size_t i, const double* r0, const double* r1, double rowPart,
+                         double rightLeast) {
+  locateWindows(b);
+  for (size_t r = 0; r < b.n; ++r) {
+    const size_t from = b.from[r], to = b.to[r], j = b.j[r];
+    if (from >= to) continue;
+    w.cand[1] = b.j[r];
+    double partial = 0;
+    if (fastKey && full(w.lo))
+      partial = rowPart + fastKey->entry(1, b.j[r]) + (rowMin.empty() ? rightLeast : rowMin.least(from, to));
+    joinEntry(w, i * n1 + j, r0[i] * r1[j], from, to, partial);
+  }
+  b.n = 0;
+}
+
 void Searcher::buildOccupancy() {
   if (!rows || right->width() < 1 || rn == 0 || !(wantLoC > 0) || !std::isfinite(wantHiC)) return;
   const double lo = right->ratio(0), hi = right->ratio(rn - 1);
@@ -227,6 +320,51 @@ void Searcher::buildOccupancy() {
   }
 }
 
+namespace {
+
+// The least ratio a wider right half's canonical entries can have in row (i, j), from the
+// least index each of its stages may take (ratios ascend with the index). Where no right
+// stage's floor is the first stage's index, it depends on j alone: one table for every row.
+class LeastRight {
+public:
+  LeastRight(const std::vector<std::vector<double>>& ratios, const std::vector<std::pair<int, int>>& ordered, int k,
+             bool wide)
+      : ratios_(ratios), k_(k), fl_(static_cast<size_t>(k), 0), floorsOf_(static_cast<size_t>(k)) {
+    for (const auto& [sa, sb] : ordered)
+      if (sb >= 2) floorsOf_[static_cast<size_t>(sb)].push_back(sa);
+    bool fromI = false;
+    for (int s = 2; s < k; ++s)
+      for (int sa : floorsOf_[static_cast<size_t>(s)])
+        fromI = fromI || sa == 0;
+    if (!fromI && wide)
+      for (size_t j = 0; j < ratios[1].size(); ++j)
+        byJ_.push_back(compute(0, j));
+  }
+  double operator()(size_t i, size_t j) { return byJ_.empty() ? compute(i, j) : byJ_[j]; }
+
+private:
+  double compute(size_t i, size_t j) {
+    double r = 1;
+    for (int s = 2; s < k_; ++s) {
+      size_t f = 0;
+      for (int sa : floorsOf_[static_cast<size_t>(s)])
+        f = std::max(f, sa == 0 ? i : sa == 1 ? j : fl_[static_cast<size_t>(sa)]);
+      fl_[static_cast<size_t>(s)] = f;
+      const auto& list = ratios_[static_cast<size_t>(s)];
+      if (f >= list.size()) return static_cast<double>(INFINITY);
+      r *= list[f];
+    }
+    return r;
+  }
+  const std::vector<std::vector<double>>& ratios_;
+  int k_;
+  std::vector<size_t> fl_;
+  std::vector<std::vector<int>> floorsOf_; // the stages each right stage's index may not fall below
+  std::vector<double> byJ_;
+};
+
+} // namespace
+
 // Three to five stages: the first two walked row by row; the tight loop reads raw ratio
 // arrays, and the floor of a one-stage right half from flags.
 bool Searcher::sweepRows(Walk& w) {
@@ -240,36 +378,7 @@ bool Searcher::sweepRows(Walk& w) {
     floorI = floorI || (sa == 0 && sb == 2);
     floorJ = floorJ || (sa == 1 && sb == 2);
   }
-  // A wider right half: the least ratio its canonical entries can have, from the least
-  // index each of its stages may take (ratios ascend with the index).
-  std::vector<size_t> fl(kk, 0);
-  // The stages each right stage's index may not fall below, found once.
-  std::vector<std::vector<int>> floorsOf(kk);
-  for (const auto& [sa, sb] : ordered)
-    if (sb >= 2) floorsOf[static_cast<size_t>(sb)].push_back(sa);
-  auto leastRight = [&](size_t i, size_t j) {
-    double r = 1;
-    for (int s = 2; s < k; ++s) {
-      size_t f = 0;
-      for (int sa : floorsOf[static_cast<size_t>(s)])
-        f = std::max(f, sa == 0 ? i : sa == 1 ? j : fl[static_cast<size_t>(sa)]);
-      fl[static_cast<size_t>(s)] = f;
-      const auto& list = ratios[static_cast<size_t>(s)];
-      if (f >= list.size()) return static_cast<double>(INFINITY);
-      r *= list[f];
-    }
-    return r;
-  };
-  // Where no right stage's floor is the first stage's index, the least right ratio
-  // depends on j alone: one table for every row.
-  std::vector<double> byJ;
-  bool fromI = false;
-  for (int s = 2; s < k; ++s)
-    for (int sa : floorsOf[static_cast<size_t>(s)])
-      fromI = fromI || sa == 0;
-  if (!fromI && !r2)
-    for (size_t j = 0; j < m1; ++j)
-      byJ.push_back(leastRight(0, j));
+  LeastRight leastRight(ratios, ordered, k, !r2);
   const double base = fastKey ? fastKey->constant() : 0;
   double rightLeast = 0;
   if (fastKey)
@@ -286,6 +395,10 @@ bool Searcher::sweepRows(Walk& w) {
   // table directly: positive windows only.
   const bool tight = r2 && !occupancy.bits.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
                      wantLoC > 0 && wantLoC <= wantHiC;
+  // A long right list's windows are found in batches: positive windows of a built table.
+  const bool batched = !r2 && !occupancy.first.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
+                       wantLoC > 0 && wantLoC <= wantHiC;
+  WindowBatch batch;
   auto& cand = w.cand;
   for (size_t i = w.begin; i < w.end; ++i) {
     if (due(w, (i - w.begin) % 64 == 0) && stopHere(w.t, i, w.begin, w.end)) return false;
@@ -317,19 +430,18 @@ bool Searcher::sweepRows(Walk& w) {
         hiP = static_cast<size_t>(std::upper_bound(r2, r2 + rn, wh) - r2);
       } else {
         // A long one: the row's window ends the row past its least entry; a window over
-        // log-ratio buckets that hold no entry is passed over; else the index jumps to it.
-        if (x * (byJ.empty() ? leastRight(i, j) : byJ[j]) > wantHiC) break;
-        // The memory of the rows kIndexAhead and kEntriesAhead ahead is fetched now: their
-        // occupancy words, then (those read) their first entries.
-        if (!occupancy.first.empty()) {
-          if (j + kIndexAhead < m1) occupancy.prefetch(wantLoC * inv0[i] * inv1[j + kIndexAhead]);
-          if (j + kEntriesAhead < m1)
-            right->prefetchEntry(occupancy.startOf(wantLoC * inv0[i] * inv1[j + kEntriesAhead]));
+        // log-ratio buckets that hold no entry is passed over; else it joins the batch.
+        if (x * leastRight(i, j) > wantHiC) break;
+        if (batched) {
+          if (!occupancy.anyPositive(wl, wh)) continue;
+          batch.j[batch.n] = static_cast<std::uint32_t>(j);
+          batch.wl[batch.n] = wl;
+          batch.wh[batch.n] = wh;
+          if (++batch.n == WindowBatch::kSize) joinBatch(w, batch, i, r0, r1, rowPart, rightLeast);
+          continue;
         }
-        if (!occupancy.any(wl, wh)) continue;
-        loP = firstAtLeast(wl);
-        for (hiP = loP; hiP < rn && right->ratio(hiP) <= wh;)
-          ++hiP;
+        loP = right->lowerBound(wl);
+        hiP = right->upperBound(wh);
       }
       // The window only falls and the floor only rises along a row.
       size_t from = loP;
@@ -345,6 +457,7 @@ bool Searcher::sweepRows(Walk& w) {
         partial = rowPart + fastKey->entry(1, cand[1]) + (rowMin.empty() ? rightLeast : rowMin.least(from, hiP));
       joinEntry(w, i * n1 + j, x, from, hiP, partial);
     }
+    if (batch.n > 0) joinBatch(w, batch, i, r0, r1, rowPart, rightLeast);
   }
   return true;
 }
@@ -422,6 +535,7 @@ bool Searcher::join() {
   // design in a window counts: no rule across stages, no orbit test, no undecided freedom,
   // and the canonical order at most a floor.
   arith = !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny && (floorOnly || crossing.empty());
+  plainCount = !opt.exhaustive && cross.empty() && !orbitCheck && !undecidedAny;
   buildOccupancy();
   // The rows dealt to every rank's threads; each rank sweeps its own slots and receives
   // the others' counts and kept designs (a fixed point: every rank searches alike).

@@ -115,6 +115,9 @@ private:
   int threads = 1;
   bool undecidedAny = false;
   bool arith = false;
+  // Every design the window and the canonical order admit counts, one by one: no rule
+  // across stages, no orbit test, no undecided freedom (not for the exhaustive reference).
+  bool plainCount = false;
   std::vector<Local> locals;
   // Set when the time limit stops the join, with each thread's share of its range done
   // (a thread that finished first keeps 1).
@@ -267,6 +270,11 @@ private:
   void visit(Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from,
              size_t to, bool counted, bool keyed = true) const;
 
+  // The designs of a window none of which can be kept, where plainCount holds: a tight loop
+  // over the right entries' codes, the window confirmed exactly only within the rounding
+  // margin of its bounds.
+  unsigned long long countWindow(Local& lo, std::uint32_t* cand, size_t le, double x, size_t from, size_t to) const;
+
   // Whether no design of the window can enter the kept ones (the window's ratios span [rlo, rhi]).
   bool bounded(const Local& lo, double partial, double rlo, double rhi) const;
 
@@ -278,11 +286,6 @@ private:
 
   // One left entry against its window of right entries [from, to).
   void joinEntry(Walk& w, size_t le, double x, size_t from, size_t to, double partial);
-
-  // How many rows ahead a long right list's occupancy words and first entries are fetched:
-  // a row takes about as long as a load from memory, so the word (and its first entry's
-  // index) must arrive before the entries' fetch reads it.
-  static constexpr size_t kIndexAhead = 8, kEntriesAhead = 3;
 
   // Which buckets of the right list's ratios hold an entry, a bit each: most rows' windows
   // fall between the entries, and a bit read from a small table tells so without the
@@ -307,12 +310,13 @@ private:
       if (bits.empty() || !(lo <= hi) || lo <= 0) return true;
       return anyPositive(lo, hi);
     }
-    // Where to start looking for the first entry >= lo: its word's first entry.
-    size_t startOf(double lo) const { return first[bucket(lo) >> 6]; }
-    void prefetch(double lo) const {
-      size_t w = bucket(lo) >> 6;
-      __builtin_prefetch(&bits[w]);
-      __builtin_prefetch(&first[w]);
+    // Where the first entry >= lo may lie: from its bucket's word's first entry, past one
+    // entry for each occupied bucket of that word below lo's (each holds at least one, all
+    // below lo), up to the next word's first entry. For a built table.
+    std::pair<size_t, size_t> rangeOf(double lo) const {
+      const size_t b = bucket(lo), w = b >> 6;
+      const std::uint64_t below = bits[w] & ((std::uint64_t{1} << (b & 63)) - 1);
+      return {first[w] + static_cast<size_t>(__builtin_popcountll(below)), first[w + 1]};
     }
     // The same for a built table and 0 < lo <= hi.
     bool anyPositive(double lo, double hi) const {
@@ -336,15 +340,21 @@ private:
     }
   };
   Occupancy occupancy;
-  // The right list's first entry >= v: a few steps from its occupancy word's first entry,
-  // or the list's own search where that word is crowded.
-  size_t firstAtLeast(double v) const {
-    if (occupancy.first.empty() || !(v > 0)) return right->lowerBound(v);
-    size_t e = occupancy.startOf(v);
-    for (size_t end = std::min(rn, e + 8); e < end; ++e)
-      if (right->ratio(e) >= v) return e;
-    return e < rn ? right->lowerBound(v) : rn;
-  }
+  // Rows of a long right list whose windows' buckets hold an entry, gathered so that their
+  // windows are found together: each window's binary search is a chain of dependent loads,
+  // and several chains at once keep the core busy where one leaves it waiting.
+  struct WindowBatch {
+    static constexpr size_t kSize = 16;
+    size_t n = 0;
+    std::uint32_t j[kSize];
+    double wl[kSize], wh[kSize];
+    size_t from[kSize], to[kSize];
+  };
+  // Each row's window [wl, wh] as right entries [from, to), for a built occupancy table.
+  void locateWindows(WindowBatch& b) const;
+  // The batch's rows of left index i joined in order, then emptied.
+  void joinBatch(Walk& w, WindowBatch& b, size_t i, const double* r0, const double* r1, double rowPart,
+                 double rightLeast);
 
   // A short right list's rows of one left index i, from j on: the first j whose window may
   // hold an entry (the occupancy table), or m1 where the row ends (its floor's entry past
