@@ -46,6 +46,13 @@ struct AttrSpec {
 
 // Row builders shared by the catalogue files.
 namespace rows {
+// A table of rows moved into place (an initializer list would copy each row).
+template <class... A> std::vector<AttrSpec> attrs(A&&... a) {
+  std::vector<AttrSpec> v;
+  v.reserve(sizeof...(a));
+  (v.push_back(std::forward<A>(a)), ...);
+  return v;
+}
 AttrSpec in(std::string n, Dim d, std::string meaning);
 AttrSpec pos(std::string n, Dim d, std::string meaning);
 AttrSpec count(std::string n, std::string meaning);

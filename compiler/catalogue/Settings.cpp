@@ -9,47 +9,40 @@ using namespace units::dims;
 using namespace rows;
 
 const std::vector<AttrSpec>& gearboxQuantities() {
-  static const std::vector<AttrSpec> q = {
+  static const std::vector<AttrSpec> q = attrs(
       derived("ratio", none, "overall reduction, the product of the stage ratios"),
       derived("input_speed", angularSpeed, "input shaft speed"),
-      derived("output_speed", angularSpeed, "output shaft speed"),
-      derived("input_torque", torque, "input torque"),
-      derived("output_torque", torque, "output torque"),
-      derived("power", power, "transmitted power"),
-  };
+      derived("output_speed", angularSpeed, "output shaft speed"), derived("input_torque", torque, "input torque"),
+      derived("output_torque", torque, "output torque"), derived("power", power, "transmitted power"));
   return q;
 }
 
 const std::vector<AttrSpec>& operatingSettings() {
-  static const std::vector<AttrSpec> q = {
-      pos("input_speed", angularSpeed, "input shaft speed"),
-      pos("output_speed", angularSpeed, "output shaft speed"),
-      pos("input_torque", torque, "input torque"),
-      pos("output_torque", torque, "output torque"),
-      pos("power", power, "transmitted power"),
-  };
+  static const std::vector<AttrSpec> q =
+      attrs(pos("input_speed", angularSpeed, "input shaft speed"),
+            pos("output_speed", angularSpeed, "output shaft speed"), pos("input_torque", torque, "input torque"),
+            pos("output_torque", torque, "output torque"), pos("power", power, "transmitted power"));
   return q;
 }
 
 const std::vector<AttrSpec>& materialProperties() {
-  static const std::vector<AttrSpec> q = {
-      required(pos("youngs_modulus", pressure, "Young's modulus")),
-      required(pos("poisson", none, "Poisson's ratio")),
-      required(pos("density", density, "density")),
-      pos("shear_modulus", pressure, "shear modulus"),
+  static const std::vector<AttrSpec> q = attrs(
+      required(pos("youngs_modulus", pressure, "Young's modulus")), required(pos("poisson", none, "Poisson's ratio")),
+      required(pos("density", density, "density")), pos("shear_modulus", pressure, "shear modulus"),
       pos("sigma_hlim", pressure, "ISO 6336-5 allowable contact stress number"),
       pos("sigma_flim", pressure, "ISO 6336-5 nominal bending stress number"),
       pos("hardness", none, "surface hardness (HRC or HV, as the material states)"),
-      pos("brinell_hardness", none, "Brinell hardness HB of a through-hardened steel (Z_W of ISO 6336-2 when it meshes with a harder pinion)"),
+      pos("brinell_hardness", none,
+          "Brinell hardness HB of a through-hardened steel (Z_W of ISO 6336-2 when it meshes with a harder pinion)"),
       symbol("treatment", {"case_hardened", "nitrided", "through_hardened"},
              "heat treatment: selects the ISO 6336 life curves, running-in, notch sensitivity and size factors"),
-      hinted(pos("tensile_strength", pressure, "tensile strength sigma_B at DIN 743's reference diameter 16 mm (shafts)"),
-             "MPa"),
+      hinted(
+          pos("tensile_strength", pressure, "tensile strength sigma_B at DIN 743's reference diameter 16 mm (shafts)"),
+          "MPa"),
       hinted(pos("yield_strength", pressure, "yield strength sigma_S at DIN 743's reference diameter 16 mm (shafts)"),
              "MPa"),
       symbol("steel_group", {"quenched_tempered", "case_hardening", "structural", "nitriding"},
-             "DIN 743-2 steel group: how the strengths fall with the heat-treatment diameter (K1)"),
-  };
+             "DIN 743-2 steel group: how the strengths fall with the heat-treatment diameter (K1)"));
   return q;
 }
 
@@ -60,13 +53,11 @@ const std::vector<AttrSpec>& sceneSettings() {
       a.meshPeriods = true;
       return a;
     };
-    return std::vector<AttrSpec>{
-        t("settle", "transient discarded before recording"),
-        t("record", "recorded steady-state window"),
+    return attrs(
+        t("settle", "transient discarded before recording"), t("record", "recorded steady-state window"),
         withDefault(budgeted(count("samples", "samples per recorded mesh period"), budget::kSamplesPerPeriod),
                     num(160)),
-        t("duration", "simulated time from rest"),
-        t("ramp", "smooth start-up time of the drive speed"),
+        t("duration", "simulated time from rest"), t("ramp", "smooth start-up time of the drive speed"),
         symbol("steady_state", {"periodic", "harmonic_balance"},
                "solve for the periodic response directly: `periodic` by shooting with Newton (Floquet multipliers), "
                "`harmonic_balance` as a Fourier series (Hill's multipliers)"),
@@ -74,8 +65,7 @@ const std::vector<AttrSpec>& sceneSettings() {
             count("harmonics",
                   "harmonic balance: the orbit's harmonics (default: doubled from 2 until the orbit moves less than "
                   "rtol of its scale)"),
-            budget::kBalanceHarmonics),
-    };
+            budget::kBalanceHarmonics));
   }();
   return s;
 }
@@ -86,14 +76,10 @@ const std::vector<AttrSpec>& accuracySettings() {
     step.meshPeriods = true;
     auto hmin = pos("min_step", time, "smallest step");
     hmin.meshPeriods = true;
-    return std::vector<AttrSpec>{
-        symbol("method", methodNames(), "integration method"),
-        withDefault(pos("rtol", none, "relative tolerance"), num(1, 1000000)),
-        pos("atol", none, "absolute tolerance (SI units of the state)"),
-        step,
-        hmin,
-        budgeted(count("max_steps", "step limit"), budget::kMaxSteps),
-    };
+    return attrs(symbol("method", methodNames(), "integration method"),
+                 withDefault(pos("rtol", none, "relative tolerance"), num(1, 1000000)),
+                 pos("atol", none, "absolute tolerance (SI units of the state)"), step, hmin,
+                 budgeted(count("max_steps", "step limit"), budget::kMaxSteps));
   }();
   return s;
 }
@@ -103,58 +89,53 @@ const std::vector<AttrSpec>& splitSettings() {
     auto between = in("between", none, "the stage whose wheel feeds the branches");
     between.value = ValueKind::Stage;
     between.required = true;
-    return std::vector<AttrSpec>{
-        between,
-        withDefault(budgeted(count("branches", "number of branches"), budget::kBranches), num(2)),
-        required(pos("torsion_shaft.length", length, "torsion shaft length")),
-        required(pos("torsion_shaft.diameter", length, "torsion shaft diameter")),
-        withDefault(pos("torsion_shaft.shear_modulus", pressure, "shear modulus G"), num(80000000000)),
-        required(in("backlash_difference", length, "difference of circumferential backlash between branches")),
-        required(symbol("install", {"free", "preloaded"}, "installation method")),
-        in("preload_torque", torque, "installation torque M0 (preloaded installation)"),
-    };
+    return attrs(between, withDefault(budgeted(count("branches", "number of branches"), budget::kBranches), num(2)),
+                 required(pos("torsion_shaft.length", length, "torsion shaft length")),
+                 required(pos("torsion_shaft.diameter", length, "torsion shaft diameter")),
+                 withDefault(pos("torsion_shaft.shear_modulus", pressure, "shear modulus G"), num(80000000000)),
+                 required(in("backlash_difference", length, "difference of circumferential backlash between branches")),
+                 required(symbol("install", {"free", "preloaded"}, "installation method")),
+                 in("preload_torque", torque, "installation torque M0 (preloaded installation)"));
   }();
   return s;
 }
 
 const std::vector<AttrSpec>& splitOutputs() {
-  static const std::vector<AttrSpec> s = {
-      derived("twist", angle, "torsion-shaft twist at full load"),
-      derived("displacement", length, "circumferential displacement at the stage-I wheel"),
-      derived("imbalance", none, "load imbalance between the branches"),
-      derived("branch_torque", torque, "torque in one branch"),
-      derived("preload_displacement", length, "backlash taken up by the preload"),
-  };
+  static const std::vector<AttrSpec> s =
+      attrs(derived("twist", angle, "torsion-shaft twist at full load"),
+            derived("displacement", length, "circumferential displacement at the stage-I wheel"),
+            derived("imbalance", none, "load imbalance between the branches"),
+            derived("branch_torque", torque, "torque in one branch"),
+            derived("preload_displacement", length, "backlash taken up by the preload"));
   return s;
 }
 
 const std::vector<AttrSpec>& sweepSettings() {
-  static const std::vector<AttrSpec> s = {
+  static const std::vector<AttrSpec> s = attrs(
       symbol("continuation", {"natural", "arclength"},
-             "how a sweep of a scene follows its periodic response: point by point, or by arclength through folds"),
-  };
+             "how a sweep of a scene follows its periodic response: point by point, or by arclength through folds"));
   return s;
 }
 
 const std::vector<AttrSpec>& toleranceSettings() {
   // Whole numbers whose range message names both ends (a count would say "positive" first).
-  static const std::vector<AttrSpec> s = {
-      budgeted(bounded(whole("samples", "Monte Carlo samples drawn instead of the box's corners"), num(2), std::nullopt),
-               budget::kToleranceSamples),
+  static const std::vector<AttrSpec> s = attrs(
+      budgeted(
+          bounded(whole("samples", "Monte Carlo samples drawn instead of the box's corners"), num(2), std::nullopt),
+          budget::kToleranceSamples),
       symbol("distribution", {"normal", "uniform"},
              "how a deviation is drawn (normal unless given): normal with the amount as three standard deviations, "
              "or uniform between the bounds"),
-      bounded(whole("seed", "the random stream's seed: the same seed draws the same samples"), num(0), num(4294967295)),
-  };
+      bounded(whole("seed", "the random stream's seed: the same seed draws the same samples"), num(0),
+              num(4294967295)));
   return s;
 }
 
 const std::vector<AttrSpec>& workPrecisionSettings() {
-  static const std::vector<AttrSpec> s = {
-      pos("rtol", none, "relative tolerances to run"),
-      budgeted(count("harmonics", "harmonic counts to run"), budget::kHarmonics),
-      symbol("methods", methodNames(), "methods to compare"),
-  };
+  static const std::vector<AttrSpec> s =
+      attrs(pos("rtol", none, "relative tolerances to run"),
+            budgeted(count("harmonics", "harmonic counts to run"), budget::kHarmonics),
+            symbol("methods", methodNames(), "methods to compare"));
   return s;
 }
 

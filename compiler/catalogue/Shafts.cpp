@@ -9,7 +9,7 @@ const std::vector<AttrSpec>& shaftSettings() {
   static const std::vector<AttrSpec> s = [] {
     auto mat = required(in("material", none, "the shaft's material (a `material` declaration): E, G or nu, density"));
     mat.value = ValueKind::Material;
-    return std::vector<AttrSpec>{
+    return attrs(
         mat,
         symbol("shear", {"on", "off"},
                "beam model: `on` Timoshenko (shear deformation, the default), `off` Euler-Bernoulli"),
@@ -23,7 +23,7 @@ const std::vector<AttrSpec>& shaftSettings() {
         bounded(in("life.contamination", none, "ISO 281 contamination factor e_C, given (in place of `cleanliness`)"),
                 num(0), num(1)),
         bounded(withDefault(count("strength.load_case", "DIN 743 load case: 1 the mean stress stays as the load grows, "
-                                                       "2 (the default) its ratio to the amplitude stays"),
+                                                        "2 (the default) its ratio to the amplitude stays"),
                             num(2)),
                 num(1), num(2)),
         bounded(withDefault(pos("strength.peak_factor", none,
@@ -36,26 +36,25 @@ const std::vector<AttrSpec>& shaftSettings() {
                     num(1)),
         withDefault(pos("strength.min_safety.fatigue", none, "minimum fatigue safety S_D (default 1.2)"), num(6, 5)),
         withDefault(pos("strength.min_safety.static", none, "minimum static safety S_F (default 1.2)"), num(6, 5)),
-        hinted(pos("life.viscosity", kinematicViscosity,
-                   "oil viscosity at the bearings' temperature (kappa of a_ISO); without it, the oil of the first rated "
-                   "stage the shaft carries a gear of, at its oil_temperature; with neither, a_ISO 1"),
-               "mm^2/s"),
-    };
+        hinted(
+            pos("life.viscosity", kinematicViscosity,
+                "oil viscosity at the bearings' temperature (kappa of a_ISO); without it, the oil of the first rated "
+                "stage the shaft carries a gear of, at its oil_temperature; with neither, a_ISO 1"),
+            "mm^2/s"));
   }();
   return s;
 }
 
 const std::vector<AttrSpec>& segmentSettings() {
-  static const std::vector<AttrSpec> s = {
-      required(hinted(pos("diameter", length, "outer diameter of the segment"), "mm")),
-      hinted(bounded(in("bore", length, "bore of a hollow segment (0: solid)"), num(0), std::nullopt), "mm"),
-      hinted(pos("roughness", length, "surface roughness Rz (DIN 743's K_F)"), "um"),
-  };
+  static const std::vector<AttrSpec> s =
+      attrs(required(hinted(pos("diameter", length, "outer diameter of the segment"), "mm")),
+            hinted(bounded(in("bore", length, "bore of a hollow segment (0: solid)"), num(0), std::nullopt), "mm"),
+            hinted(pos("roughness", length, "surface roughness Rz (DIN 743's K_F)"), "um"));
   return s;
 }
 
 const std::vector<AttrSpec>& bearingSettings() {
-  static const std::vector<AttrSpec> s = {
+  static const std::vector<AttrSpec> s = attrs(
       required(symbol(
           "kind",
           {"deep_groove_ball", "angular_contact_ball", "cylindrical_roller", "tapered_roller", "spherical_roller"},
@@ -65,41 +64,36 @@ const std::vector<AttrSpec>& bearingSettings() {
       hinted(pos("radial_stiffness", stiffness, "radial stiffness in either plane (rigid when absent)"), "N/um"),
       symbol("axial", {"held", "free"}, "whether this bearing takes the shaft's axial force (one bearing holds it)"),
       pos("e", none, "limit of F_a/F_r below which P = F_r (the catalogue's)"),
-      pos("X", none, "radial factor of P = X F_r + Y F_a beyond e"),
-      pos("Y", none, "axial factor of P beyond e"),
+      pos("X", none, "radial factor of P = X F_r + Y F_a beyond e"), pos("Y", none, "axial factor of P beyond e"),
       pos("X0", none, "static radial factor of P0 (deep-groove ball: 0.6)"),
       pos("Y0", none, "static axial factor of P0 (deep-groove ball: 0.5)"),
       hinted(pos("pitch_diameter", length,
                  "rolling-element pitch diameter D_pw (kappa, C_u; default 1.4 times the shaft's diameter there)"),
-             "mm"),
-  };
+             "mm"));
   return s;
 }
 
 const std::vector<AttrSpec>& loadSettings() {
-  static const std::vector<AttrSpec> s = {
+  static const std::vector<AttrSpec> s = attrs(
       hinted(in("radial", force, "radial force"), "kN"),
       hinted(in("axial", force, "axial force (positive along the shaft's axis)"), "kN"),
       hinted(in("torque", torque, "torque about the shaft's axis"), "N*m"),
       hinted(in("angle", angle, "direction of the radial force about the axis (0: the first stage's line of centres)"),
-             "deg"),
-  };
+             "deg"));
   return s;
 }
 
 const std::vector<AttrSpec>& gearSettings() {
-  static const std::vector<AttrSpec> s = {
-      symbol("apex", {"left", "right"}, "the end of the shaft a bevel gear's cone apex points to (its thrust's sense)"),
-  };
+  static const std::vector<AttrSpec> s = attrs(symbol(
+      "apex", {"left", "right"}, "the end of the shaft a bevel gear's cone apex points to (its thrust's sense)"));
   return s;
 }
 
 const std::vector<AttrSpec>& diskSettings() {
-  static const std::vector<AttrSpec> s = {
-      required(hinted(pos("diameter", length, "outer diameter of the disk"), "mm")),
-      required(hinted(pos("width", length, "axial width of the disk"), "mm")),
-      hinted(bounded(in("bore", length, "bore of the disk"), num(0), std::nullopt), "mm"),
-  };
+  static const std::vector<AttrSpec> s =
+      attrs(required(hinted(pos("diameter", length, "outer diameter of the disk"), "mm")),
+            required(hinted(pos("width", length, "axial width of the disk"), "mm")),
+            hinted(bounded(in("bore", length, "bore of the disk"), num(0), std::nullopt), "mm"));
   return s;
 }
 
@@ -109,54 +103,51 @@ const std::vector<std::string>& notchKinds() {
 }
 
 const std::vector<AttrSpec>& notchSettings() {
-  static const std::vector<AttrSpec> s = {
-      hinted(pos("radius", length, "fillet radius of a shoulder or groove"), "mm"),
-      hinted(pos("depth", length, "depth of a groove or V-notch below the segment's diameter"), "mm"),
-      hinted(pos("diameter", length, "diameter of a transverse hole"), "mm"),
-      bounded(count("keys", "keys in a keyway, 1 or 2 (default 1)"), num(1), num(2)),
-  };
+  static const std::vector<AttrSpec> s =
+      attrs(hinted(pos("radius", length, "fillet radius of a shoulder or groove"), "mm"),
+            hinted(pos("depth", length, "depth of a groove or V-notch below the segment's diameter"), "mm"),
+            hinted(pos("diameter", length, "diameter of a transverse hole"), "mm"),
+            bounded(count("keys", "keys in a keyway, 1 or 2 (default 1)"), num(1), num(2)));
   return s;
 }
 
 const std::vector<AttrSpec>& shaftOutputs() {
-  static const std::vector<AttrSpec> s = {
-      hinted(derived("deflection", length, "largest radial deflection along the shaft"), "um"),
-      hinted(derived("critical_speed", angularSpeed,
-                     "first bending natural frequency on the bearings, gears and disks as rigid disks"),
-             "rpm"),
-      derived("mass", mass, "the shaft's mass"),
-      derived("fatigue_safety", none, "DIN 743 fatigue safety S_D, the least over the notches"),
-      derived("static_safety", none, "DIN 743 static safety S_F, the least over the notches"),
-  };
+  static const std::vector<AttrSpec> s =
+      attrs(hinted(derived("deflection", length, "largest radial deflection along the shaft"), "um"),
+            hinted(derived("critical_speed", angularSpeed,
+                           "first bending natural frequency on the bearings, gears and disks as rigid disks"),
+                   "rpm"),
+            derived("mass", mass, "the shaft's mass"),
+            derived("fatigue_safety", none, "DIN 743 fatigue safety S_D, the least over the notches"),
+            derived("static_safety", none, "DIN 743 static safety S_F, the least over the notches"));
   return s;
 }
 
 const std::vector<AttrSpec>& shaftFunctions() {
-  static const std::vector<AttrSpec> s = {
-      hinted(derived("deflection_at", length, "radial deflection at a gear's face centre: `input.deflection_at(hs.pinion)`"),
-             "um"),
-      hinted(derived("slope_at", angle, "slope of the deflection line at a gear's face centre"), "mrad"),
-      hinted(derived("torsion_at", length, "wind-up across a gear's face, at its reference circle"), "um"),
-  };
+  static const std::vector<AttrSpec> s =
+      attrs(hinted(derived("deflection_at", length,
+                           "radial deflection at a gear's face centre: `input.deflection_at(hs.pinion)`"),
+                   "um"),
+            hinted(derived("slope_at", angle, "slope of the deflection line at a gear's face centre"), "mrad"),
+            hinted(derived("torsion_at", length, "wind-up across a gear's face, at its reference circle"), "um"));
   return s;
 }
 
 const std::vector<AttrSpec>& notchOutputs() {
-  static const std::vector<AttrSpec> s = {
-      derived("fatigue_safety", none, "DIN 743 fatigue safety S_D at this notch: `input.notch_at(60 mm).fatigue_safety`"),
-      derived("static_safety", none, "DIN 743 static safety S_F at this notch"),
-  };
+  static const std::vector<AttrSpec> s =
+      attrs(derived("fatigue_safety", none,
+                    "DIN 743 fatigue safety S_D at this notch: `input.notch_at(60 mm).fatigue_safety`"),
+            derived("static_safety", none, "DIN 743 static safety S_F at this notch"));
   return s;
 }
 
 const std::vector<AttrSpec>& bearingOutputs() {
-  static const std::vector<AttrSpec> s = {
-      hinted(derived("reaction", force, "radial bearing force"), "N"),
-      hinted(derived("axial_reaction", force, "axial bearing force (the bearing that holds the thrust)"), "N"),
-      hinted(derived("life", time, "ISO 281 basic rating life L10h"), "h"),
-      hinted(derived("modified_life", time, "ISO 281 modified life L_nmh = a1 a_ISO L10h"), "h"),
-      derived("static_safety", none, "static safety s0 = C0 / P0"),
-  };
+  static const std::vector<AttrSpec> s =
+      attrs(hinted(derived("reaction", force, "radial bearing force"), "N"),
+            hinted(derived("axial_reaction", force, "axial bearing force (the bearing that holds the thrust)"), "N"),
+            hinted(derived("life", time, "ISO 281 basic rating life L10h"), "h"),
+            hinted(derived("modified_life", time, "ISO 281 modified life L_nmh = a1 a_ISO L10h"), "h"),
+            derived("static_safety", none, "static safety s0 = C0 / P0"));
   return s;
 }
 
