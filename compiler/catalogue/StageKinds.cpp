@@ -68,7 +68,9 @@ AttrSpec accuracyRow() {
 // Absent values take the defaults their meaning names, applied by the rating itself.
 std::vector<AttrSpec> ratingInputs() {
   const Dim viscosity{2, 0, -1, 0};
-  auto factor = [](std::string n, std::string meaning) { return bounded(pos(std::move(n), none, std::move(meaning)), num(1), std::nullopt); };
+  auto factor = [](std::string n, std::string meaning) {
+    return bounded(pos(std::move(n), none, std::move(meaning)), num(1), std::nullopt);
+  };
   auto um = [](std::int64_t v) { return num(v, 1000000); };
   return attrs(
       factor("rating.application_factor", "application factor K_A (default 1.0)"),
@@ -111,13 +113,15 @@ std::vector<AttrSpec> ratingInputs() {
       pos("rating.basic_rack.dedendum", none, "basic rack dedendum h_fP* (default 1.25)"),
       pos("rating.basic_rack.root_radius", none, "basic rack root radius rho_fP* (default 0.38)"),
       [&] {
-        auto a = factor("rating.face_load_factor",
-                        "face load factor K_Hbeta: given, or `contact_analysis` (from the loaded mesh's line load); method B when absent");
+        auto a = factor("rating.face_load_factor", "face load factor K_Hbeta: given, or `contact_analysis` (from the "
+                                                   "loaded mesh's line load); method B when absent");
         a.symbols = {"contact_analysis"};
         return a;
       }(),
       [&] {
-        auto a = factor("rating.dynamic_factor", "dynamic factor K_v: given, or `scene NAME` (method A from that periodic scene); method B when absent");
+        auto a = factor(
+            "rating.dynamic_factor",
+            "dynamic factor K_v: given, or `scene NAME` (method A from that periodic scene); method B when absent");
         a.sceneRef = true;
         return a;
       }(),
@@ -320,7 +324,8 @@ std::vector<AttrSpec> ratingGearQuantities() {
 std::vector<AttrSpec> bevelStageAttrs() {
   std::vector<AttrSpec> a = attrs(
       [] {
-        auto a = pos("outer_cone_distance", length, "outer cone distance R_e (else from face_width and face_ratio, or from mean_normal_module)");
+        auto a = pos("outer_cone_distance", length,
+                     "outer cone distance R_e (else from face_width and face_ratio, or from mean_normal_module)");
         a.role = AttrRole::Either;
         return a;
       }(),
@@ -359,8 +364,9 @@ std::vector<AttrSpec> bevelStageAttrs() {
     case Q::RatingDynamicFactor:
       r.symbols.clear();
       r.sceneRef = false;
-      r.meaning = r.key == Q::RatingDynamicFactor ? "dynamic factor K_v, given (ISO 10300-1 method B when absent)"
-                                                  : "face load factor K_Hbeta, given (K_Hbeta-C from the mounting when absent)";
+      r.meaning = r.key == Q::RatingDynamicFactor
+                      ? "dynamic factor K_v, given (ISO 10300-1 method B when absent)"
+                      : "face load factor K_Hbeta, given (K_Hbeta-C from the mounting when absent)";
       a.push_back(std::move(r));
       break;
     default: break;
@@ -368,7 +374,8 @@ std::vector<AttrSpec> bevelStageAttrs() {
   }
   a.push_back(symbol("rating.mounting", {"both_straddle", "one_cantilever", "both_cantilever"},
                      "bearing arrangement of the pair (default both_straddle): K_Hbeta-be of ISO 10300-1"));
-  a.push_back(bounded(pos("rating.contact_pattern", none, "effective face width over face width b_eff/b, checked under light load (default 0.85)"),
+  a.push_back(bounded(pos("rating.contact_pattern", none,
+                          "effective face width over face width b_eff/b, checked under light load (default 0.85)"),
                       num(85, 100), num(1)));
   for (auto& q : attrs(derived("K_v", none, "dynamic factor (ISO 10300-1 method B)"),
                        derived("K_Hbeta", none, "face load factor for contact stress K_Hbeta-C"),
@@ -402,7 +409,8 @@ std::vector<AttrSpec> bevelGearAttrs() {
   // that ISO 10300 shares.
   for (auto& q : ratingGearExtras())
     if (q.key == Q::Material) g.push_back(std::move(q));
-  for (auto& q : ratingGearQuantities()) switch (q.key) {
+  for (auto& q : ratingGearQuantities())
+    switch (q.key) {
     case Q::ZB:
     case Q::ZD:
     case Q::YF:
@@ -416,143 +424,152 @@ std::vector<AttrSpec> bevelGearAttrs() {
   return g;
 }
 
+std::vector<AttrSpec> cylindricalStage(bool helical) {
+  std::vector<AttrSpec> a = attrs(
+      pos("normal_module", length, "normal module"),
+      withDefault(bounded(pos("pressure_angle", angle, "normal pressure angle"), deg(10), deg(35)), deg(20)),
+      pos("face_width", length, "face width"), pos("center_distance", length, "centre distance"),
+      hinted(bounded(in("center_distance_allowance", length,
+                        "centre distance allowance A_a, either way (+-; for the backlash)"),
+                     num(0), std::nullopt),
+             "um"),
+      material(), accuracyRow(), pos("mesh_stiffness", pressure, "mesh stiffness per unit face width (c_gamma)"),
+      derived("pitch_line_velocity", velocity, "pitch-line velocity"),
+      derived("eps_alpha", none, "transverse contact ratio"), derived("eps_beta", none, "overlap ratio"),
+      derived("mass", units::dims::mass,
+              "gear-pair mass of two solid discs at the reference diameters: (pi/4) m_n^2 z1^2 b (1 + u^2) rho / "
+              "cos^2 beta"),
+      derived("whole_depth", length, "whole depth 2.25 mn"),
+      derived("sliding_balance", none,
+              "specific-sliding balance: the difference of the two gears' largest specific sliding, 0 when balanced"),
+      derived("working_pressure_angle", angle, "transverse working pressure angle"),
+      derived("tangential_force", force,
+              "nominal tangential force F_t = 2 T / d at the reference circle (ISO 6336; a shaft takes its forces at "
+              "the working pitch circle)"),
+      derived("load_deflection", length, "elastic deflection w_t / c_gamma"),
+      derived("total_contact_ratio", none, "eps_alpha + eps_beta"));
+  a[3].role = AttrRole::Either;
+  // The hand of a helix is not a sign; beyond 45 deg no parallel-axis pair is made or rated.
+  if (helical)
+    a.insert(a.begin() + 1,
+             required(bounded(in("helix_angle", angle, "helix angle at the reference circle"), deg(0), deg(45))));
+  for (auto& d : commonDerived())
+    a.push_back(std::move(d));
+  // The sense of the pinion's wind-up and bending mismatch across the face (docs/rating.md).
+  if (helical)
+    a.push_back(symbol(
+        "helix_hand", {"right", "left"},
+        "the pinion's helix hand: the sense of its bending mismatch across the face and of its thrust on a shaft"));
+  a.push_back(symbol("torque_side", {"coupling", "free"},
+                     "the end of the pinion's face where the torque enters: the sense of its wind-up"));
+  for (auto& r : ratingInputs())
+    a.push_back(std::move(r));
+  for (auto& r : ratingStageQuantities())
+    a.push_back(std::move(r));
+  return a;
+}
+
+std::vector<AttrSpec> cylindricalGear() {
+  auto g = cylindricalGearAttrs();
+  for (auto& r : ratingGearExtras())
+    g.push_back(std::move(r));
+  for (auto& r : ratingGearQuantities())
+    g.push_back(std::move(r));
+  return g;
+}
+
+KindSpec bevelKind() {
+  std::vector<AttrSpec> a = attrs(
+      in("spiral_angle", angle, "mean spiral angle beta_m"),
+      pos("face_ratio", none, "face width over outer cone distance b/Re (else from both)"),
+      withDefault(pos("shaft_angle", angle, "shaft angle"), deg(90)),
+      count("blade_groups", "cutter blade groups (face hobbing)"),
+      pos("mean_normal_module", length, "mean normal module (else from the outer cone distance)"),
+      pos("face_width", length, "face width (else face_ratio times the outer cone distance)"),
+      withDefault(bounded(pos("pressure_angle", angle, "normal pressure angle (the drive flank's)"), deg(10), deg(35)),
+                  deg(20)),
+      material(), accuracyRow(), derived("mmn_b", none, "mean normal module over face width (docs/search.md)"));
+  a[1].role = a[4].role = a[5].role = AttrRole::Either;
+  a.insert(a.begin() + 1, symbol("spiral_hand", {"right", "left"},
+                                 "the pinion's spiral hand: the sense of the spiral's thrust on a shaft"));
+  for (auto& d : commonDerived())
+    a.push_back(std::move(d));
+  for (auto& r : bevelStageAttrs())
+    a.push_back(std::move(r));
+  std::vector<AttrSpec> g =
+      attrs(required(count("z", "tooth count")), derived("cone_angle", angle, "pitch cone angle"),
+            derived("speed", angularSpeed, "rotational speed"), derived("torque", torque, "transmitted torque"),
+            pos("inertia", inertia, "mass moment of inertia about the gear axis"));
+  for (auto& r : bevelGearAttrs())
+    g.push_back(std::move(r));
+  return {ir::StageKind::Bevel, "bevel", {"pinion", "wheel"}, std::move(a), std::move(g)};
+}
+
+KindSpec planetaryKind() {
+  std::vector<AttrSpec> a =
+      attrs(required(budgeted(count("planets", "number of planets, equally spaced"), budget::kPlanets)),
+            pos("module", length, "module"), withDefault(pos("pressure_angle", angle, "pressure angle"), deg(20)),
+            pos("face_width", length, "face width"), material(), accuracyRow(),
+            pos("mesh_stiffness", pressure, "mesh stiffness per unit face width (c_gamma)"),
+            pos("carrier_inertia", inertia, "carrier moment of inertia"),
+            derived("center_distance", length, "sun-planet centre distance"),
+            derived("carrier_speed", angularSpeed, "carrier speed"));
+  for (auto& d : commonDerived())
+    a.push_back(std::move(d));
+  // Rated as its sun-planet and planet-ring meshes (K_gamma: `rating.mesh_load_factor`).
+  for (auto& r : planetaryRatingInputs())
+    a.push_back(std::move(r));
+  for (auto& r : ratingStageQuantities())
+    a.push_back(std::move(r));
+  auto g = plainGearAttrs();
+  for (auto& r : planetaryGearAttrs())
+    g.push_back(std::move(r));
+  // Given, or from the geometry and the material's density.
+  g.push_back(
+      pos("mass", mass,
+          "gear mass (planets: each); else the sun and a planet solid discs at the reference diameter across the face "
+          "width, the ring an annulus from its reference circle to `rim_thickness` below its root (1.25 m)"));
+  g.back().role = AttrRole::Either;
+  for (auto& r : ratingGearExtras())
+    g.push_back(std::move(r));
+  for (auto& r : ratingGearQuantities())
+    g.push_back(std::move(r));
+  return {ir::StageKind::Planetary, "planetary", {"sun", "planet", "ring"}, std::move(a), std::move(g)};
+}
+
+KindSpec idlerKind() {
+  std::vector<AttrSpec> a =
+      attrs(pos("module", length, "module"), withDefault(pos("pressure_angle", angle, "pressure angle"), deg(20)),
+            pos("face_width", length, "face width"), material(), accuracyRow(),
+            derived("center_distance", length,
+                    "driver-to-driven distance: the sum of both meshes' working centre distances (with shifts; (z1/2 "
+                    "+ z2 + z3/2) m without)"));
+  for (auto& d : commonDerived())
+    a.push_back(std::move(d));
+  // Rated as two spur meshes; a stage factor is that of the governing mesh.
+  for (auto& r : ratingInputs())
+    a.push_back(std::move(r));
+  for (auto& r : ratingStageQuantities())
+    a.push_back(std::move(r));
+  auto g = plainGearAttrs();
+  for (auto& r : ratingGearExtras())
+    g.push_back(std::move(r));
+  for (auto& r : ratingGearQuantities())
+    g.push_back(std::move(r));
+  return {ir::StageKind::Idler, "idler", {"driver", "idler", "driven"}, std::move(a), std::move(g)};
+}
+
 std::vector<KindSpec> buildKinds() {
   std::vector<KindSpec> k;
-  auto cylStage = [](bool helical) {
-    std::vector<AttrSpec> a = attrs(
-        pos("normal_module", length, "normal module"),
-        withDefault(bounded(pos("pressure_angle", angle, "normal pressure angle"), deg(10), deg(35)), deg(20)),
-        pos("face_width", length, "face width"), pos("center_distance", length, "centre distance"),
-        hinted(bounded(in("center_distance_allowance", length,
-                          "centre distance allowance A_a, either way (+-; for the backlash)"),
-                       num(0), std::nullopt),
-               "um"),
-        material(), accuracyRow(), pos("mesh_stiffness", pressure, "mesh stiffness per unit face width (c_gamma)"),
-        derived("pitch_line_velocity", velocity, "pitch-line velocity"),
-        derived("eps_alpha", none, "transverse contact ratio"), derived("eps_beta", none, "overlap ratio"),
-        derived("mass", units::dims::mass,
-                "gear-pair mass of two solid discs at the reference diameters: (pi/4) m_n^2 z1^2 b (1 + u^2) rho / "
-                "cos^2 beta"),
-        derived("whole_depth", length, "whole depth 2.25 mn"),
-        derived("sliding_balance", none,
-                "specific-sliding balance: the difference of the two gears' largest specific sliding, 0 when balanced"),
-        derived("working_pressure_angle", angle, "transverse working pressure angle"),
-        derived("tangential_force", force,
-                "nominal tangential force F_t = 2 T / d at the reference circle (ISO 6336; a shaft takes its forces at "
-                "the working pitch circle)"),
-        derived("load_deflection", length, "elastic deflection w_t / c_gamma"),
-        derived("total_contact_ratio", none, "eps_alpha + eps_beta"));
-    a[3].role = AttrRole::Either;
-    // The hand of a helix is not a sign; beyond 45 deg no parallel-axis pair is made or rated.
-    if (helical)
-      a.insert(a.begin() + 1, required(bounded(in("helix_angle", angle, "helix angle at the reference circle"), deg(0), deg(45))));
-    for (auto& d : commonDerived())
-      a.push_back(std::move(d));
-    // The sense of the pinion's wind-up and bending mismatch across the face (docs/rating.md).
-    if (helical)
-      a.push_back(symbol(
-          "helix_hand", {"right", "left"},
-          "the pinion's helix hand: the sense of its bending mismatch across the face and of its thrust on a shaft"));
-    a.push_back(symbol("torque_side", {"coupling", "free"}, "the end of the pinion's face where the torque enters: the sense of its wind-up"));
-    for (auto& r : ratingInputs())
-      a.push_back(std::move(r));
-    for (auto& r : ratingStageQuantities())
-      a.push_back(std::move(r));
-    return a;
-  };
-  auto cylGear = [] {
-    auto g = cylindricalGearAttrs();
-    for (auto& r : ratingGearExtras())
-      g.push_back(std::move(r));
-    for (auto& r : ratingGearQuantities())
-      g.push_back(std::move(r));
-    return g;
-  };
-  k.push_back({ir::StageKind::Spur, "spur", {"pinion", "wheel"}, cylStage(false), cylGear()});
-  k.push_back({ir::StageKind::Helical, "helical", {"pinion", "wheel"}, cylStage(true), cylGear()});
-
-  {
-    std::vector<AttrSpec> a =
-        attrs(in("spiral_angle", angle, "mean spiral angle beta_m"),
-              pos("face_ratio", none, "face width over outer cone distance b/Re (else from both)"),
-              withDefault(pos("shaft_angle", angle, "shaft angle"), deg(90)),
-              count("blade_groups", "cutter blade groups (face hobbing)"),
-              pos("mean_normal_module", length, "mean normal module (else from the outer cone distance)"),
-              pos("face_width", length, "face width (else face_ratio times the outer cone distance)"),
-              withDefault(
-                  bounded(pos("pressure_angle", angle, "normal pressure angle (the drive flank's)"), deg(10), deg(35)),
-                  deg(20)),
-              material(), accuracyRow(), derived("mmn_b", none, "mean normal module over face width (docs/search.md)"));
-    a[1].role = a[4].role = a[5].role = AttrRole::Either;
-    a.insert(a.begin() + 1, symbol("spiral_hand", {"right", "left"}, "the pinion's spiral hand: the sense of the spiral's thrust on a shaft"));
-    for (auto& d : commonDerived())
-      a.push_back(std::move(d));
-    for (auto& r : bevelStageAttrs())
-      a.push_back(std::move(r));
-    std::vector<AttrSpec> g =
-        attrs(required(count("z", "tooth count")), derived("cone_angle", angle, "pitch cone angle"),
-              derived("speed", angularSpeed, "rotational speed"), derived("torque", torque, "transmitted torque"),
-              pos("inertia", inertia, "mass moment of inertia about the gear axis"));
-    for (auto& r : bevelGearAttrs())
-      g.push_back(std::move(r));
-    k.push_back({ir::StageKind::Bevel, "bevel", {"pinion", "wheel"}, std::move(a), std::move(g)});
-  }
-  {
-    std::vector<AttrSpec> a =
-        attrs(required(budgeted(count("planets", "number of planets, equally spaced"), budget::kPlanets)),
-              pos("module", length, "module"), withDefault(pos("pressure_angle", angle, "pressure angle"), deg(20)),
-              pos("face_width", length, "face width"), material(), accuracyRow(),
-              pos("mesh_stiffness", pressure, "mesh stiffness per unit face width (c_gamma)"),
-              pos("carrier_inertia", inertia, "carrier moment of inertia"),
-              derived("center_distance", length, "sun-planet centre distance"),
-              derived("carrier_speed", angularSpeed, "carrier speed"));
-    for (auto& d : commonDerived())
-      a.push_back(std::move(d));
-    // Rated as its sun-planet and planet-ring meshes (K_gamma: `rating.mesh_load_factor`).
-    for (auto& r : planetaryRatingInputs())
-      a.push_back(std::move(r));
-    for (auto& r : ratingStageQuantities())
-      a.push_back(std::move(r));
-    auto g = plainGearAttrs();
-    for (auto& r : planetaryGearAttrs())
-      g.push_back(std::move(r));
-    // Given, or from the geometry and the material's density.
-    g.push_back(pos("mass", mass,
-                    "gear mass (planets: each); else the sun and a planet solid discs at the reference diameter across the face "
-                    "width, the ring an annulus from its reference circle to `rim_thickness` below its root (1.25 m)"));
-    g.back().role = AttrRole::Either;
-    for (auto& r : ratingGearExtras())
-      g.push_back(std::move(r));
-    for (auto& r : ratingGearQuantities())
-      g.push_back(std::move(r));
-    k.push_back({ir::StageKind::Planetary, "planetary", {"sun", "planet", "ring"}, std::move(a), std::move(g)});
-  }
-  {
-    std::vector<AttrSpec> a =
-        attrs(pos("module", length, "module"), withDefault(pos("pressure_angle", angle, "pressure angle"), deg(20)),
-              pos("face_width", length, "face width"), material(), accuracyRow(),
-              derived("center_distance", length,
-                      "driver-to-driven distance: the sum of both meshes' working centre distances (with shifts; (z1/2 "
-                      "+ z2 + z3/2) m without)"));
-    for (auto& d : commonDerived())
-      a.push_back(std::move(d));
-    // Rated as two spur meshes; a stage factor is that of the governing mesh.
-    for (auto& r : ratingInputs())
-      a.push_back(std::move(r));
-    for (auto& r : ratingStageQuantities())
-      a.push_back(std::move(r));
-    auto g = plainGearAttrs();
-    for (auto& r : ratingGearExtras())
-      g.push_back(std::move(r));
-    for (auto& r : ratingGearQuantities())
-      g.push_back(std::move(r));
-    k.push_back({ir::StageKind::Idler, "idler", {"driver", "idler", "driven"}, std::move(a), std::move(g)});
-  }
+  k.push_back({ir::StageKind::Spur, "spur", {"pinion", "wheel"}, cylindricalStage(false), cylindricalGear()});
+  k.push_back({ir::StageKind::Helical, "helical", {"pinion", "wheel"}, cylindricalStage(true), cylindricalGear()});
+  k.push_back(bevelKind());
+  k.push_back(planetaryKind());
+  k.push_back(idlerKind());
   return k;
 }
 
 } // namespace
-
 
 const std::vector<KindSpec>& stageKinds() {
   static const std::vector<KindSpec> k = buildKinds();
@@ -584,7 +601,7 @@ const AttrSpec* findAttr(const KindSpec& k, const std::string& path) {
     return nullptr;
   }
   if (!isGear(k, path.substr(0, dot))) {
-    for (const auto& a : k.stage)  // a block's setting: `rating.life`
+    for (const auto& a : k.stage) // a block's setting: `rating.life`
       if (a.name == path) return &a;
     return nullptr;
   }
@@ -593,6 +610,5 @@ const AttrSpec* findAttr(const KindSpec& k, const std::string& path) {
     if (a.name == rest) return &a;
   return nullptr;
 }
-
 
 } // namespace gbx::cat
