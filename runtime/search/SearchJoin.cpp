@@ -224,25 +224,36 @@ void Searcher::joinEntry(Walk& w, size_t le, double x, size_t from, size_t to, d
   visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, true);
 }
 
-// A short right list's rows of one left index i, from j on: the first j whose window may
-// hold an entry (the occupancy table), or m1 where the row ends (its floor's entry past
-// the window). Only products, one load and a bit test per row; the table is built (so
-// the windows are positive and finite) and the rows' floors are given as fi and floorJ.
-size_t Searcher::nextShortRow(size_t j, size_t m1, double invI, const double* inv1, const double* r2, size_t fi,
-                              bool floorJ, size_t& scanned) const {
-  const size_t start = j;
-  for (; j < m1; ++j) {
-    double inv = invI * inv1[j];
-    double wh = wantHiC * inv;
-    size_t floor = std::max(fi, floorJ ? j : 0);
-    if (floor >= rn || r2[floor] > wh) {
-      j = m1;
-      break;
+size_t Searcher::shortRowEnd(size_t j, size_t m1, double invI, const double* inv1, const double* r2, size_t fi,
+                             bool floorJ) const {
+  auto ends = [&](size_t r) {
+    size_t floor = std::max(fi, floorJ ? r : 0);
+    return floor >= rn || r2[floor] > wantHiC * (invI * inv1[r]);
+  };
+  for (size_t len = m1 - std::min(j, m1); len > 0;) {
+    const size_t half = len / 2;
+    if (ends(j + half)) {
+      len = half;
+    } else {
+      j += half + 1;
+      len -= half + 1;
     }
-    if (occupancy.anyPositive(wantLoC * inv, wh)) break;
   }
-  scanned += j - start;
   return j;
+}
+
+size_t Searcher::nextShortRow(size_t j, size_t end, size_t m1, double invI, const double* inv1) const {
+  const std::int64_t base = occupancy.base(), top = static_cast<std::int64_t>(occupancy.buckets - 1);
+  const std::uint64_t* near = occupancy.near.data();
+  const int shift = occupancy.shift;
+  for (; j < end; ++j) {
+    const double wl = wantLoC * (invI * inv1[j]);
+    std::int64_t a;
+    std::memcpy(&a, &wl, sizeof a);
+    const std::int64_t q = std::max<std::int64_t>((a - base) >> shift, 0);
+    if (q <= top && (near[static_cast<size_t>(q) >> 6] >> (q & 63) & 1)) return j;
+  }
+  return m1;
 }
 
 void Searcher::locateWindows(WindowBatch& b) const {
@@ -298,25 +309,40 @@ void Searcher::buildOccupancy() {
   const double lo = right->ratio(0), hi = right->ratio(rn - 1);
   if (!(lo > 0) || !(hi >= lo) || !std::isfinite(hi)) return;
   // A quarter of a window's keys per bucket (the window measured where the keys are
-  // densest, at the list's largest ratio), and no more buckets than the caps allow.
+  // densest, at the list's largest ratio), and no more buckets than the caps allow: 256 an
+  // entry for a short list (its tables stay in the caches), 64 for a long one.
+  const bool shortList = right->width() == 1;
   std::uint64_t k0 = orderKey(lo), span = orderKey(hi) - k0;
   std::uint64_t window = orderKey(hi * (wantHiC / wantLoC)) - orderKey(hi);
   int shift = 0;
   while (shift < 62 && (std::uint64_t{1} << (shift + 1)) <= window / 4)
     ++shift;
-  const std::uint64_t most = std::min<std::uint64_t>(std::uint64_t{64} * rn, std::uint64_t{1} << 25);
+  const std::uint64_t most =
+      std::min<std::uint64_t>(std::uint64_t{shortList ? 256u : 64u} * rn, std::uint64_t{1} << 25);
   while (shift < 63 && (span >> shift) + 1 > most)
     ++shift;
   occupancy.key0 = k0;
   occupancy.shift = shift;
   occupancy.buckets = static_cast<size_t>(span >> shift) + 1;
   occupancy.bits.assign((occupancy.buckets + 63) / 64 + 1, 0); // a spare word: any() reads two
-  occupancy.first.assign(occupancy.bits.size(), static_cast<std::uint32_t>(rn));
+  if (!shortList) occupancy.first.assign(occupancy.bits.size(), static_cast<std::uint32_t>(rn));
   for (size_t e = 0, w = 0; e < rn; ++e) {
     size_t kb = occupancy.bucket(right->ratio(e));
     occupancy.bits[kb >> 6] |= std::uint64_t{1} << (kb & 63);
-    for (; w <= (kb >> 6); ++w)
+    for (; !shortList && w <= (kb >> 6); ++w)
       occupancy.first[w] = static_cast<std::uint32_t>(e);
+  }
+  // A window's most order keys: its relative width times 2^52 (the key is a double's bits;
+  // 2^53 for margin), and two for rounding. It reaches at most ceil(keys / bucket) buckets
+  // past its first; a short list's rows read that reach as one bit (a few buckets at most).
+  const double windowKeys = std::ldexp(wantHiC / wantLoC - 1, 53) + 2;
+  const double reach = std::ceil(windowKeys / std::ldexp(1, shift));
+  if (!shortList || !(reach <= 8)) return;
+  occupancy.near.assign(occupancy.bits.size(), 0);
+  for (size_t e = 0; e < rn; ++e) {
+    const size_t kb = occupancy.bucket(right->ratio(e));
+    for (size_t q = kb - std::min(kb, static_cast<size_t>(reach)); q <= kb; ++q)
+      occupancy.near[q >> 6] |= std::uint64_t{1} << (q & 63);
   }
 }
 
@@ -393,7 +419,7 @@ bool Searcher::sweepRows(Walk& w) {
     inv1[j] = 1 / r1[j];
   // A short right list's rows are scanned by nextShortRow, which reads the occupancy
   // table directly: positive windows only.
-  const bool tight = r2 && !occupancy.bits.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
+  const bool tight = r2 && !occupancy.near.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
                      wantLoC > 0 && wantLoC <= wantHiC;
   // A long right list's windows are found in batches: positive windows of a built table.
   const bool batched = !r2 && !occupancy.first.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
@@ -410,9 +436,12 @@ bool Searcher::sweepRows(Walk& w) {
     double x0 = r0[i] * r1[j0];
     size_t loP = right->lowerBound(wantLoC / x0), hiP = right->upperBound(wantHiC / x0);
     double rowPart = fastKey ? base + fastKey->entry(0, cand[0]) : 0;
+    const size_t rowEnd = tight ? shortRowEnd(j0, m1, inv0[i], inv1.data(), r2, floorI ? i : 0, floorJ) : m1;
     for (size_t j = j0; j < m1; ++j) {
       if (tight) {
-        j = nextShortRow(j, m1, inv0[i], inv1.data(), r2, floorI ? i : 0, floorJ, w.sinceCheck);
+        const size_t start = j;
+        j = nextShortRow(j, rowEnd, m1, inv0[i], inv1.data());
+        w.sinceCheck += std::min(j, rowEnd) - start;
         if (j >= m1) break;
       }
       if (due(w, false) && stopHere(w.t, i, w.begin, w.end)) return false;

@@ -302,10 +302,15 @@ private:
     // first[w]: the first entry whose bucket is 64 w or above (the list's size past its last
     // entry). A window's first entry is then found from its word, with no search of the list.
     LargeVector<std::uint32_t> first;
+    // near[q]: whether buckets q to q + (a window's most buckets) hold an entry, for a short
+    // list's row scan: one bit answers for a whole window (or more: a superset).
+    std::vector<std::uint64_t> near;
     size_t bucket(double r) const {
       std::uint64_t k = orderKey(r);
       return k <= key0 ? 0 : static_cast<size_t>(std::min<std::uint64_t>((k - key0) >> shift, buckets - 1));
     }
+    // The order key's base as the bits of a positive double: bucket = (bits - base) >> shift.
+    std::int64_t base() const { return static_cast<std::int64_t>(key0 & ~(std::uint64_t{1} << 63)); }
     bool any(double lo, double hi) const {
       if (bits.empty() || !(lo <= hi) || lo <= 0) return true;
       return anyPositive(lo, hi);
@@ -324,9 +329,8 @@ private:
       std::int64_t a, b;
       std::memcpy(&a, &lo, sizeof a);
       std::memcpy(&b, &hi, sizeof b);
-      const std::int64_t top = static_cast<std::int64_t>(buckets - 1),
-                         base = static_cast<std::int64_t>(key0 & ~(std::uint64_t{1} << 63));
-      std::int64_t q0 = (a - base) >> shift, q1 = (b - base) >> shift;
+      const std::int64_t top = static_cast<std::int64_t>(buckets - 1);
+      std::int64_t q0 = (a - base()) >> shift, q1 = (b - base()) >> shift;
       if (q1 < 0 || q0 > top) return false; // wholly below or above the list
       q0 = std::max<std::int64_t>(q0, 0);
       q1 = std::min(q1, top);
@@ -356,12 +360,15 @@ private:
   void joinBatch(Walk& w, WindowBatch& b, size_t i, const double* r0, const double* r1, double rowPart,
                  double rightLeast);
 
-  // A short right list's rows of one left index i, from j on: the first j whose window may
-  // hold an entry (the occupancy table), or m1 where the row ends (its floor's entry past
-  // the window). Only products, one load and a bit test per row; the table is built (so
-  // the windows are positive and finite) and the rows' floors are given as fi and floorJ.
-  size_t nextShortRow(size_t j, size_t m1, double invI, const double* inv1, const double* r2, size_t fi, bool floorJ,
-                      size_t& scanned) const;
+  // A short right list's rows of one left index: where they end, the first j whose floor's
+  // entry is past its window (the floor only rises and the window only falls along a row),
+  // found by a binary search over [j, m1) with the scan's own products.
+  size_t shortRowEnd(size_t j, size_t m1, double invI, const double* inv1, const double* r2, size_t fi,
+                     bool floorJ) const;
+  // The first row in [j, end) whose window's lowest bucket is `near` an occupied one, or m1:
+  // a product, a subtraction, a shift and one bit per row. The caller tests the window
+  // exactly.
+  size_t nextShortRow(size_t j, size_t end, size_t m1, double invI, const double* inv1) const;
 
   void buildOccupancy();
 

@@ -404,6 +404,39 @@ TEST(Search, AgreesWithBruteForceOnFourAndFiveStages) {
   EXPECT_GT(nonEmpty, 12) << "the generator should mostly make solvable specs";
 }
 
+// Narrow windows (a millionth and less) over three interchangeable stages, the benchmark's
+// kind: the row scan passes over rows a bit for their window's lowest bucket at a time and
+// must not pass over one whose window holds a design.
+TEST(Search, AgreesWithBruteForceOnNarrowWindows) {
+  // Each target a design's own ratio, so that every window holds at least that design.
+  const std::pair<long long, long long> targets[] = {{29 * 23 * 19, 13 * 17 * 14},
+                                                     {30 * 29 * 13, 12 * 12 * 12},
+                                                     {19 * 17 * 25, 16 * 15 * 14},
+                                                     {28 * 27 * 26, 25 * 23 * 13}};
+  for (const auto& [num, den] : targets)
+    for (long long ppb : {20, 1000, 5000}) { // half-width in parts per billion
+      RandomSpec s;
+      s.stages.assign(3, StageSpec{12, 30, 12, 30, false});
+      s.swapStages = true;
+      const units::Rational t = units::Rational::make(num, den);
+      s.lo = *t.mul(units::Rational::make(1000000000 - ppb, 1000000000));
+      s.hi = *t.mul(units::Rational::make(1000000000 + ppb, 1000000000));
+      s.text = fmt::format("gearbox N {{\n  stage s0: spur {{ pinion.z in 12..30; wheel.z in 12..30; }}\n"
+                           "  stage s1 like s0;\n  stage s2 like s0;\n  interchangeable s0, s1, s2;\n"
+                           "  require ratio == {} +- {}%;\n}}\n",
+                           t.decimal().value_or(t.str()), ppb / 1e7);
+      auto want = bruteForce(s);
+      auto c = driver::compileText("n.gbx", s.text);
+      ASSERT_TRUE(c->ok()) << s.text << c->diags.renderText(c->sources);
+      rt::Model m(c->program, c->program.gearboxes[0]);
+      rt::SearchOptions o;
+      o.top = std::nullopt;
+      auto r = rt::search(m, o);
+      ASSERT_FALSE(want.empty()) << s.text;
+      EXPECT_EQ(r.count, want.size()) << s.text;
+    }
+}
+
 // The three-stage row walk reports its progress to the end (it used to stop short).
 TEST(Search, ProgressReachesTheEndOfTheJoin) {
   std::string text = "gearbox Bench {\n  stage s0: spur { pinion.z in 12..100; wheel.z in 12..100; require coprime(pinion.z, wheel.z); }\n"
