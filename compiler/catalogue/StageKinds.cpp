@@ -1,6 +1,10 @@
 #include "catalogue/StageKinds.h"
 
 #include <algorithm>
+#include <array>
+#include <iterator>
+#include <mutex>
+#include <optional>
 
 #include "catalogue/Budgets.h"
 #include "catalogue/Shafts.h"
@@ -559,24 +563,45 @@ KindSpec idlerKind() {
   return {ir::StageKind::Idler, "idler", {"driver", "idler", "driven"}, std::move(a), std::move(g)};
 }
 
-std::vector<KindSpec> buildKinds() {
-  std::vector<KindSpec> k;
-  k.push_back({ir::StageKind::Spur, "spur", {"pinion", "wheel"}, cylindricalStage(false), cylindricalGear()});
-  k.push_back({ir::StageKind::Helical, "helical", {"pinion", "wheel"}, cylindricalStage(true), cylindricalGear()});
-  k.push_back(bevelKind());
-  k.push_back(planetaryKind());
-  k.push_back(idlerKind());
-  return k;
+// The kinds in the order of ir::StageKind, named.
+constexpr std::pair<const char*, ir::StageKind> kKinds[] = {{"spur", ir::StageKind::Spur},
+                                                            {"helical", ir::StageKind::Helical},
+                                                            {"bevel", ir::StageKind::Bevel},
+                                                            {"planetary", ir::StageKind::Planetary},
+                                                            {"idler", ir::StageKind::Idler}};
+
+KindSpec buildKind(ir::StageKind kind) {
+  switch (kind) {
+  case ir::StageKind::Spur:
+    return {ir::StageKind::Spur, "spur", {"pinion", "wheel"}, cylindricalStage(false), cylindricalGear()};
+  case ir::StageKind::Helical:
+    return {ir::StageKind::Helical, "helical", {"pinion", "wheel"}, cylindricalStage(true), cylindricalGear()};
+  case ir::StageKind::Bevel: return bevelKind();
+  case ir::StageKind::Planetary: return planetaryKind();
+  case ir::StageKind::Idler: break;
+  }
+  return idlerKind();
 }
 
 } // namespace
 
-const std::vector<KindSpec>& stageKinds() {
-  static const std::vector<KindSpec> k = buildKinds();
-  return k;
+// Each kind's table is made the first time it is asked for: a spec names one or two kinds,
+// and a table holds a few hundred rows.
+const KindSpec& kindSpec(ir::StageKind kind) {
+  constexpr size_t n = std::size(kKinds);
+  static std::array<std::once_flag, n> once;
+  static std::array<std::optional<KindSpec>, n> built;
+  const auto i = static_cast<size_t>(kind);
+  std::call_once(once[i], [&] { built[i].emplace(buildKind(kind)); });
+  return *built[i];
 }
 
-const KindSpec& kindSpec(ir::StageKind kind) { return stageKinds()[static_cast<size_t>(kind)]; }
+std::vector<const KindSpec*> stageKinds() {
+  std::vector<const KindSpec*> all;
+  for (const auto& [name, kind] : kKinds)
+    all.push_back(&kindSpec(kind));
+  return all;
+}
 
 int gearIndex(const KindSpec& k, const std::string& name) {
   auto it = std::find(k.gears.begin(), k.gears.end(), name);
@@ -584,8 +609,8 @@ int gearIndex(const KindSpec& k, const std::string& name) {
 }
 
 const KindSpec* findKind(const std::string& name) {
-  for (const auto& k : stageKinds())
-    if (k.name == name) return &k;
+  for (const auto& [n, kind] : kKinds)
+    if (name == n) return &kindSpec(kind);
   return nullptr;
 }
 

@@ -17,7 +17,8 @@ struct KindSpec {
   std::vector<AttrSpec> gear;   // per-gear attributes (pinion.z)
 };
 
-const std::vector<KindSpec>& stageKinds();
+// Every kind, in the order of ir::StageKind.
+std::vector<const KindSpec*> stageKinds();
 const KindSpec& kindSpec(ir::StageKind kind);
 const KindSpec* findKind(const std::string& name);
 // "pinion.z", "ratio": the attribute spec for a stage kind, or nullptr.

@@ -352,7 +352,8 @@ void Analyser::checkPreset(const Stmt& d) {
 
 void Analyser::unknownKind(const std::string& word, Span span) {
   std::vector<std::string> names;
-  for (const auto& k : stageKinds()) names.push_back(k.name);
+  for (const auto* k : stageKinds())
+    names.push_back(k->name);
   std::string hint = closest(word, names);
   diags_.error("E0210", span,
                fmt::format("unknown stage kind `{}`{}", word,

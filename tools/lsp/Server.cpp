@@ -625,7 +625,8 @@ private:
       return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
     }
     if (afterStageColon(before)) {
-      for (const auto& k : cat::stageKinds()) item(k.name, 7, fmt::format("stage kind — gears: {}", fmt::join(k.gears, ", ")));
+      for (const auto* k : cat::stageKinds())
+        item(k->name, 7, fmt::format("stage kind — gears: {}", fmt::join(k->gears, ", ")));
       return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
     }
     if (std::string dotted = dottedBefore(before); !dotted.empty()) {
@@ -668,7 +669,8 @@ private:
                              "modify", "split", "study", "report", "import", "preset", "interchangeable", "tolerances"})
         item(kw, 14, "");
       for (const auto& m : sema::stdlibModules()) item(m, 9, "stdlib module");
-      for (const auto& k : cat::stageKinds()) item(k.name, 7, "stage kind");
+      for (const auto* k : cat::stageKinds())
+        item(k->name, 7, "stage kind");
     }
     return Json::Object{{"isIncomplete", false}, {"items", std::move(items)}};
   }

@@ -128,8 +128,8 @@ void kindRows(std::string& out, bool gear) {
   };
   std::vector<Merged> rows;
   std::map<std::string, size_t> bySignature;
-  for (const auto& k : cat::stageKinds())
-    for (const auto& a : gear ? k.gear : k.stage) {
+  for (const auto* kp : cat::stageKinds())
+    for (const auto& k = *kp; const auto& a : gear ? k.gear : k.stage) {
       std::string signature = a.name + "|" + middleCells(a) + "|" + example(a, "");
       auto [it, fresh] = bySignature.emplace(signature, rows.size());
       if (fresh)
@@ -146,7 +146,8 @@ void kindRows(std::string& out, bool gear) {
 
 void kinds(std::string& out) {
   out += "## Stage kinds\n\n| kind | gears |\n| --- | --- |\n";
-  for (const auto& k : cat::stageKinds()) {
+  for (const auto* kp : cat::stageKinds()) {
+    const auto& k = *kp;
     std::string g;
     for (const auto& n : k.gears)
       g += (g.empty() ? "" : ", ") + ("`" + n + "`");

@@ -262,8 +262,8 @@ TEST(RatingSpec, WhatABevelStageCannotComputeUnratedIsARatingQuantity) {
   ASSERT_TRUE(f.model);
   rt::Evaluator ev(*f.model);
   const cat::KindSpec* bevel = nullptr;
-  for (const auto& k : cat::stageKinds())
-    if (k.kind == ir::StageKind::Bevel) bevel = &k;
+  for (const auto* k : cat::stageKinds())
+    if (k->kind == ir::StageKind::Bevel) bevel = k;
   ASSERT_TRUE(bevel);
   int rated = 0;
   auto check = [&](const cat::AttrSpec& a, const std::string& path) {

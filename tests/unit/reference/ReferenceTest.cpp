@@ -112,8 +112,8 @@ TEST(Reference, EveryKeywordAndWordOfTheLanguageIsDocumented) {
     words.emplace_back(m.name);
   for (const auto& e : cat::effects())
     words.push_back(e.name);
-  for (const auto& k : cat::stageKinds())
-    words.push_back(k.name);
+  for (const auto* k : cat::stageKinds())
+    words.push_back(k->name);
   for (const auto& t : cat::modificationTargets())
     words.push_back(t);
   for (const auto& b : cat::modifyBuiltins())

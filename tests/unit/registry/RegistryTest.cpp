@@ -88,8 +88,10 @@ TEST(Registry, EveryMethodHasAStepper) {
 TEST(Registry, EveryStageKindComputesWhatItsCatalogueDerives) {
   ASSERT_EQ(cat::stageKinds().size(), rt::stageKindImpls().size());
   for (size_t i = 0; i < cat::stageKinds().size(); ++i)
-    EXPECT_EQ(static_cast<size_t>(cat::stageKinds()[i].kind), i) << "kind row " << cat::stageKinds()[i].name << " is out of place";
-  for (const auto& k : cat::stageKinds()) {
+    EXPECT_EQ(static_cast<size_t>(cat::stageKinds()[i]->kind), i)
+        << "kind row " << cat::stageKinds()[i]->name << " is out of place";
+  for (const auto* kp : cat::stageKinds()) {
+    const auto& k = *kp;
     const auto& impl = rt::stageKindImpl(k.kind);
     EXPECT_EQ(impl.kind, k.kind);
     for (const auto& a : k.stage) {
