@@ -145,6 +145,7 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
     size_t begin = total * static_cast<size_t>(t) / static_cast<size_t>(threads);
     size_t end = total * static_cast<size_t>(t + 1) / static_cast<size_t>(threads);
     std::vector<const Conjunct*> open;
+    std::vector<int> idx(info.slots.size());
     ch.out.reserve(std::min<size_t>(end - begin, 1 << 16));
     for (size_t k = begin; k < end; ++k) {
       if ((k - begin) % 16 == 0 && Deadline::expired()) {
@@ -152,12 +153,10 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
         break;
       }
       size_t rest = k;
-      Candidate c;
-      c.idx.resize(info.slots.size());
       for (size_t i = info.slots.size(); i-- > 0;) {
-        c.idx[i] = static_cast<int>(rest % sizes[i]);
+        idx[i] = static_cast<int>(rest % sizes[i]);
         rest /= sizes[i];
-        a.choice[static_cast<size_t>(info.slots[i])] = c.idx[i];
+        a.choice[static_cast<size_t>(info.slots[i])] = idx[i];
       }
       open.clear();
       bool dead = false;
@@ -177,6 +176,9 @@ StageResult filterStage(const Evaluator& ev, int s, const std::vector<const Conj
         }
       }
       if (dead) continue;
+      // A candidate is made for the combinations its rules leave (a third of them, or fewer).
+      Candidate c;
+      c.idx = idx;
       if (!open.empty()) {
         Verdict v = decide(ev, a, open, info.freedoms);
         if (v == Verdict::Infeasible) {
