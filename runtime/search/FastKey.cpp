@@ -199,12 +199,7 @@ std::optional<Rational> RatioFn::exactAt(const Rational& ratio) const {
   return Rational::make(st[0].n, st[0].d);
 }
 
-std::pair<double, double> RatioFn::over(double lo, double hi) const {
-  if (absDiff_) {
-    double a = lo - target_, b = hi - target_;
-    if (std::isnan(a) || std::isnan(b)) return {-kInf, kInf};
-    return a >= 0 ? Iv{a, b} : b <= 0 ? Iv{-b, -a} : Iv{0, std::max(-a, b)};
-  }
+std::pair<double, double> RatioFn::overProgram(double lo, double hi) const {
   // Uninitialised: the join asks this a million times, and zeroing 64 pairs each time cost
   // more than the program.
   union Stack {
@@ -339,15 +334,6 @@ std::optional<FastKey> FastKey::build(const Evaluator& ev, const ir::Expr& e, bo
   }
   k.rounding_ = 1e-12 * magnitude * static_cast<double>(k.tables_.size() + 2);
   return k;
-}
-
-double FastKey::ratioLower(double lo, double hi) const {
-  double v = 0;
-  for (const auto& [c, f] : ratio_) {
-    auto [a, b] = f.over(lo, hi);
-    v += c >= 0 ? c * a : c * b;
-  }
-  return std::isnan(v) ? -INFINITY : v;
 }
 
 // ---- RangeMin -----------------------------------------------------------------------------

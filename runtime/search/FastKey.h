@@ -5,6 +5,8 @@
 // small compiled functions of the ratio, and a bound over a set of designs follows from
 // the least table entries and the interval of their ratios. A screen only: a design that
 // may enter the ranking is always keyed by the evaluator, so pruning never changes it.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -26,7 +28,13 @@ public:
   // exact (a constant with pi, a division by zero) or the parts grow past 2^100.
   std::optional<Rational> exactAt(const Rational& ratio) const;
   // An enclosure of the function over [lo, hi] (not outward rounded: callers add slack).
-  std::pair<double, double> over(double lo, double hi) const;
+  // The usual objective, abs(ratio - target), inline: the join asks it once per window.
+  std::pair<double, double> over(double lo, double hi) const {
+    if (!absDiff_) return overProgram(lo, hi);
+    double a = lo - target_, b = hi - target_;
+    if (std::isnan(a) || std::isnan(b)) return {-INFINITY, INFINITY};
+    return a >= 0 ? std::pair{a, b} : b <= 0 ? std::pair{-b, -a} : std::pair{0.0, std::max(-a, b)};
+  }
 
 private:
   enum class K : std::uint8_t { Const, Ratio, Neg, Add, Sub, Mul, Div, PowI, Abs, Sqrt, Min, Max };
@@ -37,6 +45,7 @@ private:
     std::optional<Rational> exact = std::nullopt; // Const: the literal, when it is a rational
   };
   bool emit(const ir::Expr& e);
+  std::pair<double, double> overProgram(double lo, double hi) const;
   std::vector<Node> code_;
   bool absDiff_ = false;  // the program is abs(ratio - target_)
   double target_ = 0;
@@ -90,7 +99,14 @@ public:
   }
   double constant() const { return constant_; }
   // A lower bound of the ratio terms over designs whose ratio lies in [lo, hi].
-  double ratioLower(double lo, double hi) const;
+  double ratioLower(double lo, double hi) const {
+    double v = 0;
+    for (const auto& [c, f] : ratio_) {
+      auto [a, b] = f.over(lo, hi);
+      v += c >= 0 ? c * a : c * b;
+    }
+    return std::isnan(v) ? -INFINITY : v;
+  }
 
 private:
   struct Table {

@@ -83,21 +83,34 @@ int bitsFor(size_t n) {
 
 } // namespace
 
+// A two-stage half's entries with first index i: the second's indices [j0, j1).
+std::pair<std::uint64_t, std::uint64_t> HalfList::pairRun(std::uint64_t i, bool canon) const {
+  const auto& R = *ratios_;
+  const auto &r0 = R[static_cast<size_t>(from_)], &r1 = R[static_cast<size_t>(from_ + 1)];
+  std::uint64_t j0 = canon ? i : 0, j1 = r1.size();
+  if (reach_ && i < reach_->size()) {
+    // The second stage's ratios ascend: the reachable ones are one run of them.
+    auto [lo, hi] = (*reach_)[i];
+    j0 = std::max<std::uint64_t>(
+        j0, static_cast<std::uint64_t>(std::lower_bound(r1.begin(), r1.end(), lo / r0[i]) - r1.begin()));
+    j1 = static_cast<std::uint64_t>(std::upper_bound(r1.begin(), r1.end(), hi / r0[i]) - r1.begin());
+  }
+  return {j0, std::max(j0, j1)};
+}
+
+bool HalfList::pairCanonical(const std::vector<std::pair<int, int>>& ordered) const {
+  return std::find(ordered.begin(), ordered.end(), std::make_pair(from_, from_ + 1)) != ordered.end();
+}
+
 template <class F> void HalfList::forEach(const std::vector<std::pair<int, int>>& ordered, F&& f) const {
   const auto& R = *ratios_;
   const int from = from_, to = from_ + width_;
   if (width_ == 2) {
     const auto &r0 = R[static_cast<size_t>(from)], &r1 = R[static_cast<size_t>(from + 1)];
-    bool canon = std::find(ordered.begin(), ordered.end(), std::make_pair(from, from + 1)) != ordered.end();
+    const bool canon = pairCanonical(ordered);
     const int s1 = shift_[1];
     for (std::uint64_t i = 0; i < r0.size(); ++i) {
-      std::uint64_t j0 = canon ? i : 0, j1 = r1.size();
-      if (reach_ && i < reach_->size()) {
-        // The second stage's ratios ascend: the reachable ones are one run of them.
-        auto [lo, hi] = (*reach_)[i];
-        j0 = std::max<std::uint64_t>(j0, static_cast<std::uint64_t>(std::lower_bound(r1.begin(), r1.end(), lo / r0[i]) - r1.begin()));
-        j1 = static_cast<std::uint64_t>(std::upper_bound(r1.begin(), r1.end(), hi / r0[i]) - r1.begin());
-      }
+      auto [j0, j1] = pairRun(i, canon);
       for (std::uint64_t j = j0; j < j1; ++j)
         f(i | (j << s1), r0[i] * r1[j]);
     }
@@ -165,7 +178,16 @@ template <class Code> void HalfList::fill(const std::vector<std::pair<int, int>>
     }
     lo = std::max(lo, least);
     hi = std::max(lo, std::min(hi, most));
-    forEach(ordered, [&](std::uint64_t, double) { kept += 1; });
+    if (width_ == 2) {
+      // Counted by runs of the second stage, without visiting each entry.
+      const bool canon = pairCanonical(ordered);
+      for (std::uint64_t i = 0; i < R[static_cast<size_t>(from_)].size(); ++i) {
+        auto [j0, j1] = pairRun(i, canon);
+        kept += static_cast<double>(j1 - j0);
+      }
+    } else {
+      forEach(ordered, [&](std::uint64_t, double) { kept += 1; });
+    }
     upper = std::max(1.0, kept);
   }
   const std::uint64_t k0 = orderKey(lo), span = positive ? orderKey(hi) - k0 : 0;

@@ -86,6 +86,8 @@ private:
   size_t bucketOf(double r) const;
   template <class Code> void fill(const std::vector<std::pair<int, int>>& ordered, LargeVector<Code>& out);
   template <class F> void forEach(const std::vector<std::pair<int, int>>& ordered, F&& f) const;
+  std::pair<std::uint64_t, std::uint64_t> pairRun(std::uint64_t i, bool canon) const;
+  bool pairCanonical(const std::vector<std::pair<int, int>>& ordered) const;
 
   const std::vector<std::vector<double>>* ratios_ = nullptr;
   const double *pair0_ = nullptr, *pair1_ = nullptr;               // a two-stage half's ratio tables

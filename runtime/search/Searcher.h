@@ -348,7 +348,7 @@ private:
   // windows are found together: each window's binary search is a chain of dependent loads,
   // and several chains at once keep the core busy where one leaves it waiting.
   struct WindowBatch {
-    static constexpr size_t kSize = 16;
+    static constexpr size_t kSize = 64;
     size_t n = 0;
     std::uint32_t j[kSize];
     double wl[kSize], wh[kSize];
