@@ -278,15 +278,7 @@ void Searcher::locateWindows(WindowBatch& b) const {
         ++b.to[r];
     }
   };
-  if (right->hasPairView()) {
-    const HalfList::PairView v = right->pairView();
-    locate([&](size_t e) {
-      const std::uint32_t c = v.codes[e];
-      return v.r0[c & v.mask0] * v.r1[(c >> v.shift1) & v.mask1];
-    });
-  } else {
-    locate([&](size_t e) { return right->ratio(e); });
-  }
+  withRightRatio(locate);
 }
 
 void Searcher::joinBatch(Walk& w, WindowBatch& b, size_t i, const double* r0, const double* r1, double rowPart,
@@ -326,12 +318,15 @@ void Searcher::buildOccupancy() {
   occupancy.buckets = static_cast<size_t>(span >> shift) + 1;
   occupancy.bits.assign((occupancy.buckets + 63) / 64 + 1, 0); // a spare word: any() reads two
   if (!shortList) occupancy.first.assign(occupancy.bits.size(), static_cast<std::uint32_t>(rn));
-  for (size_t e = 0, w = 0; e < rn; ++e) {
-    size_t kb = occupancy.bucket(right->ratio(e));
-    occupancy.bits[kb >> 6] |= std::uint64_t{1} << (kb & 63);
-    for (; !shortList && w <= (kb >> 6); ++w)
-      occupancy.first[w] = static_cast<std::uint32_t>(e);
-  }
+  auto mark = [&](auto&& ratio) {
+    for (size_t e = 0, w = 0; e < rn; ++e) {
+      size_t kb = occupancy.bucket(ratio(e));
+      occupancy.bits[kb >> 6] |= std::uint64_t{1} << (kb & 63);
+      for (; !shortList && w <= (kb >> 6); ++w)
+        occupancy.first[w] = static_cast<std::uint32_t>(e);
+    }
+  };
+  withRightRatio(mark);
   // A window's most order keys: its relative width times 2^52 (the key is a double's bits;
   // 2^53 for margin), and two for rounding. It reaches at most ceil(keys / bucket) buckets
   // past its first; a short list's rows read that reach as one bit (a few buckets at most).

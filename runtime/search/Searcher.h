@@ -354,6 +354,19 @@ private:
     double wl[kSize], wh[kSize];
     size_t from[kSize], to[kSize];
   };
+  // Calls f with the right list's ratio of an entry as a function: a two-stage half's from
+  // its code and two tables, inline; any other list's through it.
+  template <class F> void withRightRatio(F&& f) const {
+    if (right->hasPairView()) {
+      const HalfList::PairView v = right->pairView();
+      f([v](size_t e) {
+        const std::uint32_t c = v.codes[e];
+        return v.r0[c & v.mask0] * v.r1[(c >> v.shift1) & v.mask1];
+      });
+    } else {
+      f([this](size_t e) { return right->ratio(e); });
+    }
+  }
   // Each row's window [wl, wh] as right entries [from, to), for a built occupancy table.
   void locateWindows(WindowBatch& b) const;
   // The batch's rows of left index i joined in order, then emptied.
