@@ -242,18 +242,53 @@ size_t Searcher::shortRowEnd(size_t j, size_t m1, double invI, const double* inv
   return j;
 }
 
-size_t Searcher::nextShortRow(size_t j, size_t end, size_t m1, double invI, const double* inv1) const {
-  const std::int64_t base = occupancy.base(), top = static_cast<std::int64_t>(occupancy.buckets - 1);
+std::int64_t Searcher::nearBucket(double invI, double lo1) const {
+  const double wl = lo1 * invI;
+  std::int64_t a;
+  std::memcpy(&a, &wl, sizeof a);
+  return (a - occupancy.base()) >> occupancy.shift;
+}
+
+Searcher::ShortScan Searcher::shortScan(size_t j0, size_t end, double invI, const double* lo1) const {
+  // The buckets fall along the row: binary searches for where they come within the table
+  // and where they pass below it.
+  auto first = [&](auto&& holds) {
+    size_t j = j0;
+    for (size_t len = end - std::min(j0, end); len > 0;) {
+      const size_t half = len / 2;
+      if (holds(j + half)) {
+        len = half;
+      } else {
+        j += half + 1;
+        len -= half + 1;
+      }
+    }
+    return j;
+  };
+  const auto top = static_cast<std::int64_t>(occupancy.buckets - 1);
+  ShortScan sc;
+  sc.end = end;
+  sc.from = first([&](size_t j) { return nearBucket(invI, lo1[j]) <= top; });
+  sc.below = first([&](size_t j) { return nearBucket(invI, lo1[j]) < 0; });
+  return sc;
+}
+
+size_t Searcher::nextShortRow(size_t j, const ShortScan& sc, size_t m1, double invI, const double* lo1) const {
   const std::uint64_t* near = occupancy.near.data();
-  const int shift = occupancy.shift;
-  for (; j < end; ++j) {
-    const double wl = wantLoC * (invI * inv1[j]);
-    std::int64_t a;
-    std::memcpy(&a, &wl, sizeof a);
-    const std::int64_t q = std::max<std::int64_t>((a - base) >> shift, 0);
-    if (q <= top && (near[static_cast<size_t>(q) >> 6] >> (q & 63) & 1)) return j;
-  }
-  return m1;
+  auto bit = [&](size_t r) {
+    const auto q = static_cast<size_t>(nearBucket(invI, lo1[r]));
+    return near[q >> 6] >> (q & 63) & 1;
+  };
+  j = std::max(j, sc.from);
+  const size_t stop = std::min(sc.below, sc.end);
+  // Four rows a test: their bits are independent, and one branch serves them.
+  for (; j + 4 <= stop; j += 4)
+    if (const std::uint64_t b0 = bit(j), b1 = bit(j + 1), b2 = bit(j + 2), b3 = bit(j + 3); b0 | b1 | b2 | b3)
+      return j + (b0 ? 0 : b1 ? 1 : b2 ? 2 : 3);
+  for (; j < stop; ++j)
+    if (bit(j)) return j;
+  // Windows that start below the list all read its first bucket.
+  return j < sc.end && (near[0] & 1) ? j : m1;
 }
 
 void Searcher::locateWindows(WindowBatch& b) const {
@@ -416,6 +451,10 @@ bool Searcher::sweepRows(Walk& w) {
   // table directly: positive windows only.
   const bool tight = r2 && !occupancy.near.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
                      wantLoC > 0 && wantLoC <= wantHiC;
+  // The rows' lowest window bounds but for the left index's factor.
+  std::vector<double> lo1(tight ? m1 : 0);
+  for (size_t j = 0; j < lo1.size(); ++j)
+    lo1[j] = wantLoC * inv1[j];
   // A long right list's windows are found in batches: positive windows of a built table.
   const bool batched = !r2 && !occupancy.first.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
                        wantLoC > 0 && wantLoC <= wantHiC;
@@ -431,12 +470,14 @@ bool Searcher::sweepRows(Walk& w) {
     double x0 = r0[i] * r1[j0];
     size_t loP = right->lowerBound(wantLoC / x0), hiP = right->upperBound(wantHiC / x0);
     double rowPart = fastKey ? base + fastKey->entry(0, cand[0]) : 0;
-    const size_t rowEnd = tight ? shortRowEnd(j0, m1, inv0[i], inv1.data(), r2, floorI ? i : 0, floorJ) : m1;
+    const ShortScan scan = tight ? shortScan(j0, shortRowEnd(j0, m1, inv0[i], inv1.data(), r2, floorI ? i : 0, floorJ),
+                                             inv0[i], lo1.data())
+                                 : ShortScan{};
     for (size_t j = j0; j < m1; ++j) {
       if (tight) {
         const size_t start = j;
-        j = nextShortRow(j, rowEnd, m1, inv0[i], inv1.data());
-        w.sinceCheck += std::min(j, rowEnd) - start;
+        j = nextShortRow(j, scan, m1, inv0[i], lo1.data());
+        w.sinceCheck += std::min(j, scan.end) - start;
         if (j >= m1) break;
       }
       if (due(w, false) && stopHere(w.t, i, w.begin, w.end)) return false;

@@ -378,10 +378,17 @@ private:
   // found by a binary search over [j, m1) with the scan's own products.
   size_t shortRowEnd(size_t j, size_t m1, double invI, const double* inv1, const double* r2, size_t fi,
                      bool floorJ) const;
-  // The first row in [j, end) whose window's lowest bucket is `near` an occupied one, or m1:
-  // a product, a subtraction, a shift and one bit per row. The caller tests the window
-  // exactly.
-  size_t nextShortRow(size_t j, size_t end, size_t m1, double invI, const double* inv1) const;
+  // A short list's row scan of one left index: rows [from, below) have their windows' lowest
+  // buckets in the table, rows from `below` on start below it, and the row ends at `end`.
+  struct ShortScan {
+    size_t from = 0, below = 0, end = 0;
+  };
+  // The bucket of a row's lowest window bound lo1 * invI, unclamped (the scan's one product).
+  std::int64_t nearBucket(double invI, double lo1) const;
+  ShortScan shortScan(size_t j0, size_t end, double invI, const double* lo1) const;
+  // The first row from j whose window's lowest bucket is `near` an occupied one, or m1: a
+  // product, a subtraction, a shift and one bit per row. The caller tests the window exactly.
+  size_t nextShortRow(size_t j, const ShortScan& sc, size_t m1, double invI, const double* lo1) const;
 
   void buildOccupancy();
 
