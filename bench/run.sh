@@ -153,7 +153,7 @@ lines += ["", "The front end: `gbxc check specs/thruster_two_stage.gbx` as a who
           "Targets: in-process within 2x of the reference on the 3- and 4-stage cases with at most 2x",
           "its memory; every design listed within 3x of the output bound; the helical top 10 under",
           "5 s and the same as the exhaustive ranking; `check` of a small spec under 5 ms.", ""]
-# ---- whole processes: gbxc against the faster meet-in-the-middle program ------------
+# ---- whole processes: written by bench/processes.sh (called below) -----------------
 import os, tempfile
 def run_rusage(cmd):
     """CPU seconds (user + system, the process and the children it waited for), peak RSS
@@ -165,75 +165,8 @@ def run_rusage(cmd):
     if status != 0:
         raise SystemExit(f"{cmd}: exit status {status}")
     return ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024, wall
-def spur_spec(stages, top=100):
-    s = "gearbox Bench {\n  stage s0: spur { pinion.z in 12..100; wheel.z in 12..100; require coprime(pinion.z, wheel.z); }\n"
-    for i in range(1, stages):
-        s += f"  stage s{i} like s0;\n"
-    s += "  interchangeable " + ", ".join(f"s{i}" for i in range(stages)) + ";\n"
-    s += f"  require ratio == 13.36838 +- 0.0001%;\n  minimize abs(ratio - 13.36838);\n  report {{ top {top}; }}\n}}\n"
-    f = tempfile.NamedTemporaryFile("w", suffix=".gbx", delete=False)
-    f.write(s)
-    f.close()
-    return f.name
 def median(v): return sorted(v)[len(v) // 2]
-lines += ["## Against a faster meet-in-the-middle program, whole processes", "",
-          "`bench/mitm_program.cpp` (`bench/mitm_fast.h`), written for these cases alone the way the",
-          "search issue describes its program: the upper half (one pair, or a non-decreasing pair of",
-          "pairs) counting-sorted into log-ratio buckets exactly one window wide, so each lower half",
-          "looks up one or two buckets and no data-dependent loop runs per row beyond them; a double",
-          "check against the window, 128-bit integers only inside it; the best 100 in a heap. It prints",
-          "the count and the best 100 (teeth and ratio). Against it, `gbxc solve SPEC --format csv`",
-          "(start, parse, check, search, ranking, report), the two alternating, nine pairs; CPU is",
-          "user + system time of each process, memory its peak RSS; medians:", "",
-          "| case | designs | gbxc CPU | program CPU | CPU ratio | gbxc peak | program peak |",
-          "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
-for k in (3, 4):
-    spec = spur_spec(k)
-    g, r = [], []
-    for _ in range(9):
-        g.append(run_rusage(["build/gbxc", "solve", spec, "--format", "csv"]))
-        r.append(run_rusage(["build/bench/mitm_program", str(k)]))
-    ratio = median([a[0] / b[0] for a, b in zip(g, r)])
-    cnt = subprocess.run(["build/bench/mitm_program", str(k)], capture_output=True, text=True).stdout.split("\n")[0].split(",")[1]
-    lines.append(f"| {k} spur stages, teeth 12..100, top 100 | {cnt} | {median([x[0] for x in g])*1000:.1f} ms | "
-                 f"{median([x[0] for x in r])*1000:.1f} ms | {ratio:.2f}x | {median([x[1] for x in g]):.1f} MiB | "
-                 f"{median([x[1] for x in r]):.1f} MiB |")
-    os.unlink(spec)
-lines += ["", "Target: each case within 1.2x of the CPU of the independent program the search issue measured",
-          "(80 ms and 9.5 MiB for 4 stages, 12-15 ms for 3, when gbxc took 148-166 ms and 25-29 ms);",
-          "that program is faster than bench/mitm_program, so the ratio here is not the target's.", "",
-          "Every design of the 4-stage case as CSV (`report { top 1000000; }`, 974 193 rows, 90 MB)",
-          "against `bench/listing_program.cpp`, written for that listing alone: the enumeration of",
-          "mitm_fast.h, the designs sorted by their 12-digit key and stage ratios, the rows written",
-          "with std::to_chars a megabyte at a time. Its output is byte for byte gbxc's (a test,",
-          "Listing.SameBytesAsAnIndependentProgram, compares them on smaller cases). Nine pairs, medians:", "",
-          "| case | gbxc CPU | program CPU | CPU ratio | gbxc peak | program peak |",
-          "| --- | ---: | ---: | ---: | ---: | ---: |"]
-spec = spur_spec(4, 1000000)
-g, r = [], []
-for _ in range(9):
-    g.append(run_rusage(["build/gbxc", "solve", spec, "--format", "csv"]))
-    r.append(run_rusage(["build/bench/listing_program", "4"]))
-ratio = median([a[0] / b[0] for a, b in zip(g, r)])
-lines.append(f"| 4 spur stages, every design | {median([x[0] for x in g]):.2f} s | {median([x[0] for x in r]):.2f} s | "
-             f"{ratio:.2f}x | {median([x[1] for x in g]):.1f} MiB | {median([x[1] for x in r]):.1f} MiB |")
-os.unlink(spec)
-lines += ["", "Target: within 2x of the CPU and the memory of the listing program the issue measured",
-          "(0.63-0.71 s and 77 MiB, when gbxc took 2.8-3.3 s and 314 MiB).", "",
-          "### Where a whole process's time goes on this machine", "",
-          "A page of memory touched for the first time costs about 12 us here (a program that touches",
-          "10 MB of fresh memory takes 33 ms), so memory is time: gbxc's start alone (the catalogue,",
-          "the grammar, the binary's relocations) touches some 430 pages, about 5 ms. What the search",
-          "and the listing keep is sized for it:", "",
-          "- The join's half list holds its entries' codes alone (4 bytes each); a ratio is recomputed",
-          "  from two small tables when read. Holding ratios beside the codes tripled the list.",
-          "- It is put in order a run of about 2 048 entries at a time, each run in the caches: a",
-          "  counting pass by finer buckets, then one insertion pass.",
-          "- Stages equal in every attribute and rule share one candidate list.",
-          "- A listing keeps each design as a candidate index per stage and its keys (24 bytes for",
-          "  four stages), making its row only as it is written, with a column's value in 9 bytes.",
-          "- gbxc keeps large freed buffers on its heap (glibc's mmap threshold at 32 MB), so a later",
-          "  buffer reuses pages an earlier one touched.", ""]
+lines += ["## Against a faster meet-in-the-middle program, whole processes", "", "(bench/processes.sh)", ""]
 # ---- Monte Carlo and the optimiser over MPI ranks -----------------------------------
 if os.path.exists("build/gbxc-mpi") and subprocess.run(["sh", "-c", "command -v mpirun"], capture_output=True).returncode == 0:
     mpirun = ["mpirun", "--oversubscribe", "--allow-run-as-root", "-n"]
@@ -426,6 +359,7 @@ PY
 rm -f "$mitm" "$out" "$dyn" "$dyn.rhs" "$dyn.rating" "$dyn.steady" "$dyn.opt.settle" "$dyn.opt.periodic" "$settle_spec" "$periodic_spec" "$params" \
   "$dyn.robust" "$dyn.robust.out" "$dyn.ec.gbx" "$dyn.ec.msbdf" "$dyn.ec.rk8pd"
 # The sizing and shaft sections, appended to the file just written.
+bench/processes.sh >/dev/null
 bench/sizing.sh >/dev/null
 bench/shaft.sh >/dev/null
 bench/python.sh >/dev/null
