@@ -44,6 +44,22 @@ base = os.environ.get("GBX_BASELINE")
 base_name = os.environ.get("GBX_BASELINE_NAME", base)
 runs = 15
 
+def table(columns, baseline_columns):
+    """A table's heading and rule; the baseline's columns where one is timed."""
+    columns = columns + (baseline_columns if base else [])
+    return ["| " + " | ".join(columns) + " |", "| --- |" + " ---: |" * (len(columns) - 1)]
+
+def row(first, g, r, b, scale, unit, extra):
+    """A table row: gbxc's and the program's CPU (medians, in unit = seconds * scale), the
+    median of their ratios, their peaks; the baseline's CPU and `extra` where one is timed."""
+    digits = 1 if scale > 1 else 2
+    cpu = lambda runs: f"{median([x[0] for x in runs]) * scale:.{digits}f} {unit}"
+    cells = first + [cpu(g), cpu(r), f"{median([x[0] / y[0] for x, y in zip(g, r)]):.2f}x",
+                     f"{median([x[1] for x in g]):.1f} MiB", f"{median([x[1] for x in r]):.1f} MiB"]
+    if base:
+        cells += [cpu(b)] + extra
+    return "| " + " | ".join(cells) + " |"
+
 def compare(spec, program):
     """gbxc, the program and (where given) the baseline build, alternating; per-run ratios."""
     g, r, b = [], [], []
@@ -63,23 +79,14 @@ lines = ["## Against a faster meet-in-the-middle program, whole processes", "",
          "100 in a heap. It prints the count and the best 100 (teeth and ratio). Against it,",
          "`gbxc solve SPEC --format csv` (start, parse, check, search, ranking, report), alternating,",
          f"{runs} rounds; CPU is user + system time of each process, memory its peak RSS; medians:", ""]
-head = "| case | designs | gbxc CPU | program CPU | CPU ratio | gbxc peak | program peak |"
-rule = "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"
-if base:
-    head += f" {base_name} CPU | gbxc / {base_name} |"
-    rule += " ---: | ---: |"
-lines += [head, rule]
+lines += table(["case", "designs", "gbxc CPU", "program CPU", "CPU ratio", "gbxc peak", "program peak"],
+               [f"{base_name} CPU", f"gbxc / {base_name}"])
 for k in (3, 4):
     spec = spur_spec(k)
     g, r, b = compare(spec, ["build/bench/mitm_program", str(k)])
-    ratio = median([x[0] / y[0] for x, y in zip(g, r)])
     cnt = subprocess.run(["build/bench/mitm_program", str(k)], capture_output=True, text=True).stdout.split("\n")[0].split(",")[1]
-    row = (f"| {k} spur stages, teeth 12..100, top 100 | {cnt} | {median([x[0] for x in g])*1000:.1f} ms | "
-           f"{median([x[0] for x in r])*1000:.1f} ms | {ratio:.2f}x | {median([x[1] for x in g]):.1f} MiB | "
-           f"{median([x[1] for x in r]):.1f} MiB |")
-    if base:
-        row += f" {median([x[0] for x in b])*1000:.1f} ms | {median([x[0] / y[0] for x, y in zip(g, b)]):.2f}x |"
-    lines.append(row)
+    extra = [f"{median([x[0] / y[0] for x, y in zip(g, b)]):.2f}x"] if base else []
+    lines.append(row([f"{k} spur stages, teeth 12..100, top 100", cnt], g, r, b, 1000, "ms", extra))
     os.unlink(spec)
 lines += ["", "Target: each case within 1.2x of the CPU of the independent program the search issue measured",
           "(80 ms for 4 stages, 12-15 ms for 3, when gbxc took 148-166 ms and 25-29 ms): 96 ms and",
@@ -91,20 +98,12 @@ lines += ["", "Target: each case within 1.2x of the CPU of the independent progr
           "mitm_fast.h, the designs sorted by their 12-digit key and stage ratios, the rows written",
           "with std::to_chars a megabyte at a time. Its output is byte for byte gbxc's (a test,",
           f"Listing.SameBytesAsAnIndependentProgram, compares them on smaller cases). {runs} rounds, medians:", ""]
-head = "| case | gbxc CPU | program CPU | CPU ratio | gbxc peak | program peak |"
-rule = "| --- | ---: | ---: | ---: | ---: | ---: |"
-if base:
-    head += f" {base_name} CPU | {base_name} peak |"
-    rule += " ---: | ---: |"
-lines += [head, rule]
+lines += table(["case", "gbxc CPU", "program CPU", "CPU ratio", "gbxc peak", "program peak"],
+               [f"{base_name} CPU", f"{base_name} peak"])
 spec = spur_spec(4, 1000000)
 g, r, b = compare(spec, ["build/bench/listing_program", "4"])
-ratio = median([x[0] / y[0] for x, y in zip(g, r)])
-row = (f"| 4 spur stages, every design | {median([x[0] for x in g]):.2f} s | {median([x[0] for x in r]):.2f} s | "
-       f"{ratio:.2f}x | {median([x[1] for x in g]):.1f} MiB | {median([x[1] for x in r]):.1f} MiB |")
-if base:
-    row += f" {median([x[0] for x in b]):.2f} s | {median([x[1] for x in b]):.1f} MiB |"
-lines.append(row)
+extra = [f"{median([x[1] for x in b]):.1f} MiB"] if base else []
+lines.append(row(["4 spur stages, every design"], g, r, b, 1, "s", extra))
 os.unlink(spec)
 lines += ["", "Target: within 2x of the CPU and the memory of the listing program the issue measured",
           "(0.63-0.71 s and 77 MiB, when gbxc took 2.8-3.3 s and 314 MiB).", ""]

@@ -17,6 +17,12 @@ using units::Number;
 
 namespace {
 
+// Rows appended to a table, moved.
+void append(std::vector<AttrSpec>& to, std::vector<AttrSpec> rows) {
+  for (auto& r : rows)
+    to.push_back(std::move(r));
+}
+
 AttrSpec material() {
   auto a = in("material", none, "gear material (a `material` declaration)");
   a.value = ValueKind::Material;
@@ -457,8 +463,7 @@ std::vector<AttrSpec> cylindricalStage(bool helical) {
   if (helical)
     a.insert(a.begin() + 1,
              required(bounded(in("helix_angle", angle, "helix angle at the reference circle"), deg(0), deg(45))));
-  for (auto& d : commonDerived())
-    a.push_back(std::move(d));
+  append(a, commonDerived());
   // The sense of the pinion's wind-up and bending mismatch across the face (docs/rating.md).
   if (helical)
     a.push_back(symbol(
@@ -466,19 +471,15 @@ std::vector<AttrSpec> cylindricalStage(bool helical) {
         "the pinion's helix hand: the sense of its bending mismatch across the face and of its thrust on a shaft"));
   a.push_back(symbol("torque_side", {"coupling", "free"},
                      "the end of the pinion's face where the torque enters: the sense of its wind-up"));
-  for (auto& r : ratingInputs())
-    a.push_back(std::move(r));
-  for (auto& r : ratingStageQuantities())
-    a.push_back(std::move(r));
+  append(a, ratingInputs());
+  append(a, ratingStageQuantities());
   return a;
 }
 
 std::vector<AttrSpec> cylindricalGear() {
   auto g = cylindricalGearAttrs();
-  for (auto& r : ratingGearExtras())
-    g.push_back(std::move(r));
-  for (auto& r : ratingGearQuantities())
-    g.push_back(std::move(r));
+  append(g, ratingGearExtras());
+  append(g, ratingGearQuantities());
   return g;
 }
 
@@ -496,16 +497,13 @@ KindSpec bevelKind() {
   a[1].role = a[4].role = a[5].role = AttrRole::Either;
   a.insert(a.begin() + 1, symbol("spiral_hand", {"right", "left"},
                                  "the pinion's spiral hand: the sense of the spiral's thrust on a shaft"));
-  for (auto& d : commonDerived())
-    a.push_back(std::move(d));
-  for (auto& r : bevelStageAttrs())
-    a.push_back(std::move(r));
+  append(a, commonDerived());
+  append(a, bevelStageAttrs());
   std::vector<AttrSpec> g =
       attrs(required(count("z", "tooth count")), derived("cone_angle", angle, "pitch cone angle"),
             derived("speed", angularSpeed, "rotational speed"), derived("torque", torque, "transmitted torque"),
             pos("inertia", inertia, "mass moment of inertia about the gear axis"));
-  for (auto& r : bevelGearAttrs())
-    g.push_back(std::move(r));
+  append(g, bevelGearAttrs());
   return {ir::StageKind::Bevel, "bevel", {"pinion", "wheel"}, std::move(a), std::move(g)};
 }
 
@@ -518,26 +516,20 @@ KindSpec planetaryKind() {
             pos("carrier_inertia", inertia, "carrier moment of inertia"),
             derived("center_distance", length, "sun-planet centre distance"),
             derived("carrier_speed", angularSpeed, "carrier speed"));
-  for (auto& d : commonDerived())
-    a.push_back(std::move(d));
+  append(a, commonDerived());
   // Rated as its sun-planet and planet-ring meshes (K_gamma: `rating.mesh_load_factor`).
-  for (auto& r : planetaryRatingInputs())
-    a.push_back(std::move(r));
-  for (auto& r : ratingStageQuantities())
-    a.push_back(std::move(r));
+  append(a, planetaryRatingInputs());
+  append(a, ratingStageQuantities());
   auto g = plainGearAttrs();
-  for (auto& r : planetaryGearAttrs())
-    g.push_back(std::move(r));
+  append(g, planetaryGearAttrs());
   // Given, or from the geometry and the material's density.
   g.push_back(
       pos("mass", mass,
           "gear mass (planets: each); else the sun and a planet solid discs at the reference diameter across the face "
           "width, the ring an annulus from its reference circle to `rim_thickness` below its root (1.25 m)"));
   g.back().role = AttrRole::Either;
-  for (auto& r : ratingGearExtras())
-    g.push_back(std::move(r));
-  for (auto& r : ratingGearQuantities())
-    g.push_back(std::move(r));
+  append(g, ratingGearExtras());
+  append(g, ratingGearQuantities());
   return {ir::StageKind::Planetary, "planetary", {"sun", "planet", "ring"}, std::move(a), std::move(g)};
 }
 
@@ -548,18 +540,13 @@ KindSpec idlerKind() {
             derived("center_distance", length,
                     "driver-to-driven distance: the sum of both meshes' working centre distances (with shifts; (z1/2 "
                     "+ z2 + z3/2) m without)"));
-  for (auto& d : commonDerived())
-    a.push_back(std::move(d));
+  append(a, commonDerived());
   // Rated as two spur meshes; a stage factor is that of the governing mesh.
-  for (auto& r : ratingInputs())
-    a.push_back(std::move(r));
-  for (auto& r : ratingStageQuantities())
-    a.push_back(std::move(r));
+  append(a, ratingInputs());
+  append(a, ratingStageQuantities());
   auto g = plainGearAttrs();
-  for (auto& r : ratingGearExtras())
-    g.push_back(std::move(r));
-  for (auto& r : ratingGearQuantities())
-    g.push_back(std::move(r));
+  append(g, ratingGearExtras());
+  append(g, ratingGearQuantities());
   return {ir::StageKind::Idler, "idler", {"driver", "idler", "driven"}, std::move(a), std::move(g)};
 }
 

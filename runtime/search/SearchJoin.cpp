@@ -224,15 +224,14 @@ void Searcher::joinEntry(Walk& w, size_t le, double x, size_t from, size_t to, d
   visit(lo, w.a, w.cand.data(), w.scratch.data(), le, x, from, to, true);
 }
 
-size_t Searcher::shortRowEnd(size_t j, size_t m1, double invI, const double* inv1, const double* r2, size_t fi,
-                             bool floorJ) const {
-  auto ends = [&](size_t r) {
-    size_t floor = std::max(fi, floorJ ? r : 0);
-    return floor >= rn || r2[floor] > wantHiC * (invI * inv1[r]);
-  };
-  for (size_t len = m1 - std::min(j, m1); len > 0;) {
+namespace {
+
+// The first index in [j, end) where a predicate holds that, once it holds, holds on (end
+// where it never does).
+template <class P> size_t firstHolding(size_t j, size_t end, P&& holds) {
+  for (size_t len = end - std::min(j, end); len > 0;) {
     const size_t half = len / 2;
-    if (ends(j + half)) {
+    if (holds(j + half)) {
       len = half;
     } else {
       j += half + 1;
@@ -240,6 +239,16 @@ size_t Searcher::shortRowEnd(size_t j, size_t m1, double invI, const double* inv
     }
   }
   return j;
+}
+
+} // namespace
+
+size_t Searcher::shortRowEnd(size_t j, size_t m1, double invI, const double* inv1, const double* r2, size_t fi,
+                             bool floorJ) const {
+  return firstHolding(j, m1, [&](size_t r) {
+    size_t floor = std::max(fi, floorJ ? r : 0);
+    return floor >= rn || r2[floor] > wantHiC * (invI * inv1[r]);
+  });
 }
 
 std::int64_t Searcher::nearBucket(double invI, double lo1) const {
@@ -252,24 +261,11 @@ std::int64_t Searcher::nearBucket(double invI, double lo1) const {
 Searcher::ShortScan Searcher::shortScan(size_t j0, size_t end, double invI, const double* lo1) const {
   // The buckets fall along the row: binary searches for where they come within the table
   // and where they pass below it.
-  auto first = [&](auto&& holds) {
-    size_t j = j0;
-    for (size_t len = end - std::min(j0, end); len > 0;) {
-      const size_t half = len / 2;
-      if (holds(j + half)) {
-        len = half;
-      } else {
-        j += half + 1;
-        len -= half + 1;
-      }
-    }
-    return j;
-  };
   const auto top = static_cast<std::int64_t>(occupancy.buckets - 1);
   ShortScan sc;
   sc.end = end;
-  sc.from = first([&](size_t j) { return nearBucket(invI, lo1[j]) <= top; });
-  sc.below = first([&](size_t j) { return nearBucket(invI, lo1[j]) < 0; });
+  sc.from = firstHolding(j0, end, [&](size_t j) { return nearBucket(invI, lo1[j]) <= top; });
+  sc.below = firstHolding(j0, end, [&](size_t j) { return nearBucket(invI, lo1[j]) < 0; });
   return sc;
 }
 
