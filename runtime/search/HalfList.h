@@ -53,6 +53,10 @@ public:
     std::uint32_t mask0, mask1;
     int shift1;
     const double *r0, *r1;
+    double ratio(size_t e) const {
+      const std::uint32_t c = codes[e];
+      return r0[c & mask0] * r1[(c >> shift1) & mask1];
+    }
   };
   bool hasPairView() const { return pair0_ && wide_.empty() && !identity_; }
   PairView pairView() const {

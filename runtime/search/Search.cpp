@@ -444,6 +444,7 @@ bool Searcher::layout() {
     if (!H->error().empty()) res.errors.push_back(H->error());
   if (!res.errors.empty()) return false;
   right = same ? &leftList : &rightList;
+  if (right->hasPairView()) pairView = right->pairView();
   // Rows: left entries are (i, j) packed as i * n1 + j.
   n1 = rows ? candidatesOf(1).size() : 0;
   // Links of the canonical order from a left stage to a right one: a floor on a one-stage

@@ -76,23 +76,22 @@ bool Searcher::counts(Local& lo, Assignment& a, const std::uint32_t* cand) const
 unsigned long long Searcher::countWindow(Local& lo, std::uint32_t* cand, size_t le, double x, size_t from,
                                          size_t to) const {
   const bool checkCanon = !floorOnly && !crossing.empty();
-  auto& leftAt = lo.leftAt;
-  leftAt.resize(crossing.size());
-  for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
-    leftAt[c] = leftIndex(le, crossing[c].first);
   unsigned long long count = 0;
   to = std::min(to, rn);
-  // A two-stage right half: each entry's indices against their floors, read from its code.
   auto confirm = [&](size_t re) {
     for (int s = h; s < k; ++s)
       cand[s] = rightIndex(re, s);
     return window.contains(exactRatio(cand));
   };
-  if (right->hasPairView() && k - h == 2) {
-    const HalfList::PairView v = right->pairView();
-    std::uint32_t need0 = 0, need1 = 0;
-    for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
-      (crossing[c].second == h ? need0 : need1) = std::max(crossing[c].second == h ? need0 : need1, leftAt[c]);
+  if (pairView && k - h == 2) {
+    // A two-stage right half: each entry's indices against their floors, read from its code.
+    const HalfList::PairView& v = *pairView;
+    std::uint32_t need[2] = {0, 0};
+    for (size_t c = 0; checkCanon && c < crossing.size(); ++c) {
+      auto& n = need[crossing[c].second == h ? 0 : 1];
+      n = std::max(n, leftIndex(le, crossing[c].first));
+    }
+    const std::uint32_t need0 = need[0], need1 = need[1];
     for (size_t re = from; re < to; ++re) {
       const std::uint32_t code = v.codes[re], a = code & v.mask0, b = (code >> v.shift1) & v.mask1;
       if (a < need0 || b < need1) continue;
@@ -101,6 +100,10 @@ unsigned long long Searcher::countWindow(Local& lo, std::uint32_t* cand, size_t 
     }
     return count;
   }
+  auto& leftAt = lo.leftAt;
+  leftAt.resize(crossing.size());
+  for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
+    leftAt[c] = leftIndex(le, crossing[c].first);
   for (size_t re = from; re < to; ++re) {
     bool canonical = true;
     for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
@@ -202,7 +205,7 @@ void Searcher::joinEntry(Walk& w, size_t le, double x, size_t from, size_t to, d
     // the evaluator some fifty times as much as counting it.
     if ((lo.asked > walkBudget || lo.walked > walkBudget * 50) && !opt.exhaustive) overWalked = true;
     // Counted one by one; keyed only where the window's bound lets a design in.
-    bool keyed = keep > 0 && !bounded(lo, partial, x * right->ratio(from), x * right->ratio(to - 1));
+    bool keyed = keep > 0 && !bounded(lo, partial, x * rightRatio(from), x * rightRatio(to - 1));
     if (!keyed && plainCount) {
       unsigned long long c = countWindow(lo, w.cand.data(), le, x, from, to);
       lo.count += c;

@@ -118,6 +118,8 @@ private:
   // Every design the window and the canonical order admit counts, one by one: no rule
   // across stages, no orbit test, no undecided freedom (not for the exhaustive reference).
   bool plainCount = false;
+  // The right list's codes and tables where it is a two-stage half held in 4 bytes an entry.
+  std::optional<HalfList::PairView> pairView;
   std::vector<Local> locals;
   // Set when the time limit stops the join, with each thread's share of its range done
   // (a thread that finished first keeps 1).
@@ -357,16 +359,14 @@ private:
   // Calls f with the right list's ratio of an entry as a function: a two-stage half's from
   // its code and two tables, inline; any other list's through it.
   template <class F> void withRightRatio(F&& f) const {
-    if (right->hasPairView()) {
-      const HalfList::PairView v = right->pairView();
-      f([v](size_t e) {
-        const std::uint32_t c = v.codes[e];
-        return v.r0[c & v.mask0] * v.r1[(c >> v.shift1) & v.mask1];
-      });
+    if (pairView) {
+      const HalfList::PairView v = *pairView;
+      f([v](size_t e) { return v.ratio(e); });
     } else {
       f([this](size_t e) { return right->ratio(e); });
     }
   }
+  double rightRatio(size_t e) const { return pairView ? pairView->ratio(e) : right->ratio(e); }
   // Each row's window [wl, wh] as right entries [from, to), for a built occupancy table.
   void locateWindows(WindowBatch& b) const;
   // The batch's rows of left index i joined in order, then emptied.
