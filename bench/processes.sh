@@ -11,21 +11,10 @@ cd "$(dirname "$0")/.."
 [[ -x build/bench/mitm_program ]] || ./scripts/setup.sh >/dev/null
 cmake --build build --target mitm_program listing_program gbxc >/dev/null
 python3 - <<'PY'
-import os, subprocess, sys, tempfile, time
+import os, subprocess, sys, tempfile
 
-def run_rusage(cmd):
-    """CPU seconds (user + system of the process), peak RSS in MiB, wall seconds."""
-    # posix_spawn: a forked Python would count its own work before exec (and its memory) as
-    # the child's.
-    t0 = time.perf_counter()
-    null = os.open(os.devnull, os.O_WRONLY)
-    pid = os.posix_spawn(cmd[0], cmd, os.environ, file_actions=[(os.POSIX_SPAWN_DUP2, null, 1), (os.POSIX_SPAWN_DUP2, null, 2)])
-    os.close(null)
-    _, status, ru = os.wait4(pid, 0)
-    wall = time.perf_counter() - t0
-    if status != 0:
-        raise SystemExit(f"{cmd}: exit status {status}")
-    return ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024, wall
+sys.path.insert(0, "bench")
+from rusage import run_rusage
 
 def spur_spec(stages, top=100):
     s = "gearbox Bench {\n  stage s0: spur { pinion.z in 12..100; wheel.z in 12..100; require coprime(pinion.z, wheel.z); }\n"
@@ -131,7 +120,6 @@ lines += ["### Where a whole process's time goes on this machine", "",
           "  search between its bucket's place in its occupancy word and the next word's first entry:",
           "  one search's loads wait on each other, 64 interleaved keep the core busy. A window no",
           "  design of which can be kept is counted over its entries' codes in a tight loop.", ""]
-sys.path.insert(0, "bench")
 from section import write_section
 write_section(lines)
 print("\n".join(lines))

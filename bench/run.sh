@@ -154,17 +154,9 @@ lines += ["", "The front end: `gbxc check specs/thruster_two_stage.gbx` as a who
           "its memory; every design listed within 3x of the output bound; the helical top 10 under",
           "5 s and the same as the exhaustive ranking; `check` of a small spec under 5 ms.", ""]
 # ---- whole processes: written by bench/processes.sh (called below) -----------------
-import os, tempfile
-def run_rusage(cmd):
-    """CPU seconds (user + system, the process and the children it waited for), peak RSS
-    in MiB of the process, wall seconds."""
-    t0 = time.perf_counter()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.perf_counter() - t0
-    if status != 0:
-        raise SystemExit(f"{cmd}: exit status {status}")
-    return ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024, wall
+import os, sys, tempfile
+sys.path.insert(0, "bench")
+from rusage import run_rusage
 def median(v): return sorted(v)[len(v) // 2]
 lines += ["## Against a faster meet-in-the-middle program, whole processes", "", "(bench/processes.sh)", ""]
 # ---- Monte Carlo and the optimiser over MPI ranks -----------------------------------

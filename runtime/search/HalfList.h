@@ -64,10 +64,6 @@ public:
         codes_.data(), static_cast<std::uint32_t>(mask_[0]), static_cast<std::uint32_t>(mask_[1]), shift_[1], pair0_,
         pair1_};
   }
-  // A hint for a caller that knows its next entries: entry e's memory.
-  void prefetchEntry(size_t e) const {
-    if (wide_.empty() && e < codes_.size()) __builtin_prefetch(&codes_[e]);
-  }
   // Why the list could not be built (the tuples do not fit a 64-bit code), or empty.
   const std::string& error() const { return error_; }
 

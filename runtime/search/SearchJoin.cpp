@@ -73,6 +73,18 @@ bool Searcher::counts(Local& lo, Assignment& a, const std::uint32_t* cand) const
   return true;
 }
 
+void Searcher::leftFloors(Local& lo, size_t le) const {
+  lo.leftAt.resize(crossing.size());
+  for (size_t c = 0; c < crossing.size(); ++c)
+    lo.leftAt[c] = leftIndex(le, crossing[c].first);
+}
+
+bool Searcher::canonical(const Local& lo, size_t re) const {
+  for (size_t c = 0; c < crossing.size(); ++c)
+    if (lo.leftAt[c] > rightIndex(re, crossing[c].second)) return false;
+  return true;
+}
+
 unsigned long long Searcher::countWindow(Local& lo, std::uint32_t* cand, size_t le, double x, size_t from,
                                          size_t to) const {
   const bool checkCanon = !floorOnly && !crossing.empty();
@@ -100,15 +112,9 @@ unsigned long long Searcher::countWindow(Local& lo, std::uint32_t* cand, size_t 
     }
     return count;
   }
-  auto& leftAt = lo.leftAt;
-  leftAt.resize(crossing.size());
-  for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
-    leftAt[c] = leftIndex(le, crossing[c].first);
+  leftFloors(lo, le);
   for (size_t re = from; re < to; ++re) {
-    bool canonical = true;
-    for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
-      canonical = canonical && leftAt[c] <= rightIndex(re, crossing[c].second);
-    if (!canonical) continue;
+    if (checkCanon && !canonical(lo, re)) continue;
     double p = x * right->ratio(re);
     count += (p >= sureLo && p <= sureHi) || confirm(re);
   }
@@ -119,19 +125,10 @@ unsigned long long Searcher::countWindow(Local& lo, std::uint32_t* cand, size_t 
 // `counted` says arithmetic did), then keyed and kept when it may rank among the best.
 void Searcher::visit(Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from,
                      size_t to, bool counted, bool keyed) const {
-  // The left indices the canonical order compares, read once.
   const bool checkCanon = !floorOnly && !crossing.empty();
-  auto& leftAt = lo.leftAt;
-  leftAt.resize(crossing.size());
-  for (size_t c = 0; checkCanon && c < crossing.size(); ++c)
-    leftAt[c] = leftIndex(le, crossing[c].first);
+  leftFloors(lo, le);
   for (size_t re = from; re < to && re < rn; ++re) {
-    if (checkCanon) {
-      bool canonical = true;
-      for (size_t c = 0; c < crossing.size() && canonical; ++c)
-        canonical = leftAt[c] <= rightIndex(re, crossing[c].second);
-      if (!canonical) continue;
-    }
+    if (checkCanon && !canonical(lo, re)) continue;
     for (int s = h; s < k; ++s)
       cand[s] = rightIndex(re, s);
     double p = x * right->ratio(re);
@@ -315,18 +312,21 @@ void Searcher::locateWindows(WindowBatch& b) const {
   withRightRatio(locate);
 }
 
+// Inline: it runs once per window of the hot loop.
+inline void Searcher::joinRow(Walk& w, size_t i, size_t j, double x, size_t from, size_t to, double rowPart,
+                              double rightLeast) {
+  w.cand[1] = static_cast<std::uint32_t>(j);
+  double partial = 0;
+  if (fastKey && full(w.lo))
+    partial = rowPart + fastKey->entry(1, w.cand[1]) + (rowMin.empty() ? rightLeast : rowMin.least(from, to));
+  joinEntry(w, i * n1 + j, x, from, to, partial);
+}
+
 void Searcher::joinBatch(Walk& w, WindowBatch& b, size_t i, const double* r0, const double* r1, double rowPart,
                          double rightLeast) {
   locateWindows(b);
-  for (size_t r = 0; r < b.n; ++r) {
-    const size_t from = b.from[r], to = b.to[r], j = b.j[r];
-    if (from >= to) continue;
-    w.cand[1] = b.j[r];
-    double partial = 0;
-    if (fastKey && full(w.lo))
-      partial = rowPart + fastKey->entry(1, b.j[r]) + (rowMin.empty() ? rightLeast : rowMin.least(from, to));
-    joinEntry(w, i * n1 + j, r0[i] * r1[j], from, to, partial);
-  }
+  for (size_t r = 0; r < b.n; ++r)
+    if (b.from[r] < b.to[r]) joinRow(w, i, b.j[r], r0[i] * r1[b.j[r]], b.from[r], b.to[r], rowPart, rightLeast);
   b.n = 0;
 }
 
@@ -352,27 +352,26 @@ void Searcher::buildOccupancy() {
   occupancy.buckets = static_cast<size_t>(span >> shift) + 1;
   occupancy.bits.assign((occupancy.buckets + 63) / 64 + 1, 0); // a spare word: any() reads two
   if (!shortList) occupancy.first.assign(occupancy.bits.size(), static_cast<std::uint32_t>(rn));
+  // A window's most order keys: its relative width times 2^52 (the key is a double's bits;
+  // 2^53 for margin), and two for rounding. It reaches at most ceil(keys / bucket) buckets
+  // past its first; a short list's rows read that reach as one bit (a few buckets at most).
+  const double windowKeys = std::ldexp(wantHiC / wantLoC - 1, 53) + 2;
+  const double reachBuckets = std::ceil(windowKeys / std::ldexp(1, shift));
+  const bool near = shortList && reachBuckets <= 8;
+  const size_t reach = near ? static_cast<size_t>(reachBuckets) : 0;
+  if (near) occupancy.near.assign(occupancy.bits.size(), 0);
   auto mark = [&](auto&& ratio) {
     for (size_t e = 0, w = 0; e < rn; ++e) {
       size_t kb = occupancy.bucket(ratio(e));
       occupancy.bits[kb >> 6] |= std::uint64_t{1} << (kb & 63);
       for (; !shortList && w <= (kb >> 6); ++w)
         occupancy.first[w] = static_cast<std::uint32_t>(e);
+      if (near)
+        for (size_t q = kb - std::min(kb, reach); q <= kb; ++q)
+          occupancy.near[q >> 6] |= std::uint64_t{1} << (q & 63);
     }
   };
   withRightRatio(mark);
-  // A window's most order keys: its relative width times 2^52 (the key is a double's bits;
-  // 2^53 for margin), and two for rounding. It reaches at most ceil(keys / bucket) buckets
-  // past its first; a short list's rows read that reach as one bit (a few buckets at most).
-  const double windowKeys = std::ldexp(wantHiC / wantLoC - 1, 53) + 2;
-  const double reach = std::ceil(windowKeys / std::ldexp(1, shift));
-  if (!shortList || !(reach <= 8)) return;
-  occupancy.near.assign(occupancy.bits.size(), 0);
-  for (size_t e = 0; e < rn; ++e) {
-    const size_t kb = occupancy.bucket(right->ratio(e));
-    for (size_t q = kb - std::min(kb, static_cast<size_t>(reach)); q <= kb; ++q)
-      occupancy.near[q >> 6] |= std::uint64_t{1} << (q & 63);
-  }
 }
 
 namespace {
@@ -448,15 +447,14 @@ bool Searcher::sweepRows(Walk& w) {
     inv1[j] = 1 / r1[j];
   // A short right list's rows are scanned by nextShortRow, which reads the occupancy
   // table directly: positive windows only.
-  const bool tight = r2 && !occupancy.near.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
-                     wantLoC > 0 && wantLoC <= wantHiC;
+  const bool positive = !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 && wantLoC > 0 && wantLoC <= wantHiC;
+  const bool tight = r2 && !occupancy.near.empty() && positive;
   // The rows' lowest window bounds but for the left index's factor.
   std::vector<double> lo1(tight ? m1 : 0);
   for (size_t j = 0; j < lo1.size(); ++j)
     lo1[j] = wantLoC * inv1[j];
   // A long right list's windows are found in batches: positive windows of a built table.
-  const bool batched = !r2 && !occupancy.first.empty() && !ratios[0].empty() && r0[0] > 0 && m1 > 0 && r1[0] > 0 &&
-                       wantLoC > 0 && wantLoC <= wantHiC;
+  const bool batched = !r2 && !occupancy.first.empty() && positive;
   WindowBatch batch;
   auto& cand = w.cand;
   for (size_t i = w.begin; i < w.end; ++i) {
@@ -515,11 +513,7 @@ bool Searcher::sweepRows(Walk& w) {
         from = std::max(loP, floor);
       }
       if (from >= hiP) continue;
-      cand[1] = static_cast<std::uint32_t>(j);
-      double partial = 0;
-      if (fastKey && full(w.lo))
-        partial = rowPart + fastKey->entry(1, cand[1]) + (rowMin.empty() ? rightLeast : rowMin.least(from, hiP));
-      joinEntry(w, i * n1 + j, x, from, hiP, partial);
+      joinRow(w, i, j, x, from, hiP, rowPart, rightLeast);
     }
     if (batch.n > 0) joinBatch(w, batch, i, r0, r1, rowPart, rightLeast);
   }

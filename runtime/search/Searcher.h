@@ -272,6 +272,11 @@ private:
   void visit(Local& lo, Assignment& a, std::uint32_t* cand, double* scratch, size_t le, double x, size_t from,
              size_t to, bool counted, bool keyed = true) const;
 
+  // The left entry's indices the canonical order compares, into lo.leftAt (read once a
+  // window); then whether right entry re keeps that order.
+  void leftFloors(Local& lo, size_t le) const;
+  bool canonical(const Local& lo, size_t re) const;
+
   // The designs of a window none of which can be kept, where plainCount holds: a tight loop
   // over the right entries' codes, the window confirmed exactly only within the rounding
   // margin of its bounds.
@@ -369,6 +374,8 @@ private:
   double rightRatio(size_t e) const { return pairView ? pairView->ratio(e) : right->ratio(e); }
   // Each row's window [wl, wh] as right entries [from, to), for a built occupancy table.
   void locateWindows(WindowBatch& b) const;
+  // Row (i, j)'s window [from, to) joined, with the kept designs' bound from the row's part.
+  void joinRow(Walk& w, size_t i, size_t j, double x, size_t from, size_t to, double rowPart, double rightLeast);
   // The batch's rows of left index i joined in order, then emptied.
   void joinBatch(Walk& w, WindowBatch& b, size_t i, const double* r0, const double* r1, double rowPart,
                  double rightLeast);
